@@ -1,0 +1,139 @@
+#ifndef GENDPDE_FORCE_H_
+#define GENDPDE_FORCE_H_
+
+#include "openmm/Context.h"
+#include "openmm/Force.h"
+#include <vector>
+
+namespace GenDPDEPlugin {
+
+class GenDPDEForceImpl;
+struct GenDPDEObservables;
+
+/**
+ * The many-body conservative force of generalised energy-conserving dissipative particle dynamics (GenDPDE).
+ *
+ * Every particle i of the System carries a local density. The primitive density is
+ * n0_i = sum_{j != i} w(r_ij) with the normalised weight w(r) = 15/(2 pi R^3) (1 - r/R)^2 of range R (the cutoff
+ * distance). A volume estimator turns it into a particle volume V_i and density n_i = 1/V_i:
+ *
+ *  - VA (traditional): V_i = 1/n0_i. An isolated particle (n0_i = 0) has no volume and is reported as an error.
+ *    With VA, particles clump in pairs so that n_i settles near the free-energy minimum instead of the imposed
+ *    density (the pairing instability).
+ *  - VB (partition of unity): V_i = 4 pi Rt^3 int_0^1 y^2 (1-y)^2/(y^2 + k_i) dy with Rt = R/f_cut and
+ *    k_i = (2 pi/15) Rt^3 n0_i. It is finite for an isolated particle ((4 pi/3) Rt^3), tends to VA at high density
+ *    and removes the pairing instability. f_cut >= 1 (the cutoff scaling) tunes the mean density.
+ *
+ * Each particle has the Tait pressure pi(n) = pi0 + B_T [(n/n0)^gamma_T - 1] and free energy
+ * f(n) = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1), and the potential energy is
+ * U = sum_i f(n_i). The force is its exact gradient,
+ * F_i = sum_j [pi_i dV_i/dn0_i + pi_j dV_j/dn0_j] w'(r_ij) e_ij, which is pairwise antisymmetric and conserves
+ * momentum. Coincident particles count in the density but exert no force on each other.
+ *
+ * All parameters can be set before the Context is created. The estimator, the cutoff scaling and the Tait
+ * parameters can also be changed afterwards with updateParametersInContext(); the cutoff distance and the
+ * nonbonded method cannot. The per-particle observables (densities, volumes, pressures) and the virial are
+ * computed from the Context's current positions on request.
+ *
+ * The defaults are the liquid-argon model of Colella et al. (J. Chem. Theory Comput. 2025) in OpenMM units
+ * (one particle = 5 argon atoms): n0 = 1/L^3 = 4.27484 nm^-3, pi0 = 0.116056 u/L^3, B_T = u/(6 L^3) with
+ * u = 94.5476 kJ/mol and L = 0.61616 nm, gamma_T = 6; estimator VB, f_cut = 1, periodic boundaries.
+ */
+class GenDPDEForce : public OpenMM::Force {
+public:
+    /** How pair distances are computed. */
+    enum NonbondedMethod {
+        /** No periodic boundaries; pairs farther apart than the cutoff do not interact. */
+        CutoffNonPeriodic = 0,
+        /** Periodic boundaries with the minimum-image convention; the cutoff must not exceed half the box. */
+        CutoffPeriodic = 1
+    };
+    /** How the primitive density n0_i becomes a particle volume V_i. */
+    enum DensityEstimator {
+        /** Traditional estimator V = 1/n0. */
+        VA = 0,
+        /** Partition-of-unity estimator; removes the pairing instability. */
+        VB = 1
+    };
+    /**
+     * Create a GenDPDEForce.
+     *
+     * @param cutoff    the range R of the density weight (in nm), finite and > 0
+     */
+    explicit GenDPDEForce(double cutoff);
+    /** Get the cutoff distance R (in nm). */
+    double getCutoffDistance() const;
+    /** Set the cutoff distance R (in nm), finite and > 0. Takes effect when a Context is created. */
+    void setCutoffDistance(double distance);
+    /** Get the method used for periodic boundaries. */
+    NonbondedMethod getNonbondedMethod() const;
+    /** Set the method used for periodic boundaries. Takes effect when a Context is created. */
+    void setNonbondedMethod(NonbondedMethod method);
+    /** Get the density estimator (VA or VB). */
+    DensityEstimator getDensityEstimator() const;
+    /** Set the density estimator (VA or VB). */
+    void setDensityEstimator(DensityEstimator estimator);
+    /** Get the cutoff scaling f_cut of the VB estimator (dimensionless). */
+    double getCutoffScaling() const;
+    /** Set the cutoff scaling f_cut >= 1 of the VB estimator (dimensionless; Rt = R/f_cut). Ignored by VA. */
+    void setCutoffScaling(double scaling);
+    /**
+     * Set the parameters of the Tait equation of state.
+     *
+     * @param referenceDensity     n0 (in nm^-3), > 0
+     * @param referencePressure    pi0 (in kJ/mol/nm^3), any finite value
+     * @param bulkModulus          B_T = 1/(gamma_T kappa_T0) (in kJ/mol/nm^3), > 0
+     * @param exponent             gamma_T (dimensionless), > 1
+     */
+    void setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus, double exponent);
+    /**
+     * Get the parameters of the Tait equation of state.
+     *
+     * @param[out] referenceDensity     n0 (in nm^-3)
+     * @param[out] referencePressure    pi0 (in kJ/mol/nm^3)
+     * @param[out] bulkModulus          B_T (in kJ/mol/nm^3)
+     * @param[out] exponent             gamma_T (dimensionless)
+     */
+    void getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent) const;
+    /** Get the Tait reference density n0 (in nm^-3). */
+    double getReferenceDensity() const;
+    /** Get the Tait reference pressure pi0 (in kJ/mol/nm^3). */
+    double getReferencePressure() const;
+    /** Get the Tait bulk modulus B_T (in kJ/mol/nm^3). */
+    double getBulkModulus() const;
+    /** Get the Tait exponent gamma_T (dimensionless). */
+    double getTaitExponent() const;
+    /** Returns true if the force uses periodic boundaries (nonbonded method CutoffPeriodic). */
+    bool usesPeriodicBoundaryConditions() const override;
+    /**
+     * Copy the estimator, the cutoff scaling and the Tait parameters into a Context that already exists, without
+     * reinitialising it. The cutoff distance and the nonbonded method cannot be changed this way.
+     */
+    void updateParametersInContext(OpenMM::Context& context);
+    /** The primitive density n0_i of every particle (in nm^-3) at the Context's current positions. */
+    std::vector<double> getPrimitiveDensities(OpenMM::Context& context) const;
+    /** The density n_i = 1/V_i of every particle (in nm^-3) at the Context's current positions. */
+    std::vector<double> getParticleDensities(OpenMM::Context& context) const;
+    /** The volume V_i of every particle (in nm^3) at the Context's current positions. */
+    std::vector<double> getParticleVolumes(OpenMM::Context& context) const;
+    /** The Tait pressure pi_i of every particle (in kJ/mol/nm^3) at the Context's current positions. */
+    std::vector<double> getParticlePressures(OpenMM::Context& context) const;
+    /**
+     * The conservative virial W = sum_{i<j} r_ij . F_ij (in kJ/mol) at the Context's current positions, so that
+     * the pressure is P = (2K + W)/(3 V_box). It equals -3 V_box dU/dV_box under uniform scaling.
+     */
+    double getVirial(OpenMM::Context& context) const;
+protected:
+    OpenMM::ForceImpl* createImpl() const override;
+private:
+    GenDPDEForceImpl& getImpl(OpenMM::Context& context) const;
+    const GenDPDEObservables& observablesInContext(OpenMM::Context& context) const;
+    double cutoff, cutoffScaling;
+    double referenceDensity, referencePressure, bulkModulus, exponent;
+    NonbondedMethod nonbondedMethod;
+    DensityEstimator estimator;
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_FORCE_H_*/

@@ -1,0 +1,47 @@
+#ifndef GENDPDE_FORCE_IMPL_H_
+#define GENDPDE_FORCE_IMPL_H_
+
+#include "GenDPDEForce.h"
+#include "GenDPDEKernels.h"
+#include "openmm/Kernel.h"
+#include "openmm/internal/ForceImpl.h"
+#include <map>
+#include <string>
+#include <vector>
+
+namespace GenDPDEPlugin {
+
+/** The internal implementation of GenDPDEForce inside a Context. */
+class GenDPDEForceImpl : public OpenMM::ForceImpl {
+public:
+    explicit GenDPDEForceImpl(const GenDPDEForce& owner);
+    void initialize(OpenMM::ContextImpl& context) override;
+    const GenDPDEForce& getOwner() const override {
+        return owner;
+    }
+    void updateContextState(OpenMM::ContextImpl& context, bool& forcesInvalid) override {
+    }
+    double calcForcesAndEnergy(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy, int groups) override;
+    std::map<std::string, double> getDefaultParameters() override {
+        return {};
+    }
+    std::vector<std::string> getKernelNames() override;
+    void updateParametersInContext(OpenMM::ContextImpl& context);
+    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context);
+    /** The kernel, for an integrator on the same platform that wants to reuse its pair list. */
+    OpenMM::Kernel& getKernel() {
+        return kernel;
+    }
+    /**
+     * Throw an OpenMMException if the cutoff exceeds half the periodic box (the smallest of a_x, b_y, c_z, as in
+     * OpenMM's own nonbonded forces). Checked at Context creation and before every evaluation.
+     */
+    static void checkCutoffAgainstBox(double cutoff, const OpenMM::Vec3 boxVectors[3]);
+private:
+    const GenDPDEForce& owner;
+    OpenMM::Kernel kernel;
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_FORCE_IMPL_H_*/

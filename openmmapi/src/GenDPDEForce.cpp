@@ -1,0 +1,140 @@
+#include "GenDPDEForce.h"
+#include "internal/GenDPDEForceImpl.h"
+#include "internal/ParameterChecks.h"
+#include "openmm/OpenMMException.h"
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+using namespace ParameterChecks;
+
+namespace {
+// Default Tait parameters: liquid argon of MODEL.md section 4 converted to OpenMM units.
+const double argonLength = 0.61616;                                     // L (nm), so that n0* = 1
+const double argonEnergy = 1.5700e-19*6.02214076e23/1000.0;             // u (kJ/mol)
+const double argonPressureUnit = argonEnergy/(argonLength*argonLength*argonLength);   // u/L^3 (kJ/mol/nm^3)
+const double argonPressure = 0.12711, argonTemperature = 0.011054;      // P0*, T0* (reduced)
+}
+
+GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0),
+        referenceDensity(1.0/(argonLength*argonLength*argonLength)),
+        referencePressure((argonPressure - argonTemperature)*argonPressureUnit),   // pi0* = P0* - n0* T0*
+        bulkModulus(argonPressureUnit/6.0), exponent(6.0),
+        nonbondedMethod(CutoffPeriodic), estimator(VB) {
+    setCutoffDistance(cutoff);
+}
+
+double GenDPDEForce::getCutoffDistance() const {
+    return cutoff;
+}
+
+void GenDPDEForce::setCutoffDistance(double distance) {
+    requirePositive("GenDPDEForce", "cutoff distance", distance, "nm");
+    cutoff = distance;
+}
+
+GenDPDEForce::NonbondedMethod GenDPDEForce::getNonbondedMethod() const {
+    return nonbondedMethod;
+}
+
+void GenDPDEForce::setNonbondedMethod(NonbondedMethod method) {
+    if (method != CutoffNonPeriodic && method != CutoffPeriodic)
+        reject("GenDPDEForce", "nonbonded method", (int) method, "",
+               "CutoffNonPeriodic (0) or CutoffPeriodic (1)");
+    nonbondedMethod = method;
+}
+
+GenDPDEForce::DensityEstimator GenDPDEForce::getDensityEstimator() const {
+    return estimator;
+}
+
+void GenDPDEForce::setDensityEstimator(DensityEstimator estimator) {
+    if (estimator != VA && estimator != VB)
+        reject("GenDPDEForce", "density estimator", (int) estimator, "", "VA (0) or VB (1)");
+    this->estimator = estimator;
+}
+
+double GenDPDEForce::getCutoffScaling() const {
+    return cutoffScaling;
+}
+
+void GenDPDEForce::setCutoffScaling(double scaling) {
+    requireAtLeast("GenDPDEForce", "cutoff scaling f_cut", scaling, 1.0);
+    cutoffScaling = scaling;
+}
+
+void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus, double exponent) {
+    // Check all four before changing any.
+    requirePositive("GenDPDEForce", "Tait reference density n0", referenceDensity, "nm^-3");
+    requireFinite("GenDPDEForce", "Tait reference pressure pi0", referencePressure, "kJ/mol/nm^3");
+    requirePositive("GenDPDEForce", "Tait bulk modulus B_T", bulkModulus, "kJ/mol/nm^3");
+    requireGreaterThan("GenDPDEForce", "Tait exponent gamma_T", exponent, 1.0);
+    this->referenceDensity = referenceDensity;
+    this->referencePressure = referencePressure;
+    this->bulkModulus = bulkModulus;
+    this->exponent = exponent;
+}
+
+void GenDPDEForce::getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent) const {
+    referenceDensity = this->referenceDensity;
+    referencePressure = this->referencePressure;
+    bulkModulus = this->bulkModulus;
+    exponent = this->exponent;
+}
+
+double GenDPDEForce::getReferenceDensity() const {
+    return referenceDensity;
+}
+
+double GenDPDEForce::getReferencePressure() const {
+    return referencePressure;
+}
+
+double GenDPDEForce::getBulkModulus() const {
+    return bulkModulus;
+}
+
+double GenDPDEForce::getTaitExponent() const {
+    return exponent;
+}
+
+bool GenDPDEForce::usesPeriodicBoundaryConditions() const {
+    return nonbondedMethod == CutoffPeriodic;
+}
+
+ForceImpl* GenDPDEForce::createImpl() const {
+    return new GenDPDEForceImpl(*this);
+}
+
+GenDPDEForceImpl& GenDPDEForce::getImpl(Context& context) const {
+    // The impl belongs to the Context, which the caller passes as non-const; evaluating observables updates caches.
+    return const_cast<GenDPDEForceImpl&>(dynamic_cast<const GenDPDEForceImpl&>(getImplInContext(context)));
+}
+
+void GenDPDEForce::updateParametersInContext(Context& context) {
+    getImpl(context).updateParametersInContext(getContextImpl(context));
+}
+
+const GenDPDEObservables& GenDPDEForce::observablesInContext(Context& context) const {
+    return getImpl(context).getObservables(const_cast<GenDPDEForce*>(this)->getContextImpl(context));
+}
+
+std::vector<double> GenDPDEForce::getPrimitiveDensities(Context& context) const {
+    return observablesInContext(context).primitiveDensities;
+}
+
+std::vector<double> GenDPDEForce::getParticleDensities(Context& context) const {
+    return observablesInContext(context).densities;
+}
+
+std::vector<double> GenDPDEForce::getParticleVolumes(Context& context) const {
+    return observablesInContext(context).volumes;
+}
+
+std::vector<double> GenDPDEForce::getParticlePressures(Context& context) const {
+    return observablesInContext(context).pressures;
+}
+
+double GenDPDEForce::getVirial(Context& context) const {
+    return observablesInContext(context).virial;
+}

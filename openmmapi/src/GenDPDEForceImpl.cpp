@@ -1,0 +1,54 @@
+#include "internal/GenDPDEForceImpl.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/internal/ContextImpl.h"
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
+}
+
+void GenDPDEForceImpl::checkCutoffAgainstBox(double cutoff, const Vec3 boxVectors[3]) {
+    double smallest = std::min(boxVectors[0][0], std::min(boxVectors[1][1], boxVectors[2][2]));
+    if (cutoff > 0.5*smallest) {
+        std::ostringstream message;
+        message.precision(12);
+        message << "GenDPDEForce: cutoff distance = " << cutoff
+                << " nm is not allowed with this periodic box; it must be <= half the smallest box size ("
+                << 0.5*smallest << " nm, from a_x = " << boxVectors[0][0] << ", b_y = " << boxVectors[1][1]
+                << ", c_z = " << boxVectors[2][2] << " nm)";
+        throw OpenMMException(message.str());
+    }
+}
+
+void GenDPDEForceImpl::initialize(ContextImpl& context) {
+    const System& system = context.getSystem();
+    if (owner.usesPeriodicBoundaryConditions()) {
+        Vec3 box[3];
+        system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
+        checkCutoffAgainstBox(owner.getCutoffDistance(), box);
+    }
+    kernel = context.getPlatform().createKernel(CalcGenDPDEForceKernel::Name(), context);
+    kernel.getAs<CalcGenDPDEForceKernel>().initialize(system, owner);
+}
+
+double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeForces, bool includeEnergy, int groups) {
+    if ((groups & (1<<owner.getForceGroup())) != 0)
+        return kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
+    return 0.0;
+}
+
+std::vector<std::string> GenDPDEForceImpl::getKernelNames() {
+    registerGenDPDEKernelFactories();
+    return {CalcGenDPDEForceKernel::Name()};
+}
+
+void GenDPDEForceImpl::updateParametersInContext(ContextImpl& context) {
+    kernel.getAs<CalcGenDPDEForceKernel>().copyParametersToContext(context, owner);
+    context.systemChanged();
+}
+
+const GenDPDEObservables& GenDPDEForceImpl::getObservables(ContextImpl& context) {
+    return kernel.getAs<CalcGenDPDEForceKernel>().getObservables(context);
+}

@@ -1,0 +1,140 @@
+#include "ReferenceGenDPDEForceKernel.h"
+#include "ReferenceKernelAccess.h"
+#include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDEPhysics.h"
+#include "openmm/OpenMMException.h"
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+namespace {
+// Verlet skin as a fraction of the cutoff: candidates within 1.15 R, rebuilt after a move of 0.075 R.
+const double skinFraction = 0.15;
+}
+
+void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
+    cutoff = force.getCutoffDistance();
+    periodic = force.usesPeriodicBoundaryConditions();
+    neighborList.reset(new NeighborList(cutoff, skinFraction*cutoff, periodic));
+    int numParticles = system.getNumParticles();
+    primitiveDensity.resize(numParticles);
+    volume.resize(numParticles);
+    pressure.resize(numParticles);
+    forceCoefficient.resize(numParticles);
+    readParameters(force);
+}
+
+void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
+    readParameters(force);
+}
+
+void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
+    if (force.getCutoffDistance() != cutoff)
+        throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the cutoff distance; "
+                              "call Context.reinitialize() (or create a new Context) after changing it");
+    if (force.usesPeriodicBoundaryConditions() != periodic)
+        throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the nonbonded method; "
+                              "call Context.reinitialize() (or create a new Context) after changing it");
+    estimator = force.getDensityEstimator();
+    cutoffScaling = force.getCutoffScaling();
+    force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+    observablesValid = false;
+}
+
+double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
+    const std::vector<Vec3>& positions = extractPositions(context);
+    Vec3* box = extractBoxVectors(context);
+    const int numParticles = positions.size();
+    for (int i = 0; i < numParticles; i++)
+        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2]))) {
+            std::ostringstream message;
+            message << "GenDPDEForce: the position of particle " << i << " is not finite (" << positions[i][0] << ", "
+                    << positions[i][1] << ", " << positions[i][2] << ") at step " << context.getStepCount();
+            throw OpenMMException(message.str());
+        }
+    if (periodic)
+        GenDPDEForceImpl::checkCutoffAgainstBox(cutoff, box);
+    const std::vector<ParticlePair>& pairs = neighborList->update(positions, box);
+
+    // MODEL.md section 1: primitive densities n0_i = sum_j w(r_ij).
+    const Physics::DensityWeight weight(cutoff);
+    std::fill(primitiveDensity.begin(), primitiveDensity.end(), 0.0);
+    for (const ParticlePair& pair : pairs) {
+        double w = weight.value(pair.r);
+        primitiveDensity[pair.i] += w;
+        primitiveDensity[pair.j] += w;
+    }
+
+    // MODEL.md sections 1-2: volumes, Tait pressures and free energies; U = sum_i f(n_i).
+    const Physics::TaitEquationOfState tait(referenceDensity, referencePressure, bulkModulus, exponent);
+    const double reducedRange = cutoff/cutoffScaling;
+    double energy = 0.0;
+    for (int i = 0; i < numParticles; i++) {
+        const double n0 = primitiveDensity[i];
+        if (estimator == GenDPDEForce::VA && n0 == 0.0) {
+            std::ostringstream message;
+            message.precision(12);
+            message << "GenDPDEForce: particle " << i << " has no neighbour within the cutoff (" << cutoff
+                    << " nm) at step " << context.getStepCount() << ", so its VA volume 1/n0 is undefined. "
+                    << "Use the VB estimator, a larger cutoff or a denser system";
+            throw OpenMMException(message.str());
+        }
+        Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
+                                                                    : Physics::volumeVB(n0, reducedRange));
+        double freeEnergy;
+        tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
+        volume[i] = v.volume;
+        energy += freeEnergy;
+        // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
+        forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
+    }
+    numEvaluations++;
+    return energy;
+}
+
+double ReferenceCalcGenDPDEForceKernel::computePairForces(std::vector<Vec3>* forces) const {
+    // MODEL.md section 2: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij.
+    const Physics::DensityWeight weight(cutoff);
+    double virial = 0.0;
+    for (const ParticlePair& pair : neighborList->getPairs()) {
+        if (pair.r == 0.0)
+            continue;   // coincident particles: counted in the density, no direction, no force
+        double scale = (forceCoefficient[pair.i] + forceCoefficient[pair.j])*weight.derivative(pair.r)/pair.r;
+        if (forces != nullptr) {
+            Vec3 force = pair.delta*scale;
+            (*forces)[pair.i] += force;
+            (*forces)[pair.j] -= force;
+        }
+        virial += scale*pair.r*pair.r;
+    }
+    return virial;
+}
+
+double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
+    double energy = computeDensitiesAndEnergy(context);
+    if (includeForces)
+        computePairForces(&extractForces(context));
+    return energy;
+}
+
+const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(ContextImpl& context) {
+    const std::vector<Vec3>& positions = extractPositions(context);
+    Vec3* box = extractBoxVectors(context);
+    if (observablesValid && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1]
+            && box[2] == observedBox[2])
+        return observables;
+    computeDensitiesAndEnergy(context);
+    observables.virial = computePairForces(nullptr);
+    observables.primitiveDensities = primitiveDensity;
+    observables.volumes = volume;
+    observables.pressures = pressure;
+    observables.densities.resize(volume.size());
+    for (size_t i = 0; i < volume.size(); i++)
+        observables.densities[i] = 1.0/volume[i];
+    observedPositions = positions;
+    for (int k = 0; k < 3; k++)
+        observedBox[k] = box[k];
+    observablesValid = true;
+    return observables;
+}

@@ -1,0 +1,53 @@
+#include "GenDPDEForceProxy.h"
+#include "GenDPDEForce.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/serialization/SerializationNode.h"
+#include <memory>
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+namespace {
+const int currentVersion = 1;
+}
+
+GenDPDEForceProxy::GenDPDEForceProxy() : SerializationProxy("GenDPDEForce") {
+}
+
+void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) const {
+    node.setIntProperty("version", currentVersion);
+    const GenDPDEForce& force = *reinterpret_cast<const GenDPDEForce*>(object);
+    node.setStringProperty("name", force.getName());
+    node.setIntProperty("forceGroup", force.getForceGroup());
+    node.setDoubleProperty("cutoff", force.getCutoffDistance());
+    node.setIntProperty("method", (int) force.getNonbondedMethod());
+    node.setIntProperty("estimator", (int) force.getDensityEstimator());
+    node.setDoubleProperty("cutoffScaling", force.getCutoffScaling());
+    double n0, pi0, bulkModulus, exponent;
+    force.getTaitParameters(n0, pi0, bulkModulus, exponent);
+    node.setDoubleProperty("n0", n0);
+    node.setDoubleProperty("pi0", pi0);
+    node.setDoubleProperty("bulkModulus", bulkModulus);
+    node.setDoubleProperty("gammaT", exponent);
+}
+
+void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
+    int version = node.getIntProperty("version");
+    if (version < 1 || version > currentVersion) {
+        std::ostringstream message;
+        message << "GenDPDEForce: cannot read serialization version " << version << "; this build reads versions 1 to "
+                << currentVersion;
+        throw OpenMMException(message.str());
+    }
+    // The setters validate every value, so a corrupted file is rejected with the usual messages.
+    std::unique_ptr<GenDPDEForce> force(new GenDPDEForce(node.getDoubleProperty("cutoff")));
+    force->setName(node.getStringProperty("name", force->getName()));
+    force->setForceGroup(node.getIntProperty("forceGroup", 0));
+    force->setNonbondedMethod((GenDPDEForce::NonbondedMethod) node.getIntProperty("method"));
+    force->setDensityEstimator((GenDPDEForce::DensityEstimator) node.getIntProperty("estimator"));
+    force->setCutoffScaling(node.getDoubleProperty("cutoffScaling"));
+    force->setTaitParameters(node.getDoubleProperty("n0"), node.getDoubleProperty("pi0"),
+                             node.getDoubleProperty("bulkModulus"), node.getDoubleProperty("gammaT"));
+    return force.release();
+}

@@ -1,0 +1,79 @@
+#include "GenDPDEForce.h"
+#include "TestUtilities.h"
+#include "OpenMM.h"
+#include "openmm/serialization/XmlSerializer.h"
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+/** Every property survives a round trip; checks are made on the deserialized copy. */
+void testSerialization() {
+    GenDPDEForce force(1.234);
+    force.setNonbondedMethod(GenDPDEForce::CutoffNonPeriodic);
+    force.setDensityEstimator(GenDPDEForce::VA);
+    force.setCutoffScaling(1.41);
+    force.setTaitParameters(4.5, 47.25, 67.5, 6.5);
+    force.setForceGroup(5);
+    force.setName("argon");
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+    GenDPDEForce* copy = XmlSerializer::deserialize<GenDPDEForce>(buffer);
+    ASSERT_EQUAL(force.getCutoffDistance(), copy->getCutoffDistance());
+    ASSERT_EQUAL(force.getNonbondedMethod(), copy->getNonbondedMethod());
+    ASSERT_EQUAL(force.getDensityEstimator(), copy->getDensityEstimator());
+    ASSERT_EQUAL(force.getCutoffScaling(), copy->getCutoffScaling());
+    ASSERT_EQUAL(force.getReferenceDensity(), copy->getReferenceDensity());
+    ASSERT_EQUAL(force.getReferencePressure(), copy->getReferencePressure());
+    ASSERT_EQUAL(force.getBulkModulus(), copy->getBulkModulus());
+    ASSERT_EQUAL(force.getTaitExponent(), copy->getTaitExponent());
+    ASSERT_EQUAL(force.getForceGroup(), copy->getForceGroup());
+    ASSERT_EQUAL(force.getName(), copy->getName());
+    delete copy;
+}
+
+/** A System holding the force round-trips through XmlSerializer, and the copy computes the same energy. */
+void testSystemRoundTrip() {
+    System system;
+    system.setDefaultPeriodicBoxVectors(Vec3(3, 0, 0), Vec3(0, 3, 0), Vec3(0, 0, 3));
+    std::vector<Vec3> positions;
+    for (int i = 0; i < 64; i++) {
+        system.addParticle(200.0);
+        positions.push_back(Vec3(0.75*(i % 4) + 0.01*i, 0.75*((i/4) % 4), 0.75*(i/16) - 0.02*(i % 3)));
+    }
+    GenDPDEForce* force = new GenDPDEForce(1.0);
+    force->setCutoffScaling(1.3);
+    system.addForce(force);
+    std::stringstream buffer;
+    XmlSerializer::serialize<System>(&system, "System", buffer);
+    System* copy = XmlSerializer::deserialize<System>(buffer);
+    ASSERT(dynamic_cast<GenDPDEForce*>(&copy->getForce(0)) != nullptr);
+    Platform& platform = Platform::getPlatformByName("Reference");
+    VerletIntegrator integrator1(0.001), integrator2(0.001);
+    Context original(system, integrator1, platform), restored(*copy, integrator2, platform);
+    original.setPositions(positions);
+    restored.setPositions(positions);
+    ASSERT_EQUAL(original.getState(State::Energy).getPotentialEnergy(), restored.getState(State::Energy).getPotentialEnergy());
+    delete copy;
+}
+
+/** A file from a newer version is refused with a clear message. */
+void testFutureVersion() {
+    GenDPDEForce force(1.0);
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+    std::string xml = buffer.str();
+    size_t position = xml.find("version=\"1\"");
+    ASSERT(position != std::string::npos);
+    xml.replace(position, 11, "version=\"99\"");
+    std::stringstream future(xml);
+    assertThrowsMentioning([&]() { delete XmlSerializer::deserialize<GenDPDEForce>(future); }, {"version 99"});
+}
+
+int main() {
+    return runTestProgram([]() {
+        testSerialization();
+        testSystemRoundTrip();
+        testFutureVersion();
+    });
+}

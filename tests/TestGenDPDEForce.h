@@ -1,0 +1,467 @@
+/* Tests of GenDPDEForce shared by every platform: a platform file defines `platform`, calls runForceTests(). */
+
+#include "BruteForceGenDPDE.h"
+#include "GenDPDEForce.h"
+#include "TestUtilities.h"
+#include "internal/GenDPDEPhysics.h"
+#include "OpenMM.h"
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <random>
+#include <vector>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+extern Platform* platform;
+
+namespace ForceTests {
+
+// Liquid argon at R* = 1.6839 in OpenMM units (MODEL.md section 4).
+const double lengthUnit = 0.61616;
+const double cutoff = 1.6839*lengthUnit;
+const double referenceDensity = 1.0/(lengthUnit*lengthUnit*lengthUnit);
+
+/** A System with only a GenDPDEForce, and positions. */
+struct Scene {
+    System system;
+    GenDPDEForce* force;
+    std::vector<Vec3> positions;
+    Vec3 box[3];
+};
+
+Scene makeScene(int numParticles, GenDPDEForce::DensityEstimator estimator, bool periodic, double cutoffScaling = 1.2) {
+    Scene scene;
+    scene.force = new GenDPDEForce(cutoff);
+    scene.force->setDensityEstimator(estimator);
+    scene.force->setCutoffScaling(cutoffScaling);
+    scene.force->setNonbondedMethod(periodic ? GenDPDEForce::CutoffPeriodic : GenDPDEForce::CutoffNonPeriodic);
+    for (int i = 0; i < numParticles; i++)
+        scene.system.addParticle(200.0);
+    scene.system.addForce(scene.force);
+    return scene;
+}
+
+void setBox(Scene& scene, Vec3 a, Vec3 b, Vec3 c) {
+    scene.box[0] = a;
+    scene.box[1] = b;
+    scene.box[2] = c;
+    scene.system.setDefaultPeriodicBoxVectors(a, b, c);
+}
+
+/** A cubic box at `density` (nm^-3) filled by a simple-cubic lattice with Gaussian jitter. */
+Scene makeLatticeLiquid(int cellsPerSide, double density, double jitter, GenDPDEForce::DensityEstimator estimator,
+                        bool periodic, unsigned seed) {
+    int n = cellsPerSide*cellsPerSide*cellsPerSide;
+    Scene scene = makeScene(n, estimator, periodic);
+    double edge = std::cbrt(n/density), spacing = edge/cellsPerSide;
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::normal_distribution<double> gauss(0.0, jitter*spacing);
+    for (int x = 0; x < cellsPerSide; x++)
+        for (int y = 0; y < cellsPerSide; y++)
+            for (int z = 0; z < cellsPerSide; z++)
+                scene.positions.push_back(Vec3((x + 0.5)*spacing + gauss(random), (y + 0.5)*spacing + gauss(random),
+                                               (z + 0.5)*spacing + gauss(random)));
+    return scene;
+}
+
+/** Far-apart dimers of random length < cutoff: a dilute gas in which every particle still has a neighbour. */
+Scene makeDimerGas(int numDimers, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+    Scene scene = makeScene(2*numDimers, estimator, periodic);
+    int side = (int) std::ceil(std::cbrt((double) numDimers));
+    double spacing = 2.5*cutoff, edge = side*spacing;
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int d = 0; d < numDimers; d++) {
+        Vec3 centre((d % side + 0.5)*spacing, ((d/side) % side + 0.5)*spacing, (d/(side*side) + 0.5)*spacing);
+        double cosTheta = 2*uniform(random) - 1, phi = 2*M_PI*uniform(random), half = 0.5*cutoff*(0.1 + 0.85*uniform(random));
+        double sinTheta = std::sqrt(1 - cosTheta*cosTheta);
+        Vec3 axis(sinTheta*std::cos(phi), sinTheta*std::sin(phi), cosTheta);
+        scene.positions.push_back(centre + axis*half);
+        scene.positions.push_back(centre - axis*half);
+    }
+    return scene;
+}
+
+/** Uniformly random positions at `density` (nm^-3): with VB some particles may have no neighbour at all. */
+Scene makeRandomGas(int numParticles, double density, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+    Scene scene = makeScene(numParticles, estimator, periodic);
+    double edge = std::cbrt(numParticles/density);
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(0.0, edge);
+    for (int i = 0; i < numParticles; i++)
+        scene.positions.push_back(Vec3(uniform(random), uniform(random), uniform(random)));
+    return scene;
+}
+
+BruteForce::Model bruteForceModel(const Scene& scene) {
+    BruteForce::Model model;
+    model.cutoff = scene.force->getCutoffDistance();
+    model.useVB = scene.force->getDensityEstimator() == GenDPDEForce::VB;
+    model.cutoffScaling = scene.force->getCutoffScaling();
+    scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
+    model.periodic = scene.force->usesPeriodicBoundaryConditions();
+    for (int k = 0; k < 3; k++)
+        model.box[k] = scene.box[k];
+    return model;
+}
+
+double energyAt(Context& context, const std::vector<Vec3>& positions) {
+    context.setPositions(positions);
+    return context.getState(State::Energy).getPotentialEnergy();
+}
+
+double rmsForce(const std::vector<Vec3>& forces) {
+    double sum = 0;
+    for (const Vec3& f : forces)
+        sum += f.dot(f);
+    return std::sqrt(sum/forces.size());
+}
+
+/**
+ * Energy, forces, observables and virial equal the independent O(N^2) evaluation. Both are double-precision
+ * evaluations of the same sums; they differ by summation order and the 1e-14 quadrature tolerance of the brute
+ * force, so 1e-10 relative (energy, per-particle values) and 1e-9 of the rms force are generous yet catch any
+ * wrong formula, pair or image (those give errors of 1e-4 or more).
+ */
+void checkAgainstBruteForce(Scene& scene, const std::string& label) {
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    context.setPositions(scene.positions);
+    State state = context.getState(State::Energy | State::Forces);
+    BruteForce::Result expected = BruteForce::evaluate(bruteForceModel(scene), scene.positions);
+    assertRelative(expected.energy, state.getPotentialEnergy(), 1e-10, label + " energy");
+    double forceScale = rmsForce(expected.forces);
+    for (size_t i = 0; i < scene.positions.size(); i++)
+        assertVectorClose(expected.forces[i], state.getForces()[i], 1e-9*forceScale, label + " force");
+    std::vector<double> n0 = scene.force->getPrimitiveDensities(context);
+    std::vector<double> volumes = scene.force->getParticleVolumes(context);
+    std::vector<double> densities = scene.force->getParticleDensities(context);
+    std::vector<double> pressures = scene.force->getParticlePressures(context);
+    double pressureScale = scene.force->getBulkModulus();
+    for (size_t i = 0; i < scene.positions.size(); i++) {
+        assertClose(expected.primitiveDensity[i], n0[i], 1e-10*referenceDensity, label + " n0_i");
+        assertRelative(expected.volume[i], volumes[i], 1e-10, label + " V_i");
+        assertRelative(1.0/expected.volume[i], densities[i], 1e-10, label + " n_i");
+        assertClose(expected.pressure[i], pressures[i], 1e-10*std::max(pressureScale, std::abs(expected.pressure[i])),
+                    label + " pi_i");
+    }
+    assertClose(expected.virial, scene.force->getVirial(context), 1e-9*std::max(1.0, std::abs(expected.virial)),
+                label + " virial");
+}
+
+void testAgainstBruteForce() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
+        for (bool periodic : {true, false}) {
+            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB") + (periodic ? " periodic" : " open");
+            Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, periodic, 1);
+            checkAgainstBruteForce(liquid, label + " liquid");
+            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, 0.15, estimator, periodic, 2);
+            checkAgainstBruteForce(compressed, label + " compressed");
+            Scene dimers = makeDimerGas(27, estimator, periodic, 3);
+            checkAgainstBruteForce(dimers, label + " dimers");
+            if (estimator == GenDPDEForce::VB) {
+                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, 4);
+                checkAgainstBruteForce(gas, label + " dilute");
+            }
+        }
+}
+
+void testTriclinicBox() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
+        Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 5);
+        double edge = scene.box[0][0];
+        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        checkAgainstBruteForce(scene, "triclinic");
+    }
+}
+
+/**
+ * Forces equal minus the central finite difference of the energy. With h = 1e-4 nm the truncation error is
+ * ~(h/l)^2/6 ~ 1e-7 relative (l ~ 0.1 nm, the scale over which forces vary) and the rounding error eps |U|/h stays
+ * below 1e-6 of the rms force for these systems, hence the 1e-5 tolerance.
+ */
+void checkFiniteDifferences(Scene& scene, const std::string& label) {
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    context.setPositions(scene.positions);
+    std::vector<Vec3> forces = context.getState(State::Forces).getForces();
+    double scale = rmsForce(forces);
+    const double h = 1e-4;
+    int numParticles = scene.positions.size();
+    for (int i = 0; i < numParticles; i += std::max(1, numParticles/12))
+        for (int k = 0; k < 3; k++) {
+            std::vector<Vec3> moved = scene.positions;
+            moved[i][k] += h;
+            double plus = energyAt(context, moved);
+            moved[i][k] -= 2*h;
+            double minus = energyAt(context, moved);
+            assertClose(-(plus - minus)/(2*h), forces[i][k], 1e-5*scale, label + " finite difference");
+        }
+}
+
+void testFiniteDifferences() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
+        for (bool periodic : {true, false}) {
+            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB") + (periodic ? " periodic" : " open");
+            Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, periodic, 11);
+            checkFiniteDifferences(liquid, label + " liquid");
+            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, 0.2, estimator, periodic, 12);
+            checkFiniteDifferences(compressed, label + " compressed");
+            Scene dimers = makeDimerGas(27, estimator, periodic, 13);
+            checkFiniteDifferences(dimers, label + " dimers");
+            if (estimator == GenDPDEForce::VB) {
+                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, 14);
+                checkFiniteDifferences(gas, label + " dilute");
+            }
+        }
+}
+
+/** Sum of forces vanishes; energy is invariant under translation, rotation (open) and periodic image shifts. */
+void testSymmetries() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
+        for (bool periodic : {true, false}) {
+            Scene scene = makeLatticeLiquid(6, referenceDensity, 0.25, estimator, periodic, 21);
+            VerletIntegrator integrator(0.001);
+            Context context(scene.system, integrator, *platform);
+            context.setPositions(scene.positions);
+            State state = context.getState(State::Energy | State::Forces);
+            double energy = state.getPotentialEnergy(), scale = rmsForce(state.getForces());
+            Vec3 total;
+            for (const Vec3& f : state.getForces())
+                total += f;
+            // Pairwise antisymmetric: the sum cancels to rounding, ~eps per pair contribution.
+            assertVectorClose(Vec3(), total, 1e-12*scale*scene.positions.size(), "sum of forces");
+
+            std::vector<Vec3> shifted = scene.positions;
+            for (Vec3& r : shifted)
+                r += Vec3(0.37, -1.21, 2.05);
+            assertRelative(energy, energyAt(context, shifted), 1e-12, "translation");
+            if (periodic) {
+                std::vector<Vec3> imaged = scene.positions;
+                imaged[3] += scene.box[0]*2 - scene.box[1] + scene.box[2]*3;
+                imaged[17] -= scene.box[2];
+                assertRelative(energy, energyAt(context, imaged), 1e-12, "periodic image");
+                State imagedState = context.getState(State::Forces);
+                for (size_t i = 0; i < imaged.size(); i++)
+                    assertVectorClose(state.getForces()[i], imagedState.getForces()[i], 1e-10*scale, "image forces");
+            }
+            else {
+                // Rotation by 0.7 rad about the axis (1, 2, 2)/3 through an arbitrary point.
+                Vec3 u(1.0/3, 2.0/3, 2.0/3), centre(1.0, -2.0, 0.5);
+                double c = std::cos(0.7), s = std::sin(0.7);
+                auto rotate = [&](Vec3 v) { return v*c + u.cross(v)*s + u*(u.dot(v)*(1 - c)); };
+                std::vector<Vec3> rotated = scene.positions;
+                for (Vec3& r : rotated)
+                    r = centre + rotate(r - centre);
+                assertRelative(energy, energyAt(context, rotated), 1e-12, "rotation");
+                State rotatedState = context.getState(State::Forces);
+                for (size_t i = 0; i < rotated.size(); i++)
+                    assertVectorClose(rotate(state.getForces()[i]), rotatedState.getForces()[i], 1e-10*scale,
+                                      "rotated forces");
+            }
+        }
+    }
+}
+
+/**
+ * The virial equals sum_i r_i . F_i for open boundaries, and -dU/d(lambda) under uniform scaling r -> lambda r of
+ * positions and box (= -3 V dU/dV) for periodic ones; the finite difference uses lambda = 1 +- 1e-6, whose
+ * truncation error is ~1e-12 relative, and the rounding error eps |U| / 1e-6 is ~1e-9 of |W|.
+ */
+void testVirial() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
+        Scene open = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, false, 31);
+        VerletIntegrator integrator(0.001);
+        Context context(open.system, integrator, *platform);
+        context.setPositions(open.positions);
+        State state = context.getState(State::Forces);
+        double sum = 0;
+        for (size_t i = 0; i < open.positions.size(); i++)
+            sum += open.positions[i].dot(state.getForces()[i]);
+        assertRelative(sum, open.force->getVirial(context), 1e-10, "open virial");
+
+        for (double density : {referenceDensity, 3.0*referenceDensity}) {
+            Scene periodic = makeLatticeLiquid(6, density, 0.2, estimator, true, 32);
+            VerletIntegrator integrator2(0.001);
+            Context context2(periodic.system, integrator2, *platform);
+            context2.setPositions(periodic.positions);
+            double virial = periodic.force->getVirial(context2);
+            auto scaledEnergy = [&](double lambda) {
+                context2.setPeriodicBoxVectors(periodic.box[0]*lambda, periodic.box[1]*lambda, periodic.box[2]*lambda);
+                std::vector<Vec3> scaled = periodic.positions;
+                for (Vec3& r : scaled)
+                    r *= lambda;
+                return energyAt(context2, scaled);
+            };
+            const double epsilon = 1e-6;
+            double derivative = (scaledEnergy(1 + epsilon) - scaledEnergy(1 - epsilon))/(2*epsilon);
+            assertRelative(-derivative, virial, 1e-7, "virial = -3V dU/dV");
+        }
+    }
+}
+
+/** Coincident particles: finite energy, no force between them, no NaN anywhere. */
+void testCoincidentParticles() {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
+        Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, estimator, true, 41);
+        scene.positions[7] = scene.positions[8];
+        scene.positions[20] = scene.positions[21] = scene.positions[22];
+        checkAgainstBruteForce(scene, "coincident");
+        // Two coincident particles alone: each is the other's only neighbour, at zero distance.
+        Scene pair = makeScene(2, estimator, false);
+        pair.positions = {Vec3(1, 2, 3), Vec3(1, 2, 3)};
+        VerletIntegrator integrator(0.001);
+        Context context(pair.system, integrator, *platform);
+        context.setPositions(pair.positions);
+        State state = context.getState(State::Energy | State::Forces);
+        ASSERT(std::isfinite(state.getPotentialEnergy()));
+        assertVectorClose(Vec3(), state.getForces()[0], 0.0, "coincident pair force");
+        assertVectorClose(Vec3(), state.getForces()[1], 0.0, "coincident pair force");
+    }
+}
+
+/** An isolated particle: VB gives V = (4 pi/3) Rt^3 and U = f(1/V); VA reports the particle by index. */
+void testIsolatedParticle() {
+    Scene scene = makeScene(3, GenDPDEForce::VB, false, 1.3);
+    scene.positions = {Vec3(0, 0, 0), Vec3(0.5*cutoff, 0, 0), Vec3(10*cutoff, 0, 0)};
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    context.setPositions(scene.positions);
+    double Rt = cutoff/1.3, expectedVolume = 4.0*M_PI/3.0*Rt*Rt*Rt;
+    assertRelative(expectedVolume, scene.force->getParticleVolumes(context)[2], 1e-15, "isolated VB volume");
+    State state = context.getState(State::Energy | State::Forces);
+    assertVectorClose(Vec3(), state.getForces()[2], 0.0, "isolated particle force");
+    ASSERT(std::isfinite(state.getPotentialEnergy()));
+
+    scene.force->setDensityEstimator(GenDPDEForce::VA);
+    scene.force->updateParametersInContext(context);
+    assertThrowsMentioning([&]() { context.getState(State::Energy); }, {"particle 2", "no neighbour", "step 0"});
+    assertThrowsMentioning([&]() { scene.force->getParticleDensities(context); }, {"particle 2"});
+}
+
+/** Energy-only evaluation and force groups. */
+void testEnergyOnlyAndForceGroups() {
+    Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VB, true, 51);
+    scene.force->setForceGroup(3);
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    context.setPositions(scene.positions);
+    double both = context.getState(State::Energy | State::Forces).getPotentialEnergy();
+    double energyOnly = context.getState(State::Energy).getPotentialEnergy();
+    ASSERT_EQUAL(both, energyOnly);
+    ASSERT_EQUAL(both, context.getState(State::Energy, false, 1<<3).getPotentialEnergy());
+    ASSERT_EQUAL(0.0, context.getState(State::Energy, false, 1<<2).getPotentialEnergy());
+    State otherGroup = context.getState(State::Forces, false, 1<<2);
+    for (const Vec3& f : otherGroup.getForces())
+        ASSERT_EQUAL_VEC(Vec3(), f, 0.0);
+}
+
+/** updateParametersInContext() gives the same energy as a new Context built with the new parameters. */
+void testUpdateParametersInContext() {
+    Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VA, true, 61);
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    context.setPositions(scene.positions);
+    double before = context.getState(State::Energy).getPotentialEnergy();
+    scene.force->setDensityEstimator(GenDPDEForce::VB);
+    scene.force->setCutoffScaling(1.41);
+    scene.force->setTaitParameters(1.1*referenceDensity, 20.0, 80.0, 7.0);
+    ASSERT_EQUAL(before, context.getState(State::Energy).getPotentialEnergy());   // not applied yet
+    scene.force->updateParametersInContext(context);
+    double updated = context.getState(State::Energy).getPotentialEnergy();
+    VerletIntegrator integrator2(0.001);
+    Context fresh(scene.system, integrator2, *platform);
+    fresh.setPositions(scene.positions);
+    ASSERT_EQUAL_TOL(fresh.getState(State::Energy).getPotentialEnergy(), updated, 1e-14);
+    std::vector<double> freshDensities = scene.force->getParticleDensities(fresh);
+    std::vector<double> updatedDensities = scene.force->getParticleDensities(context);
+    for (size_t i = 0; i < freshDensities.size(); i++)
+        ASSERT_EQUAL_TOL(freshDensities[i], updatedDensities[i], 1e-14);
+    // The cutoff and the boundary conditions are fixed for the lifetime of a Context.
+    scene.force->setCutoffDistance(1.1*cutoff);
+    assertThrowsMentioning([&]() { scene.force->updateParametersInContext(context); }, {"cutoff", "reinitialize"});
+    scene.force->setCutoffDistance(cutoff);
+    scene.force->setNonbondedMethod(GenDPDEForce::CutoffNonPeriodic);
+    assertThrowsMentioning([&]() { scene.force->updateParametersInContext(context); }, {"nonbonded method"});
+}
+
+/** The neighbour list stays exact while particles move far (many rebuilds): compare with the brute force. */
+void testMovingParticles() {
+    Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VB, true, 71);
+    VerletIntegrator integrator(0.001);
+    Context context(scene.system, integrator, *platform);
+    std::mt19937 random(72);
+    std::normal_distribution<double> gauss(0.0, 0.04*cutoff);
+    BruteForce::Model model = bruteForceModel(scene);
+    for (int step = 0; step < 40; step++) {
+        for (Vec3& r : scene.positions)
+            r += Vec3(gauss(random), gauss(random), gauss(random));
+        double energy = energyAt(context, scene.positions);
+        if (step % 8 == 7)
+            assertRelative(BruteForce::evaluate(model, scene.positions).energy, energy, 1e-10, "moving particles");
+    }
+}
+
+/** Bad input is rejected with a message naming the parameter and the value, and changes nothing. */
+void testBadInput() {
+    GenDPDEForce force(1.0);
+    assertThrowsMentioning([]() { GenDPDEForce(-1.0); }, {"cutoff distance", "-1", "> 0"});
+    assertThrowsMentioning([]() { GenDPDEForce(0.0); }, {"cutoff distance", "> 0"});
+    assertThrowsMentioning([]() { GenDPDEForce(std::nan("")); }, {"cutoff distance", "nan"});
+    assertThrowsMentioning([&]() { force.setCutoffDistance(INFINITY); }, {"cutoff distance", "inf"});
+    assertThrowsMentioning([&]() { force.setCutoffScaling(0.99); }, {"f_cut", "0.99", ">= 1"});
+    assertThrowsMentioning([&]() { force.setTaitParameters(0.0, 1, 1, 2); }, {"reference density", "> 0"});
+    assertThrowsMentioning([&]() { force.setTaitParameters(1, 1, -3, 2); }, {"bulk modulus", "-3"});
+    assertThrowsMentioning([&]() { force.setTaitParameters(1, 1, 1, 1.0); }, {"gamma_T", "> 1"});
+    assertThrowsMentioning([&]() { force.setTaitParameters(1, INFINITY, 1, 2); }, {"reference pressure", "inf"});
+    assertThrowsMentioning([&]() { force.setDensityEstimator((GenDPDEForce::DensityEstimator) 7); }, {"estimator", "7"});
+    assertThrowsMentioning([&]() { force.setNonbondedMethod((GenDPDEForce::NonbondedMethod) -1); }, {"method", "-1"});
+    // Nothing above changed the force.
+    ASSERT_EQUAL(1.0, force.getCutoffDistance());
+    ASSERT_EQUAL(1.0, force.getCutoffScaling());
+    ASSERT_EQUAL(6.0, force.getTaitExponent());
+    ASSERT_EQUAL(GenDPDEForce::VB, force.getDensityEstimator());
+
+    // Cutoff larger than half the box, at Context creation.
+    Scene scene = makeLatticeLiquid(3, referenceDensity, 0.0, GenDPDEForce::VB, true, 81);
+    VerletIntegrator integrator(0.001);
+    assertThrowsMentioning([&]() { Context context(scene.system, integrator, *platform); }, {"cutoff distance", "half"});
+    // ... and when the box shrinks later.
+    Scene big = makeLatticeLiquid(6, referenceDensity, 0.0, GenDPDEForce::VB, true, 82);
+    VerletIntegrator integrator2(0.001);
+    Context context(big.system, integrator2, *platform);
+    context.setPositions(big.positions);
+    context.setPeriodicBoxVectors(Vec3(1.5*cutoff, 0, 0), Vec3(0, 4, 0), Vec3(0, 0, 4));
+    assertThrowsMentioning([&]() { context.getState(State::Energy); }, {"cutoff distance", "half"});
+    // NaN positions name the particle.
+    context.setPeriodicBoxVectors(big.box[0], big.box[1], big.box[2]);
+    std::vector<Vec3> bad = big.positions;
+    bad[11][1] = std::nan("");
+    context.setPositions(bad);
+    // (The CPU platform checks coordinates itself before any force runs, with its own message.)
+    if (platform->getName() == "CPU")
+        assertThrowsMentioning([&]() { context.getState(State::Forces); }, {"nan"});
+    else
+        assertThrowsMentioning([&]() { context.getState(State::Forces); }, {"particle 11", "not finite"});
+}
+
+void runForceTests() {
+    testBadInput();
+    testAgainstBruteForce();
+    testTriclinicBox();
+    testFiniteDifferences();
+    testSymmetries();
+    testVirial();
+    testCoincidentParticles();
+    testIsolatedParticle();
+    testEnergyOnlyAndForceGroups();
+    testUpdateParametersInContext();
+    testMovingParticles();
+}
+
+} // namespace ForceTests

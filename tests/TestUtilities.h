@@ -1,0 +1,66 @@
+#ifndef GENDPDE_TEST_UTILITIES_H_
+#define GENDPDE_TEST_UTILITIES_H_
+
+/* Assertions for the C++ tests. Every tolerance is explicit at the call site (absolute, or relative to the
+ * expected value); none silently switches to an absolute scale of 1 as OpenMM's ASSERT_EQUAL_TOL does. */
+
+#include "openmm/OpenMMException.h"
+#include "openmm/internal/AssertionUtilities.h"
+#include "openmm/Vec3.h"
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+inline void assertClose(double expected, double found, double tolerance, const std::string& what) {
+    if (!(std::abs(expected - found) <= tolerance)) {
+        std::ostringstream message;
+        message.precision(17);
+        message << what << ": expected " << expected << ", found " << found << " (difference "
+                << std::abs(expected - found) << " > tolerance " << tolerance << ")";
+        throw std::runtime_error(message.str());
+    }
+}
+
+inline void assertRelative(double expected, double found, double relativeTolerance, const std::string& what) {
+    assertClose(expected, found, relativeTolerance*std::abs(expected), what);
+}
+
+inline void assertVectorClose(const OpenMM::Vec3& expected, const OpenMM::Vec3& found, double tolerance,
+                              const std::string& what) {
+    for (int k = 0; k < 3; k++)
+        assertClose(expected[k], found[k], tolerance, what + " (component " + std::to_string(k) + ")");
+}
+
+/** The call must throw an OpenMMException whose message contains every fragment. */
+inline void assertThrowsMentioning(const std::function<void()>& call, const std::vector<std::string>& fragments) {
+    try {
+        call();
+    }
+    catch (const OpenMM::OpenMMException& e) {
+        std::string message = e.what();
+        for (const std::string& fragment : fragments)
+            if (message.find(fragment) == std::string::npos)
+                throw std::runtime_error("exception message lacks '" + fragment + "': " + message);
+        return;
+    }
+    throw std::runtime_error("expected an OpenMMException mentioning '" + fragments[0] + "', none was thrown");
+}
+
+/** main() of a test program: run the tests, print "Done" or the failure, return the exit status. */
+inline int runTestProgram(const std::function<void()>& tests) {
+    try {
+        tests();
+    }
+    catch (const std::exception& e) {
+        std::cout << "FAILED: " << e.what() << std::endl;
+        return 1;
+    }
+    std::cout << "Done" << std::endl;
+    return 0;
+}
+
+#endif /*GENDPDE_TEST_UTILITIES_H_*/

@@ -66,13 +66,14 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  *   J(k) = int_0^1 y^2 (1-y)^2 / (y^2 + k)^2 dy      so that dV/dn0 = -(8 pi^2/15) Rt^6 J(k)   (J = -dI/dk).
  *
  * Two branches, each accurate to a few ulp over its range (checked against 40-digit quadrature in the tests):
- *  - k < 1: the closed forms of MODEL.md, with ln((k+1)/k) written as log1p(k) - log(k) so that no intermediate
- *    overflows for subnormal k. They lose about two digits to cancellation as k approaches 1 and are useless for
- *    large k (at k = 1e5 the fifth digit of V is wrong).
- *  - k >= 1: 16-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
- *    cancellation) and analytic within sqrt(k) >= 1 of [0, 1], so the rule converges to rounding error
- *    (max 6e-16 relative for 1 <= k <= 1e12). The weight y^2 (1-y)^2 is symmetric about 1/2, so the nodes come
- *    in mirror pairs y, 1-y that share one coefficient.
+ *  - k < 0.1: the closed forms of MODEL.md, with ln((k+1)/k) written as log1p(k) - log(k) so that no intermediate
+ *    overflows for subnormal k (max 2e-15 relative). They lose digits to cancellation as k grows (two near
+ *    k = 1) and are useless for large k (at k = 1e5 the fifth digit of V is wrong).
+ *  - k >= 0.1: 24-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
+ *    cancellation) and analytic within sqrt(k) of [0, 1], so the rule converges to rounding error (max 1e-15
+ *    relative for 0.1 <= k <= 1e12). This branch covers dense liquids, and costs a few ns: no atan, no log.
+ *    The weight y^2 (1-y)^2 is symmetric about 1/2, so the nodes come in mirror pairs y, 1-y sharing one
+ *    coefficient.
  *  - k = 0 (no neighbour in range): I = 1/3 exactly and J = +infinity (dV/dn0 diverges like k^-1/2). The
  *    derivative only ever multiplies w'(r) of a pair in range, and any such pair makes k > 0.
  */
@@ -83,7 +84,7 @@ struct VolumeIntegralsVB {
 inline VolumeIntegralsVB volumeIntegralsVB(double k) {
     if (k == 0.0)
         return {1.0/3.0, std::numeric_limits<double>::infinity()};
-    if (k < 1.0) {
+    if (k < 0.1) {
         double s = std::sqrt(k);
         double arctangent = std::atan(1.0/s);
         double logarithm = std::log1p(k) - std::log(k);  // ln((k+1)/k)
@@ -91,21 +92,24 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
         double J = 1.5 - logarithm + (1.0 - 3.0*k)/(2.0*s)*arctangent;
         return {I, J};
     }
-    // Gauss-Legendre on [0,1]: y_m^2, (1-y_m)^2 and w_m y_m^2 (1-y_m)^2 for the 8 nodes with y_m < 1/2
-    // (computed with 40-digit arithmetic; twice their sum is 1/30 = int_0^1 y^2 (1-y)^2 dy, which the rule integrates
-    // exactly).
-    static const double nodeSquared[8] = {
-        0.000028085044762807703601, 0.00076798201683317532895, 0.0045137434429349584119, 0.014956750863041527413,
-        0.036504641147957013297, 0.073436453325263823811, 0.1290233645632422067, 0.20475058933759306774};
-    static const double mirrorNodeSquared[8] = {
-        0.9894290200364127403, 0.94534300509006575141, 0.87014494583076670229, 0.77036115921804456131,
-        0.65438088555060076174, 0.53145323098249121015, 0.41062691534250111993, 0.29976309917523050793};
-    static const double coefficient[8] = {
-        0.00000037725842041953469552, 0.000022598229261604835721, 0.00018687281069056717853,
-        0.00071799373067588504207, 0.0017867699577495334381, 0.0033009237357258526629,
-        0.0048372070291874590846, 0.0058139239149553448901};
+    // Gauss-Legendre on [0,1]: y_m^2, (1-y_m)^2 and w_m y_m^2 (1-y_m)^2 for the 12 nodes with y_m < 1/2
+    // (computed with 40-digit arithmetic; twice the sum of the coefficients is 1/30 = int_0^1 y^2 (1-y)^2 dy,
+    // which the rule integrates exactly).
+    static const double nodeSquared[12] = {
+        0.00000579071283926776907867, 0.000159661470823809205011, 0.000952507732615835627928, 0.00322535812642198767413,
+        0.00809982126333476010992, 0.0168838589506749786045, 0.0309595194517636246306, 0.0516604096685719082195,
+        0.0801474480016043511867, 0.117291632659453160422, 0.163572171639291273926, 0.218997374949500020858};
+    static const double mirrorNodeSquared[12] = {
+        0.995193010709860627949, 0.974888217442133307403, 0.939227059735348594152, 0.889640885130823021887,
+        0.828101807237237682064, 0.757008050529229342848, 0.679053171388739193883, 0.597081881057411443878,
+        0.513940955627649489674, 0.432334312355616534809, 0.354691039112907583085, 0.283054267812105646943};
+    static const double coefficient[12] = {
+        0.0000000355604943415926234311, 0.00000222048508806584110291, 0.0000198057641170421793317,
+        0.0000850759898639369712728, 0.000245984904849176473889, 0.000550807585352124152516,
+        0.00102612626466083681221, 0.00165708582581652888558, 0.00237890022154458343302,
+        0.0030849060117361878609, 0.00365039256732031661765, 0.00396532548582352584658};
     double I = 0.0, J = 0.0;
-    for (int m = 0; m < 8; m++) {
+    for (int m = 0; m < 12; m++) {
         double a = 1.0/(nodeSquared[m] + k);
         double b = 1.0/(mirrorNodeSquared[m] + k);
         I += coefficient[m]*(a + b);

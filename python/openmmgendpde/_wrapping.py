@@ -1,0 +1,116 @@
+"""Makes the SWIG classes behave like OpenMM's own Python classes.
+
+- Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K).
+  Pressures (Tait parameters) also accept pressure units such as bar or MPa, converted per mole.
+- Getters of parameters return quantities, as OpenMM's getters do; observables stay plain numpy arrays.
+- ``cast``/``isinstance`` for objects returned by ``System.getForce`` and friends, with ownership transfer, and
+  ``copy``, ``deepcopy`` and ``pickle`` through ``XmlSerializer``.
+"""
+
+import functools
+
+from openmm import XmlSerializer, unit
+
+#: Pressure in OpenMM units.
+PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+#: Number density in OpenMM units.
+NUMBER_DENSITY = unit.nanometer**-3
+#: Marks a dimensionless argument or result (plain float).
+DIMENSIONLESS = None
+
+
+def to_openmm_value(value, target, where):
+    """``value`` as a plain number in the OpenMM unit ``target`` (``DIMENSIONLESS`` for a pure number)."""
+    if not unit.is_quantity(value):
+        return value
+    if target is DIMENSIONLESS:
+        if value.unit.is_dimensionless():
+            return value.value_in_unit(unit.dimensionless)
+        raise TypeError(f"{where}: expected a dimensionless number, got {value}")
+    if value.unit.is_compatible(target):
+        return value.value_in_unit(target)
+    if target is PRESSURE and value.unit.is_compatible(unit.bar):
+        return (value * unit.AVOGADRO_CONSTANT_NA).value_in_unit(target)
+    raise TypeError(f"{where}: {value} cannot be converted to {target}")
+
+
+def _attach(value, spec):
+    if spec is DIMENSIONLESS:
+        return value
+    if isinstance(spec, (list, tuple)):
+        return [_attach(v, s) for v, s in zip(value, spec)]
+    return unit.Quantity(value, spec)
+
+
+def accept_units(cls, name, arguments):
+    """Let ``cls.name`` take quantities. ``arguments`` lists (argument name, OpenMM unit) in positional order;
+    further positional arguments (a Context, a list) pass through unchanged."""
+    original = getattr(cls, name)
+    names = [argument for argument, _ in arguments]
+    units = dict(arguments)
+    where = f"{cls.__name__}.{name}" if name != "__init__" else cls.__name__
+
+    @functools.wraps(original)
+    def method(self, *args, **kwargs):
+        converted = [to_openmm_value(value, arguments[i][1], f"{where}({arguments[i][0]})") if i < len(arguments)
+                     else value for i, value in enumerate(args)]
+        for key, value in kwargs.items():
+            if key in units:
+                kwargs[key] = to_openmm_value(value, units[key], f"{where}({key})")
+            elif key not in names:
+                raise TypeError(f"{where}() got an unexpected keyword argument '{key}'")
+        # SWIG's proxies take positional arguments only.
+        for key in names[len(converted):]:
+            if key in kwargs:
+                converted.append(kwargs.pop(key))
+        return original(self, *converted, **kwargs)
+
+    setattr(cls, name, method)
+
+
+def return_units(cls, name, spec):
+    """Let ``cls.name`` return a quantity in ``spec`` (a unit, or a list of units for a list result)."""
+    original = getattr(cls, name)
+
+    @functools.wraps(original)
+    def method(self, *args, **kwargs):
+        return _attach(original(self, *args, **kwargs), spec)
+
+    setattr(cls, name, method)
+
+
+def add_cast_copy_and_pickle(cls):
+    """Install ``cast``, ``isinstance``, ``__copy__``, ``__deepcopy__`` and pickle support on a SWIG plugin class
+    that has the static helpers ``_downcast`` and ``_isinstance``."""
+
+    def cast(obj):
+        """This object as a ``{0}`` (for example from ``System.getForce``). If ``obj`` owned the C++ object, the
+        result takes over that ownership, so that it is freed exactly once."""
+        result = cls._downcast(obj)
+        if obj.thisown:
+            obj.thisown = False
+            result.thisown = True
+        return result
+
+    def isinstance_(obj):
+        """Whether ``obj`` (for example from ``System.getForce``) is a ``{0}``."""
+        return cls._isinstance(obj)
+
+    cast.__doc__ = cast.__doc__.format(cls.__name__)
+    isinstance_.__doc__ = isinstance_.__doc__.format(cls.__name__)
+
+    def copy(self):
+        return cls.cast(XmlSerializer.clone(self))
+
+    def getstate(self):
+        return XmlSerializer.serialize(self)
+
+    def setstate(self, state):
+        self.this = cls.cast(XmlSerializer.deserialize(state)).this
+
+    cls.cast = staticmethod(cast)
+    cls.isinstance = staticmethod(isinstance_)
+    cls.__copy__ = copy
+    cls.__deepcopy__ = lambda self, memo: copy(self)
+    cls.__getstate__ = getstate
+    cls.__setstate__ = setstate

@@ -1,0 +1,164 @@
+"""Liquid argon as modelled by Colella, Larentzos, Bresme and Bonet Avalos (J. Chem. Theory Comput. 2025):
+the reference case of ../shared/MODEL.md section 4, in one place.
+
+One particle is 5 argon atoms. Reduced units: mass 3.3211e-25 kg, length 0.61616 nm (so n0* = 1), energy
+1.5700e-19 J; k_B = 1.
+"""
+
+import dataclasses
+
+import numpy as np
+import openmm
+from openmm import app, unit
+
+from . import GenDPDEForce
+from .units import ReducedUnits
+
+ARGON_UNITS = ReducedUnits(mass=3.3211e-25 * unit.kilogram, length=0.61616 * unit.nanometer,
+                           energy=1.5700e-19 * unit.joule)
+
+
+@dataclasses.dataclass(frozen=True)
+class ArgonState:
+    """The thermodynamic state and equation of state of the model (reduced units)."""
+    temperature: float = 0.011054     # T0* (printed 0.0111)
+    pressure: float = 0.12711         # P0* (printed 0.127)
+    density: float = 1.0              # n0*
+    tait_exponent: float = 6.0        # gamma_T
+    bulk_modulus: float = 1.0 / 6.0   # B_T* = 1/(gamma_T kappa_T0*), kappa_T0* = 1
+    heat_capacity: float = 12.51      # C_V* per particle (units of k_B)
+
+    @property
+    def reference_pressure(self):
+        """pi0* = P0* - n0* T0* (the Tait pressure excludes the kinetic term)."""
+        return self.pressure - self.density * self.temperature
+
+
+ARGON_STATE = ArgonState()
+
+
+@dataclasses.dataclass(frozen=True)
+class ArgonCutoff:
+    """Parameters that depend on the cutoff (reduced units)."""
+    cutoff: float            # R_cut*
+    neighbours: int          # particles within range at n0* = 1
+    friction: float          # gamma*
+    heat_conduction: float   # kappa*
+    cutoff_scaling: float    # f_cut of the VB estimator
+
+
+ARGON_CUTOFFS = (
+    ArgonCutoff(1.3365, 10, 23.42, 0.0079, 1.41),
+    ArgonCutoff(1.6839, 20, 7.37, 0.0025, 1.35),
+    ArgonCutoff(2.1564, 42, 2.14, 0.0007, 1.33),
+)
+
+#: Published averages (Table III): T*, n-bar*, P* for each cutoff and estimator; +-0.0001 (T*), +-0.001 (others).
+PUBLISHED_TABLE3 = {
+    1.3365: {"VA": {"T": 0.0115, "n": 0.799, "P": 0.008}, "VB": {"T": 0.0112, "n": 0.997, "P": 0.136}},
+    1.6839: {"VA": {"T": 0.0112, "n": 0.811, "P": 0.011}, "VB": {"T": 0.0112, "n": 1.000, "P": 0.128}},
+    2.1564: {"VA": {"T": 0.0111, "n": 0.870, "P": 0.041}, "VB": {"T": 0.0111, "n": 1.000, "P": 0.127}},
+}
+
+#: Published total simulation time ratios V-B/V-A (Table IV, the authors' Fortran code).
+PUBLISHED_TABLE4_RATIO = {1.3365: 1.07, 1.6839: 1.22, 2.1564: 1.03}
+
+
+def argon_cutoff(cutoff):
+    """The ArgonCutoff whose R_cut* equals ``cutoff`` (to 1e-6)."""
+    for entry in ARGON_CUTOFFS:
+        if abs(entry.cutoff - cutoff) < 1e-6:
+            return entry
+    raise ValueError(f"R_cut* = {cutoff} is not one of the published cutoffs "
+                     f"{', '.join(str(entry.cutoff) for entry in ARGON_CUTOFFS)}")
+
+
+def estimator_value(estimator):
+    """GenDPDEForce.VA/VB from 'VA', 'VB' or the enum value itself."""
+    if isinstance(estimator, str):
+        names = {"VA": GenDPDEForce.VA, "VB": GenDPDEForce.VB}
+        if estimator.upper() not in names:
+            raise ValueError(f"estimator must be 'VA' or 'VB', not '{estimator}'")
+        return names[estimator.upper()]
+    if estimator not in (GenDPDEForce.VA, GenDPDEForce.VB):
+        raise ValueError(f"estimator must be GenDPDEForce.VA or GenDPDEForce.VB, not {estimator}")
+    return estimator
+
+
+def fcc_lattice(num_particles, edge):
+    """Positions (num_particles x 3, in the units of ``edge``) of a face-centred cubic lattice filling a cubic box;
+    num_particles must be 4 m^3."""
+    cells = round((num_particles / 4) ** (1 / 3))
+    if 4 * cells**3 != num_particles:
+        raise ValueError(f"an FCC lattice in a cubic box holds 4 m^3 particles (500, 864, 2048, 4000, 32000, ...), "
+                         f"not {num_particles}")
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]]) + 0.25
+    grid = np.array([(x, y, z) for x in range(cells) for y in range(cells) for z in range(cells)], dtype=float)
+    return ((grid[:, None, :] + basis[None, :, :]).reshape(-1, 3)) * (edge / cells)
+
+
+@dataclasses.dataclass
+class LiquidArgon:
+    """A ready liquid-argon model in OpenMM units (nm, amu, kJ/mol, K)."""
+    system: openmm.System
+    force: GenDPDEForce
+    topology: app.Topology
+    positions: np.ndarray          # nm, num_particles x 3
+    cutoff: ArgonCutoff
+    state: ArgonState = ARGON_STATE
+    units: ReducedUnits = ARGON_UNITS
+
+    @property
+    def num_particles(self):
+        return self.system.getNumParticles()
+
+    @property
+    def box_volume(self):
+        """nm^3"""
+        a, b, c = self.system.getDefaultPeriodicBoxVectors()
+        return a[0].value_in_unit(unit.nanometer) * b[1].value_in_unit(unit.nanometer) * c[2].value_in_unit(unit.nanometer)
+
+
+def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scaling=None):
+    """Liquid argon at n0* = 1 in a cubic periodic box, particles on an FCC lattice.
+
+    ``cutoff`` is R_cut* (one of the published 1.3365, 1.6839, 2.1564); ``cutoff_scaling`` defaults to the
+    published f_cut for that cutoff; ``estimator`` is 'VA' or 'VB'. Returns a LiquidArgon whose System holds
+    one GenDPDEForce.
+    """
+    parameters = argon_cutoff(cutoff)
+    units, state = ARGON_UNITS, ARGON_STATE
+    length = units.unit("length").value_in_unit(unit.nanometer)
+    edge = (num_particles / state.density) ** (1 / 3) * length
+    if parameters.cutoff * length > edge / 2:
+        raise ValueError(f"{num_particles} particles make a box of edge {edge / length:.3f} L, less than twice "
+                         f"R_cut* = {parameters.cutoff}; use more particles")
+    system = openmm.System()
+    system.setDefaultPeriodicBoxVectors(openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge))
+    mass = units.unit("mass")
+    for _ in range(num_particles):
+        system.addParticle(mass)
+    force = GenDPDEForce(units.to_openmm(parameters.cutoff, "length"))
+    force.setDensityEstimator(estimator_value(estimator))
+    force.setCutoffScaling(parameters.cutoff_scaling if cutoff_scaling is None else cutoff_scaling)
+    force.setTaitParameters(units.to_openmm(state.density, "number_density"),
+                            units.to_openmm(state.reference_pressure, "pressure"),
+                            units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent)
+    system.addForce(force)
+    topology = app.Topology()
+    chain = topology.addChain()
+    for _ in range(num_particles):
+        topology.addAtom("AR", app.element.argon, topology.addResidue("AR5", chain))
+    topology.setPeriodicBoxVectors(system.getDefaultPeriodicBoxVectors())
+    return LiquidArgon(system, force, topology, fcc_lattice(num_particles, edge), parameters)
+
+
+def pressure_unit_mpa():
+    """The reduced pressure unit u/L^3 in MPa."""
+    per_mole = ARGON_UNITS.unit("pressure")
+    return (per_mole / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.megapascal)
+
+
+__all__ = ["ARGON_CUTOFFS", "ARGON_STATE", "ARGON_UNITS", "ArgonCutoff", "ArgonState", "LiquidArgon",
+           "PUBLISHED_TABLE3", "PUBLISHED_TABLE4_RATIO", "argon_cutoff", "fcc_lattice", "liquid_argon",
+           "pressure_unit_mpa"]

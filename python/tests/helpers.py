@@ -1,0 +1,50 @@
+"""Small systems for the Python tests (liquid argon of MODEL.md section 4 in OpenMM units)."""
+
+import math
+
+import numpy as np
+import openmm
+
+from openmmgendpde import GenDPDEForce
+
+LENGTH = 0.61616          # nm, the reduced length unit (n0* = 1)
+MASS = 200.0              # amu, one particle = 5 argon atoms
+DENSITY = 1 / LENGTH**3   # nm^-3
+
+
+def lattice_liquid(cells_per_side, density=DENSITY, jitter=0.15, seed=1, cutoff=1.6839 * LENGTH,
+                   estimator=GenDPDEForce.VB, cutoff_scaling=1.35, periodic=True):
+    """(system, force, positions) for a jittered simple-cubic lattice in a cubic box at ``density``."""
+    n = cells_per_side**3
+    edge = (n / density)**(1 / 3)
+    spacing = edge / cells_per_side
+    system = openmm.System()
+    system.setDefaultPeriodicBoxVectors(openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge))
+    for _ in range(n):
+        system.addParticle(MASS)
+    force = GenDPDEForce(cutoff)
+    force.setDensityEstimator(estimator)
+    force.setCutoffScaling(cutoff_scaling)
+    force.setNonbondedMethod(GenDPDEForce.CutoffPeriodic if periodic else GenDPDEForce.CutoffNonPeriodic)
+    system.addForce(force)
+    grid = np.array([(x, y, z) for x in range(cells_per_side) for y in range(cells_per_side)
+                     for z in range(cells_per_side)], dtype=float)
+    rng = np.random.default_rng(seed)
+    positions = (grid + 0.5) * spacing + rng.normal(0.0, jitter * spacing, grid.shape)
+    return system, force, positions
+
+
+def make_context(system, positions, platform, integrator=None):
+    context = openmm.Context(system, integrator or openmm.VerletIntegrator(0.001), platform)
+    context.setPositions(positions)
+    return context
+
+
+def energy_and_forces(context):
+    state = context.getState(getEnergy=True, getForces=True)
+    return (state.getPotentialEnergy().value_in_unit(openmm.unit.kilojoule_per_mole),
+            state.getForces(asNumpy=True).value_in_unit(openmm.unit.kilojoule_per_mole / openmm.unit.nanometer))
+
+
+def rms(array):
+    return math.sqrt(float(np.mean(np.sum(np.asarray(array)**2, axis=-1))))

@@ -1,0 +1,184 @@
+"""GenDPDEForce from Python: an openmm.Force that feels like OpenMM's own classes."""
+
+import copy
+import pickle
+
+import numpy as np
+import openmm
+import pytest
+from openmm import unit
+
+from helpers import DENSITY, LENGTH, energy_and_forces, lattice_liquid, make_context
+from openmmgendpde import GenDPDEForce
+
+PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+
+
+def test_is_an_openmm_force_with_quantity_getters():
+    force = GenDPDEForce(1.2 * unit.nanometer)
+    assert isinstance(force, openmm.Force)
+    assert force.getCutoffDistance() == 1.2 * unit.nanometer
+    assert force.getDensityEstimator() == GenDPDEForce.VB
+    assert force.getNonbondedMethod() == GenDPDEForce.CutoffPeriodic and force.usesPeriodicBoundaryConditions()
+    n0, pi0, bulk, gamma = force.getTaitParameters()
+    # Defaults: liquid argon of MODEL.md section 4 (u = 94.5476 kJ/mol, L = 0.61616 nm).
+    pressure_unit = 1.5700e-19 * 6.02214076e23 / 1000 / LENGTH**3
+    assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(DENSITY, rel=1e-14)
+    assert pi0.value_in_unit(PRESSURE) == pytest.approx((0.12711 - 0.011054) * pressure_unit, rel=1e-14)
+    assert bulk.value_in_unit(PRESSURE) == pytest.approx(pressure_unit / 6, rel=1e-14)
+    assert gamma == 6.0
+    assert force.getReferenceDensity() == n0 and force.getBulkModulus() == bulk
+    assert "GenDPDEForce" in repr(force) and "VB" in repr(force)
+
+
+def test_arguments_accept_quantities_in_any_compatible_unit():
+    force = GenDPDEForce(12.0 * unit.angstrom)
+    assert force.getCutoffDistance().value_in_unit(unit.nanometer) == pytest.approx(1.2)
+    force.setTaitParameters(4.0e27 / unit.meter**3, 80 * unit.megapascal, 1 * unit.kilocalorie_per_mole / unit.angstrom**3,
+                            7.0)
+    n0, pi0, bulk, gamma = force.getTaitParameters()
+    assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(4.0)
+    # A pressure in MPa is converted per mole: 1 MPa = 0.602214 kJ/mol/nm^3.
+    assert pi0.value_in_unit(PRESSURE) == pytest.approx(80 * 0.602214076)
+    assert bulk.value_in_unit(PRESSURE) == pytest.approx(4184.0)
+    force.setCutoffDistance(0.9)                # plain numbers are OpenMM units
+    assert force.getCutoffDistance() == 0.9 * unit.nanometer
+    force.setCutoffScaling(scaling=1.41)        # keyword arguments work
+    assert force.getCutoffScaling() == 1.41
+    with pytest.raises(TypeError, match="setCutoffDistance"):
+        force.setCutoffDistance(3 * unit.kelvin)
+
+
+@pytest.mark.parametrize("call, fragments", [
+    (lambda f: GenDPDEForce(-1.0), ["cutoff distance", "-1", "> 0"]),
+    (lambda f: f.setCutoffDistance(float("nan")), ["cutoff distance", "nan"]),
+    (lambda f: f.setCutoffScaling(0.9), ["f_cut", "0.9", ">= 1"]),
+    (lambda f: f.setTaitParameters(-1, 1, 1, 2), ["reference density", "-1"]),
+    (lambda f: f.setTaitParameters(1, 1, 0, 2), ["bulk modulus", "0"]),
+    (lambda f: f.setTaitParameters(1, 1, 1, 0.5), ["gamma_T", "0.5", "> 1"]),
+    (lambda f: f.setTaitParameters(1, float("inf"), 1, 2), ["reference pressure", "inf"]),
+    (lambda f: f.setDensityEstimator(5), ["estimator", "5"]),
+])
+def test_bad_input_raises_openmm_exception_and_changes_nothing(call, fragments):
+    force = GenDPDEForce(1.0)
+    before = repr(force)
+    with pytest.raises(openmm.OpenMMException) as error:
+        call(force)
+    for fragment in fragments:
+        assert fragment in str(error.value)
+    assert repr(force) == before
+
+
+def test_cast_and_isinstance_on_forces_from_a_system():
+    system, force, _ = lattice_liquid(3)
+    system.addForce(openmm.CMMotionRemover())
+    generic = system.getForce(0)
+    assert type(generic) is openmm.Force
+    assert GenDPDEForce.isinstance(generic) and not GenDPDEForce.isinstance(system.getForce(1))
+    cast = GenDPDEForce.cast(generic)
+    assert cast.getCutoffScaling() == 1.35
+    with pytest.raises(openmm.OpenMMException, match="not a GenDPDEForce"):
+        GenDPDEForce.cast(system.getForce(1))
+
+
+def test_copy_deepcopy_pickle_and_xml_round_trips():
+    force = GenDPDEForce(1.1)
+    force.setDensityEstimator(GenDPDEForce.VA)
+    force.setCutoffScaling(1.33)
+    force.setTaitParameters(4.5, 40.0, 70.0, 6.5)
+    force.setForceGroup(4)
+    for duplicate in [copy.copy(force), copy.deepcopy(force), pickle.loads(pickle.dumps(force)),
+                      GenDPDEForce.cast(openmm.XmlSerializer.deserialize(openmm.XmlSerializer.serialize(force)))]:
+        assert isinstance(duplicate, GenDPDEForce)
+        assert duplicate.thisown  # the copy owns its C++ object, so it is freed exactly once
+        assert repr(duplicate) == repr(force)
+        assert duplicate.getForceGroup() == 4
+        duplicate.setCutoffScaling(2.0)         # independent of the original
+        assert force.getCutoffScaling() == 1.33
+
+
+def test_system_with_the_force_round_trips_through_xml(platform):
+    system, force, positions = lattice_liquid(4)
+    restored = openmm.XmlSerializer.deserialize(openmm.XmlSerializer.serialize(system))
+    energy, forces = energy_and_forces(make_context(system, positions, platform))
+    energy2, forces2 = energy_and_forces(make_context(restored, positions, platform))
+    assert energy2 == energy
+    assert np.array_equal(forces, forces2)
+
+
+def test_observables_are_numpy_arrays_consistent_with_the_model(platform):
+    from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
+    system, force, positions = lattice_liquid(4)
+    context = make_context(system, positions, platform)
+    n0 = force.getPrimitiveDensities(context)
+    volumes = force.getParticleVolumes(context)
+    densities = force.getParticleDensities(context)
+    pressures = force.getParticlePressures(context)
+    for array in (n0, volumes, densities, pressures):
+        assert isinstance(array, np.ndarray) and array.dtype == np.float64 and array.shape == (64,)
+    reduced_range = force.getCutoffDistance().value_in_unit(unit.nanometer) / force.getCutoffScaling()
+    tait = [value.value_in_unit(value.unit) if unit.is_quantity(value) else value for value in force.getTaitParameters()]
+    for i in range(64):
+        assert volumes[i] == particleVolumeVB(n0[i], reduced_range)[0]
+        assert densities[i] == pytest.approx(1 / volumes[i], rel=1e-15)
+        assert pressures[i] == pytest.approx(taitEquationOfState(densities[i], *tait)[0], rel=1e-14)
+    energy, _ = energy_and_forces(context)
+    assert energy == pytest.approx(sum(taitEquationOfState(n, *tait)[1] for n in densities), rel=1e-13)
+    assert isinstance(force.getVirial(context), float)
+
+
+def test_reference_and_cpu_agree():
+    if "CPU" not in [openmm.Platform.getPlatform(i).getName() for i in range(openmm.Platform.getNumPlatforms())]:
+        pytest.skip("no CPU platform")
+    system, force, positions = lattice_liquid(5)
+    energy, forces = energy_and_forces(make_context(system, positions, openmm.Platform.getPlatformByName("Reference")))
+    energy2, forces2 = energy_and_forces(make_context(system, positions, openmm.Platform.getPlatformByName("CPU")))
+    assert energy2 == pytest.approx(energy, rel=1e-12)
+    assert np.allclose(forces2, forces, rtol=0, atol=1e-9 * np.abs(forces).max())
+
+
+def test_update_parameters_in_context_from_python(platform):
+    system, force, positions = lattice_liquid(4, estimator=GenDPDEForce.VA)
+    context = make_context(system, positions, platform)
+    force.setDensityEstimator(GenDPDEForce.VB)
+    force.setCutoffScaling(1.41)
+    force.updateParametersInContext(context)
+    energy, _ = energy_and_forces(context)
+    fresh, _ = energy_and_forces(make_context(system, positions, platform))
+    assert energy == fresh
+
+
+def test_runs_in_a_simulation_with_reporters(platform, tmp_path):
+    from openmm import app
+    system, force, positions = lattice_liquid(4, density=DENSITY)
+    topology = app.Topology()
+    chain = topology.addChain()
+    for _ in range(system.getNumParticles()):
+        topology.addAtom("AR", app.element.argon, topology.addResidue("AR", chain))
+    topology.setPeriodicBoxVectors(system.getDefaultPeriodicBoxVectors())
+    simulation = app.Simulation(topology, system, openmm.VerletIntegrator(0.005), platform)
+    simulation.context.setPositions(positions)
+    simulation.context.setVelocitiesToTemperature(125.7)
+    log = tmp_path / "log.csv"
+    simulation.reporters.append(app.StateDataReporter(str(log), 5, step=True, potentialEnergy=True, temperature=True))
+    simulation.reporters.append(app.DCDReporter(str(tmp_path / "traj.dcd"), 5))
+    simulation.step(20)
+    lines = log.read_text().splitlines()
+    assert len(lines) == 5 and all(np.isfinite(float(v)) for v in lines[-1].split(",")[1:])
+
+
+def test_nan_position_is_reported(platform):
+    system, force, positions = lattice_liquid(4)
+    positions[9, 2] = np.nan
+    context = make_context(system, positions, platform)
+    with pytest.raises(openmm.OpenMMException, match="particle 9|nan"):
+        context.getState(getForces=True)
+
+
+def test_isolated_particle_under_va_names_the_particle(platform):
+    system, force, positions = lattice_liquid(4, estimator=GenDPDEForce.VA)
+    force.setNonbondedMethod(GenDPDEForce.CutoffNonPeriodic)
+    positions[13] = [100.0, 100.0, 100.0]
+    context = make_context(system, positions, platform)
+    with pytest.raises(openmm.OpenMMException, match="particle 13 has no neighbour"):
+        context.getState(getEnergy=True)

@@ -45,7 +45,7 @@ public:
     enum NonbondedMethod {
         /** No periodic boundaries; pairs farther apart than the cutoff do not interact. */
         CutoffNonPeriodic = 0,
-        /** Periodic boundaries with the minimum-image convention; the cutoff must not exceed half the box. */
+        /** Periodic boundaries; the cutoff must not exceed half the smallest box width. */
         CutoffPeriodic = 1
     };
     /** How the primitive density n0_i becomes a particle volume V_i. */

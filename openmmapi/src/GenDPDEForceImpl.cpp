@@ -1,4 +1,5 @@
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/BoxGeometry.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include <sstream>
@@ -10,14 +11,13 @@ GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
 }
 
 void GenDPDEForceImpl::checkCutoffAgainstBox(double cutoff, const Vec3 boxVectors[3]) {
-    double smallest = std::min(boxVectors[0][0], std::min(boxVectors[1][1], boxVectors[2][2]));
-    if (cutoff > 0.5*smallest) {
+    double limit = BoxGeometry::halfSmallestWidth(boxVectors);
+    if (cutoff > limit) {
         std::ostringstream message;
         message.precision(12);
-        message << "GenDPDEForce: cutoff distance = " << cutoff
-                << " nm is not allowed with this periodic box; it must be <= half the smallest box size ("
-                << 0.5*smallest << " nm, from a_x = " << boxVectors[0][0] << ", b_y = " << boxVectors[1][1]
-                << ", c_z = " << boxVectors[2][2] << " nm)";
+        message << "GenDPDEForce: cutoff distance = " << cutoff << " nm is not allowed with this periodic box; "
+                << "it must be <= half the smallest box width (" << limit << " nm; for a rectangular box the "
+                << "width is the edge length, for a triclinic one the distance between opposite faces)";
         throw OpenMMException(message.str());
     }
 }

@@ -33,8 +33,9 @@ public:
         return kernel;
     }
     /**
-     * Throw an OpenMMException if the cutoff exceeds half the periodic box (the smallest of a_x, b_y, c_z, as in
-     * OpenMM's own nonbonded forces). Checked at Context creation and before every evaluation.
+     * Throw an OpenMMException if the cutoff exceeds half the smallest perpendicular width of the periodic box
+     * (half the smallest edge of a rectangular box), beyond which two images of a pair could both be in range.
+     * Checked at Context creation and before every evaluation.
      */
     static void checkCutoffAgainstBox(double cutoff, const OpenMM::Vec3 boxVectors[3]);
 private:

@@ -2,47 +2,37 @@
 #define GENDPDE_NEIGHBOR_LIST_H_
 
 #include "openmm/Vec3.h"
-#include <cmath>
 #include <vector>
 
 namespace GenDPDEPlugin {
 
-/** Minimum-image displacement in an OpenMM periodic box (reduced triclinic form, or rectangular as a fast path). */
-class PeriodicBox {
-public:
-    PeriodicBox() = default;
-    explicit PeriodicBox(const OpenMM::Vec3 vectors[3]);
-    /** The minimum-image version of the displacement d (OpenMM's convention for reduced triclinic boxes). */
-    OpenMM::Vec3 minimumImage(OpenMM::Vec3 d) const {
-        if (triclinic) {
-            d -= vectors[2]*std::floor(d[2]*inverseDiagonal[2] + 0.5);
-            d -= vectors[1]*std::floor(d[1]*inverseDiagonal[1] + 0.5);
-            d -= vectors[0]*std::floor(d[0]*inverseDiagonal[0] + 0.5);
-        }
-        else {
-            d[0] -= vectors[0][0]*std::floor(d[0]*inverseDiagonal[0] + 0.5);
-            d[1] -= vectors[1][1]*std::floor(d[1]*inverseDiagonal[1] + 0.5);
-            d[2] -= vectors[2][2]*std::floor(d[2]*inverseDiagonal[2] + 0.5);
-        }
-        return d;
-    }
-    /** Fractional coordinates s of r = s_0 a + s_1 b + s_2 c, wrapped into [0, 1). */
-    OpenMM::Vec3 wrappedFractional(const OpenMM::Vec3& r) const;
-    /** Distance between opposite faces of the box along each lattice direction (nm). */
-    OpenMM::Vec3 perpendicularWidths() const;
-    bool operator==(const PeriodicBox& other) const {
-        return vectors[0] == other.vectors[0] && vectors[1] == other.vectors[1] && vectors[2] == other.vectors[2];
-    }
-private:
-    OpenMM::Vec3 vectors[3], inverseDiagonal;
-    bool triclinic = false;
-};
-
-/** Two particles closer than the cutoff: i < j, delta = r_i - r_j (minimum image if periodic), r = |delta|. */
+/** Two particles closer than the cutoff: i < j, delta = r_i - r_j (nearest periodic image), r = |delta|. */
 struct ParticlePair {
     int i, j;
     OpenMM::Vec3 delta;
     double r;
+};
+
+/** A read-only view of the pairs found by NeighborList::update(), valid until the next update. */
+class PairView {
+public:
+    PairView(const ParticlePair* first, size_t count) : first(first), count(count) {
+    }
+    const ParticlePair* begin() const {
+        return first;
+    }
+    const ParticlePair* end() const {
+        return first + count;
+    }
+    size_t size() const {
+        return count;
+    }
+    const ParticlePair& operator[](size_t index) const {
+        return first[index];
+    }
+private:
+    const ParticlePair* first;
+    size_t count;
 };
 
 /**
@@ -52,20 +42,21 @@ struct ParticlePair {
  *
  * Implementation: a Verlet list of candidates within cutoff + skin, built with a cell grid in fractional
  * coordinates (cells at least cutoff + skin wide, so that the 27 surrounding cells hold every candidate) and rebuilt
- * when any particle has moved more than skin/2 since the last build or the box has changed. Each call to update()
- * then costs one distance per candidate: O(N) for a liquid.
+ * when any particle has moved more than skin/2 since the last build or the box has changed. The periodic image of
+ * each candidate is fixed when the list is built: positions are wrapped into the box once (offset o_i) and each
+ * candidate records which of the 27 neighbouring images it was found in, so that an update costs a few additions
+ * per candidate and no rounding. This is exact because cutoff + skin is kept below half the smallest perpendicular
+ * box width (the skin shrinks if needed): then at most one image of a pair can come within range before the next
+ * rebuild. Each call to update() costs one distance per candidate: O(N) for a liquid.
  */
 class NeighborList {
 public:
     NeighborList(double cutoff, double skin, bool periodic);
     /** The pairs at these positions (box ignored unless periodic). Rebuilds the candidate list only when needed. */
-    const std::vector<ParticlePair>& update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]);
+    PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]);
     /** The pairs found by the last update(). */
-    const std::vector<ParticlePair>& getPairs() const {
-        return pairs;
-    }
-    const PeriodicBox& getBox() const {
-        return box;
+    PairView getPairs() const {
+        return PairView(pairs.data(), numPairs);
     }
     double getCutoff() const {
         return cutoff;
@@ -82,19 +73,25 @@ public:
         built = false;
     }
 private:
-    bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const PeriodicBox& newBox) const;
-    void build(const std::vector<OpenMM::Vec3>& positions);
-    OpenMM::Vec3 displacement(const OpenMM::Vec3& ri, const OpenMM::Vec3& rj) const {
-        return periodic ? box.minimumImage(ri - rj) : ri - rj;
-    }
-    double cutoff, skin;
+    /** A candidate partner j of particle i and the periodic image (index into imageShift) it was found in. */
+    struct Candidate {
+        int j, image;
+    };
+    bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
+    void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]);
+    double cutoff, maxSkin, skin;
     bool periodic, built = false;
     long long numBuilds = 0;
-    PeriodicBox box;
+    OpenMM::Vec3 builtBox[3];
     std::vector<OpenMM::Vec3> builtPositions;
-    std::vector<int> candidateStart, candidates;   // CSR: candidates of i (all j > i) in candidates[candidateStart[i]..]
+    std::vector<OpenMM::Vec3> wrapOffset;          // o_i: r_i + o_i lies in the box (zero if not periodic)
+    std::vector<OpenMM::Vec3> shiftedPositions;    // r_i + o_i at the current positions
+    OpenMM::Vec3 imageShift[27];                   // sa a + sb b + sc c for sa, sb, sc in {-1, 0, 1}
+    std::vector<int> candidateStart;               // candidates of i in candidates[candidateStart[i]..[i+1])
+    std::vector<Candidate> candidates;
     std::vector<int> cellStart, cellParticles, particleCell;
-    std::vector<ParticlePair> pairs;
+    std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
+    size_t numPairs = 0;
 };
 
 } // namespace GenDPDEPlugin

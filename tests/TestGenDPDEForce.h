@@ -171,6 +171,15 @@ void testAgainstBruteForce() {
         }
 }
 
+/** Both ways of raising (n/n0) to gamma_T - 1: multiplications for integer exponents, pow() otherwise. */
+void testTaitExponents() {
+    for (double exponent : {2.0, 6.5, 7.0, 12.0}) {
+        Scene scene = makeLatticeLiquid(6, 1.3*referenceDensity, 0.2, GenDPDEForce::VB, true, 6);
+        scene.force->setTaitParameters(referenceDensity, 40.0, 70.0, exponent);
+        checkAgainstBruteForce(scene, "gamma_T = " + std::to_string(exponent));
+    }
+}
+
 void testTriclinicBox() {
     for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
         Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 5);
@@ -454,6 +463,7 @@ void runForceTests() {
     testBadInput();
     testAgainstBruteForce();
     testTriclinicBox();
+    testTaitExponents();
     testFiniteDifferences();
     testSymmetries();
     testVirial();

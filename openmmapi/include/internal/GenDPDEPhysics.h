@@ -11,7 +11,10 @@
  * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).     *
  * -------------------------------------------------------------------------- */
 
+#include "VolumeVBPolynomials.h"
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace GenDPDEPlugin {
@@ -65,15 +68,18 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  *   I(k) = int_0^1 y^2 (1-y)^2 / (y^2 + k)   dy      so that V      =  4 pi Rt^3 I(k),
  *   J(k) = int_0^1 y^2 (1-y)^2 / (y^2 + k)^2 dy      so that dV/dn0 = -(8 pi^2/15) Rt^6 J(k)   (J = -dI/dk).
  *
- * Two branches, each accurate to a few ulp over its range (checked against 40-digit quadrature in the tests):
- *  - k < 0.1: the closed forms of MODEL.md, with ln((k+1)/k) written as log1p(k) - log(k) so that no intermediate
- *    overflows for subnormal k (max 2e-15 relative). They lose digits to cancellation as k grows (two near
+ * Three branches, each accurate to a few ulp over its range (checked against 40-digit quadrature in the tests):
+ *  - 1/16 <= k < 16, the range of liquids: piecewise polynomials of degree 13 in a local variable, 4 pieces per
+ *    octave, generated at 60 digits by tools/generate_vb_polynomials.py (VolumeVBPolynomials.h; max error 1e-16
+ *    before rounding in the evaluation). The piece comes from the bits of k; no division, no transcendental
+ *    function, so V-B costs a few ns more than V-A per particle.
+ *  - k < 1/16: the closed forms of MODEL.md, with ln((k+1)/k) written as log1p(k) - log(k) so that no intermediate
+ *    overflows for subnormal k (max 2e-15 relative there). They lose digits to cancellation as k grows (two near
  *    k = 1) and are useless for large k (at k = 1e5 the fifth digit of V is wrong).
- *  - k >= 0.1: 24-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
+ *  - k >= 16: 24-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
  *    cancellation) and analytic within sqrt(k) of [0, 1], so the rule converges to rounding error (max 1e-15
- *    relative for 0.1 <= k <= 1e12). This branch covers dense liquids, and costs a few ns: no atan, no log.
- *    The weight y^2 (1-y)^2 is symmetric about 1/2, so the nodes come in mirror pairs y, 1-y sharing one
- *    coefficient.
+ *    relative for 0.1 <= k <= 1e12). The weight y^2 (1-y)^2 is symmetric about 1/2, so the nodes come in mirror
+ *    pairs y, 1-y sharing one coefficient.
  *  - k = 0 (no neighbour in range): I = 1/3 exactly and J = +infinity (dV/dn0 diverges like k^-1/2). The
  *    derivative only ever multiplies w'(r) of a pair in range, and any such pair makes k > 0.
  */
@@ -81,10 +87,43 @@ struct VolumeIntegralsVB {
     double I, J;
 };
 
+namespace VolumeVBPolynomials {
+/**
+ * Both polynomials of one piece at t, as one two-lane vector (I, J), by Estrin's scheme: the 14 coefficients are
+ * combined pairwise with t, then t^2, t^4, t^8, so the dependency chain is 4 steps deep instead of 13.
+ */
+inline VolumeIntegralsVB evaluate(const double (*c)[2], double t) {
+    static_assert(degree == 13, "Estrin evaluation below is written for 14 coefficients");
+    typedef double Lanes __attribute__((vector_size(16)));
+    auto load = [&](int p) { return Lanes{c[p][0], c[p][1]}; };
+    const double t2 = t*t, t4 = t2*t2, t8 = t4*t4;
+    Lanes a[7];
+    for (int q = 0; q < 7; q++)
+        a[q] = load(2*q) + load(2*q + 1)*t;
+    const Lanes b0 = a[0] + a[1]*t2, b1 = a[2] + a[3]*t2, b2 = a[4] + a[5]*t2;
+    const Lanes result = (b0 + b1*t4) + (b2 + a[6]*t4)*t8;
+    return {result[0], result[1]};
+}
+} // namespace VolumeVBPolynomials
+
 inline VolumeIntegralsVB volumeIntegralsVB(double k) {
     if (k == 0.0)
         return {1.0/3.0, std::numeric_limits<double>::infinity()};
-    if (k < 0.1) {
+    // k = m 2^octave with m in [1, 2); the top two bits of the mantissa pick the piece.
+    std::uint64_t bits;
+    std::memcpy(&bits, &k, sizeof(bits));
+    const int octave = (int) ((bits >> 52) & 0x7ff) - 1023;
+    if (octave >= VolumeVBPolynomials::firstOctave && octave <= VolumeVBPolynomials::lastOctave) {
+        const int piece = (int) ((bits >> 50) & 3);
+        const std::uint64_t mantissaBits = (bits & 0x000FFFFFFFFFFFFFull) | 0x3FF0000000000000ull;
+        double m;
+        std::memcpy(&m, &mantissaBits, sizeof(m));
+        const double t = 8.0*(m - 1.0) - (2*piece + 1);   // exact, in [-1, 1)
+        return VolumeVBPolynomials::evaluate(
+                VolumeVBPolynomials::coefficients[(octave - VolumeVBPolynomials::firstOctave)
+                                                  *VolumeVBPolynomials::subintervals + piece], t);
+    }
+    if (k < 1.0) {   // below the polynomial range: k < 1/16 (or subnormal)
         double s = std::sqrt(k);
         double arctangent = std::atan(1.0/s);
         double logarithm = std::log1p(k) - std::log(k);  // ln((k+1)/k)
@@ -92,7 +131,7 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
         double J = 1.5 - logarithm + (1.0 - 3.0*k)/(2.0*s)*arctangent;
         return {I, J};
     }
-    // Gauss-Legendre on [0,1]: y_m^2, (1-y_m)^2 and w_m y_m^2 (1-y_m)^2 for the 12 nodes with y_m < 1/2
+    // Above the polynomial range, k >= 16. Gauss-Legendre on [0,1]: y_m^2, (1-y_m)^2 and w_m y_m^2 (1-y_m)^2 for the 12 nodes with y_m < 1/2
     // (computed with 40-digit arithmetic; twice the sum of the coefficients is 1/30 = int_0^1 y^2 (1-y)^2 dy,
     // which the rule integrates exactly).
     static const double nodeSquared[12] = {
@@ -119,13 +158,29 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
 }
 
 /**
- * V-B, the partition-of-unity estimator (MODEL.md section 1) for primitive density n0 >= 0 and reduced range
- * Rt = R/f_cut. Accurate to ~1e-15 relative for every k; V = (4 pi/3) Rt^3 at n0 = 0 and V -> 1/n0 as n0 -> inf.
+ * V-B, the partition-of-unity estimator (MODEL.md section 1), for reduced range Rt = R/f_cut: the volume and its
+ * derivative at any primitive density n0 >= 0, accurate to ~1e-15 relative for every k. V = (4 pi/3) Rt^3 at
+ * n0 = 0 and V -> 1/n0 as n0 -> infinity. The scale factors are computed once per Rt.
  */
+class VolumeEstimatorVB {
+public:
+    explicit VolumeEstimatorVB(double reducedRange) {
+        double rt3 = reducedRange*reducedRange*reducedRange;
+        kPerDensity = (2.0*Pi/15.0)*rt3;
+        volumeScale = 4.0*Pi*rt3;
+        derivativeScale = -(8.0*Pi*Pi/15.0)*rt3*rt3;
+    }
+    ParticleVolume operator()(double primitiveDensity) const {
+        VolumeIntegralsVB integrals = volumeIntegralsVB(kPerDensity*primitiveDensity);
+        return {volumeScale*integrals.I, derivativeScale*integrals.J};
+    }
+private:
+    double kPerDensity, volumeScale, derivativeScale;
+};
+
+/** V-B for one primitive density n0 >= 0 and reduced range Rt (see VolumeEstimatorVB). */
 inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
-    double rt3 = reducedRange*reducedRange*reducedRange;
-    VolumeIntegralsVB integrals = volumeIntegralsVB((2.0*Pi/15.0)*rt3*primitiveDensity);
-    return {4.0*Pi*rt3*integrals.I, -(8.0*Pi*Pi/15.0)*rt3*rt3*integrals.J};
+    return VolumeEstimatorVB(reducedRange)(primitiveDensity);
 }
 
 /**
@@ -138,12 +193,16 @@ class TaitEquationOfState {
 public:
     TaitEquationOfState(double referenceDensity, double referencePressure, double bulkModulus, double exponent) :
             referenceDensity(referenceDensity), referencePressure(referencePressure), bulkModulus(bulkModulus),
-            exponent(exponent) {
+            exponent(exponent), integerPower(-1) {
+        // gamma_T is usually an integer (6 for argon, 7 for water): then x^(gamma_T - 1) by multiplications,
+        // exact to a few ulp and several times cheaper than pow().
+        if (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0)
+            integerPower = (int) exponent - 1;
     }
-    /** Pressure pi(n) and free energy per particle f(n) at density n, with one pow() between them. */
+    /** Pressure pi(n) and free energy per particle f(n) at density n, with one power between them. */
     void evaluate(double density, double& pressure, double& freeEnergy) const {
         double x = density/referenceDensity;
-        double xPowGammaMinusOne = std::pow(x, exponent - 1.0);
+        double xPowGammaMinusOne = (integerPower >= 0 ? power(x, integerPower) : std::pow(x, exponent - 1.0));
         pressure = referencePressure + bulkModulus*(xPowGammaMinusOne*x - 1.0);
         freeEnergy = (bulkModulus - referencePressure)/density
                    + bulkModulus/((exponent - 1.0)*referenceDensity)*xPowGammaMinusOne;
@@ -163,7 +222,19 @@ public:
         return referenceDensity*std::pow(1.0 - referencePressure/bulkModulus, 1.0/exponent);
     }
 private:
+    /** x^p for a non-negative integer p, by binary powering. */
+    static double power(double x, int p) {
+        double result = 1.0;
+        while (p > 0) {
+            if (p & 1)
+                result *= x;
+            x *= x;
+            p >>= 1;
+        }
+        return result;
+    }
     double referenceDensity, referencePressure, bulkModulus, exponent;
+    int integerPower;
 };
 
 /**

@@ -55,7 +55,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         }
     if (periodic)
         GenDPDEForceImpl::checkCutoffAgainstBox(cutoff, box);
-    const std::vector<ParticlePair>& pairs = neighborList->update(positions, box);
+    const PairView pairs = neighborList->update(positions, box);
 
     // MODEL.md section 1: primitive densities n0_i = sum_j w(r_ij).
     const Physics::DensityWeight weight(cutoff);
@@ -68,7 +68,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
 
     // MODEL.md sections 1-2: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const Physics::TaitEquationOfState tait(referenceDensity, referencePressure, bulkModulus, exponent);
-    const double reducedRange = cutoff/cutoffScaling;
+    const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
     double energy = 0.0;
     for (int i = 0; i < numParticles; i++) {
         const double n0 = primitiveDensity[i];
@@ -80,8 +80,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
                     << "Use the VB estimator, a larger cutoff or a denser system";
             throw OpenMMException(message.str());
         }
-        Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                                                    : Physics::volumeVB(n0, reducedRange));
+        Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : volumeVB(n0));
         double freeEnergy;
         tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
         volume[i] = v.volume;

@@ -7,8 +7,15 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-NeighborList::NeighborList(double cutoff, double skin, bool periodic) :
-        cutoff(cutoff), maxSkin(skin), skin(skin), periodic(periodic) {
+PeriodicBox::PeriodicBox(const Vec3 boxVectors[3]) {
+    for (int k = 0; k < 3; k++) {
+        vectors[k] = boxVectors[k];
+        inverseDiagonal[k] = 1.0/boxVectors[k][k];
+    }
+    triclinic = (vectors[1][0] != 0.0 || vectors[2][0] != 0.0 || vectors[2][1] != 0.0);
+}
+
+NeighborList::NeighborList(double cutoff, double skin, bool periodic) : cutoff(cutoff), skin(skin), periodic(periodic) {
 }
 
 bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) const {
@@ -19,31 +26,25 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
     double limit = 0.25*skin*skin;   // (skin/2)^2: two particles approach each other by at most skin
     for (size_t i = 0; i < positions.size(); i++) {
         Vec3 moved = positions[i] - builtPositions[i];
-        if (moved.dot(moved) >= limit)
+        if (moved.dot(moved) > limit)
             return true;
     }
     return false;
 }
 
-void NeighborList::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) {
+void NeighborList::build(const std::vector<Vec3>& positions) {
     const int numParticles = positions.size();
-    for (int k = 0; k < 3; k++)
-        builtBox[k] = boxVectors[k];
+    const double listCutoff = cutoff + skin;
 
-    // Unit cell coordinates in [0, 1)^3 and wrap offsets: fractional coordinates if periodic, else the bounding box.
+    // Unit cell coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
     std::vector<Vec3> unit(numParticles);
-    wrapOffset.assign(numParticles, Vec3());
     Vec3 extent;
     if (periodic) {
-        // Keep cutoff + skin below half the smallest width, so that each pair has at most one image in range.
-        skin = std::max(0.0, std::min(maxSkin, BoxGeometry::halfSmallestWidth(boxVectors)*(1 - 1e-12) - cutoff));
-        extent = BoxGeometry::perpendicularWidths(boxVectors);
+        extent = BoxGeometry::perpendicularWidths(box.getVectors());
         for (int i = 0; i < numParticles; i++) {
-            Vec3 s = BoxGeometry::fractionalCoordinates(positions[i], boxVectors);
-            Vec3 cells(std::floor(s[0]), std::floor(s[1]), std::floor(s[2]));
+            Vec3 s = BoxGeometry::fractionalCoordinates(wrappedPositions[i], box.getVectors());
             for (int k = 0; k < 3; k++)
-                unit[i][k] = std::min(std::max(s[k] - cells[k], 0.0), std::nextafter(1.0, 0.0));
-            wrapOffset[i] = -(boxVectors[0]*cells[0] + boxVectors[1]*cells[1] + boxVectors[2]*cells[2]);
+                unit[i][k] = s[k] - std::floor(s[k]);
         }
     }
     else {
@@ -59,7 +60,6 @@ void NeighborList::build(const std::vector<Vec3>& positions, const Vec3 boxVecto
             for (int k = 0; k < 3; k++)
                 unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
     }
-    const double listCutoff = cutoff + skin;
 
     // Cells at least listCutoff wide; no more cells than are useful for this many particles.
     std::array<int, 3> numCells;
@@ -77,7 +77,7 @@ void NeighborList::build(const std::vector<Vec3>& positions, const Vec3 boxVecto
     for (int i = 0; i < numParticles; i++) {
         int cell = 0;
         for (int k = 0; k < 3; k++)
-            cell = cell*numCells[k] + std::min(numCells[k] - 1, (int) (unit[i][k]*numCells[k]));
+            cell = cell*numCells[k] + std::max(0, std::min(numCells[k] - 1, (int) (unit[i][k]*numCells[k])));
         particleCell[i] = cell;
         cellStart[cell + 1]++;
     }
@@ -88,91 +88,98 @@ void NeighborList::build(const std::vector<Vec3>& positions, const Vec3 boxVecto
     for (int i = 0; i < numParticles; i++)
         cellParticles[fill[particleCell[i]]++] = i;
 
-    // The 27 images: imageShift[9 (sa+1) + 3 (sb+1) + (sc+1)] = sa a + sb b + sc c.
-    for (int sa = -1; sa <= 1; sa++)
-        for (int sb = -1; sb <= 1; sb++)
-            for (int sc = -1; sc <= 1; sc++)
-                imageShift[9*(sa + 1) + 3*(sb + 1) + (sc + 1)] = periodic ?
-                        boxVectors[0]*sa + boxVectors[1]*sb + boxVectors[2]*sc : Vec3();
+    // For each dimension and cell coordinate, the distinct cells within one step (with wrap-around if periodic).
+    std::array<std::vector<std::vector<int>>, 3> neighbourCells;
+    for (int k = 0; k < 3; k++) {
+        neighbourCells[k].resize(numCells[k]);
+        for (int c = 0; c < numCells[k]; c++)
+            for (int offset = -1; offset <= 1; offset++) {
+                int n = c + offset;
+                if (periodic)
+                    n = (n + numCells[k]) % numCells[k];
+                else if (n < 0 || n >= numCells[k])
+                    continue;
+                std::vector<int>& cells = neighbourCells[k][c];
+                if (std::find(cells.begin(), cells.end(), n) == cells.end())
+                    cells.push_back(n);
+            }
+    }
 
-    // Candidates of each particle: all j > i with an image within listCutoff, sorted by j. A neighbouring cell
-    // across the box boundary is the wrapped cell seen through the image shifted by one box vector; with fewer than
-    // three cells along a dimension the same cell is visited through different images, which is what is wanted.
-    shiftedPositions.resize(numParticles);
-    for (int i = 0; i < numParticles; i++)
-        shiftedPositions[i] = positions[i] + wrapOffset[i];
+    // Candidates of each particle: all j > i whose nearest image is within listCutoff, sorted.
     candidateStart.assign(numParticles + 1, 0);
     candidates.clear();
     const double listCutoff2 = listCutoff*listCutoff;
+    const std::vector<Vec3>& r = periodic ? wrappedPositions : positions;
     for (int i = 0; i < numParticles; i++) {
-        const int cell = particleCell[i];
-        const int cellIndex[3] = {cell/(numCells[2]*numCells[1]), (cell/numCells[2]) % numCells[1], cell % numCells[2]};
-        const Vec3 ri = shiftedPositions[i];
-        const size_t first = candidates.size();
-        for (int neighbour = 0; neighbour < 27; neighbour++) {
-            int offset[3] = {neighbour/9 - 1, (neighbour/3) % 3 - 1, neighbour % 3 - 1};
-            int target[3], shift[3];
-            bool exists = true;
-            for (int k = 0; k < 3; k++) {
-                int c = cellIndex[k] + offset[k];
-                shift[k] = (c < 0 ? -1 : (c >= numCells[k] ? 1 : 0));
-                if (!periodic && shift[k] != 0)
-                    exists = false;
-                target[k] = c - shift[k]*numCells[k];
-            }
-            if (!exists)
-                continue;   // beyond the edge of a non-periodic grid
-            const int image = 9*(shift[0] + 1) + 3*(shift[1] + 1) + (shift[2] + 1);
-            const Vec3 imageOffset = imageShift[image];
-            const int targetCell = (target[0]*numCells[1] + target[1])*numCells[2] + target[2];
-            for (int m = cellStart[targetCell]; m < cellStart[targetCell + 1]; m++) {
-                int j = cellParticles[m];
-                if (j <= i)
-                    continue;
-                Vec3 d = ri - shiftedPositions[j] - imageOffset;
-                if (d.dot(d) < listCutoff2)
-                    candidates.push_back({j, image});
-            }
-        }
-        std::sort(candidates.begin() + first, candidates.end(),
-                  [](const Candidate& a, const Candidate& b) { return a.j < b.j; });
+        int cell = particleCell[i];
+        int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
+        size_t first = candidates.size();
+        for (int nx : neighbourCells[0][cx])
+            for (int ny : neighbourCells[1][cy])
+                for (int nz : neighbourCells[2][cz]) {
+                    int neighbour = (nx*numCells[1] + ny)*numCells[2] + nz;
+                    for (int m = cellStart[neighbour]; m < cellStart[neighbour + 1]; m++) {
+                        int j = cellParticles[m];
+                        if (j <= i)
+                            continue;
+                        Vec3 d = periodic ? box.nearestImage(r[i] - r[j]) : r[i] - r[j];
+                        if (d.dot(d) < listCutoff2)
+                            candidates.push_back(j);
+                    }
+                }
+        std::sort(candidates.begin() + first, candidates.end());
         candidateStart[i + 1] = candidates.size();
     }
     builtPositions = positions;
+    for (int k = 0; k < 3; k++)
+        builtBox[k] = box.getVectors()[k];
     built = true;
     numBuilds++;
 }
 
-PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) {
-    if (needsRebuild(positions, boxVectors))
-        build(positions, boxVectors);
-    else
-        for (size_t i = 0; i < positions.size(); i++)
-            shiftedPositions[i] = positions[i] + wrapOffset[i];
+template <class Displacement>
+void NeighborList::collectPairs(int numParticles, Displacement displacement) {
     // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
     // store-to-load forwarding). The buffer only grows, so it is never re-initialised.
     if (pairs.size() < candidates.size())
         pairs.resize(candidates.size());
     numPairs = 0;
     const double cutoff2 = cutoff*cutoff;
-    const int numParticles = positions.size();
-    for (int i = 0; i < numParticles; i++) {
-        const Vec3 ri = shiftedPositions[i];
+    for (int i = 0; i < numParticles; i++)
         for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
-            const Candidate& candidate = candidates[m];
-            Vec3 d = ri - shiftedPositions[candidate.j] - imageShift[candidate.image];
-            double r2 = d.dot(d);
+            const int j = candidates[m];
+            const Vec3 d = displacement(i, j);
+            const double r2 = d.dot(d);
             if (r2 < cutoff2) {
                 ParticlePair& pair = pairs[numPairs++];
                 pair.i = i;
-                pair.j = candidate.j;
+                pair.j = j;
                 pair.delta = d;
                 pair.r = r2;
             }
         }
-    }
     // Square roots in a pass of their own: independent, so they pipeline instead of stalling the search above.
     for (size_t k = 0; k < numPairs; k++)
         pairs[k].r = std::sqrt(pairs[k].r);
+}
+
+PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) {
+    const int numParticles = positions.size();
+    if (periodic) {
+        box = PeriodicBox(boxVectors);
+        wrappedPositions.resize(numParticles);
+        for (int i = 0; i < numParticles; i++)
+            wrappedPositions[i] = box.wrap(positions[i]);
+    }
+    if (needsRebuild(positions, boxVectors))
+        build(positions);
+    if (!periodic)
+        collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; });
+    else if (box.isTriclinic())
+        collectPairs(numParticles, [&](int i, int j) {
+            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); });
+    else
+        collectPairs(numParticles, [&](int i, int j) {
+            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); });
     return getPairs();
 }

@@ -2,9 +2,58 @@
 #define GENDPDE_NEIGHBOR_LIST_H_
 
 #include "openmm/Vec3.h"
+#include <cmath>
 #include <vector>
 
 namespace GenDPDEPlugin {
+
+/**
+ * Wrapping and nearest images in an OpenMM periodic box (reduced form: a = (ax,0,0), b = (bx,by,0),
+ * c = (cx,cy,cz)). Both are pure functions of their arguments, so displacements computed with them do not depend on
+ * any history (needed for bit-for-bit continuation from checkpoints).
+ */
+class PeriodicBox {
+public:
+    PeriodicBox() = default;
+    explicit PeriodicBox(const OpenMM::Vec3 vectors[3]);
+    bool isTriclinic() const {
+        return triclinic;
+    }
+    /** r moved by a lattice vector into [0, ax) x [0, by) x [0, cz). */
+    OpenMM::Vec3 wrap(OpenMM::Vec3 r) const {
+        r -= vectors[2]*std::floor(r[2]*inverseDiagonal[2]);
+        r -= vectors[1]*std::floor(r[1]*inverseDiagonal[1]);
+        r -= vectors[0]*std::floor(r[0]*inverseDiagonal[0]);
+        return r;
+    }
+    /** x rounded to the nearest integer (ties to even), branch-free; exact for |x| < 2^51. */
+    static double roundToInteger(double x) {
+        const double shifter = 6755399441055744.0;   // 1.5 * 2^52: the sum's last bit is the units digit
+        return (x + shifter) - shifter;
+    }
+    /** The nearest image of a difference d in a rectangular box. */
+    OpenMM::Vec3 nearestImageRectangular(OpenMM::Vec3 d) const {
+        for (int k = 0; k < 3; k++)
+            d[k] -= vectors[k][k]*roundToInteger(d[k]*inverseDiagonal[k]);
+        return d;
+    }
+    /** The nearest image of a difference d in a reduced triclinic box (OpenMM's convention). */
+    OpenMM::Vec3 nearestImageTriclinic(OpenMM::Vec3 d) const {
+        d -= vectors[2]*roundToInteger(d[2]*inverseDiagonal[2]);
+        d -= vectors[1]*roundToInteger(d[1]*inverseDiagonal[1]);
+        d -= vectors[0]*roundToInteger(d[0]*inverseDiagonal[0]);
+        return d;
+    }
+    OpenMM::Vec3 nearestImage(const OpenMM::Vec3& d) const {
+        return triclinic ? nearestImageTriclinic(d) : nearestImageRectangular(d);
+    }
+    const OpenMM::Vec3* getVectors() const {
+        return vectors;
+    }
+private:
+    OpenMM::Vec3 vectors[3], inverseDiagonal;
+    bool triclinic = false;
+};
 
 /** Two particles closer than the cutoff: i < j, delta = r_i - r_j (nearest periodic image), r = |delta|. */
 struct ParticlePair {
@@ -41,13 +90,12 @@ private:
  * function of the configuration.
  *
  * Implementation: a Verlet list of candidates within cutoff + skin, built with a cell grid in fractional
- * coordinates (cells at least cutoff + skin wide, so that the 27 surrounding cells hold every candidate) and rebuilt
- * when any particle has moved more than skin/2 since the last build or the box has changed. The periodic image of
- * each candidate is fixed when the list is built: positions are wrapped into the box once (offset o_i) and each
- * candidate records which of the 27 neighbouring images it was found in, so that an update costs a few additions
- * per candidate and no rounding. This is exact because cutoff + skin is kept below half the smallest perpendicular
- * box width (the skin shrinks if needed): then at most one image of a pair can come within range before the next
- * rebuild. Each call to update() costs one distance per candidate: O(N) for a liquid.
+ * coordinates (cells at least cutoff + skin wide, so that the surrounding cells hold every candidate) and rebuilt
+ * when any particle has moved more than skin/2 since the last build or the box has changed. Each update wraps the
+ * positions into the box and takes the nearest image of each candidate's difference: one distance per candidate,
+ * O(N) for a liquid. The displacement of a pair is a pure function of the current positions, never of the list's
+ * history, so a run continued from a checkpoint (with a freshly built list) reproduces the uninterrupted run bit
+ * for bit.
  */
 class NeighborList {
 public:
@@ -73,22 +121,20 @@ public:
         built = false;
     }
 private:
-    /** A candidate partner j of particle i and the periodic image (index into imageShift) it was found in. */
-    struct Candidate {
-        int j, image;
-    };
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
-    void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]);
-    double cutoff, maxSkin, skin;
+    void build(const std::vector<OpenMM::Vec3>& positions);
+    /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
+    template <class Displacement>
+    void collectPairs(int numParticles, Displacement displacement);
+    double cutoff, skin;
     bool periodic, built = false;
     long long numBuilds = 0;
-    OpenMM::Vec3 builtBox[3];
+    PeriodicBox box;                               // the current box
+    OpenMM::Vec3 builtBox[3];                      // the box when the candidates were built
     std::vector<OpenMM::Vec3> builtPositions;
-    std::vector<OpenMM::Vec3> wrapOffset;          // o_i: r_i + o_i lies in the box (zero if not periodic)
-    std::vector<OpenMM::Vec3> shiftedPositions;    // r_i + o_i at the current positions
-    OpenMM::Vec3 imageShift[27];                   // sa a + sb b + sc c for sa, sb, sc in {-1, 0, 1}
+    std::vector<OpenMM::Vec3> wrappedPositions;    // positions wrapped into the box (periodic only)
     std::vector<int> candidateStart;               // candidates of i in candidates[candidateStart[i]..[i+1])
-    std::vector<Candidate> candidates;
+    std::vector<int> candidates;
     std::vector<int> cellStart, cellParticles, particleCell;
     std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;

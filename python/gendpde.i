@@ -10,6 +10,7 @@
 #define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
 #include <numpy/arrayobject.h>
 #include "GenDPDEForce.h"
+#include "GenDPDEIntegrator.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include <cstring>
@@ -79,6 +80,30 @@
     }
     static bool _isinstance(OpenMM::Force& force) {
         return dynamic_cast<GenDPDEPlugin::GenDPDEForce*>(&force) != NULL;
+    }
+}
+
+%ignore GenDPDEPlugin::GenDPDEIntegrator::initialize;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::cleanup;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::getKernelNames;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::computeKineticEnergy;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::kineticEnergyRequiresForce;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::getVelocityTimeOffset;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::createCheckpoint;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::loadCheckpoint;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::serializeParameters;
+%ignore GenDPDEPlugin::GenDPDEIntegrator::deserializeParameters;
+%include "GenDPDEIntegrator.h"
+
+%extend GenDPDEPlugin::GenDPDEIntegrator {
+    static GenDPDEPlugin::GenDPDEIntegrator& _downcast(OpenMM::Integrator& integrator) {
+        GenDPDEPlugin::GenDPDEIntegrator* result = dynamic_cast<GenDPDEPlugin::GenDPDEIntegrator*>(&integrator);
+        if (result == NULL)
+            throw OpenMM::OpenMMException("GenDPDEIntegrator.cast: the Integrator is not a GenDPDEIntegrator");
+        return *result;
+    }
+    static bool _isinstance(OpenMM::Integrator& integrator) {
+        return dynamic_cast<GenDPDEPlugin::GenDPDEIntegrator*>(&integrator) != NULL;
     }
 }
 

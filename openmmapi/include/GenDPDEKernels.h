@@ -2,6 +2,7 @@
 #define GENDPDE_KERNELS_H_
 
 #include "GenDPDEForce.h"
+#include "GenDPDEIntegrator.h"
 #include "openmm/KernelImpl.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
@@ -35,6 +36,33 @@ public:
     virtual void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) = 0;
     /** The observables at the Context's current positions. */
     virtual const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) = 0;
+};
+
+/** The kernel that advances a GenDPDEIntegrator by one step and owns the internal energies. */
+class IntegrateGenDPDEStepKernel : public OpenMM::KernelImpl {
+public:
+    static std::string Name() {
+        return "IntegrateGenDPDEStep";
+    }
+    IntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform) : OpenMM::KernelImpl(name, platform) {
+    }
+    /**
+     * Prepare the kernel for a Context.
+     *
+     * @param cutoff            the range of the pair interactions (nm); 0 if unknown (then no pair sweep may run)
+     * @param seed              the random number seed actually used
+     * @param internalEnergies  the initial eps_i (kJ/mol), one per particle
+     */
+    virtual void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
+                            const std::vector<double>& internalEnergies) = 0;
+    /** One step; the forces at the current positions (integration groups) have just been computed. */
+    virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
+    /** The kinetic energy with on-step velocities v + (dt/2) F/m (kJ/mol). */
+    virtual double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
+    virtual const std::vector<double>& getInternalEnergies() const = 0;
+    virtual void setInternalEnergies(const std::vector<double>& internalEnergies) = 0;
+    virtual int getSeed() const = 0;
+    virtual void setSeed(int seed) = 0;
 };
 
 /**

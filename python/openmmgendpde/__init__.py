@@ -4,9 +4,12 @@
 partition-of-unity (VB) density estimators and the Tait equation of state. It is an ``openmm.Force``: add it to a
 ``System``, run it in a ``Context`` or an ``openmm.app.Simulation``, serialize it with ``openmm.XmlSerializer``.
 
-Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K);
-parameter getters return quantities. Per-particle observables are numpy arrays in OpenMM units:
-densities in nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, the virial in kJ/mol.
+``GenDPDEIntegrator`` is the energy-conserving integrator that carries each particle's internal energy, with
+dissipative and random pair forces and heat conduction (Shardlow-like splitting). It is an ``openmm.Integrator``.
+
+Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K). Parameter
+getters and scalar results return quantities; per-particle results are numpy arrays in OpenMM units: densities in
+nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, temperatures in K, internal energies in kJ/mol.
 """
 
 import openmm as _openmm  # noqa: F401  (first: OpenMM's platforms and SWIG types must be loaded before ours)
@@ -17,7 +20,7 @@ from ._wrapping import (DIMENSIONLESS, NUMBER_DENSITY, PRESSURE, accept_units, a
                         return_units)
 
 __version__ = "0.1.0"
-__all__ = ["GenDPDEForce"]
+__all__ = ["GenDPDEForce", "GenDPDEIntegrator"]
 
 GenDPDEForce = _swig.GenDPDEForce
 
@@ -31,7 +34,29 @@ return_units(GenDPDEForce, "getTaitParameters", [NUMBER_DENSITY, PRESSURE, PRESS
 return_units(GenDPDEForce, "getReferenceDensity", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getReferencePressure", PRESSURE)
 return_units(GenDPDEForce, "getBulkModulus", PRESSURE)
+return_units(GenDPDEForce, "getVirial", _unit.kilojoule_per_mole)
 add_cast_copy_and_pickle(GenDPDEForce)
+
+GenDPDEIntegrator = _swig.GenDPDEIntegrator
+_FRICTION = _unit.amu / _unit.picosecond
+_HEAT_CONDUCTION = _unit.kilojoule_per_mole * _unit.kelvin / _unit.picosecond
+_HEAT_CAPACITY = _unit.kilojoule_per_mole / _unit.kelvin
+accept_units(GenDPDEIntegrator, "__init__", [("stepSize", _unit.picosecond), ("friction", _FRICTION),
+                                             ("heatConduction", _HEAT_CONDUCTION), ("heatCapacity", _HEAT_CAPACITY)])
+accept_units(GenDPDEIntegrator, "setStepSize", [("size", _unit.picosecond)])   # (getStepSize: openmm.Integrator's)
+accept_units(GenDPDEIntegrator, "setFriction", [("friction", _FRICTION)])
+return_units(GenDPDEIntegrator, "getFriction", _FRICTION)
+accept_units(GenDPDEIntegrator, "setHeatConduction", [("heatConduction", _HEAT_CONDUCTION)])
+return_units(GenDPDEIntegrator, "getHeatConduction", _HEAT_CONDUCTION)
+accept_units(GenDPDEIntegrator, "setHeatCapacity", [("heatCapacity", _HEAT_CAPACITY)])
+return_units(GenDPDEIntegrator, "getHeatCapacity", _HEAT_CAPACITY)
+accept_units(GenDPDEIntegrator, "setCutoffDistance", [("distance", _unit.nanometer)])
+return_units(GenDPDEIntegrator, "getCutoffDistance", _unit.nanometer)
+accept_units(GenDPDEIntegrator, "setTemperature", [("temperature", _unit.kelvin)])
+return_units(GenDPDEIntegrator, "getTemperature", _unit.kelvin)
+accept_units(GenDPDEIntegrator, "setParticleTemperatures", [("temperatures", _unit.kelvin)])
+return_units(GenDPDEIntegrator, "getConservedEnergy", _unit.kilojoule_per_mole)
+add_cast_copy_and_pickle(GenDPDEIntegrator)
 
 
 def _force_repr(self):

@@ -124,7 +124,8 @@ def test_observables_are_numpy_arrays_consistent_with_the_model(platform):
         assert pressures[i] == pytest.approx(taitEquationOfState(densities[i], *tait)[0], rel=1e-14)
     energy, _ = energy_and_forces(context)
     assert energy == pytest.approx(sum(taitEquationOfState(n, *tait)[1] for n in densities), rel=1e-13)
-    assert isinstance(force.getVirial(context), float)
+    virial = force.getVirial(context)
+    assert unit.is_quantity(virial) and virial.unit == unit.kilojoule_per_mole
 
 
 def test_reference_and_cpu_agree():

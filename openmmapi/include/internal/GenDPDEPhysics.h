@@ -5,13 +5,14 @@
  * The one home of GenDPDE's pointwise physics (../shared/MODEL.md, sections   *
  * 1-3): the density weight, the two volume estimators with their numerically *
  * safe branches, the Tait equation of state and the dissipation weights.     *
- * Plain inline functions of doubles, with no OpenMM types, so that every     *
- * platform kernel, the Python bindings and the tests evaluate the same code. *
+ * Plain inline functions of doubles (and OpenMM's header-only Vec3), so that  *
+ * every platform kernel, the Python bindings and the tests share one code.   *
  *                                                                            *
  * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).     *
  * -------------------------------------------------------------------------- */
 
 #include "VolumeVBPolynomials.h"
+#include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -243,6 +244,42 @@ private:
  */
 inline double randomWeight(double r, double cutoff) {
     return r < cutoff ? 1.0 - r/cutoff : 0.0;
+}
+
+/**
+ * The dissipative and random update of one pair's momenta (MODEL.md section 3), in two stages as in Lisal, Brennan
+ * and Bonet Avalos (2011): an explicit half (half the friction, half the random impulse) and an implicit half solved
+ * exactly for the final relative velocity. Along e this is a Crank-Nicolson step of the relative velocity u, which
+ * keeps its stationary variance (1/m_i + 1/m_j) k_B Theta exact for any dt.
+ *
+ * e is the unit vector from j to i, omegaR = 1 - r/R, pairTemperature is k_B Theta_ij (energy), xi a standard
+ * normal variate. The impulse P e goes to i and -P e to j. Returns the change of the pair's kinetic energy,
+ * P (u0 + P (1/m_i + 1/m_j)/2), which the caller hands to the internal energies (or to a bath).
+ */
+inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double friction, double pairTemperature,
+                                    double stepSize, double sqrtStepSize, double inverseMassI, double inverseMassJ,
+                                    OpenMM::Vec3& vi, OpenMM::Vec3& vj, double xi) {
+    const double inverseReducedMass = inverseMassI + inverseMassJ;
+    const double randomHalf = 0.5*std::sqrt(2.0*friction*pairTemperature)*omegaR*sqrtStepSize*xi;
+    const double frictionHalf = 0.5*friction*omegaR*omegaR*stepSize;
+    const double u0 = e.dot(vi - vj);
+    const double explicitHalf = randomHalf - frictionHalf*u0;
+    const double u1 = u0 + inverseReducedMass*explicitHalf;
+    const double implicitHalf = (randomHalf - frictionHalf*u1)/(1.0 + inverseReducedMass*frictionHalf);
+    const double impulse = explicitHalf + implicitHalf;
+    vi += e*(impulse*inverseMassI);
+    vj -= e*(impulse*inverseMassJ);
+    return impulse*(u0 + 0.5*inverseReducedMass*impulse);
+}
+
+/**
+ * The heat that flows from j to i in one step (MODEL.md section 3):
+ * kappa omega_q (1/theta_i - 1/theta_j) dt + alpha omega_R sqrt(dt) xi_q, with randomAmplitude alpha = sqrt(2 k_B kappa).
+ */
+inline double conductiveHeat(double omegaR, double heatConduction, double randomAmplitude, double inverseTemperatureI,
+                             double inverseTemperatureJ, double stepSize, double sqrtStepSize, double xiQ) {
+    return heatConduction*omegaR*omegaR*(inverseTemperatureI - inverseTemperatureJ)*stepSize
+         + randomAmplitude*omegaR*sqrtStepSize*xiQ;
 }
 
 } // namespace Physics

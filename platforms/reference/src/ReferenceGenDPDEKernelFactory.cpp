@@ -1,5 +1,6 @@
 #include "GenDPDEKernels.h"
 #include "ReferenceGenDPDEForceKernel.h"
+#include "ReferenceGenDPDEIntegratorKernel.h"
 #include "openmm/KernelFactory.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/reference/ReferencePlatform.h"
@@ -16,12 +17,14 @@ public:
     KernelImpl* createKernelImpl(std::string name, const Platform& platform, ContextImpl& context) const override {
         if (name == CalcGenDPDEForceKernel::Name())
             return new ReferenceCalcGenDPDEForceKernel(name, platform);
+        if (name == IntegrateGenDPDEStepKernel::Name())
+            return new ReferenceIntegrateGenDPDEStepKernel(name, platform);
         throw OpenMMException("GenDPDE plugin: the Reference kernel factory cannot create kernel '" + name + "'");
     }
 };
 
 std::vector<std::string> kernelNames() {
-    return {CalcGenDPDEForceKernel::Name()};
+    return {CalcGenDPDEForceKernel::Name(), IntegrateGenDPDEStepKernel::Name()};
 }
 
 } // namespace

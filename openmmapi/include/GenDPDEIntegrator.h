@@ -1,0 +1,157 @@
+#ifndef GENDPDE_INTEGRATOR_H_
+#define GENDPDE_INTEGRATOR_H_
+
+#include "openmm/Integrator.h"
+#include "openmm/Kernel.h"
+#include <iosfwd>
+#include <vector>
+
+namespace GenDPDEPlugin {
+
+/**
+ * The energy-conserving integrator of generalised DPD (GenDPDE). Each particle i carries an internal (thermal)
+ * energy eps_i and temperature theta_i = eps_i/C_V besides its position and velocity. For every pair closer than
+ * the cutoff R, with omega_R = 1 - r/R and omega_D = omega_q = omega_R^2 (MODEL.md section 3):
+ *
+ *   dp_i = F_i dt + sum_j [ -gamma omega_D (e_ij . v_ij) e_ij dt + sigma_ij omega_R e_ij dW_ij ],
+ *          sigma_ij^2 = 2 gamma k_B Theta_ij,  1/Theta_ij = (1/theta_i + 1/theta_j)/2;
+ *   deps_i = sum_j [ kappa omega_q (1/theta_i - 1/theta_j) dt + alpha omega_R dW^q_ij ],  alpha^2 = 2 k_B kappa,
+ *          plus half of the kinetic energy that each pair update removes (mechanical heating).
+ *
+ * F_i are the conservative forces of every Force in the System (in the integration force groups). Total momentum
+ * and the total energy K + U + sum_i eps_i are conserved.
+ *
+ * Splitting. One step is a Shardlow-like splitting (Lisal, Brennan, Bonet Avalos 2011), symmetric in the
+ * conservative part: a half kick v += (dt/2) F/m at positions x_n, then the pair updates at x_n, then another
+ * half kick, then the drift x += dt v. Between steps the velocities are half a step behind the positions, as with
+ * OpenMM's VerletIntegrator; the kinetic energy and the conserved energy are computed with on-step velocities
+ * v_n = v + (dt/2) F/m. Over a run this is the sequence [velocity Verlet(dt)] [pair updates(dt)] repeated, with
+ * one force evaluation per step.
+ *
+ * Pair updates. The pairs are visited sequentially in a fixed order, (i, j) lexicographic with i < j, at fixed
+ * positions. Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
+ * the random impulse) followed by an implicit half solved exactly for the final relative velocity, i.e. a
+ * Crank-Nicolson step of the pair's relative motion along e_ij, which keeps the stationary variance of the pair's
+ * relative velocity exact for any dt. The kinetic energy the update removes from the pair goes, in equal halves,
+ * into eps_i and eps_j, so each pair update conserves momentum and K + sum eps to rounding error. A pair update uses
+ * the temperatures theta_i, theta_j that the particles have when the pair is reached (after the updates of earlier
+ * pairs), for both sigma_ij and the conduction term: each pair update is then a self-contained exact-energy step of
+ * the two-particle dynamics, whose equilibrium is the right one, rather than a step driven by stale temperatures.
+ *
+ * Random numbers are a pure function of (seed, step, i, j) (Philox4x32-10, a counter-based generator, with a
+ * ziggurat for the normal variates), so a trajectory does not depend on how the pair list was built, and a run
+ * continued from a checkpoint reproduces the uninterrupted run bit for bit.
+ *
+ * Modes. Isoenergetic is the full GenDPDE dynamics above. Isothermal is the classic DPD thermostat at the set
+ * temperature (sigma^2 = 2 gamma k_B T, no internal energies, no conduction). Conservative is plain velocity
+ * Verlet (no dissipation, no noise), the SPH-like limit. A term that is switched off costs nothing: no pair sweep
+ * at all when gamma = 0 and kappa = 0 or in Conservative mode, no random numbers for the momentum when gamma = 0,
+ * none for the heat flux when kappa = 0.
+ *
+ * A particle whose internal energy would become zero or negative stops the run with an OpenMMException naming the
+ * particle and the step; the step is not applied, so the Context is left as it was before it. Reduce the step
+ * size, or increase the heat capacity (the fluctuations of eps_i relative to its mean scale like sqrt(k_B/C_V)).
+ *
+ * Parameters can be changed at any time and take effect at the next step, except the cutoff, which is read when
+ * the Context is created. Particles with zero mass are not moved. Constraints are not supported.
+ */
+class GenDPDEIntegrator : public OpenMM::Integrator {
+public:
+    /** Which physics a step includes. */
+    enum Mode {
+        /** Full GenDPDE: dissipation, noise, internal energies, heat conduction. */
+        Isoenergetic = 0,
+        /** Classic DPD thermostat at the set temperature; internal energies are not updated. */
+        Isothermal = 1,
+        /** Velocity Verlet only. */
+        Conservative = 2
+    };
+    /**
+     * Create a GenDPDEIntegrator.
+     *
+     * @param stepSize         the step size (in ps), > 0
+     * @param friction         gamma (in amu/ps), >= 0
+     * @param heatConduction   kappa (in kJ K/(mol ps)), >= 0
+     * @param heatCapacity     C_V of each particle (in kJ/(mol K)), > 0
+     */
+    GenDPDEIntegrator(double stepSize, double friction, double heatConduction, double heatCapacity);
+    /** Set the step size (in ps), > 0. */
+    void setStepSize(double size) override;
+    /** Get the friction gamma (in amu/ps). */
+    double getFriction() const;
+    /** Set the friction gamma (in amu/ps), >= 0. */
+    void setFriction(double friction);
+    /** Get the heat conduction kappa (in kJ K/(mol ps)). */
+    double getHeatConduction() const;
+    /** Set the heat conduction kappa (in kJ K/(mol ps)), >= 0. */
+    void setHeatConduction(double heatConduction);
+    /** Get the heat capacity C_V of each particle (in kJ/(mol K)). */
+    double getHeatCapacity() const;
+    /** Set the heat capacity C_V of each particle (in kJ/(mol K)), > 0. The internal energies are kept. */
+    void setHeatCapacity(double heatCapacity);
+    /** Get the cutoff R of the pair interactions (in nm); 0 means that of the System's GenDPDEForce. */
+    double getCutoffDistance() const;
+    /** Set the cutoff R (in nm), >= 0; 0 takes that of the System's GenDPDEForce. Read when a Context is created. */
+    void setCutoffDistance(double distance);
+    /** Get the random number seed (0: a seed is chosen when the Context is created). */
+    int getRandomNumberSeed() const;
+    /** Set the random number seed; 0 chooses one when the Context is created. Read when a Context is created. */
+    void setRandomNumberSeed(int seed);
+    /** Get the mode. */
+    Mode getMode() const;
+    /** Set the mode (Isoenergetic, Isothermal or Conservative). */
+    void setMode(Mode mode);
+    /**
+     * Get the temperature last set with setTemperature() (in K); 0 if none was set. It is the bath temperature of
+     * the Isothermal mode.
+     */
+    double getTemperature() const;
+    /**
+     * Set every particle's temperature theta_i = T, i.e. eps_i = C_V T (in K), > 0, either before the Context is
+     * created (the initial condition) or afterwards (resetting the internal energies). It is also the bath
+     * temperature of the Isothermal mode.
+     */
+    void setTemperature(double temperature);
+    /** Set each particle's temperature theta_i (in K), all > 0, one per particle. */
+    void setParticleTemperatures(const std::vector<double>& temperatures);
+    /** Each particle's temperature theta_i = eps_i/C_V (in K). Before a Context exists: the initial values set. */
+    std::vector<double> getParticleTemperatures() const;
+    /** Each particle's internal energy eps_i (in kJ/mol). Before a Context exists: the initial values set. */
+    std::vector<double> getInternalEnergies() const;
+    /**
+     * The total energy K + U + sum_i eps_i (in kJ/mol) of the Context this integrator is bound to, with the on-step
+     * kinetic energy and the potential energy of the integration force groups: the quantity the dynamics conserves.
+     */
+    double getConservedEnergy();
+    /** Advance the simulation by a number of steps. */
+    void step(int steps) override;
+    /** The seed actually used by the Context (the chosen one if the seed is 0); throws if there is no Context. */
+    int getSeedInUse() const;
+protected:
+    void initialize(OpenMM::ContextImpl& context) override;
+    void cleanup() override;
+    std::vector<std::string> getKernelNames() override;
+    double computeKineticEnergy() override;
+    bool kineticEnergyRequiresForce() const override {
+        return true;
+    }
+    double getVelocityTimeOffset() const override {
+        return 0.5*getStepSize();
+    }
+    void createCheckpoint(std::ostream& stream) const override;
+    void loadCheckpoint(std::istream& stream) override;
+    void serializeParameters(OpenMM::SerializationNode& node) const override;
+    void deserializeParameters(const OpenMM::SerializationNode& node) override;
+private:
+    void requireTemperatures() const;
+    double friction, heatConduction, heatCapacity, cutoff, temperature;
+    int randomSeed;
+    Mode mode;
+    bool temperaturesSet;
+    std::vector<double> initialTemperatures;   // set before a Context exists (empty: all equal to `temperature`)
+    OpenMM::Kernel kernel;
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_INTEGRATOR_H_*/

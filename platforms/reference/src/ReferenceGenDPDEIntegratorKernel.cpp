@@ -1,0 +1,189 @@
+#include "ReferenceGenDPDEIntegratorKernel.h"
+#include "ReferenceGenDPDEForceKernel.h"
+#include "ReferenceKernelAccess.h"
+#include "internal/CounterRandom.h"
+#include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDEPhysics.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/internal/ContextImpl.h"
+#include <cmath>
+#include <sstream>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+namespace {
+// Boltzmann's constant in OpenMM units (kJ/mol/K), as OpenMM defines it (R/1000).
+const double boltzmann = 1.380649e-23*6.02214076e23/1000.0;
+// Verlet skin of the integrator's own neighbour list, as a fraction of the cutoff.
+const double skinFraction = 0.15;
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                     double cutoff, int seed, const std::vector<double>& energies) {
+    const System& system = context.getSystem();
+    this->cutoff = cutoff;
+    this->seed = seed;
+    internalEnergies = energies;
+    inverseMasses.resize(system.getNumParticles());
+    for (int i = 0; i < system.getNumParticles(); i++) {
+        double mass = system.getParticleMass(i);
+        inverseMasses[i] = (mass == 0.0 ? 0.0 : 1.0/mass);
+    }
+    // Share the pairs of a GenDPDEForce with the same cutoff and boundary conditions.
+    for (ForceImpl* impl : context.getForceImpls()) {
+        GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
+        if (forceImpl == nullptr)
+            continue;
+        const GenDPDEForce& force = forceImpl->getOwner();
+        ReferenceCalcGenDPDEForceKernel* candidate =
+                dynamic_cast<ReferenceCalcGenDPDEForceKernel*>(&forceImpl->getKernel().getImpl());
+        if (candidate != nullptr && force.getCutoffDistance() == cutoff
+                && force.usesPeriodicBoundaryConditions() == system.usesPeriodicBoundaryConditions())
+            sharedForces.push_back({candidate, force.getForceGroup()});
+    }
+    if (cutoff > 0.0)
+        neighborList.reset(new NeighborList(cutoff, skinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
+}
+
+PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, const GenDPDEIntegrator& integrator) {
+    // step() evaluates the forces of the integration groups right before execute(): if they include the
+    // GenDPDEForce, its pairs are those at the current positions.
+    for (const SharedForce& shared : sharedForces)
+        if ((integrator.getIntegrationForceGroups() & (1<<shared.group)) != 0)
+            return shared.kernel->getNeighborList().getPairs();
+    return neighborList->update(extractPositions(context), extractBoxVectors(context));
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, const std::vector<Vec3>& forces,
+                                               double timeStep) const {
+    for (size_t i = 0; i < velocities.size(); i++)
+        if (inverseMasses[i] != 0.0)
+            velocities[i] += forces[i]*(timeStep*inverseMasses[i]);
+}
+
+bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
+        const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
+    // MODEL.md section 3, pair by pair in (i, j) order at fixed positions: dissipative and random momenta with
+    // sigma^2 = 2 gamma k_B Theta_ij, mechanical heating split equally, heat conduction, all with the particles'
+    // temperatures as they stand when the pair is reached.
+    const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
+    const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
+    const double heatCapacity = integrator.getHeatCapacity();
+    const double heatNoise = std::sqrt(2.0*boltzmann*heatConduction);
+    const bool withMomenta = friction > 0.0, withConduction = heatConduction > 0.0;
+    for (const ParticlePair& pair : pairs) {
+        const int i = pair.i, j = pair.j;
+        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+            continue;
+        const double omegaR = 1.0 - pair.r/cutoff;
+        const double inverseThetaI = heatCapacity/internalEnergies[i], inverseThetaJ = heatCapacity/internalEnergies[j];
+        CounterRandom::PairStream random(seed, step, i, j);
+        if (withMomenta) {
+            const double pairTemperature = boltzmann*2.0/(inverseThetaI + inverseThetaJ);   // k_B Theta_ij
+            const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR, friction,
+                    pairTemperature, dt, sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
+                    random.normal());
+            internalEnergies[i] -= 0.5*kineticChange;
+            internalEnergies[j] -= 0.5*kineticChange;
+        }
+        if (withConduction) {
+            const double heat = Physics::conductiveHeat(omegaR, heatConduction, heatNoise, inverseThetaI, inverseThetaJ,
+                                                        dt, sqrtDt, random.normal());
+            internalEnergies[i] += heat;
+            internalEnergies[j] -= heat;
+        }
+        if (!(internalEnergies[i] > 0.0) || !(internalEnergies[j] > 0.0)) {
+            failedParticle = (internalEnergies[i] > 0.0 ? j : i);
+            return false;
+        }
+    }
+    return true;
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::vector<Vec3>& velocities,
+        const GenDPDEIntegrator& integrator, long long step) {
+    // The classic DPD thermostat: sigma^2 = 2 gamma k_B T with the bath temperature; the heat goes to the bath.
+    const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
+    const double friction = integrator.getFriction(), bathTemperature = boltzmann*integrator.getTemperature();
+    for (const ParticlePair& pair : pairs) {
+        const int i = pair.i, j = pair.j;
+        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+            continue;
+        CounterRandom::PairStream random(seed, step, i, j);
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), 1.0 - pair.r/cutoff, friction, bathTemperature, dt,
+                                       sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
+                                       random.normal());
+    }
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator) {
+    std::vector<Vec3>& positions = extractPositions(context);
+    std::vector<Vec3>& velocities = extractVelocities(context);
+    const std::vector<Vec3>& forces = extractForces(context);
+    const int numParticles = positions.size();
+    const double dt = integrator.getStepSize();
+    const long long step = context.getStepCount();
+    for (int i = 0; i < numParticles; i++)
+        if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2]))) {
+            std::ostringstream message;
+            message << "GenDPDEIntegrator: the force on particle " << i << " is not finite (" << forces[i][0] << ", "
+                    << forces[i][1] << ", " << forces[i][2] << ") at step " << step << "; the step was not applied";
+            throw OpenMMException(message.str());
+        }
+
+    const GenDPDEIntegrator::Mode mode = integrator.getMode();
+    const bool isoenergetic = (mode == GenDPDEIntegrator::Isoenergetic);
+    const bool pairSweep = (mode == GenDPDEIntegrator::Isothermal && integrator.getFriction() > 0.0)
+            || (isoenergetic && (integrator.getFriction() > 0.0 || integrator.getHeatConduction() > 0.0));
+    if (!pairSweep)
+        kick(velocities, forces, dt);   // velocity Verlet (leapfrog form): one full kick
+    else {
+        if (cutoff == 0.0)
+            throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
+                                  "GenDPDEForce; call setCutoffDistance()");
+        if (isoenergetic) {
+            savedVelocities = velocities;
+            savedInternalEnergies = internalEnergies;
+        }
+        kick(velocities, forces, 0.5*dt);
+        PairView pairs = currentPairs(context, integrator);
+        if (isoenergetic) {
+            int failed = -1;
+            if (!sweepIsoenergetic(pairs, velocities, integrator, step, failed)) {
+                double value = internalEnergies[failed];
+                velocities = savedVelocities;
+                internalEnergies = savedInternalEnergies;
+                std::ostringstream message;
+                message.precision(6);
+                message << "GenDPDEIntegrator: the internal energy of particle " << failed << " would become " << value
+                        << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or "
+                        << "increase the heat capacity (the relative fluctuations of eps_i scale like sqrt(k_B/C_V))";
+                throw OpenMMException(message.str());
+            }
+        }
+        else
+            sweepIsothermal(pairs, velocities, integrator, step);
+        kick(velocities, forces, 0.5*dt);
+    }
+    for (int i = 0; i < numParticles; i++)
+        if (inverseMasses[i] != 0.0)
+            positions[i] += velocities[i]*dt;
+    ReferencePlatform::PlatformData& data = platformData(context);
+    data.time += dt;
+    data.stepCount++;
+}
+
+double ReferenceIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {
+    // Velocities are half a step behind the positions: K at the current time uses v + (dt/2) F/m.
+    const std::vector<Vec3>& velocities = extractVelocities(context);
+    const std::vector<Vec3>& forces = extractForces(context);
+    const double halfStep = 0.5*integrator.getStepSize();
+    double energy = 0.0;
+    for (size_t i = 0; i < velocities.size(); i++)
+        if (inverseMasses[i] != 0.0) {
+            Vec3 v = velocities[i] + forces[i]*(halfStep*inverseMasses[i]);
+            energy += 0.5*v.dot(v)/inverseMasses[i];
+        }
+    return energy;
+}

@@ -1,0 +1,358 @@
+/* Tests of GenDPDEIntegrator shared by every platform: a platform file defines `platform`, calls
+ * runIntegratorTests(). The statistical tests (equilibrium identities, relaxation rate, order of the energy error)
+ * are in python/tests/test_integrator_physics.py. */
+
+#include "GenDPDEIntegrator.h"
+#include "TestScenes.h"
+#include "TestUtilities.h"
+#include "internal/GenDPDEPhysics.h"
+#include "OpenMM.h"
+#include <cmath>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <vector>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+extern Platform* platform;
+
+namespace IntegratorTests {
+
+using namespace TestScenes;
+
+// Liquid argon (MODEL.md section 4) at R* = 1.6839 in OpenMM units.
+const double timeUnit = 0.8961581347;                    // ps
+const double temperatureUnit = 11371.4587;               // K
+const double boltzmann = 0.00831446261815324;            // kJ/mol/K
+const double friction = 7.37*200.0/timeUnit;             // gamma* = 7.37 (amu/ps)
+const double heatConduction = 0.0025*94.54761*temperatureUnit/timeUnit;   // kappa* = 0.0025 (kJ K/(mol ps))
+const double heatCapacity = 12.51*boltzmann;             // C_V* = 12.51 k_B (kJ/(mol K))
+const double temperature = 0.011054*temperatureUnit;     // T0* (K)
+const double stepSize = 0.01*timeUnit;                   // dt* = 0.01 (ps)
+
+struct Run {
+    Scene scene;
+    GenDPDEIntegrator integrator;
+    std::unique_ptr<Context> context;
+    Run(int cellsPerSide, unsigned seed, double frictionValue = friction, double conduction = heatConduction) :
+            scene(makeLatticeLiquid(cellsPerSide, referenceDensity, 0.1, GenDPDEForce::VB, true, seed)),
+            integrator(stepSize, frictionValue, conduction, heatCapacity) {
+        integrator.setTemperature(temperature);
+        integrator.setRandomNumberSeed(1234);
+    }
+    Context& start() {
+        context.reset(new Context(scene.system, integrator, *platform));
+        context->setPositions(scene.positions);
+        context->setVelocitiesToTemperature(temperature, 99);
+        return *context;
+    }
+};
+
+double totalInternalEnergy(const GenDPDEIntegrator& integrator) {
+    double sum = 0;
+    for (double e : integrator.getInternalEnergies())
+        sum += e;
+    return sum;
+}
+
+void assertStatesIdentical(Context& a, Context& b, GenDPDEIntegrator& ia, GenDPDEIntegrator& ib, const std::string& what) {
+    State sa = a.getState(State::Positions | State::Velocities), sb = b.getState(State::Positions | State::Velocities);
+    for (size_t i = 0; i < sa.getPositions().size(); i++) {
+        if (!(sa.getPositions()[i] == sb.getPositions()[i]) || !(sa.getVelocities()[i] == sb.getVelocities()[i]))
+            throw std::runtime_error(what + ": particle " + std::to_string(i) + " differs");
+    }
+    if (ia.getInternalEnergies() != ib.getInternalEnergies())
+        throw std::runtime_error(what + ": internal energies differ");
+}
+
+/** One pair update conserves momentum and K + eps_i + eps_j to rounding error, for any masses and velocities. */
+void testPairUpdateConservation() {
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+    for (int trial = 0; trial < 1000; trial++) {
+        double mi = 1.0 + 300.0*(uniform(random) + 1), mj = 1.0 + 300.0*(uniform(random) + 1);
+        Vec3 vi(uniform(random), uniform(random), uniform(random)), vj(uniform(random), uniform(random), uniform(random));
+        Vec3 e(uniform(random), uniform(random), uniform(random));
+        e /= std::sqrt(e.dot(e));
+        Vec3 momentum = vi*mi + vj*mj;
+        double kinetic = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
+        double change = Physics::dissipativePairUpdate(e, 0.3 + 0.5*(uniform(random) + 1), 2000.0, 1.0 + uniform(random),
+                                                       0.01, 0.1, 1/mi, 1/mj, vi, vj, 3*uniform(random));
+        double kineticAfter = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
+        assertVectorClose(momentum, vi*mi + vj*mj, 1e-13*(std::sqrt(momentum.dot(momentum)) + mi + mj), "pair momentum");
+        assertClose(kineticAfter - kinetic, change, 1e-13*kinetic, "pair kinetic energy change");
+    }
+}
+
+/**
+ * Over 10^4 steps of full GenDPDE the total momentum stays constant to 1e-10 of the momentum scale sum_i m_i |v_i|
+ * (each pair update conserves it to rounding error, ~1e-16 per update), and with no conservative force, K + sum eps
+ * too: the only energy exchange left is the exact bookkeeping of the pair updates.
+ */
+void testConservationLaws() {
+    Run run(4, 1);
+    Context& context = run.start();
+    auto momentumAndScale = [&]() {
+        State state = context.getState(State::Velocities);
+        Vec3 total;
+        double scale = 0;
+        for (size_t i = 0; i < state.getVelocities().size(); i++) {
+            Vec3 p = state.getVelocities()[i]*run.scene.system.getParticleMass(i);
+            total += p;
+            scale += std::sqrt(p.dot(p));
+        }
+        return std::make_pair(total, scale);
+    };
+    auto before = momentumAndScale();
+    run.integrator.step(10000);
+    auto after = momentumAndScale();
+    assertVectorClose(before.first, after.first, 1e-10*before.second, "total momentum over 10^4 steps");
+
+    // No conservative force: K + sum eps is conserved by every step to rounding error.
+    System free;
+    for (int i = 0; i < run.scene.system.getNumParticles(); i++)
+        free.addParticle(200.0);
+    free.setDefaultPeriodicBoxVectors(run.scene.box[0], run.scene.box[1], run.scene.box[2]);
+    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+    integrator.setTemperature(temperature);
+    integrator.setCutoffDistance(cutoff);
+    Context freeContext(free, integrator, *platform);
+    freeContext.setPositions(run.scene.positions);
+    freeContext.setVelocitiesToTemperature(3*temperature, 7);
+    double initial = integrator.getConservedEnergy();
+    integrator.step(1000);
+    assertRelative(initial, integrator.getConservedEnergy(), 1e-12, "K + sum eps without conservative forces");
+}
+
+/**
+ * Same seed, same trajectory (bitwise); another seed, another trajectory. The trajectory does not depend on when
+ * the neighbour lists were built: run b is interrupted by an evaluation at far-away positions (forcing the lists to
+ * be rebuilt at other steps than in run a) and still follows run a bit for bit, because the pairs are visited in
+ * canonical order with displacements and random numbers that are pure functions of the configuration.
+ */
+void testReproducibility() {
+    Run a(4, 2), b(4, 2), c(4, 2);
+    c.integrator.setRandomNumberSeed(4321);
+    for (Run* run : {&a, &b, &c})
+        run->start();
+    a.integrator.step(200);
+    b.integrator.step(77);
+    State middle = b.context->getState(State::Positions);
+    std::vector<Vec3> far = middle.getPositions();
+    for (size_t i = 0; i < far.size(); i++)
+        far[i] += Vec3(0.3*(i % 5), -0.2*(i % 3), 0.5);
+    b.context->setPositions(far);
+    b.context->getState(State::Energy);
+    b.context->setPositions(middle.getPositions());
+    b.integrator.step(123);
+    c.integrator.step(200);
+    assertStatesIdentical(*a.context, *b.context, a.integrator, b.integrator, "same seed, lists rebuilt differently");
+    State sa = a.context->getState(State::Positions), sc = c.context->getState(State::Positions);
+    ASSERT(!(sa.getPositions()[0] == sc.getPositions()[0]));
+}
+
+/** A checkpoint taken mid-run, loaded into a new Context, continues exactly like the uninterrupted run; so does a
+ *  State with the integrator parameters. */
+void testCheckpointContinuation() {
+    Run a(4, 3), b(4, 3), c(4, 3);
+    a.start();
+    a.integrator.step(100);
+    std::stringstream checkpoint;
+    a.context->createCheckpoint(checkpoint);
+    State state = a.context->getState(State::Positions | State::Velocities | State::IntegratorParameters);
+    a.integrator.step(150);
+
+    b.integrator.setRandomNumberSeed(0);      // the checkpoint carries the seed in use
+    b.integrator.setTemperature(3*temperature);
+    b.start();
+    b.context->loadCheckpoint(checkpoint);
+    b.integrator.step(150);
+    assertStatesIdentical(*a.context, *b.context, a.integrator, b.integrator, "continued from a checkpoint");
+
+    c.integrator.setTemperature(2*temperature);
+    c.start();
+    c.context->setState(state);
+    c.integrator.step(150);
+    assertStatesIdentical(*a.context, *c.context, a.integrator, c.integrator, "continued from a State");
+}
+
+/**
+ * An internal energy that would become <= 0 stops the run naming the particle and the step, leaving the Context as
+ * it was before that step. Particle 17 is nearly at 0 K: conduction (proportional to 1/theta) draws so much heat
+ * from its first neighbour in pair order that the neighbour's eps turns negative; that neighbour is named.
+ */
+void testNonPositiveInternalEnergy() {
+    Run run(4, 4);
+    Context& context = run.start();
+    run.integrator.step(3);
+    std::vector<double> temperatures(run.scene.system.getNumParticles(), temperature);
+    temperatures[17] = 1e-9;
+    run.integrator.setParticleTemperatures(temperatures);
+    State before = context.getState(State::Positions | State::Velocities);
+    std::vector<double> energiesBefore = run.integrator.getInternalEnergies();
+    std::string message;
+    try {
+        run.integrator.step(1);
+    }
+    catch (const OpenMMException& e) {
+        message = e.what();
+    }
+    ASSERT(message.find("step 3") != std::string::npos && message.find("not applied") != std::string::npos);
+    const std::string prefix = "internal energy of particle ";
+    size_t at = message.find(prefix);
+    ASSERT(at != std::string::npos);
+    int named = std::stoi(message.substr(at + prefix.size()));
+    Vec3 d = before.getPositions()[named] - before.getPositions()[17];
+    for (int k = 0; k < 3; k++)
+        d[k] -= run.scene.box[k][k]*std::round(d[k]/run.scene.box[k][k]);
+    ASSERT(named == 17 || std::sqrt(d.dot(d)) < cutoff);
+    State after = context.getState(State::Positions | State::Velocities);
+    for (size_t i = 0; i < before.getPositions().size(); i++) {
+        ASSERT(before.getPositions()[i] == after.getPositions()[i]);
+        ASSERT(before.getVelocities()[i] == after.getVelocities()[i]);
+    }
+    ASSERT(energiesBefore == run.integrator.getInternalEnergies());
+    ASSERT_EQUAL(3, context.getStepCount());
+}
+
+/** Conservative mode is velocity Verlet: it follows OpenMM's VerletIntegrator (to rounding error over 100 steps);
+ *  Isoenergetic with gamma = kappa = 0 is the same dynamics, bitwise. */
+void testConservativeMode() {
+    Run run(4, 5);
+    run.integrator.setMode(GenDPDEIntegrator::Conservative);
+    run.start();
+    Run none(4, 5, 0.0, 0.0);
+    none.start();
+    VerletIntegrator verlet(stepSize);
+    Context reference(run.scene.system, verlet, *platform);
+    reference.setPositions(run.scene.positions);
+    reference.setVelocities(run.context->getState(State::Velocities).getVelocities());
+    run.integrator.step(100);
+    none.integrator.step(100);
+    verlet.step(100);
+    assertStatesIdentical(*run.context, *none.context, run.integrator, none.integrator, "gamma = kappa = 0");
+    State a = run.context->getState(State::Positions), b = reference.getState(State::Positions);
+    for (size_t i = 0; i < a.getPositions().size(); i++)
+        assertVectorClose(b.getPositions()[i], a.getPositions()[i], 1e-9, "Conservative mode vs VerletIntegrator");
+    // No heat moves without conduction or friction, even between particles at different temperatures.
+    std::vector<double> temperatures(run.scene.system.getNumParticles());
+    for (size_t i = 0; i < temperatures.size(); i++)
+        temperatures[i] = temperature*(1 + 0.01*i);
+    none.integrator.setParticleTemperatures(temperatures);
+    std::vector<double> initial = none.integrator.getInternalEnergies();
+    none.integrator.step(50);
+    ASSERT(initial == none.integrator.getInternalEnergies());
+}
+
+/** With gamma = 0 no random number touches the momenta: velocities do not depend on the seed. */
+void testSwitchedOffFriction() {
+    Run a(4, 6, 0.0, heatConduction), b(4, 6, 0.0, heatConduction);
+    b.integrator.setRandomNumberSeed(999);
+    a.start();
+    b.start();
+    a.integrator.step(50);
+    b.integrator.step(50);
+    State sa = a.context->getState(State::Velocities), sb = b.context->getState(State::Velocities);
+    for (size_t i = 0; i < sa.getVelocities().size(); i++)
+        ASSERT(sa.getVelocities()[i] == sb.getVelocities()[i]);
+    ASSERT(a.integrator.getInternalEnergies() != b.integrator.getInternalEnergies());
+}
+
+/**
+ * Heat conduction alone (gamma = 0, no conservative force): two halves of a box started at 100 K and 200 K relax to
+ * a common temperature while sum eps stays constant to rounding error.
+ * With C_V = 1000 k_B each theta_i fluctuates by sqrt(k_B/C_V) = 3% (4.7 K at 150 K), so the mean of a half (32
+ * particles) by 0.84 K and the difference of the halves by 1.2 K. kappa is chosen for a relaxation rate of ~1/ps
+ * per pair (kappa ~ C_V theta^2/<omega_q>), so the box relaxes in ~0.2 ps; 20 samples 50 steps apart over the
+ * last 1000 of 3000 steps are nearly independent, so their averaged difference has sigma ~0.3 K: tolerance 1.5 K.
+ */
+void testHeatConduction() {
+    Scene scene = makeLatticeLiquid(4, referenceDensity, 0.1, GenDPDEForce::VB, true, 8);
+    System free;
+    for (int i = 0; i < scene.system.getNumParticles(); i++)
+        free.addParticle(200.0);
+    free.setDefaultPeriodicBoxVectors(scene.box[0], scene.box[1], scene.box[2]);
+    const double capacity = 1000*boltzmann;
+    GenDPDEIntegrator integrator(stepSize, 0.0, capacity*150.0*150.0/0.15, capacity);
+    integrator.setCutoffDistance(cutoff);
+    integrator.setRandomNumberSeed(31);
+    std::vector<double> temperatures;
+    double half = 0.5*scene.box[0][0];
+    for (const Vec3& r : scene.positions)
+        temperatures.push_back(r[0] < half ? 100.0 : 200.0);
+    integrator.setParticleTemperatures(temperatures);
+    Context context(free, integrator, *platform);
+    context.setPositions(scene.positions);
+    double initial = totalInternalEnergy(integrator);
+    auto halfDifference = [&]() {
+        std::vector<double> theta = integrator.getParticleTemperatures();
+        double cold = 0, hot = 0;
+        int numCold = 0, numHot = 0;
+        for (size_t i = 0; i < theta.size(); i++)
+            (scene.positions[i][0] < half ? (numCold++, cold) : (numHot++, hot)) += theta[i];
+        return hot/numHot - cold/numCold;
+    };
+    assertClose(100.0, halfDifference(), 1e-9, "initial difference");
+    integrator.step(2000);
+    double difference = 0;
+    for (int sample = 0; sample < 20; sample++) {
+        integrator.step(50);
+        difference += halfDifference()/20;
+    }
+    assertRelative(initial, totalInternalEnergy(integrator), 1e-13, "sum eps under conduction");
+    assertClose(0.0, difference, 1.5, "temperature difference of the two halves");
+}
+
+/** Bad input is rejected, naming the parameter and the value, and nothing changes. */
+void testBadInput() {
+    assertThrowsMentioning([]() { GenDPDEIntegrator(0.0, 1, 1, 1); }, {"step size", "> 0"});
+    assertThrowsMentioning([]() { GenDPDEIntegrator(0.001, -1, 1, 1); }, {"friction", "-1", ">= 0"});
+    assertThrowsMentioning([]() { GenDPDEIntegrator(0.001, 1, -2, 1); }, {"heat conduction", "-2"});
+    assertThrowsMentioning([]() { GenDPDEIntegrator(0.001, 1, 1, 0); }, {"heat capacity", "> 0"});
+    assertThrowsMentioning([]() { GenDPDEIntegrator(0.001, NAN, 1, 1); }, {"friction", "nan"});
+    GenDPDEIntegrator integrator(0.001, 1, 1, 1);
+    assertThrowsMentioning([&]() { integrator.setStepSize(-0.1); }, {"step size", "-0.1"});
+    assertThrowsMentioning([&]() { integrator.setTemperature(0.0); }, {"temperature", "> 0"});
+    assertThrowsMentioning([&]() { integrator.setTemperature(INFINITY); }, {"temperature", "inf"});
+    assertThrowsMentioning([&]() { integrator.setParticleTemperatures({300, -1}); }, {"temperature of particle 1", "-1"});
+    assertThrowsMentioning([&]() { integrator.setMode((GenDPDEIntegrator::Mode) 3); }, {"mode", "3"});
+    assertThrowsMentioning([&]() { integrator.setCutoffDistance(-1); }, {"cutoff", "-1"});
+    ASSERT_EQUAL(0.001, integrator.getStepSize());
+    ASSERT_EQUAL(1.0, integrator.getFriction());
+    ASSERT_EQUAL(0.0, integrator.getTemperature());
+    ASSERT(integrator.getParticleTemperatures().empty());
+
+    // Stepping without temperatures in Isoenergetic mode, without a cutoff, with the wrong number of temperatures.
+    Run run(4, 9);
+    GenDPDEIntegrator unset(stepSize, friction, heatConduction, heatCapacity);
+    Context context(run.scene.system, unset, *platform);
+    context.setPositions(run.scene.positions);
+    assertThrowsMentioning([&]() { unset.step(1); }, {"temperatures are not set"});
+    unset.setMode(GenDPDEIntegrator::Isothermal);
+    assertThrowsMentioning([&]() { unset.step(1); }, {"Isothermal", "temperature"});
+    assertThrowsMentioning([&]() { unset.setParticleTemperatures({300, 300}); }, {"number of particle temperatures", "64"});
+    System noForce;
+    noForce.addParticle(1.0);
+    noForce.addParticle(1.0);
+    GenDPDEIntegrator noCutoff(stepSize, friction, heatConduction, heatCapacity);
+    noCutoff.setTemperature(300);
+    Context context2(noForce, noCutoff, *platform);
+    context2.setPositions({Vec3(), Vec3(0.1, 0, 0)});
+    assertThrowsMentioning([&]() { noCutoff.step(1); }, {"cutoff", "setCutoffDistance"});
+}
+
+void runIntegratorTests() {
+    testBadInput();
+    testPairUpdateConservation();
+    testConservationLaws();
+    testReproducibility();
+    testCheckpointContinuation();
+    testNonPositiveInternalEnergy();
+    testConservativeMode();
+    testSwitchedOffFriction();
+    testHeatConduction();
+}
+
+} // namespace IntegratorTests

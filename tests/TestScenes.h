@@ -1,0 +1,100 @@
+#ifndef GENDPDE_TEST_SCENES_H_
+#define GENDPDE_TEST_SCENES_H_
+
+/* Small liquid-argon-like Systems shared by the C++ tests (MODEL.md section 4 in OpenMM units). */
+
+#include "GenDPDEForce.h"
+#include "OpenMM.h"
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace TestScenes {
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+
+// Liquid argon at R* = 1.6839 in OpenMM units (MODEL.md section 4).
+const double lengthUnit = 0.61616;
+const double cutoff = 1.6839*lengthUnit;
+const double referenceDensity = 1.0/(lengthUnit*lengthUnit*lengthUnit);
+
+/** A System with only a GenDPDEForce, and positions. */
+struct Scene {
+    System system;
+    GenDPDEForce* force;
+    std::vector<Vec3> positions;
+    Vec3 box[3];
+};
+
+inline Scene makeScene(int numParticles, GenDPDEForce::DensityEstimator estimator, bool periodic, double cutoffScaling = 1.2) {
+    Scene scene;
+    scene.force = new GenDPDEForce(cutoff);
+    scene.force->setDensityEstimator(estimator);
+    scene.force->setCutoffScaling(cutoffScaling);
+    scene.force->setNonbondedMethod(periodic ? GenDPDEForce::CutoffPeriodic : GenDPDEForce::CutoffNonPeriodic);
+    for (int i = 0; i < numParticles; i++)
+        scene.system.addParticle(200.0);
+    scene.system.addForce(scene.force);
+    return scene;
+}
+
+inline void setBox(Scene& scene, Vec3 a, Vec3 b, Vec3 c) {
+    scene.box[0] = a;
+    scene.box[1] = b;
+    scene.box[2] = c;
+    scene.system.setDefaultPeriodicBoxVectors(a, b, c);
+}
+
+/** A cubic box at `density` (nm^-3) filled by a simple-cubic lattice with Gaussian jitter. */
+inline Scene makeLatticeLiquid(int cellsPerSide, double density, double jitter, GenDPDEForce::DensityEstimator estimator,
+                        bool periodic, unsigned seed) {
+    int n = cellsPerSide*cellsPerSide*cellsPerSide;
+    Scene scene = makeScene(n, estimator, periodic);
+    double edge = std::cbrt(n/density), spacing = edge/cellsPerSide;
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::normal_distribution<double> gauss(0.0, jitter*spacing);
+    for (int x = 0; x < cellsPerSide; x++)
+        for (int y = 0; y < cellsPerSide; y++)
+            for (int z = 0; z < cellsPerSide; z++)
+                scene.positions.push_back(Vec3((x + 0.5)*spacing + gauss(random), (y + 0.5)*spacing + gauss(random),
+                                               (z + 0.5)*spacing + gauss(random)));
+    return scene;
+}
+
+/** Far-apart dimers of random length < cutoff: a dilute gas in which every particle still has a neighbour. */
+inline Scene makeDimerGas(int numDimers, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+    Scene scene = makeScene(2*numDimers, estimator, periodic);
+    int side = (int) std::ceil(std::cbrt((double) numDimers));
+    double spacing = 2.5*cutoff, edge = side*spacing;
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    for (int d = 0; d < numDimers; d++) {
+        Vec3 centre((d % side + 0.5)*spacing, ((d/side) % side + 0.5)*spacing, (d/(side*side) + 0.5)*spacing);
+        double cosTheta = 2*uniform(random) - 1, phi = 2*M_PI*uniform(random), half = 0.5*cutoff*(0.1 + 0.85*uniform(random));
+        double sinTheta = std::sqrt(1 - cosTheta*cosTheta);
+        Vec3 axis(sinTheta*std::cos(phi), sinTheta*std::sin(phi), cosTheta);
+        scene.positions.push_back(centre + axis*half);
+        scene.positions.push_back(centre - axis*half);
+    }
+    return scene;
+}
+
+/** Uniformly random positions at `density` (nm^-3): with VB some particles may have no neighbour at all. */
+inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+    Scene scene = makeScene(numParticles, estimator, periodic);
+    double edge = std::cbrt(numParticles/density);
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> uniform(0.0, edge);
+    for (int i = 0; i < numParticles; i++)
+        scene.positions.push_back(Vec3(uniform(random), uniform(random), uniform(random)));
+    return scene;
+}
+
+} // namespace TestScenes
+
+#endif /*GENDPDE_TEST_SCENES_H_*/

@@ -78,8 +78,9 @@ void testPairUpdateConservation() {
         e /= std::sqrt(e.dot(e));
         Vec3 momentum = vi*mi + vj*mj;
         double kinetic = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
-        double change = Physics::dissipativePairUpdate(e, 0.3 + 0.5*(uniform(random) + 1), 2000.0, 1.0 + uniform(random),
-                                                       0.01, 0.1, 1/mi, 1/mj, vi, vj, 3*uniform(random));
+        double change = Physics::dissipativePairUpdate(e, 0.3 + 0.5*(uniform(random) + 1), 2000.0,
+                                                       std::sqrt(4000.0*(1.0 + uniform(random))), 0.01, 0.1, 1/mi,
+                                                       1/mj, vi, vj, 3*uniform(random));
         double kineticAfter = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
         assertVectorClose(momentum, vi*mi + vj*mj, 1e-13*(std::sqrt(momentum.dot(momentum)) + mi + mj), "pair momentum");
         assertClose(kineticAfter - kinetic, change, 1e-13*kinetic, "pair kinetic energy change");

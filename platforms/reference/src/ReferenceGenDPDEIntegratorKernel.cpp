@@ -65,8 +65,8 @@ void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, co
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
     // MODEL.md section 3, pair by pair in (i, j) order at fixed positions: dissipative and random momenta with
-    // sigma^2 = 2 gamma k_B Theta_ij, mechanical heating split equally, heat conduction, all with the particles'
-    // temperatures as they stand when the pair is reached.
+    // sigma^2 = 2 gamma k_B Theta_ij (and the Ito form of the friction, see Physics::genDPDEFriction), mechanical
+    // heating split equally, heat conduction, all with the particles' temperatures when the pair is reached.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
     const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
     const double heatCapacity = integrator.getHeatCapacity();
@@ -81,9 +81,10 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
         CounterRandom::PairStream random(seed, step, i, j);
         if (withMomenta) {
             const double pairTemperature = boltzmann*2.0/(inverseThetaI + inverseThetaJ);   // k_B Theta_ij
-            const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR, friction,
-                    pairTemperature, dt, sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
-                    random.normal());
+            const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
+                    Physics::genDPDEFriction(friction, boltzmann/heatCapacity, inverseThetaI, inverseThetaJ),
+                    std::sqrt(2.0*friction*pairTemperature), dt, sqrtDt, inverseMasses[i], inverseMasses[j],
+                    velocities[i], velocities[j], random.normal());
             internalEnergies[i] -= 0.5*kineticChange;
             internalEnergies[j] -= 0.5*kineticChange;
         }
@@ -105,13 +106,14 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
         const GenDPDEIntegrator& integrator, long long step) {
     // The classic DPD thermostat: sigma^2 = 2 gamma k_B T with the bath temperature; the heat goes to the bath.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
-    const double friction = integrator.getFriction(), bathTemperature = boltzmann*integrator.getTemperature();
+    const double friction = integrator.getFriction();
+    const double noiseAmplitude = std::sqrt(2.0*friction*boltzmann*integrator.getTemperature());
     for (const ParticlePair& pair : pairs) {
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(seed, step, i, j);
-        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), 1.0 - pair.r/cutoff, friction, bathTemperature, dt,
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), 1.0 - pair.r/cutoff, friction, noiseAmplitude, dt,
                                        sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
                                        random.normal());
     }

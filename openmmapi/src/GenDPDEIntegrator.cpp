@@ -29,6 +29,7 @@ GenDPDEIntegrator::GenDPDEIntegrator(double stepSize, double friction, double he
     requireNonNegative(integratorName, "heat conduction", heatConduction, "kJ K/(mol ps)");
     requirePositive(integratorName, "heat capacity", heatCapacity, "kJ/(mol K)");
     Integrator::setStepSize(stepSize);
+    setConstraintTolerance(1e-5);   // OpenMM's default; the base class leaves it uninitialised
     this->friction = friction;
     this->heatConduction = heatConduction;
     this->heatCapacity = heatCapacity;

@@ -69,3 +69,16 @@ def _force_repr(self):
 
 
 GenDPDEForce.__repr__ = _force_repr
+
+
+def _integrator_repr(self):
+    mode = {0: "Isoenergetic", 1: "Isothermal", 2: "Conservative"}[self.getMode()]
+    return (f"<GenDPDEIntegrator {mode}, stepSize={self.getStepSize()}, friction={self.getFriction()}, "
+            f"heatConduction={self.getHeatConduction()}, heatCapacity={self.getHeatCapacity()}>")
+
+
+GenDPDEIntegrator.__repr__ = _integrator_repr
+
+from .reporter import GenDPDEReporter  # noqa: E402  (needs the classes above)
+
+__all__.append("GenDPDEReporter")

@@ -3,8 +3,8 @@
 - Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K).
   Pressures (Tait parameters) also accept pressure units such as bar or MPa, converted per mole.
 - Getters of parameters return quantities, as OpenMM's getters do; observables stay plain numpy arrays.
-- ``cast``/``isinstance`` for objects returned by ``System.getForce`` and friends, with ownership transfer, and
-  ``copy``, ``deepcopy`` and ``pickle`` through ``XmlSerializer``.
+- ``cast``/``isinstance`` for objects returned by ``System.getForce`` and friends (never taking ownership), and
+  ``copy``, ``deepcopy`` and ``pickle`` through ``XmlSerializer`` (the copies own their C++ objects).
 """
 
 import functools
@@ -84,29 +84,37 @@ def add_cast_copy_and_pickle(cls):
     that has the static helpers ``_downcast`` and ``_isinstance``."""
 
     def cast(obj):
-        """This object as a ``{0}`` (for example from ``System.getForce``). If ``obj`` owned the C++ object, the
-        result takes over that ownership, so that it is freed exactly once."""
+        """This object as a ``{0}``, e.g. a Force from ``System.getForce``. The result never takes over ownership
+        of the C++ object (whoever owned it keeps owning it, e.g. the System) and keeps ``obj`` alive."""
+        if isinstance(obj, cls):
+            return obj
         result = cls._downcast(obj)
-        if obj.thisown:
-            obj.thisown = False
-            result.thisown = True
+        result._cast_source = obj
         return result
 
     def isinstance_(obj):
-        """Whether ``obj`` (for example from ``System.getForce``) is a ``{0}``."""
+        """Whether ``obj`` (e.g. a Force from ``System.getForce``) is a ``{0}``."""
         return cls._isinstance(obj)
+
+    def adopt(temporary):
+        """A ``{0}`` that owns the C++ object of ``temporary``, a fresh owning base-class object (from
+        XmlSerializer.clone/deserialize) that nothing else refers to."""
+        result = cls._downcast(temporary)
+        temporary.thisown = False
+        result.thisown = True
+        return result
 
     cast.__doc__ = cast.__doc__.format(cls.__name__)
     isinstance_.__doc__ = isinstance_.__doc__.format(cls.__name__)
 
     def copy(self):
-        return cls.cast(XmlSerializer.clone(self))
+        return adopt(XmlSerializer.clone(self))
 
     def getstate(self):
         return XmlSerializer.serialize(self)
 
     def setstate(self, state):
-        self.this = cls.cast(XmlSerializer.deserialize(state)).this
+        self.this = adopt(XmlSerializer.deserialize(state)).this
 
     cls.cast = staticmethod(cast)
     cls.isinstance = staticmethod(isinstance_)

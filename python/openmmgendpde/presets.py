@@ -11,7 +11,7 @@ import numpy as np
 import openmm
 from openmm import app, unit
 
-from . import GenDPDEForce
+from . import GenDPDEForce, GenDPDEIntegrator
 from .units import ReducedUnits
 
 ARGON_UNITS = ReducedUnits(mass=3.3211e-25 * unit.kilogram, length=0.61616 * unit.nanometer,
@@ -102,6 +102,7 @@ class LiquidArgon:
     """A ready liquid-argon model in OpenMM units (nm, amu, kJ/mol, K)."""
     system: openmm.System
     force: GenDPDEForce
+    integrator: GenDPDEIntegrator
     topology: app.Topology
     positions: np.ndarray          # nm, num_particles x 3
     cutoff: ArgonCutoff
@@ -113,18 +114,34 @@ class LiquidArgon:
         return self.system.getNumParticles()
 
     @property
+    def temperature(self):
+        """T0 in K."""
+        return self.units.to_openmm(self.state.temperature, "temperature")
+
+    def simulation(self, platform="Reference", velocity_seed=1):
+        """An openmm.app.Simulation of this model, at the lattice positions, with Maxwell-Boltzmann velocities at
+        T0 and every theta_i = T0 (set on the integrator)."""
+        simulation = app.Simulation(self.topology, self.system, self.integrator,
+                                    openmm.Platform.getPlatformByName(platform))
+        simulation.context.setPositions(self.positions)
+        simulation.context.setVelocitiesToTemperature(self.temperature, velocity_seed)
+        return simulation
+
+    @property
     def box_volume(self):
         """nm^3"""
         a, b, c = self.system.getDefaultPeriodicBoxVectors()
         return a[0].value_in_unit(unit.nanometer) * b[1].value_in_unit(unit.nanometer) * c[2].value_in_unit(unit.nanometer)
 
 
-def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scaling=None):
+def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scaling=None, time_step=0.01, seed=0,
+                 mode=GenDPDEIntegrator.Isoenergetic):
     """Liquid argon at n0* = 1 in a cubic periodic box, particles on an FCC lattice.
 
     ``cutoff`` is R_cut* (one of the published 1.3365, 1.6839, 2.1564); ``cutoff_scaling`` defaults to the
-    published f_cut for that cutoff; ``estimator`` is 'VA' or 'VB'. Returns a LiquidArgon whose System holds
-    one GenDPDEForce.
+    published f_cut for that cutoff; ``estimator`` is 'VA' or 'VB'. The GenDPDEIntegrator has the published
+    gamma*, kappa* and C_V*, step ``time_step`` (reduced), every theta_i = T0, and random seed ``seed`` (0: chosen
+    when the Context is created). Returns a LiquidArgon whose System holds one GenDPDEForce.
     """
     parameters = argon_cutoff(cutoff)
     units, state = ARGON_UNITS, ARGON_STATE
@@ -145,12 +162,19 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
                             units.to_openmm(state.reference_pressure, "pressure"),
                             units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent)
     system.addForce(force)
+    integrator = GenDPDEIntegrator(units.to_openmm(time_step, "time"),
+                                   units.to_openmm(parameters.friction, "friction"),
+                                   units.to_openmm(parameters.heat_conduction, "heat_conduction"),
+                                   units.to_openmm(state.heat_capacity, "heat_capacity"))
+    integrator.setTemperature(units.to_openmm(state.temperature, "temperature"))
+    integrator.setRandomNumberSeed(seed)
+    integrator.setMode(mode)
     topology = app.Topology()
     chain = topology.addChain()
     for _ in range(num_particles):
         topology.addAtom("AR", app.element.argon, topology.addResidue("AR5", chain))
     topology.setPeriodicBoxVectors(system.getDefaultPeriodicBoxVectors())
-    return LiquidArgon(system, force, topology, fcc_lattice(num_particles, edge), parameters)
+    return LiquidArgon(system, force, integrator, topology, fcc_lattice(num_particles, edge), parameters)
 
 
 def pressure_unit_mpa():

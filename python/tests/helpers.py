@@ -48,3 +48,15 @@ def energy_and_forces(context):
 
 def rms(array):
     return math.sqrt(float(np.mean(np.sum(np.asarray(array)**2, axis=-1))))
+
+
+def assert_rejected_without_change(obj, call, fragments):
+    """call(obj) raises openmm.OpenMMException whose message contains every fragment, and obj is unchanged
+    (compared through its serialization, which covers every parameter)."""
+    import pytest
+    before = openmm.XmlSerializer.serialize(obj)
+    with pytest.raises(openmm.OpenMMException) as error:
+        call(obj)
+    for fragment in fragments:
+        assert fragment in str(error.value)
+    assert openmm.XmlSerializer.serialize(obj) == before

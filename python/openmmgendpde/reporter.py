@@ -1,0 +1,111 @@
+"""GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol."""
+
+import numpy as np
+import openmm
+from openmm import unit
+
+from . import GenDPDEForce, GenDPDEIntegrator
+from .units import BOLTZMANN
+
+_K = unit.kelvin
+_DENSITY = unit.nanometer**-3
+_PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+_ENERGY = unit.kilojoule_per_mole
+_BAR_PER_PRESSURE = (1 * _PRESSURE / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.bar)
+
+
+class GenDPDEReporter:
+    """Writes, every ``reportInterval`` steps, one line of comma-separated values:
+
+    step, time, kinetic temperature (from the kinetic energy with 3N - 3 degrees of freedom, since GenDPDE conserves
+    momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial pressure
+    P = (2K + W)/(3V) of the GenDPDEForce, the conserved energy K + U + sum eps_i and its drift relative to the
+    first report.
+
+    Use it like ``openmm.app.StateDataReporter``: ``simulation.reporters.append(GenDPDEReporter('log.csv', 100))``.
+    The Simulation's integrator must be a GenDPDEIntegrator and its System must hold a GenDPDEForce.
+
+    Parameters
+    ----------
+    file : str or file-like
+        Where to write (a path is opened for writing, or appending if ``append``).
+    reportInterval : int
+        Steps between reports.
+    units : openmmgendpde.units.ReducedUnits, optional
+        Report in these reduced units instead of OpenMM units (K, nm^-3, bar, kJ/mol).
+    separator : str
+        Between values (default ',').
+    append : bool
+        Append to an existing file without a header.
+    """
+
+    def __init__(self, file, reportInterval, units=None, separator=",", append=False):
+        self._own = isinstance(file, str)
+        self._out = open(file, "a" if append else "w") if self._own else file
+        self._interval = int(reportInterval)
+        self._units = units
+        self._separator = separator
+        self._header_written = append
+        self._first_energy = None
+        self._force = None
+
+    def describeNextReport(self, simulation):
+        steps = self._interval - simulation.currentStep % self._interval
+        return (steps, False, False, False, True)
+
+    def _columns(self):
+        if self._units is None:
+            return ["Step", "Time (ps)", "Kinetic temperature (K)", "Mean theta (K)", "Harmonic-mean theta (K)",
+                    "Mean density (nm^-3)", "Virial pressure (bar)", "Conserved energy (kJ/mol)", "Relative drift"]
+        return ["Step", "Time*", "Kinetic temperature*", "Mean theta*", "Harmonic-mean theta*", "Mean density*",
+                "Virial pressure*", "Conserved energy*", "Relative drift"]
+
+    def _find_force(self, system):
+        for i in range(system.getNumForces()):
+            if GenDPDEForce.isinstance(system.getForce(i)):
+                return GenDPDEForce.cast(system.getForce(i))
+        raise ValueError("GenDPDEReporter: the System has no GenDPDEForce")
+
+    def report(self, simulation, state):
+        integrator = simulation.integrator
+        if not isinstance(integrator, GenDPDEIntegrator):
+            integrator = GenDPDEIntegrator.cast(integrator)
+        if self._force is None:
+            self._force = self._find_force(simulation.system)
+        context = simulation.context
+        system = simulation.system
+        moving = sum(1 for i in range(system.getNumParticles())
+                     if system.getParticleMass(i).value_in_unit(unit.amu) > 0)
+        kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
+        kinetic_temperature = 2 * kinetic / (max(1, 3 * moving - 3) * BOLTZMANN.value_in_unit(_ENERGY / _K))
+        theta = integrator.getParticleTemperatures()
+        a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
+        volume = a[0] * b[1] * c[2]
+        virial = self._force.getVirial(context).value_in_unit(_ENERGY)
+        pressure = (2 * kinetic + virial) / (3 * volume)
+        density = float(np.mean(self._force.getParticleDensities(context)))
+        energy = integrator.getConservedEnergy().value_in_unit(_ENERGY)
+        if self._first_energy is None:
+            self._first_energy = energy
+        drift = (energy - self._first_energy) / abs(self._first_energy)
+        time = state.getTime().value_in_unit(unit.picosecond)
+        if self._units is None:
+            values = [time, kinetic_temperature, float(np.mean(theta)), 1 / float(np.mean(1 / theta)), density,
+                      pressure * _BAR_PER_PRESSURE, energy]
+        else:
+            u = self._units
+            values = [u.from_openmm(time, "time"), u.from_openmm(kinetic_temperature, "temperature"),
+                      u.from_openmm(float(np.mean(theta)), "temperature"),
+                      u.from_openmm(1 / float(np.mean(1 / theta)), "temperature"),
+                      u.from_openmm(density, "number_density"), u.from_openmm(pressure, "pressure"),
+                      u.from_openmm(energy, "energy")]
+        if not self._header_written:
+            self._out.write("#" + self._separator.join(f'"{name}"' for name in self._columns()) + "\n")
+            self._header_written = True
+        self._out.write(self._separator.join([str(simulation.currentStep)] + [f"{v:.10g}" for v in values]
+                                             + [f"{drift:.3e}"]) + "\n")
+        self._out.flush()
+
+    def __del__(self):
+        if getattr(self, "_own", False):
+            self._out.close()

@@ -1,0 +1,175 @@
+"""GenDPDEIntegrator from Python: an openmm.Integrator that works with Context, Simulation, reporters,
+XmlSerializer, checkpoints and States."""
+
+import copy
+import io
+import pickle
+
+import numpy as np
+import openmm
+import pytest
+from openmm import app, unit
+
+from helpers import assert_rejected_without_change
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, GenDPDEReporter
+from openmmgendpde.presets import ARGON_UNITS, liquid_argon
+
+ENERGY = unit.kilojoule_per_mole
+
+
+def make_integrator():
+    return GenDPDEIntegrator(0.009 * unit.picosecond, 1644.8 * unit.amu / unit.picosecond,
+                             2999.3 * unit.kilojoule_per_mole * unit.kelvin / unit.picosecond,
+                             0.10401 * unit.kilojoule_per_mole / unit.kelvin)
+
+
+def test_is_an_openmm_integrator_with_quantity_getters():
+    integrator = make_integrator()
+    assert isinstance(integrator, openmm.Integrator)
+    assert integrator.getStepSize() == 0.009 * unit.picosecond
+    assert integrator.getFriction() == 1644.8 * unit.amu / unit.picosecond
+    assert integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin) == 0.10401
+    assert integrator.getMode() == GenDPDEIntegrator.Isoenergetic
+    assert integrator.getCutoffDistance() == 0 * unit.nanometer
+    integrator.setTemperature(125.7)
+    assert integrator.getTemperature() == 125.7 * unit.kelvin
+    integrator.setStepSize(5 * unit.femtosecond)
+    assert integrator.getStepSize().value_in_unit(unit.picosecond) == pytest.approx(0.005)
+    integrator.setHeatConduction(heatConduction=0.0)
+    assert "Isoenergetic" in repr(integrator)
+
+
+@pytest.mark.parametrize("call, fragments", [
+    (lambda i: GenDPDEIntegrator(-0.001, 1, 1, 1), ["step size", "-0.001"]),
+    (lambda i: i.setFriction(-1.0), ["friction", "-1"]),
+    (lambda i: i.setHeatConduction(float("nan")), ["heat conduction", "nan"]),
+    (lambda i: i.setHeatCapacity(0.0), ["heat capacity", "> 0"]),
+    (lambda i: i.setTemperature(-5 * unit.kelvin), ["temperature", "-5"]),
+    (lambda i: i.setParticleTemperatures([300.0, 0.0]), ["temperature of particle 1", "0"]),
+    (lambda i: i.setMode(7), ["mode", "7"]),
+    (lambda i: i.getConservedEnergy(), ["not bound to a Context"]),
+])
+def test_bad_input_raises_openmm_exception(call, fragments):
+    assert_rejected_without_change(make_integrator(), call, fragments)
+
+
+def test_copy_pickle_and_xml_round_trips():
+    integrator = make_integrator()
+    integrator.setMode(GenDPDEIntegrator.Isothermal)
+    integrator.setTemperature(300)
+    integrator.setRandomNumberSeed(17)
+    integrator.setCutoffDistance(1.1)
+    xml = openmm.XmlSerializer.serialize(integrator)
+    for duplicate in [copy.copy(integrator), copy.deepcopy(integrator), pickle.loads(pickle.dumps(integrator))]:
+        assert isinstance(duplicate, GenDPDEIntegrator) and duplicate.thisown
+        assert openmm.XmlSerializer.serialize(duplicate) == xml
+    assert openmm.XmlSerializer.serialize(GenDPDEIntegrator.cast(openmm.XmlSerializer.deserialize(xml))) == xml
+
+
+def test_temperatures_before_and_after_the_context_exists():
+    argon = liquid_argon(500, 1.6839, "VB")
+    integrator = argon.integrator
+    temperatures = np.linspace(100, 150, 500)
+    integrator.setParticleTemperatures(temperatures * unit.kelvin)
+    assert np.array_equal(integrator.getParticleTemperatures(), temperatures)
+    context = openmm.Context(argon.system, integrator, openmm.Platform.getPlatformByName("Reference"))
+    found = integrator.getParticleTemperatures()
+    assert isinstance(found, np.ndarray) and np.allclose(found, temperatures, rtol=1e-15)
+    heat_capacity = integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin)
+    assert np.allclose(integrator.getInternalEnergies(), heat_capacity * temperatures, rtol=1e-15)
+    integrator.setTemperature(200)
+    assert np.all(integrator.getParticleTemperatures() == 200.0)
+    assert GenDPDEIntegrator.isinstance(context.getIntegrator())
+    assert GenDPDEIntegrator.cast(context.getIntegrator()) is integrator   # the user's object, still owning it
+    assert integrator.thisown and integrator.getSeedInUse() != 0
+    with pytest.raises(openmm.OpenMMException, match="number of particle temperatures"):
+        integrator.setParticleTemperatures([300.0] * 3)
+
+
+def test_kinetic_and_conserved_energy_use_on_step_velocities():
+    """K = sum m |v + (dt/2) F/m|^2 / 2 (velocities are half a step behind), and the conserved energy is
+    K + U + sum eps, both recomputed here from the State."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=4)
+    simulation = argon.simulation()
+    argon.integrator.step(20)
+    state = simulation.context.getState(getVelocities=True, getForces=True, getEnergy=True)
+    dt = argon.integrator.getStepSize().value_in_unit(unit.picosecond)
+    mass = 200.00131678036
+    v = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+    f = state.getForces(asNumpy=True).value_in_unit(ENERGY / unit.nanometer)
+    kinetic = 0.5 * mass * np.sum((v + 0.5 * dt * f / mass) ** 2)
+    assert state.getKineticEnergy().value_in_unit(ENERGY) == pytest.approx(kinetic, rel=1e-10)
+    expected = kinetic + state.getPotentialEnergy().value_in_unit(ENERGY) + argon.integrator.getInternalEnergies().sum()
+    assert argon.integrator.getConservedEnergy().value_in_unit(ENERGY) == pytest.approx(expected, rel=1e-12)
+
+
+def test_simulation_with_reporters_save_state_and_checkpoints(tmp_path):
+    """Simulation, StateDataReporter, DCDReporter, CheckpointReporter; a run continued from saveState or from a
+    checkpoint reproduces the uninterrupted run bit for bit, internal energies included."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=21)
+    simulation = argon.simulation()
+    log = tmp_path / "log.csv"
+    simulation.reporters.append(app.StateDataReporter(str(log), 10, step=True, temperature=True, totalEnergy=True))
+    simulation.reporters.append(app.DCDReporter(str(tmp_path / "trajectory.dcd"), 10))
+    simulation.reporters.append(app.CheckpointReporter(str(tmp_path / "checkpoint.chk"), 30))
+    simulation.step(30)
+    simulation.saveState(str(tmp_path / "state.xml"))
+    simulation.saveCheckpoint(str(tmp_path / "mine.chk"))
+    simulation.step(40)
+    final = simulation.context.getState(getPositions=True, getVelocities=True)
+    energies = argon.integrator.getInternalEnergies()
+    assert len(log.read_text().splitlines()) == 8
+
+    for restore in ("loadState", "loadCheckpoint"):
+        other = liquid_argon(500, 1.6839, "VB", seed=99)       # another seed: the saved seed must win
+        other.integrator.setTemperature(50)                     # other temperatures: the saved ones must win
+        resumed = other.simulation()
+        if restore == "loadState":
+            resumed.loadState(str(tmp_path / "state.xml"))
+        else:
+            resumed.loadCheckpoint(str(tmp_path / "mine.chk"))
+        resumed.step(40)
+        state = resumed.context.getState(getPositions=True, getVelocities=True)
+        assert np.array_equal(state.getPositions(asNumpy=True), final.getPositions(asNumpy=True)), restore
+        assert np.array_equal(state.getVelocities(asNumpy=True), final.getVelocities(asNumpy=True)), restore
+        assert np.array_equal(other.integrator.getInternalEnergies(), energies), restore
+
+
+def test_genDPDE_reporter_writes_consistent_values():
+    argon = liquid_argon(500, 1.6839, "VB", seed=5)
+    simulation = argon.simulation()
+    stream = io.StringIO()
+    simulation.reporters.append(GenDPDEReporter(stream, 25, units=ARGON_UNITS))
+    simulation.step(100)
+    lines = stream.getvalue().splitlines()
+    assert lines[0].startswith('#"Step"') and "Harmonic-mean theta*" in lines[0]
+    rows = [[float(x) for x in line.split(",")] for line in lines[1:]]
+    assert [row[0] for row in rows] == [25, 50, 75, 100]
+    for step, time, kinetic, mean_theta, harmonic, density, pressure, energy, drift in rows:
+        assert time == pytest.approx(step * 0.01)
+        assert harmonic <= mean_theta
+        assert 0.9 < density < 1.1 and 0.005 < kinetic < 0.02 and 0 < pressure < 0.3
+        assert abs(drift) < 1e-5
+    assert rows[0][-1] == 0.0
+    with pytest.raises(ValueError, match="no GenDPDEForce"):
+        system = openmm.System()
+        system.addParticle(1.0)
+        integrator = make_integrator()
+        integrator.setTemperature(100)
+        integrator.setCutoffDistance(1.0)
+        bare = app.Simulation(app.Topology(), system, integrator, openmm.Platform.getPlatformByName("Reference"))
+        bare.context.setPositions([openmm.Vec3(0, 0, 0)])
+        bare.reporters.append(GenDPDEReporter(io.StringIO(), 1))
+        bare.step(1)
+
+
+def test_force_group_not_integrated_gives_own_pair_list():
+    """The integrator takes pairs from the GenDPDEForce only when that force is integrated; otherwise it finds its
+    own, and the step still works (here: the force is in group 1, only group 0 is integrated)."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=6)
+    argon.force.setForceGroup(1)
+    argon.integrator.setIntegrationForceGroups({0})
+    simulation = argon.simulation()
+    argon.integrator.step(10)
+    assert np.all(np.isfinite(argon.integrator.getInternalEnergies()))
+    assert GenDPDEForce.isinstance(argon.system.getForce(0))

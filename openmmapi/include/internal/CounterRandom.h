@@ -70,8 +70,11 @@ struct ZigguratTable {
 class PairStream {
 public:
     PairStream(std::uint32_t seed, std::uint64_t step, std::uint32_t i, std::uint32_t j) :
-            counter{i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)}, key{seed, 0}, used(4) {
+            counter{i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)}, key{seed, 0}, used(0) {
+        philox4x32(counter, key, words);   // every stream is used at least once
+        key[1]++;
     }
+    PairStream(const PairStream&) = delete;
     /** 64 random bits. */
     std::uint64_t bits64() {
         if (used == 4) {
@@ -90,12 +93,18 @@ public:
     /** A standard normal variate. */
     double normal() {
         const ZigguratTable& table = ZigguratTable::get();
+        const std::uint64_t bits = bits64();
+        const int layer = (int) (bits & 0xFF);
+        const double u = 2.0*((bits >> 11)*(1.0/9007199254740992.0)) - 1.0;   // [-1, 1)
+        if (std::abs(u) < table.ratio[layer])
+            return u*table.x[layer];          // inside the layer's rectangle: 98.8% of draws
+        return normalSlowPath(layer, u);
+    }
+private:
+    /** The tail beyond R and the wedges, then new draws until one is accepted. */
+    __attribute__((noinline)) double normalSlowPath(int layer, double u) {
+        const ZigguratTable& table = ZigguratTable::get();
         while (true) {
-            const std::uint64_t bits = bits64();
-            const int layer = (int) (bits & 0xFF);
-            const double u = 2.0*((bits >> 11)*(1.0/9007199254740992.0)) - 1.0;   // [-1, 1)
-            if (std::abs(u) < table.ratio[layer])
-                return u*table.x[layer];              // inside the layer's rectangle: ~99% of draws
             if (layer == 0) {
                 // The tail beyond R (Marsaglia 1964): exponential proposals accepted against the normal density.
                 double a, b;
@@ -110,6 +119,11 @@ public:
             const double height = table.f[layer] + uniformPositive()*(table.f[layer + 1] - table.f[layer]);
             if (height < std::exp(-0.5*x*x))
                 return x;
+            const std::uint64_t bits = bits64();
+            layer = (int) (bits & 0xFF);
+            u = 2.0*((bits >> 11)*(1.0/9007199254740992.0)) - 1.0;
+            if (std::abs(u) < table.ratio[layer])
+                return u*table.x[layer];
         }
     }
 private:

@@ -261,12 +261,14 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
                                     double stepSize, double sqrtStepSize, double inverseMassI, double inverseMassJ,
                                     OpenMM::Vec3& vi, OpenMM::Vec3& vj, double xi) {
     const double inverseReducedMass = inverseMassI + inverseMassJ;
-    const double randomHalf = 0.5*noiseAmplitude*omegaR*sqrtStepSize*xi;
     const double frictionHalf = 0.5*friction*omegaR*omegaR*stepSize;
+    // (The reciprocal first: it then runs alongside the square root that produced noiseAmplitude.)
+    const double implicitFactor = 1.0/(1.0 + inverseReducedMass*frictionHalf);
+    const double randomHalf = 0.5*noiseAmplitude*omegaR*sqrtStepSize*xi;
     const double u0 = e.dot(vi - vj);
     const double explicitHalf = randomHalf - frictionHalf*u0;
     const double u1 = u0 + inverseReducedMass*explicitHalf;
-    const double implicitHalf = (randomHalf - frictionHalf*u1)/(1.0 + inverseReducedMass*frictionHalf);
+    const double implicitHalf = (randomHalf - frictionHalf*u1)*implicitFactor;
     const double impulse = explicitHalf + implicitHalf;
     vi += e*(impulse*inverseMassI);
     vj -= e*(impulse*inverseMassJ);
@@ -274,34 +276,42 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
 }
 
 /**
- * The friction of a GenDPDE pair update, gamma [1 + (k_B/C_V) (beta_i^2 + beta_j^2)/(beta_i + beta_j)^2] with
- * beta = 1/theta, for noise sigma^2 = 2 gamma k_B Theta_ij.
+ * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V), from one division.
  *
- * Why the bracket: Theta_ij depends on eps_i and eps_j, which every random kick changes (mechanical heating), so the
- * noise of MODEL.md's momentum equation is multiplicative. Its equilibrium, the microcanonical density
- * prod_i eps_i^(C_V/k_B) on the energy shell (from which the identities T_kin = <1/theta>^-1 and the Gamma law of
- * eps_i follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update draws the
- * noise with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of
- * the relative velocity u. Worked out, that drift is the bracket above (1 + k_B/(2 C_V) for equal temperatures).
- * Without it the kinetic temperature exceeds the harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's
- * C_V = 12.51 k_B, as measured (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity
- * the bracket is 1.
+ * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
+ * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = (k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2, beta = 1/theta.
+ * Why: Theta_ij depends on eps_i and eps_j, which every random kick changes (mechanical heating), so the noise of
+ * MODEL.md's momentum equation is multiplicative. Its equilibrium, the microcanonical density prod_i eps_i^(C_V/k_B)
+ * on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i follow), is stationary only if the
+ * noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise with the temperatures it starts
+ * from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the relative velocity u. Worked out,
+ * that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it the kinetic temperature exceeds the
+ * harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's C_V = 12.51 k_B, as measured
+ * (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it vanishes.
  */
-inline double genDPDEFriction(double friction, double boltzmannOverHeatCapacity, double inverseTemperatureI,
-                              double inverseTemperatureJ) {
-    const double sum = inverseTemperatureI + inverseTemperatureJ;
-    return friction*(1.0 + boltzmannOverHeatCapacity*(inverseTemperatureI*inverseTemperatureI
-                                                      + inverseTemperatureJ*inverseTemperatureJ)/(sum*sum));
+struct PairTemperatures {
+    double pairTemperature;            // k_B Theta_ij, 1/Theta_ij = (1/theta_i + 1/theta_j)/2 (energy)
+    double inverseTemperatureDifference;   // 1/theta_i - 1/theta_j (1/temperature)
+    double frictionFactor;             // the Ito term above (dimensionless)
+};
+
+inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacity, double boltzmann) {
+    const double sum = energyI + energyJ, product = energyI*energyJ;
+    const double reciprocal = 1.0/(product*sum);
+    const double inverseSum = product*reciprocal, inverseProduct = sum*reciprocal;
+    // Theta = 2 eps_i eps_j/(C_V (eps_i + eps_j)); (beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 = (eps_i^2 + eps_j^2)/sum^2.
+    return {2.0*boltzmann*product*inverseSum/heatCapacity,
+            heatCapacity*(energyJ - energyI)*inverseProduct,
+            (boltzmann/heatCapacity)*(energyI*energyI + energyJ*energyJ)*inverseSum*inverseSum};
 }
 
 /**
- * The heat that flows from j to i in one step (MODEL.md section 3):
- * kappa omega_q (1/theta_i - 1/theta_j) dt + alpha omega_R sqrt(dt) xi_q, with randomAmplitude alpha = sqrt(2 k_B kappa).
+ * The heat that flows from j to i in one step (MODEL.md section 3): kappa omega_q (1/theta_i - 1/theta_j) dt
+ * + alpha omega_R sqrt(dt) xi_q, with randomAmplitude alpha = sqrt(2 k_B kappa).
  */
-inline double conductiveHeat(double omegaR, double heatConduction, double randomAmplitude, double inverseTemperatureI,
-                             double inverseTemperatureJ, double stepSize, double sqrtStepSize, double xiQ) {
-    return heatConduction*omegaR*omegaR*(inverseTemperatureI - inverseTemperatureJ)*stepSize
-         + randomAmplitude*omegaR*sqrtStepSize*xiQ;
+inline double conductiveHeat(double omegaR, double heatConduction, double randomAmplitude,
+                             double inverseTemperatureDifference, double stepSize, double sqrtStepSize, double xiQ) {
+    return heatConduction*omegaR*omegaR*inverseTemperatureDifference*stepSize + randomAmplitude*omegaR*sqrtStepSize*xiQ;
 }
 
 } // namespace Physics

@@ -6,6 +6,7 @@
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -65,7 +66,7 @@ void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, co
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
     // MODEL.md section 3, pair by pair in (i, j) order at fixed positions: dissipative and random momenta with
-    // sigma^2 = 2 gamma k_B Theta_ij (and the Ito form of the friction, see Physics::genDPDEFriction), mechanical
+    // sigma^2 = 2 gamma k_B Theta_ij (and the Ito term of the friction, see Physics::pairTemperatures), mechanical
     // heating split equally, heat conduction, all with the particles' temperatures when the pair is reached.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
     const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
@@ -77,20 +78,19 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         const double omegaR = 1.0 - pair.r/cutoff;
-        const double inverseThetaI = heatCapacity/internalEnergies[i], inverseThetaJ = heatCapacity/internalEnergies[j];
         CounterRandom::PairStream random(seed, step, i, j);
+        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(internalEnergies[i],
+                internalEnergies[j], heatCapacity, boltzmann);
         if (withMomenta) {
-            const double pairTemperature = boltzmann*2.0/(inverseThetaI + inverseThetaJ);   // k_B Theta_ij
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
-                    Physics::genDPDEFriction(friction, boltzmann/heatCapacity, inverseThetaI, inverseThetaJ),
-                    std::sqrt(2.0*friction*pairTemperature), dt, sqrtDt, inverseMasses[i], inverseMasses[j],
-                    velocities[i], velocities[j], random.normal());
+                    friction*(1.0 + temperatures.frictionFactor), std::sqrt(2.0*friction*temperatures.pairTemperature),
+                    dt, sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
             internalEnergies[i] -= 0.5*kineticChange;
             internalEnergies[j] -= 0.5*kineticChange;
         }
         if (withConduction) {
-            const double heat = Physics::conductiveHeat(omegaR, heatConduction, heatNoise, inverseThetaI, inverseThetaJ,
-                                                        dt, sqrtDt, random.normal());
+            const double heat = Physics::conductiveHeat(omegaR, heatConduction, heatNoise,
+                    temperatures.inverseTemperatureDifference, dt, sqrtDt, random.normal());
             internalEnergies[i] += heat;
             internalEnergies[j] -= heat;
         }

@@ -2,7 +2,7 @@
 
 import argparse
 
-from . import benchmark_force
+from . import benchmark_force, benchmark_integrator
 
 
 def main(argv=None):
@@ -12,6 +12,9 @@ def main(argv=None):
     benchmark_force.add_arguments(subcommands.add_parser(
         "benchmark-force", help="GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA",
         description=benchmark_force.__doc__))
+    benchmark_integrator.add_arguments(subcommands.add_parser(
+        "benchmark-integrator", help="GenDPDEIntegrator: ms per step against a force evaluation and VerletIntegrator",
+        description=benchmark_integrator.__doc__))
     arguments = parser.parse_args(argv)
     arguments.run(arguments)
 

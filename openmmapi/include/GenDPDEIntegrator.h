@@ -28,8 +28,9 @@ namespace GenDPDEPlugin {
  * v_n = v + (dt/2) F/m. Over a run this is the sequence [velocity Verlet(dt)] [pair updates(dt)] repeated, with
  * one force evaluation per step.
  *
- * Pair updates. The pairs are visited sequentially in a fixed order, (i, j) lexicographic with i < j, at fixed
- * positions. Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
+ * Pair updates. The pairs are visited sequentially at fixed positions in a fixed order that depends only on the set
+ * of pairs: sorted by (i, j) with i < j, with the lists of each block of four consecutive particles interleaved
+ * (so that consecutive updates rarely share a particle, which lets the processor overlap them). Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
  * the random impulse) followed by an implicit half solved exactly for the final relative velocity, i.e. a
  * Crank-Nicolson step of the pair's relative motion along e_ij, which keeps the stationary variance of the pair's
  * relative velocity exact for any dt. The kinetic energy the update removes from the pair goes, in equal halves,

@@ -63,6 +63,32 @@ void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, co
             velocities[i] += forces[i]*(timeStep*inverseMasses[i]);
 }
 
+const std::vector<int>& ReferenceIntegrateGenDPDEStepKernel::sweepOrder(PairView pairs) {
+    // The pairs come sorted by i, then j. Within each block of four consecutive particles, their lists of pairs
+    // are interleaved (the first pair of each, then the second of each, ...): consecutive updates then rarely
+    // share a particle and overlap in the processor instead of waiting on each other, the lists are still read
+    // front to back, and the order is a pure function of the set of pairs.
+    const int block = 4, numParticles = inverseMasses.size();
+    firstPair.assign(numParticles + 1, 0);
+    for (const ParticlePair& pair : pairs)
+        firstPair[pair.i + 1]++;
+    for (int i = 0; i < numParticles; i++)
+        firstPair[i + 1] += firstPair[i];
+    order.resize(pairs.size());
+    size_t next = 0;
+    for (int start = 0; start < numParticles; start += block) {
+        const int end = std::min(numParticles, start + block);
+        int longest = 0;
+        for (int i = start; i < end; i++)
+            longest = std::max(longest, firstPair[i + 1] - firstPair[i]);
+        for (int rank = 0; rank < longest; rank++)
+            for (int i = start; i < end; i++)
+                if (firstPair[i] + rank < firstPair[i + 1])
+                    order[next++] = firstPair[i] + rank;
+    }
+    return order;
+}
+
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
     // MODEL.md section 3, pair by pair in (i, j) order at fixed positions: dissipative and random momenta with
@@ -73,7 +99,8 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
     const double heatCapacity = integrator.getHeatCapacity();
     const double heatNoise = std::sqrt(2.0*boltzmann*heatConduction);
     const bool withMomenta = friction > 0.0, withConduction = heatConduction > 0.0;
-    for (const ParticlePair& pair : pairs) {
+    for (int k : sweepOrder(pairs)) {
+        const ParticlePair& pair = pairs[k];
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;

@@ -47,11 +47,14 @@ private:
     /** The classic DPD thermostat at the set temperature. */
     void sweepIsothermal(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
                          long long step);
+    /** The order in which the pairs are updated (indices into the pairs); see the .cpp. */
+    const std::vector<int>& sweepOrder(PairView pairs);
     void kick(std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces, double timeStep) const;
     double cutoff = 0.0;
     int seed = 0;
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
+    std::vector<int> firstPair, order;
     std::vector<double> savedInternalEnergies;
     // Pairs: shared with the GenDPDEForce kernel if it uses the same cutoff, otherwise our own list.
     struct SharedForce {

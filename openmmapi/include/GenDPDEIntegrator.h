@@ -115,6 +115,17 @@ public:
     void setTemperature(double temperature);
     /** Set each particle's temperature theta_i (in K), all > 0, one per particle. */
     void setParticleTemperatures(const std::vector<double>& temperatures);
+    /**
+     * Draw every particle's internal energy from its equilibrium distribution at temperature T (in K), > 0: the
+     * Gamma law with shape C_V/k_B + 1 and scale k_B T (MODEL.md section 3), so that the harmonic mean of theta_i
+     * is T and its mean T (1 + k_B/C_V). The counterpart of Context::setVelocitiesToTemperature() for the internal
+     * energies; needs a Context. Setting every theta_i = T instead (setTemperature) leaves the internal energies
+     * k_B T per particle short of equilibrium at T.
+     *
+     * @param temperature   T (in K)
+     * @param randomSeed    the seed of the draw
+     */
+    void setInternalEnergiesToTemperature(double temperature, int randomSeed);
     /** Each particle's temperature theta_i = eps_i/C_V (in K). Before a Context exists: the initial values set. */
     std::vector<double> getParticleTemperatures() const;
     /** Each particle's internal energy eps_i (in kJ/mol). Before a Context exists: the initial values set. */

@@ -2,6 +2,7 @@
 #include "GenDPDEForce.h"
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDEPhysics.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
@@ -124,6 +125,19 @@ void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& tempe
     }
     else
         initialTemperatures = temperatures;
+    temperaturesSet = true;
+}
+
+void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int randomSeed) {
+    requirePositive(integratorName, "temperature", temperature, "K");
+    if (context == nullptr)
+        throw OpenMMException("GenDPDEIntegrator: setInternalEnergiesToTemperature() needs a Context");
+    std::mt19937 generator(randomSeed);
+    std::gamma_distribution<double> gamma(heatCapacity/Physics::Boltzmann + 1.0, Physics::Boltzmann*temperature);
+    std::vector<double> energies(context->getSystem().getNumParticles());
+    for (double& e : energies)
+        e = gamma(generator);
+    kernel.getAs<IntegrateGenDPDEStepKernel>().setInternalEnergies(energies);
     temperaturesSet = true;
 }
 

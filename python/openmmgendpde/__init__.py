@@ -55,6 +55,8 @@ return_units(GenDPDEIntegrator, "getCutoffDistance", _unit.nanometer)
 accept_units(GenDPDEIntegrator, "setTemperature", [("temperature", _unit.kelvin)])
 return_units(GenDPDEIntegrator, "getTemperature", _unit.kelvin)
 accept_units(GenDPDEIntegrator, "setParticleTemperatures", [("temperatures", _unit.kelvin)])
+accept_units(GenDPDEIntegrator, "setInternalEnergiesToTemperature", [("temperature", _unit.kelvin),
+                                                                    ("randomSeed", DIMENSIONLESS)])
 return_units(GenDPDEIntegrator, "getConservedEnergy", _unit.kilojoule_per_mole)
 add_cast_copy_and_pickle(GenDPDEIntegrator)
 

@@ -2,21 +2,29 @@
 
 import argparse
 
-from . import benchmark_force, benchmark_integrator
+from . import benchmark_force, benchmark_integrator, rdf, speed_vs_error, table3, timing, tune_fcut
+
+#: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
+SUBCOMMANDS = (
+    ("table3", table3, "reproduce Table III: T*, n-bar*, P* for 3 cutoffs x VA/VB beside the published values"),
+    ("rdf", rdf, "radial distribution functions of the six cases, plotted like Fig. 1 (PNG and PDF)"),
+    ("timing", timing, "Table IV analogue: wall time per step with VA and VB, and their ratio, per cutoff"),
+    ("tune-fcut", tune_fcut, "find f_cut of VB so that the mean density is n0, with its uncertainty"),
+    ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
+    ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),
+    ("benchmark-integrator", benchmark_integrator, "GenDPDEIntegrator: ms per step against a force evaluation"),
+)
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m openmmgendpde",
                                      description="GenDPDE for OpenMM: liquid-argon studies and benchmarks.")
     subcommands = parser.add_subparsers(title="subcommands", required=True, metavar="SUBCOMMAND")
-    benchmark_force.add_arguments(subcommands.add_parser(
-        "benchmark-force", help="GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA",
-        description=benchmark_force.__doc__))
-    benchmark_integrator.add_arguments(subcommands.add_parser(
-        "benchmark-integrator", help="GenDPDEIntegrator: ms per step against a force evaluation and VerletIntegrator",
-        description=benchmark_integrator.__doc__))
+    for name, module, summary in SUBCOMMANDS:
+        module.add_arguments(subcommands.add_parser(name, help=summary, description=module.__doc__,
+                                                    formatter_class=argparse.RawDescriptionHelpFormatter))
     arguments = parser.parse_args(argv)
-    arguments.run(arguments)
+    return arguments.run(arguments)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,8 @@ from openmm import unit
 
 from .customgb import custom_gb_equivalent
 from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, liquid_argon
-from .timing import Progress, alternating_rounds, median, median_ratio
+from .measurement import alternating_rounds, median, median_ratio
+from .progress import Progress
 
 #: Time step of the preparation and of the timed Verlet steps (reduced units).
 TIME_STEP = 0.01

@@ -12,7 +12,8 @@ import json
 import openmm
 
 from .presets import liquid_argon
-from .timing import Progress, alternating_rounds, median, median_ratio
+from .measurement import alternating_rounds, median, median_ratio
+from .progress import Progress
 from . import GenDPDEIntegrator
 
 

@@ -29,6 +29,12 @@ class ArgonState:
     heat_capacity: float = 12.51      # C_V* per particle (units of k_B)
 
     @property
+    def free_energy_minimum_density(self):
+        """n_min* = n0* (1 - pi0*/B_T*)^(1/gamma_T): where f(n) is minimal with VA (0.820), the density towards
+        which VA particles clump (the pairing instability)."""
+        return self.density * (1 - self.reference_pressure / self.bulk_modulus) ** (1 / self.tait_exponent)
+
+    @property
     def reference_pressure(self):
         """pi0* = P0* - n0* T0* (the Tait pressure excludes the kinetic term)."""
         return self.pressure - self.density * self.temperature

@@ -1,82 +1,74 @@
-"""Measuring speed on a noisy machine: every comparison is made side by side in one run.
-
-Candidates are called in alternating rounds (the order rotates every round), each call is timed on its own, and
-results are reported as medians: the median time per call, and the median over rounds of the per-round ratio
-between two candidates (robust to another process slowing down part of the run).
+"""The analogue of Table IV of Colella et al. (2025) (`timing`): wall time per step of full GenDPDE (isoenergetic,
+GenDPDEForce + GenDPDEIntegrator) with VA and with VB for each cutoff, and the VB/VA ratio, measured side by side:
+both systems are prepared (thermostat at T0, internal energies drawn at T0), then their production steps run in
+alternating rounds (openmmgendpde.measurement) and the ratio is the median of per-round ratios. The paper's
+ratios (total simulation time, its own Fortran code) are 1.07, 1.22 and 1.03.
 """
 
-import statistics
-import sys
-import time
+import dataclasses
+
+from openmm import unit
+
+from . import GenDPDEIntegrator
+from .measurement import alternating_rounds, median, median_ratio
+from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
+from .progress import Progress
+from .study import add_protocol_arguments, protocol_from_arguments
 
 
-def alternating_rounds(candidates, rounds, progress=None):
-    """Call each of ``candidates`` (name -> callable) once per round for ``rounds`` rounds, rotating the order.
-    Returns name -> list of seconds per call (one entry per round)."""
-    names = list(candidates)
-    seconds = {name: [] for name in names}
-    for round_index in range(rounds):
-        shift = round_index % len(names)
-        for name in names[shift:] + names[:shift]:
-            start = time.perf_counter()
-            candidates[name]()
-            seconds[name].append(time.perf_counter() - start)
-        if progress is not None:
-            progress.advance()
-    return seconds
+@dataclasses.dataclass
+class TimingRow:
+    cutoff: float
+    milliseconds_per_step: dict   # estimator -> ms
+    vb_over_va: float
+    published: float
 
 
-def median(values):
-    return statistics.median(values)
+def prepared_integrator(cutoff, estimator, protocol, platform, preparation_time):
+    argon = liquid_argon(protocol.num_particles, cutoff, estimator, time_step=protocol.time_step, seed=protocol.seed)
+    simulation = argon.simulation(platform, velocity_seed=protocol.seed)
+    argon.integrator.setMode(GenDPDEIntegrator.Isothermal)
+    argon.integrator.step(protocol.steps(preparation_time))
+    argon.integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+    argon.integrator.setInternalEnergiesToTemperature(
+        ARGON_UNITS.to_openmm(ARGON_STATE.temperature, "temperature"), protocol.seed)
+    return argon.integrator, simulation
 
 
-def median_ratio(seconds, numerator, denominator):
-    """Median over rounds of seconds[numerator] / seconds[denominator]."""
-    return statistics.median(a / b for a, b in zip(seconds[numerator], seconds[denominator]))
+def run(arguments):
+    protocol = protocol_from_arguments(arguments)
+    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    rounds = arguments.rounds or (7 if arguments.quick else 15)
+    steps = arguments.steps or (20 if arguments.quick else 50)
+    preparation = 2.0 if arguments.quick else 10.0
+    progress = Progress(len(cutoffs) * rounds, "timing", always=arguments.progress)
+    rows = []
+    for cutoff in cutoffs:
+        progress.label = f"timing R*={cutoff}"
+        prepared = {estimator: prepared_integrator(cutoff, estimator, protocol, arguments.platform, preparation)
+                    for estimator in ("VA", "VB")}
+        candidates = {estimator: (lambda integrator=prepared[estimator][0]: integrator.step(steps))
+                      for estimator in ("VA", "VB")}
+        seconds = alternating_rounds(candidates, rounds, progress)
+        rows.append(TimingRow(cutoff, {e: 1e3 * median(s) / steps for e, s in seconds.items()},
+                              median_ratio(seconds, "VB", "VA"), PUBLISHED_TABLE4_RATIO[cutoff]))
+    progress.finish()
+    time_unit = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
+    print(f"Wall time per isoenergetic GenDPDE step, {protocol.num_particles} particles, dt* = {protocol.time_step} "
+          f"({protocol.time_step * time_unit:.4f} ps), {arguments.platform} platform; medians of {rounds} alternating "
+          f"rounds of {steps} steps")
+    print("| R_cut* | VA (ms/step) | VB (ms/step) | VB/VA | VB/VA published (Table IV) |")
+    print("|---|---|---|---|---|")
+    for row in rows:
+        print(f"| {row.cutoff} | {row.milliseconds_per_step['VA']:.2f} | {row.milliseconds_per_step['VB']:.2f} "
+              f"| {row.vb_over_va:.3f} | {row.published} |")
+    return rows
 
 
-def quartiles(values):
-    ordered = sorted(values)
-    if len(ordered) < 4:
-        return ordered[0], ordered[-1]
-    q = statistics.quantiles(ordered, n=4)
-    return q[0], q[2]
-
-
-class Progress:
-    """A one-line progress display on stderr with the time remaining, for long runs (silent when not a terminal
-    unless ``always`` is set)."""
-
-    def __init__(self, total, label="", always=False, stream=None):
-        self.total, self.done, self.label = max(1, total), 0, label
-        self.stream = stream or sys.stderr
-        self.enabled = always or self.stream.isatty()
-        self.start = time.perf_counter()
-        self.last_print = 0.0
-
-    def advance(self, amount=1, label=None):
-        self.done = min(self.total, self.done + amount)
-        if label is not None:
-            self.label = label
-        now = time.perf_counter()
-        if self.enabled and (now - self.last_print > 0.5 or self.done == self.total):
-            self.last_print = now
-            elapsed = now - self.start
-            remaining = elapsed / self.done * (self.total - self.done)
-            self.stream.write(f"\r{self.label} {100 * self.done / self.total:5.1f}%  elapsed {format_duration(elapsed)}"
-                              f"  remaining ~{format_duration(remaining)}   ")
-            self.stream.flush()
-
-    def finish(self):
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
-def format_duration(seconds):
-    seconds = int(round(seconds))
-    if seconds < 60:
-        return f"{seconds}s"
-    if seconds < 3600:
-        return f"{seconds // 60}m{seconds % 60:02d}s"
-    return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m"
+def add_arguments(parser):
+    add_protocol_arguments(parser)
+    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
+    parser.add_argument("--rounds", type=int, help="alternating rounds (default 15, quick 7)")
+    parser.add_argument("--steps", type=int, help="steps per round (default 50, quick 20)")
+    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    parser.set_defaults(run=run)

@@ -173,3 +173,18 @@ def test_force_group_not_integrated_gives_own_pair_list():
     argon.integrator.step(10)
     assert np.all(np.isfinite(argon.integrator.getInternalEnergies()))
     assert GenDPDEForce.isinstance(argon.system.getForce(0))
+
+
+def test_internal_energies_drawn_at_a_temperature_follow_the_gamma_law():
+    """setInternalEnergiesToTemperature(T) draws eps_i from Gamma(C_V/k_B + 1, k_B T). For 4000 draws with shape
+    a = 13.51: the harmonic mean of theta_i estimates T with relative standard error 1/sqrt((a - 2) N) = 0.47%, the
+    mean estimates T (1 + k_B/C_V) with 1/sqrt(a N) = 0.43%; tolerance 4 standard errors each; KS test p > 0.001."""
+    from scipy import stats
+    argon = liquid_argon(4000, 1.6839, "VB")
+    simulation = argon.simulation()   # noqa: F841  (the Context must stay alive)
+    argon.integrator.setInternalEnergiesToTemperature(125.7 * unit.kelvin, 3)
+    theta = argon.integrator.getParticleTemperatures()
+    c = 12.51
+    assert abs(1 / np.mean(1 / theta) / 125.7 - 1) < 4 / np.sqrt((c + 1 - 2) * 4000)
+    assert abs(np.mean(theta) / (125.7 * (1 + 1 / c)) - 1) < 4 / np.sqrt((c + 1) * 4000)
+    assert stats.kstest(theta * c / 125.7, stats.gamma(c + 1).cdf).pvalue > 1e-3

@@ -22,6 +22,8 @@ namespace GenDPDEPlugin {
 namespace Physics {
 
 constexpr double Pi = 3.14159265358979323846;
+/** Boltzmann's constant in OpenMM units, kJ/(mol K): k_B N_A (exact SI values), as OpenMM defines it. */
+constexpr double Boltzmann = 1.380649e-23*6.02214076e23/1000.0;
 
 /**
  * The normalised density weight of MODEL.md section 1,

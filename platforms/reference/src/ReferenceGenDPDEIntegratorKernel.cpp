@@ -14,8 +14,7 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-// Boltzmann's constant in OpenMM units (kJ/mol/K), as OpenMM defines it (R/1000).
-const double boltzmann = 1.380649e-23*6.02214076e23/1000.0;
+const double boltzmann = Physics::Boltzmann;
 // Verlet skin of the integrator's own neighbour list, as a fraction of the cutoff.
 const double skinFraction = 0.15;
 }

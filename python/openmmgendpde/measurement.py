@@ -1,0 +1,42 @@
+"""Measuring speed on a noisy machine: every comparison is made side by side in one run.
+
+Candidates are called in alternating rounds (the order rotates every round), each call is timed on its own, and
+results are reported as medians: the median time per call, and the median over rounds of the per-round ratio
+between two candidates (robust to another process slowing down part of the run).
+"""
+
+import statistics
+import time
+
+
+def alternating_rounds(candidates, rounds, progress=None):
+    """Call each of ``candidates`` (name -> callable) once per round for ``rounds`` rounds, rotating the order.
+    Returns name -> list of seconds per call (one entry per round)."""
+    names = list(candidates)
+    seconds = {name: [] for name in names}
+    for round_index in range(rounds):
+        shift = round_index % len(names)
+        for name in names[shift:] + names[:shift]:
+            start = time.perf_counter()
+            candidates[name]()
+            seconds[name].append(time.perf_counter() - start)
+        if progress is not None:
+            progress.advance()
+    return seconds
+
+
+def median(values):
+    return statistics.median(values)
+
+
+def median_ratio(seconds, numerator, denominator):
+    """Median over rounds of seconds[numerator] / seconds[denominator]."""
+    return statistics.median(a / b for a, b in zip(seconds[numerator], seconds[denominator]))
+
+
+def quartiles(values):
+    ordered = sorted(values)
+    if len(ordered) < 4:
+        return ordered[0], ordered[-1]
+    q = statistics.quantiles(ordered, n=4)
+    return q[0], q[2]

@@ -1,0 +1,105 @@
+"""Radial distribution functions of liquid argon with VA and VB, plotted like Fig. 1 of Colella et al. (2025)
+(`rdf`): three panels (one per cutoff), VA dashed, VB solid, the cutoff marked. VA shows spurious shoulders inside
+R_cut (the clumped pairs), worst at R_cut* = 1.3365; VB gives an ordinary liquid g(r). g(r) comes from mdtraj
+over the production frames, either saved by `table3 --output DIR` (--frames-from DIR) or from runs of its own
+with the same protocol.
+"""
+
+import csv
+import pathlib
+
+import numpy as np
+
+from .plotting import panels, save
+from .presets import ARGON_CUTOFFS, ARGON_UNITS
+from .progress import Progress
+from .study import add_protocol_arguments, protocol_from_arguments, run_argon
+
+#: g(r) is computed up to this distance (reduced units) with bins of this width.
+R_MAX, BIN_WIDTH = 3.0, 0.02
+
+
+def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH):
+    """(r*, g(r)) for frames (F x N x 3, nm) in a cubic box of edge box_edge (nm), by mdtraj in chunks of 5 frames."""
+    import mdtraj
+    frames = np.asarray(frames, dtype=np.float32)
+    length = ARGON_UNITS.unit("length")._value
+    topology = mdtraj.Topology()
+    chain = topology.add_chain()
+    for _ in range(frames.shape[1]):
+        topology.add_atom("AR", mdtraj.element.argon, topology.add_residue("AR5", chain))
+    pairs = topology.select_pairs("all", "all")
+    sums, chunks = 0.0, 0
+    for start in range(0, len(frames), 5):
+        chunk = frames[start:start + 5]
+        trajectory = mdtraj.Trajectory(chunk, topology, unitcell_lengths=np.full((len(chunk), 3), box_edge),
+                                       unitcell_angles=np.full((len(chunk), 3), 90.0))
+        r, g = mdtraj.compute_rdf(trajectory, pairs, r_range=(0.0, r_max * length), bin_width=bin_width * length)
+        sums, chunks = sums + g * len(chunk), chunks + len(chunk)
+    return r / length, sums / chunks
+
+
+def load_or_run(arguments, cutoff, estimator, protocol, progress):
+    if arguments.frames_from:
+        data = np.load(pathlib.Path(arguments.frames_from) / f"frames-R{cutoff}-{estimator}.npz")
+        progress.advance(protocol.total_steps)
+        return data["positions"], float(data["box_edge"])
+    samples, _, _ = run_argon(cutoff, estimator, protocol, arguments.platform, frames=arguments.frames,
+                           progress=progress)
+    return samples.frames, samples.box_edge
+
+
+def plot(curves, cutoffs, path_stem):
+    figure, axes = panels(len(cutoffs), sharey=True)
+    for axis, cutoff in zip(axes, cutoffs):
+        for estimator, style in (("VA", "--"), ("VB", "-")):
+            r, g = curves[(cutoff, estimator)]
+            axis.plot(r, g, style, color="tab:red" if estimator == "VA" else "tab:blue", label=f"V-{estimator[1]}")
+        axis.axvline(cutoff, color="0.5", linestyle=":", linewidth=1)
+        axis.set_title(f"$R_{{cut}}^* = {cutoff}$")
+        axis.set_xlabel("$r^*$")
+        axis.set_xlim(0, R_MAX)
+    axes[0].set_ylabel("$g(r)$")
+    save(figure, path_stem, legend_axis=axes[0])
+
+
+def run(arguments):
+    protocol = protocol_from_arguments(arguments)
+    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    output = pathlib.Path(arguments.output)
+    output.mkdir(parents=True, exist_ok=True)
+    progress = Progress(2 * len(cutoffs) * protocol.total_steps, "rdf", always=arguments.progress)
+    curves = {}
+    for cutoff in cutoffs:
+        for estimator in ("VA", "VB"):
+            progress.label = f"rdf R*={cutoff} {estimator}"
+            frames, box_edge = load_or_run(arguments, cutoff, estimator, protocol, progress)
+            curves[(cutoff, estimator)] = radial_distribution(frames, box_edge)
+    progress.finish()
+    stem = output / "fig1-rdf"
+    plot(curves, cutoffs, stem)
+    with open(output / "fig1-rdf.csv", "w", newline="") as stream:
+        writer = csv.writer(stream)
+        keys = [(c, e) for c in cutoffs for e in ("VA", "VB")]
+        writer.writerow(["r*"] + [f"g R*={c} {e}" for c, e in keys])
+        r = curves[keys[0]][0]
+        for index in range(len(r)):
+            writer.writerow([f"{r[index]:.4f}"] + [f"{curves[k][1][index]:.5f}" for k in keys])
+    # The signature of the pairing instability: the first peak of g(r), and g(r) near contact.
+    for (cutoff, estimator), (r, g) in curves.items():
+        peak = int(np.argmax(g))
+        close = g[r < 0.3].mean()
+        print(f"R_cut* = {cutoff} {estimator}: first peak g = {g[peak]:.2f} at r* = {r[peak]:.2f}; "
+              f"mean g(r* < 0.3) = {close:.2f}")
+    print(f"Written: {stem}.png, {stem}.pdf, {output / 'fig1-rdf.csv'}")
+    return curves
+
+
+def add_arguments(parser):
+    add_protocol_arguments(parser)
+    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
+    parser.add_argument("--frames-from", help="read the frames saved by `table3 --output DIR` instead of running")
+    parser.add_argument("--frames", type=int, default=50, help="production frames per run when running (default 50)")
+    parser.add_argument("--output", default="results", help="directory for the plots (default results)")
+    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    parser.set_defaults(run=run)

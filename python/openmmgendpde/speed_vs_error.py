@@ -1,0 +1,126 @@
+"""Cost against accuracy of the time step (`speed-vs-error`): for several step sizes, from one equilibrated state
+(openmmgendpde.study protocol at the smallest step), the same simulated time of isoenergetic GenDPDE with VA and
+with VB, reporting the wall time per unit of simulated time against four errors:
+
+- the drift of the conserved energy K + U + sum eps (slope of a straight-line fit, per particle and time unit);
+- |T_kin/T_harm - 1|: the violation of the equilibrium identity T_kin = <1/theta>^-1, exact in the limit dt -> 0;
+- |n-bar* - n-bar*(smallest step)| and |P* - P*(smallest step)|, beside the statistical error of the difference.
+
+Writes a table and a log-log plot (PNG and PDF) of cost against each error.
+"""
+
+import csv
+import dataclasses
+import pathlib
+
+import numpy as np
+import openmm
+
+from .plotting import panels, save
+from .presets import liquid_argon
+from .progress import Progress
+from .statistics import block_average
+from .study import FULL, QUICK, add_protocol_arguments, protocol_from_arguments, run_argon
+
+
+@dataclasses.dataclass
+class Point:
+    estimator: str
+    time_step: float
+    seconds_per_time_unit: float
+    drift: float                  # reduced energy per particle per time unit
+    temperature_error: float      # |T_kin/T_harm - 1|
+    density: tuple                # (mean, standard error)
+    pressure: tuple
+    density_error: float = 0.0    # |n-bar - reference|
+    pressure_error: float = 0.0
+
+
+def measure(cutoff, estimator, steps, protocol, platform, progress):
+    # One equilibrated state at the smallest step, then each step size from it.
+    reference = dataclasses.replace(protocol, time_step=min(steps), production_time=protocol.sample_interval)
+    _, _, simulation = run_argon(cutoff, estimator, reference, platform, progress=progress)
+    state = simulation.context.getState(getPositions=True, getVelocities=True, getIntegratorParameters=True)
+    points = []
+    for time_step in steps:
+        run = dataclasses.replace(protocol, time_step=time_step, thermostat_time=0.0, equilibration_time=0.0)
+        argon = liquid_argon(protocol.num_particles, cutoff, estimator, time_step=time_step, seed=protocol.seed)
+        new = openmm.app.Simulation(argon.topology, argon.system, argon.integrator,
+                                    openmm.Platform.getPlatformByName(platform))
+        new.context.setState(state)
+        samples, _, _ = run_argon(cutoff, estimator, run, platform, progress=progress, continue_from=(argon, new))
+        slope = np.polyfit(samples.time, samples.conserved_energy, 1)[0]
+        ratio = np.array(samples.kinetic_temperature) / np.array(samples.harmonic_temperature)
+        points.append(Point(estimator, time_step, samples.wall_time / (samples.steps * time_step),
+                            abs(slope) / protocol.num_particles, abs(float(np.mean(ratio)) - 1),
+                            block_average(samples.density), block_average(samples.pressure)))
+    smallest = min(points, key=lambda p: p.time_step)
+    for p in points:
+        p.density_error = abs(p.density[0] - smallest.density[0])
+        p.pressure_error = abs(p.pressure[0] - smallest.pressure[0])
+    return points
+
+
+def plot(points, path_stem):
+    errors = (("drift", "energy drift per particle per time unit"), ("temperature_error", "|T_kin/T_harm - 1|"),
+              ("density_error", "|n-bar* - n-bar*(smallest dt)|"), ("pressure_error", "|P* - P*(smallest dt)|"))
+    figure, axes = panels(len(errors))
+    for axis, (field, label) in zip(axes, errors):
+        for estimator, style in (("VA", "o--"), ("VB", "s-")):
+            chosen = [p for p in points if p.estimator == estimator and getattr(p, field) > 0]
+            if not chosen:
+                continue
+            axis.loglog([getattr(p, field) for p in chosen], [p.seconds_per_time_unit for p in chosen], style,
+                        label=f"V-{estimator[1]}")
+            for p in chosen:
+                axis.annotate(f"{p.time_step:g}", (getattr(p, field), p.seconds_per_time_unit), fontsize=7)
+        axis.set_xlabel(label)
+    axes[0].set_ylabel("wall time per time unit (s)")
+    save(figure, path_stem, legend_axis=axes[0])
+
+
+def run(arguments):
+    protocol = protocol_from_arguments(arguments, defaults=dataclasses.replace(FULL, production_time=50.0))
+    if arguments.quick and arguments.production is None:
+        protocol = dataclasses.replace(protocol, production_time=10.0)
+    steps = arguments.steps or ([0.02, 0.01, 0.005] if arguments.quick else [0.04, 0.02, 0.01, 0.005, 0.0025])
+    output = pathlib.Path(arguments.output)
+    output.mkdir(parents=True, exist_ok=True)
+    preparation = protocol.steps(protocol.thermostat_time + protocol.equilibration_time) * protocol.time_step / min(steps)
+    total = 2 * (preparation + sum(protocol.production_time / s for s in steps))
+    progress = Progress(int(total), "speed-vs-error", always=arguments.progress)
+    points = []
+    for estimator in ("VA", "VB"):
+        progress.label = f"speed-vs-error {estimator}"
+        points += measure(arguments.cutoff, estimator, steps, protocol, arguments.platform, progress)
+    progress.finish()
+    print(f"R_cut* = {arguments.cutoff}, {protocol.num_particles} particles, {protocol.production_time} time units per "
+          f"step size from one state equilibrated at dt* = {min(steps)}; {arguments.platform} platform")
+    print("| estimator | dt* | wall s per time unit | energy drift /particle/time | |T_kin/T_harm - 1| "
+          "| n-bar* | |dn-bar*| | P* | |dP*| |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for p in points:
+        print(f"| {p.estimator} | {p.time_step:g} | {p.seconds_per_time_unit:.3f} | {p.drift:.2e} "
+              f"| {p.temperature_error:.4f} | {p.density[0]:.4f} +- {p.density[1]:.4f} | {p.density_error:.4f} "
+              f"| {p.pressure[0]:.4f} +- {p.pressure[1]:.4f} | {p.pressure_error:.4f} |")
+    with open(output / "speed-vs-error.csv", "w", newline="") as stream:
+        writer = csv.writer(stream)
+        writer.writerow(["estimator", "dt*", "wall s per time unit", "drift", "|Tkin/Tharm-1|", "n-bar*",
+                         "n-bar* error", "|dn|", "P*", "P* error", "|dP|"])
+        for p in points:
+            writer.writerow([p.estimator, p.time_step, p.seconds_per_time_unit, p.drift, p.temperature_error,
+                             p.density[0], p.density[1], p.density_error, p.pressure[0], p.pressure[1],
+                             p.pressure_error])
+    plot(points, output / "speed-vs-error")
+    print(f"Written: {output / 'speed-vs-error.csv'}, {output / 'speed-vs-error'}.png/.pdf")
+    return points
+
+
+def add_arguments(parser):
+    add_protocol_arguments(parser, defaults=dataclasses.replace(FULL, production_time=50.0))
+    parser.add_argument("--cutoff", type=float, default=1.6839, help="R_cut* (default 1.6839)")
+    parser.add_argument("--steps", type=float, nargs="+",
+                        help="step sizes dt* (default 0.04 0.02 0.01 0.005 0.0025; quick 0.02 0.01 0.005)")
+    parser.add_argument("--output", default="results", help="directory for the table and plot (default results)")
+    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    parser.set_defaults(run=run)

@@ -1,0 +1,156 @@
+"""Liquid-argon runs as in Colella et al. (J. Chem. Theory Comput. 2025): the protocol shared by the studies of
+the command line (table3, rdf, timing, tune-fcut, speed-vs-error).
+
+A run starts from the FCC lattice at n0* = 1 with Maxwell-Boltzmann velocities at T0 (openmmgendpde.presets) and
+goes through three phases:
+
+1. ``thermostat_time`` with the DPD thermostat at T0 (Isothermal mode): the lattice melts and, with VA, the
+   particles clump into pairs; the free energy they release goes to the bath. (Starting isoenergetic from the
+   lattice instead heats the VA system to T* ~ 0.016 at R* = 1.3365, because n_i on the lattice is far from its
+   liquid value.)
+2. The internal energies are drawn from their equilibrium Gamma law at T0
+   (GenDPDEIntegrator.setInternalEnergiesToTemperature; theta_i = T0 for all would leave them k_B T0 per particle
+   short of equilibrium, i.e. ~7% too cold), then ``equilibration_time`` of full isoenergetic GenDPDE.
+3. ``production_time`` of isoenergetic GenDPDE, sampled every ``sample_interval``.
+
+All times are in reduced units (the time unit is 0.8962 ps).
+"""
+
+import dataclasses
+
+import numpy as np
+from openmm import unit
+
+from . import GenDPDEIntegrator
+from .presets import ARGON_STATE, ARGON_UNITS, liquid_argon
+from .units import BOLTZMANN
+
+_ENERGY = unit.kilojoule_per_mole
+
+
+@dataclasses.dataclass(frozen=True)
+class Protocol:
+    """Sizes and lengths of a liquid-argon run (reduced units)."""
+    num_particles: int = 4000
+    time_step: float = 0.005
+    thermostat_time: float = 20.0
+    equilibration_time: float = 20.0
+    production_time: float = 200.0
+    sample_interval: float = 0.5
+    seed: int = 1
+
+    def steps(self, duration):
+        return int(round(duration / self.time_step))
+
+    @property
+    def total_steps(self):
+        return self.steps(self.thermostat_time) + self.steps(self.equilibration_time) + self.steps(self.production_time)
+
+
+#: The published-comparison runs (docs/argon.md explains the choice).
+FULL = Protocol()
+#: A short version for CI and the main job: same phases, 500 particles, dt* = 0.01.
+QUICK = Protocol(num_particles=500, time_step=0.01, thermostat_time=10.0, equilibration_time=10.0,
+                 production_time=30.0, sample_interval=0.5)
+
+
+@dataclasses.dataclass
+class Samples:
+    """Production samples in reduced units."""
+    time: list = dataclasses.field(default_factory=list)
+    kinetic_temperature: list = dataclasses.field(default_factory=list)   # 2K/((3N - 3) k_B), on-step velocities
+    harmonic_temperature: list = dataclasses.field(default_factory=list)  # <1/theta_i>^-1
+    mean_temperature: list = dataclasses.field(default_factory=list)      # <theta_i>
+    density: list = dataclasses.field(default_factory=list)               # n-bar: mean of n_i = 1/V_i
+    pressure: list = dataclasses.field(default_factory=list)              # (2K + W)/(3 V_box)
+    conserved_energy: list = dataclasses.field(default_factory=list)      # K + U + sum eps
+    frames: list = dataclasses.field(default_factory=list)                # positions (nm) for the RDF
+    box_edge: float = 0.0                                                 # nm
+    wall_time: float = 0.0                                                # s, production only
+    steps: int = 0                                                        # production steps
+
+
+def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_scaling=None, frames=0, progress=None,
+              continue_from=None):
+    """Run the protocol for one cutoff R* and estimator ('VA' or 'VB'); return (Samples, LiquidArgon, Simulation).
+    ``frames`` positions are kept, evenly spread over the production phase. ``progress`` (a Progress) advances by
+    the number of steps done. ``continue_from`` = (LiquidArgon, Simulation) of an earlier run continues that run
+    (equilibration and production only) instead of starting from the lattice."""
+    import time as clock
+    units, state = ARGON_UNITS, ARGON_STATE
+    if continue_from is None:
+        argon = liquid_argon(protocol.num_particles, cutoff, estimator, cutoff_scaling, protocol.time_step,
+                             seed=protocol.seed)
+        simulation = argon.simulation(platform, velocity_seed=protocol.seed)
+    else:
+        argon, simulation = continue_from
+    integrator, context = argon.integrator, simulation.context
+    temperature = units.to_openmm(state.temperature, "temperature")
+
+    def advance(steps):
+        done = 0
+        while done < steps:
+            chunk = min(steps - done, 200)
+            integrator.step(chunk)
+            done += chunk
+            if progress is not None:
+                progress.advance(chunk)
+
+    if continue_from is None:
+        integrator.setMode(GenDPDEIntegrator.Isothermal)
+        advance(protocol.steps(protocol.thermostat_time))
+        integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+        integrator.setInternalEnergiesToTemperature(temperature, protocol.seed)
+    elif progress is not None:
+        progress.advance(protocol.steps(protocol.thermostat_time))
+    advance(protocol.steps(protocol.equilibration_time))
+
+    samples = Samples(box_edge=argon.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer))
+    volume = argon.box_volume
+    degrees = 3 * argon.num_particles - 3
+    kb = BOLTZMANN.value_in_unit(_ENERGY / unit.kelvin)
+    every = protocol.steps(protocol.sample_interval)
+    count = protocol.steps(protocol.production_time) // every
+    keep = set(np.linspace(0, count - 1, frames).round().astype(int)) if frames else set()
+    start = clock.perf_counter()
+    for index in range(count):
+        advance(every)
+        state_ = context.getState(getEnergy=True, getPositions=index in keep)
+        kinetic = state_.getKineticEnergy().value_in_unit(_ENERGY)
+        theta = integrator.getParticleTemperatures()
+        virial = argon.force.getVirial(context).value_in_unit(_ENERGY)
+        samples.time.append(units.from_openmm(state_.getTime(), "time"))
+        samples.kinetic_temperature.append(units.from_openmm(2 * kinetic / (degrees * kb), "temperature"))
+        samples.harmonic_temperature.append(units.from_openmm(1 / np.mean(1 / theta), "temperature"))
+        samples.mean_temperature.append(units.from_openmm(np.mean(theta), "temperature"))
+        samples.density.append(units.from_openmm(np.mean(argon.force.getParticleDensities(context)), "number_density"))
+        samples.pressure.append(units.from_openmm((2 * kinetic + virial) / (3 * volume), "pressure"))
+        samples.conserved_energy.append(units.from_openmm(integrator.getConservedEnergy(), "energy"))
+        if index in keep:
+            samples.frames.append(state_.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
+    samples.wall_time = clock.perf_counter() - start
+    samples.steps = count * every
+    return samples, argon, simulation
+
+
+def add_protocol_arguments(parser, defaults=FULL):
+    """Command-line options that override the protocol; --quick selects QUICK."""
+    parser.add_argument("--quick", action="store_true",
+                        help="short runs for CI: 500 particles, dt* = 0.01, 10 + 10 + 30 time units")
+    parser.add_argument("--particles", type=int, help=f"particle count, 4 m^3 (default {defaults.num_particles})")
+    parser.add_argument("--time-step", type=float, help=f"dt* (default {defaults.time_step})")
+    parser.add_argument("--production", type=float, help=f"production time* (default {defaults.production_time})")
+    parser.add_argument("--seed", type=int, help="random seed (default 1)")
+    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
+
+
+def protocol_from_arguments(arguments, defaults=FULL):
+    protocol = QUICK if arguments.quick else defaults
+    overrides = {"num_particles": arguments.particles, "time_step": arguments.time_step,
+                 "production_time": arguments.production, "seed": arguments.seed}
+    protocol = dataclasses.replace(protocol, **{key: value for key, value in overrides.items() if value is not None})
+    samples = protocol.steps(protocol.production_time) // protocol.steps(protocol.sample_interval)
+    if samples < 20:
+        raise SystemExit(f"error: a production of {protocol.production_time} time units gives {samples} samples "
+                         f"(every {protocol.sample_interval}); at least 20 are needed for block-average error bars")
+    return protocol

@@ -1,0 +1,77 @@
+"""Every subcommand of `python3 -m openmmgendpde` end to end at its quick size."""
+
+import csv
+
+import pytest
+
+from openmmgendpde.__main__ import main
+
+
+@pytest.fixture(scope="module")
+def table3_output(tmp_path_factory):
+    directory = tmp_path_factory.mktemp("table3")
+    cells = main(["table3", "--quick", "--output", str(directory)])
+    return directory, cells
+
+
+def test_table3_quick(table3_output, capsys):
+    directory, _ = table3_output
+    rows = list(csv.DictReader(open(directory / "table3.csv")))
+    assert len(rows) == 3 * 2 * 4
+    assert {row["estimator"] for row in rows} == {"VA", "VB"}
+    for row in rows:
+        assert float(row["standard error"]) > 0 and abs(float(row["difference"])) < 0.05
+    for cutoff in ("1.3365", "1.6839", "2.1564"):
+        assert (directory / f"frames-R{cutoff}-VA.npz").exists()
+
+
+def test_rdf_from_table3_frames(table3_output, capsys):
+    directory, _ = table3_output
+    main(["rdf", "--quick", "--frames-from", str(directory), "--output", str(directory)])
+    out = capsys.readouterr().out
+    assert "first peak" in out
+    assert (directory / "fig1-rdf.png").stat().st_size > 10000 and (directory / "fig1-rdf.pdf").exists()
+    rows = list(csv.reader(open(directory / "fig1-rdf.csv")))
+    assert len(rows[0]) == 7 and len(rows) > 100
+    # Far from the origin g(r) -> 1 for every case.
+    tail = [[float(x) for x in row[1:]] for row in rows[-20:]]
+    assert all(abs(sum(column) / len(column) - 1) < 0.1 for column in zip(*tail))
+
+
+def test_timing_quick(capsys):
+    main(["timing", "--quick", "--cutoffs", "1.3365", "--rounds", "3"])
+    out = capsys.readouterr().out
+    assert "| 1.3365 |" in out and "1.07" in out
+
+
+def test_tune_fcut_quick(capsys):
+    main(["tune-fcut", "--quick", "--cutoff", "1.3365", "--max-iterations", "2"])
+    out = capsys.readouterr().out
+    assert "f_cut =" in out and "published f_cut = 1.41" in out
+
+
+def test_speed_vs_error_quick(tmp_path, capsys):
+    main(["speed-vs-error", "--quick", "--steps", "0.02", "0.01", "--production", "10", "--output", str(tmp_path)])
+    rows = list(csv.DictReader(open(tmp_path / "speed-vs-error.csv")))
+    assert len(rows) == 4 and (tmp_path / "speed-vs-error.png").exists()
+    assert all(float(row["wall s per time unit"]) > 0 for row in rows)
+
+
+def test_benchmarks_quick(capsys):
+    main(["benchmark-force", "--particles", "500", "--cutoffs", "1.3365", "--rounds", "2"])
+    main(["benchmark-integrator", "--particles", "500", "--rounds", "2"])
+    out = capsys.readouterr().out
+    assert "CustomGB" in out and "Isoenergetic / force" in out
+
+
+def test_too_short_production_is_refused():
+    with pytest.raises(SystemExit, match="at least 20"):
+        main(["table3", "--quick", "--production", "4"])
+
+
+def test_help_lists_every_subcommand(capsys):
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    out = capsys.readouterr().out
+    for name in ("table3", "rdf", "timing", "tune-fcut", "speed-vs-error", "benchmark-force", "benchmark-integrator"):
+        assert name in out

@@ -99,6 +99,8 @@ private:
  */
 class NeighborList {
 public:
+    /** The skin the kernels use, as a fraction of the cutoff: candidates within 1.15 R, rebuilt after 0.075 R. */
+    static constexpr double defaultSkinFraction = 0.15;
     NeighborList(double cutoff, double skin, bool periodic);
     /** The pairs at these positions (box ignored unless periodic). Rebuilds the candidate list only when needed. */
     PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]);

@@ -8,15 +8,10 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-namespace {
-// Verlet skin as a fraction of the cutoff: candidates within 1.15 R, rebuilt after a move of 0.075 R.
-const double skinFraction = 0.15;
-}
-
 void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();
-    neighborList.reset(new NeighborList(cutoff, skinFraction*cutoff, periodic));
+    neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, periodic));
     int numParticles = system.getNumParticles();
     primitiveDensity.resize(numParticles);
     volume.resize(numParticles);

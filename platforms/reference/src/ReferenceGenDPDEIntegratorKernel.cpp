@@ -13,12 +13,6 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-namespace {
-const double boltzmann = Physics::Boltzmann;
-// Verlet skin of the integrator's own neighbour list, as a fraction of the cutoff.
-const double skinFraction = 0.15;
-}
-
 void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                      double cutoff, int seed, const std::vector<double>& energies) {
     const System& system = context.getSystem();
@@ -43,7 +37,7 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
             sharedForces.push_back({candidate, force.getForceGroup()});
     }
     if (cutoff > 0.0)
-        neighborList.reset(new NeighborList(cutoff, skinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
+        neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
 }
 
 PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, const GenDPDEIntegrator& integrator) {
@@ -96,7 +90,7 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
     const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
     const double heatCapacity = integrator.getHeatCapacity();
-    const double heatNoise = std::sqrt(2.0*boltzmann*heatConduction);
+    const double heatNoise = std::sqrt(2.0*Physics::Boltzmann*heatConduction);
     const bool withMomenta = friction > 0.0, withConduction = heatConduction > 0.0;
     for (int k : sweepOrder(pairs)) {
         const ParticlePair& pair = pairs[k];
@@ -106,7 +100,7 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
         const double omegaR = 1.0 - pair.r/cutoff;
         CounterRandom::PairStream random(seed, step, i, j);
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(internalEnergies[i],
-                internalEnergies[j], heatCapacity, boltzmann);
+                internalEnergies[j], heatCapacity, Physics::Boltzmann);
         if (withMomenta) {
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
                     friction*(1.0 + temperatures.frictionFactor), std::sqrt(2.0*friction*temperatures.pairTemperature),
@@ -133,7 +127,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
     // The classic DPD thermostat: sigma^2 = 2 gamma k_B T with the bath temperature; the heat goes to the bath.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
     const double friction = integrator.getFriction();
-    const double noiseAmplitude = std::sqrt(2.0*friction*boltzmann*integrator.getTemperature());
+    const double noiseAmplitude = std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature());
     for (const ParticlePair& pair : pairs) {
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))

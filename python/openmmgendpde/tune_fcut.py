@@ -33,8 +33,8 @@ def mean_density_on_frames(force, context, frames, cutoff_scaling):
 
 def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, max_iterations=5, progress=None,
          report=print):
-    """Returns (f_cut, its standard error, n-bar* at it, the error of n-bar*, iterations), for the last f_cut at
-    which n-bar* was measured."""
+    """Returns (f_cut, its standard error, n-bar*, its error, iterations, f_cut of the last run): f_cut solves
+    n-bar*(f_cut) = n0* on the straight line through the last run, at which n-bar* was measured."""
     target = ARGON_STATE.density
     scaling = start if start is not None else argon_cutoff(cutoff).cutoff_scaling
     running = None
@@ -53,13 +53,14 @@ def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, ma
         new = max(1.0, scaling + (target - density) / slope)
         report(f"iteration {iteration}: f_cut = {scaling:.4f}: n-bar* = {density:.4f} +- {density_error:.4f}, "
                f"d n-bar*/d f_cut = {slope:.3f} -> f_cut = {new:.4f}")
-        measured = (scaling, density_error / abs(slope), density, density_error, iteration)
+        # The estimate: where the line through the last run's measurement reaches n0.
+        measured = (new, density_error / abs(slope), density, density_error, iteration, scaling)
         if abs(density - target) <= max(tolerance, 2 * density_error):
             return measured
         scaling = new
         argon.force.setCutoffScaling(scaling)
         argon.force.updateParametersInContext(context)
-    report(f"not converged within {max_iterations} iterations; the last measured f_cut is reported")
+    report(f"not converged within {max_iterations} iterations; the estimate from the last run is reported")
     return measured
 
 
@@ -67,15 +68,15 @@ def run(arguments):
     protocol = protocol_from_arguments(arguments)
     progress = Progress(arguments.max_iterations * protocol.total_steps, f"tune-fcut R*={arguments.cutoff}",
                         always=arguments.progress)
-    scaling, error, density, density_error, iterations = tune(arguments.cutoff, protocol, arguments.platform,
-                                                              arguments.start, arguments.tolerance,
-                                                              arguments.max_iterations, progress,
-                                                              report=lambda line: print(line, flush=True))
+    scaling, error, density, density_error, iterations, last = tune(arguments.cutoff, protocol, arguments.platform,
+                                                                    arguments.start, arguments.tolerance,
+                                                                    arguments.max_iterations, progress,
+                                                                    report=lambda line: print(line, flush=True))
     progress.finish()
     published = argon_cutoff(arguments.cutoff).cutoff_scaling
-    print(f"R_cut* = {arguments.cutoff}: f_cut = {scaling:.4f} +- {error:.4f} gives n-bar* = {density:.4f} +- "
-          f"{density_error:.4f} (target {ARGON_STATE.density}, tolerance {arguments.tolerance}; {iterations} "
-          f"iteration(s)); published f_cut = {published}")
+    print(f"R_cut* = {arguments.cutoff}: f_cut = {scaling:.4f} +- {error:.4f} for n-bar* = {ARGON_STATE.density} "
+          f"(last run: f_cut = {last:.4f}, n-bar* = {density:.4f} +- {density_error:.4f}; tolerance "
+          f"{arguments.tolerance}, {iterations} iteration(s)); published f_cut = {published}")
     return scaling, error
 
 

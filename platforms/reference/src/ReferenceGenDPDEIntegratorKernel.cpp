@@ -84,7 +84,7 @@ const std::vector<int>& ReferenceIntegrateGenDPDEStepKernel::sweepOrder(PairView
 
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
-    // MODEL.md section 3, pair by pair in (i, j) order at fixed positions: dissipative and random momenta with
+    // MODEL.md section 3, pair by pair in sweepOrder() at fixed positions: dissipative and random momenta with
     // sigma^2 = 2 gamma k_B Theta_ij (and the Ito term of the friction, see Physics::pairTemperatures), mechanical
     // heating split equally, heat conduction, all with the particles' temperatures when the pair is reached.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
@@ -128,7 +128,8 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);
     const double friction = integrator.getFriction();
     const double noiseAmplitude = std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature());
-    for (const ParticlePair& pair : pairs) {
+    for (int k : sweepOrder(pairs)) {
+        const ParticlePair& pair = pairs[k];
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;

@@ -9,14 +9,14 @@ way.
 """
 
 import dataclasses
-import json
 
 import openmm
 from openmm import unit
 
 from .customgb import custom_gb_equivalent
 from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, liquid_argon
-from .measurement import alternating_rounds, median, median_ratio
+from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
+                          print_results)
 from .progress import Progress
 
 #: Time step of the preparation and of the timed Verlet steps (reduced units).
@@ -66,7 +66,7 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
     for context in contexts.values():
         context.getState(getEnergy=True)   # warm up: neighbour lists, caches
     if rounds is None:
-        rounds = 15 if num_particles <= 8000 else 7
+        rounds = default_rounds(num_particles)
     evaluate = {name: (lambda c=context: c.getState(getEnergy=True)) for name, context in contexts.items()}
     seconds = alternating_rounds(evaluate, rounds, progress)
     steps_per_call = 10
@@ -107,27 +107,19 @@ def run(arguments):
     cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
     cases = [(n, c) for n in arguments.particles for c in cutoffs]
     rounds = arguments.rounds
-    total = sum(2 * (rounds or (15 if n <= 8000 else 7)) for n, _ in cases)
+    total = sum(2 * (rounds or default_rounds(n)) for n, _ in cases)
     progress = Progress(total, "benchmark-force", always=arguments.progress)
     results = []
     for n, cutoff in cases:
         progress.label = f"benchmark-force N={n} R*={cutoff}"
         results.append(benchmark(n, cutoff, arguments.platform, rounds, progress))
     progress.finish()
-    print(f"Force evaluation on the {arguments.platform} platform, medians of alternating rounds "
-          f"(same configuration for all four columns of each row):")
-    print(format_table(results))
-    if arguments.json:
-        with open(arguments.json, "w") as stream:
-            json.dump([dataclasses.asdict(r) for r in results], stream, indent=1)
+    print_results(f"Force evaluation on the {arguments.platform} platform, medians of alternating rounds "
+                  f"(same configuration for all four columns of each row):", format_table(results), results,
+                  arguments.json)
 
 
 def add_arguments(parser):
-    parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
-                        help="particle counts, 4 m^3 each (default 4000 32000)")
+    add_benchmark_arguments(parser)
     parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
-    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
-    parser.add_argument("--rounds", type=int, help="timing rounds (default 15, or 7 above 8000 particles)")
-    parser.add_argument("--json", help="also write the results to this JSON file")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
     parser.set_defaults(run=run)

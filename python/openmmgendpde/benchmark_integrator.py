@@ -7,12 +7,12 @@ OpenMM's VerletIntegrator with the same force. Ratios are medians of per-round r
 """
 
 import dataclasses
-import json
 
 import openmm
 
 from .presets import liquid_argon
-from .measurement import alternating_rounds, median, median_ratio
+from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
+                          print_results)
 from .progress import Progress
 from . import GenDPDEIntegrator
 
@@ -63,7 +63,7 @@ def benchmark(num_particles, cutoff=1.6839, platform_name="Reference", rounds=No
     for candidate in candidates.values():
         candidate()
     if rounds is None:
-        rounds = 15 if num_particles <= 8000 else 7
+        rounds = default_rounds(num_particles)
     seconds = alternating_rounds(candidates, rounds, progress)
     return IntegratorBenchmark(
         num_particles=num_particles, cutoff=cutoff, platform=platform_name,
@@ -88,27 +88,19 @@ def format_table(results):
 
 
 def run(arguments):
-    total = sum(rounds for rounds in [arguments.rounds or (15 if n <= 8000 else 7) for n in arguments.particles])
+    total = sum(arguments.rounds or default_rounds(n) for n in arguments.particles)
     progress = Progress(total, "benchmark-integrator", always=arguments.progress)
     results = []
     for n in arguments.particles:
         progress.label = f"benchmark-integrator N={n}"
         results.append(benchmark(n, arguments.cutoff, arguments.platform, arguments.rounds, progress))
     progress.finish()
-    print(f"GenDPDEIntegrator on the {arguments.platform} platform, liquid argon R* = {arguments.cutoff}, VB; medians "
-          f"of alternating rounds from the same state:")
-    print(format_table(results))
-    if arguments.json:
-        with open(arguments.json, "w") as stream:
-            json.dump([dataclasses.asdict(r) for r in results], stream, indent=1)
+    print_results(f"GenDPDEIntegrator on the {arguments.platform} platform, liquid argon R* = {arguments.cutoff}, VB; "
+                  f"medians of alternating rounds from the same state:", format_table(results), results,
+                  arguments.json)
 
 
 def add_arguments(parser):
-    parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
-                        help="particle counts, 4 m^3 each (default 4000 32000)")
+    add_benchmark_arguments(parser)
     parser.add_argument("--cutoff", type=float, default=1.6839, help="R_cut* (default 1.6839)")
-    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
-    parser.add_argument("--rounds", type=int, help="timing rounds (default 15, or 7 above 8000 particles)")
-    parser.add_argument("--json", help="also write the results to this JSON file")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
     parser.set_defaults(run=run)

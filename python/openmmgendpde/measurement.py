@@ -40,3 +40,29 @@ def quartiles(values):
         return ordered[0], ordered[-1]
     q = statistics.quantiles(ordered, n=4)
     return q[0], q[2]
+
+
+def default_rounds(num_particles):
+    """Alternating rounds for a benchmark of this size: 15, or 7 above 8000 particles."""
+    return 15 if num_particles <= 8000 else 7
+
+
+def add_benchmark_arguments(parser):
+    """The options shared by the benchmark subcommands."""
+    parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
+                        help="particle counts, 4 m^3 each (default 4000 32000)")
+    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
+    parser.add_argument("--rounds", type=int, help="timing rounds (default 15, or 7 above 8000 particles)")
+    parser.add_argument("--json", help="also write the results to this JSON file")
+    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+
+
+def print_results(header, table, results, json_path):
+    """Print a benchmark's header line and table; write the results (dataclasses) as JSON if asked."""
+    import dataclasses
+    import json
+    print(header)
+    print(table)
+    if json_path:
+        with open(json_path, "w") as stream:
+            json.dump([dataclasses.asdict(r) for r in results], stream, indent=1)

@@ -1,46 +1,90 @@
 %module(package="openmmgendpde") gendpde
 
-/* Low-level SWIG bindings of the GenDPDE plugin. Users import the package openmmgendpde, which adds unit handling,
- * cast/isinstance with correct ownership, copy and pickle on top of these classes. */
+/* Low-level SWIG bindings of the GenDPDE plugin, built on OpenMM's own SWIG interface so that the proxies subclass
+ * openmm.Force and openmm.Integrator and share the type table of the openmm module (which requires the SWIG
+ * version that built the openmm wheel). Users import the package openmmgendpde, which adds unit handling,
+ * cast/isinstance with correct ownership, copy and pickle on top of these classes. Docstrings come from the C++
+ * headers (swig -doxygen). */
 
-%import(module="openmm") "OpenMMBaseClasses.i"
+/* OpenMM's typemaps (swig/typemaps.i) ask whether numpy can be used; this module imports numpy at load time. */
+%header %{
+static int isNumpyAvailable() {
+    return 1;
+}
+%}
+
+%import(module="openmm") "swig/OpenMMSwigHeaders.i"
+%include "swig/typemaps.i"
+%include "typemaps.i"   /* SWIG's own: double& OUTPUT */
+%include "std_string.i"
 
 %{
 #define SWIG_FILE_WITH_INIT
 #define NPY_NO_DEPRECATED_API NPY_1_7_API_VERSION
 #include <numpy/arrayobject.h>
+#include "OpenMM.h"
+#include "OpenMMAmoeba.h"
+#include "OpenMMDrude.h"
+#include "openmm/RPMDIntegrator.h"
+#include "openmm/RPMDMonteCarloBarostat.h"
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
 #include "internal/GenDPDEPhysics.h"
-#include "openmm/OpenMMException.h"
 #include <cstring>
-#include <typeinfo>
 %}
 
 %init %{
     import_array();
 %}
 
-%include "std_string.i"
-%include "typemaps.i"
-
-/* C++ exceptions become openmm.OpenMMException, like OpenMM's own wrappers. */
+/* C++ exceptions become openmm.OpenMMException, as in OpenMM's own wrappers. */
+%{
+static void setOpenMMException(const char* message) {
+    PyObject* module = PyImport_AddModule("openmm");   /* borrowed; openmm is imported before this module */
+    PyObject* type = module ? PyObject_GetAttrString(module, "OpenMMException") : NULL;
+    PyErr_Clear();
+    PyErr_SetString(type ? type : PyExc_Exception, message);
+    Py_XDECREF(type);
+}
+%}
 %exception {
     try {
         $action
     }
     catch (std::exception& e) {
-        PyObject* openmmModule = PyImport_ImportModule("openmm");
-        PyObject* exceptionType = openmmModule ? PyObject_GetAttrString(openmmModule, "OpenMMException") : NULL;
-        PyErr_Clear();
-        PyErr_SetString(exceptionType ? exceptionType : PyExc_Exception, e.what());
-        Py_XDECREF(exceptionType);
-        Py_XDECREF(openmmModule);
+        setOpenMMException(e.what());
         SWIG_fail;
     }
 }
 
-/* std::vector<double> results are returned as float64 numpy arrays. */
+/* Long calls release the GIL, as OpenMM's do, so that other Python threads (a second Context, a progress bar)
+ * run meanwhile. Nothing in them calls back into Python. */
+%define RELEASE_GIL(function)
+%exception function {
+    PyThreadState* savedThreadState = PyEval_SaveThread();
+    try {
+        $action
+    }
+    catch (std::exception& e) {
+        PyEval_RestoreThread(savedThreadState);
+        setOpenMMException(e.what());
+        SWIG_fail;
+    }
+    PyEval_RestoreThread(savedThreadState);
+}
+%enddef
+RELEASE_GIL(GenDPDEPlugin::GenDPDEIntegrator::step)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEIntegrator::getConservedEnergy)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEIntegrator::setInternalEnergiesToTemperature)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getPrimitiveDensities)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticleDensities)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticleVolumes)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticlePressures)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getVirial)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
+
+/* std::vector<double> results are returned as float64 numpy arrays. (Arguments use OpenMM's typemap, which takes
+ * lists, tuples and numpy arrays of any numeric type.) */
 %typemap(out) std::vector<double> {
     npy_intp size = $1.size();
     $result = PyArray_SimpleNew(1, &size, NPY_DOUBLE);
@@ -50,20 +94,6 @@
         std::memcpy(PyArray_DATA((PyArrayObject*) $result), $1.data(), size*sizeof(double));
 }
 
-/* Any sequence of numbers (list, tuple, numpy array) is accepted where a const std::vector<double>& is expected. */
-%typemap(in) const std::vector<double>& (std::vector<double> values) {
-    PyObject* array = PyArray_FROMANY($input, NPY_DOUBLE, 1, 1, NPY_ARRAY_IN_ARRAY);
-    if (array == NULL)
-        SWIG_exception_fail(SWIG_TypeError, "expected a one-dimensional sequence of numbers");
-    double* data = (double*) PyArray_DATA((PyArrayObject*) array);
-    values.assign(data, data + PyArray_SIZE((PyArrayObject*) array));
-    Py_DECREF(array);
-    $1 = &values;
-}
-%typemap(typecheck, precedence=SWIG_TYPECHECK_DOUBLE_ARRAY) const std::vector<double>& {
-    $1 = PySequence_Check($input) || PyArray_Check($input);
-}
-
 %apply double& OUTPUT { double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent };
 %apply double& OUTPUT { double& volume, double& derivative, double& value, double& pressure, double& freeEnergy };
 
@@ -71,7 +101,7 @@
 %include "GenDPDEForce.h"
 
 %extend GenDPDEPlugin::GenDPDEForce {
-    /* The ownership-aware cast() and isinstance() are defined in openmmgendpde/__init__.py on top of these. */
+    /* The ownership-aware cast() and isinstance() are defined in openmmgendpde/_wrapping.py on top of these. */
     static GenDPDEPlugin::GenDPDEForce& _downcast(OpenMM::Force& force) {
         GenDPDEPlugin::GenDPDEForce* result = dynamic_cast<GenDPDEPlugin::GenDPDEForce*>(&force);
         if (result == NULL)
@@ -83,16 +113,6 @@
     }
 }
 
-%ignore GenDPDEPlugin::GenDPDEIntegrator::initialize;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::cleanup;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::getKernelNames;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::computeKineticEnergy;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::kineticEnergyRequiresForce;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::getVelocityTimeOffset;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::createCheckpoint;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::loadCheckpoint;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::serializeParameters;
-%ignore GenDPDEPlugin::GenDPDEIntegrator::deserializeParameters;
 %include "GenDPDEIntegrator.h"
 
 %extend GenDPDEPlugin::GenDPDEIntegrator {
@@ -107,7 +127,7 @@
     }
 }
 
-/* The pointwise physics of MODEL.md, exactly as the kernels evaluate it (any consistent units). */
+/* The pointwise physics of docs/theory.md, exactly as the kernels evaluate it (any consistent units). */
 %inline %{
 namespace GenDPDEPlugin {
 /** V-A volume and dV/dn0 for primitive density n0 > 0: returns (V, dV/dn0). */

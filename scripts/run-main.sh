@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The main job: set up and build (scripts/setup.sh), then a short liquid-argon GenDPDE study with both estimators at
-# the three published cutoffs, printed beside the published Table III (table3 --quick: 500 particles, ~15 s).
+# The main job: set up, build and install (scripts/setup.sh), then a short liquid-argon GenDPDE study with both
+# estimators at the three published cutoffs, printed beside the published Table III (table3 --quick: 500
+# particles, ~15 s).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m openmmgendpde table3 --quick "$@"
+.venv/bin/python -m openmmgendpde table3 --quick "$@"

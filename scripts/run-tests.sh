@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Every test: set up and build (scripts/setup.sh), then the C++ tests (ctest) and the Python tests (pytest).
+# Every test: set up, build and install (scripts/setup.sh), then the C++ tests (ctest) and the Python tests (pytest
+# against the installed package).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 echo "== C++ tests (ctest)"
-ctest --test-dir build --output-on-failure -E '^python$'
+ctest --test-dir build --output-on-failure
 echo "== Python tests (pytest)"
-PYTHONPATH="$PWD/build/python" /usr/bin/python3 -m pytest -q -ra -p no:cacheprovider python/tests
+.venv/bin/python -m pytest -q -ra -p no:cacheprovider python/tests

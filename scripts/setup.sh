@@ -1,31 +1,45 @@
 #!/usr/bin/env bash
-# Install what the plugin needs from Debian's repositories (only what is missing), then configure and build it in
-# ./build. Safe to run again: a no-op install and an incremental build. Used by run-main.sh and run-tests.sh.
+# Set up everything the plugin needs on a Debian 12 machine, then build and install it into ./.venv. Safe to run
+# again: a no-op install, an incremental build. Used by run-main.sh and run-tests.sh.
+#   1. Debian packages (only the missing ones): compilers, CMake, OpenCL ICD loader, headers and PoCL.
+#   2. .venv (python3 -m venv) with the pinned Python packages of requirements.txt (OpenMM 8.6.1 from PyPI).
+#   3. pip install . into .venv (scikit-build-core drives CMake; build tree ./build, C++ tests included; log in
+#      build.log): libraries into OpenMM's directories, the Python package into site-packages.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-PACKAGES=(cmake make g++ swig libopenmm-dev libopenmm-plugins python3-simtk python3-dev python3-numpy
-          python3-pytest python3-mpmath python3-scipy python3-matplotlib python3-mdtraj)
-
+PACKAGES=(g++ make cmake ocl-icd-opencl-dev opencl-c-headers pocl-opencl-icd clinfo)
+# A python3 without venv or headers is Debian's own: add its packages.
+python3 -c "import ensurepip, os, sysconfig; assert os.path.exists(sysconfig.get_paths()['include'] + '/Python.h')" \
+    2>/dev/null || PACKAGES+=(python3-venv python3-dev)
 missing=()
 for package in "${PACKAGES[@]}"; do
     dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" || missing+=("$package")
 done
 if [ ${#missing[@]} -gt 0 ]; then
-    echo "Installing: ${missing[*]}"
+    echo "Installing Debian packages: ${missing[*]}"
     sudo_prefix=()
     [ "$(id -u)" -eq 0 ] || sudo_prefix=(sudo)
     "${sudo_prefix[@]}" env DEBIAN_FRONTEND=noninteractive apt-get update -q
     "${sudo_prefix[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-# Only Debian's interpreter sees python3-simtk (another python3 may come first on PATH).
-if ! /usr/bin/python3 -c "import openmm" 2>/dev/null; then
-    echo "error: /usr/bin/python3 cannot import openmm (Debian package python3-simtk)" >&2
-    exit 1
+if [ ! -x .venv/bin/python ]; then
+    echo "Creating .venv"
+    python3 -m venv .venv
+fi
+# Reinstall the pinned packages only when requirements.txt changed.
+stamp=.venv/.requirements.sha256
+if ! sha256sum --status -c "$stamp" 2>/dev/null; then
+    echo "Installing the pinned Python packages (requirements.txt) into .venv"
+    .venv/bin/python -m pip install -q --disable-pip-version-check -r requirements.txt
+    sha256sum requirements.txt > "$stamp"
 fi
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 > build.log 2>&1 \
-    || { cat build.log >&2; exit 1; }
-cmake --build build -j "$(nproc)" >> build.log 2>&1 || { tail -n 60 build.log >&2; exit 1; }
-echo "Built in ./build (log: build.log)"
+# Build against the OpenMM in .venv (no build isolation) with the C++ tests, and install.
+if ! .venv/bin/python -m pip install --disable-pip-version-check --no-build-isolation --no-deps \
+        -C build-dir=build -C cmake.define.GENDPDE_BUILD_TESTS=ON . > build.log 2>&1; then
+    tail -n 60 build.log >&2
+    exit 1
+fi
+echo "Built in ./build and installed into .venv (log: build.log)"

@@ -65,13 +65,6 @@ public:
     virtual void setSeed(int seed) = 0;
 };
 
-/**
- * Register this plugin's kernel factories on every platform that can run them and does not have them yet.
- * Called from getKernelNames() of the force and the integrator, i.e. just before a Context chooses its platform,
- * so that platforms loaded after this library (OpenMM's CPU plugin) are covered. Idempotent.
- */
-void registerGenDPDEKernelFactories();
-
 } // namespace GenDPDEPlugin
 
 #endif /*GENDPDE_KERNELS_H_*/

@@ -40,7 +40,6 @@ double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeF
 }
 
 std::vector<std::string> GenDPDEForceImpl::getKernelNames() {
-    registerGenDPDEKernelFactories();
     return {CalcGenDPDEForceKernel::Name()};
 }
 

@@ -212,7 +212,6 @@ void GenDPDEIntegrator::cleanup() {
 }
 
 std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
-    registerGenDPDEKernelFactories();
     return {IntegrateGenDPDEStepKernel::Name()};
 }
 

@@ -12,14 +12,43 @@ getters and scalar results return quantities; per-particle results are numpy arr
 nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, temperatures in K, internal energies in kJ/mol.
 """
 
-import openmm as _openmm  # noqa: F401  (first: OpenMM's platforms and SWIG types must be loaded before ours)
+import openmm as _openmm  # first: loads OpenMM's platforms and this plugin's kernel libraries, and the SWIG types
 from openmm import unit as _unit
 
-from . import gendpde as _swig
+from ._version import openmm_build_version as _openmm_build_version, version as __version__
+
+
+def _major_minor(version):
+    return tuple(version.split(".")[:2])
+
+
+if _major_minor(_openmm.__version__) != _major_minor(_openmm_build_version):
+    raise ImportError(f"openmmgendpde {__version__} was built against OpenMM {_openmm_build_version} and cannot run "
+                      f"with OpenMM {_openmm.__version__} (OpenMM's platform internals change between minor "
+                      f"versions); reinstall it in this environment (pip install .)")
+
+from . import gendpde as _swig  # noqa: E402
+
+#: The kernels this plugin adds to OpenMM's platforms.
+KERNEL_NAMES = ("CalcGenDPDEForce", "IntegrateGenDPDEStep")
+
+
+def _load_kernel_libraries():
+    """`import openmm` loads the kernel libraries from OpenMM's plugin directory, where `pip install` puts them,
+    unless OPENMM_PLUGIN_DIR names another directory: then load them from OpenMM's directory by path."""
+    import glob
+    import os
+    from openmm import version
+    if _openmm.Platform.getPlatformByName("Reference").supportsKernels(KERNEL_NAMES):
+        return
+    for library in sorted(glob.glob(os.path.join(version.openmm_library_path, "plugins", "libOpenMMGenDPDE*.so"))):
+        _openmm.Platform.loadPluginLibrary(library)
+
+
+_load_kernel_libraries()
 from ._wrapping import (DIMENSIONLESS, NUMBER_DENSITY, PRESSURE, accept_units, add_cast_copy_and_pickle,
                         return_units)
 
-__version__ = "0.1.0"
 __all__ = ["GenDPDEForce", "GenDPDEIntegrator"]
 
 GenDPDEForce = _swig.GenDPDEForce

@@ -1,4 +1,5 @@
 #include "GenDPDEForce.h"
+#include "TestPlugins.h"
 #include "TestUtilities.h"
 #include "OpenMM.h"
 #include "openmm/serialization/XmlSerializer.h"
@@ -72,6 +73,7 @@ void testFutureVersion() {
 
 int main() {
     return runTestProgram([]() {
+        loadGenDPDEKernels("Reference");
         testSerialization();
         testSystemRoundTrip();
         testFutureVersion();

@@ -1,10 +1,11 @@
 #include "TestGenDPDEIntegrator.h"
+#include "TestPlugins.h"
 
 OpenMM::Platform* platform;
 
 int main() {
     return runTestProgram([]() {
-        OpenMM::Platform::loadPluginsFromDirectory(OpenMM::Platform::getDefaultPluginsDirectory());
+        loadPlugins();
         platform = &OpenMM::Platform::getPlatformByName("CPU");
         IntegratorTests::runIntegratorTests();
     });

@@ -1,51 +1,42 @@
+#include "ReferenceGenDPDEKernelFactory.h"
 #include "GenDPDEKernels.h"
 #include "ReferenceGenDPDEForceKernel.h"
 #include "ReferenceGenDPDEIntegratorKernel.h"
-#include "openmm/KernelFactory.h"
 #include "openmm/OpenMMException.h"
-#include "openmm/reference/ReferencePlatform.h"
-#include <mutex>
+#include "openmm/Platform.h"
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-namespace {
+KernelImpl* ReferenceGenDPDEKernelFactory::createKernelImpl(std::string name, const Platform& platform,
+                                                            ContextImpl& context) const {
+    if (name == CalcGenDPDEForceKernel::Name())
+        return new ReferenceCalcGenDPDEForceKernel(name, platform);
+    if (name == IntegrateGenDPDEStepKernel::Name())
+        return new ReferenceIntegrateGenDPDEStepKernel(name, platform);
+    throw OpenMMException("GenDPDE plugin: the Reference kernel factory cannot create kernel '" + name + "'");
+}
 
-/** Creates the Reference kernels; also serves the CPU platform, which derives from ReferencePlatform. */
-class ReferenceGenDPDEKernelFactory : public KernelFactory {
-public:
-    KernelImpl* createKernelImpl(std::string name, const Platform& platform, ContextImpl& context) const override {
-        if (name == CalcGenDPDEForceKernel::Name())
-            return new ReferenceCalcGenDPDEForceKernel(name, platform);
-        if (name == IntegrateGenDPDEStepKernel::Name())
-            return new ReferenceIntegrateGenDPDEStepKernel(name, platform);
-        throw OpenMMException("GenDPDE plugin: the Reference kernel factory cannot create kernel '" + name + "'");
-    }
-};
-
-std::vector<std::string> kernelNames() {
+std::vector<std::string> ReferenceGenDPDEKernelFactory::kernelNames() {
     return {CalcGenDPDEForceKernel::Name(), IntegrateGenDPDEStepKernel::Name()};
 }
 
-} // namespace
-
-void GenDPDEPlugin::registerGenDPDEKernelFactories() {
-    static std::mutex mutex;
-    std::lock_guard<std::mutex> lock(mutex);
+void ReferenceGenDPDEKernelFactory::registerOn(const std::string& platformName) {
     for (int i = 0; i < Platform::getNumPlatforms(); i++) {
         Platform& platform = Platform::getPlatform(i);
-        if (dynamic_cast<ReferencePlatform*>(&platform) == nullptr || platform.supportsKernels(kernelNames()))
+        if (platform.getName() != platformName)
             continue;
-        KernelFactory* factory = new ReferenceGenDPDEKernelFactory();   // owned by the platform
+        KernelFactory* factory = new ReferenceGenDPDEKernelFactory();
         for (const std::string& name : kernelNames())
             platform.registerKernelFactory(name, factory);
     }
 }
 
-// The entry points OpenMM calls when the library is loaded with Platform.loadPluginsFromDirectory().
+// The entry points OpenMM calls when it loads this library from its plugin directory: the Reference platform only
+// (registering on every ReferencePlatform subclass would also claim the CPU platform, which has its own library).
 extern "C" OPENMM_EXPORT void registerPlatforms() {
 }
 
 extern "C" OPENMM_EXPORT void registerKernelFactories() {
-    registerGenDPDEKernelFactories();
+    ReferenceGenDPDEKernelFactory::registerOn("Reference");
 }

@@ -1,9 +1,11 @@
 #include "TestGenDPDEIntegrator.h"
+#include "TestPlugins.h"
 
 OpenMM::Platform* platform;
 
 int main() {
     return runTestProgram([]() {
+        loadPlugins();
         platform = &OpenMM::Platform::getPlatformByName("Reference");
         IntegratorTests::runIntegratorTests();
     });

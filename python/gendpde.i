@@ -6,6 +6,12 @@
  * cast/isinstance with correct ownership, copy and pickle on top of these classes. Docstrings come from the C++
  * headers (swig -doxygen). */
 
+/* As in OpenMM's own module: a number argument takes anything that converts to one (numpy scalars of any type,
+ * 0-d arrays); an integer argument takes only integral values. */
+%begin %{
+#define SWIG_PYTHON_CAST_MODE
+%}
+
 /* OpenMM's typemaps (swig/typemaps.i) ask whether numpy can be used; this module imports numpy at load time. */
 %header %{
 static int isNumpyAvailable() {

@@ -9,6 +9,8 @@
 
 import functools
 
+import numpy
+
 from openmm import XmlSerializer, unit
 
 #: Pressure in OpenMM units.
@@ -20,8 +22,13 @@ DIMENSIONLESS = None
 
 
 def to_openmm_value(value, target, where):
-    """``value`` as a plain number in the OpenMM unit ``target`` (``DIMENSIONLESS`` for a pure number)."""
+    """``value`` as a plain number in the OpenMM unit ``target`` (``DIMENSIONLESS`` for a pure number). A Quantity
+    holding a list or array, or a list, tuple or object array of Quantities and numbers (one per particle, say),
+    becomes a list of plain numbers, each converted; plain numbers (numpy scalars included) pass through."""
     if not unit.is_quantity(value):
+        if isinstance(value, (list, tuple)) or (isinstance(value, numpy.ndarray) and value.dtype == object):
+            if any(unit.is_quantity(item) for item in value):
+                return [to_openmm_value(item, target, f"{where}[{index}]") for index, item in enumerate(value)]
         return value
     if target is DIMENSIONLESS:
         if value.unit.is_dimensionless():

@@ -62,6 +62,16 @@ def test_benchmarks_quick(capsys):
     main(["benchmark-integrator", "--particles", "500", "--rounds", "2"])
     out = capsys.readouterr().out
     assert "CustomGB" in out and "Isoenergetic / force" in out
+    dpd_rows = [line for line in out.splitlines() if line.startswith("| 500 | with GenDPDEForce")
+                or line.startswith("| 500 | no force")]
+    assert len(dpd_rows) == 2   # GenDPDE Isothermal against DPDIntegrator, with and without the force
+    for row in dpd_rows:
+        cells = [cell.strip() for cell in row.strip("|").split("|")]
+        assert float(cells[2]) > 0 and float(cells[3]) > 0 and float(cells[4]) > 0
+        # Kinetic temperatures of both thermostats within 10% of the bath (125.7 K) after 200 steps of 500
+        # particles (their fluctuation is ~2% per sample; the point here is that both are reported and sane).
+        for cell in cells[6:8]:
+            assert abs(float(cell.split("+-")[0]) / 125.7 - 1) < 0.1
 
 
 def test_too_short_production_is_refused():

@@ -1,6 +1,6 @@
 """A liquid-argon GenDPDE simulation with OpenMM's Simulation, a GenDPDEReporter and a DCD trajectory.
 
-    PYTHONPATH=build/python /usr/bin/python3 examples/liquid_argon.py [--estimator VA] [--cutoff 1.3365]
+    .venv/bin/python examples/liquid_argon.py [--estimator VA] [--cutoff 1.3365]
 
 500 particles (5 argon atoms each) on an FCC lattice at n0* = 1 are melted with the DPD thermostat at T0, their
 internal energies drawn at T0, then run with full (isoenergetic) GenDPDE. The reporter prints, in reduced units,

@@ -4,7 +4,7 @@
 /* An independent O(N^2) evaluation of the GenDPDE conservative force for the tests. It shares no code with the
  * plugin: every pair and every periodic image within the cutoff is visited explicitly (no minimum-image formula,
  * no neighbour list), V-B volumes come from adaptive Simpson quadrature of the defining integral (not the closed
- * forms or the Gauss rule of GenDPDEPhysics.h), and the formulas of MODEL.md are written out again here. */
+ * forms or the Gauss rule of GenDPDEPhysics.h), and the formulas of docs/theory.md are written out again here. */
 
 #include "openmm/Vec3.h"
 #include <cmath>

@@ -22,7 +22,7 @@ namespace IntegratorTests {
 
 using namespace TestScenes;
 
-// Liquid argon (MODEL.md section 4) at R* = 1.6839 in OpenMM units.
+// Liquid argon (docs/theory.md section 9) at R* = 1.6839 in OpenMM units.
 const double timeUnit = 0.8961581347;                    // ps
 const double temperatureUnit = 11371.4587;               // K
 const double boltzmann = 0.00831446261815324;            // kJ/mol/K

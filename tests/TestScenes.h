@@ -1,7 +1,7 @@
 #ifndef GENDPDE_TEST_SCENES_H_
 #define GENDPDE_TEST_SCENES_H_
 
-/* Small liquid-argon-like Systems shared by the C++ tests (MODEL.md section 4 in OpenMM units). */
+/* Small liquid-argon-like Systems shared by the C++ tests (docs/theory.md section 9 in OpenMM units). */
 
 #include "GenDPDEForce.h"
 #include "OpenMM.h"
@@ -15,7 +15,7 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 
-// Liquid argon at R* = 1.6839 in OpenMM units (MODEL.md section 4).
+// Liquid argon at R* = 1.6839 in OpenMM units (docs/theory.md section 9).
 const double lengthUnit = 0.61616;
 const double cutoff = 1.6839*lengthUnit;
 const double referenceDensity = 1.0/(lengthUnit*lengthUnit*lengthUnit);

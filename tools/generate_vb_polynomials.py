@@ -3,13 +3,13 @@
 
 I(k) = int_0^1 y^2 (1-y)^2/(y^2+k) dy and J(k) = -dI/dk are fitted on k in [2^-4, 2^4): 8 octaves, each split
 into 4 equal sub-intervals, on each a polynomial of degree DEGREE in t in [-1, 1] with k = 2^e (1 + (j + (t+1)/2)/4).
-Coefficients are Chebyshev interpolants at 60 digits (from the closed forms of MODEL.md section 1, exact at that
-precision) converted to monomials in t and rounded to double. The script checks, at 60 digits, that the rounded
+Coefficients are Chebyshev interpolants at 60 digits (from the closed forms of docs/theory.md section 3, exact at
+that precision) converted to monomials in t and rounded to double. The script checks, at 60 digits, that the rounded
 polynomials reproduce I and J to MAX_RELATIVE_ERROR on a fine grid of every sub-interval, and refuses to write
 otherwise. The final double-precision results are tested independently against quadrature
 (python/tests/test_volume_estimators.py).
 
-    /usr/bin/python3 tools/generate_vb_polynomials.py [--degree 13]
+    .venv/bin/python tools/generate_vb_polynomials.py [--degree 13]
 """
 
 import argparse

@@ -11,7 +11,7 @@ namespace GenDPDEPlugin {
 /**
  * The energy-conserving integrator of generalised DPD (GenDPDE). Each particle i carries an internal (thermal)
  * energy eps_i and temperature theta_i = eps_i/C_V besides its position and velocity. For every pair closer than
- * the cutoff R, with omega_R = 1 - r/R and omega_D = omega_q = omega_R^2 (MODEL.md section 3):
+ * the cutoff R, with omega_R = 1 - r/R and omega_D = omega_q = omega_R^2 (docs/theory.md section 5):
  *
  *   dp_i = F_i dt + sum_j [ -gamma omega_D (e_ij . v_ij) e_ij dt + sigma_ij omega_R e_ij dW_ij ],
  *          sigma_ij^2 = 2 gamma k_B Theta_ij,  1/Theta_ij = (1/theta_i + 1/theta_j)/2;
@@ -117,7 +117,7 @@ public:
     void setParticleTemperatures(const std::vector<double>& temperatures);
     /**
      * Draw every particle's internal energy from its equilibrium distribution at temperature T (in K), > 0: the
-     * Gamma law with shape C_V/k_B + 1 and scale k_B T (MODEL.md section 3), so that the harmonic mean of theta_i
+     * Gamma law with shape C_V/k_B + 1 and scale k_B T (docs/theory.md section 8), so that the harmonic mean of theta_i
      * is T and its mean T (1 + k_B/C_V). The counterpart of Context::setVelocitiesToTemperature() for the internal
      * energies; needs a Context. Setting every theta_i = T instead (setTemperature) leaves the internal energies
      * k_B T per particle short of equilibrium at T.

@@ -9,7 +9,7 @@ using namespace OpenMM;
 using namespace ParameterChecks;
 
 namespace {
-// Default Tait parameters: liquid argon of MODEL.md section 4 converted to OpenMM units.
+// Default Tait parameters: liquid argon of docs/theory.md section 9 converted to OpenMM units.
 const double argonLength = 0.61616;                                     // L (nm), so that n0* = 1
 const double argonEnergy = 1.5700e-19*6.02214076e23/1000.0;             // u (kJ/mol)
 const double argonPressureUnit = argonEnergy/(argonLength*argonLength*argonLength);   // u/L^3 (kJ/mol/nm^3)

@@ -1,4 +1,4 @@
-"""The pointwise physics of GenDPDE (MODEL.md sections 1-2), exactly as the kernels evaluate it.
+"""The pointwise physics of GenDPDE (docs/theory.md sections 2-4), exactly as the kernels evaluate it.
 
 Plain floats in any consistent units:
 

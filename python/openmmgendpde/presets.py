@@ -1,5 +1,5 @@
 """Liquid argon as modelled by Colella, Larentzos, Bresme and Bonet Avalos (J. Chem. Theory Comput. 2025):
-the reference case of ../shared/MODEL.md section 4, in one place.
+the reference case of docs/theory.md section 9, in one place.
 
 One particle is 5 argon atoms. Reduced units: mass 3.3211e-25 kg, length 0.61616 nm (so n0* = 1), energy
 1.5700e-19 J; k_B = 1.

@@ -1,4 +1,4 @@
-"""Small systems for the Python tests (liquid argon of MODEL.md section 4 in OpenMM units)."""
+"""Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units)."""
 
 import math
 

@@ -21,7 +21,7 @@ def test_is_an_openmm_force_with_quantity_getters():
     assert force.getDensityEstimator() == GenDPDEForce.VB
     assert force.getNonbondedMethod() == GenDPDEForce.CutoffPeriodic and force.usesPeriodicBoundaryConditions()
     n0, pi0, bulk, gamma = force.getTaitParameters()
-    # Defaults: liquid argon of MODEL.md section 4 (u = 94.5476 kJ/mol, L = 0.61616 nm).
+    # Defaults: liquid argon of docs/theory.md section 9 (u = 94.5476 kJ/mol, L = 0.61616 nm).
     pressure_unit = 1.5700e-19 * 6.02214076e23 / 1000 / LENGTH**3
     assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(DENSITY, rel=1e-14)
     assert pi0.value_in_unit(PRESSURE) == pytest.approx((0.12711 - 0.011054) * pressure_unit, rel=1e-14)

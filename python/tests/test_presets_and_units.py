@@ -1,4 +1,4 @@
-"""Reduced units and the liquid-argon preset (MODEL.md section 4)."""
+"""Reduced units and the liquid-argon preset (docs/theory.md section 9)."""
 
 import math
 
@@ -22,7 +22,7 @@ def test_round_trips_for_every_kind():
 
 
 def test_derived_units_match_model_md_from_si():
-    """MODEL.md section 4: mass 3.3211e-25 kg (200 amu, 5 argon atoms), L = 0.61616 nm, u = 1.5700e-19 J
+    """docs/theory.md section 9: mass 3.3211e-25 kg (200 amu, 5 argon atoms), L = 0.61616 nm, u = 1.5700e-19 J
     (94.55 kJ/mol), time L sqrt(m/u) = 0.8962 ps, pressure unit 671.1 MPa; all from the SI definitions here."""
     assert ARGON_UNITS.unit("mass").value_in_unit(unit.amu) == pytest.approx(3.3211e-25 * AVOGADRO * 1000, rel=1e-12)
     assert ARGON_UNITS.unit("energy").value_in_unit(unit.kilojoule_per_mole) == pytest.approx(94.55, abs=0.005)

@@ -1,4 +1,4 @@
-"""Accuracy of the volume estimators (MODEL.md section 1) against 40-digit quadrature.
+"""Accuracy of the volume estimators (docs/theory.md sections 2-3) against 40-digit quadrature.
 
 Target: relative error <= 1e-12 for V and dV/dn0 at every k in [0, 1e12], including the numerical traps: k = 0,
 tiny k (dV/dn0 ~ k^-1/2), the switch between the closed form and the quadrature branch at k = 0.1, and large k
@@ -73,7 +73,7 @@ def test_particle_volume_scales_the_integrals(reduced_range, k):
 
 
 def test_vb_tends_to_va_at_high_density():
-    """V-B -> 1/n0 as k -> infinity (MODEL.md): V n0 - 1 = O(1/k)."""
+    """V-B -> 1/n0 as k -> infinity (docs/theory.md section 3): V n0 - 1 = O(1/k)."""
     for n0 in [1e3, 1e6, 1e9]:
         volume_b, derivative_b = particleVolumeVB(n0, 1.0)
         volume_a, derivative_a = particleVolumeVA(n0)

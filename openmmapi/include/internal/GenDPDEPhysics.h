@@ -2,13 +2,13 @@
 #define GENDPDE_PHYSICS_H_
 
 /* -------------------------------------------------------------------------- *
- * The one home of GenDPDE's pointwise physics (../shared/MODEL.md, sections   *
- * 1-3): the density weight, the two volume estimators with their numerically *
+ * The one home of GenDPDE's pointwise physics (docs/theory.md sections 2-7): *
+ * the density weight, the two volume estimators with their numerically       *
  * safe branches, the Tait equation of state and the dissipation weights.     *
- * Plain inline functions of doubles (and OpenMM's header-only Vec3), so that  *
+ * Plain inline functions of doubles (and OpenMM's header-only Vec3), so that *
  * every platform kernel, the Python bindings and the tests share one code.   *
  *                                                                            *
- * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).     *
+ * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).      *
  * -------------------------------------------------------------------------- */
 
 #include "VolumeVBPolynomials.h"
@@ -26,7 +26,7 @@ constexpr double Pi = 3.14159265358979323846;
 constexpr double Boltzmann = 1.380649e-23*6.02214076e23/1000.0;
 
 /**
- * The normalised density weight of MODEL.md section 1,
+ * The normalised density weight of docs/theory.md section 2,
  *   w(r) = 15/(2 pi R^3) (1 - r/R)^2,   w'(r) = -15/(pi R^4) (1 - r/R)   for r < R, zero beyond.
  * The constants are precomputed once per cutoff because the weight is evaluated for every pair.
  */
@@ -76,8 +76,8 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  *    octave, generated at 60 digits by tools/generate_vb_polynomials.py (VolumeVBPolynomials.h; max error 1e-16
  *    before rounding in the evaluation). The piece comes from the bits of k; no division, no transcendental
  *    function, so V-B costs a few ns more than V-A per particle.
- *  - k < 1/16: the closed forms of MODEL.md, with ln((k+1)/k) written as log1p(k) - log(k) so that no intermediate
- *    overflows for subnormal k (max 2e-15 relative there). They lose digits to cancellation as k grows (two near
+ *  - k < 1/16: the closed forms of docs/theory.md section 3, with ln((k+1)/k) written as log1p(k) - log(k) so
+ *    that no intermediate overflows for subnormal k (max 2e-15 relative there). They lose digits to cancellation as k grows (two near
  *    k = 1) and are useless for large k (at k = 1e5 the fifth digit of V is wrong).
  *  - k >= 16: 24-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
  *    cancellation) and analytic within sqrt(k) of [0, 1], so the rule converges to rounding error (max 1e-15
@@ -161,7 +161,7 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
 }
 
 /**
- * V-B, the partition-of-unity estimator (MODEL.md section 1), for reduced range Rt = R/f_cut: the volume and its
+ * V-B, the partition-of-unity estimator (docs/theory.md section 3), for reduced range Rt = R/f_cut: the volume and its
  * derivative at any primitive density n0 >= 0, accurate to ~1e-15 relative for every k. V = (4 pi/3) Rt^3 at
  * n0 = 0 and V -> 1/n0 as n0 -> infinity. The scale factors are computed once per Rt.
  */
@@ -187,7 +187,7 @@ inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
 }
 
 /**
- * The Tait equation of state and the per-particle mechanical free energy (MODEL.md section 2):
+ * The Tait equation of state and the per-particle mechanical free energy (docs/theory.md section 4):
  *   pi(n) = pi0 + B_T [ (n/n0)^gamma_T - 1 ]
  *   f(n)  = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1),     with pi = n^2 df/dn.
  * n0 is the reference density (1/length^3), pi0 and B_T are pressures (energy/length^3), gamma_T > 1.
@@ -241,7 +241,7 @@ private:
 };
 
 /**
- * The dissipation weights of MODEL.md section 3 (unnormalised, same cutoff R as the density weight):
+ * The dissipation weights of docs/theory.md section 5 (unnormalised, same cutoff R as the density weight):
  * omega_R(r) = 1 - r/R (random forces and random heat flux), omega_D = omega_q = omega_R^2.
  */
 inline double randomWeight(double r, double cutoff) {
@@ -249,8 +249,8 @@ inline double randomWeight(double r, double cutoff) {
 }
 
 /**
- * The dissipative and random update of one pair's momenta (MODEL.md section 3), in two stages as in Lisal, Brennan
- * and Bonet Avalos (2011): an explicit half (half the friction, half the random impulse) and an implicit half solved
+ * The dissipative and random update of one pair's momenta (docs/theory.md sections 5-6), in two stages as in
+ * Lisal, Brennan and Bonet Avalos (2011): an explicit half (half the friction, half the random impulse) and an implicit half solved
  * exactly for the final relative velocity. Along e this is a Crank-Nicolson step of the relative velocity u, which
  * keeps its stationary variance (1/m_i + 1/m_j) noiseAmplitude^2/(2 friction) exact for any dt.
  *
@@ -282,12 +282,12 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
  *
  * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
  * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = (k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2, beta = 1/theta.
- * Why: Theta_ij depends on eps_i and eps_j, which every random kick changes (mechanical heating), so the noise of
- * MODEL.md's momentum equation is multiplicative. Its equilibrium, the microcanonical density prod_i eps_i^(C_V/k_B)
- * on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i follow), is stationary only if the
- * noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise with the temperatures it starts
- * from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the relative velocity u. Worked out,
- * that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it the kinetic temperature exceeds the
+ * Why (derivation: docs/theory.md section 7): Theta_ij depends on eps_i and eps_j, which every random kick changes
+ * (mechanical heating), so the noise of the momentum equation is multiplicative. Its equilibrium, the microcanonical
+ * density prod_i eps_i^(C_V/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i
+ * follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise
+ * with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the
+ * relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it the kinetic temperature exceeds the
  * harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's C_V = 12.51 k_B, as measured
  * (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it vanishes.
  */
@@ -308,7 +308,7 @@ inline PairTemperatures pairTemperatures(double energyI, double energyJ, double 
 }
 
 /**
- * The heat that flows from j to i in one step (MODEL.md section 3): kappa omega_q (1/theta_i - 1/theta_j) dt
+ * The heat that flows from j to i in one step (docs/theory.md section 5): kappa omega_q (1/theta_i - 1/theta_j) dt
  * + alpha omega_R sqrt(dt) xi_q, with randomAmplitude alpha = sqrt(2 k_B kappa).
  */
 inline double conductiveHeat(double omegaR, double heatConduction, double randomAmplitude,

@@ -52,7 +52,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         GenDPDEForceImpl::checkCutoffAgainstBox(cutoff, box);
     const PairView pairs = neighborList->update(positions, box);
 
-    // MODEL.md section 1: primitive densities n0_i = sum_j w(r_ij).
+    // docs/theory.md sections 2-3: primitive densities n0_i = sum_j w(r_ij).
     const Physics::DensityWeight weight(cutoff);
     std::fill(primitiveDensity.begin(), primitiveDensity.end(), 0.0);
     for (const ParticlePair& pair : pairs) {
@@ -61,7 +61,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         primitiveDensity[pair.j] += w;
     }
 
-    // MODEL.md sections 1-2: volumes, Tait pressures and free energies; U = sum_i f(n_i).
+    // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const Physics::TaitEquationOfState tait(referenceDensity, referencePressure, bulkModulus, exponent);
     const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
     double energy = 0.0;
@@ -88,7 +88,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
 }
 
 double ReferenceCalcGenDPDEForceKernel::computePairForces(std::vector<Vec3>* forces) const {
-    // MODEL.md section 2: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij.
+    // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij.
     const Physics::DensityWeight weight(cutoff);
     double virial = 0.0;
     for (const ParticlePair& pair : neighborList->getPairs()) {

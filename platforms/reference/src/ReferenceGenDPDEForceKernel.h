@@ -10,7 +10,7 @@
 namespace GenDPDEPlugin {
 
 /**
- * Reference (double precision, single thread) evaluation of GenDPDEForce, MODEL.md sections 1-2:
+ * Reference (double precision, single thread) evaluation of GenDPDEForce, docs/theory.md sections 2-4:
  * one sweep over the pairs for the primitive densities, one pass over the particles for volumes, pressures and
  * free energies, and one sweep over the pairs for the forces and the virial.
  */

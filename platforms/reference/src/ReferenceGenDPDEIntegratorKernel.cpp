@@ -84,7 +84,7 @@ const std::vector<int>& ReferenceIntegrateGenDPDEStepKernel::sweepOrder(PairView
 
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
-    // MODEL.md section 3, pair by pair in sweepOrder() at fixed positions: dissipative and random momenta with
+    // docs/theory.md sections 5-7, pair by pair in sweepOrder() at fixed positions: dissipative and random momenta with
     // sigma^2 = 2 gamma k_B Theta_ij (and the Ito term of the friction, see Physics::pairTemperatures), mechanical
     // heating split equally, heat conduction, all with the particles' temperatures when the pair is reached.
     const double dt = integrator.getStepSize(), sqrtDt = std::sqrt(dt);

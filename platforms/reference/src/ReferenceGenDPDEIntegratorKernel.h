@@ -12,7 +12,7 @@ namespace GenDPDEPlugin {
 class ReferenceCalcGenDPDEForceKernel;
 
 /**
- * Reference (double precision, single thread) step of GenDPDEIntegrator (MODEL.md section 3): half kick, pair sweep
+ * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md section 5): half kick, pair sweep
  * at fixed positions, half kick, drift. The pairs come from the System's GenDPDEForce when it has just been
  * evaluated at these positions with the same cutoff (no second neighbour search), else from a neighbour list of
  * the integrator's own.
@@ -41,7 +41,7 @@ public:
 private:
     /** The pairs closer than the cutoff at the current positions. */
     PairView currentPairs(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
-    /** MODEL.md section 3, full GenDPDE: momenta, mechanical heating and conduction; false if some eps <= 0. */
+    /** docs/theory.md section 5, full GenDPDE: momenta, mechanical heating and conduction; false if some eps <= 0. */
     bool sweepIsoenergetic(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
                            long long step, int& failedParticle);
     /** The classic DPD thermostat at the set temperature. */

@@ -160,3 +160,27 @@ def test_two_contexts_in_two_threads_match_sequential_runs():
     for seed in (11, 12):
         np.testing.assert_array_equal(concurrent[seed], sequential[seed])
     assert not np.array_equal(sequential[11], sequential[12])
+
+
+def test_pins_agree_with_the_package_metadata():
+    """requirements.txt pins the supported environment; pyproject.toml states what the package accepts and builds
+    with. The pinned OpenMM must be in both of pyproject's ranges and the pinned SWIG must be the build's."""
+    import pathlib
+    import re
+    import tomllib
+    from packaging.requirements import Requirement
+    root = pathlib.Path(__file__).resolve().parents[2]
+    pins = {}
+    for line in (root / "requirements.txt").read_text().splitlines():
+        if line.strip() and not line.startswith("#"):
+            requirement = Requirement(line)
+            pins[requirement.name.lower()] = requirement
+    pyproject = tomllib.loads((root / "pyproject.toml").read_text())
+    build = {Requirement(r).name.lower(): Requirement(r) for r in pyproject["build-system"]["requires"]}
+    runtime = {Requirement(r).name.lower(): Requirement(r) for r in pyproject["project"]["dependencies"]}
+    openmm_pin = next(iter(pins["openmm"].specifier)).version
+    assert build["openmm"].specifier.contains(openmm_pin) and runtime["openmm"].specifier.contains(openmm_pin)
+    assert str(pins["swig"].specifier) == str(build["swig"].specifier)
+    version = re.search(r"project\(OpenMMGenDPDE VERSION ([0-9.]+)", (root / "CMakeLists.txt").read_text()).group(1)
+    import openmmgendpde
+    assert openmmgendpde.__version__ == version

@@ -3,7 +3,7 @@
 
 /* An independent O(N^2) evaluation of the GenDPDE conservative force for the tests. It shares no code with the
  * plugin: every pair and every periodic image within the cutoff is visited explicitly (no minimum-image formula,
- * no neighbour list), V-B volumes come from adaptive Simpson quadrature of the defining integral (not the closed
+ * no neighbor list), V-B volumes come from adaptive Simpson quadrature of the defining integral (not the closed
  * forms or the Gauss rule of GenDPDEPhysics.h), and the formulas of docs/theory.md are written out again here. */
 
 #include "openmm/Vec3.h"
@@ -82,7 +82,7 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
             double Rt = R/model.cutoffScaling, k = 2.0*pi/15.0*Rt*Rt*Rt*n0i;
             // Relative tolerance 1e-14 from the asymptotes I ~ 1/(3 + 30k) and J ~ 1/(30k^2 + 4 sqrt(k)/pi).
             double toleranceI = 1e-14/(3.0 + 30.0*k), toleranceJ = 1e-14/(30.0*k*k + 4.0*std::sqrt(k)/pi);
-            // k = 0 (no neighbour): the integrand is (1-y)^2, whose integral is 1/3.
+            // k = 0 (no neighbor): the integrand is (1-y)^2, whose integral is 1/3.
             double I = k == 0.0 ? 1.0/3.0
                      : integrate([&](double y) { return y*y*(1 - y)*(1 - y)/(y*y + k); }, 0.0, 1.0, toleranceI);
             V = 4.0*pi*Rt*Rt*Rt*I;
@@ -94,7 +94,7 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
                 dV = -8.0*pi*pi/15.0*std::pow(Rt, 6)*J;
             }
             else
-                dV = 0.0;   // no neighbour, no pair to use it
+                dV = 0.0;   // no neighbor, no pair to use it
         }
         else {
             V = 1.0/n0i;

@@ -244,7 +244,7 @@ void testCoincidentParticles() {
         scene.positions[7] = scene.positions[8];
         scene.positions[20] = scene.positions[21] = scene.positions[22];
         checkAgainstBruteForce(scene, "coincident");
-        // Two coincident particles alone: each is the other's only neighbour, at zero distance.
+        // Two coincident particles alone: each is the other's only neighbor, at zero distance.
         Scene pair = makeScene(2, estimator, false);
         pair.positions = {Vec3(1, 2, 3), Vec3(1, 2, 3)};
         VerletIntegrator integrator(0.001);
@@ -272,7 +272,7 @@ void testIsolatedParticle() {
 
     scene.force->setDensityEstimator(GenDPDEForce::VA);
     scene.force->updateParametersInContext(context);
-    assertThrowsMentioning([&]() { context.getState(State::Energy); }, {"particle 2", "no neighbour", "step 0"});
+    assertThrowsMentioning([&]() { context.getState(State::Energy); }, {"particle 2", "no neighbor", "step 0"});
     assertThrowsMentioning([&]() { scene.force->getParticleDensities(context); }, {"particle 2"});
 }
 
@@ -322,7 +322,7 @@ void testUpdateParametersInContext() {
     assertThrowsMentioning([&]() { scene.force->updateParametersInContext(context); }, {"nonbonded method"});
 }
 
-/** The neighbour list stays exact while particles move far (many rebuilds): compare with the brute force. */
+/** The neighbor list stays exact while particles move far (many rebuilds): compare with the brute force. */
 void testMovingParticles() {
     Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VB, true, 71);
     VerletIntegrator integrator(0.001);
@@ -340,7 +340,7 @@ void testMovingParticles() {
 }
 
 /**
- * Forces are a pure function of the positions: two Contexts whose neighbour lists were built at different
+ * Forces are a pure function of the positions: two Contexts whose neighbor lists were built at different
  * configurations give bitwise identical forces at the same positions (needed for bit-for-bit continuation from a
  * checkpoint, where the list is rebuilt at another step than in the uninterrupted run).
  */

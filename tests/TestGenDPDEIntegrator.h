@@ -129,7 +129,7 @@ void testConservationLaws() {
 
 /**
  * Same seed, same trajectory (bitwise); another seed, another trajectory. The trajectory does not depend on when
- * the neighbour lists were built: run b is interrupted by an evaluation at far-away positions (forcing the lists to
+ * the neighbor lists were built: run b is interrupted by an evaluation at far-away positions (forcing the lists to
  * be rebuilt at other steps than in run a) and still follows run a bit for bit, because the pairs are visited in
  * canonical order with displacements and random numbers that are pure functions of the configuration.
  */
@@ -182,7 +182,7 @@ void testCheckpointContinuation() {
 /**
  * An internal energy that would become <= 0 stops the run naming the particle and the step, leaving the Context as
  * it was before that step. Particle 17 is nearly at 0 K: conduction (proportional to 1/theta) draws so much heat
- * from its first neighbour in pair order that the neighbour's eps turns negative; that neighbour is named.
+ * from its first neighbor in pair order that the neighbor's eps turns negative; that neighbor is named.
  */
 void testNonPositiveInternalEnergy() {
     Run run(4, 4);

@@ -64,7 +64,7 @@ inline Scene makeLatticeLiquid(int cellsPerSide, double density, double jitter, 
     return scene;
 }
 
-/** Far-apart dimers of random length < cutoff: a dilute gas in which every particle still has a neighbour. */
+/** Far-apart dimers of random length < cutoff: a dilute gas in which every particle still has a neighbor. */
 inline Scene makeDimerGas(int numDimers, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
     Scene scene = makeScene(2*numDimers, estimator, periodic);
     int side = (int) std::ceil(std::cbrt((double) numDimers));
@@ -83,7 +83,7 @@ inline Scene makeDimerGas(int numDimers, GenDPDEForce::DensityEstimator estimato
     return scene;
 }
 
-/** Uniformly random positions at `density` (nm^-3): with VB some particles may have no neighbour at all. */
+/** Uniformly random positions at `density` (nm^-3): with VB some particles may have no neighbor at all. */
 inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
     Scene scene = makeScene(numParticles, estimator, periodic);
     double edge = std::cbrt(numParticles/density);

@@ -189,5 +189,5 @@ def test_isolated_particle_under_va_names_the_particle(platform):
     force.setNonbondedMethod(GenDPDEForce.CutoffNonPeriodic)
     positions[13] = [100.0, 100.0, 100.0]
     context = make_context(system, positions, platform)
-    with pytest.raises(openmm.OpenMMException, match="particle 13 has no neighbour"):
+    with pytest.raises(openmm.OpenMMException, match="particle 13 has no neighbor"):
         context.getState(getEnergy=True)

@@ -11,7 +11,7 @@
  * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).      *
  * -------------------------------------------------------------------------- */
 
-#include "VolumeVBPolynomials.h"
+#include "VolumeVBTables.h"
 #include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>
@@ -44,9 +44,6 @@ public:
     double derivative(double r) const {
         return r < cutoff ? derivativeScale*(1.0 - r*inverseCutoff) : 0.0;
     }
-    double getCutoff() const {
-        return cutoff;
-    }
 private:
     double cutoff, inverseCutoff, valueScale, derivativeScale;
 };
@@ -73,17 +70,17 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  *
  * Three branches, each accurate to a few ulp over its range (checked against 40-digit quadrature in the tests):
  *  - 1/16 <= k < 16, the range of liquids: piecewise polynomials of degree 13 in a local variable, 4 pieces per
- *    octave, generated at 60 digits by tools/generate_vb_polynomials.py (VolumeVBPolynomials.h; max error 1e-16
- *    before rounding in the evaluation). The piece comes from the bits of k; no division, no transcendental
+ *    octave, generated at 60 digits by tools/generate_vb_tables.py (VolumeVBTables.h; max error 1e-16 before
+ *    rounding in the evaluation). The piece comes from the bits of k; no division, no transcendental
  *    function, so V-B costs a few ns more than V-A per particle.
  *  - k < 1/16: the closed forms of docs/theory.md section 3, with ln((k+1)/k) written as log1p(k) - log(k) so
  *    that no intermediate overflows for subnormal k (max 2e-15 relative there). They lose digits to cancellation as k grows (two near
  *    k = 1) and are useless for large k (at k = 1e5 the fifth digit of V is wrong).
- *  - k >= 16: 24-point Gauss-Legendre quadrature of the integrands themselves. The integrands are positive (no
- *    cancellation) and analytic within sqrt(k) of [0, 1], so the rule converges to rounding error (max 1e-15
- *    relative for 0.1 <= k <= 1e12). The weight y^2 (1-y)^2 is symmetric about 1/2, so the nodes come in mirror
- *    pairs y, 1-y sharing one coefficient.
- *  - k = 0 (no neighbour in range): I = 1/3 exactly and J = +infinity (dV/dn0 diverges like k^-1/2). The
+ *  - k >= 16: 24-point Gauss-Legendre quadrature of the integrands themselves (nodes and weights generated at 60
+ *    digits by the same tool). The integrands are positive (no cancellation) and analytic within sqrt(k) of [0, 1],
+ *    so the rule converges to rounding error (max 1.8e-16 relative for 16 <= k <= 1e12 in the tests). The weight
+ *    y^2 (1-y)^2 is symmetric about 1/2, so the nodes come in mirror pairs y, 1-y sharing one coefficient.
+ *  - k = 0 (no neighbor in range): I = 1/3 exactly and J = +infinity (dV/dn0 diverges like k^-1/2). The
  *    derivative only ever multiplies w'(r) of a pair in range, and any such pair makes k > 0.
  */
 struct VolumeIntegralsVB {
@@ -95,17 +92,34 @@ namespace VolumeVBPolynomials {
  * Both polynomials of one piece at t, as one two-lane vector (I, J), by Estrin's scheme: the 14 coefficients are
  * combined pairwise with t, then t^2, t^4, t^8, so the dependency chain is 4 steps deep instead of 13.
  */
-inline VolumeIntegralsVB evaluate(const double (*c)[2], double t) {
-    static_assert(degree == 13, "Estrin evaluation below is written for 14 coefficients");
-    typedef double Lanes __attribute__((vector_size(16)));
-    auto load = [&](int p) { return Lanes{c[p][0], c[p][1]}; };
+template <class Lanes, class Load>
+inline Lanes estrin13(Load load, double t) {
     const double t2 = t*t, t4 = t2*t2, t8 = t4*t4;
     Lanes a[7];
     for (int q = 0; q < 7; q++)
         a[q] = load(2*q) + load(2*q + 1)*t;
     const Lanes b0 = a[0] + a[1]*t2, b1 = a[2] + a[3]*t2, b2 = a[4] + a[5]*t2;
-    const Lanes result = (b0 + b1*t4) + (b2 + a[6]*t4)*t8;
+    return (b0 + b1*t4) + (b2 + a[6]*t4)*t8;
+}
+
+/** Both polynomials of one piece at t in portable C++, one after the other. */
+inline VolumeIntegralsVB evaluatePortable(const double (*c)[2], double t) {
+    static_assert(degree == 13, "Estrin evaluation is written for 14 coefficients");
+    return {estrin13<double>([&](int p) { return c[p][0]; }, t), estrin13<double>([&](int p) { return c[p][1]; }, t)};
+}
+
+/**
+ * Both polynomials of one piece at t: with GCC or Clang as one two-lane SIMD vector (the same operations on both
+ * lanes, so bit-identical to evaluatePortable, which tests/TestVolumeVB.cpp checks), with other compilers portably.
+ */
+inline VolumeIntegralsVB evaluate(const double (*c)[2], double t) {
+#if defined(__GNUC__)
+    typedef double Lanes __attribute__((vector_size(16)));
+    const Lanes result = estrin13<Lanes>([&](int p) { return Lanes{c[p][0], c[p][1]}; }, t);
     return {result[0], result[1]};
+#else
+    return evaluatePortable(c, t);
+#endif
 }
 } // namespace VolumeVBPolynomials
 
@@ -134,24 +148,10 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
         double J = 1.5 - logarithm + (1.0 - 3.0*k)/(2.0*s)*arctangent;
         return {I, J};
     }
-    // Above the polynomial range, k >= 16. Gauss-Legendre on [0,1]: y_m^2, (1-y_m)^2 and w_m y_m^2 (1-y_m)^2 for the 12 nodes with y_m < 1/2
-    // (computed with 40-digit arithmetic; twice the sum of the coefficients is 1/30 = int_0^1 y^2 (1-y)^2 dy,
-    // which the rule integrates exactly).
-    static const double nodeSquared[12] = {
-        0.00000579071283926776907867, 0.000159661470823809205011, 0.000952507732615835627928, 0.00322535812642198767413,
-        0.00809982126333476010992, 0.0168838589506749786045, 0.0309595194517636246306, 0.0516604096685719082195,
-        0.0801474480016043511867, 0.117291632659453160422, 0.163572171639291273926, 0.218997374949500020858};
-    static const double mirrorNodeSquared[12] = {
-        0.995193010709860627949, 0.974888217442133307403, 0.939227059735348594152, 0.889640885130823021887,
-        0.828101807237237682064, 0.757008050529229342848, 0.679053171388739193883, 0.597081881057411443878,
-        0.513940955627649489674, 0.432334312355616534809, 0.354691039112907583085, 0.283054267812105646943};
-    static const double coefficient[12] = {
-        0.0000000355604943415926234311, 0.00000222048508806584110291, 0.0000198057641170421793317,
-        0.0000850759898639369712728, 0.000245984904849176473889, 0.000550807585352124152516,
-        0.00102612626466083681221, 0.00165708582581652888558, 0.00237890022154458343302,
-        0.0030849060117361878609, 0.00365039256732031661765, 0.00396532548582352584658};
+    // Above the polynomial range, k >= 16: Gauss-Legendre quadrature (VolumeVBTables.h).
+    using namespace VolumeVBQuadrature;
     double I = 0.0, J = 0.0;
-    for (int m = 0; m < 12; m++) {
+    for (int m = 0; m < numPairs; m++) {
         double a = 1.0/(nodeSquared[m] + k);
         double b = 1.0/(mirrorNodeSquared[m] + k);
         I += coefficient[m]*(a + b);
@@ -210,20 +210,6 @@ public:
         freeEnergy = (bulkModulus - referencePressure)/density
                    + bulkModulus/((exponent - 1.0)*referenceDensity)*xPowGammaMinusOne;
     }
-    double pressure(double density) const {
-        double p, f;
-        evaluate(density, p, f);
-        return p;
-    }
-    double freeEnergy(double density) const {
-        double p, f;
-        evaluate(density, p, f);
-        return f;
-    }
-    /** The density that minimises f(n) with V-A: n0 (1 - pi0/B_T)^(1/gamma_T); NaN if pi0 >= B_T. */
-    double freeEnergyMinimumDensity() const {
-        return referenceDensity*std::pow(1.0 - referencePressure/bulkModulus, 1.0/exponent);
-    }
 private:
     /** x^p for a non-negative integer p, by binary powering. */
     static double power(double x, int p) {
@@ -241,11 +227,11 @@ private:
 };
 
 /**
- * The dissipation weights of docs/theory.md section 5 (unnormalised, same cutoff R as the density weight):
- * omega_R(r) = 1 - r/R (random forces and random heat flux), omega_D = omega_q = omega_R^2.
+ * The weight of the random forces and of the random heat flux of docs/theory.md section 5 for a pair in range
+ * (r < R): omega_R(r) = 1 - r/R. The dissipative and conductive weights are omega_D = omega_q = omega_R^2.
  */
 inline double randomWeight(double r, double cutoff) {
-    return r < cutoff ? 1.0 - r/cutoff : 0.0;
+    return 1.0 - r/cutoff;
 }
 
 /**
@@ -292,9 +278,9 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
  * (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it vanishes.
  */
 struct PairTemperatures {
-    double pairTemperature;            // k_B Theta_ij, 1/Theta_ij = (1/theta_i + 1/theta_j)/2 (energy)
+    double pairThermalEnergy;              // k_B Theta_ij, 1/Theta_ij = (1/theta_i + 1/theta_j)/2 (energy)
     double inverseTemperatureDifference;   // 1/theta_i - 1/theta_j (1/temperature)
-    double frictionFactor;             // the Ito term above (dimensionless)
+    double frictionFactor;                 // the Ito term above (dimensionless)
 };
 
 inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacity, double boltzmann) {

@@ -89,9 +89,9 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
         cellParticles[fill[particleCell[i]]++] = i;
 
     // For each dimension and cell coordinate, the distinct cells within one step (with wrap-around if periodic).
-    std::array<std::vector<std::vector<int>>, 3> neighbourCells;
+    std::array<std::vector<std::vector<int>>, 3> neighborCells;
     for (int k = 0; k < 3; k++) {
-        neighbourCells[k].resize(numCells[k]);
+        neighborCells[k].resize(numCells[k]);
         for (int c = 0; c < numCells[k]; c++)
             for (int offset = -1; offset <= 1; offset++) {
                 int n = c + offset;
@@ -99,7 +99,7 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
                     n = (n + numCells[k]) % numCells[k];
                 else if (n < 0 || n >= numCells[k])
                     continue;
-                std::vector<int>& cells = neighbourCells[k][c];
+                std::vector<int>& cells = neighborCells[k][c];
                 if (std::find(cells.begin(), cells.end(), n) == cells.end())
                     cells.push_back(n);
             }
@@ -114,11 +114,11 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
         size_t first = candidates.size();
-        for (int nx : neighbourCells[0][cx])
-            for (int ny : neighbourCells[1][cy])
-                for (int nz : neighbourCells[2][cz]) {
-                    int neighbour = (nx*numCells[1] + ny)*numCells[2] + nz;
-                    for (int m = cellStart[neighbour]; m < cellStart[neighbour + 1]; m++) {
+        for (int nx : neighborCells[0][cx])
+            for (int ny : neighborCells[1][cy])
+                for (int nz : neighborCells[2][cz]) {
+                    int neighborCell = (nx*numCells[1] + ny)*numCells[2] + nz;
+                    for (int m = cellStart[neighborCell]; m < cellStart[neighborCell + 1]; m++) {
                         int j = cellParticles[m];
                         if (j <= i)
                             continue;
@@ -134,7 +134,6 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
     for (int k = 0; k < 3; k++)
         builtBox[k] = box.getVectors()[k];
     built = true;
-    numBuilds++;
 }
 
 template <class Displacement>
@@ -149,18 +148,16 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement) {
         for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
             const int j = candidates[m];
             const Vec3 d = displacement(i, j);
-            const double r2 = d.dot(d);
-            if (r2 < cutoff2) {
+            if (d.dot(d) < cutoff2) {
                 ParticlePair& pair = pairs[numPairs++];
                 pair.i = i;
                 pair.j = j;
                 pair.delta = d;
-                pair.r = r2;
             }
         }
-    // Square roots in a pass of their own: independent, so they pipeline instead of stalling the search above.
+    // Distances in a pass of their own: independent square roots pipeline instead of stalling the search above.
     for (size_t k = 0; k < numPairs; k++)
-        pairs[k].r = std::sqrt(pairs[k].r);
+        pairs[k].r = std::sqrt(pairs[k].delta.dot(pairs[k].delta));
 }
 
 PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) {

@@ -108,20 +108,6 @@ public:
     PairView getPairs() const {
         return PairView(pairs.data(), numPairs);
     }
-    double getCutoff() const {
-        return cutoff;
-    }
-    bool isPeriodic() const {
-        return periodic;
-    }
-    /** How many times the candidate list has been built (for tests and benchmarks). */
-    long long getNumBuilds() const {
-        return numBuilds;
-    }
-    /** Forget the candidate list so that the next update() rebuilds it. */
-    void invalidate() {
-        built = false;
-    }
 private:
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
     void build(const std::vector<OpenMM::Vec3>& positions);
@@ -130,7 +116,6 @@ private:
     void collectPairs(int numParticles, Displacement displacement);
     double cutoff, skin;
     bool periodic, built = false;
-    long long numBuilds = 0;
     PeriodicBox box;                               // the current box
     OpenMM::Vec3 builtBox[3];                      // the box when the candidates were built
     std::vector<OpenMM::Vec3> builtPositions;

@@ -70,7 +70,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         if (estimator == GenDPDEForce::VA && n0 == 0.0) {
             std::ostringstream message;
             message.precision(12);
-            message << "GenDPDEForce: particle " << i << " has no neighbour within the cutoff (" << cutoff
+            message << "GenDPDEForce: particle " << i << " has no neighbor within the cutoff (" << cutoff
                     << " nm) at step " << context.getStepCount() << ", so its VA volume 1/n0 is undefined. "
                     << "Use the VB estimator, a larger cutoff or a denser system";
             throw OpenMMException(message.str());
@@ -83,7 +83,6 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
         forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
     }
-    numEvaluations++;
     return energy;
 }
 

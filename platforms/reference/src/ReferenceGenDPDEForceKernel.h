@@ -23,13 +23,9 @@ public:
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) override;
-    /** The neighbour list; its pairs are those of the most recent evaluation. */
+    /** The neighbor list; its pairs are those of the most recent evaluation. */
     const NeighborList& getNeighborList() const {
         return *neighborList;
-    }
-    /** How many times forces or energies have been evaluated. */
-    long long getNumEvaluations() const {
-        return numEvaluations;
     }
 private:
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
@@ -42,7 +38,6 @@ private:
     double referenceDensity, referencePressure, bulkModulus, exponent;
     GenDPDEForce::DensityEstimator estimator;
     bool periodic;
-    long long numEvaluations = 0;
     std::unique_ptr<NeighborList> neighborList;
     // Per particle, at the positions of the last evaluation.
     std::vector<double> primitiveDensity, volume, pressure;

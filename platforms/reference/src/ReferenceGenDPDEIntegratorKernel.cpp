@@ -97,13 +97,13 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
-        const double omegaR = 1.0 - pair.r/cutoff;
+        const double omegaR = Physics::randomWeight(pair.r, cutoff);
         CounterRandom::PairStream random(seed, step, i, j);
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(internalEnergies[i],
                 internalEnergies[j], heatCapacity, Physics::Boltzmann);
         if (withMomenta) {
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
-                    friction*(1.0 + temperatures.frictionFactor), std::sqrt(2.0*friction*temperatures.pairTemperature),
+                    friction*(1.0 + temperatures.frictionFactor), std::sqrt(2.0*friction*temperatures.pairThermalEnergy),
                     dt, sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
             internalEnergies[i] -= 0.5*kineticChange;
             internalEnergies[j] -= 0.5*kineticChange;
@@ -134,7 +134,8 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(seed, step, i, j);
-        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), 1.0 - pair.r/cutoff, friction, noiseAmplitude, dt,
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::randomWeight(pair.r, cutoff), friction,
+                                       noiseAmplitude, dt,
                                        sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
                                        random.normal());
     }

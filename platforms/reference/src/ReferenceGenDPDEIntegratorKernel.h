@@ -14,7 +14,7 @@ class ReferenceCalcGenDPDEForceKernel;
 /**
  * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md section 5): half kick, pair sweep
  * at fixed positions, half kick, drift. The pairs come from the System's GenDPDEForce when it has just been
- * evaluated at these positions with the same cutoff (no second neighbour search), else from a neighbour list of
+ * evaluated at these positions with the same cutoff (no second neighbor search), else from a neighbor list of
  * the integrator's own.
  */
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {

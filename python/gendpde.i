@@ -36,6 +36,7 @@ static int isNumpyAvailable() {
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/LiquidArgon.h"
 #include <cstring>
 %}
 
@@ -132,6 +133,9 @@ RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
         return dynamic_cast<GenDPDEPlugin::GenDPDEIntegrator*>(&integrator) != NULL;
     }
 }
+
+/* The liquid-argon model's numbers (one home, read by openmmgendpde.presets). */
+%include "internal/LiquidArgon.h"
 
 /* The pointwise physics of docs/theory.md, exactly as the kernels evaluate it (any consistent units). */
 %inline %{

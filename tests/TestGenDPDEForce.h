@@ -78,20 +78,7 @@ void checkAgainstBruteForce(Scene& scene, const std::string& label) {
 }
 
 void testAgainstBruteForce() {
-    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
-        for (bool periodic : {true, false}) {
-            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB") + (periodic ? " periodic" : " open");
-            Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, periodic, 1);
-            checkAgainstBruteForce(liquid, label + " liquid");
-            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, 0.15, estimator, periodic, 2);
-            checkAgainstBruteForce(compressed, label + " compressed");
-            Scene dimers = makeDimerGas(27, estimator, periodic, 3);
-            checkAgainstBruteForce(dimers, label + " dimers");
-            if (estimator == GenDPDEForce::VB) {
-                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, 4);
-                checkAgainstBruteForce(gas, label + " dilute");
-            }
-        }
+    forEachStandardScene(0.15, 1, checkAgainstBruteForce);
 }
 
 /** Both ways of raising (n/n0) to gamma_T - 1: multiplications for integer exponents, pow() otherwise. */
@@ -137,20 +124,7 @@ void checkFiniteDifferences(Scene& scene, const std::string& label) {
 }
 
 void testFiniteDifferences() {
-    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
-        for (bool periodic : {true, false}) {
-            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB") + (periodic ? " periodic" : " open");
-            Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, periodic, 11);
-            checkFiniteDifferences(liquid, label + " liquid");
-            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, 0.2, estimator, periodic, 12);
-            checkFiniteDifferences(compressed, label + " compressed");
-            Scene dimers = makeDimerGas(27, estimator, periodic, 13);
-            checkFiniteDifferences(dimers, label + " dimers");
-            if (estimator == GenDPDEForce::VB) {
-                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, 14);
-                checkFiniteDifferences(gas, label + " dilute");
-            }
-        }
+    forEachStandardScene(0.2, 11, checkFiniteDifferences);
 }
 
 /** Sum of forces vanishes; energy is invariant under translation, rotation (open) and periodic image shifts. */

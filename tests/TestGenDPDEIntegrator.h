@@ -22,15 +22,17 @@ namespace IntegratorTests {
 
 using namespace TestScenes;
 
-// Liquid argon (docs/theory.md section 9) at R* = 1.6839 in OpenMM units.
-const double timeUnit = 0.8961581347;                    // ps
-const double temperatureUnit = 11371.4587;               // K
-const double boltzmann = 0.00831446261815324;            // kJ/mol/K
-const double friction = 7.37*200.0/timeUnit;             // gamma* = 7.37 (amu/ps)
-const double heatConduction = 0.0025*94.54761*temperatureUnit/timeUnit;   // kappa* = 0.0025 (kJ K/(mol ps))
-const double heatCapacity = 12.51*boltzmann;             // C_V* = 12.51 k_B (kJ/(mol K))
-const double temperature = 0.011054*temperatureUnit;     // T0* (K)
-const double stepSize = 0.01*timeUnit;                   // dt* = 0.01 (ps)
+// Liquid argon (internal/LiquidArgon.h) at R* = 1.6839 in OpenMM units.
+const double boltzmann = Physics::Boltzmann;                                           // kJ/(mol K)
+const double energyUnit = LiquidArgon::energy*6.02214076e23/1000.0;                    // u (kJ/mol)
+const double timeUnit = lengthUnit*std::sqrt(particleMass/energyUnit);                 // L sqrt(m/u) (ps)
+const double temperatureUnit = energyUnit/boltzmann;                                   // u/k_B (K)
+const LiquidArgonCutoff argonCutoff = LiquidArgon::getCutoff(1);                       // R* = 1.6839
+const double friction = argonCutoff.friction*particleMass/timeUnit;                    // gamma (amu/ps)
+const double heatConduction = argonCutoff.heatConduction*energyUnit*temperatureUnit/timeUnit;   // kJ K/(mol ps)
+const double heatCapacity = LiquidArgon::heatCapacity*boltzmann;                       // C_V (kJ/(mol K))
+const double temperature = LiquidArgon::temperature*temperatureUnit;                   // T0 (K)
+const double stepSize = 0.01*timeUnit;                                                 // dt* = 0.01 (ps)
 
 struct Run {
     Scene scene;
@@ -114,7 +116,7 @@ void testConservationLaws() {
     // No conservative force: K + sum eps is conserved by every step to rounding error.
     System free;
     for (int i = 0; i < run.scene.system.getNumParticles(); i++)
-        free.addParticle(200.0);
+        free.addParticle(particleMass);
     free.setDefaultPeriodicBoxVectors(run.scene.box[0], run.scene.box[1], run.scene.box[2]);
     GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
     integrator.setTemperature(temperature);
@@ -273,7 +275,7 @@ void testHeatConduction() {
     Scene scene = makeLatticeLiquid(4, referenceDensity, 0.1, GenDPDEForce::VB, true, 8);
     System free;
     for (int i = 0; i < scene.system.getNumParticles(); i++)
-        free.addParticle(200.0);
+        free.addParticle(particleMass);
     free.setDefaultPeriodicBoxVectors(scene.box[0], scene.box[1], scene.box[2]);
     const double capacity = 1000*boltzmann;
     GenDPDEIntegrator integrator(stepSize, 0.0, capacity*150.0*150.0/0.15, capacity);

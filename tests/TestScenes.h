@@ -4,9 +4,12 @@
 /* Small liquid-argon-like Systems shared by the C++ tests (docs/theory.md section 9 in OpenMM units). */
 
 #include "GenDPDEForce.h"
+#include "internal/LiquidArgon.h"
 #include "OpenMM.h"
 #include <cmath>
+#include <functional>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace TestScenes {
@@ -15,10 +18,11 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 
-// Liquid argon at R* = 1.6839 in OpenMM units (docs/theory.md section 9).
-const double lengthUnit = 0.61616;
-const double cutoff = 1.6839*lengthUnit;
-const double referenceDensity = 1.0/(lengthUnit*lengthUnit*lengthUnit);
+// Liquid argon (internal/LiquidArgon.h) at R* = 1.6839 in OpenMM units.
+const double lengthUnit = LiquidArgon::length;                                   // nm
+const double cutoff = LiquidArgon::getCutoff(1).cutoff*lengthUnit;               // nm
+const double referenceDensity = LiquidArgon::density/(lengthUnit*lengthUnit*lengthUnit);   // nm^-3
+const double particleMass = LiquidArgon::particleMass*6.02214076e23*1000.0;     // amu
 
 /** A System with only a GenDPDEForce, and positions. */
 struct Scene {
@@ -35,7 +39,7 @@ inline Scene makeScene(int numParticles, GenDPDEForce::DensityEstimator estimato
     scene.force->setCutoffScaling(cutoffScaling);
     scene.force->setNonbondedMethod(periodic ? GenDPDEForce::CutoffPeriodic : GenDPDEForce::CutoffNonPeriodic);
     for (int i = 0; i < numParticles; i++)
-        scene.system.addParticle(200.0);
+        scene.system.addParticle(particleMass);
     scene.system.addForce(scene.force);
     return scene;
 }
@@ -93,6 +97,31 @@ inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::Densi
     for (int i = 0; i < numParticles; i++)
         scene.positions.push_back(Vec3(uniform(random), uniform(random), uniform(random)));
     return scene;
+}
+
+/**
+ * The scenes that every force test runs through: V-A and V-B, periodic and open, each as a liquid (216 particles
+ * on a jittered lattice at n0), a compressed liquid (343 particles at 5 n0), a gas of 27 dimers and (V-B only, which
+ * allows isolated particles) a dilute random gas at 0.1 n0. `jitter` is the lattice jitter (fraction of the
+ * spacing); the four scenes use seeds firstSeed ... firstSeed + 3. check(scene, label) is called on each.
+ */
+inline void forEachStandardScene(double jitter, unsigned firstSeed,
+                                 const std::function<void(Scene&, const std::string&)>& check) {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
+        for (bool periodic : {true, false}) {
+            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB")
+                                + (periodic ? " periodic" : " open");
+            Scene liquid = makeLatticeLiquid(6, referenceDensity, jitter, estimator, periodic, firstSeed);
+            check(liquid, label + " liquid");
+            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, jitter, estimator, periodic, firstSeed + 1);
+            check(compressed, label + " compressed");
+            Scene dimers = makeDimerGas(27, estimator, periodic, firstSeed + 2);
+            check(dimers, label + " dimers");
+            if (estimator == GenDPDEForce::VB) {
+                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, firstSeed + 3);
+                check(gas, label + " dilute");
+            }
+        }
 }
 
 } // namespace TestScenes

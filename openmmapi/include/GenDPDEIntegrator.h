@@ -157,6 +157,7 @@ protected:
 private:
     void requireTemperatures() const;
     double friction, heatConduction, heatCapacity, cutoff, temperature;
+    double pairRange = 0.0;   // the range of the pair terms in the bound Context (nm); 0 if unknown
     int randomSeed;
     Mode mode;
     bool temperaturesSet;

@@ -3,6 +3,7 @@
 
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
 #include "openmm/KernelImpl.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
@@ -55,8 +56,15 @@ public:
      */
     virtual void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                             const std::vector<double>& internalEnergies) = 0;
-    /** One step; the forces at the current positions (integration groups) have just been computed. */
-    virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
+    /**
+     * One step. The forces of the integration groups at the current positions have just been computed.
+     *
+     * @param terms            what the step contains (GenDPDEIntegratorUtilities::stepTerms)
+     * @param pairListSource   a GenDPDEForce among those just evaluated whose pairs (cutoff = the pair range) the
+     *                         sweep may reuse, or null: then the kernel finds the pairs itself
+     */
+    virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                         const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) = 0;
     /** The kinetic energy with on-step velocities v + (dt/2) F/m (kJ/mol). */
     virtual double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
     virtual const std::vector<double>& getInternalEnergies() const = 0;

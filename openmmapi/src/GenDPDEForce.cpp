@@ -1,5 +1,6 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/LiquidArgon.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include <sstream>
@@ -9,17 +10,18 @@ using namespace OpenMM;
 using namespace ParameterChecks;
 
 namespace {
-// Default Tait parameters: liquid argon of docs/theory.md section 9 converted to OpenMM units.
-const double argonLength = 0.61616;                                     // L (nm), so that n0* = 1
-const double argonEnergy = 1.5700e-19*6.02214076e23/1000.0;             // u (kJ/mol)
+// Default Tait parameters: liquid argon (internal/LiquidArgon.h) converted to OpenMM units.
+const double argonLength = LiquidArgon::length;                                        // L (nm)
+const double argonEnergy = LiquidArgon::energy*6.02214076e23/1000.0;                   // u (kJ/mol)
 const double argonPressureUnit = argonEnergy/(argonLength*argonLength*argonLength);   // u/L^3 (kJ/mol/nm^3)
-const double argonPressure = 0.12711, argonTemperature = 0.011054;      // P0*, T0* (reduced)
 }
 
 GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0),
-        referenceDensity(1.0/(argonLength*argonLength*argonLength)),
-        referencePressure((argonPressure - argonTemperature)*argonPressureUnit),   // pi0* = P0* - n0* T0*
-        bulkModulus(argonPressureUnit/6.0), exponent(6.0),
+        referenceDensity(LiquidArgon::density/(argonLength*argonLength*argonLength)),
+        // pi0* = P0* - n0* T0*
+        referencePressure((LiquidArgon::pressure - LiquidArgon::density*LiquidArgon::temperature)*argonPressureUnit),
+        bulkModulus(argonPressureUnit/(LiquidArgon::taitExponent*LiquidArgon::compressibility)),   // 1/(gamma_T kappa_T0)
+        exponent(LiquidArgon::taitExponent),
         nonbondedMethod(CutoffPeriodic), estimator(VB) {
     setCutoffDistance(cutoff);
 }

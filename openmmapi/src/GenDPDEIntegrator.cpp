@@ -2,6 +2,7 @@
 #include "GenDPDEForce.h"
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
@@ -172,18 +173,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
                               + std::to_string(system.getNumConstraints()));
     const int numParticles = system.getNumParticles();
 
-    // The range of the pair terms: set explicitly, else that of the System's GenDPDEForce (0: unknown).
-    double range = cutoff;
-    if (range == 0.0)
-        for (int i = 0; i < system.getNumForces(); i++) {
-            const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
-            if (force == nullptr)
-                continue;
-            if (range != 0.0 && range != force->getCutoffDistance())
-                throw OpenMMException("GenDPDEIntegrator: the System has GenDPDEForces with different cutoffs; "
-                                      "call setCutoffDistance() to choose the range of the pair terms");
-            range = force->getCutoffDistance();
-        }
+    const double range = GenDPDEIntegratorUtilities::pairRange(system, *this);
     if (range > 0.0 && system.usesPeriodicBoundaryConditions()) {
         Vec3 box[3];
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
@@ -203,6 +193,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     }
     kernel = contextRef.getPlatform().createKernel(IntegrateGenDPDEStepKernel::Name(), contextRef);
     kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies);
+    pairRange = range;
     context = &contextRef;
     owner = &contextRef.getOwner();
 }
@@ -227,10 +218,17 @@ void GenDPDEIntegrator::step(int steps) {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
     requireTemperatures();
+    const GenDPDEStepTerms terms = GenDPDEIntegratorUtilities::stepTerms(*this);
+    if (terms.pairSweep && pairRange == 0.0)
+        throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
+                              "GenDPDEForce; call setCutoffDistance()");
     for (int i = 0; i < steps; i++) {
         context->updateContextState();
         context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
-        kernel.getAs<IntegrateGenDPDEStepKernel>().execute(*context, *this);
+        // The forces of the integration groups were evaluated just now: a GenDPDEForce among them has its pairs.
+        GenDPDEForceImpl* pairListSource = terms.pairSweep
+                ? GenDPDEIntegratorUtilities::findPairListSource(*context, *this, pairRange) : nullptr;
+        kernel.getAs<IntegrateGenDPDEStepKernel>().execute(*context, *this, terms, pairListSource);
     }
 }
 

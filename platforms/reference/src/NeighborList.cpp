@@ -33,12 +33,20 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
 }
 
 void NeighborList::build(const std::vector<Vec3>& positions) {
-    const int numParticles = positions.size();
-    const double listCutoff = cutoff + skin;
-
-    // Unit cell coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
-    std::vector<Vec3> unit(numParticles);
     Vec3 extent;
+    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent);
+    sortIntoCells(unit, extent);
+    collectCandidates(periodic ? wrappedPositions : positions);
+    builtPositions = positions;
+    for (int k = 0; k < 3; k++)
+        builtBox[k] = box.getVectors()[k];
+    built = true;
+}
+
+std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent) const {
+    // Coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
+    const int numParticles = positions.size();
+    std::vector<Vec3> unit(numParticles);
     if (periodic) {
         extent = BoxGeometry::perpendicularWidths(box.getVectors());
         for (int i = 0; i < numParticles; i++) {
@@ -46,23 +54,26 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
             for (int k = 0; k < 3; k++)
                 unit[i][k] = s[k] - std::floor(s[k]);
         }
+        return unit;
     }
-    else {
-        Vec3 low = numParticles > 0 ? positions[0] : Vec3(), high = low;
-        for (const Vec3& r : positions)
-            for (int k = 0; k < 3; k++) {
-                low[k] = std::min(low[k], r[k]);
-                high[k] = std::max(high[k], r[k]);
-            }
+    Vec3 low = numParticles > 0 ? positions[0] : Vec3(), high = low;
+    for (const Vec3& r : positions)
+        for (int k = 0; k < 3; k++) {
+            low[k] = std::min(low[k], r[k]);
+            high[k] = std::max(high[k], r[k]);
+        }
+    for (int k = 0; k < 3; k++)
+        extent[k] = high[k] - low[k];
+    for (int i = 0; i < numParticles; i++)
         for (int k = 0; k < 3; k++)
-            extent[k] = high[k] - low[k];
-        for (int i = 0; i < numParticles; i++)
-            for (int k = 0; k < 3; k++)
-                unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
-    }
+            unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
+    return unit;
+}
 
-    // Cells at least listCutoff wide; no more cells than are useful for this many particles.
-    std::array<int, 3> numCells;
+void NeighborList::sortIntoCells(const std::vector<Vec3>& unit, const Vec3& extent) {
+    const int numParticles = unit.size();
+    // Cells at least cutoff + skin wide; no more cells than are useful for this many particles.
+    const double listCutoff = cutoff + skin;
     for (int k = 0; k < 3; k++)
         numCells[k] = std::max(1, (int) std::min(1.0e4, std::floor(extent[k]/listCutoff)));
     const double maxCells = std::max(27.0, 2.0*numParticles);
@@ -87,7 +98,9 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
     std::vector<int> fill(cellStart.begin(), cellStart.end() - 1);
     for (int i = 0; i < numParticles; i++)
         cellParticles[fill[particleCell[i]]++] = i;
+}
 
+std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimension() const {
     // For each dimension and cell coordinate, the distinct cells within one step (with wrap-around if periodic).
     std::array<std::vector<std::vector<int>>, 3> neighborCells;
     for (int k = 0; k < 3; k++) {
@@ -104,12 +117,16 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
                     cells.push_back(n);
             }
     }
+    return neighborCells;
+}
 
-    // Candidates of each particle: all j > i whose nearest image is within listCutoff, sorted.
+void NeighborList::collectCandidates(const std::vector<Vec3>& r) {
+    // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted.
+    const int numParticles = r.size();
+    const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
+    const double listCutoff = cutoff + skin, listCutoff2 = listCutoff*listCutoff;
     candidateStart.assign(numParticles + 1, 0);
     candidates.clear();
-    const double listCutoff2 = listCutoff*listCutoff;
-    const std::vector<Vec3>& r = periodic ? wrappedPositions : positions;
     for (int i = 0; i < numParticles; i++) {
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
@@ -130,10 +147,6 @@ void NeighborList::build(const std::vector<Vec3>& positions) {
         std::sort(candidates.begin() + first, candidates.end());
         candidateStart[i + 1] = candidates.size();
     }
-    builtPositions = positions;
-    for (int k = 0; k < 3; k++)
-        builtBox[k] = box.getVectors()[k];
-    built = true;
 }
 
 template <class Displacement>

@@ -2,6 +2,7 @@
 #define GENDPDE_NEIGHBOR_LIST_H_
 
 #include "openmm/Vec3.h"
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -111,6 +112,15 @@ public:
 private:
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
     void build(const std::vector<OpenMM::Vec3>& positions);
+    /** Positions mapped into [0, 1)^3 (fractional if periodic, else the bounding box); extent: its widths (nm). */
+    std::vector<OpenMM::Vec3> unitCellCoordinates(const std::vector<OpenMM::Vec3>& positions,
+                                                  OpenMM::Vec3& extent) const;
+    /** Choose the cell grid for this extent and sort the particles into it (cellStart, cellParticles). */
+    void sortIntoCells(const std::vector<OpenMM::Vec3>& unit, const OpenMM::Vec3& extent);
+    /** For each dimension and cell coordinate, the distinct cell coordinates within one step. */
+    std::array<std::vector<std::vector<int>>, 3> neighborCellsPerDimension() const;
+    /** The candidates of each particle (j > i within cutoff + skin), from the cells around it. */
+    void collectCandidates(const std::vector<OpenMM::Vec3>& positions);
     /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
     template <class Displacement>
     void collectPairs(int numParticles, Displacement displacement);
@@ -122,6 +132,7 @@ private:
     std::vector<OpenMM::Vec3> wrappedPositions;    // positions wrapped into the box (periodic only)
     std::vector<int> candidateStart;               // candidates of i in candidates[candidateStart[i]..[i+1])
     std::vector<int> candidates;
+    std::array<int, 3> numCells;                   // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
     std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;

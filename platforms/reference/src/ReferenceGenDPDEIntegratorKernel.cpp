@@ -24,28 +24,15 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
         double mass = system.getParticleMass(i);
         inverseMasses[i] = (mass == 0.0 ? 0.0 : 1.0/mass);
     }
-    // Share the pairs of a GenDPDEForce with the same cutoff and boundary conditions.
-    for (ForceImpl* impl : context.getForceImpls()) {
-        GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
-        if (forceImpl == nullptr)
-            continue;
-        const GenDPDEForce& force = forceImpl->getOwner();
-        ReferenceCalcGenDPDEForceKernel* candidate =
-                dynamic_cast<ReferenceCalcGenDPDEForceKernel*>(&forceImpl->getKernel().getImpl());
-        if (candidate != nullptr && force.getCutoffDistance() == cutoff
-                && force.usesPeriodicBoundaryConditions() == system.usesPeriodicBoundaryConditions())
-            sharedForces.push_back({candidate, force.getForceGroup()});
-    }
     if (cutoff > 0.0)
         neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
 }
 
-PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, const GenDPDEIntegrator& integrator) {
-    // step() evaluates the forces of the integration groups right before execute(): if they include the
-    // GenDPDEForce, its pairs are those at the current positions.
-    for (const SharedForce& shared : sharedForces)
-        if ((integrator.getIntegrationForceGroups() & (1<<shared.group)) != 0)
-            return shared.kernel->getNeighborList().getPairs();
+PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEForceImpl* pairListSource) {
+    // The source, if any, was evaluated at the current positions just before this step (see execute()).
+    if (pairListSource != nullptr)
+        return dynamic_cast<ReferenceCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl())
+                .getNeighborList().getPairs();
     return neighborList->update(extractPositions(context), extractBoxVectors(context));
 }
 
@@ -83,7 +70,7 @@ const std::vector<int>& ReferenceIntegrateGenDPDEStepKernel::sweepOrder(PairView
 }
 
 bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std::vector<Vec3>& velocities,
-        const GenDPDEIntegrator& integrator, long long step, int& failedParticle) {
+        const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, long long step, int& failedParticle) {
     // docs/theory.md sections 5-7, pair by pair in sweepOrder() at fixed positions: dissipative and random momenta with
     // sigma^2 = 2 gamma k_B Theta_ij (and the Ito term of the friction, see Physics::pairTemperatures), mechanical
     // heating split equally, heat conduction, all with the particles' temperatures when the pair is reached.
@@ -91,7 +78,6 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
     const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
     const double heatCapacity = integrator.getHeatCapacity();
     const double heatNoise = std::sqrt(2.0*Physics::Boltzmann*heatConduction);
-    const bool withMomenta = friction > 0.0, withConduction = heatConduction > 0.0;
     for (int k : sweepOrder(pairs)) {
         const ParticlePair& pair = pairs[k];
         const int i = pair.i, j = pair.j;
@@ -101,14 +87,14 @@ bool ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergetic(PairView pairs, std:
         CounterRandom::PairStream random(seed, step, i, j);
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(internalEnergies[i],
                 internalEnergies[j], heatCapacity, Physics::Boltzmann);
-        if (withMomenta) {
+        if (terms.dissipation) {
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
                     friction*(1.0 + temperatures.frictionFactor), std::sqrt(2.0*friction*temperatures.pairThermalEnergy),
                     dt, sqrtDt, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
             internalEnergies[i] -= 0.5*kineticChange;
             internalEnergies[j] -= 0.5*kineticChange;
         }
-        if (withConduction) {
+        if (terms.conduction) {
             const double heat = Physics::conductiveHeat(omegaR, heatConduction, heatNoise,
                     temperatures.inverseTemperatureDifference, dt, sqrtDt, random.normal());
             internalEnergies[i] += heat;
@@ -141,56 +127,62 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
     }
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator) {
-    std::vector<Vec3>& positions = extractPositions(context);
-    std::vector<Vec3>& velocities = extractVelocities(context);
+void ReferenceIntegrateGenDPDEStepKernel::checkForcesFinite(ContextImpl& context) const {
     const std::vector<Vec3>& forces = extractForces(context);
-    const int numParticles = positions.size();
-    const double dt = integrator.getStepSize();
-    const long long step = context.getStepCount();
-    for (int i = 0; i < numParticles; i++)
+    for (size_t i = 0; i < forces.size(); i++)
         if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2]))) {
             std::ostringstream message;
             message << "GenDPDEIntegrator: the force on particle " << i << " is not finite (" << forces[i][0] << ", "
-                    << forces[i][1] << ", " << forces[i][2] << ") at step " << step << "; the step was not applied";
+                    << forces[i][1] << ", " << forces[i][2] << ") at step " << context.getStepCount()
+                    << "; the step was not applied";
             throw OpenMMException(message.str());
         }
+}
 
-    const GenDPDEIntegrator::Mode mode = integrator.getMode();
-    const bool isoenergetic = (mode == GenDPDEIntegrator::Isoenergetic);
-    const bool pairSweep = (mode == GenDPDEIntegrator::Isothermal && integrator.getFriction() > 0.0)
-            || (isoenergetic && (integrator.getFriction() > 0.0 || integrator.getHeatConduction() > 0.0));
-    if (!pairSweep)
-        kick(velocities, forces, dt);   // velocity Verlet (leapfrog form): one full kick
+void ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergeticOrRollBack(PairView pairs, std::vector<Vec3>& velocities,
+        const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, long long step) {
+    // If an internal energy would become <= 0, the velocities and internal energies go back to what execute() saved
+    // before the step (positions have not moved yet), and the error names the particle and the step.
+    int failed = -1;
+    if (sweepIsoenergetic(pairs, velocities, integrator, terms, step, failed))
+        return;
+    const double value = internalEnergies[failed];
+    velocities = savedVelocities;
+    internalEnergies = savedInternalEnergies;
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEIntegrator: the internal energy of particle " << failed << " would become " << value
+            << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or "
+            << "increase the heat capacity (the relative fluctuations of eps_i scale like sqrt(k_B/C_V))";
+    throw OpenMMException(message.str());
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                  const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
+    // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
+    // velocity Verlet (leapfrog form: one full kick).
+    checkForcesFinite(context);
+    std::vector<Vec3>& velocities = extractVelocities(context);
+    const std::vector<Vec3>& forces = extractForces(context);
+    const double dt = integrator.getStepSize();
+    if (!terms.pairSweep)
+        kick(velocities, forces, dt);
     else {
-        if (cutoff == 0.0)
-            throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
-                                  "GenDPDEForce; call setCutoffDistance()");
-        if (isoenergetic) {
+        const long long step = context.getStepCount();
+        if (terms.internalEnergies) {
             savedVelocities = velocities;
             savedInternalEnergies = internalEnergies;
         }
         kick(velocities, forces, 0.5*dt);
-        PairView pairs = currentPairs(context, integrator);
-        if (isoenergetic) {
-            int failed = -1;
-            if (!sweepIsoenergetic(pairs, velocities, integrator, step, failed)) {
-                double value = internalEnergies[failed];
-                velocities = savedVelocities;
-                internalEnergies = savedInternalEnergies;
-                std::ostringstream message;
-                message.precision(6);
-                message << "GenDPDEIntegrator: the internal energy of particle " << failed << " would become " << value
-                        << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or "
-                        << "increase the heat capacity (the relative fluctuations of eps_i scale like sqrt(k_B/C_V))";
-                throw OpenMMException(message.str());
-            }
-        }
+        PairView pairs = currentPairs(context, pairListSource);
+        if (terms.internalEnergies)
+            sweepIsoenergeticOrRollBack(pairs, velocities, integrator, terms, step);
         else
             sweepIsothermal(pairs, velocities, integrator, step);
         kick(velocities, forces, 0.5*dt);
     }
-    for (int i = 0; i < numParticles; i++)
+    std::vector<Vec3>& positions = extractPositions(context);
+    for (size_t i = 0; i < positions.size(); i++)
         if (inverseMasses[i] != 0.0)
             positions[i] += velocities[i]*dt;
     ReferencePlatform::PlatformData& data = platformData(context);

@@ -12,10 +12,10 @@ namespace GenDPDEPlugin {
 class ReferenceCalcGenDPDEForceKernel;
 
 /**
- * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md section 5): half kick, pair sweep
- * at fixed positions, half kick, drift. The pairs come from the System's GenDPDEForce when it has just been
- * evaluated at these positions with the same cutoff (no second neighbor search), else from a neighbor list of
- * the integrator's own.
+ * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md sections 5-7): half kick,
+ * pair sweep at fixed positions, half kick, drift. The pairs come from the GenDPDEForce that the API chose as the
+ * pair-list source (GenDPDEIntegratorUtilities::findPairListSource; evaluated at these positions just before),
+ * else from a neighbor list of the integrator's own.
  */
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
@@ -24,7 +24,8 @@ public:
     }
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                     const std::vector<double>& internalEnergies) override;
-    void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
+    void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
+                 GenDPDEForceImpl* pairListSource) override;
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override {
         return internalEnergies;
@@ -39,11 +40,16 @@ public:
         this->seed = seed;
     }
 private:
-    /** The pairs closer than the cutoff at the current positions. */
-    PairView currentPairs(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
+    /** The pairs closer than the cutoff at the current positions: the source's, or from our own list. */
+    PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource);
+    /** Throw, naming the particle and the step, if a force is not finite (before anything changes). */
+    void checkForcesFinite(OpenMM::ContextImpl& context) const;
     /** docs/theory.md section 5, full GenDPDE: momenta, mechanical heating and conduction; false if some eps <= 0. */
     bool sweepIsoenergetic(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
-                           long long step, int& failedParticle);
+                           const GenDPDEStepTerms& terms, long long step, int& failedParticle);
+    /** sweepIsoenergetic(); if it fails, restore the velocities and internal energies saved before the step, throw. */
+    void sweepIsoenergeticOrRollBack(PairView pairs, std::vector<OpenMM::Vec3>& velocities,
+                                     const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, long long step);
     /** The classic DPD thermostat at the set temperature. */
     void sweepIsothermal(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
                          long long step);
@@ -56,13 +62,7 @@ private:
     std::vector<OpenMM::Vec3> savedVelocities;
     std::vector<int> firstPair, order;
     std::vector<double> savedInternalEnergies;
-    // Pairs: shared with the GenDPDEForce kernel if it uses the same cutoff, otherwise our own list.
-    struct SharedForce {
-        ReferenceCalcGenDPDEForceKernel* kernel;
-        int group;
-    };
-    std::vector<SharedForce> sharedForces;   // GenDPDEForces with the integrator's cutoff and boundaries
-    std::unique_ptr<NeighborList> neighborList;
+    std::unique_ptr<NeighborList> neighborList;   // used when no GenDPDEForce's pairs can be reused
 };
 
 } // namespace GenDPDEPlugin

@@ -1,0 +1,45 @@
+#ifndef GENDPDE_INTEGRATOR_UTILITIES_H_
+#define GENDPDE_INTEGRATOR_UTILITIES_H_
+
+#include "GenDPDEIntegrator.h"
+#include "openmm/System.h"
+#include "openmm/internal/ContextImpl.h"
+
+namespace GenDPDEPlugin {
+
+class GenDPDEForceImpl;
+
+/**
+ * Which terms one step of a GenDPDEIntegrator contains, decided once from its mode and parameters for the API's
+ * checks and every platform's kernel (a term that is switched off costs nothing).
+ */
+struct GenDPDEStepTerms {
+    bool pairSweep;          // any pair term: the sweep runs
+    bool dissipation;        // dissipative and random pair forces (friction > 0)
+    bool conduction;         // heat conduction and its noise (Isoenergetic, heat conduction > 0)
+    bool internalEnergies;   // the pair updates exchange energy with eps_i (Isoenergetic); otherwise with a bath
+};
+
+/** Decisions about a GenDPDEIntegrator's step that the API class and every platform share (docs/theory.md 5-6). */
+class GenDPDEIntegratorUtilities {
+public:
+    /** The terms of the next step. */
+    static GenDPDEStepTerms stepTerms(const GenDPDEIntegrator& integrator);
+    /**
+     * The range R of the pair terms (nm): the integrator's cutoff if set, else that of the System's GenDPDEForces
+     * (which must agree), else 0 (unknown; a step that needs the pair sweep then fails).
+     */
+    static double pairRange(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
+    /**
+     * The GenDPDEForce whose pair list a step may reuse instead of searching pairs again: one that has the pair
+     * range as its cutoff, the System's boundary conditions, and a force group among the integration groups (so
+     * that GenDPDEIntegrator::step, which evaluates those groups right before the kernel's execute(), has just
+     * built its list at the current positions). Null if there is none.
+     */
+    static GenDPDEForceImpl* findPairListSource(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                double pairRange);
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_INTEGRATOR_UTILITIES_H_*/

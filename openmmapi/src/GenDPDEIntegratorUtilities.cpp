@@ -1,0 +1,48 @@
+#include "internal/GenDPDEIntegratorUtilities.h"
+#include "GenDPDEForce.h"
+#include "internal/GenDPDEForceImpl.h"
+#include "openmm/OpenMMException.h"
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+GenDPDEStepTerms GenDPDEIntegratorUtilities::stepTerms(const GenDPDEIntegrator& integrator) {
+    const GenDPDEIntegrator::Mode mode = integrator.getMode();
+    GenDPDEStepTerms terms;
+    terms.internalEnergies = (mode == GenDPDEIntegrator::Isoenergetic);
+    terms.dissipation = (mode != GenDPDEIntegrator::Conservative && integrator.getFriction() > 0.0);
+    terms.conduction = (terms.internalEnergies && integrator.getHeatConduction() > 0.0);
+    terms.pairSweep = terms.dissipation || terms.conduction;
+    return terms;
+}
+
+double GenDPDEIntegratorUtilities::pairRange(const System& system, const GenDPDEIntegrator& integrator) {
+    double range = integrator.getCutoffDistance();
+    if (range != 0.0)
+        return range;
+    for (int i = 0; i < system.getNumForces(); i++) {
+        const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
+        if (force == nullptr)
+            continue;
+        if (range != 0.0 && range != force->getCutoffDistance())
+            throw OpenMMException("GenDPDEIntegrator: the System has GenDPDEForces with different cutoffs; "
+                                  "call setCutoffDistance() to choose the range of the pair terms");
+        range = force->getCutoffDistance();
+    }
+    return range;
+}
+
+GenDPDEForceImpl* GenDPDEIntegratorUtilities::findPairListSource(ContextImpl& context,
+        const GenDPDEIntegrator& integrator, double pairRange) {
+    const bool periodic = context.getSystem().usesPeriodicBoundaryConditions();
+    for (ForceImpl* impl : context.getForceImpls()) {
+        GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
+        if (forceImpl == nullptr)
+            continue;
+        const GenDPDEForce& force = forceImpl->getOwner();
+        if (force.getCutoffDistance() == pairRange && force.usesPeriodicBoundaryConditions() == periodic
+                && (integrator.getIntegrationForceGroups() & (1<<force.getForceGroup())) != 0)
+            return forceImpl;
+    }
+    return nullptr;
+}

@@ -7,9 +7,10 @@ partition-of-unity (VB) density estimators and the Tait equation of state. It is
 ``GenDPDEIntegrator`` is the energy-conserving integrator that carries each particle's internal energy, with
 dissipative and random pair forces and heat conduction (Shardlow-like splitting). It is an ``openmm.Integrator``.
 
-Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K). Parameter
-getters and scalar results return quantities; per-particle results are numpy arrays in OpenMM units: densities in
-nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, temperatures in K, internal energies in kJ/mol.
+Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K). Getters
+and results return quantities, as OpenMM's do; a per-particle result is one Quantity holding a numpy array (like
+``State.getPositions(asNumpy=True)``): densities in nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, temperatures
+in K, internal energies in kJ/mol. ``.value_in_unit(unit)`` gives the plain array.
 """
 
 import openmm as _openmm  # first: loads OpenMM's platforms and this plugin's kernel libraries, and the SWIG types
@@ -64,6 +65,10 @@ return_units(GenDPDEForce, "getReferenceDensity", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getReferencePressure", PRESSURE)
 return_units(GenDPDEForce, "getBulkModulus", PRESSURE)
 return_units(GenDPDEForce, "getVirial", _unit.kilojoule_per_mole)
+return_units(GenDPDEForce, "getPrimitiveDensities", NUMBER_DENSITY)
+return_units(GenDPDEForce, "getParticleDensities", NUMBER_DENSITY)
+return_units(GenDPDEForce, "getParticleVolumes", _unit.nanometer**3)
+return_units(GenDPDEForce, "getParticlePressures", PRESSURE)
 add_cast_copy_and_pickle(GenDPDEForce)
 
 GenDPDEIntegrator = _swig.GenDPDEIntegrator
@@ -87,6 +92,8 @@ accept_units(GenDPDEIntegrator, "setParticleTemperatures", [("temperatures", _un
 accept_units(GenDPDEIntegrator, "setInternalEnergiesToTemperature", [("temperature", _unit.kelvin),
                                                                     ("randomSeed", DIMENSIONLESS)])
 return_units(GenDPDEIntegrator, "getConservedEnergy", _unit.kilojoule_per_mole)
+return_units(GenDPDEIntegrator, "getParticleTemperatures", _unit.kelvin)
+return_units(GenDPDEIntegrator, "getInternalEnergies", _unit.kilojoule_per_mole)
 add_cast_copy_and_pickle(GenDPDEIntegrator)
 
 

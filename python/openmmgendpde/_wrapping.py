@@ -2,7 +2,8 @@
 
 - Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K).
   Pressures (Tait parameters) also accept pressure units such as bar or MPa, converted per mole.
-- Getters of parameters return quantities, as OpenMM's getters do; observables stay plain numpy arrays.
+- Getters of parameters and observables return quantities, as OpenMM's getters do; a per-particle result is one
+  Quantity holding a numpy array, as ``State.getPositions(asNumpy=True)`` returns.
 - ``cast``/``isinstance`` for objects returned by ``System.getForce`` and friends (never taking ownership), and
   ``copy``, ``deepcopy`` and ``pickle`` through ``XmlSerializer`` (the copies own their C++ objects).
 """
@@ -42,11 +43,14 @@ def to_openmm_value(value, target, where):
 
 
 def _attach(value, spec):
+    """``value`` in the unit ``spec``: a number, or a numpy array (one value per particle), becomes one Quantity
+    holding it (never a list of Quantities); a list result with a list of units becomes a list with one unit each;
+    a DIMENSIONLESS value stays plain."""
     if spec is DIMENSIONLESS:
         return value
     if isinstance(spec, (list, tuple)):
         return [_attach(v, s) for v, s in zip(value, spec)]
-    return unit.Quantity(value, spec)
+    return unit.Quantity(value, spec)   # a numpy array is held as it is (no copy, no per-item Quantities)
 
 
 def accept_units(cls, name, arguments):
@@ -76,7 +80,8 @@ def accept_units(cls, name, arguments):
 
 
 def return_units(cls, name, spec):
-    """Let ``cls.name`` return a quantity in ``spec`` (a unit, or a list of units for a list result)."""
+    """Let ``cls.name`` return a quantity in ``spec`` (a unit, or a list of units for a list result); a numpy array
+    result becomes ``unit.Quantity(array, spec)``."""
     original = getattr(cls, name)
 
     @functools.wraps(original)

@@ -78,12 +78,12 @@ class GenDPDEReporter:
                      if system.getParticleMass(i).value_in_unit(unit.amu) > 0)
         kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
         kinetic_temperature = 2 * kinetic / (max(1, 3 * moving - 3) * BOLTZMANN.value_in_unit(_ENERGY / _K))
-        theta = integrator.getParticleTemperatures()
+        theta = integrator.getParticleTemperatures().value_in_unit(_K)
         a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
         volume = a[0] * b[1] * c[2]
         virial = self._force.getVirial(context).value_in_unit(_ENERGY)
         pressure = (2 * kinetic + virial) / (3 * volume)
-        density = float(np.mean(self._force.getParticleDensities(context)))
+        density = float(np.mean(self._force.getParticleDensities(context).value_in_unit(_DENSITY)))
         energy = integrator.getConservedEnergy().value_in_unit(_ENERGY)
         if self._first_energy is None:
             self._first_energy = energy

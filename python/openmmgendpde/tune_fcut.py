@@ -25,7 +25,7 @@ def mean_density_on_frames(force, context, frames, cutoff_scaling):
     values = []
     for positions in frames:
         context.setPositions(positions * unit.nanometer)
-        values.append(np.mean(force.getParticleDensities(context)))
+        values.append(np.mean(force.getParticleDensities(context).value_in_unit(unit.nanometer**-3)))
     force.setCutoffScaling(original)
     force.updateParametersInContext(context)
     return ARGON_UNITS.from_openmm(float(np.mean(values)), "number_density")

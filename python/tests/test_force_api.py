@@ -12,6 +12,7 @@ from helpers import DENSITY, LENGTH, assert_rejected_without_change, energy_and_
 from openmmgendpde import GenDPDEForce
 
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+NUMBER_DENSITY = unit.nanometer**-3
 
 
 def test_is_an_openmm_force_with_quantity_getters():
@@ -114,7 +115,7 @@ def test_system_with_the_force_round_trips_through_xml(platform):
     assert np.array_equal(forces, forces2)
 
 
-def test_observables_are_numpy_arrays_consistent_with_the_model(platform):
+def test_observables_are_quantity_arrays_consistent_with_the_model(platform):
     from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
     system, force, positions = lattice_liquid(4)
     context = make_context(system, positions, platform)
@@ -122,8 +123,16 @@ def test_observables_are_numpy_arrays_consistent_with_the_model(platform):
     volumes = force.getParticleVolumes(context)
     densities = force.getParticleDensities(context)
     pressures = force.getParticlePressures(context)
-    for array in (n0, volumes, densities, pressures):
+    for quantity, expected_unit in ((n0, NUMBER_DENSITY), (volumes, unit.nanometer**3), (densities, NUMBER_DENSITY),
+                                    (pressures, PRESSURE)):
+        # One Quantity holding a numpy array, like State.getPositions(asNumpy=True).
+        assert unit.is_quantity(quantity) and quantity.unit == expected_unit
+        array = quantity.value_in_unit(expected_unit)
         assert isinstance(array, np.ndarray) and array.dtype == np.float64 and array.shape == (64,)
+    n0 = n0.value_in_unit(NUMBER_DENSITY)
+    volumes = volumes.value_in_unit(unit.nanometer**3)
+    densities = densities.value_in_unit(NUMBER_DENSITY)
+    pressures = pressures.value_in_unit(PRESSURE)
     reduced_range = force.getCutoffDistance().value_in_unit(unit.nanometer) / force.getCutoffScaling()
     tait = [value.value_in_unit(value.unit) if unit.is_quantity(value) else value for value in force.getTaitParameters()]
     for i in range(64):

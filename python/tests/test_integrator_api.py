@@ -71,14 +71,18 @@ def test_temperatures_before_and_after_the_context_exists():
     integrator = argon.integrator
     temperatures = np.linspace(100, 150, 500)
     integrator.setParticleTemperatures(temperatures * unit.kelvin)
-    assert np.array_equal(integrator.getParticleTemperatures(), temperatures)
+    assert np.array_equal(integrator.getParticleTemperatures().value_in_unit(unit.kelvin), temperatures)
     context = openmm.Context(argon.system, integrator, openmm.Platform.getPlatformByName("Reference"))
     found = integrator.getParticleTemperatures()
+    assert unit.is_quantity(found) and found.unit == unit.kelvin
+    found = found.value_in_unit(unit.kelvin)
     assert isinstance(found, np.ndarray) and np.allclose(found, temperatures, rtol=1e-15)
     heat_capacity = integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin)
-    assert np.allclose(integrator.getInternalEnergies(), heat_capacity * temperatures, rtol=1e-15)
+    energies = integrator.getInternalEnergies()
+    assert unit.is_quantity(energies) and energies.unit == ENERGY
+    assert np.allclose(energies.value_in_unit(ENERGY), heat_capacity * temperatures, rtol=1e-15)
     integrator.setTemperature(200)
-    assert np.all(integrator.getParticleTemperatures() == 200.0)
+    assert np.all(integrator.getParticleTemperatures().value_in_unit(unit.kelvin) == 200.0)
     assert GenDPDEIntegrator.isinstance(context.getIntegrator())
     assert GenDPDEIntegrator.cast(context.getIntegrator()) is integrator   # the user's object, still owning it
     assert integrator.thisown and integrator.getSeedInUse() != 0
@@ -99,7 +103,8 @@ def test_kinetic_and_conserved_energy_use_on_step_velocities():
     f = state.getForces(asNumpy=True).value_in_unit(ENERGY / unit.nanometer)
     kinetic = 0.5 * mass * np.sum((v + 0.5 * dt * f / mass) ** 2)
     assert state.getKineticEnergy().value_in_unit(ENERGY) == pytest.approx(kinetic, rel=1e-10)
-    expected = kinetic + state.getPotentialEnergy().value_in_unit(ENERGY) + argon.integrator.getInternalEnergies().sum()
+    internal = argon.integrator.getInternalEnergies().value_in_unit(ENERGY).sum()
+    expected = kinetic + state.getPotentialEnergy().value_in_unit(ENERGY) + internal
     assert argon.integrator.getConservedEnergy().value_in_unit(ENERGY) == pytest.approx(expected, rel=1e-12)
 
 
@@ -117,7 +122,7 @@ def test_simulation_with_reporters_save_state_and_checkpoints(tmp_path):
     simulation.saveCheckpoint(str(tmp_path / "mine.chk"))
     simulation.step(40)
     final = simulation.context.getState(getPositions=True, getVelocities=True)
-    energies = argon.integrator.getInternalEnergies()
+    energies = argon.integrator.getInternalEnergies().value_in_unit(ENERGY)
     assert len(log.read_text().splitlines()) == 8
 
     for restore in ("loadState", "loadCheckpoint"):
@@ -132,7 +137,7 @@ def test_simulation_with_reporters_save_state_and_checkpoints(tmp_path):
         state = resumed.context.getState(getPositions=True, getVelocities=True)
         assert np.array_equal(state.getPositions(asNumpy=True), final.getPositions(asNumpy=True)), restore
         assert np.array_equal(state.getVelocities(asNumpy=True), final.getVelocities(asNumpy=True)), restore
-        assert np.array_equal(other.integrator.getInternalEnergies(), energies), restore
+        assert np.array_equal(other.integrator.getInternalEnergies().value_in_unit(ENERGY), energies), restore
 
 
 def test_genDPDE_reporter_writes_consistent_values():
@@ -171,7 +176,7 @@ def test_force_group_not_integrated_gives_own_pair_list():
     argon.integrator.setIntegrationForceGroups({0})
     simulation = argon.simulation()
     argon.integrator.step(10)
-    assert np.all(np.isfinite(argon.integrator.getInternalEnergies()))
+    assert np.all(np.isfinite(argon.integrator.getInternalEnergies().value_in_unit(ENERGY)))
     assert GenDPDEForce.isinstance(argon.system.getForce(0))
 
 
@@ -183,7 +188,7 @@ def test_internal_energies_drawn_at_a_temperature_follow_the_gamma_law():
     argon = liquid_argon(4000, 1.6839, "VB")
     simulation = argon.simulation()   # noqa: F841  (the Context must stay alive)
     argon.integrator.setInternalEnergiesToTemperature(125.7 * unit.kelvin, 3)
-    theta = argon.integrator.getParticleTemperatures()
+    theta = argon.integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
     c = 12.51
     assert abs(1 / np.mean(1 / theta) / 125.7 - 1) < 4 / np.sqrt((c + 1 - 2) * 4000)
     assert abs(np.mean(theta) / (125.7 * (1 + 1 / c)) - 1) < 4 / np.sqrt((c + 1) * 4000)

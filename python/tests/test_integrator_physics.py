@@ -37,7 +37,7 @@ def equilibrium_samples():
     for _ in range(500):
         integrator.step(40)
         kinetic.append(simulation.context.getState(getEnergy=True).getKineticEnergy().value_in_unit(ENERGY))
-        temperatures.append(integrator.getParticleTemperatures())
+        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
     heat_capacity = integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin)
     return np.array(kinetic), np.array(temperatures), heat_capacity
 

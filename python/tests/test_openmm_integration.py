@@ -93,7 +93,7 @@ def test_numpy_integers_are_integers(value):
 def test_per_particle_arrays_take_quantities_and_numpy(temperatures):
     integrator = GenDPDEIntegrator(0.01, 1, 1, 1)
     integrator.setParticleTemperatures(temperatures)
-    np.testing.assert_array_equal(integrator.getParticleTemperatures(), [100.0, 110.0])
+    np.testing.assert_array_equal(integrator.getParticleTemperatures().value_in_unit(unit.kelvin), [100.0, 110.0])
 
 
 def test_per_particle_quantities_of_the_wrong_dimension_are_refused():

@@ -13,8 +13,12 @@ and results return quantities, as OpenMM's do; a per-particle result is one Quan
 in K, internal energies in kJ/mol. ``.value_in_unit(unit)`` gives the plain array.
 """
 
+import glob as _glob
+import os as _os
+
 import openmm as _openmm  # first: loads OpenMM's platforms and this plugin's kernel libraries, and the SWIG types
 from openmm import unit as _unit
+from openmm import version as _openmm_version
 
 from ._version import openmm_build_version as _openmm_build_version, version as __version__
 
@@ -37,12 +41,10 @@ KERNEL_NAMES = ("CalcGenDPDEForce", "IntegrateGenDPDEStep")
 def _load_kernel_libraries():
     """`import openmm` loads the kernel libraries from OpenMM's plugin directory, where `pip install` puts them,
     unless OPENMM_PLUGIN_DIR names another directory: then load them from OpenMM's directory by path."""
-    import glob
-    import os
-    from openmm import version
     if _openmm.Platform.getPlatformByName("Reference").supportsKernels(KERNEL_NAMES):
         return
-    for library in sorted(glob.glob(os.path.join(version.openmm_library_path, "plugins", "libOpenMMGenDPDE*.so"))):
+    plugins = _os.path.join(_openmm_version.openmm_library_path, "plugins")
+    for library in sorted(_glob.glob(_os.path.join(plugins, "libOpenMMGenDPDE*.so"))):
         _openmm.Platform.loadPluginLibrary(library)
 
 
@@ -100,17 +102,22 @@ add_cast_copy_and_pickle(GenDPDEIntegrator)
 def _force_repr(self):
     estimator = "VA" if self.getDensityEstimator() == GenDPDEForce.VA else "VB"
     method = "CutoffPeriodic" if self.usesPeriodicBoundaryConditions() else "CutoffNonPeriodic"
-    n0, pi0, bulk, gamma = (value._value if _unit.is_quantity(value) else value for value in self.getTaitParameters())
-    return (f"<GenDPDEForce cutoff={self.getCutoffDistance()._value:g} nm, {method}, estimator={estimator}, "
-            f"cutoffScaling={self.getCutoffScaling():g}, Tait(n0={n0:g} nm^-3, pi0={pi0:g}, B_T={bulk:g} "
-            f"kJ/mol/nm^3, gamma_T={gamma:g})>")
+    n0, pi0, bulk, gamma = self.getTaitParameters()
+    return (f"<GenDPDEForce cutoff={self.getCutoffDistance().value_in_unit(_unit.nanometer):g} nm, {method}, "
+            f"estimator={estimator}, cutoffScaling={self.getCutoffScaling():g}, "
+            f"Tait(n0={n0.value_in_unit(NUMBER_DENSITY):g} nm^-3, pi0={pi0.value_in_unit(PRESSURE):g}, "
+            f"B_T={bulk.value_in_unit(PRESSURE):g} kJ/mol/nm^3, gamma_T={gamma:g})>")
 
 
 GenDPDEForce.__repr__ = _force_repr
 
 
+_MODE_NAMES = {GenDPDEIntegrator.Isoenergetic: "Isoenergetic", GenDPDEIntegrator.Isothermal: "Isothermal",
+               GenDPDEIntegrator.Conservative: "Conservative"}
+
+
 def _integrator_repr(self):
-    mode = {0: "Isoenergetic", 1: "Isothermal", 2: "Conservative"}[self.getMode()]
+    mode = _MODE_NAMES[self.getMode()]
     return (f"<GenDPDEIntegrator {mode}, stepSize={self.getStepSize()}, friction={self.getFriction()}, "
             f"heatConduction={self.getHeatConduction()}, heatCapacity={self.getHeatCapacity()}>")
 

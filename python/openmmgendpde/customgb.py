@@ -10,6 +10,7 @@ import math
 import openmm
 from openmm import unit
 
+from . import GenDPDEForce
 from ._wrapping import NUMBER_DENSITY, PRESSURE
 
 
@@ -28,7 +29,7 @@ def custom_gb_equivalent(force, num_particles):
                           else openmm.CustomGBForce.CutoffNonPeriodic)
     gb.addComputedValue("n0", f"{15 / (2 * math.pi * cutoff**3)!r}*(1-r/{cutoff!r})^2",
                         openmm.CustomGBForce.ParticlePairNoExclusions)
-    if force.getDensityEstimator() == 0:  # VA
+    if force.getDensityEstimator() == GenDPDEForce.VA:
         gb.addComputedValue("V", "1/n0", openmm.CustomGBForce.SingleParticle)
     else:
         gb.addComputedValue(

@@ -5,6 +5,8 @@ results are reported as medians: the median time per call, and the median over r
 between two candidates (robust to another process slowing down part of the run).
 """
 
+import dataclasses
+import json
 import statistics
 import time
 
@@ -59,8 +61,6 @@ def add_benchmark_arguments(parser):
 
 def print_results(header, table, results, json_path):
     """Print a benchmark's header line and table; write the results (dataclasses) as JSON if asked."""
-    import dataclasses
-    import json
     print(header)
     print(table)
     if json_path:

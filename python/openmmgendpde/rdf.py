@@ -8,7 +8,9 @@ with the same protocol.
 import csv
 import pathlib
 
+import mdtraj
 import numpy as np
+from openmm import unit
 
 from .plotting import panels, save
 from .presets import ARGON_CUTOFFS, ARGON_UNITS
@@ -21,9 +23,8 @@ R_MAX, BIN_WIDTH = 3.0, 0.02
 
 def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH):
     """(r*, g(r)) for frames (F x N x 3, nm) in a cubic box of edge box_edge (nm), by mdtraj in chunks of 5 frames."""
-    import mdtraj
     frames = np.asarray(frames, dtype=np.float32)
-    length = ARGON_UNITS.unit("length")._value
+    length = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)
     topology = mdtraj.Topology()
     chain = topology.add_chain()
     for _ in range(frames.shape[1]):

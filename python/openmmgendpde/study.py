@@ -17,6 +17,7 @@ All times are in reduced units (the time unit is 0.8962 ps).
 """
 
 import dataclasses
+import time
 
 import numpy as np
 from openmm import unit
@@ -76,7 +77,6 @@ def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_sca
     ``frames`` positions are kept, evenly spread over the production phase. ``progress`` (a Progress) advances by
     the number of steps done. ``continue_from`` = (LiquidArgon, Simulation) of an earlier run continues that run
     (equilibration and production only) instead of starting from the lattice."""
-    import time as clock
     units, state = ARGON_UNITS, ARGON_STATE
     if continue_from is None:
         argon = liquid_argon(protocol.num_particles, cutoff, estimator, cutoff_scaling, protocol.time_step,
@@ -112,7 +112,7 @@ def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_sca
     every = protocol.steps(protocol.sample_interval)
     count = protocol.steps(protocol.production_time) // every
     keep = set(np.linspace(0, count - 1, frames).round().astype(int)) if frames else set()
-    start = clock.perf_counter()
+    start = time.perf_counter()
     for index in range(count):
         advance(every)
         state_ = context.getState(getEnergy=True, getPositions=index in keep)
@@ -129,7 +129,7 @@ def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_sca
         samples.conserved_energy.append(units.from_openmm(integrator.getConservedEnergy(), "energy"))
         if index in keep:
             samples.frames.append(state_.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
-    samples.wall_time = clock.perf_counter() - start
+    samples.wall_time = time.perf_counter() - start
     samples.steps = count * every
     return samples, argon, simulation
 

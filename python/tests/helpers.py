@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 import openmm
+import pytest
 
 from openmmgendpde import GenDPDEForce
 
@@ -53,7 +54,6 @@ def rms(array):
 def assert_rejected_without_change(obj, call, fragments):
     """call(obj) raises openmm.OpenMMException whose message contains every fragment, and obj is unchanged
     (compared through its serialization, which covers every parameter)."""
-    import pytest
     before = openmm.XmlSerializer.serialize(obj)
     with pytest.raises(openmm.OpenMMException) as error:
         call(obj)

@@ -1,15 +1,17 @@
 """GenDPDEForce from Python: an openmm.Force that feels like OpenMM's own classes."""
 
 import copy
+import gc
 import pickle
 
 import numpy as np
 import openmm
 import pytest
-from openmm import unit
+from openmm import app, unit
 
 from helpers import DENSITY, LENGTH, assert_rejected_without_change, energy_and_forces, lattice_liquid, make_context
 from openmmgendpde import GenDPDEForce
+from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
 
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
 NUMBER_DENSITY = unit.nanometer**-3
@@ -73,7 +75,6 @@ def test_cast_never_takes_ownership():
     assert not cast.thisown and not generic.thisown
     assert GenDPDEForce.cast(force) is force
     loaded = GenDPDEForce.cast(openmm.XmlSerializer.deserialize(openmm.XmlSerializer.serialize(force)))
-    import gc
     gc.collect()
     assert loaded.getCutoffScaling() == force.getCutoffScaling()
     system.addForce(copy.copy(force))           # copies own their object, so System.addForce accepts them
@@ -116,7 +117,6 @@ def test_system_with_the_force_round_trips_through_xml(platform):
 
 
 def test_observables_are_quantity_arrays_consistent_with_the_model(platform):
-    from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
     system, force, positions = lattice_liquid(4)
     context = make_context(system, positions, platform)
     n0 = force.getPrimitiveDensities(context)
@@ -167,7 +167,6 @@ def test_update_parameters_in_context_from_python(platform):
 
 
 def test_runs_in_a_simulation_with_reporters(platform, tmp_path):
-    from openmm import app
     system, force, positions = lattice_liquid(4, density=DENSITY)
     topology = app.Topology()
     chain = topology.addChain()

@@ -9,6 +9,7 @@ import numpy as np
 import openmm
 import pytest
 from openmm import app, unit
+from scipy import stats
 
 from helpers import assert_rejected_without_change
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, GenDPDEReporter
@@ -184,7 +185,6 @@ def test_internal_energies_drawn_at_a_temperature_follow_the_gamma_law():
     """setInternalEnergiesToTemperature(T) draws eps_i from Gamma(C_V/k_B + 1, k_B T). For 4000 draws with shape
     a = 13.51: the harmonic mean of theta_i estimates T with relative standard error 1/sqrt((a - 2) N) = 0.47%, the
     mean estimates T (1 + k_B/C_V) with 1/sqrt(a N) = 0.43%; tolerance 4 standard errors each; KS test p > 0.001."""
-    from scipy import stats
     argon = liquid_argon(4000, 1.6839, "VB")
     simulation = argon.simulation()   # noqa: F841  (the Context must stay alive)
     argon.integrator.setInternalEnergiesToTemperature(125.7 * unit.kelvin, 3)

@@ -1,17 +1,22 @@
 """The plugin as part of an OpenMM 8 installation: loaded by `import openmm`, documented by help(), taking what
 OpenMM's own classes take (numpy scalars, Quantity lists and arrays), and releasing the GIL in long calls."""
 
+import pathlib
 import pydoc
+import re
 import subprocess
 import sys
 import threading
 import time
+import tomllib
 
 import numpy as np
 import openmm
 import pytest
 from openmm import unit
+from packaging.requirements import Requirement
 
+import openmmgendpde
 from helpers import lattice_liquid, make_context
 from openmmgendpde import KERNEL_NAMES, GenDPDEForce, GenDPDEIntegrator
 
@@ -57,7 +62,7 @@ def test_numpy_scalars_are_numbers(value):
     force.setCutoffScaling(value)
     assert force.getCutoffScaling() == expected
     force.setTaitParameters(value, value, value, value + 1)
-    assert [q._value if unit.is_quantity(q) else q for q in force.getTaitParameters()] == \
+    assert [q.value_in_unit(q.unit) if unit.is_quantity(q) else q for q in force.getTaitParameters()] == \
         [expected, expected, expected, expected + 1]
     integrator = GenDPDEIntegrator(value, value, value, value)
     assert integrator.getFriction() == expected * unit.amu / unit.picosecond
@@ -147,7 +152,7 @@ def test_two_contexts_in_two_threads_match_sequential_runs():
     def run(seed, results):
         context, integrator = _argon_context(platform, seed)
         integrator.step(200)
-        results[seed] = context.getState(getPositions=True).getPositions(asNumpy=True)._value
+        results[seed] = context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
 
     sequential, concurrent = {}, {}
     for seed in (11, 12):
@@ -165,10 +170,6 @@ def test_two_contexts_in_two_threads_match_sequential_runs():
 def test_pins_agree_with_the_package_metadata():
     """requirements.txt pins the supported environment; pyproject.toml states what the package accepts and builds
     with. The pinned OpenMM must be in both of pyproject's ranges and the pinned SWIG must be the build's."""
-    import pathlib
-    import re
-    import tomllib
-    from packaging.requirements import Requirement
     root = pathlib.Path(__file__).resolve().parents[2]
     pins = {}
     for line in (root / "requirements.txt").read_text().splitlines():
@@ -182,5 +183,4 @@ def test_pins_agree_with_the_package_metadata():
     assert build["openmm"].specifier.contains(openmm_pin) and runtime["openmm"].specifier.contains(openmm_pin)
     assert str(pins["swig"].specifier) == str(build["swig"].specifier)
     version = re.search(r"project\(OpenMMGenDPDE VERSION ([0-9.]+)", (root / "CMakeLists.txt").read_text()).group(1)
-    import openmmgendpde
     assert openmmgendpde.__version__ == version

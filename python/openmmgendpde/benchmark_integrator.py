@@ -50,7 +50,7 @@ class IntegratorBenchmark:
     isothermal_over_dpd: float                   # with the GenDPDEForce
     isothermal_over_dpd_without_force: float     # plain DPD
     bath_temperature: float                      # K
-    kinetic_temperatures: dict                   # thermostatted candidate -> [mean, standard error] (K)
+    kinetic_temperatures: dict                   # thermostatted candidate -> BlockAverage (K)
     rounds: int
 
 
@@ -76,7 +76,8 @@ def without_forces(system):
 
 
 def kinetic_temperature(context, integrator, samples, steps_per_sample):
-    """[mean, standard error] (K) of 2K/((3N - 3) k_B) over ``samples`` samples ``steps_per_sample`` steps apart."""
+    """BlockAverage (mean, standard error; K) of 2K/((3N - 3) k_B) over ``samples`` samples ``steps_per_sample``
+    steps apart."""
     dof = 3 * context.getSystem().getNumParticles() - 3
     kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
     values = []
@@ -84,7 +85,7 @@ def kinetic_temperature(context, integrator, samples, steps_per_sample):
         integrator.step(steps_per_sample)
         kinetic = context.getState(getEnergy=True).getKineticEnergy().value_in_unit(unit.kilojoule_per_mole)
         values.append(2 * kinetic / (dof * kb))
-    return list(block_average(values, blocks=TEMPERATURE_BLOCKS))
+    return block_average(values, blocks=TEMPERATURE_BLOCKS)
 
 
 def benchmark(num_particles, cutoff=1.6839, platform_name="Reference", rounds=None, progress=None):
@@ -177,7 +178,8 @@ def format_dpd_table(results):
             gendpde, dpd = t["Isothermal step" + suffix], t["DPDIntegrator step" + suffix]
             lines.append(f"| {r.num_particles} | {label} | {m['Isothermal step' + suffix]:.2f} "
                          f"| {m['DPDIntegrator step' + suffix]:.2f} | {ratio:.3f} | {r.bath_temperature:.1f} "
-                         f"| {gendpde[0]:.1f} +- {gendpde[1]:.1f} | {dpd[0]:.1f} +- {dpd[1]:.1f} |")
+                         f"| {gendpde.mean:.1f} +- {gendpde.standard_error:.1f} | {dpd.mean:.1f} +- "
+                         f"{dpd.standard_error:.1f} |")
     return "\n".join(lines)
 
 

@@ -45,8 +45,8 @@ def load_or_run(arguments, cutoff, estimator, protocol, progress):
         data = np.load(pathlib.Path(arguments.frames_from) / f"frames-R{cutoff}-{estimator}.npz")
         progress.advance(protocol.total_steps)
         return data["positions"], float(data["box_edge"])
-    samples, _, _ = run_argon(cutoff, estimator, protocol, arguments.platform, frames=arguments.frames,
-                           progress=progress)
+    samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=arguments.frames,
+                        progress=progress).samples
     return samples.frames, samples.box_edge
 
 

@@ -19,7 +19,7 @@ import openmm
 from .plotting import panels, save
 from .presets import liquid_argon
 from .progress import Progress
-from .statistics import block_average
+from .statistics import BlockAverage, block_average
 from .study import FULL, QUICK, add_protocol_arguments, protocol_from_arguments, run_argon
 
 
@@ -31,8 +31,8 @@ class Point:
     drift: float                  # reduced energy per particle per time unit
     temperature_error: float      # |T_kin/T_harm - 1|
     temperature_error_bar: float  # its standard error (block average)
-    density: tuple                # (mean, standard error)
-    pressure: tuple
+    density: BlockAverage         # n-bar*: mean, standard error
+    pressure: BlockAverage        # P*
     density_error: float = 0.0    # |n-bar - reference|
     pressure_error: float = 0.0
     density_error_bar: float = 0.0    # standard error of that difference
@@ -42,7 +42,7 @@ class Point:
 def measure(cutoff, estimator, steps, protocol, platform, progress):
     # One equilibrated state at the smallest step, then each step size from it.
     reference = dataclasses.replace(protocol, time_step=min(steps), production_time=protocol.sample_interval)
-    _, _, simulation = run_argon(cutoff, estimator, reference, platform, progress=progress)
+    simulation = run_argon(cutoff, estimator, reference, platform, progress=progress).simulation
     state = simulation.context.getState(getPositions=True, getVelocities=True, getIntegratorParameters=True)
     points = []
     for time_step in steps:
@@ -51,7 +51,7 @@ def measure(cutoff, estimator, steps, protocol, platform, progress):
         new = openmm.app.Simulation(argon.topology, argon.system, argon.integrator,
                                     openmm.Platform.getPlatformByName(platform))
         new.context.setState(state)
-        samples, _, _ = run_argon(cutoff, estimator, run, platform, progress=progress, continue_from=(argon, new))
+        samples = run_argon(cutoff, estimator, run, platform, progress=progress, continue_from=(argon, new)).samples
         slope = np.polyfit(samples.time, samples.conserved_energy, 1)[0]
         ratio, ratio_error = block_average(np.array(samples.kinetic_temperature) / np.array(samples.harmonic_temperature))
         points.append(Point(estimator, time_step, samples.wall_time / (samples.steps * time_step),
@@ -59,11 +59,11 @@ def measure(cutoff, estimator, steps, protocol, platform, progress):
                             block_average(samples.density), block_average(samples.pressure)))
     smallest = min(points, key=lambda p: p.time_step)
     for p in points:
-        p.density_error = abs(p.density[0] - smallest.density[0])
-        p.pressure_error = abs(p.pressure[0] - smallest.pressure[0])
+        p.density_error = abs(p.density.mean - smallest.density.mean)
+        p.pressure_error = abs(p.pressure.mean - smallest.pressure.mean)
         if p is not smallest:
-            p.density_error_bar = float(np.hypot(p.density[1], smallest.density[1]))
-            p.pressure_error_bar = float(np.hypot(p.pressure[1], smallest.pressure[1]))
+            p.density_error_bar = float(np.hypot(p.density.standard_error, smallest.density.standard_error))
+            p.pressure_error_bar = float(np.hypot(p.pressure.standard_error, smallest.pressure.standard_error))
     return points
 
 
@@ -119,17 +119,17 @@ def run(arguments):
     print("|---|---|---|---|---|---|---|---|---|")
     for p in points:
         print(f"| {p.estimator} | {p.time_step:g} | {p.seconds_per_time_unit:.3f} | {p.drift:.2e} "
-              f"| {p.temperature_error:.4f} +- {p.temperature_error_bar:.4f} | {p.density[0]:.4f} +- "
-              f"{p.density[1]:.4f} | {p.density_error:.4f} | {p.pressure[0]:.4f} +- {p.pressure[1]:.4f} "
-              f"| {p.pressure_error:.4f} |")
+              f"| {p.temperature_error:.4f} +- {p.temperature_error_bar:.4f} | {p.density.mean:.4f} +- "
+              f"{p.density.standard_error:.4f} | {p.density_error:.4f} | {p.pressure.mean:.4f} +- "
+              f"{p.pressure.standard_error:.4f} | {p.pressure_error:.4f} |")
     with open(output / "speed-vs-error.csv", "w", newline="") as stream:
         writer = csv.writer(stream)
         writer.writerow(["estimator", "dt*", "wall s per time unit", "drift", "|Tkin/Tharm-1|", "its error",
                          "n-bar*", "n-bar* error", "|dn|", "P*", "P* error", "|dP|"])
         for p in points:
             writer.writerow([p.estimator, p.time_step, p.seconds_per_time_unit, p.drift, p.temperature_error,
-                             p.temperature_error_bar, p.density[0], p.density[1], p.density_error, p.pressure[0],
-                             p.pressure[1], p.pressure_error])
+                             p.temperature_error_bar, p.density.mean, p.density.standard_error, p.density_error,
+                             p.pressure.mean, p.pressure.standard_error, p.pressure_error])
     plot(points, output / "speed-vs-error")
     print(f"Written: {output / 'speed-vs-error.csv'}, {output / 'speed-vs-error'}.png/.pdf")
     return points

@@ -20,10 +20,10 @@ import dataclasses
 import time
 
 import numpy as np
-from openmm import unit
+from openmm import app, unit
 
 from . import GenDPDEIntegrator
-from .presets import ARGON_STATE, ARGON_UNITS, liquid_argon
+from .presets import ARGON_STATE, ARGON_UNITS, LiquidArgon, liquid_argon
 from .units import BOLTZMANN
 
 _ENERGY = unit.kilojoule_per_mole
@@ -71,9 +71,17 @@ class Samples:
     steps: int = 0                                                        # production steps
 
 
+@dataclasses.dataclass
+class ArgonRun:
+    """A finished run: its production samples, the model and the Simulation (which can be continued)."""
+    samples: Samples
+    argon: LiquidArgon
+    simulation: app.Simulation
+
+
 def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_scaling=None, frames=0, progress=None,
               continue_from=None):
-    """Run the protocol for one cutoff R* and estimator ('VA' or 'VB'); return (Samples, LiquidArgon, Simulation).
+    """Run the protocol for one cutoff R* and estimator ('VA' or 'VB'); return an ArgonRun.
     ``frames`` positions are kept, evenly spread over the production phase. ``progress`` (a Progress) advances by
     the number of steps done. ``continue_from`` = (LiquidArgon, Simulation) of an earlier run continues that run
     (equilibration and production only) instead of starting from the lattice."""
@@ -131,7 +139,7 @@ def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_sca
             samples.frames.append(state_.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
     samples.wall_time = time.perf_counter() - start
     samples.steps = count * every
-    return samples, argon, simulation
+    return ArgonRun(samples, argon, simulation)
 
 
 def add_protocol_arguments(parser, defaults=FULL):

@@ -111,7 +111,7 @@ def run(arguments):
     cells = []
     for cutoff, estimator in cases:
         progress.label = f"table3 R*={cutoff} {estimator}"
-        samples, _, _ = run_argon(cutoff, estimator, protocol, arguments.platform, frames=frames, progress=progress)
+        samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=frames, progress=progress).samples
         cells += cells_of(cutoff, estimator, samples)
         save_frames(output, cutoff, estimator, samples)
     progress.finish()

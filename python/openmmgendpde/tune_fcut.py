@@ -8,6 +8,8 @@ The structure barely depends on f_cut, so two or three iterations converge. The 
 n-bar (block average) divided by |d n-bar / d f_cut|.
 """
 
+import dataclasses
+
 import numpy as np
 from openmm import unit
 
@@ -15,6 +17,18 @@ from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff
 from .progress import Progress
 from .statistics import block_average
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
+
+
+@dataclasses.dataclass(frozen=True)
+class CutoffScalingEstimate:
+    """What ``tune`` found: the f_cut that solves n-bar*(f_cut) = n0* on the straight line through the last run,
+    and what that run measured."""
+    cutoff_scaling: float        # the estimate of f_cut
+    standard_error: float        # of cutoff_scaling: that of n-bar* divided by |d n-bar*/d f_cut|
+    density: float               # n-bar* measured in the last run
+    density_error: float         # its standard error (block average)
+    iterations: int              # runs made
+    last_cutoff_scaling: float   # f_cut of the last run, at which n-bar* was measured
 
 
 def mean_density_on_frames(force, context, frames, cutoff_scaling):
@@ -33,14 +47,14 @@ def mean_density_on_frames(force, context, frames, cutoff_scaling):
 
 def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, max_iterations=5, progress=None,
          report=print):
-    """Returns (f_cut, its standard error, n-bar*, its error, iterations, f_cut of the last run): f_cut solves
-    n-bar*(f_cut) = n0* on the straight line through the last run, at which n-bar* was measured."""
+    """A CutoffScalingEstimate: f_cut solving n-bar*(f_cut) = n0* on the straight line through the last run, with
+    its standard error and that run's n-bar*."""
     target = ARGON_STATE.density
     scaling = start if start is not None else argon_cutoff(cutoff).cutoff_scaling
     running = None
     for iteration in range(1, max_iterations + 1):
-        samples, argon, simulation = run_argon(cutoff, "VB", protocol, platform, scaling, frames=10, progress=progress,
-                                               continue_from=running)
+        run = run_argon(cutoff, "VB", protocol, platform, scaling, frames=10, progress=progress, continue_from=running)
+        samples, argon, simulation = run.samples, run.argon, run.simulation
         running = (argon, simulation)
         context = simulation.context
         density, density_error = block_average(samples.density)
@@ -54,7 +68,7 @@ def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, ma
         report(f"iteration {iteration}: f_cut = {scaling:.4f}: n-bar* = {density:.4f} +- {density_error:.4f}, "
                f"d n-bar*/d f_cut = {slope:.3f} -> f_cut = {new:.4f}")
         # The estimate: where the line through the last run's measurement reaches n0.
-        measured = (new, density_error / abs(slope), density, density_error, iteration, scaling)
+        measured = CutoffScalingEstimate(new, density_error / abs(slope), density, density_error, iteration, scaling)
         if abs(density - target) <= max(tolerance, 2 * density_error):
             return measured
         scaling = new
@@ -68,16 +82,15 @@ def run(arguments):
     protocol = protocol_from_arguments(arguments)
     progress = Progress(arguments.max_iterations * protocol.total_steps, f"tune-fcut R*={arguments.cutoff}",
                         always=arguments.progress)
-    scaling, error, density, density_error, iterations, last = tune(arguments.cutoff, protocol, arguments.platform,
-                                                                    arguments.start, arguments.tolerance,
-                                                                    arguments.max_iterations, progress,
-                                                                    report=lambda line: print(line, flush=True))
+    estimate = tune(arguments.cutoff, protocol, arguments.platform, arguments.start, arguments.tolerance,
+                    arguments.max_iterations, progress, report=lambda line: print(line, flush=True))
     progress.finish()
     published = argon_cutoff(arguments.cutoff).cutoff_scaling
-    print(f"R_cut* = {arguments.cutoff}: f_cut = {scaling:.4f} +- {error:.4f} for n-bar* = {ARGON_STATE.density} "
-          f"(last run: f_cut = {last:.4f}, n-bar* = {density:.4f} +- {density_error:.4f}; tolerance "
-          f"{arguments.tolerance}, {iterations} iteration(s)); published f_cut = {published}")
-    return scaling, error
+    print(f"R_cut* = {arguments.cutoff}: f_cut = {estimate.cutoff_scaling:.4f} +- {estimate.standard_error:.4f} for "
+          f"n-bar* = {ARGON_STATE.density} (last run: f_cut = {estimate.last_cutoff_scaling:.4f}, n-bar* = "
+          f"{estimate.density:.4f} +- {estimate.density_error:.4f}; tolerance {arguments.tolerance}, "
+          f"{estimate.iterations} iteration(s)); published f_cut = {published}")
+    return estimate
 
 
 def add_arguments(parser):

@@ -12,8 +12,8 @@ def test_va_clumps_and_vb_keeps_the_imposed_density():
     Margins, measured over seeds 1-4: VA n-bar* = 0.793-0.797 (0.10 below the bound, ~50 block errors of
     0.0012-0.0021), VB 0.995-0.996 (0.015 inside the bound, ~15 block errors of 0.0004-0.0011). The pairing
     develops within ~10 time units."""
-    va, _, _ = run_argon(1.3365, "VA", QUICK)
-    vb, _, _ = run_argon(1.3365, "VB", QUICK)
+    va = run_argon(1.3365, "VA", QUICK).samples
+    vb = run_argon(1.3365, "VB", QUICK).samples
     density_va, _ = block_average(va.density)
     density_vb, _ = block_average(vb.density)
     assert density_va < 0.9

@@ -1,11 +1,9 @@
 """GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol."""
 
-import numpy as np
-import openmm
 from openmm import unit
 
 from . import GenDPDEForce, GenDPDEIntegrator
-from .units import BOLTZMANN
+from .thermodynamics import kinetic_degrees_of_freedom, sample_thermodynamics
 
 _K = unit.kelvin
 _DENSITY = unit.nanometer**-3
@@ -19,8 +17,8 @@ class GenDPDEReporter:
 
     step, time, kinetic temperature (from the kinetic energy with 3N - 3 degrees of freedom, since GenDPDE conserves
     momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial pressure
-    P = (2K + W)/(3V) of the GenDPDEForce, the conserved energy K + U + sum eps_i and its drift relative to the
-    first report.
+    P = (2K + W)/(3V) of the GenDPDEForce, the conserved energy K + U + sum eps_i (all as
+    openmmgendpde.thermodynamics.sample_thermodynamics defines them) and its drift relative to the first report.
 
     Use it like ``openmm.app.StateDataReporter``: ``simulation.reporters.append(GenDPDEReporter('log.csv', 100))``.
     The Simulation's integrator must be a GenDPDEIntegrator and its System must hold a GenDPDEForce.
@@ -72,33 +70,24 @@ class GenDPDEReporter:
             integrator = GenDPDEIntegrator.cast(integrator)
         if self._force is None:
             self._force = self._find_force(simulation.system)
-        context = simulation.context
-        system = simulation.system
-        moving = sum(1 for i in range(system.getNumParticles())
-                     if system.getParticleMass(i).value_in_unit(unit.amu) > 0)
-        kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
-        kinetic_temperature = 2 * kinetic / (max(1, 3 * moving - 3) * BOLTZMANN.value_in_unit(_ENERGY / _K))
-        theta = integrator.getParticleTemperatures().value_in_unit(_K)
-        a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
-        volume = a[0] * b[1] * c[2]
-        virial = self._force.getVirial(context).value_in_unit(_ENERGY)
-        pressure = (2 * kinetic + virial) / (3 * volume)
-        density = float(np.mean(self._force.getParticleDensities(context).value_in_unit(_DENSITY)))
-        energy = integrator.getConservedEnergy().value_in_unit(_ENERGY)
+        sample = sample_thermodynamics(state, simulation.context, integrator, self._force,
+                                       kinetic_degrees_of_freedom(simulation.system))
+        energy = sample.conserved_energy.value_in_unit(_ENERGY)
         if self._first_energy is None:
             self._first_energy = energy
         drift = (energy - self._first_energy) / abs(self._first_energy)
-        time = state.getTime().value_in_unit(unit.picosecond)
         if self._units is None:
-            values = [time, kinetic_temperature, float(np.mean(theta)), 1 / float(np.mean(1 / theta)), density,
-                      pressure * _BAR_PER_PRESSURE, energy]
+            values = [sample.time.value_in_unit(unit.picosecond), sample.kinetic_temperature.value_in_unit(_K),
+                      sample.mean_temperature.value_in_unit(_K), sample.harmonic_temperature.value_in_unit(_K),
+                      sample.density.value_in_unit(_DENSITY),
+                      sample.pressure.value_in_unit(_PRESSURE) * _BAR_PER_PRESSURE, energy]
         else:
             u = self._units
-            values = [u.from_openmm(time, "time"), u.from_openmm(kinetic_temperature, "temperature"),
-                      u.from_openmm(float(np.mean(theta)), "temperature"),
-                      u.from_openmm(1 / float(np.mean(1 / theta)), "temperature"),
-                      u.from_openmm(density, "number_density"), u.from_openmm(pressure, "pressure"),
-                      u.from_openmm(energy, "energy")]
+            values = [u.from_openmm(sample.time, "time"), u.from_openmm(sample.kinetic_temperature, "temperature"),
+                      u.from_openmm(sample.mean_temperature, "temperature"),
+                      u.from_openmm(sample.harmonic_temperature, "temperature"),
+                      u.from_openmm(sample.density, "number_density"), u.from_openmm(sample.pressure, "pressure"),
+                      u.from_openmm(sample.conserved_energy, "energy")]
         if not self._header_written:
             self._out.write("#" + self._separator.join(f'"{name}"' for name in self._columns()) + "\n")
             self._header_written = True

@@ -13,8 +13,9 @@ import sys
 
 from openmm import app
 
-from openmmgendpde import GenDPDEIntegrator, GenDPDEReporter
+from openmmgendpde import GenDPDEReporter
 from openmmgendpde.presets import ARGON_UNITS, liquid_argon
+from openmmgendpde.study import melt_then_draw
 
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("--estimator", default="VB", choices=["VA", "VB"])
@@ -23,12 +24,10 @@ args = parser.parse_args()
 
 argon = liquid_argon(num_particles=500, cutoff=args.cutoff, estimator=args.estimator, time_step=0.01, seed=1)
 simulation = argon.simulation(platform="Reference")
-integrator = argon.integrator
 
-integrator.setMode(GenDPDEIntegrator.Isothermal)               # melt the lattice at T0 (heat goes to the bath)
-simulation.step(1000)
-integrator.setMode(GenDPDEIntegrator.Isoenergetic)             # full GenDPDE from here on
-integrator.setInternalEnergiesToTemperature(argon.temperature, 1)
+# Melt the lattice with the DPD thermostat at T0 (the heat goes to the bath), then full (isoenergetic) GenDPDE
+# with the internal energies drawn at T0.
+melt_then_draw(argon, 1000, seed=1, step=simulation.step)
 
 simulation.reporters.append(GenDPDEReporter(sys.stdout, 200, units=ARGON_UNITS))
 simulation.reporters.append(app.DCDReporter("liquid_argon.dcd", 200))

@@ -23,10 +23,8 @@ import numpy as np
 from openmm import app, unit
 
 from . import GenDPDEIntegrator
-from .presets import ARGON_STATE, ARGON_UNITS, LiquidArgon, liquid_argon
-from .units import BOLTZMANN
-
-_ENERGY = unit.kilojoule_per_mole
+from .presets import ARGON_UNITS, LiquidArgon, liquid_argon
+from .thermodynamics import kinetic_degrees_of_freedom, sample_thermodynamics
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,7 +55,7 @@ QUICK = Protocol(num_particles=500, time_step=0.01, thermostat_time=10.0, equili
 
 @dataclasses.dataclass
 class Samples:
-    """Production samples in reduced units."""
+    """Production samples in reduced units (openmmgendpde.thermodynamics defines each quantity)."""
     time: list = dataclasses.field(default_factory=list)
     kinetic_temperature: list = dataclasses.field(default_factory=list)   # 2K/((3N - 3) k_B), on-step velocities
     harmonic_temperature: list = dataclasses.field(default_factory=list)  # <1/theta_i>^-1
@@ -70,6 +68,16 @@ class Samples:
     wall_time: float = 0.0                                                # s, production only
     steps: int = 0                                                        # production steps
 
+    def append(self, sample, units=ARGON_UNITS):
+        """Add a ThermodynamicSample (OpenMM units), converted to ``units``."""
+        self.time.append(units.from_openmm(sample.time, "time"))
+        self.kinetic_temperature.append(units.from_openmm(sample.kinetic_temperature, "temperature"))
+        self.harmonic_temperature.append(units.from_openmm(sample.harmonic_temperature, "temperature"))
+        self.mean_temperature.append(units.from_openmm(sample.mean_temperature, "temperature"))
+        self.density.append(units.from_openmm(sample.density, "number_density"))
+        self.pressure.append(units.from_openmm(sample.pressure, "pressure"))
+        self.conserved_energy.append(units.from_openmm(sample.conserved_energy, "energy"))
+
 
 @dataclasses.dataclass
 class ArgonRun:
@@ -79,67 +87,72 @@ class ArgonRun:
     simulation: app.Simulation
 
 
+def melt_then_draw(argon, thermostat_steps, seed, step=None):
+    """Phases 1 and the start of 2 of the protocol: ``thermostat_steps`` steps with the DPD thermostat at T0
+    (Isothermal mode), then isoenergetic mode with the internal energies drawn from their equilibrium Gamma law at
+    T0 (``setInternalEnergiesToTemperature(T0, seed)``). ``step(n)`` advances n steps: the integrator's own by
+    default; pass e.g. ``Simulation.step`` (reporters, step count) or a stepper that reports progress."""
+    integrator = argon.integrator
+    integrator.setMode(GenDPDEIntegrator.Isothermal)
+    (step or integrator.step)(thermostat_steps)
+    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+    integrator.setInternalEnergiesToTemperature(argon.temperature, seed)
+
+
+def stepper(integrator, progress=None, chunk=200):
+    """A function step(n) that advances ``integrator`` n steps in chunks of at most ``chunk`` steps, advancing
+    ``progress`` (if given) after each chunk."""
+    def step(steps):
+        done = 0
+        while done < steps:
+            size = min(steps - done, chunk)
+            integrator.step(size)
+            done += size
+            if progress is not None:
+                progress.advance(size)
+    return step
+
+
 def run_argon(cutoff, estimator, protocol=FULL, platform="Reference", cutoff_scaling=None, frames=0, progress=None,
               continue_from=None):
     """Run the protocol for one cutoff R* and estimator ('VA' or 'VB'); return an ArgonRun.
     ``frames`` positions are kept, evenly spread over the production phase. ``progress`` (a Progress) advances by
     the number of steps done. ``continue_from`` = (LiquidArgon, Simulation) of an earlier run continues that run
     (equilibration and production only) instead of starting from the lattice."""
-    units, state = ARGON_UNITS, ARGON_STATE
     if continue_from is None:
         argon = liquid_argon(protocol.num_particles, cutoff, estimator, cutoff_scaling, protocol.time_step,
                              seed=protocol.seed)
         simulation = argon.simulation(platform, velocity_seed=protocol.seed)
     else:
         argon, simulation = continue_from
-    integrator, context = argon.integrator, simulation.context
-    temperature = units.to_openmm(state.temperature, "temperature")
-
-    def advance(steps):
-        done = 0
-        while done < steps:
-            chunk = min(steps - done, 200)
-            integrator.step(chunk)
-            done += chunk
-            if progress is not None:
-                progress.advance(chunk)
-
+    advance = stepper(argon.integrator, progress)
     if continue_from is None:
-        integrator.setMode(GenDPDEIntegrator.Isothermal)
-        advance(protocol.steps(protocol.thermostat_time))
-        integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-        integrator.setInternalEnergiesToTemperature(temperature, protocol.seed)
+        melt_then_draw(argon, protocol.steps(protocol.thermostat_time), protocol.seed, advance)
     elif progress is not None:
         progress.advance(protocol.steps(protocol.thermostat_time))
     advance(protocol.steps(protocol.equilibration_time))
+    return ArgonRun(production(argon, simulation, protocol, frames, advance), argon, simulation)
 
+
+def production(argon, simulation, protocol, frames, advance):
+    """Phase 3: ``protocol.production_time`` sampled every ``protocol.sample_interval``, keeping ``frames``
+    positions evenly spread over it; ``advance(n)`` steps. Returns the Samples."""
+    context = simulation.context
     samples = Samples(box_edge=argon.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer))
-    volume = argon.box_volume
-    degrees = 3 * argon.num_particles - 3
-    kb = BOLTZMANN.value_in_unit(_ENERGY / unit.kelvin)
+    degrees = kinetic_degrees_of_freedom(argon.system)
     every = protocol.steps(protocol.sample_interval)
     count = protocol.steps(protocol.production_time) // every
     keep = set(np.linspace(0, count - 1, frames).round().astype(int)) if frames else set()
     start = time.perf_counter()
     for index in range(count):
         advance(every)
-        state_ = context.getState(getEnergy=True, getPositions=index in keep)
-        kinetic = state_.getKineticEnergy().value_in_unit(_ENERGY)
-        theta = integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
-        virial = argon.force.getVirial(context).value_in_unit(_ENERGY)
-        samples.time.append(units.from_openmm(state_.getTime(), "time"))
-        samples.kinetic_temperature.append(units.from_openmm(2 * kinetic / (degrees * kb), "temperature"))
-        samples.harmonic_temperature.append(units.from_openmm(1 / np.mean(1 / theta), "temperature"))
-        samples.mean_temperature.append(units.from_openmm(np.mean(theta), "temperature"))
-        densities = argon.force.getParticleDensities(context).value_in_unit(unit.nanometer**-3)
-        samples.density.append(units.from_openmm(np.mean(densities), "number_density"))
-        samples.pressure.append(units.from_openmm((2 * kinetic + virial) / (3 * volume), "pressure"))
-        samples.conserved_energy.append(units.from_openmm(integrator.getConservedEnergy(), "energy"))
+        state = context.getState(getEnergy=True, getPositions=index in keep)
+        samples.append(sample_thermodynamics(state, context, argon.integrator, argon.force, degrees))
         if index in keep:
-            samples.frames.append(state_.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
+            samples.frames.append(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
     samples.wall_time = time.perf_counter() - start
     samples.steps = count * every
-    return ArgonRun(samples, argon, simulation)
+    return samples
 
 
 def add_protocol_arguments(parser, defaults=FULL):

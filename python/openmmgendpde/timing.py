@@ -9,11 +9,10 @@ import dataclasses
 
 from openmm import unit
 
-from . import GenDPDEIntegrator
 from .measurement import alternating_rounds, median, median_ratio
-from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
+from .presets import ARGON_CUTOFFS, ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from .progress import Progress
-from .study import add_protocol_arguments, protocol_from_arguments
+from .study import add_protocol_arguments, melt_then_draw, protocol_from_arguments
 
 
 @dataclasses.dataclass
@@ -24,15 +23,13 @@ class TimingRow:
     published: float
 
 
-def prepared_integrator(cutoff, estimator, protocol, platform, preparation_time):
+def prepared_simulation(cutoff, estimator, protocol, platform, preparation_time):
+    """A Simulation of liquid argon ready for isoenergetic steps: melted with the thermostat for
+    ``preparation_time`` and its internal energies drawn at T0 (openmmgendpde.study.melt_then_draw)."""
     argon = liquid_argon(protocol.num_particles, cutoff, estimator, time_step=protocol.time_step, seed=protocol.seed)
     simulation = argon.simulation(platform, velocity_seed=protocol.seed)
-    argon.integrator.setMode(GenDPDEIntegrator.Isothermal)
-    argon.integrator.step(protocol.steps(preparation_time))
-    argon.integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-    argon.integrator.setInternalEnergiesToTemperature(
-        ARGON_UNITS.to_openmm(ARGON_STATE.temperature, "temperature"), protocol.seed)
-    return argon.integrator, simulation
+    melt_then_draw(argon, protocol.steps(preparation_time), protocol.seed)
+    return simulation
 
 
 def run(arguments):
@@ -45,9 +42,9 @@ def run(arguments):
     rows = []
     for cutoff in cutoffs:
         progress.label = f"timing R*={cutoff}"
-        prepared = {estimator: prepared_integrator(cutoff, estimator, protocol, arguments.platform, preparation)
+        prepared = {estimator: prepared_simulation(cutoff, estimator, protocol, arguments.platform, preparation)
                     for estimator in ("VA", "VB")}
-        candidates = {estimator: (lambda integrator=prepared[estimator][0]: integrator.step(steps))
+        candidates = {estimator: (lambda integrator=prepared[estimator].integrator: integrator.step(steps))
                       for estimator in ("VA", "VB")}
         seconds = alternating_rounds(candidates, rounds, progress)
         rows.append(TimingRow(cutoff, {e: 1e3 * median(s) / steps for e, s in seconds.items()},

@@ -1,6 +1,7 @@
 """Command line of openmmgendpde: python3 -m openmmgendpde <subcommand> [options]; --help for each."""
 
 import argparse
+import warnings
 
 from . import benchmark_force, benchmark_integrator, rdf, speed_vs_error, table3, timing, tune_fcut
 
@@ -27,5 +28,11 @@ def main(argv=None):
     return arguments.run(arguments)
 
 
+def _format_warning(message, category, filename, lineno, line=None):
+    """A warning of a command-line run (e.g. statistics.BlockAverageWarning) as one line on stderr."""
+    return f"warning: {message}\n"
+
+
 if __name__ == "__main__":
+    warnings.formatwarning = _format_warning
     main()

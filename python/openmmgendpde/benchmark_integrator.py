@@ -75,7 +75,7 @@ def without_forces(system):
     return bare
 
 
-def kinetic_temperature(context, integrator, samples, steps_per_sample):
+def kinetic_temperature(context, integrator, samples, steps_per_sample, name="kinetic temperature"):
     """BlockAverage (mean, standard error; K) of 2K/((3N - 3) k_B) over ``samples`` samples ``steps_per_sample``
     steps apart."""
     dof = 3 * context.getSystem().getNumParticles() - 3
@@ -85,7 +85,7 @@ def kinetic_temperature(context, integrator, samples, steps_per_sample):
         integrator.step(steps_per_sample)
         kinetic = context.getState(getEnergy=True).getKineticEnergy().value_in_unit(unit.kilojoule_per_mole)
         values.append(2 * kinetic / (dof * kb))
-    return block_average(values, blocks=TEMPERATURE_BLOCKS)
+    return block_average(values, blocks=TEMPERATURE_BLOCKS, name=name)
 
 
 def benchmark(num_particles, cutoff=1.6839, platform_name="Reference", rounds=None, progress=None):
@@ -139,7 +139,8 @@ def benchmark(num_particles, cutoff=1.6839, platform_name="Reference", rounds=No
     if rounds is None:
         rounds = default_rounds(num_particles)
     seconds = alternating_rounds(candidates, rounds, progress)
-    temperatures = {name: kinetic_temperature(*contexts[name], TEMPERATURE_SAMPLES, STEPS_PER_SAMPLE)
+    temperatures = {name: kinetic_temperature(*contexts[name], TEMPERATURE_SAMPLES, STEPS_PER_SAMPLE,
+                                              f"N = {num_particles} {name}: kinetic temperature")
                     for name in THERMOSTATS}
     return IntegratorBenchmark(
         num_particles=num_particles, cutoff=cutoff, platform=platform_name,

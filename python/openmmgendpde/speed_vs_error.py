@@ -53,10 +53,13 @@ def measure(cutoff, estimator, steps, protocol, platform, progress):
         new.context.setState(state)
         samples = run_argon(cutoff, estimator, run, platform, progress=progress, continue_from=(argon, new)).samples
         slope = np.polyfit(samples.time, samples.conserved_energy, 1)[0]
-        ratio, ratio_error = block_average(np.array(samples.kinetic_temperature) / np.array(samples.harmonic_temperature))
+        case = f"{estimator} dt* = {time_step:g}"
+        ratios = np.array(samples.kinetic_temperature) / np.array(samples.harmonic_temperature)
+        ratio, ratio_error = block_average(ratios, name=f"{case} T_kin/T_harm")
         points.append(Point(estimator, time_step, samples.wall_time / (samples.steps * time_step),
                             abs(slope) / protocol.num_particles, abs(ratio - 1), ratio_error,
-                            block_average(samples.density), block_average(samples.pressure)))
+                            block_average(samples.density, name=f"{case} n-bar*"),
+                            block_average(samples.pressure, name=f"{case} P*")))
     smallest = min(points, key=lambda p: p.time_step)
     for p in points:
         p.density_error = abs(p.density.mean - smallest.density.mean)

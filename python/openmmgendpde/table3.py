@@ -1,6 +1,7 @@
 """Table III of Colella et al. (J. Chem. Theory Comput. 2025) reproduced (`table3`): for the three published cutoffs
 and both estimators, the production averages of T* (kinetic, and harmonic mean of theta_i), n-bar* and P* with
-block-average error bars (10 blocks), beside the published values and the difference. Runs follow
+block-average error bars (10 blocks; a warning on stderr where they have not reached their plateau, see
+openmmgendpde.statistics), beside the published values and the difference. Runs follow
 openmmgendpde.study (thermostat at T0, internal energies drawn at T0, isoenergetic equilibration and production).
 A cell is marked when it differs from the published value by more than the published error bar (0.0001 for T*,
 0.001 otherwise) plus twice its own standard error.
@@ -51,7 +52,7 @@ class Cell:
 def cells_of(cutoff, estimator, samples):
     cells = []
     for key, field, label, _ in QUANTITIES:
-        mean, error = block_average(getattr(samples, field))
+        mean, error = block_average(getattr(samples, field), name=f"R_cut* = {cutoff} {estimator} {label}")
         cells.append(Cell(cutoff, estimator, label, PUBLISHED_TABLE3[cutoff][estimator][key], mean, error))
     return cells
 

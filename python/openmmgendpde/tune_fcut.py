@@ -57,7 +57,7 @@ def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, ma
         samples, argon, simulation = run.samples, run.argon, run.simulation
         running = (argon, simulation)
         context = simulation.context
-        density, density_error = block_average(samples.density)
+        density, density_error = block_average(samples.density, name=f"n-bar* at f_cut = {scaling:.4f}")
         state = context.getState(getPositions=True, getVelocities=True, getIntegratorParameters=True)
         step = 0.01
         low = mean_density_on_frames(argon.force, context, samples.frames, scaling - step)

@@ -6,6 +6,10 @@ import pytest
 
 from openmmgendpde.__main__ import main
 
+# The quick sizes run in seconds, too short for the error bars to reach their plateau: every study would warn
+# (BlockAverageWarning). The warning itself is tested in test_statistics.py.
+pytestmark = pytest.mark.filterwarnings("ignore::openmmgendpde.statistics.BlockAverageWarning")
+
 
 @pytest.fixture(scope="module")
 def table3_output(tmp_path_factory):

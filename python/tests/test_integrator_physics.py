@@ -11,17 +11,14 @@ from scipy import integrate, stats
 
 from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS, liquid_argon
+from openmmgendpde.statistics import block_average
 from openmmgendpde.units import BOLTZMANN
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 ENERGY = unit.kilojoule_per_mole
 
-
-def block_standard_error(values, blocks=20):
-    """Standard error of the mean of a correlated series, from the scatter of block means."""
-    values = np.asarray(values)
-    means = values[:len(values) // blocks * blocks].reshape(blocks, -1).mean(axis=1)
-    return means.std(ddof=1) / math.sqrt(blocks)
+#: Blocks of 25 samples (5 time units) for the standard errors of the 500 equilibrium samples.
+BLOCKS = 20
 
 
 @pytest.fixture(scope="module")
@@ -56,7 +53,8 @@ def test_kinetic_temperature_equals_harmonic_mean_temperature(equilibrium_sample
     kinetic_temperature = 2 * kinetic / ((3 * n - 3) * KB)
     harmonic = 1 / np.mean(1 / temperatures, axis=1)
     ratio = kinetic_temperature / harmonic
-    assert abs(ratio.mean() - (1 - 1 / a)) < 5 * block_standard_error(ratio)
+    error = block_average(ratio, BLOCKS, name="T_kin/T_harm").standard_error
+    assert abs(ratio.mean() - (1 - 1 / a)) < 5 * error
 
 
 def test_mean_temperature_exceeds_harmonic_mean_by_kb_over_cv(equilibrium_samples):
@@ -67,7 +65,8 @@ def test_mean_temperature_exceeds_harmonic_mean_by_kb_over_cv(equilibrium_sample
     c = heat_capacity / KB
     a = (3 * n - 3) / 2 + n * (c + 1)
     ratio = temperatures.mean(axis=1) * np.mean(1 / temperatures, axis=1)
-    assert abs(ratio.mean() - (1 + 1 / c) * (1 - 1 / a)) < 5 * block_standard_error(ratio)
+    error = block_average(ratio, BLOCKS, name="<theta>/T_harm").standard_error
+    assert abs(ratio.mean() - (1 + 1 / c) * (1 - 1 / a)) < 5 * error
 
 
 def test_internal_energies_follow_the_gamma_law(equilibrium_samples):

@@ -13,8 +13,9 @@ import dataclasses
 import openmm
 from openmm import unit
 
+from .cli import add_cutoffs, chosen_cutoffs
 from .customgb import custom_gb_equivalent
-from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, liquid_argon
+from .presets import ARGON_STATE, ARGON_UNITS, liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
                           print_results)
 from .progress import Progress
@@ -104,7 +105,7 @@ def format_table(results):
 
 
 def run(arguments):
-    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    cutoffs = chosen_cutoffs(arguments)
     cases = [(n, c) for n in arguments.particles for c in cutoffs]
     rounds = arguments.rounds
     total = sum(2 * (rounds or default_rounds(n)) for n, _ in cases)
@@ -121,5 +122,5 @@ def run(arguments):
 
 def add_arguments(parser):
     add_benchmark_arguments(parser)
-    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
+    add_cutoffs(parser)
     parser.set_defaults(run=run)

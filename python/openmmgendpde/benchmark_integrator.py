@@ -23,6 +23,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
+from .cli import DEFAULT_CUTOFF, add_cutoff
 from .presets import liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
                           print_results)
@@ -88,7 +89,7 @@ def kinetic_temperature(context, integrator, samples, steps_per_sample, name="ki
     return block_average(values, blocks=TEMPERATURE_BLOCKS, name=name)
 
 
-def benchmark(num_particles, cutoff=1.6839, platform_name="Reference", rounds=None, progress=None):
+def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", rounds=None, progress=None):
     platform = openmm.Platform.getPlatformByName(platform_name)
     argon = liquid_argon(num_particles, cutoff, "VB", seed=1, mode=GenDPDEIntegrator.Isothermal)
     simulation = argon.simulation(platform_name)
@@ -204,5 +205,5 @@ def run(arguments):
 
 def add_arguments(parser):
     add_benchmark_arguments(parser)
-    parser.add_argument("--cutoff", type=float, default=1.6839, help="R_cut* (default 1.6839)")
+    add_cutoff(parser)
     parser.set_defaults(run=run)

@@ -10,6 +10,8 @@ import json
 import statistics
 import time
 
+from .cli import add_platform, add_progress, add_rounds
+
 
 def alternating_rounds(candidates, rounds, progress=None):
     """Call each of ``candidates`` (name -> callable) once per round for ``rounds`` rounds, rotating the order.
@@ -53,10 +55,10 @@ def add_benchmark_arguments(parser):
     """The options shared by the benchmark subcommands."""
     parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
                         help="particle counts, 4 m^3 each (default 4000 32000)")
-    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
-    parser.add_argument("--rounds", type=int, help="timing rounds (default 15, or 7 above 8000 particles)")
+    add_platform(parser)
+    add_rounds(parser, "15, or 7 above 8000 particles")
     parser.add_argument("--json", help="also write the results to this JSON file")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    add_progress(parser)
 
 
 def print_results(header, table, results, json_path):

@@ -13,7 +13,8 @@ import numpy as np
 from openmm import unit
 
 from .plotting import panels, save
-from .presets import ARGON_CUTOFFS, ARGON_UNITS
+from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs
+from .presets import ARGON_UNITS
 from .progress import Progress
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
 
@@ -66,7 +67,7 @@ def plot(curves, cutoffs, path_stem):
 
 def run(arguments):
     protocol = protocol_from_arguments(arguments)
-    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    cutoffs = chosen_cutoffs(arguments)
     output = pathlib.Path(arguments.output)
     output.mkdir(parents=True, exist_ok=True)
     progress = Progress(2 * len(cutoffs) * protocol.total_steps, "rdf", always=arguments.progress)
@@ -98,9 +99,8 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
-    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
+    add_cutoffs(parser)
     parser.add_argument("--frames-from", help="read the frames saved by `table3 --output DIR` instead of running")
-    parser.add_argument("--frames", type=int, default=50, help="production frames per run when running (default 50)")
-    parser.add_argument("--output", default="results", help="directory for the plots (default results)")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    add_frames(parser, "per run when running", default=50)
+    add_output(parser, "the plots")
     parser.set_defaults(run=run)

@@ -16,6 +16,7 @@ import pathlib
 import numpy as np
 import openmm
 
+from .cli import add_cutoff, add_output
 from .plotting import panels, save
 from .presets import liquid_argon
 from .progress import Progress
@@ -140,9 +141,8 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser, defaults=dataclasses.replace(FULL, production_time=50.0))
-    parser.add_argument("--cutoff", type=float, default=1.6839, help="R_cut* (default 1.6839)")
+    add_cutoff(parser)
     parser.add_argument("--steps", type=float, nargs="+",
                         help="step sizes dt* (default 0.04 0.02 0.01 0.005 0.0025; quick 0.02 0.01 0.005)")
-    parser.add_argument("--output", default="results", help="directory for the table and plot (default results)")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    add_output(parser, "the table and plot")
     parser.set_defaults(run=run)

@@ -23,6 +23,7 @@ import numpy as np
 from openmm import app, unit
 
 from . import GenDPDEIntegrator
+from .cli import add_platform, add_progress
 from .presets import ARGON_UNITS, LiquidArgon, liquid_argon
 from .thermodynamics import kinetic_degrees_of_freedom, sample_thermodynamics
 
@@ -156,14 +157,16 @@ def production(argon, simulation, protocol, frames, advance):
 
 
 def add_protocol_arguments(parser, defaults=FULL):
-    """Command-line options that override the protocol; --quick selects QUICK."""
+    """Command-line options of the studies: those that override the protocol (--quick selects QUICK), the platform
+    and --progress."""
     parser.add_argument("--quick", action="store_true",
                         help="short runs for CI: 500 particles, dt* = 0.01, 10 + 10 + 30 time units")
     parser.add_argument("--particles", type=int, help=f"particle count, 4 m^3 (default {defaults.num_particles})")
     parser.add_argument("--time-step", type=float, help=f"dt* (default {defaults.time_step})")
     parser.add_argument("--production", type=float, help=f"production time* (default {defaults.production_time})")
-    parser.add_argument("--seed", type=int, help="random seed (default 1)")
-    parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
+    parser.add_argument("--seed", type=int, help=f"random seed (default {defaults.seed})")
+    add_platform(parser)
+    add_progress(parser)
 
 
 def protocol_from_arguments(arguments, defaults=FULL):

@@ -13,7 +13,8 @@ import pathlib
 
 import numpy as np
 
-from .presets import ARGON_CUTOFFS, ARGON_STATE, PUBLISHED_TABLE3
+from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs
+from .presets import ARGON_STATE, PUBLISHED_TABLE3
 from .progress import Progress
 from .statistics import block_average
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
@@ -99,7 +100,7 @@ def save_frames(directory, cutoff, estimator, samples):
 
 def run(arguments):
     protocol = protocol_from_arguments(arguments)
-    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    cutoffs = chosen_cutoffs(arguments)
     cases = [(cutoff, estimator) for cutoff in cutoffs for estimator in ("VA", "VB")]
     output = pathlib.Path(arguments.output)
     output.mkdir(parents=True, exist_ok=True)
@@ -131,8 +132,7 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
-    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
-    parser.add_argument("--frames", type=int, help="production frames to keep for the RDF (default 50, quick 10)")
-    parser.add_argument("--output", default="results", help="directory for table3.csv and the frames (default results)")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
+    add_cutoffs(parser)
+    add_frames(parser, "to keep for the RDF", default_text="50, quick 10")
+    add_output(parser, "table3.csv and the frames")
     parser.set_defaults(run=run)

@@ -10,7 +10,8 @@ import dataclasses
 from openmm import unit
 
 from .measurement import alternating_rounds, median, median_ratio
-from .presets import ARGON_CUTOFFS, ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
+from .cli import add_cutoffs, add_rounds, chosen_cutoffs
+from .presets import ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from .progress import Progress
 from .study import add_protocol_arguments, melt_then_draw, protocol_from_arguments
 
@@ -34,7 +35,7 @@ def prepared_simulation(cutoff, estimator, protocol, platform, preparation_time)
 
 def run(arguments):
     protocol = protocol_from_arguments(arguments)
-    cutoffs = arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
+    cutoffs = chosen_cutoffs(arguments)
     rounds = arguments.rounds or (7 if arguments.quick else 15)
     steps = arguments.steps or (20 if arguments.quick else 50)
     preparation = 2.0 if arguments.quick else 10.0
@@ -64,8 +65,7 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
-    parser.add_argument("--cutoffs", type=float, nargs="+", help="R_cut* values (default: the three published)")
-    parser.add_argument("--rounds", type=int, help="alternating rounds (default 15, quick 7)")
+    add_cutoffs(parser)
+    add_rounds(parser, "15, quick 7")
     parser.add_argument("--steps", type=int, help="steps per round (default 50, quick 20)")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
     parser.set_defaults(run=run)

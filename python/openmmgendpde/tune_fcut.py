@@ -13,6 +13,7 @@ import dataclasses
 import numpy as np
 from openmm import unit
 
+from .cli import add_cutoff
 from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff
 from .progress import Progress
 from .statistics import block_average
@@ -95,9 +96,8 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
-    parser.add_argument("--cutoff", type=float, default=1.6839, help="R_cut* (default 1.6839)")
+    add_cutoff(parser)
     parser.add_argument("--start", type=float, help="initial f_cut (default: the published value)")
     parser.add_argument("--tolerance", type=float, default=0.001, help="|n-bar* - n0*| accepted (default 0.001)")
     parser.add_argument("--max-iterations", type=int, default=5, help="iterations at most (default 5)")
-    parser.add_argument("--progress", action="store_true", help="show progress even when not on a terminal")
     parser.set_defaults(run=run)

@@ -1,12 +1,16 @@
 """Figures of the studies, saved as PNG and PDF. Built on matplotlib's Figure directly, not pyplot, so that no
-display and no global backend are involved (importing this module selects no backend for the user's session)."""
+display and no global backend are involved (nothing here selects a backend for the user's session).
+
+matplotlib belongs to the optional ``studies`` dependencies (pyproject.toml): it is imported where a figure is
+made, so that the subcommands without figures run without it.
+"""
 
 import numpy as np
-from matplotlib.figure import Figure
 
 
 def panels(count, width=4.2, height=3.6, **options):
     """A figure with `count` panels side by side: (figure, list of axes)."""
+    from matplotlib.figure import Figure   # optional dependency (studies), see the module docstring
     figure = Figure(figsize=(width * count, height))
     axes = figure.subplots(1, count, **options)
     return figure, list(np.atleast_1d(axes))

@@ -8,7 +8,6 @@ with the same protocol.
 import csv
 import pathlib
 
-import mdtraj
 import numpy as np
 from openmm import unit
 
@@ -24,6 +23,7 @@ R_MAX, BIN_WIDTH = 3.0, 0.02
 
 def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH):
     """(r*, g(r)) for frames (F x N x 3, nm) in a cubic box of edge box_edge (nm), by mdtraj in chunks of 5 frames."""
+    import mdtraj   # optional dependency (the studies extra of pyproject.toml): only this subcommand needs it
     frames = np.asarray(frames, dtype=np.float32)
     length = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)
     topology = mdtraj.Topology()

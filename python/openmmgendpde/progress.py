@@ -1,43 +1,37 @@
-"""A one-line progress display with elapsed time and an estimate of the time remaining."""
+"""Progress of the long runs on stderr (tqdm): percentage, elapsed time and an estimate of the time remaining."""
 
 import sys
-import time
+
+from tqdm import tqdm
 
 
 class Progress:
-    """A one-line progress display on stderr with the time remaining, for long runs (silent when not a terminal
-    unless ``always`` is set)."""
+    """A progress bar on stderr (or ``stream``) over ``total`` units of work (steps, rounds), shown only when the
+    stream is a terminal or ``always`` is set (--progress); it never writes to stdout. ``label`` (settable) names
+    the current part of the work."""
 
     def __init__(self, total, label="", always=False, stream=None):
-        self.total, self.done, self.label = max(1, total), 0, label
-        self.stream = stream or sys.stderr
-        self.enabled = always or self.stream.isatty()
-        self.start = time.perf_counter()
-        self.last_print = 0.0
+        stream = stream or sys.stderr
+        self.total = max(1, total)
+        self._label = label
+        self._bar = tqdm(total=self.total, desc=label, file=stream, disable=not (always or stream.isatty()),
+                         mininterval=0.5, dynamic_ncols=True,
+                         bar_format="{desc} {percentage:5.1f}% |{bar}| elapsed {elapsed}, remaining ~{remaining}")
+
+    @property
+    def label(self):
+        return self._label
+
+    @label.setter
+    def label(self, label):
+        self._label = label
+        self._bar.set_description_str(label, refresh=False)
 
     def advance(self, amount=1, label=None):
-        self.done = min(self.total, self.done + amount)
+        """``amount`` more units done (never beyond ``total``); optionally a new label."""
         if label is not None:
             self.label = label
-        now = time.perf_counter()
-        if self.enabled and (now - self.last_print > 0.5 or self.done == self.total):
-            self.last_print = now
-            elapsed = now - self.start
-            remaining = elapsed / self.done * (self.total - self.done)
-            self.stream.write(f"\r{self.label} {100 * self.done / self.total:5.1f}%  elapsed {format_duration(elapsed)}"
-                              f"  remaining ~{format_duration(remaining)}   ")
-            self.stream.flush()
+        self._bar.update(min(amount, self.total - self._bar.n))
 
     def finish(self):
-        if self.enabled:
-            self.stream.write("\n")
-            self.stream.flush()
-
-
-def format_duration(seconds):
-    seconds = int(round(seconds))
-    if seconds < 60:
-        return f"{seconds}s"
-    if seconds < 3600:
-        return f"{seconds // 60}m{seconds % 60:02d}s"
-    return f"{seconds // 3600}h{seconds % 3600 // 60:02d}m"
+        self._bar.close()

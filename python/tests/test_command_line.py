@@ -48,6 +48,15 @@ def test_timing_quick(capsys):
     assert "| 1.3365 |" in out and "1.07" in out
 
 
+def test_progress_goes_to_stderr_only_and_only_when_asked(capsys):
+    main(["timing", "--quick", "--cutoffs", "1.3365", "--rounds", "2", "--progress"])
+    captured = capsys.readouterr()
+    assert "timing R*=1.3365" in captured.err and "100.0%" in captured.err and "remaining" in captured.err
+    assert "remaining" not in captured.out and "| 1.3365 |" in captured.out
+    main(["timing", "--quick", "--cutoffs", "1.3365", "--rounds", "2"])
+    assert "remaining" not in capsys.readouterr().err   # stderr is not a terminal here: silent without --progress
+
+
 def test_tune_fcut_quick(capsys):
     main(["tune-fcut", "--quick", "--cutoff", "1.3365", "--max-iterations", "2"])
     out = capsys.readouterr().out

@@ -1,20 +1,35 @@
-"""Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units)."""
+"""Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units, its numbers taken
+from openmmgendpde.presets)."""
 
 import math
 
 import numpy as np
 import openmm
 import pytest
+from openmm import unit
 
-from openmmgendpde import GenDPDEForce
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+from openmmgendpde.presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
 
-LENGTH = 0.61616          # nm, the reduced length unit (n0* = 1)
-MASS = 200.0              # amu, one particle = 5 argon atoms
-DENSITY = 1 / LENGTH**3   # nm^-3
+LENGTH = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)   # nm, the reduced length unit (n0* = 1)
+MASS = ARGON_UNITS.unit("mass").value_in_unit(unit.amu)             # amu, one particle = 5 argon atoms
+DENSITY = 1 / LENGTH**3                                             # nm^-3
+#: T0 of the argon model, K.
+TEMPERATURE = ARGON_UNITS.to_openmm(ARGON_STATE.temperature, "temperature").value_in_unit(unit.kelvin)
+#: The parameters of the middle published cutoff (R_cut* = 1.6839): the default of the systems here.
+MIDDLE_CUTOFF = ARGON_CUTOFFS[1]
 
 
-def lattice_liquid(cells_per_side, density=DENSITY, jitter=0.15, seed=1, cutoff=1.6839 * LENGTH,
-                   estimator=GenDPDEForce.VB, cutoff_scaling=1.35, periodic=True):
+def argon_integrator(step_size):
+    """A GenDPDEIntegrator with the argon model's friction, heat conduction and heat capacity (MIDDLE_CUTOFF), all
+    given as Quantities; ``step_size`` in ps or as a Quantity."""
+    return GenDPDEIntegrator(step_size, ARGON_UNITS.to_openmm(MIDDLE_CUTOFF.friction, "friction"),
+                             ARGON_UNITS.to_openmm(MIDDLE_CUTOFF.heat_conduction, "heat_conduction"),
+                             ARGON_UNITS.to_openmm(ARGON_STATE.heat_capacity, "heat_capacity"))
+
+
+def lattice_liquid(cells_per_side, density=DENSITY, jitter=0.15, seed=1, cutoff=MIDDLE_CUTOFF.cutoff * LENGTH,
+                   estimator=GenDPDEForce.VB, cutoff_scaling=MIDDLE_CUTOFF.cutoff_scaling, periodic=True):
     """(system, force, positions) for a jittered simple-cubic lattice in a cubic box at ``density``."""
     n = cells_per_side**3
     edge = (n / density)**(1 / 3)

@@ -9,7 +9,8 @@ import openmm
 import pytest
 from openmm import app, unit
 
-from helpers import DENSITY, LENGTH, assert_rejected_without_change, energy_and_forces, lattice_liquid, make_context
+from helpers import (DENSITY, MIDDLE_CUTOFF, TEMPERATURE, assert_rejected_without_change, energy_and_forces,
+                     lattice_liquid, make_context)
 from openmmgendpde import GenDPDEForce
 from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
 
@@ -24,9 +25,11 @@ def test_is_an_openmm_force_with_quantity_getters():
     assert force.getDensityEstimator() == GenDPDEForce.VB
     assert force.getNonbondedMethod() == GenDPDEForce.CutoffPeriodic and force.usesPeriodicBoundaryConditions()
     n0, pi0, bulk, gamma = force.getTaitParameters()
-    # Defaults: liquid argon of docs/theory.md section 9 (u = 94.5476 kJ/mol, L = 0.61616 nm).
-    pressure_unit = 1.5700e-19 * 6.02214076e23 / 1000 / LENGTH**3
-    assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(DENSITY, rel=1e-14)
+    # Defaults: liquid argon of docs/theory.md section 9 (u = 94.5476 kJ/mol, L = 0.61616 nm), written out here in SI
+    # so that the C++ defaults are checked independently of openmmgendpde.presets.
+    length = 0.61616
+    pressure_unit = 1.5700e-19 * 6.02214076e23 / 1000 / length**3
+    assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(1 / length**3, rel=1e-14)
     assert pi0.value_in_unit(PRESSURE) == pytest.approx((0.12711 - 0.011054) * pressure_unit, rel=1e-14)
     assert bulk.value_in_unit(PRESSURE) == pytest.approx(pressure_unit / 6, rel=1e-14)
     assert gamma == 6.0
@@ -87,7 +90,7 @@ def test_cast_and_isinstance_on_forces_from_a_system():
     assert type(generic) is openmm.Force
     assert GenDPDEForce.isinstance(generic) and not GenDPDEForce.isinstance(system.getForce(1))
     cast = GenDPDEForce.cast(generic)
-    assert cast.getCutoffScaling() == 1.35
+    assert cast.getCutoffScaling() == MIDDLE_CUTOFF.cutoff_scaling
     with pytest.raises(openmm.OpenMMException, match="not a GenDPDEForce"):
         GenDPDEForce.cast(system.getForce(1))
 
@@ -175,7 +178,7 @@ def test_runs_in_a_simulation_with_reporters(platform, tmp_path):
     topology.setPeriodicBoxVectors(system.getDefaultPeriodicBoxVectors())
     simulation = app.Simulation(topology, system, openmm.VerletIntegrator(0.005), platform)
     simulation.context.setPositions(positions)
-    simulation.context.setVelocitiesToTemperature(125.7)
+    simulation.context.setVelocitiesToTemperature(TEMPERATURE)
     log = tmp_path / "log.csv"
     simulation.reporters.append(app.StateDataReporter(str(log), 5, step=True, potentialEnergy=True, temperature=True))
     simulation.reporters.append(app.DCDReporter(str(tmp_path / "traj.dcd"), 5))

@@ -11,29 +11,28 @@ import pytest
 from openmm import app, unit
 from scipy import stats
 
-from helpers import assert_rejected_without_change
+from helpers import MIDDLE_CUTOFF, TEMPERATURE, argon_integrator, assert_rejected_without_change
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, GenDPDEReporter
-from openmmgendpde.presets import ARGON_UNITS, liquid_argon
+from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS, liquid_argon
 
 ENERGY = unit.kilojoule_per_mole
 
 
 def make_integrator():
-    return GenDPDEIntegrator(0.009 * unit.picosecond, 1644.8 * unit.amu / unit.picosecond,
-                             2999.3 * unit.kilojoule_per_mole * unit.kelvin / unit.picosecond,
-                             0.10401 * unit.kilojoule_per_mole / unit.kelvin)
+    return argon_integrator(0.009 * unit.picosecond)
 
 
 def test_is_an_openmm_integrator_with_quantity_getters():
     integrator = make_integrator()
     assert isinstance(integrator, openmm.Integrator)
     assert integrator.getStepSize() == 0.009 * unit.picosecond
-    assert integrator.getFriction() == 1644.8 * unit.amu / unit.picosecond
-    assert integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin) == 0.10401
+    assert integrator.getFriction() == ARGON_UNITS.to_openmm(MIDDLE_CUTOFF.friction, "friction")
+    assert integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin) == \
+        ARGON_UNITS.to_openmm(ARGON_STATE.heat_capacity, "heat_capacity").value_in_unit(ENERGY / unit.kelvin)
     assert integrator.getMode() == GenDPDEIntegrator.Isoenergetic
     assert integrator.getCutoffDistance() == 0 * unit.nanometer
-    integrator.setTemperature(125.7)
-    assert integrator.getTemperature() == 125.7 * unit.kelvin
+    integrator.setTemperature(TEMPERATURE)
+    assert integrator.getTemperature() == TEMPERATURE * unit.kelvin
     integrator.setStepSize(5 * unit.femtosecond)
     assert integrator.getStepSize().value_in_unit(unit.picosecond) == pytest.approx(0.005)
     integrator.setHeatConduction(heatConduction=0.0)
@@ -99,7 +98,7 @@ def test_kinetic_and_conserved_energy_use_on_step_velocities():
     argon.integrator.step(20)
     state = simulation.context.getState(getVelocities=True, getForces=True, getEnergy=True)
     dt = argon.integrator.getStepSize().value_in_unit(unit.picosecond)
-    mass = 200.00131678036
+    mass = ARGON_UNITS.unit("mass").value_in_unit(unit.amu)
     v = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
     f = state.getForces(asNumpy=True).value_in_unit(ENERGY / unit.nanometer)
     kinetic = 0.5 * mass * np.sum((v + 0.5 * dt * f / mass) ** 2)
@@ -187,9 +186,10 @@ def test_internal_energies_drawn_at_a_temperature_follow_the_gamma_law():
     mean estimates T (1 + k_B/C_V) with 1/sqrt(a N) = 0.43%; tolerance 4 standard errors each; KS test p > 0.001."""
     argon = liquid_argon(4000, 1.6839, "VB")
     simulation = argon.simulation()   # noqa: F841  (the Context must stay alive)
-    argon.integrator.setInternalEnergiesToTemperature(125.7 * unit.kelvin, 3)
+    t = TEMPERATURE
+    argon.integrator.setInternalEnergiesToTemperature(t * unit.kelvin, 3)
     theta = argon.integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
-    c = 12.51
-    assert abs(1 / np.mean(1 / theta) / 125.7 - 1) < 4 / np.sqrt((c + 1 - 2) * 4000)
-    assert abs(np.mean(theta) / (125.7 * (1 + 1 / c)) - 1) < 4 / np.sqrt((c + 1) * 4000)
-    assert stats.kstest(theta * c / 125.7, stats.gamma(c + 1).cdf).pvalue > 1e-3
+    c = ARGON_STATE.heat_capacity   # C_V/k_B
+    assert abs(1 / np.mean(1 / theta) / t - 1) < 4 / np.sqrt((c + 1 - 2) * 4000)
+    assert abs(np.mean(theta) / (t * (1 + 1 / c)) - 1) < 4 / np.sqrt((c + 1) * 4000)
+    assert stats.kstest(theta * c / t, stats.gamma(c + 1).cdf).pvalue > 1e-3

@@ -10,7 +10,7 @@ from openmm import unit
 from scipy import integrate, stats
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS, liquid_argon
+from openmmgendpde.presets import liquid_argon
 from openmmgendpde.statistics import block_average
 from openmmgendpde.units import BOLTZMANN
 

@@ -17,7 +17,7 @@ from openmm import unit
 from packaging.requirements import Requirement
 
 import openmmgendpde
-from helpers import lattice_liquid, make_context
+from helpers import TEMPERATURE, argon_integrator, lattice_liquid, make_context
 from openmmgendpde import KERNEL_NAMES, GenDPDEForce, GenDPDEIntegrator
 
 
@@ -109,8 +109,8 @@ def test_per_particle_quantities_of_the_wrong_dimension_are_refused():
 
 def _argon_context(platform, seed):
     system, _, positions = lattice_liquid(6)                          # 216 particles
-    integrator = GenDPDEIntegrator(0.005, 1644.8, 2999.3, 0.10401)
-    integrator.setTemperature(125.7)
+    integrator = argon_integrator(0.005)
+    integrator.setTemperature(TEMPERATURE)
     integrator.setRandomNumberSeed(seed)
     context = make_context(system, positions, platform, integrator)
     return context, integrator

@@ -4,7 +4,7 @@ For each particle count and published argon cutoff: a liquid configuration is pr
 then velocity Verlet with the VB force), and four Contexts on the same platform evaluate that same configuration:
 GenDPDEForce VA and VB, CustomGBForce VA and VB. Force evaluations are timed in alternating rounds
 (openmmgendpde.timing); the ratios VB/VA and CustomGB/GenDPDE are medians of per-round ratios. The cost of a
-velocity-Verlet step with GenDPDEForce (which includes the amortised neighbour-list rebuilds) is measured the same
+velocity-Verlet step with GenDPDEForce (which includes the amortised neighbor-list rebuilds) is measured the same
 way.
 """
 
@@ -65,7 +65,7 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
         argon.system.addForce(custom)
         contexts[f"CustomGB {estimator}"] = _context(argon.system, positions, platform)
     for context in contexts.values():
-        context.getState(getEnergy=True)   # warm up: neighbour lists, caches
+        context.getState(getEnergy=True)   # warm up: neighbor lists, caches
     if rounds is None:
         rounds = default_rounds(num_particles)
     evaluate = {name: (lambda c=context: c.getState(getEnergy=True)) for name, context in contexts.items()}

@@ -1,7 +1,7 @@
 """The GenDPDE conservative potential written with OpenMM's stock ``CustomGBForce``.
 
-An independent implementation (Lepton expressions, OpenMM's own neighbour search and chain rule) used by the tests
-as an oracle and by the benchmark as the baseline. It needs every particle to have a neighbour (k > 0), because the
+An independent implementation (Lepton expressions, OpenMM's own neighbor search and chain rule) used by the tests
+as an oracle and by the benchmark as the baseline. It needs every particle to have a neighbor (k > 0), because the
 closed form of the VB volume is written literally.
 """
 

@@ -47,7 +47,7 @@ ARGON_STATE = ArgonState()
 class ArgonCutoff:
     """Parameters that depend on the cutoff (reduced units)."""
     cutoff: float            # R_cut*
-    neighbours: int          # particles within range at n0* = 1
+    neighbors: int           # particles within range at n0* = 1
     friction: float          # gamma*
     heat_conduction: float   # kappa*
     cutoff_scaling: float    # f_cut of the VB estimator

@@ -1,5 +1,5 @@
 """GenDPDEForce equals the same potential written with OpenMM's stock CustomGBForce (an independent implementation:
-Lepton expressions, OpenMM's neighbour search and automatic chain rule), on the Reference platform (double)."""
+Lepton expressions, OpenMM's neighbor search and automatic chain rule), on the Reference platform (double)."""
 
 import numpy as np
 import openmm

@@ -76,7 +76,7 @@ def test_liquid_argon_preset(entry):
         entry.heat_conduction, rel=1e-14)
     assert ARGON_UNITS.from_openmm(integrator.getHeatCapacity(), "heat_capacity") == pytest.approx(12.51, rel=1e-14)
     assert ARGON_UNITS.from_openmm(integrator.getTemperature(), "temperature") == pytest.approx(0.011054, rel=1e-14)
-    # The FCC lattice: nearest neighbours at a/sqrt(2), 12 of them.
+    # The FCC lattice: nearest neighbors at a/sqrt(2), 12 of them.
     positions = argon.positions
     spacing = edge / round((500 / 4) ** (1 / 3))
     d = positions[1:] - positions[0]

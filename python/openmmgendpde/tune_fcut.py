@@ -51,29 +51,31 @@ def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, ma
     """A CutoffScalingEstimate: f_cut solving n-bar*(f_cut) = n0* on the straight line through the last run, with
     its standard error and that run's n-bar*."""
     target = ARGON_STATE.density
-    scaling = start if start is not None else argon_cutoff(cutoff).cutoff_scaling
+    cutoff_scaling = start if start is not None else argon_cutoff(cutoff).cutoff_scaling
     running = None
     for iteration in range(1, max_iterations + 1):
-        run = run_argon(cutoff, "VB", protocol, platform, scaling, frames=10, progress=progress, continue_from=running)
+        run = run_argon(cutoff, "VB", protocol, platform, cutoff_scaling, frames=10, progress=progress,
+                        continue_from=running)
         samples, argon, simulation = run.samples, run.argon, run.simulation
         running = (argon, simulation)
         context = simulation.context
-        density, density_error = block_average(samples.density, name=f"n-bar* at f_cut = {scaling:.4f}")
+        density, density_error = block_average(samples.density, name=f"n-bar* at f_cut = {cutoff_scaling:.4f}")
         state = context.getState(getPositions=True, getVelocities=True, getIntegratorParameters=True)
-        step = 0.01
-        low = mean_density_on_frames(argon.force, context, samples.frames, scaling - step)
-        high = mean_density_on_frames(argon.force, context, samples.frames, scaling + step)
+        delta = 0.01
+        low = mean_density_on_frames(argon.force, context, samples.frames, cutoff_scaling - delta)
+        high = mean_density_on_frames(argon.force, context, samples.frames, cutoff_scaling + delta)
         context.setState(state)
-        slope = (high - low) / (2 * step)
-        new = max(1.0, scaling + (target - density) / slope)
-        report(f"iteration {iteration}: f_cut = {scaling:.4f}: n-bar* = {density:.4f} +- {density_error:.4f}, "
-               f"d n-bar*/d f_cut = {slope:.3f} -> f_cut = {new:.4f}")
+        slope = (high - low) / (2 * delta)
+        next_cutoff_scaling = max(1.0, cutoff_scaling + (target - density) / slope)
+        report(f"iteration {iteration}: f_cut = {cutoff_scaling:.4f}: n-bar* = {density:.4f} +- {density_error:.4f}, "
+               f"d n-bar*/d f_cut = {slope:.3f} -> f_cut = {next_cutoff_scaling:.4f}")
         # The estimate: where the line through the last run's measurement reaches n0.
-        measured = CutoffScalingEstimate(new, density_error / abs(slope), density, density_error, iteration, scaling)
+        measured = CutoffScalingEstimate(next_cutoff_scaling, density_error / abs(slope), density, density_error,
+                                         iteration, cutoff_scaling)
         if abs(density - target) <= max(tolerance, 2 * density_error):
             return measured
-        scaling = new
-        argon.force.setCutoffScaling(scaling)
+        cutoff_scaling = next_cutoff_scaling
+        argon.force.setCutoffScaling(cutoff_scaling)
         argon.force.updateParametersInContext(context)
     report(f"not converged within {max_iterations} iterations; the estimate from the last run is reported")
     return measured

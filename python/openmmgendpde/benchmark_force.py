@@ -3,7 +3,7 @@
 For each particle count and published argon cutoff: a liquid configuration is prepared (FCC lattice at n0* = 1,
 then velocity Verlet with the VB force), and four Contexts on the same platform evaluate that same configuration:
 GenDPDEForce VA and VB, CustomGBForce VA and VB. Force evaluations are timed in alternating rounds
-(openmmgendpde.timing); the ratios VB/VA and CustomGB/GenDPDE are medians of per-round ratios. The cost of a
+(openmmgendpde.measurement); the ratios VB/VA and CustomGB/GenDPDE are medians of per-round ratios. The cost of a
 velocity-Verlet step with GenDPDEForce (which includes the amortised neighbor-list rebuilds) is measured the same
 way.
 """

@@ -45,7 +45,7 @@ def test_kinetic_temperature_equals_harmonic_mean_temperature(equilibrium_sample
     d = 3N - 3 (momentum is conserved) and A = d/2 + N (c + 1). Then 2<K>/(d k_B) = (E - U)/(A k_B) and
     <1/theta_i> = k_B (A - 1)/(E - U): T_kin/T_harm = 1 - 1/A = 0.99987. Tolerance: 5 block standard errors
     (~0.3% each, from the fluctuations of K for 500 particles); the time-step bias at dt* = 0.005 is within one.
-    Without the Ito term of the friction (Physics::genDPDEFriction) this ratio is 1.040, 12 standard errors off."""
+    Without the Ito term of the friction (Physics::pairTemperatures) this ratio is 1.040, 12 standard errors off."""
     kinetic, temperatures, heat_capacity = equilibrium_samples
     n = temperatures.shape[1]
     c = heat_capacity / KB

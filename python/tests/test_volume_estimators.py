@@ -1,8 +1,8 @@
 """Accuracy of the volume estimators (docs/theory.md sections 2-3) against 40-digit quadrature.
 
 Target: relative error <= 1e-12 for V and dV/dn0 at every k in [0, 1e12], including the numerical traps: k = 0,
-tiny k (dV/dn0 ~ k^-1/2), the switch between the closed form and the quadrature branch at k = 0.1, and large k
-where the closed form cancels catastrophically.
+tiny k (dV/dn0 ~ k^-1/2), the switches between the branches (closed forms below k = 1/16, piecewise polynomials
+from 1/16 to 16, quadrature from k = 16 on, where the closed form would cancel catastrophically), and large k.
 """
 
 import math
@@ -33,7 +33,9 @@ def reference_integrals(k):
 
 
 K_GRID = ([1e-300, 1e-200, 1e-100, 1e-50, 1e-30, 1e-20] + list(np.logspace(-16, 12, 113))
-          + [math.nextafter(0.1, 0), 0.1, math.nextafter(0.1, 1)])
+          + [math.nextafter(0.1, 0), 0.1, math.nextafter(0.1, 1)]
+          + [k for switch in (1 / 16, 16.0)   # the branch switches, and the doubles on either side
+             for k in (math.nextafter(switch, 0), switch, math.nextafter(switch, math.inf))])
 
 
 def relative_error(found, expected):

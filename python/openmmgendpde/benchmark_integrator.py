@@ -89,8 +89,18 @@ def kinetic_temperature(context, integrator, samples, steps_per_sample, name="ki
     return block_average(values, blocks=TEMPERATURE_BLOCKS, name=name)
 
 
-def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", rounds=None, progress=None):
-    platform = openmm.Platform.getPlatformByName(platform_name)
+@dataclasses.dataclass
+class StartingState:
+    """The equilibrated liquid that every candidate starts from."""
+    state: openmm.State           # positions, velocities and internal energies after the thermostat
+    velocities: np.ndarray        # nm/ps, the state's without centre-of-mass motion
+    gas_positions: np.ndarray     # nm, uniformly random in the box: the start of the force-free candidates
+    bath_temperature: float       # K
+
+
+def equilibrated_start(num_particles, cutoff, platform_name):
+    """Liquid argon (VB) melted from its lattice and equilibrated with the DPD thermostat at T0 for
+    EQUILIBRATION_STEPS steps."""
     argon = liquid_argon(num_particles, cutoff, "VB", seed=1, mode=GenDPDEIntegrator.Isothermal)
     simulation = argon.simulation(platform_name)
     argon.integrator.step(EQUILIBRATION_STEPS)
@@ -100,47 +110,68 @@ def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", r
     velocities -= masses @ velocities / masses.sum()   # no centre-of-mass motion: 3N - 3 degrees of freedom
     edge = state.getPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     gas_positions = np.random.default_rng(1).uniform(0, edge, (num_particles, 3))
+    return StartingState(state, velocities, gas_positions, argon.temperature.value_in_unit(unit.kelvin))
 
-    def context(mode=None, kind="GenDPDE", bare=False):
-        model = liquid_argon(num_particles, cutoff, "VB", seed=1)
-        system = without_forces(model.system) if bare else model.system
-        if kind == "Verlet":
-            integrator = openmm.VerletIntegrator(model.integrator.getStepSize())
-        elif kind == "DPD":
-            integrator = dpd_integrator(model)
-            integrator.setRandomNumberSeed(1)
-        else:
-            integrator = model.integrator
-            integrator.setMode(mode)
-            if bare:
-                integrator.setCutoffDistance(model.force.getCutoffDistance())
-        result = openmm.Context(system, integrator, platform)
-        if kind == "GenDPDE":
-            result.setState(state)   # with the internal energies
-        result.setPositions(gas_positions if bare else state.getPositions())
-        result.setVelocities(velocities)
-        return result, integrator
 
-    force_context, _ = context(kind="Verlet")
-    contexts = {   # the Contexts must stay alive while their integrators step
-        "Isoenergetic step": context(GenDPDEIntegrator.Isoenergetic),
-        "Isothermal step": context(GenDPDEIntegrator.Isothermal),
-        "Conservative step": context(GenDPDEIntegrator.Conservative),
-        "VerletIntegrator step": context(kind="Verlet"),
-        "DPDIntegrator step": context(kind="DPD"),
-        "Isothermal step, no force": context(GenDPDEIntegrator.Isothermal, bare=True),
-        "DPDIntegrator step, no force": context(kind="DPD", bare=True),
+@dataclasses.dataclass
+class Candidate:
+    """A Context and its integrator (the Context must stay alive while the integrator steps)."""
+    context: openmm.Context
+    integrator: openmm.Integrator
+
+
+def candidate(start, num_particles, cutoff, platform, mode=None, kind="GenDPDE", bare=False):
+    """A fresh liquid-argon model in a Context at ``start``: with a GenDPDEIntegrator in ``mode`` (and the
+    internal energies of ``start``), or kind "Verlet" (VerletIntegrator) or "DPD" (dpd_integrator); ``bare``:
+    without forces (without_forces), at the gas positions."""
+    model = liquid_argon(num_particles, cutoff, "VB", seed=1)
+    system = without_forces(model.system) if bare else model.system
+    if kind == "Verlet":
+        integrator = openmm.VerletIntegrator(model.integrator.getStepSize())
+    elif kind == "DPD":
+        integrator = dpd_integrator(model)
+        integrator.setRandomNumberSeed(1)
+    else:
+        integrator = model.integrator
+        integrator.setMode(mode)
+        if bare:
+            integrator.setCutoffDistance(model.force.getCutoffDistance())
+    context = openmm.Context(system, integrator, platform)
+    if kind == "GenDPDE":
+        context.setState(start.state)   # with the internal energies
+    context.setPositions(start.gas_positions if bare else start.state.getPositions())
+    context.setVelocities(start.velocities)
+    return Candidate(context, integrator)
+
+
+def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", rounds=None, progress=None):
+    platform = openmm.Platform.getPlatformByName(platform_name)
+    start = equilibrated_start(num_particles, cutoff, platform_name)
+
+    def make(mode=None, kind="GenDPDE", bare=False):
+        return candidate(start, num_particles, cutoff, platform, mode, kind, bare)
+
+    force_context = make(kind="Verlet").context
+    contexts = {
+        "Isoenergetic step": make(GenDPDEIntegrator.Isoenergetic),
+        "Isothermal step": make(GenDPDEIntegrator.Isothermal),
+        "Conservative step": make(GenDPDEIntegrator.Conservative),
+        "VerletIntegrator step": make(kind="Verlet"),
+        "DPDIntegrator step": make(kind="DPD"),
+        "Isothermal step, no force": make(GenDPDEIntegrator.Isothermal, bare=True),
+        "DPDIntegrator step, no force": make(kind="DPD", bare=True),
     }
     calls = 5
     candidates = {"force evaluation": lambda: [force_context.getState(getEnergy=True) for _ in range(calls)]}
-    for name, (_, integrator) in contexts.items():
-        candidates[name] = (lambda integrator: lambda: integrator.step(calls))(integrator)
-    for candidate in candidates.values():
-        candidate()
+    for name, timed in contexts.items():
+        candidates[name] = (lambda integrator: lambda: integrator.step(calls))(timed.integrator)
+    for call in candidates.values():
+        call()
     if rounds is None:
         rounds = default_rounds(num_particles)
     seconds = alternating_rounds(candidates, rounds, progress)
-    temperatures = {name: kinetic_temperature(*contexts[name], TEMPERATURE_SAMPLES, STEPS_PER_SAMPLE,
+    temperatures = {name: kinetic_temperature(contexts[name].context, contexts[name].integrator,
+                                              TEMPERATURE_SAMPLES, STEPS_PER_SAMPLE,
                                               f"N = {num_particles} {name}: kinetic temperature")
                     for name in THERMOSTATS}
     return IntegratorBenchmark(
@@ -152,8 +183,7 @@ def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", r
         isothermal_over_dpd=median_ratio(seconds, "Isothermal step", "DPDIntegrator step"),
         isothermal_over_dpd_without_force=median_ratio(seconds, "Isothermal step, no force",
                                                        "DPDIntegrator step, no force"),
-        bath_temperature=argon.temperature.value_in_unit(unit.kelvin),
-        kinetic_temperatures=temperatures, rounds=rounds)
+        bath_temperature=start.bath_temperature, kinetic_temperatures=temperatures, rounds=rounds)
 
 
 def format_table(results):

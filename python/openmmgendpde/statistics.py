@@ -82,9 +82,10 @@ def warn_unless_plateau(values, blocks, name="block average"):
     (g ~ 2 tau samples) the variance of a block mean is low by a fraction ~g/(2L), so the standard error is low by
     ~g/(4L); a block shorter than 2 g samples (standard error more than ~12% too small) warns. Measured on
     AR(1) series (60-400 samples, 10 blocks): the warning comes in 0-3% of the cases where the standard error is
-    within 10% of the truth, and in 78-99% of those where it is 30% or more too small. Comparing the standard errors from blocks/2, blocks and
-    2 blocks directly cannot tell as reliably: the one from 5 blocks scatters by 35%, and even for a fully
-    correlated series it is only ~sqrt(2) times the one from 10. The warning lists them for reference."""
+    within 10% of the truth, and in 78-99% of those where it is 30% or more too small. Comparing the standard
+    errors from blocks/2, blocks and 2 blocks directly cannot tell as reliably: the one from 5 blocks scatters by
+    35%, and even for a fully correlated series it is only ~sqrt(2) times the one from 10. The warning lists them
+    for reference."""
     values = np.asarray(values, dtype=float)
     length = len(values) // blocks
     g = statistical_inefficiency(values)

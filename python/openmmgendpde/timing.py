@@ -9,8 +9,8 @@ import dataclasses
 
 from openmm import unit
 
-from .measurement import alternating_rounds, median, median_ratio
 from .cli import add_cutoffs, add_rounds, chosen_cutoffs
+from .measurement import alternating_rounds, median, median_ratio
 from .presets import ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from .progress import Progress
 from .study import add_protocol_arguments, melt_then_draw, protocol_from_arguments

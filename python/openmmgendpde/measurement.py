@@ -38,14 +38,6 @@ def median_ratio(seconds, numerator, denominator):
     return statistics.median(a / b for a, b in zip(seconds[numerator], seconds[denominator]))
 
 
-def quartiles(values):
-    ordered = sorted(values)
-    if len(ordered) < 4:
-        return ordered[0], ordered[-1]
-    q = statistics.quantiles(ordered, n=4)
-    return q[0], q[2]
-
-
 def default_rounds(num_particles):
     """Alternating rounds for a benchmark of this size: 15, or 7 above 8000 particles."""
     return 15 if num_particles <= 8000 else 7

@@ -1,8 +1,9 @@
 """Liquid argon as modelled by Colella, Larentzos, Bresme and Bonet Avalos (J. Chem. Theory Comput. 2025):
-the reference case of docs/theory.md section 9, in one place.
+the reference case of docs/theory.md section 9.
 
 One particle is 5 argon atoms. Reduced units: mass 3.3211e-25 kg, length 0.61616 nm (so n0* = 1), energy
-1.5700e-19 J; k_B = 1.
+1.5700e-19 J; k_B = 1. The model's numbers have one home, the C++ header internal/LiquidArgon.h (GenDPDEForce's
+defaults come from it too); this module reads them through the bindings and adds the published results.
 """
 
 import dataclasses
@@ -12,21 +13,22 @@ import openmm
 from openmm import app, unit
 
 from . import GenDPDEForce, GenDPDEIntegrator
+from .gendpde import LiquidArgon as _Model
 from .units import ReducedUnits
 
-ARGON_UNITS = ReducedUnits(mass=3.3211e-25 * unit.kilogram, length=0.61616 * unit.nanometer,
-                           energy=1.5700e-19 * unit.joule)
+ARGON_UNITS = ReducedUnits(mass=_Model.particleMass * unit.kilogram, length=_Model.length * unit.nanometer,
+                           energy=_Model.energy * unit.joule)
 
 
 @dataclasses.dataclass(frozen=True)
 class ArgonState:
     """The thermodynamic state and equation of state of the model (reduced units)."""
-    temperature: float = 0.011054     # T0* (printed 0.0111)
-    pressure: float = 0.12711         # P0* (printed 0.127)
-    density: float = 1.0              # n0*
-    tait_exponent: float = 6.0        # gamma_T
-    bulk_modulus: float = 1.0 / 6.0   # B_T* = 1/(gamma_T kappa_T0*), kappa_T0* = 1
-    heat_capacity: float = 12.51      # C_V* per particle (units of k_B)
+    temperature: float = _Model.temperature       # T0* (printed 0.0111)
+    pressure: float = _Model.pressure             # P0* (printed 0.127)
+    density: float = _Model.density               # n0*
+    tait_exponent: float = _Model.taitExponent    # gamma_T
+    bulk_modulus: float = _Model.bulkModulus      # B_T* = 1/(gamma_T kappa_T0*), kappa_T0* = 1
+    heat_capacity: float = _Model.heatCapacity    # C_V* per particle (units of k_B)
 
     @property
     def free_energy_minimum_density(self):
@@ -53,11 +55,8 @@ class ArgonCutoff:
     cutoff_scaling: float    # f_cut of the VB estimator
 
 
-ARGON_CUTOFFS = (
-    ArgonCutoff(1.3365, 10, 23.42, 0.0079, 1.41),
-    ArgonCutoff(1.6839, 20, 7.37, 0.0025, 1.35),
-    ArgonCutoff(2.1564, 42, 2.14, 0.0007, 1.33),
-)
+ARGON_CUTOFFS = tuple(ArgonCutoff(c.cutoff, c.neighbors, c.friction, c.heatConduction, c.cutoffScaling)
+                      for c in (_Model.getCutoff(index) for index in range(_Model.numCutoffs)))
 
 #: Published averages (Table III): T*, n-bar*, P* for each cutoff and estimator; +-0.0001 (T*), +-0.001 (others).
 PUBLISHED_TABLE3 = {

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace GenDPDEPlugin::CounterRandom;
@@ -71,6 +73,72 @@ void testNormalVariates() {
     ASSERT(distance < 1.95/std::sqrt(n));
 }
 
+/** The regularized lower incomplete gamma function P(a, x) (series below a + 1, continued fraction above), written
+ *  here independently of the generator under test. */
+double regularizedGammaP(double a, double x) {
+    if (x <= 0)
+        return 0;
+    const double logPrefactor = a*std::log(x) - x - std::lgamma(a);
+    if (x < a + 1) {
+        double term = 1/a, sum = term;
+        for (int n = 1; n < 10000 && std::abs(term) > 1e-17*std::abs(sum); n++) {
+            term *= x/(a + n);
+            sum += term;
+        }
+        return sum*std::exp(logPrefactor);
+    }
+    // Lentz's algorithm for the continued fraction of Q(a, x).
+    double b = x + 1 - a, c = 1/1e-300, d = 1/b, h = d;
+    for (int n = 1; n < 10000; n++) {
+        const double an = -n*(n - a);
+        b += 2;
+        d = an*d + b;
+        d = std::abs(d) < 1e-300 ? 1e-300 : d;
+        c = b + an/c;
+        c = std::abs(c) < 1e-300 ? 1e-300 : c;
+        d = 1/d;
+        const double delta = d*c;
+        h *= delta;
+        if (std::abs(delta - 1) < 1e-16)
+            break;
+    }
+    return 1 - std::exp(logPrefactor)*h;
+}
+
+/**
+ * Gamma variates (the draw of setInternalEnergiesToTemperature) for shapes 1 (the smallest possible, C_V -> 0),
+ * 13.51 (liquid argon's C_V/k_B + 1) and 1000: 10^6 particle streams each. Mean a and variance a within 5 standard
+ * errors (sqrt(a/n), sqrt((2a^2 + 6a)/n)); Kolmogorov-Smirnov distance to the Gamma law below its 0.1% critical
+ * value 1.95/sqrt(n).
+ */
+void testGammaVariates() {
+    const int n = 1000000;
+    for (double shape : {1.0, 13.51, 1000.0}) {
+        std::vector<double> values(n);
+        double sum = 0;
+        for (int i = 0; i < n; i++) {
+            ParticleStream stream(11, i);
+            values[i] = stream.gamma(shape);
+            sum += values[i];
+        }
+        const double mean = sum/n;
+        double sum2 = 0;
+        for (double x : values)
+            sum2 += (x - mean)*(x - mean);
+        const std::string label = "Gamma(" + std::to_string(shape) + ")";
+        assertClose(shape, mean, 5*std::sqrt(shape/n), label + " mean");
+        assertClose(shape, sum2/(n - 1), 5*std::sqrt((2*shape*shape + 6*shape)/n), label + " variance");
+        std::sort(values.begin(), values.end());
+        double distance = 0;
+        for (int k = 0; k < n; k++) {
+            const double cdf = regularizedGammaP(shape, values[k]);
+            distance = std::max(distance, std::max(std::abs(cdf - (double) k/n), std::abs(cdf - (k + 1.0)/n)));
+        }
+        if (!(distance < 1.95/std::sqrt((double) n)))
+            throw std::runtime_error(label + ": Kolmogorov-Smirnov distance " + std::to_string(distance));
+    }
+}
+
 /** Streams are pure functions of (seed, step, i, j). */
 void testStreamsAreReproducible() {
     PairStream a(7, 123456789012LL, 3, 9), b(7, 123456789012LL, 3, 9), c(7, 123456789012LL, 3, 10);
@@ -84,5 +152,6 @@ int main() {
         testPhiloxKnownAnswers();
         testNormalVariates();
         testStreamsAreReproducible();
+        testGammaVariates();
     });
 }

@@ -4,9 +4,12 @@
 #include "openmm/Integrator.h"
 #include "openmm/Kernel.h"
 #include <iosfwd>
+#include <string>
 #include <vector>
 
 namespace GenDPDEPlugin {
+
+class IntegrateGenDPDEStepKernel;
 
 /**
  * The energy-conserving integrator of generalised DPD (GenDPDE). Each particle i carries an internal (thermal)
@@ -53,8 +56,21 @@ namespace GenDPDEPlugin {
  * particle and the step; the step is not applied, so the Context is left as it was before it. Reduce the step
  * size, or increase the heat capacity (the fluctuations of eps_i relative to its mean scale like sqrt(k_B/C_V)).
  *
+ * Temperatures and internal energies. The bath temperature (setTemperature) and the particles' state eps_i are
+ * separate. The particles' state belongs to the Context: it is set with setParticleTemperatures() or
+ * setInternalEnergiesToTemperature() and travels with checkpoints and States (getState(getIntegratorParameters=
+ * true), Simulation.saveState), never in the integrator's XML, which holds its parameters (and the initial particle
+ * temperatures configured before a Context existed). When a Context is created, the particles start at the
+ * temperatures given to setParticleTemperatures() before, else at the bath temperature, else they are not set and
+ * an Isoenergetic step refuses to run. Like every OpenMM integrator, one GenDPDEIntegrator serves one Context.
+ *
+ * A step in which a particle would move farther than the pair range R (or by a non-finite amount), or in which a
+ * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
+ * simulation has become unstable (reduce the step size).
+ *
  * Parameters can be changed at any time and take effect at the next step, except the cutoff, which is read when
- * the Context is created. Particles with zero mass are not moved. Constraints are not supported.
+ * the Context is created. Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
+ * moved. Constraints and virtual sites are not supported (refused when the Context is created).
  */
 class GenDPDEIntegrator : public OpenMM::Integrator {
 public:
@@ -102,18 +118,20 @@ public:
     Mode getMode() const;
     /** Set the mode (Isoenergetic, Isothermal or Conservative). */
     void setMode(Mode mode);
-    /**
-     * Get the temperature last set with setTemperature() (in K); 0 if none was set. It is the bath temperature of
-     * the Isothermal mode.
-     */
+    /** Get the bath temperature (in K); 0 if none was set. */
     double getTemperature() const;
     /**
-     * Set every particle's temperature theta_i = T, i.e. eps_i = C_V T (in K), > 0, either before the Context is
-     * created (the initial condition) or afterwards (resetting the internal energies). It is also the bath
-     * temperature of the Isothermal mode.
+     * Set the bath temperature T (in K), in [1e-50, 1e50]: the temperature of the Isothermal mode's thermostat,
+     * and the temperature at which every particle starts if no particle temperatures were set before the Context
+     * was created. It never changes the internal energies of a Context that exists: to set those, call
+     * setParticleTemperatures() or setInternalEnergiesToTemperature(). Takes effect at the next step.
      */
     void setTemperature(double temperature);
-    /** Set each particle's temperature theta_i (in K), all > 0, one per particle. */
+    /**
+     * Set each particle's temperature theta_i (in K), each in [1e-50, 1e50], one per particle, i.e. eps_i = C_V
+     * theta_i. Before a Context exists: the initial condition (its length is checked against the System when the
+     * Context is created). Afterwards: the internal energies of the Context, now.
+     */
     void setParticleTemperatures(const std::vector<double>& temperatures);
     /**
      * Draw every particle's internal energy from its equilibrium distribution at temperature T (in K), > 0: the
@@ -126,9 +144,13 @@ public:
      * @param randomSeed    the seed of the draw
      */
     void setInternalEnergiesToTemperature(double temperature, int randomSeed);
-    /** Each particle's temperature theta_i = eps_i/C_V (in K). Before a Context exists: the initial values set. */
+    /**
+     * Each particle's temperature theta_i = eps_i/C_V (in K). Before a Context exists, those set with
+     * setParticleTemperatures(); if none were, the exception thrown says what the particles will start at (the bath
+     * temperature, or nothing yet), since the number of particles is not known.
+     */
     std::vector<double> getParticleTemperatures() const;
-    /** Each particle's internal energy eps_i (in kJ/mol). Before a Context exists: the initial values set. */
+    /** Each particle's internal energy eps_i (in kJ/mol); before a Context exists, as getParticleTemperatures(). */
     std::vector<double> getInternalEnergies() const;
     /**
      * The total energy K + U + sum_i eps_i (in kJ/mol) of the Context this integrator is bound to, with the on-step
@@ -155,13 +177,22 @@ protected:
     void serializeParameters(OpenMM::SerializationNode& node) const override;
     void deserializeParameters(const OpenMM::SerializationNode& node) override;
 private:
+    friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures, the configured initial condition
+    IntegrateGenDPDEStepKernel& boundKernel() const;
+    /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
+    void checkSystem(const OpenMM::System& system) const;
+    /** eps_i at Context creation: from initialTemperatures, else the bath temperature, else all zero (not set). */
+    std::vector<double> initialInternalEnergies(int numParticles) const;
+    /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
+    void checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const;
     void requireTemperatures() const;
     double friction, heatConduction, heatCapacity, cutoff, temperature;
     double pairRange = 0.0;   // the range of the pair terms in the bound Context (nm); 0 if unknown
     int randomSeed;
     Mode mode;
-    bool temperaturesSet;
-    std::vector<double> initialTemperatures;   // set before a Context exists (empty: all equal to `temperature`)
+    // The per-particle state lives in the kernel once a Context exists (eps_i; all zero until set). Before that,
+    // the configured initial condition: these temperatures, or, if empty, every particle at `temperature`.
+    std::vector<double> initialTemperatures;
     OpenMM::Kernel kernel;
 };
 

@@ -31,7 +31,7 @@ double GenDPDEForce::getCutoffDistance() const {
 }
 
 void GenDPDEForce::setCutoffDistance(double distance) {
-    requirePositive("GenDPDEForce", "cutoff distance", distance, "nm");
+    requireInRange("GenDPDEForce", "cutoff distance", distance, Ranges::cutoff);
     cutoff = distance;
 }
 
@@ -61,16 +61,16 @@ double GenDPDEForce::getCutoffScaling() const {
 }
 
 void GenDPDEForce::setCutoffScaling(double scaling) {
-    requireAtLeast("GenDPDEForce", "cutoff scaling f_cut", scaling, 1.0);
+    requireInRange("GenDPDEForce", "cutoff scaling f_cut", scaling, Ranges::cutoffScaling);
     cutoffScaling = scaling;
 }
 
 void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus, double exponent) {
     // Check all four before changing any.
-    requirePositive("GenDPDEForce", "Tait reference density n0", referenceDensity, "nm^-3");
-    requireFinite("GenDPDEForce", "Tait reference pressure pi0", referencePressure, "kJ/mol/nm^3");
-    requirePositive("GenDPDEForce", "Tait bulk modulus B_T", bulkModulus, "kJ/mol/nm^3");
-    requireGreaterThan("GenDPDEForce", "Tait exponent gamma_T", exponent, 1.0);
+    requireInRange("GenDPDEForce", "Tait reference density n0", referenceDensity, Ranges::referenceDensity);
+    requireInRange("GenDPDEForce", "Tait reference pressure pi0", referencePressure, Ranges::referencePressure);
+    requireInRange("GenDPDEForce", "Tait bulk modulus B_T", bulkModulus, Ranges::bulkModulus);
+    requireInRange("GenDPDEForce", "Tait exponent gamma_T", exponent, Ranges::taitExponent, true);
     this->referenceDensity = referenceDensity;
     this->referencePressure = referencePressure;
     this->bulkModulus = bulkModulus;

@@ -10,24 +10,12 @@ using namespace OpenMM;
 GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
 }
 
-void GenDPDEForceImpl::checkCutoffAgainstBox(double cutoff, const Vec3 boxVectors[3]) {
-    double limit = BoxGeometry::halfSmallestWidth(boxVectors);
-    if (cutoff > limit) {
-        std::ostringstream message;
-        message.precision(12);
-        message << "GenDPDEForce: cutoff distance = " << cutoff << " nm is not allowed with this periodic box; "
-                << "it must be <= half the smallest box width (" << limit << " nm; for a rectangular box the "
-                << "width is the edge length, for a triclinic one the distance between opposite faces)";
-        throw OpenMMException(message.str());
-    }
-}
-
 void GenDPDEForceImpl::initialize(ContextImpl& context) {
     const System& system = context.getSystem();
     if (owner.usesPeriodicBoundaryConditions()) {
         Vec3 box[3];
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
-        checkCutoffAgainstBox(owner.getCutoffDistance(), box);
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", owner.getCutoffDistance(), box);
     }
     kernel = context.getPlatform().createKernel(CalcGenDPDEForceKernel::Name(), context);
     kernel.getAs<CalcGenDPDEForceKernel>().initialize(system, owner);

@@ -1,6 +1,8 @@
 #include "GenDPDEIntegrator.h"
 #include "GenDPDEForce.h"
 #include "GenDPDEKernels.h"
+#include "internal/BoxGeometry.h"
+#include "internal/CounterRandom.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
@@ -8,9 +10,11 @@
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include "openmm/serialization/SerializationNode.h"
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <locale>
 #include <random>
 #include <sstream>
 
@@ -20,16 +24,15 @@ using namespace ParameterChecks;
 
 namespace {
 const char* integratorName = "GenDPDEIntegrator";
-const int checkpointVersion = 1;
 }
 
 GenDPDEIntegrator::GenDPDEIntegrator(double stepSize, double friction, double heatConduction, double heatCapacity) :
-        cutoff(0.0), temperature(0.0), randomSeed(0), mode(Isoenergetic), temperaturesSet(false) {
+        cutoff(0.0), temperature(0.0), randomSeed(0), mode(Isoenergetic) {
     // Validate everything before storing anything.
-    requirePositive(integratorName, "step size", stepSize, "ps");
-    requireNonNegative(integratorName, "friction", friction, "amu/ps");
-    requireNonNegative(integratorName, "heat conduction", heatConduction, "kJ K/(mol ps)");
-    requirePositive(integratorName, "heat capacity", heatCapacity, "kJ/(mol K)");
+    requireInRange(integratorName, "step size", stepSize, Ranges::stepSize, true);
+    requireInRange(integratorName, "friction", friction, Ranges::friction);
+    requireInRange(integratorName, "heat conduction", heatConduction, Ranges::heatConduction);
+    requireInRange(integratorName, "heat capacity", heatCapacity, Ranges::heatCapacity);
     Integrator::setStepSize(stepSize);
     setConstraintTolerance(1e-5);   // OpenMM's default; the base class leaves it uninitialised
     this->friction = friction;
@@ -38,7 +41,7 @@ GenDPDEIntegrator::GenDPDEIntegrator(double stepSize, double friction, double he
 }
 
 void GenDPDEIntegrator::setStepSize(double size) {
-    requirePositive(integratorName, "step size", size, "ps");
+    requireInRange(integratorName, "step size", size, Ranges::stepSize, true);
     Integrator::setStepSize(size);
 }
 
@@ -47,7 +50,7 @@ double GenDPDEIntegrator::getFriction() const {
 }
 
 void GenDPDEIntegrator::setFriction(double friction) {
-    requireNonNegative(integratorName, "friction", friction, "amu/ps");
+    requireInRange(integratorName, "friction", friction, Ranges::friction);
     this->friction = friction;
 }
 
@@ -56,7 +59,7 @@ double GenDPDEIntegrator::getHeatConduction() const {
 }
 
 void GenDPDEIntegrator::setHeatConduction(double heatConduction) {
-    requireNonNegative(integratorName, "heat conduction", heatConduction, "kJ K/(mol ps)");
+    requireInRange(integratorName, "heat conduction", heatConduction, Ranges::heatConduction);
     this->heatConduction = heatConduction;
 }
 
@@ -65,7 +68,7 @@ double GenDPDEIntegrator::getHeatCapacity() const {
 }
 
 void GenDPDEIntegrator::setHeatCapacity(double heatCapacity) {
-    requirePositive(integratorName, "heat capacity", heatCapacity, "kJ/(mol K)");
+    requireInRange(integratorName, "heat capacity", heatCapacity, Ranges::heatCapacity);
     this->heatCapacity = heatCapacity;
 }
 
@@ -74,7 +77,8 @@ double GenDPDEIntegrator::getCutoffDistance() const {
 }
 
 void GenDPDEIntegrator::setCutoffDistance(double distance) {
-    requireNonNegative(integratorName, "cutoff distance", distance, "nm");
+    if (distance != 0.0)
+        requireInRange(integratorName, "cutoff distance (0, or a range)", distance, Ranges::cutoff);
     cutoff = distance;
 }
 
@@ -101,60 +105,74 @@ double GenDPDEIntegrator::getTemperature() const {
 }
 
 void GenDPDEIntegrator::setTemperature(double temperature) {
-    requirePositive(integratorName, "temperature", temperature, "K");
+    requireInRange(integratorName, "temperature", temperature, Ranges::temperature);
     this->temperature = temperature;
-    temperaturesSet = true;
-    initialTemperatures.clear();
-    if (context != nullptr) {
-        int numParticles = context->getSystem().getNumParticles();
-        kernel.getAs<IntegrateGenDPDEStepKernel>().setInternalEnergies(std::vector<double>(numParticles, heatCapacity*temperature));
-    }
+}
+
+IntegrateGenDPDEStepKernel& GenDPDEIntegrator::boundKernel() const {
+    return const_cast<Kernel&>(kernel).getAs<IntegrateGenDPDEStepKernel>();
 }
 
 void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& temperatures) {
+    // Validate everything before changing anything.
+    if (temperatures.empty())
+        reject(integratorName, "number of particle temperatures", 0, "", "one per particle (at least one)");
     for (size_t i = 0; i < temperatures.size(); i++)
-        requirePositive(integratorName, "temperature of particle " + std::to_string(i), temperatures[i], "K");
-    if (context != nullptr) {
-        int numParticles = context->getSystem().getNumParticles();
-        if ((int) temperatures.size() != numParticles)
-            reject(integratorName, "number of particle temperatures", temperatures.size(), "",
-                   "the number of particles in the System, " + std::to_string(numParticles));
-        std::vector<double> energies(numParticles);
-        for (int i = 0; i < numParticles; i++)
-            energies[i] = heatCapacity*temperatures[i];
-        kernel.getAs<IntegrateGenDPDEStepKernel>().setInternalEnergies(energies);
-    }
-    else
+        requireInRange(integratorName, "temperature of particle " + std::to_string(i), temperatures[i],
+                       Ranges::temperature);
+    if (context == nullptr) {
         initialTemperatures = temperatures;
-    temperaturesSet = true;
+        return;
+    }
+    const int numParticles = context->getSystem().getNumParticles();
+    if ((int) temperatures.size() != numParticles)
+        reject(integratorName, "number of particle temperatures", temperatures.size(), "",
+               "the number of particles in the System, " + std::to_string(numParticles));
+    std::vector<double> energies(numParticles);
+    for (int i = 0; i < numParticles; i++)
+        energies[i] = heatCapacity*temperatures[i];
+    boundKernel().setInternalEnergies(energies);
 }
 
 void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int randomSeed) {
-    requirePositive(integratorName, "temperature", temperature, "K");
+    requireInRange(integratorName, "temperature", temperature, Ranges::temperature);
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: setInternalEnergiesToTemperature() needs a Context");
-    std::mt19937 generator(randomSeed);
-    std::gamma_distribution<double> gamma(heatCapacity/Physics::Boltzmann + 1.0, Physics::Boltzmann*temperature);
+    // eps_i ~ Gamma(C_V/k_B + 1, k_B T), each a pure function of (randomSeed, i): the same on every machine.
+    const double shape = heatCapacity/Physics::Boltzmann + 1.0, scale = Physics::Boltzmann*temperature;
     std::vector<double> energies(context->getSystem().getNumParticles());
-    for (double& e : energies)
-        e = gamma(generator);
-    kernel.getAs<IntegrateGenDPDEStepKernel>().setInternalEnergies(energies);
-    temperaturesSet = true;
+    for (size_t i = 0; i < energies.size(); i++) {
+        CounterRandom::ParticleStream random((std::uint32_t) randomSeed, (std::uint32_t) i);
+        energies[i] = scale*random.gamma(shape);
+    }
+    boundKernel().setInternalEnergies(energies);
 }
 
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {
     if (context != nullptr)
-        return kernel.getAs<const IntegrateGenDPDEStepKernel>().getInternalEnergies();
-    std::vector<double> energies(initialTemperatures.size());
-    for (size_t i = 0; i < energies.size(); i++)
-        energies[i] = heatCapacity*initialTemperatures[i];
+        return boundKernel().getInternalEnergies();
+    std::vector<double> energies = getParticleTemperatures();
+    for (double& e : energies)
+        e *= heatCapacity;
     return energies;
 }
 
 std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
-    if (context == nullptr)
-        return initialTemperatures;
-    std::vector<double> temperatures = getInternalEnergies();
+    if (context == nullptr) {
+        if (!initialTemperatures.empty())
+            return initialTemperatures;
+        std::ostringstream message;
+        message.precision(12);
+        message << "GenDPDEIntegrator: the particle temperatures are not known one by one before a Context exists "
+                << "(the number of particles is not known yet): ";
+        if (temperature > 0.0)
+            message << "every particle will start at the bath temperature, " << temperature << " K";
+        else
+            message << "none are set; call setParticleTemperatures(), or setTemperature() to start every particle "
+                    << "at the bath temperature";
+        throw OpenMMException(message.str());
+    }
+    std::vector<double> temperatures = boundKernel().getInternalEnergies();
     for (double& t : temperatures)
         t /= heatCapacity;
     return temperatures;
@@ -166,25 +184,47 @@ int GenDPDEIntegrator::getSeedInUse() const {
     return kernel.getAs<const IntegrateGenDPDEStepKernel>().getSeed();
 }
 
-void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
-    const System& system = contextRef.getSystem();
+void GenDPDEIntegrator::checkSystem(const System& system) const {
     if (system.getNumConstraints() > 0)
         throw OpenMMException("GenDPDEIntegrator: constraints are not supported; the System has "
                               + std::to_string(system.getNumConstraints()));
-    const int numParticles = system.getNumParticles();
+    for (int i = 0; i < system.getNumParticles(); i++) {
+        if (system.isVirtualSite(i))
+            throw OpenMMException("GenDPDEIntegrator: virtual sites are not supported; particle " + std::to_string(i)
+                                  + " is one (the pair forces of a massless site cannot be distributed to its "
+                                  "parents without breaking the conservation of momentum and energy)");
+        requireInRange(integratorName, "mass of particle " + std::to_string(i), system.getParticleMass(i),
+                       Ranges::mass);
+    }
+}
 
+std::vector<double> GenDPDEIntegrator::initialInternalEnergies(int numParticles) const {
+    // docs/integrator.md, "Temperatures and internal energies": the temperatures set before the Context, else the
+    // bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for them).
+    if (!initialTemperatures.empty()) {
+        if ((int) initialTemperatures.size() != numParticles)
+            reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
+                   "the number of particles in the System, " + std::to_string(numParticles));
+        std::vector<double> energies(numParticles);
+        for (int i = 0; i < numParticles; i++)
+            energies[i] = heatCapacity*initialTemperatures[i];
+        return energies;
+    }
+    return std::vector<double>(numParticles, heatCapacity*temperature);
+}
+
+void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
+    if (owner != nullptr && &contextRef.getOwner() != owner)
+        throw OpenMMException("This Integrator is already bound to a context");
+    const System& system = contextRef.getSystem();
+    checkSystem(system);
     const double range = GenDPDEIntegratorUtilities::pairRange(system, *this);
     if (range > 0.0 && system.usesPeriodicBoundaryConditions()) {
         Vec3 box[3];
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
-        GenDPDEForceImpl::checkCutoffAgainstBox(range, box);
+        BoxGeometry::checkCutoffAgainstBox(integratorName, range, box);
     }
-    if (!initialTemperatures.empty() && (int) initialTemperatures.size() != numParticles)
-        reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
-               "the number of particles in the System, " + std::to_string(numParticles));
-    std::vector<double> energies(numParticles, heatCapacity*temperature);
-    for (size_t i = 0; i < initialTemperatures.size(); i++)
-        energies[i] = heatCapacity*initialTemperatures[i];
+    const std::vector<double> energies = initialInternalEnergies(system.getNumParticles());
     int seed = randomSeed;
     if (seed == 0) {
         std::random_device device;
@@ -207,9 +247,11 @@ std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
 }
 
 void GenDPDEIntegrator::requireTemperatures() const {
-    if (mode == Isoenergetic && !temperaturesSet)
-        throw OpenMMException("GenDPDEIntegrator: the particle temperatures are not set; call setTemperature() or "
-                              "setParticleTemperatures() before stepping in Isoenergetic mode");
+    const std::vector<double>& energies = boundKernel().getInternalEnergies();
+    if (mode == Isoenergetic && !energies.empty() && energies[0] == 0.0)   // all zero: never set (see the header)
+        throw OpenMMException("GenDPDEIntegrator: the particle temperatures are not set; call setTemperature() "
+                              "before creating the Context, or setParticleTemperatures() or "
+                              "setInternalEnergiesToTemperature(), before stepping in Isoenergetic mode");
     if (mode == Isothermal && !(temperature > 0.0))
         throw OpenMMException("GenDPDEIntegrator: the Isothermal mode needs a temperature > 0; call setTemperature()");
 }
@@ -218,7 +260,7 @@ void GenDPDEIntegrator::step(int steps) {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
     requireTemperatures();
-    const GenDPDEStepTerms terms = GenDPDEIntegratorUtilities::stepTerms(*this);
+    const GenDPDEStepTerms terms = GenDPDEIntegratorUtilities::stepTerms(*this, pairRange);
     if (terms.pairSweep && pairRange == 0.0)
         throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
                               "GenDPDEForce; call setCutoffDistance()");
@@ -228,12 +270,12 @@ void GenDPDEIntegrator::step(int steps) {
         // The forces of the integration groups were evaluated just now: a GenDPDEForce among them has its pairs.
         GenDPDEForceImpl* pairListSource = terms.pairSweep
                 ? GenDPDEIntegratorUtilities::findPairListSource(*context, *this, pairRange) : nullptr;
-        kernel.getAs<IntegrateGenDPDEStepKernel>().execute(*context, *this, terms, pairListSource);
+        boundKernel().execute(*context, *this, terms, pairListSource);
     }
 }
 
 double GenDPDEIntegrator::computeKineticEnergy() {
-    return kernel.getAs<IntegrateGenDPDEStepKernel>().computeKineticEnergy(*context, *this);
+    return boundKernel().computeKineticEnergy(*context, *this);
 }
 
 double GenDPDEIntegrator::getConservedEnergy() {
@@ -242,78 +284,140 @@ double GenDPDEIntegrator::getConservedEnergy() {
     double potential = context->calcForcesAndEnergy(true, true, getIntegrationForceGroups());
     double kinetic = computeKineticEnergy();
     double internal = 0.0;
-    for (double e : kernel.getAs<IntegrateGenDPDEStepKernel>().getInternalEnergies())
+    for (double e : boundKernel().getInternalEnergies())
         internal += e;
     return kinetic + potential + internal;
 }
 
-// Checkpoints: version, seed in use, temperaturesSet, then the internal energies (binary, exact).
+void GenDPDEIntegrator::checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const {
+    // The internal-energy state is either set (every eps_i finite, within Ranges::internalEnergy) or not set yet
+    // (every eps_i zero); anything else is corrupt.
+    const int numParticles = context->getSystem().getNumParticles();
+    if ((int) energies.size() != numParticles)
+        throw OpenMMException("GenDPDEIntegrator: " + source + " holds " + std::to_string(energies.size())
+                              + " internal energies, the System has " + std::to_string(numParticles) + " particles");
+    const bool unset = !energies.empty() && energies[0] == 0.0;
+    for (int i = 0; i < numParticles; i++)
+        if (unset ? energies[i] != 0.0 : !(energies[i] >= Ranges::internalEnergy.minimum
+                                            && energies[i] <= Ranges::internalEnergy.maximum)) {
+            std::ostringstream message;
+            message.precision(17);
+            message << "GenDPDEIntegrator: " << source << " is corrupt: the internal energy of particle " << i << " is "
+                    << energies[i] << " kJ/mol; each must be finite and in [" << Ranges::internalEnergy.minimum << ", "
+                    << Ranges::internalEnergy.maximum << "] kJ/mol (or all zero, not set)";
+            throw OpenMMException(message.str());
+        }
+}
+
+// Checkpoints (docs/integrator.md): magic, version, seed in use, count, the internal energies (binary, exact), and
+// the magic again as an end mark. Version 1 (0.1.x) had no magic: version, seed, a flag byte, count, energies.
+namespace {
+const std::int32_t checkpointMagic = 0x45504447;   // "GDPE"
+const std::int32_t checkpointVersion = 2;
+
+template <class T>
+void readOrFail(std::istream& stream, T& value, const char* what) {
+    stream.read(reinterpret_cast<char*>(&value), sizeof(T));
+    if (!stream)
+        throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint ends before its ") + what
+                              + " (truncated, or not written by a GenDPDEIntegrator)");
+}
+} // namespace
+
 void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
-    const IntegrateGenDPDEStepKernel& k = kernel.getAs<const IntegrateGenDPDEStepKernel>();
+    const IntegrateGenDPDEStepKernel& k = boundKernel();
     const std::vector<double>& energies = k.getInternalEnergies();
-    int version = checkpointVersion, seed = k.getSeed(), count = energies.size();
-    char set = temperaturesSet;
-    stream.write((char*) &version, sizeof(int));
-    stream.write((char*) &seed, sizeof(int));
-    stream.write(&set, 1);
-    stream.write((char*) &count, sizeof(int));
-    stream.write((char*) energies.data(), sizeof(double)*count);
+    const std::int32_t version = checkpointVersion, seed = k.getSeed(), count = energies.size();
+    stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
+    stream.write((const char*) &version, sizeof(version));
+    stream.write((const char*) &seed, sizeof(seed));
+    stream.write((const char*) &count, sizeof(count));
+    stream.write((const char*) energies.data(), sizeof(double)*count);
+    stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
 }
 
 void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
-    int version, seed, count;
-    char set;
-    stream.read((char*) &version, sizeof(int));
-    if (version != checkpointVersion)
-        throw OpenMMException("GenDPDEIntegrator: this checkpoint holds integrator data of version "
-                              + std::to_string(version) + "; this build reads version " + std::to_string(checkpointVersion));
-    stream.read((char*) &seed, sizeof(int));
-    stream.read(&set, 1);
-    stream.read((char*) &count, sizeof(int));
-    if (count != context->getSystem().getNumParticles())
+    // Everything is read and checked before the integrator's state changes.
+    std::int32_t first, version, seed, count;
+    readOrFail(stream, first, "header");
+    if (first == checkpointMagic)
+        readOrFail(stream, version, "version");
+    else if (first == 1)
+        version = 1;
+    else
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds no GenDPDEIntegrator data (it was written by "
+                              "another integrator, or is corrupt)");
+    if (version < 1 || version > checkpointVersion)
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds integrator data of version "
+                              + std::to_string(version) + "; this build reads versions 1 to "
+                              + std::to_string(checkpointVersion));
+    readOrFail(stream, seed, "random seed");
+    if (version == 1) {
+        char unusedFlag;
+        readOrFail(stream, unusedFlag, "flags");
+    }
+    readOrFail(stream, count, "particle count");
+    const int numParticles = context->getSystem().getNumParticles();
+    if (count != numParticles)
         throw OpenMMException("GenDPDEIntegrator: the checkpoint holds " + std::to_string(count)
-                              + " internal energies, the System has " + std::to_string(context->getSystem().getNumParticles()) + " particles");
+                              + " internal energies, the System has " + std::to_string(numParticles) + " particles");
     std::vector<double> energies(count);
-    stream.read((char*) energies.data(), sizeof(double)*count);
-    IntegrateGenDPDEStepKernel& k = kernel.getAs<IntegrateGenDPDEStepKernel>();
+    if (count > 0) {
+        stream.read((char*) energies.data(), sizeof(double)*count);
+        if (!stream)
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its internal energies (truncated)");
+    }
+    if (version >= 2) {
+        std::int32_t end;
+        readOrFail(stream, end, "end mark");
+        if (end != checkpointMagic)
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint's integrator data has no end mark (corrupt)");
+    }
+    checkInternalEnergies(energies, "the checkpoint");
+    IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(seed);
     k.setInternalEnergies(energies);
-    temperaturesSet = set;
 }
 
 // States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies as exact hex floats.
+// Version 2 dropped version 1's temperaturesSet flag (an unset state is all zeros), which is still accepted.
 void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
-    const IntegrateGenDPDEStepKernel& k = kernel.getAs<const IntegrateGenDPDEStepKernel>();
+    const IntegrateGenDPDEStepKernel& k = boundKernel();
     std::string text;
     char buffer[40];
     for (double e : k.getInternalEnergies()) {
         std::snprintf(buffer, sizeof(buffer), "%a ", e);
         text += buffer;
     }
-    node.setIntProperty("GenDPDEIntegratorVersion", 1);
+    node.setIntProperty("GenDPDEIntegratorVersion", 2);
     node.setIntProperty("seedInUse", k.getSeed());
-    node.setBoolProperty("temperaturesSet", temperaturesSet);
     node.setStringProperty("internalEnergies", text);
 }
 
 void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
-    if (!node.hasProperty("internalEnergies"))
+    // Everything is read and checked before the integrator's state changes.
+    if (!node.hasProperty("internalEnergies") || !node.hasProperty("GenDPDEIntegratorVersion")
+            || !node.hasProperty("seedInUse"))
         throw OpenMMException("GenDPDEIntegrator: the State does not hold GenDPDEIntegrator parameters (it was saved "
                               "with another integrator, or without getIntegratorParameters=True)");
+    const int version = node.getIntProperty("GenDPDEIntegratorVersion");
+    if (version < 1 || version > 2)
+        throw OpenMMException("GenDPDEIntegrator: the State holds integrator parameters of version "
+                              + std::to_string(version) + "; this build reads versions 1 to 2");
     std::vector<double> energies;
-    const std::string& text = node.getStringProperty("internalEnergies");
-    const char* cursor = text.c_str();
-    char* end;
-    for (double value = std::strtod(cursor, &end); end != cursor; value = std::strtod(cursor, &end)) {
+    std::istringstream text(node.getStringProperty("internalEnergies"));
+    text.imbue(std::locale::classic());
+    std::string token;
+    while (text >> token) {
+        char* end;
+        const double value = std::strtod(token.c_str(), &end);
+        if (end == token.c_str() || *end != '\0')
+            throw OpenMMException("GenDPDEIntegrator: the State's internal energies are corrupt: '" + token
+                                  + "' (entry " + std::to_string(energies.size()) + ") is not a number");
         energies.push_back(value);
-        cursor = end;
     }
-    int numParticles = context->getSystem().getNumParticles();
-    if ((int) energies.size() != numParticles)
-        throw OpenMMException("GenDPDEIntegrator: the State holds " + std::to_string(energies.size())
-                              + " internal energies, the System has " + std::to_string(numParticles) + " particles");
-    IntegrateGenDPDEStepKernel& k = kernel.getAs<IntegrateGenDPDEStepKernel>();
+    checkInternalEnergies(energies, "the State");
+    IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(node.getIntProperty("seedInUse"));
     k.setInternalEnergies(energies);
-    temperaturesSet = node.getBoolProperty("temperaturesSet");
 }

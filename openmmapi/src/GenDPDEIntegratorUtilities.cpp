@@ -2,17 +2,19 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "openmm/OpenMMException.h"
+#include <limits>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-GenDPDEStepTerms GenDPDEIntegratorUtilities::stepTerms(const GenDPDEIntegrator& integrator) {
+GenDPDEStepTerms GenDPDEIntegratorUtilities::stepTerms(const GenDPDEIntegrator& integrator, double pairRange) {
     const GenDPDEIntegrator::Mode mode = integrator.getMode();
     GenDPDEStepTerms terms;
     terms.internalEnergies = (mode == GenDPDEIntegrator::Isoenergetic);
     terms.dissipation = (mode != GenDPDEIntegrator::Conservative && integrator.getFriction() > 0.0);
     terms.conduction = (terms.internalEnergies && integrator.getHeatConduction() > 0.0);
     terms.pairSweep = terms.dissipation || terms.conduction;
+    terms.maxDisplacement = pairRange > 0.0 ? pairRange : std::numeric_limits<double>::infinity();
     return terms;
 }
 

@@ -27,8 +27,10 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
     node.setIntProperty("randomSeed", integrator.getRandomNumberSeed());
     node.setIntProperty("mode", (int) integrator.getMode());
     node.setDoubleProperty("temperature", integrator.getTemperature());
+    // The initial particle temperatures configured before a Context existed: a parameter of the integrator. The
+    // live state of a bound integrator (its Context's internal energies) travels in checkpoints and States only.
     SerializationNode& temperatures = node.createChildNode("ParticleTemperatures");
-    for (double t : integrator.getParticleTemperatures())
+    for (double t : integrator.initialTemperatures)
         temperatures.createChildNode("Particle").setDoubleProperty("t", t);
 }
 

@@ -3,9 +3,12 @@
 
 /* Geometry of an OpenMM periodic box in reduced form: a = (ax,0,0), b = (bx,by,0), c = (cx,cy,cz). */
 
+#include "openmm/OpenMMException.h"
 #include "openmm/Vec3.h"
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 namespace GenDPDEPlugin {
 namespace BoxGeometry {
@@ -28,6 +31,23 @@ inline OpenMM::Vec3 perpendicularWidths(const OpenMM::Vec3 box[3]) {
 inline double halfSmallestWidth(const OpenMM::Vec3 box[3]) {
     OpenMM::Vec3 widths = perpendicularWidths(box);
     return 0.5*std::min(widths[0], std::min(widths[1], widths[2]));
+}
+
+/**
+ * Throw an OpenMMException naming `owner` (the class whose range it is) if a pair range exceeds half the smallest
+ * perpendicular width of the periodic box, beyond which two images of a pair could both be in range. Checked at
+ * Context creation and before every step or evaluation that uses the range (a barostat may shrink the box).
+ */
+inline void checkCutoffAgainstBox(const std::string& owner, double cutoff, const OpenMM::Vec3 box[3]) {
+    const double limit = halfSmallestWidth(box);
+    if (cutoff > limit) {
+        std::ostringstream message;
+        message.precision(12);
+        message << owner << ": cutoff distance = " << cutoff << " nm is not allowed with this periodic box; "
+                << "it must be <= half the smallest box width (" << limit << " nm; for a rectangular box the "
+                << "width is the edge length, for a triclinic one the distance between opposite faces)";
+        throw OpenMM::OpenMMException(message.str());
+    }
 }
 
 /** Fractional coordinates s with r = s0 a + s1 b + s2 c (not wrapped). */

@@ -66,15 +66,18 @@ struct ZigguratTable {
     }
 };
 
-/** The random numbers of one pair (i, j) at one step. */
-class PairStream {
+/**
+ * A stream of random numbers: Philox blocks for one 128-bit counter and a seed, the block index in the key. The
+ * counter says whose numbers they are (see PairStream, ParticleStream), so that distinct uses never share one.
+ */
+class Stream {
 public:
-    PairStream(std::uint32_t seed, std::uint64_t step, std::uint32_t i, std::uint32_t j) :
-            counter{i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)}, key{seed, 0}, used(0) {
+    Stream(std::uint32_t seed, std::uint32_t c0, std::uint32_t c1, std::uint32_t c2, std::uint32_t c3) :
+            counter{c0, c1, c2, c3}, key{seed, 0}, used(0) {
         philox4x32(counter, key, words);   // every stream is used at least once
         key[1]++;
     }
-    PairStream(const PairStream&) = delete;
+    Stream(const Stream&) = delete;
     /** 64 random bits. */
     std::uint64_t bits64() {
         if (used == 4) {
@@ -99,6 +102,24 @@ public:
         if (std::abs(u) < table.ratio[layer])
             return u*table.x[layer];          // inside the layer's rectangle: 98.8% of draws
         return normalSlowPath(layer, u);
+    }
+    /**
+     * A Gamma variate of the given shape >= 1 and scale 1, by Marsaglia and Tsang (2000): a transformed normal
+     * variate accepted with an exact test (a squeeze first), so the variates follow the Gamma law exactly up to the
+     * resolution of the uniforms; 1-2% of proposals are rejected for shape >= 2.
+     */
+    double gamma(double shape) {
+        const double d = shape - 1.0/3.0, c = 1.0/std::sqrt(9.0*d);
+        while (true) {
+            const double x = normal();
+            double v = 1.0 + c*x;
+            if (v <= 0.0)
+                continue;
+            v = v*v*v;
+            const double u = uniformPositive(), x2 = x*x;
+            if (u < 1.0 - 0.0331*x2*x2 || std::log(u) < 0.5*x2 + d*(1.0 - v + std::log(v)))
+                return d*v;
+        }
     }
 private:
     /** The tail beyond R and the wedges, then new draws until one is accepted. */
@@ -129,6 +150,24 @@ private:
 private:
     std::uint32_t counter[4], key[2], words[4];
     int used;
+};
+
+/** The random numbers of one pair (i, j) at one step: counter (i, j, step). */
+class PairStream : public Stream {
+public:
+    PairStream(std::uint32_t seed, std::uint64_t step, std::uint32_t i, std::uint32_t j) :
+            Stream(seed, i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)) {
+    }
+};
+
+/**
+ * The random numbers of one particle i for a one-off draw (not tied to a step): counter (i, 2^32 - 1, 2^32 - 1,
+ * 2^32 - 1), which no PairStream uses (it would need j = 2^32 - 1 and a step count of 2^64 - 1).
+ */
+class ParticleStream : public Stream {
+public:
+    ParticleStream(std::uint32_t seed, std::uint32_t i) : Stream(seed, i, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu) {
+    }
 };
 
 } // namespace CounterRandom

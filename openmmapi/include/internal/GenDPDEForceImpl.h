@@ -32,12 +32,6 @@ public:
     OpenMM::Kernel& getKernel() {
         return kernel;
     }
-    /**
-     * Throw an OpenMMException if the cutoff exceeds half the smallest perpendicular width of the periodic box
-     * (half the smallest edge of a rectangular box), beyond which two images of a pair could both be in range.
-     * Checked at Context creation and before every evaluation.
-     */
-    static void checkCutoffAgainstBox(double cutoff, const OpenMM::Vec3 boxVectors[3]);
 private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;

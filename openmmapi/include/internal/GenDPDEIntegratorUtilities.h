@@ -18,13 +18,20 @@ struct GenDPDEStepTerms {
     bool dissipation;        // dissipative and random pair forces (friction > 0)
     bool conduction;         // heat conduction and its noise (Isoenergetic, heat conduction > 0)
     bool internalEnergies;   // the pair updates exchange energy with eps_i (Isoenergetic); otherwise with a bath
+    /**
+     * The largest displacement of a particle in one step (nm) that is not taken as a blown-up simulation: the pair
+     * range R (the density weight and the pair terms vary on that scale, so a particle that crosses its whole
+     * neighborhood in one step is no longer integrated; a stable liquid moves ~1e-3 R per step), or infinity if
+     * the range is unknown (then only non-finite values are caught).
+     */
+    double maxDisplacement;
 };
 
 /** Decisions about a GenDPDEIntegrator's step that the API class and every platform share (docs/theory.md 5-6). */
 class GenDPDEIntegratorUtilities {
 public:
-    /** The terms of the next step. */
-    static GenDPDEStepTerms stepTerms(const GenDPDEIntegrator& integrator);
+    /** The terms of the next step, for the pair range of the bound Context (0 if unknown). */
+    static GenDPDEStepTerms stepTerms(const GenDPDEIntegrator& integrator, double pairRange);
     /**
      * The range R of the pair terms (nm): the integrator's cutoff if set, else that of the System's GenDPDEForces
      * (which must agree), else 0 (unknown; a step that needs the pair sweep then fails).

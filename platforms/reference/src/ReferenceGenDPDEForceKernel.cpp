@@ -1,6 +1,6 @@
 #include "ReferenceGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
-#include "internal/GenDPDEForceImpl.h"
+#include "internal/BoxGeometry.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include <sstream>
@@ -49,7 +49,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
             throw OpenMMException(message.str());
         }
     if (periodic)
-        GenDPDEForceImpl::checkCutoffAgainstBox(cutoff, box);
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
     const PairView pairs = neighborList->update(positions, box);
 
     // docs/theory.md sections 2-3: primitive densities n0_i = sum_j w(r_ij).
@@ -78,6 +78,15 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : volumeVB(n0));
         double freeEnergy;
         tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
+        if (!(std::isfinite(freeEnergy) && std::isfinite(pressure[i]))) {
+            std::ostringstream message;
+            message.precision(6);
+            message << "GenDPDEForce: the Tait equation of state of particle " << i << " overflows at its density "
+                    << 1.0/v.volume << " nm^-3 (" << 1.0/(v.volume*referenceDensity) << " n0) at step "
+                    << context.getStepCount() << ": the simulation has become unstable (reduce the step size) or "
+                    << "the Tait parameters are extreme";
+            throw OpenMMException(message.str());
+        }
         volume[i] = v.volume;
         energy += freeEnergy;
         // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.

@@ -1,6 +1,7 @@
 #include "ReferenceGenDPDEIntegratorKernel.h"
 #include "ReferenceGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
+#include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPhysics.h"
@@ -33,7 +34,10 @@ PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context,
     if (pairListSource != nullptr)
         return dynamic_cast<ReferenceCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl())
                 .getNeighborList().getPairs();
-    return neighborList->update(extractPositions(context), extractBoxVectors(context));
+    const Vec3* box = extractBoxVectors(context);
+    if (context.getSystem().usesPeriodicBoundaryConditions())
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
+    return neighborList->update(extractPositions(context), box);
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, const std::vector<Vec3>& forces,
@@ -127,9 +131,14 @@ void ReferenceIntegrateGenDPDEStepKernel::sweepIsothermal(PairView pairs, std::v
     }
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::checkForcesFinite(ContextImpl& context) const {
+void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize,
+                                                            double maxDisplacement) const {
+    // One cheap pass (a few flops per particle) before anything changes: every force finite, and no particle
+    // about to move farther than maxDisplacement (GenDPDEStepTerms) with its velocity after the kicks.
     const std::vector<Vec3>& forces = extractForces(context);
-    for (size_t i = 0; i < forces.size(); i++)
+    const std::vector<Vec3>& velocities = extractVelocities(context);
+    const double limit2 = maxDisplacement*maxDisplacement;
+    for (size_t i = 0; i < forces.size(); i++) {
         if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2]))) {
             std::ostringstream message;
             message << "GenDPDEIntegrator: the force on particle " << i << " is not finite (" << forces[i][0] << ", "
@@ -137,6 +146,17 @@ void ReferenceIntegrateGenDPDEStepKernel::checkForcesFinite(ContextImpl& context
                     << "; the step was not applied";
             throw OpenMMException(message.str());
         }
+        const Vec3 displacement = (velocities[i] + forces[i]*(stepSize*inverseMasses[i]))*stepSize;
+        const double distance2 = displacement.dot(displacement);
+        if (inverseMasses[i] != 0.0 && !(distance2 <= limit2)) {
+            std::ostringstream message;
+            message.precision(6);
+            message << "GenDPDEIntegrator: particle " << i << " would move " << std::sqrt(distance2) << " nm in one "
+                    << "step, more than the pair range " << maxDisplacement << " nm, at step " << context.getStepCount()
+                    << ": the simulation has become unstable (reduce the step size); the step was not applied";
+            throw OpenMMException(message.str());
+        }
+    }
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::sweepIsoenergeticOrRollBack(PairView pairs, std::vector<Vec3>& velocities,
@@ -161,7 +181,7 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
                                                   const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
     // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
     // velocity Verlet (leapfrog form: one full kick).
-    checkForcesFinite(context);
+    checkStepIsStable(context, integrator.getStepSize(), terms.maxDisplacement);
     std::vector<Vec3>& velocities = extractVelocities(context);
     const std::vector<Vec3>& forces = extractForces(context);
     const double dt = integrator.getStepSize();

@@ -42,8 +42,11 @@ public:
 private:
     /** The pairs closer than the cutoff at the current positions: the source's, or from our own list. */
     PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource);
-    /** Throw, naming the particle and the step, if a force is not finite (before anything changes). */
-    void checkForcesFinite(OpenMM::ContextImpl& context) const;
+    /**
+     * Throw, naming the particle and the step, before anything changes, if a force is not finite or a particle
+     * would move farther than maxDisplacement (nm) in this step (a blown-up simulation).
+     */
+    void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement) const;
     /** docs/theory.md section 5, full GenDPDE: momenta, mechanical heating and conduction; false if some eps <= 0. */
     bool sweepIsoenergetic(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
                            const GenDPDEStepTerms& terms, long long step, int& failedParticle);

@@ -1,0 +1,253 @@
+/* The state rules of GenDPDEIntegrator, shared by every platform (a platform file defines `platform` and calls
+ * runIntegratorStateTests()): one Context per integrator, the bath temperature apart from the particles' state,
+ * checkpoints and States validated before anything changes, and simulations that go bad stopped with an error
+ * naming the particle and the step. */
+
+#include "TestGenDPDEIntegrator.h"
+#include "internal/CounterRandom.h"
+#include "openmm/serialization/XmlSerializer.h"
+#include <cstdint>
+#include <cstring>
+#include <sstream>
+#include <string>
+
+namespace IntegratorStateTests {
+
+using namespace IntegratorTests;
+
+/** A second Context is refused ("already bound", as OpenMM's integrators say); the first one keeps working. */
+void testOneContextPerIntegrator() {
+    Run run(4, 31);
+    Context& first = run.start();
+    assertThrowsMentioning([&]() { Context second(run.scene.system, run.integrator, *platform); },
+                           {"already bound to a context"});
+    run.integrator.step(2);
+    ASSERT_EQUAL(2, first.getStepCount());
+    first.reinitialize(true);   // the same Context may reinitialize
+    run.integrator.step(1);
+}
+
+/** setTemperature() changes the bath only; the particles' state changes only through the calls that set it. */
+void testBathTemperatureKeepsTheParticlesState() {
+    Run run(4, 32);
+    Context& context = run.start();
+    run.integrator.step(5);
+    const std::vector<double> energies = run.integrator.getInternalEnergies();
+    run.integrator.setTemperature(2.0*temperature);
+    ASSERT(energies == run.integrator.getInternalEnergies());
+    ASSERT_EQUAL(2.0*temperature, run.integrator.getTemperature());
+    std::vector<double> temperatures(context.getSystem().getNumParticles(), 1.5*temperature);
+    run.integrator.setParticleTemperatures(temperatures);
+    assertRelative(1.5*temperature*heatCapacity, run.integrator.getInternalEnergies()[7], 1e-15, "eps after setting");
+
+    // Before a Context: the configured temperatures are reported; the uniform start is explained, not invented.
+    GenDPDEIntegrator unbound(stepSize, friction, heatConduction, heatCapacity);
+    assertThrowsMentioning([&]() { unbound.getParticleTemperatures(); }, {"none are set"});
+    unbound.setTemperature(300.0);
+    assertThrowsMentioning([&]() { unbound.getParticleTemperatures(); }, {"bath temperature", "300 K"});
+    unbound.setParticleTemperatures({310.0, 320.0});
+    ASSERT(unbound.getParticleTemperatures() == std::vector<double>({310.0, 320.0}));
+    assertRelative(320.0*heatCapacity, unbound.getInternalEnergies()[1], 1e-15, "eps before a Context");
+}
+
+/** The integrator's XML holds its parameters and the configured initial temperatures, never a Context's state. */
+void testSerializationHoldsNoLiveState() {
+    Run run(4, 33);
+    run.integrator.setParticleTemperatures(std::vector<double>(run.scene.system.getNumParticles(), temperature));
+    run.start();
+    run.integrator.step(3);
+    std::vector<double> live(run.scene.system.getNumParticles(), 3.0*temperature);
+    run.integrator.setParticleTemperatures(live);
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEIntegrator>(&run.integrator, "Integrator", buffer);
+    std::unique_ptr<GenDPDEIntegrator> copy(XmlSerializer::deserialize<GenDPDEIntegrator>(buffer));
+    const std::vector<double> configured = copy->getParticleTemperatures();
+    ASSERT_EQUAL((int) live.size(), (int) configured.size());
+    for (double t : configured)
+        ASSERT_EQUAL(temperature, t);   // the initial condition, not the 3 T0 of the running Context
+}
+
+/** A checkpoint with its last bytes missing, or written by another integrator, or with corrupt internal energies,
+ *  is refused and leaves the integrator's state (seed, internal energies) untouched. */
+void testCheckpointsAreValidated() {
+    Run run(4, 34);
+    Context& context = run.start();
+    run.integrator.step(3);
+    std::stringstream good;
+    context.createCheckpoint(good);
+    const std::string bytes = good.str();
+    const int numParticles = context.getSystem().getNumParticles();
+    run.integrator.step(2);
+    const std::vector<double> energies = run.integrator.getInternalEnergies();
+    const int seed = run.integrator.getSeedInUse();
+    auto untouched = [&](const std::string& what) {
+        if (run.integrator.getInternalEnergies() != energies || run.integrator.getSeedInUse() != seed)
+            throw std::runtime_error(what + ": the integrator's state changed");
+    };
+    for (size_t missing : {1, 4, 8, 100}) {
+        std::stringstream truncated(bytes.substr(0, bytes.size() - missing));
+        assertThrowsMentioning([&]() { context.loadCheckpoint(truncated); }, {"GenDPDEIntegrator", "checkpoint"});
+        untouched("truncated checkpoint");
+    }
+    // The integrator's data is the end of the stream: magic, version, seed, count, energies, magic.
+    const size_t tail = 4*sizeof(std::int32_t) + numParticles*sizeof(double) + sizeof(std::int32_t);
+    const size_t energiesAt = bytes.size() - tail + 4*sizeof(std::int32_t);
+    for (double bad : {std::nan(""), -1.0, 0.0, 1e300}) {
+        std::string corrupt = bytes;
+        std::memcpy(&corrupt[energiesAt + 5*sizeof(double)], &bad, sizeof(double));
+        std::stringstream stream(corrupt);
+        assertThrowsMentioning([&]() { context.loadCheckpoint(stream); }, {"corrupt", "particle 5"});
+        untouched("corrupt internal energy");
+    }
+    {
+        std::string future = bytes;
+        const std::int32_t version = 9;
+        std::memcpy(&future[bytes.size() - tail + sizeof(std::int32_t)], &version, sizeof(version));
+        std::stringstream stream(future);
+        assertThrowsMentioning([&]() { context.loadCheckpoint(stream); }, {"version 9"});
+        untouched("future version");
+    }
+    // A checkpoint of the same System made with VerletIntegrator holds no integrator data at all.
+    VerletIntegrator verlet(stepSize);
+    Context other(run.scene.system, verlet, *platform);
+    other.setPositions(run.scene.positions);
+    std::stringstream foreign;
+    other.createCheckpoint(foreign);
+    assertThrowsMentioning([&]() { context.loadCheckpoint(foreign); }, {"GenDPDEIntegrator"});
+    untouched("another integrator's checkpoint");
+    // Version 1 (0.1.x: version, seed, a flag byte, count, energies) is still read.
+    std::string legacy = bytes.substr(0, bytes.size() - tail);
+    const std::int32_t one = 1, count = numParticles;
+    const std::int32_t legacySeed = 4242;
+    legacy.append((const char*) &one, sizeof(one));
+    legacy.append((const char*) &legacySeed, sizeof(legacySeed));
+    legacy.push_back(1);
+    legacy.append((const char*) &count, sizeof(count));
+    legacy.append(bytes, energiesAt, numParticles*sizeof(double));
+    std::stringstream legacyStream(legacy);
+    context.loadCheckpoint(legacyStream);
+    ASSERT_EQUAL(legacySeed, run.integrator.getSeedInUse());
+    std::stringstream reload(bytes);
+    context.loadCheckpoint(reload);
+    ASSERT_EQUAL(seed, run.integrator.getSeedInUse());
+}
+
+/** A State's integrator parameters are validated the same way: unknown versions, garbage, bad values, wrong count. */
+void testStatesAreValidated() {
+    Run run(4, 35);
+    Context& context = run.start();
+    run.integrator.step(2);
+    const State saved = context.getState(State::Positions | State::Velocities | State::IntegratorParameters);
+    std::stringstream buffer;
+    XmlSerializer::serialize<State>(&saved, "State", buffer);
+    const std::string xml = buffer.str();
+    const std::vector<double> energies = run.integrator.getInternalEnergies();
+    auto load = [&](const std::string& text) {
+        std::stringstream stream(text);
+        std::unique_ptr<State> state(XmlSerializer::deserialize<State>(stream));
+        context.setState(*state);
+    };
+    auto replaced = [&](const std::string& from, const std::string& to) {
+        std::string text = xml;
+        const size_t at = text.find(from);
+        if (at == std::string::npos)
+            throw std::runtime_error("test setup: '" + from + "' not in the State XML");
+        return text.replace(at, from.size(), to);
+    };
+    const size_t start = xml.find("internalEnergies=\"") + 18;
+    const std::string firstValue = xml.substr(start, xml.find(' ', start) - start);
+    const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
+        {replaced("GenDPDEIntegratorVersion=\"2\"", "GenDPDEIntegratorVersion=\"9\""), {"version 9"}},
+        {replaced(firstValue + " ", firstValue + " garbage "), {"'garbage'", "not a number"}},
+        {replaced(firstValue + " ", "nan "), {"corrupt", "particle 0"}},
+        {replaced(firstValue + " ", "-0x1p+0 "), {"corrupt", "particle 0", "-1"}},
+        {replaced(firstValue + " ", ""), {"internal energies", "System has 64"}},
+        {replaced("seedInUse", "seedNotUsed"), {"does not hold GenDPDEIntegrator parameters"}},
+    };
+    for (const auto& c : cases) {
+        assertThrowsMentioning([&]() { load(c.first); }, c.second);
+        ASSERT(energies == run.integrator.getInternalEnergies());
+    }
+    load(xml);
+}
+
+/** A step size far too large blows a simulation up: the step that would move a particle farther than the pair range
+ *  is refused before anything changes, naming the particle and the step, in every mode. */
+void testBlownUpStepIsRefused() {
+    for (GenDPDEIntegrator::Mode mode : {GenDPDEIntegrator::Isothermal, GenDPDEIntegrator::Conservative,
+                                         GenDPDEIntegrator::Isoenergetic}) {
+        Run run(4, 36);
+        run.integrator.setMode(mode);
+        Context& context = run.start();
+        std::vector<Vec3> velocities = context.getState(State::Velocities).getVelocities();
+        velocities[21] = Vec3(2.0*cutoff/stepSize, 0, 0);   // a particle that has been kicked out of control
+        context.setVelocities(velocities);
+        const State before = context.getState(State::Positions | State::Velocities);
+        assertThrowsMentioning([&]() { run.integrator.step(1); }, {"particle 21", "step 0", "unstable"});
+        const State after = context.getState(State::Positions | State::Velocities);
+        for (int i = 0; i < context.getSystem().getNumParticles(); i++) {
+            ASSERT(before.getPositions()[i] == after.getPositions()[i]);
+            ASSERT(before.getVelocities()[i] == after.getVelocities()[i]);
+        }
+        ASSERT_EQUAL(0, context.getStepCount());
+    }
+}
+
+/** What the integrator cannot run is refused when the Context is created, naming the particle. */
+void testUnsupportedSystemsAreRefused() {
+    Run sites(4, 37);
+    sites.scene.system.setVirtualSite(4, new TwoParticleAverageSite(0, 1, 0.5, 0.5));
+    sites.scene.system.setParticleMass(4, 0.0);
+    assertThrowsMentioning([&]() { sites.start(); }, {"virtual sites", "particle 4"});
+    Run negative(4, 38);
+    negative.scene.system.setParticleMass(2, -200.0);
+    assertThrowsMentioning([&]() { negative.start(); }, {"mass of particle 2", "-200"});
+}
+
+/** The integrator's own pair list is re-checked against the box at every step, and the error names the integrator. */
+void testOwnCutoffCheckedWhenTheBoxChanges() {
+    Run run(5, 39);
+    System free;
+    for (int i = 0; i < run.scene.system.getNumParticles(); i++)
+        free.addParticle(particleMass);
+    free.setDefaultPeriodicBoxVectors(run.scene.box[0], run.scene.box[1], run.scene.box[2]);
+    free.addForce(new CustomExternalForce("0*periodicdistance(x, y, z, 0, 0, 0)"));   // makes the System periodic
+    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+    integrator.setCutoffDistance(cutoff);
+    integrator.setTemperature(temperature);
+    Context context(free, integrator, *platform);
+    context.setPositions(run.scene.positions);
+    integrator.step(1);
+    context.setPeriodicBoxVectors(Vec3(1.5*cutoff, 0, 0), Vec3(0, 1.5*cutoff, 0), Vec3(0, 0, 1.5*cutoff));
+    assertThrowsMentioning([&]() { integrator.step(1); }, {"GenDPDEIntegrator", "cutoff distance", "half"});
+}
+
+/** setInternalEnergiesToTemperature() is a pure function of (seed, particle): the same draw on every machine. */
+void testInternalEnergyDrawIsReproducible() {
+    Run run(4, 40);
+    run.start();
+    run.integrator.setInternalEnergiesToTemperature(temperature, 17);
+    const std::vector<double> first = run.integrator.getInternalEnergies();
+    run.integrator.setInternalEnergiesToTemperature(temperature, 17);
+    ASSERT(first == run.integrator.getInternalEnergies());
+    // Particle 3's value is that of its own stream, whatever the number of particles.
+    CounterRandom::ParticleStream stream(17, 3);
+    const double shape = heatCapacity/Physics::Boltzmann + 1.0;
+    ASSERT_EQUAL(Physics::Boltzmann*temperature*stream.gamma(shape), first[3]);
+    run.integrator.setInternalEnergiesToTemperature(temperature, 18);
+    ASSERT(first != run.integrator.getInternalEnergies());
+}
+
+void runIntegratorStateTests() {
+    testOneContextPerIntegrator();
+    testBathTemperatureKeepsTheParticlesState();
+    testSerializationHoldsNoLiveState();
+    testCheckpointsAreValidated();
+    testStatesAreValidated();
+    testBlownUpStepIsRefused();
+    testUnsupportedSystemsAreRefused();
+    testOwnCutoffCheckedWhenTheBoxChanges();
+    testInternalEnergyDrawIsReproducible();
+}
+
+} // namespace IntegratorStateTests

@@ -7,6 +7,7 @@ defaults come from it too); this module reads them through the bindings and adds
 """
 
 import dataclasses
+import numbers
 
 import numpy as np
 import openmm
@@ -143,11 +144,22 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
                  mode=GenDPDEIntegrator.Isoenergetic):
     """Liquid argon at n0* = 1 in a cubic periodic box, particles on an FCC lattice.
 
-    ``cutoff`` is R_cut* (one of the published 1.3365, 1.6839, 2.1564); ``cutoff_scaling`` defaults to the
-    published f_cut for that cutoff; ``estimator`` is 'VA' or 'VB'. The GenDPDEIntegrator has the published
-    gamma*, kappa* and C_V*, step ``time_step`` (reduced), every theta_i = T0, and random seed ``seed`` (0: chosen
-    when the Context is created). Returns a LiquidArgon whose System holds one GenDPDEForce.
+    ``num_particles`` is 4 m^3 (an FCC lattice of m^3 cells); ``cutoff`` is R_cut* (one of the published 1.3365,
+    1.6839, 2.1564); ``cutoff_scaling`` defaults to the published f_cut for that cutoff; ``estimator`` is 'VA' or
+    'VB'. The GenDPDEIntegrator has the published gamma*, kappa* and C_V*, step ``time_step`` (reduced, or a time
+    Quantity), the bath temperature T0 at which every particle starts, and random seed ``seed`` (0: chosen when the
+    Context is created). Returns a LiquidArgon whose System holds one GenDPDEForce. Bad arguments raise ValueError
+    naming the argument, the value and what is allowed.
     """
+    if isinstance(num_particles, bool) or not isinstance(num_particles, numbers.Integral) or num_particles < 4:
+        raise ValueError(f"liquid_argon: num_particles = {num_particles!r} is not allowed; it must be an integer "
+                         f"4 m^3 with m >= 1 (500, 864, 2048, 4000, 32000, ...)")
+    if unit.is_quantity(time_step):
+        if not time_step.unit.is_compatible(unit.picosecond):
+            raise ValueError(f"liquid_argon: time_step = {time_step} is not a time")
+        step_size = time_step.in_units_of(unit.picosecond)
+    else:
+        step_size = ARGON_UNITS.to_openmm(time_step, "time")
     parameters = argon_cutoff(cutoff)
     units, state = ARGON_UNITS, ARGON_STATE
     length = units.unit("length").value_in_unit(unit.nanometer)
@@ -155,8 +167,10 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
     if parameters.cutoff * length > edge / 2:
         raise ValueError(f"{num_particles} particles make a box of edge {edge / length:.3f} L, less than twice "
                          f"R_cut* = {parameters.cutoff}; use more particles")
+    box = [openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge)]
+    positions = fcc_lattice(num_particles, edge)   # (checks that num_particles is 4 m^3)
     system = openmm.System()
-    system.setDefaultPeriodicBoxVectors(openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge))
+    system.setDefaultPeriodicBoxVectors(*box)
     mass = units.unit("mass")
     for _ in range(num_particles):
         system.addParticle(mass)
@@ -167,7 +181,7 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
                             units.to_openmm(state.reference_pressure, "pressure"),
                             units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent)
     system.addForce(force)
-    integrator = GenDPDEIntegrator(units.to_openmm(time_step, "time"),
+    integrator = GenDPDEIntegrator(step_size,
                                    units.to_openmm(parameters.friction, "friction"),
                                    units.to_openmm(parameters.heat_conduction, "heat_conduction"),
                                    units.to_openmm(state.heat_capacity, "heat_capacity"))
@@ -178,8 +192,8 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
     chain = topology.addChain()
     for _ in range(num_particles):
         topology.addAtom("AR", app.element.argon, topology.addResidue("AR5", chain))
-    topology.setPeriodicBoxVectors(system.getDefaultPeriodicBoxVectors())
-    return LiquidArgon(system, force, integrator, topology, fcc_lattice(num_particles, edge), parameters)
+    topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))   # as PDBFile and PDBReporter expect
+    return LiquidArgon(system, force, integrator, topology, positions, parameters)
 
 
 def pressure_unit_mpa():

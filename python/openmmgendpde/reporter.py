@@ -1,9 +1,11 @@
 """GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol."""
 
+import numbers
+
+import openmm
 from openmm import unit
 
-from . import GenDPDEForce, GenDPDEIntegrator
-from .thermodynamics import kinetic_degrees_of_freedom, sample_thermodynamics
+from .thermodynamics import ThermodynamicProbe
 
 _K = unit.kelvin
 _DENSITY = unit.nanometer**-3
@@ -15,20 +17,22 @@ _BAR_PER_PRESSURE = (1 * _PRESSURE / unit.AVOGADRO_CONSTANT_NA).value_in_unit(un
 class GenDPDEReporter:
     """Writes, every ``reportInterval`` steps, one line of comma-separated values:
 
-    step, time, kinetic temperature (from the kinetic energy with 3N - 3 degrees of freedom, since GenDPDE conserves
-    momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial pressure
-    P = (2K + W)/(3V) of the GenDPDEForce, the conserved energy K + U + sum eps_i (all as
-    openmmgendpde.thermodynamics.sample_thermodynamics defines them) and its drift relative to the first report.
+    step, time, kinetic temperature (in the centre-of-mass frame, 3N - 3 degrees of freedom, since GenDPDE
+    conserves momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial
+    pressure P = (2K + W)/(3V) of every force, the conserved energy K + U + sum eps_i and its drift relative to the
+    first report, all as openmmgendpde.thermodynamics defines them.
 
     Use it like ``openmm.app.StateDataReporter``: ``simulation.reporters.append(GenDPDEReporter('log.csv', 100))``.
-    The Simulation's integrator must be a GenDPDEIntegrator and its System must hold a GenDPDEForce.
+    It reports what the simulation allows and writes ``nan`` for the rest: theta and the conserved energy need a
+    GenDPDEIntegrator, the density a GenDPDEForce, the pressure periodic boundaries; the drift is ``nan`` when the
+    dynamics does not conserve the energy (Isothermal mode, other integrators).
 
     Parameters
     ----------
     file : str or file-like
         Where to write (a path is opened for writing, or appending if ``append``).
     reportInterval : int
-        Steps between reports.
+        Steps between reports, an integer >= 1.
     units : openmmgendpde.units.ReducedUnits, optional
         Report in these reduced units instead of OpenMM units (K, nm^-3, bar, kJ/mol).
     separator : str
@@ -38,6 +42,10 @@ class GenDPDEReporter:
     """
 
     def __init__(self, file, reportInterval, units=None, separator=",", append=False):
+        if isinstance(reportInterval, bool) or not isinstance(reportInterval, numbers.Integral) \
+                or reportInterval < 1:
+            raise openmm.OpenMMException(f"GenDPDEReporter: reportInterval = {reportInterval!r} is not allowed; it "
+                                         f"must be an integer >= 1")
         self._own = isinstance(file, str)
         self._out = open(file, "a" if append else "w") if self._own else file
         self._interval = int(reportInterval)
@@ -45,11 +53,11 @@ class GenDPDEReporter:
         self._separator = separator
         self._header_written = append
         self._first_energy = None
-        self._force = None
+        self._probe = None
 
     def describeNextReport(self, simulation):
         steps = self._interval - simulation.currentStep % self._interval
-        return (steps, False, False, False, True)
+        return (steps, False, True, False, True)
 
     def _columns(self):
         if self._units is None:
@@ -58,24 +66,16 @@ class GenDPDEReporter:
         return ["Step", "Time*", "Kinetic temperature*", "Mean theta*", "Harmonic-mean theta*", "Mean density*",
                 "Virial pressure*", "Conserved energy*", "Relative drift"]
 
-    def _find_force(self, system):
-        for i in range(system.getNumForces()):
-            if GenDPDEForce.isinstance(system.getForce(i)):
-                return GenDPDEForce.cast(system.getForce(i))
-        raise ValueError("GenDPDEReporter: the System has no GenDPDEForce")
-
     def report(self, simulation, state):
-        integrator = simulation.integrator
-        if not isinstance(integrator, GenDPDEIntegrator):
-            integrator = GenDPDEIntegrator.cast(integrator)
-        if self._force is None:
-            self._force = self._find_force(simulation.system)
-        sample = sample_thermodynamics(state, simulation.context, integrator, self._force,
-                                       kinetic_degrees_of_freedom(simulation.system))
+        if self._probe is None:
+            self._probe = ThermodynamicProbe(simulation.system)
+        sample = self._probe.sample(state, simulation.context, simulation.integrator)
         energy = sample.conserved_energy.value_in_unit(_ENERGY)
-        if self._first_energy is None:
-            self._first_energy = energy
-        drift = (energy - self._first_energy) / abs(self._first_energy)
+        drift = float("nan")
+        if sample.energy_is_conserved:
+            if self._first_energy is None:
+                self._first_energy = energy
+            drift = (energy - self._first_energy) / abs(self._first_energy)
         if self._units is None:
             values = [sample.time.value_in_unit(unit.picosecond), sample.kinetic_temperature.value_in_unit(_K),
                       sample.mean_temperature.value_in_unit(_K), sample.harmonic_temperature.value_in_unit(_K),

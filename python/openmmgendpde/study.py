@@ -25,7 +25,7 @@ from openmm import app, unit
 from . import GenDPDEIntegrator
 from .cli import add_platform, add_progress
 from .presets import ARGON_UNITS, LiquidArgon, liquid_argon
-from .thermodynamics import kinetic_degrees_of_freedom, sample_thermodynamics
+from .thermodynamics import ThermodynamicProbe
 
 
 @dataclasses.dataclass(frozen=True)
@@ -140,15 +140,15 @@ def production(argon, simulation, protocol, frames, advance):
     positions evenly spread over it; ``advance(n)`` steps. Returns the Samples."""
     context = simulation.context
     samples = Samples(box_edge=argon.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer))
-    degrees = kinetic_degrees_of_freedom(argon.system)
+    probe = ThermodynamicProbe(argon.system)
     every = protocol.steps(protocol.sample_interval)
     count = protocol.steps(protocol.production_time) // every
     keep = set(np.linspace(0, count - 1, frames).round().astype(int)) if frames else set()
     start = time.perf_counter()
     for index in range(count):
         advance(every)
-        state = context.getState(getEnergy=True, getPositions=index in keep)
-        samples.append(sample_thermodynamics(state, context, argon.integrator, argon.force, degrees))
+        state = context.getState(getEnergy=True, getVelocities=True, getPositions=index in keep)
+        samples.append(probe.sample(state, context, argon.integrator))
         if index in keep:
             samples.frames.append(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
     samples.wall_time = time.perf_counter() - start

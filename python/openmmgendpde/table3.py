@@ -9,6 +9,7 @@ A cell is marked when it differs from the published value by more than the publi
 
 import csv
 import dataclasses
+import math
 import pathlib
 
 import numpy as np
@@ -46,6 +47,12 @@ class Cell:
         return next(bar for _, _, label, bar in QUANTITIES if label == self.quantity)
 
     @property
+    def published_text(self):
+        """The published value as printed in the paper, with its significant zeros (0.870, 1.000, 0.0111)."""
+        decimals = round(-math.log10(self.published_error))
+        return f"{self.published:.{decimals}f}"
+
+    @property
     def outside(self):
         return abs(self.difference) > self.published_error + 2 * self.error
 
@@ -64,7 +71,7 @@ def format_table(cells):
     for c in cells:
         digits = 5 if c.quantity.startswith("T*") else 4
         mark = " (!)" if c.outside else ""
-        lines.append(f"| {c.cutoff} | {c.estimator} | {c.quantity} | {c.published} | {c.reproduced:.{digits}f} "
+        lines.append(f"| {c.cutoff} | {c.estimator} | {c.quantity} | {c.published_text} | {c.reproduced:.{digits}f} "
                      f"+- {c.error:.{digits}f} | {c.difference:+.{digits}f}{mark} |")
     return "\n".join(lines)
 
@@ -88,8 +95,8 @@ def write_csv(cells, path):
         writer.writerow(["R_cut*", "estimator", "quantity", "published", "reproduced", "standard error",
                          "difference", "outside error bars"])
         for c in cells:
-            writer.writerow([c.cutoff, c.estimator, c.quantity, c.published, f"{c.reproduced:.6g}", f"{c.error:.2g}",
-                             f"{c.difference:+.6g}", c.outside])
+            writer.writerow([c.cutoff, c.estimator, c.quantity, c.published_text, f"{c.reproduced:.6g}",
+                             f"{c.error:.2g}", f"{c.difference:+.6g}", c.outside])
 
 
 def save_frames(directory, cutoff, estimator, samples):

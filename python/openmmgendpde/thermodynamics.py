@@ -1,54 +1,138 @@
-"""The thermodynamic state of a GenDPDE simulation at one instant, in OpenMM units: the one definition of what
-GenDPDEReporter writes and what the liquid-argon studies (openmmgendpde.study) average."""
+"""The thermodynamic state of a simulation at one instant, in OpenMM units: the one definition of what
+GenDPDEReporter writes and what the liquid-argon studies (openmmgendpde.study) average.
+
+What can be measured depends on the simulation, and what cannot is reported as NaN rather than as a wrong number:
+
+- kinetic temperature: 2 K_int/(d k_B) with the kinetic energy in the frame of the centre of mass,
+  K_int = K - |P|^2/(2M), and d = 3N - 3 for the N moving particles (the momentum-conserving dynamics of GenDPDE
+  and DPD keeps P; OpenMM's setVelocitiesToTemperature does not always make it zero);
+- particle temperatures theta_i and the conserved energy K + U + sum eps_i: only with a GenDPDEIntegrator; the
+  energy is conserved (so its drift is meaningful) in the Isoenergetic and Conservative modes, not in Isothermal;
+- mean density: only if the System has a GenDPDEForce (the first one's n_i);
+- virial pressure P = (2 K_int + W)/(3V): only with periodic boundaries. W is the sum of the exact virials of the
+  GenDPDEForces and, for the force groups that hold other forces, -dU/dlambda under a uniform scaling of positions
+  and box by lambda (central difference, lambda = 1 +- 1e-5; two energy evaluations per such group; the Context's
+  positions and box are restored exactly afterwards).
+"""
 
 import dataclasses
+import math
 
 import numpy as np
+import openmm
 from openmm import unit
 
+from . import GenDPDEForce, GenDPDEIntegrator
 from .units import BOLTZMANN
 
 _K = unit.kelvin
 _DENSITY = unit.nanometer**-3
 _PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
 _ENERGY = unit.kilojoule_per_mole
+_NAN = float("nan")
+#: Relative change of the box edge for the numerical virial of forces other than GenDPDEForce.
+VIRIAL_SCALING_STEP = 1e-5
 
 
 @dataclasses.dataclass(frozen=True)
 class ThermodynamicSample:
-    """One sample, every field an ``openmm.unit`` Quantity in OpenMM units."""
+    """One sample, every field an ``openmm.unit`` Quantity in OpenMM units (NaN where it cannot be measured)."""
     time: unit.Quantity                   # ps
-    kinetic_temperature: unit.Quantity    # K: 2K/(d k_B), d = kinetic_degrees_of_freedom (on-step velocities)
+    kinetic_temperature: unit.Quantity    # K: 2 K_int/(d k_B) (on-step velocities, centre-of-mass frame)
     mean_temperature: unit.Quantity       # K: <theta_i>
     harmonic_temperature: unit.Quantity   # K: <1/theta_i>^-1
     density: unit.Quantity                # nm^-3: n-bar, the mean of n_i = 1/V_i
-    pressure: unit.Quantity               # kJ/mol/nm^3: the virial pressure (2K + W)/(3V) of the GenDPDEForce
+    pressure: unit.Quantity               # kJ/mol/nm^3: the virial pressure (2 K_int + W)/(3V)
     conserved_energy: unit.Quantity       # kJ/mol: K + U + sum eps_i
+    energy_is_conserved: bool             # whether the dynamics conserves conserved_energy (drift meaningful)
 
 
-def kinetic_degrees_of_freedom(system):
-    """3N - 3 for the N particles of ``system`` that move (mass > 0): GenDPDE conserves momentum (at least 1)."""
-    moving = sum(1 for i in range(system.getNumParticles()) if system.getParticleMass(i).value_in_unit(unit.amu) > 0)
-    return max(1, 3 * moving - 3)
+class ThermodynamicProbe:
+    """Measures ThermodynamicSamples of the simulations of one System. It decides once, from the System, what can
+    be measured and how (see the module's docstring)."""
+
+    def __init__(self, system):
+        masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
+        self.masses = masses
+        self.degrees_of_freedom = max(1, 3 * int(np.count_nonzero(masses > 0)) - 3)
+        self.periodic = system.usesPeriodicBoundaryConditions()
+        forces = [system.getForce(i) for i in range(system.getNumForces())]
+        self.gendpde_forces = [GenDPDEForce.cast(f) for f in forces if GenDPDEForce.isinstance(f)]
+        gendpde_groups = {f.getForceGroup() for f in self.gendpde_forces}
+        # Forces that may carry energy (CMMotionRemover carries none), by group.
+        other_groups = {f.getForceGroup() for f in forces
+                        if not GenDPDEForce.isinstance(f) and not isinstance(f, openmm.CMMotionRemover)}
+        self.exact_virial_forces = [f for f in self.gendpde_forces if f.getForceGroup() not in other_groups]
+        self.numerical_virial_groups = sorted(other_groups)
+
+    def sample(self, state, context, integrator):
+        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
+        velocities; ``integrator`` the Context's integrator (any type)."""
+        kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
+        velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+        momentum = self.masses @ velocities
+        internal_kinetic = kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+        kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+        gendpde = _as_gendpde_integrator(integrator)
+        if gendpde is not None:
+            theta = gendpde.getParticleTemperatures().value_in_unit(_K)
+            mean, harmonic = np.mean(theta), 1 / np.mean(1 / theta)
+            conserved = gendpde.getConservedEnergy().value_in_unit(_ENERGY)
+            is_conserved = gendpde.getMode() != GenDPDEIntegrator.Isothermal
+        else:
+            mean = harmonic = conserved = _NAN
+            is_conserved = False
+        density = (np.mean(self.gendpde_forces[0].getParticleDensities(context).value_in_unit(_DENSITY))
+                   if self.gendpde_forces else _NAN)
+        return ThermodynamicSample(
+            time=state.getTime(),
+            kinetic_temperature=unit.Quantity(2 * internal_kinetic / (self.degrees_of_freedom * kb), _K),
+            mean_temperature=unit.Quantity(mean, _K),
+            harmonic_temperature=unit.Quantity(harmonic, _K),
+            density=unit.Quantity(density, _DENSITY),
+            pressure=unit.Quantity(self._pressure(state, context, internal_kinetic), _PRESSURE),
+            conserved_energy=unit.Quantity(conserved, _ENERGY),
+            energy_is_conserved=is_conserved,
+        )
+
+    def _pressure(self, state, context, internal_kinetic):
+        if not self.periodic:
+            return _NAN
+        a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
+        volume = a[0] * b[1] * c[2]
+        virial = sum(f.getVirial(context).value_in_unit(_ENERGY) for f in self.exact_virial_forces)
+        if self.numerical_virial_groups:
+            virial += numerical_virial(context, set(self.numerical_virial_groups))
+        return (2 * internal_kinetic + virial) / (3 * volume)
 
 
-def sample_thermodynamics(state, context, integrator, force, degrees_of_freedom):
-    """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies, ``integrator``
-    its GenDPDEIntegrator, ``force`` the GenDPDEForce of its System, ``degrees_of_freedom`` from
-    kinetic_degrees_of_freedom(system). The volume V is that of the State's periodic box."""
-    kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
-    theta = integrator.getParticleTemperatures().value_in_unit(_K)
-    a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
-    volume = a[0] * b[1] * c[2]
-    virial = force.getVirial(context).value_in_unit(_ENERGY)
-    density = np.mean(force.getParticleDensities(context).value_in_unit(_DENSITY))
-    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
-    return ThermodynamicSample(
-        time=state.getTime(),
-        kinetic_temperature=unit.Quantity(2 * kinetic / (degrees_of_freedom * kb), _K),
-        mean_temperature=unit.Quantity(np.mean(theta), _K),
-        harmonic_temperature=unit.Quantity(1 / np.mean(1 / theta), _K),
-        density=unit.Quantity(density, _DENSITY),
-        pressure=unit.Quantity((2 * kinetic + virial) / (3 * volume), _PRESSURE),
-        conserved_energy=integrator.getConservedEnergy(),
-    )
+def numerical_virial(context, groups):
+    """W = -dU/dlambda (kJ/mol) of the energy of force ``groups`` under a uniform scaling of the positions and the
+    periodic box by lambda, by a central difference at lambda = 1 +- VIRIAL_SCALING_STEP (error O(step^2)). The
+    Context's positions and box are restored exactly."""
+    state = context.getState(getPositions=True)
+    positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+    box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    energies = []
+    try:
+        for scale in (1 + VIRIAL_SCALING_STEP, 1 - VIRIAL_SCALING_STEP):
+            context.setPeriodicBoxVectors(*(box * scale))
+            context.setPositions(positions * scale)
+            energies.append(context.getState(getEnergy=True, groups=groups).getPotentialEnergy()
+                            .value_in_unit(_ENERGY))
+    finally:
+        context.setPeriodicBoxVectors(*box)
+        context.setPositions(positions)
+    return -(energies[0] - energies[1]) / (2 * VIRIAL_SCALING_STEP)
+
+
+def _as_gendpde_integrator(integrator):
+    if isinstance(integrator, GenDPDEIntegrator):
+        return integrator
+    if GenDPDEIntegrator.isinstance(integrator):
+        return GenDPDEIntegrator.cast(integrator)
+    return None
+
+
+def is_nan(quantity):
+    return math.isnan(quantity.value_in_unit(quantity.unit))

@@ -29,6 +29,10 @@ def test_table3_quick(table3_output, capsys):
         assert float(row["standard error"]) > 0 and abs(float(row["difference"])) < 0.05
     for cutoff in ("1.3365", "1.6839", "2.1564"):
         assert (directory / f"frames-R{cutoff}-VA.npz").exists()
+    # Published values as the paper prints them, significant zeros included.
+    published = {(row["R_cut*"], row["estimator"], row["quantity"]): row["published"] for row in rows}
+    assert published["2.1564", "VA", "n-bar*"] == "0.870" and published["2.1564", "VB", "n-bar*"] == "1.000"
+    assert published["2.1564", "VA", "T* (kinetic)"] == "0.0111" and published["1.3365", "VA", "P*"] == "0.008"
 
 
 def test_rdf_from_table3_frames(table3_output, capsys):

@@ -56,14 +56,23 @@ def test_arguments_accept_quantities_in_any_compatible_unit():
 
 
 @pytest.mark.parametrize("call, fragments", [
-    (lambda f: GenDPDEForce(-1.0), ["cutoff distance", "-1", "> 0"]),
+    # Every setter, below and above its documented range (docs/force.md) and with non-finite values.
+    (lambda f: GenDPDEForce(-1.0), ["cutoff distance", "-1", "[0.001, 10000] nm"]),
+    (lambda f: GenDPDEForce(1e-320 * unit.nanometer), ["cutoff distance", "e-321"]),
     (lambda f: f.setCutoffDistance(float("nan")), ["cutoff distance", "nan"]),
-    (lambda f: f.setCutoffScaling(0.9), ["f_cut", "0.9", ">= 1"]),
+    (lambda f: f.setCutoffDistance(3e4 * unit.nanometer), ["cutoff distance", "30000"]),
+    (lambda f: f.setCutoffScaling(0.9), ["f_cut", "0.9", "[1, 100]"]),
+    (lambda f: f.setCutoffScaling(1e100), ["f_cut", "1e+100"]),
     (lambda f: f.setTaitParameters(-1, 1, 1, 2), ["reference density", "-1"]),
-    (lambda f: f.setTaitParameters(1, 1, 0, 2), ["bulk modulus", "0"]),
-    (lambda f: f.setTaitParameters(1, 1, 1, 0.5), ["gamma_T", "0.5", "> 1"]),
+    (lambda f: f.setTaitParameters(1e-300, 1, 1, 2), ["reference density", "1e-300", "[1e-12, 1e+12] nm^-3"]),
     (lambda f: f.setTaitParameters(1, float("inf"), 1, 2), ["reference pressure", "inf"]),
+    (lambda f: f.setTaitParameters(1, 1e20 * unit.bar, 1, 2), ["reference pressure"]),
+    (lambda f: f.setTaitParameters(1, 1, 0, 2), ["bulk modulus", "0"]),
+    (lambda f: f.setTaitParameters(1, 1, 1e300, 2), ["bulk modulus", "1e+300"]),
+    (lambda f: f.setTaitParameters(1, 1, 1, 0.5), ["gamma_T", "0.5", "(1, 100]"]),
+    (lambda f: f.setTaitParameters(1, 1, 1, 1000), ["gamma_T", "1000"]),
     (lambda f: f.setDensityEstimator(5), ["estimator", "5"]),
+    (lambda f: f.setNonbondedMethod(-1), ["method", "-1"]),
 ])
 def test_bad_input_raises_openmm_exception_and_changes_nothing(call, fragments):
     assert_rejected_without_change(GenDPDEForce(1.0), call, fragments)

@@ -12,7 +12,7 @@ from openmm import app, unit
 from scipy import stats
 
 from helpers import MIDDLE_CUTOFF, TEMPERATURE, argon_integrator, assert_rejected_without_change
-from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, GenDPDEReporter
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS, liquid_argon
 
 ENERGY = unit.kilojoule_per_mole
@@ -40,14 +40,23 @@ def test_is_an_openmm_integrator_with_quantity_getters():
 
 
 @pytest.mark.parametrize("call, fragments", [
-    (lambda i: GenDPDEIntegrator(-0.001, 1, 1, 1), ["step size", "-0.001"]),
+    # Every setter, below and above its documented range (docs/integrator.md) and with non-finite values.
+    (lambda i: GenDPDEIntegrator(-0.001, 1, 1, 1), ["step size", "-0.001", "(0, 1000] ps"]),
+    (lambda i: i.setStepSize(2 * unit.nanosecond), ["step size", "2000"]),
     (lambda i: i.setFriction(-1.0), ["friction", "-1"]),
+    (lambda i: i.setFriction(1e300), ["friction", "1e+300", "[0, 1e+12] amu/ps"]),
     (lambda i: i.setHeatConduction(float("nan")), ["heat conduction", "nan"]),
-    (lambda i: i.setHeatCapacity(0.0), ["heat capacity", "> 0"]),
+    (lambda i: i.setHeatCapacity(0.0), ["heat capacity", "[1e-20, 1e+20] kJ/(mol K)"]),
     (lambda i: i.setTemperature(-5 * unit.kelvin), ["temperature", "-5"]),
+    (lambda i: i.setTemperature(1e-200), ["temperature", "1e-200", "[1e-50, 1e+50] K"]),
     (lambda i: i.setParticleTemperatures([300.0, 0.0]), ["temperature of particle 1", "0"]),
+    (lambda i: i.setParticleTemperatures([300.0, 1e153]), ["temperature of particle 1", "1e+153"]),
+    (lambda i: i.setParticleTemperatures([]), ["number of particle temperatures", "= 0"]),
+    (lambda i: i.setCutoffDistance(-1.0), ["cutoff", "-1"]),
     (lambda i: i.setMode(7), ["mode", "7"]),
     (lambda i: i.getConservedEnergy(), ["not bound to a Context"]),
+    (lambda i: i.setInternalEnergiesToTemperature(300, 1), ["needs a Context"]),
+    (lambda i: i.getParticleTemperatures(), ["none are set"]),
 ])
 def test_bad_input_raises_openmm_exception(call, fragments):
     assert_rejected_without_change(make_integrator(), call, fragments)
@@ -81,7 +90,10 @@ def test_temperatures_before_and_after_the_context_exists():
     energies = integrator.getInternalEnergies()
     assert unit.is_quantity(energies) and energies.unit == ENERGY
     assert np.allclose(energies.value_in_unit(ENERGY), heat_capacity * temperatures, rtol=1e-15)
+    # The bath temperature is not the particles' state: setting it leaves every theta_i as it is.
     integrator.setTemperature(200)
+    assert np.allclose(integrator.getParticleTemperatures().value_in_unit(unit.kelvin), temperatures, rtol=1e-15)
+    integrator.setParticleTemperatures([200.0] * 500)
     assert np.all(integrator.getParticleTemperatures().value_in_unit(unit.kelvin) == 200.0)
     assert GenDPDEIntegrator.isinstance(context.getIntegrator())
     assert GenDPDEIntegrator.cast(context.getIntegrator()) is integrator   # the user's object, still owning it
@@ -138,34 +150,6 @@ def test_simulation_with_reporters_save_state_and_checkpoints(tmp_path):
         assert np.array_equal(state.getPositions(asNumpy=True), final.getPositions(asNumpy=True)), restore
         assert np.array_equal(state.getVelocities(asNumpy=True), final.getVelocities(asNumpy=True)), restore
         assert np.array_equal(other.integrator.getInternalEnergies().value_in_unit(ENERGY), energies), restore
-
-
-def test_genDPDE_reporter_writes_consistent_values():
-    argon = liquid_argon(500, 1.6839, "VB", seed=5)
-    simulation = argon.simulation()
-    stream = io.StringIO()
-    simulation.reporters.append(GenDPDEReporter(stream, 25, units=ARGON_UNITS))
-    simulation.step(100)
-    lines = stream.getvalue().splitlines()
-    assert lines[0].startswith('#"Step"') and "Harmonic-mean theta*" in lines[0]
-    rows = [[float(x) for x in line.split(",")] for line in lines[1:]]
-    assert [row[0] for row in rows] == [25, 50, 75, 100]
-    for step, time, kinetic, mean_theta, harmonic, density, pressure, energy, drift in rows:
-        assert time == pytest.approx(step * 0.01)
-        assert harmonic <= mean_theta
-        assert 0.9 < density < 1.1 and 0.005 < kinetic < 0.02 and 0 < pressure < 0.3
-        assert abs(drift) < 1e-5
-    assert rows[0][-1] == 0.0
-    with pytest.raises(ValueError, match="no GenDPDEForce"):
-        system = openmm.System()
-        system.addParticle(1.0)
-        integrator = make_integrator()
-        integrator.setTemperature(100)
-        integrator.setCutoffDistance(1.0)
-        bare = app.Simulation(app.Topology(), system, integrator, openmm.Platform.getPlatformByName("Reference"))
-        bare.context.setPositions([openmm.Vec3(0, 0, 0)])
-        bare.reporters.append(GenDPDEReporter(io.StringIO(), 1))
-        bare.step(1)
 
 
 def test_force_group_not_integrated_gives_own_pair_list():

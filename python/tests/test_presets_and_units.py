@@ -3,8 +3,9 @@
 import math
 
 import numpy as np
+import openmm
 import pytest
-from openmm import unit
+from openmm import app, unit
 
 from openmmgendpde import GenDPDEForce
 from openmmgendpde.presets import (ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, fcc_lattice, liquid_argon,
@@ -93,3 +94,29 @@ def test_preset_rejects_what_it_cannot_build():
         liquid_argon(32, 2.1564)
     with pytest.raises(ValueError, match="not one of the published cutoffs"):
         liquid_argon(500, 1.5)
+    for bad in (-4, 500.0, True, 0):
+        with pytest.raises(ValueError, match=f"num_particles = {bad!r} is not allowed"):
+            liquid_argon(bad)
+    with pytest.raises(ValueError, match="time_step = 3 K is not a time"):
+        liquid_argon(500, time_step=3 * unit.kelvin)
+
+
+def test_preset_takes_a_time_step_quantity_and_writes_pdb_files(tmp_path):
+    argon = liquid_argon(500, time_step=4.5 * unit.femtosecond)
+    assert argon.integrator.getStepSize().value_in_unit(unit.picosecond) == pytest.approx(0.0045, rel=1e-15)
+    app.PDBFile.writeFile(argon.topology, argon.positions * unit.nanometer, open(tmp_path / "argon.pdb", "w"))
+    written = app.PDBFile(str(tmp_path / "argon.pdb"))
+    assert written.topology.getNumAtoms() == 500
+    edge = argon.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
+    assert written.topology.getUnitCellDimensions()[0].value_in_unit(unit.nanometer) == pytest.approx(edge, abs=1e-3)
+
+
+def test_a_second_simulation_of_one_preset_is_refused():
+    """An integrator serves one Context: calling simulation() twice (a re-run notebook cell) raises, and the first
+    Simulation keeps working."""
+    argon = liquid_argon(500)
+    first = argon.simulation()
+    with pytest.raises(openmm.OpenMMException, match="already bound to a context"):
+        argon.simulation()
+    first.step(2)
+    assert first.currentStep == 2

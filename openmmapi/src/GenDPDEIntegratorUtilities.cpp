@@ -3,6 +3,7 @@
 #include "internal/GenDPDEForceImpl.h"
 #include "openmm/OpenMMException.h"
 #include <limits>
+#include <sstream>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -47,4 +48,30 @@ GenDPDEForceImpl* GenDPDEIntegratorUtilities::findPairListSource(ContextImpl& co
             return forceImpl;
     }
     return nullptr;
+}
+
+std::string GenDPDEIntegratorUtilities::nonFiniteForceMessage(int particle, const Vec3& force, long long step) {
+    std::ostringstream message;
+    message << "GenDPDEIntegrator: the force on particle " << particle << " is not finite (" << force[0] << ", "
+            << force[1] << ", " << force[2] << ") at step " << step << "; the step was not applied";
+    return message.str();
+}
+
+std::string GenDPDEIntegratorUtilities::unstableStepMessage(int particle, double distance, double maxDisplacement,
+                                                            long long step) {
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEIntegrator: particle " << particle << " would move " << distance << " nm in one step, more "
+            << "than the pair range " << maxDisplacement << " nm, at step " << step << ": the simulation has become "
+            << "unstable (reduce the step size); the step was not applied";
+    return message.str();
+}
+
+std::string GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(int particle, double energy, long long step) {
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEIntegrator: the internal energy of particle " << particle << " would become " << energy
+            << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or increase "
+            << "the heat capacity (the relative fluctuations of eps_i scale like sqrt(k_B/C_V))";
+    return message.str();
 }

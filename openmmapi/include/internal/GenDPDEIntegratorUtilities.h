@@ -4,6 +4,7 @@
 #include "GenDPDEIntegrator.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
+#include <string>
 
 namespace GenDPDEPlugin {
 
@@ -45,6 +46,10 @@ public:
      */
     static GenDPDEForceImpl* findPairListSource(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                 double pairRange);
+    /** The errors a step reports (every platform uses the same words). */
+    static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
+    static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);
+    static std::string nonPositiveEnergyMessage(int particle, double energy, long long step);
 };
 
 } // namespace GenDPDEPlugin

@@ -1,6 +1,7 @@
 #include "ReferenceGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
+#include "internal/FixedOrderSum.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include <sstream>
@@ -64,7 +65,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const Physics::TaitEquationOfState tait(referenceDensity, referencePressure, bulkModulus, exponent);
     const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
-    double energy = 0.0;
+    FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
         const double n0 = primitiveDensity[i];
         if (estimator == GenDPDEForce::VA && n0 == 0.0) {
@@ -88,29 +89,31 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
             throw OpenMMException(message.str());
         }
         volume[i] = v.volume;
-        energy += freeEnergy;
+        energy.add(freeEnergy);
         // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
         forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
     }
-    return energy;
+    return energy.sum();
 }
 
 double ReferenceCalcGenDPDEForceKernel::computePairForces(std::vector<Vec3>* forces) const {
     // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij.
     const Physics::DensityWeight weight(cutoff);
-    double virial = 0.0;
+    FixedOrderSum::Accumulator virial;
     for (const ParticlePair& pair : neighborList->getPairs()) {
-        if (pair.r == 0.0)
-            continue;   // coincident particles: counted in the density, no direction, no force
+        if (pair.r == 0.0) {
+            virial.add(0.0);   // coincident particles: counted in the density, no direction, no force
+            continue;
+        }
         double scale = (forceCoefficient[pair.i] + forceCoefficient[pair.j])*weight.derivative(pair.r)/pair.r;
         if (forces != nullptr) {
             Vec3 force = pair.delta*scale;
             (*forces)[pair.i] += force;
             (*forces)[pair.j] -= force;
         }
-        virial += scale*pair.r*pair.r;
+        virial.add(scale*pair.r*pair.r);
     }
-    return virial;
+    return virial.sum();
 }
 
 double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {

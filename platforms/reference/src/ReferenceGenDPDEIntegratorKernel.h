@@ -3,6 +3,7 @@
 
 #include "GenDPDEKernels.h"
 #include "NeighborList.h"
+#include "internal/GenDPDESweepOrder.h"
 #include "openmm/Vec3.h"
 #include <memory>
 #include <vector>
@@ -47,23 +48,18 @@ private:
      * would move farther than maxDisplacement (nm) in this step (a blown-up simulation).
      */
     void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement) const;
-    /** docs/theory.md section 5, full GenDPDE: momenta, mechanical heating and conduction; false if some eps <= 0. */
-    bool sweepIsoenergetic(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
-                           const GenDPDEStepTerms& terms, long long step, int& failedParticle);
-    /** sweepIsoenergetic(); if it fails, restore the velocities and internal energies saved before the step, throw. */
-    void sweepIsoenergeticOrRollBack(PairView pairs, std::vector<OpenMM::Vec3>& velocities,
-                                     const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, long long step);
-    /** The classic DPD thermostat at the set temperature. */
-    void sweepIsothermal(PairView pairs, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
-                         long long step);
-    /** The order in which the pairs are updated (indices into the pairs); see the .cpp. */
-    const std::vector<int>& sweepOrder(PairView pairs);
+    /**
+     * The pair updates in the order of GenDPDESweepOrder (Isoenergetic or Isothermal). If an internal energy would
+     * become <= 0, restore the velocities and internal energies saved before the step and throw.
+     */
+    void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
+               const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     void kick(std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces, double timeStep) const;
     double cutoff = 0.0;
     int seed = 0;
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
-    std::vector<int> firstPair, order;
+    GenDPDESweepOrder sweepOrder;
     std::vector<double> savedInternalEnergies;
     std::unique_ptr<NeighborList> neighborList;   // used when no GenDPDEForce's pairs can be reused
 };

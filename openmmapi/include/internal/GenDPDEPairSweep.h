@@ -1,0 +1,101 @@
+#ifndef GENDPDE_PAIR_SWEEP_H_
+#define GENDPDE_PAIR_SWEEP_H_
+
+/* The pair updates of GenDPDEIntegrator's sweep (docs/theory.md sections 5-7) for the host platforms (Reference,
+ * CPU): the loop over a run of pairs in sweep order (GenDPDESweepOrder), written once. A platform calls it on the
+ * whole sequence (Reference) or on the blocks of one colour in parallel (CPU): blocks of one colour share no
+ * particle, so the result is the same. */
+
+#include "internal/CounterRandom.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
+#include "internal/GenDPDEPhysics.h"
+#include "openmm/Vec3.h"
+#include <cmath>
+#include <cstdint>
+
+namespace GenDPDEPlugin {
+
+/** What every pair update of one step needs, read once from the integrator. */
+struct PairSweepParameters {
+    PairSweepParameters(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, double cutoff, int seed,
+                        long long step) :
+            terms(terms), cutoff(cutoff), stepSize(integrator.getStepSize()), sqrtStepSize(std::sqrt(stepSize)),
+            friction(integrator.getFriction()), heatConduction(integrator.getHeatConduction()),
+            heatCapacity(integrator.getHeatCapacity()),
+            heatNoise(std::sqrt(2.0*Physics::Boltzmann*heatConduction)),
+            bathNoise(std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature())),
+            seed((std::uint32_t) seed), step((std::uint64_t) step) {
+    }
+    GenDPDEStepTerms terms;
+    double cutoff, stepSize, sqrtStepSize, friction, heatConduction, heatCapacity;
+    double heatNoise;   // alpha = sqrt(2 k_B kappa)
+    double bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode
+    std::uint32_t seed;
+    std::uint64_t step;
+};
+
+/**
+ * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r): dissipative
+ * and random momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split
+ * equally, heat conduction, all with the temperatures the particles have when the pair is reached. Returns the
+ * position in order of the first pair after which an internal energy is <= 0 (the sweep stops there; the caller
+ * restores the state), or -1.
+ */
+template <class Pair>
+int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
+                      const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
+    for (int n = 0; n < count; n++) {
+        const Pair& pair = pairs[order[n]];
+        const int i = pair.i, j = pair.j;
+        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+            continue;
+        const double omegaR = Physics::randomWeight(pair.r, p.cutoff);
+        CounterRandom::PairStream random(p.seed, p.step, i, j);
+        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
+                                                                                 p.heatCapacity, Physics::Boltzmann);
+        if (p.terms.dissipation) {
+            const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
+                    p.friction*(1.0 + temperatures.frictionFactor),
+                    std::sqrt(2.0*p.friction*temperatures.pairThermalEnergy), p.stepSize, p.sqrtStepSize,
+                    inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
+            energies[i] -= 0.5*kineticChange;
+            energies[j] -= 0.5*kineticChange;
+        }
+        if (p.terms.conduction) {
+            const double heat = Physics::conductiveHeat(omegaR, p.heatConduction, p.heatNoise,
+                    temperatures.inverseTemperatureDifference, p.stepSize, p.sqrtStepSize, random.normal());
+            energies[i] += heat;
+            energies[j] -= heat;
+        }
+        if (!(energies[i] > 0.0) || !(energies[j] > 0.0))
+            return n;
+    }
+    return -1;
+}
+
+/** The classic DPD thermostat (Isothermal mode) on the pairs order[0..count): the heat goes to the bath. */
+template <class Pair>
+void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
+                     const double* inverseMasses, OpenMM::Vec3* velocities) {
+    for (int n = 0; n < count; n++) {
+        const Pair& pair = pairs[order[n]];
+        const int i = pair.i, j = pair.j;
+        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+            continue;
+        CounterRandom::PairStream random(p.seed, p.step, i, j);
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::randomWeight(pair.r, p.cutoff), p.friction,
+                                       p.bathNoise, p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
+                                       velocities[i], velocities[j], random.normal());
+    }
+}
+
+/** The particle whose internal energy failed in the pair order[failed] (i if eps_i <= 0, else j). */
+template <class Pair>
+int failedParticle(const Pair* pairs, const int* order, int failed, const double* energies) {
+    const Pair& pair = pairs[order[failed]];
+    return energies[pair.i] > 0.0 ? pair.j : pair.i;
+}
+
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_PAIR_SWEEP_H_*/

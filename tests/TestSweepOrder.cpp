@@ -1,0 +1,171 @@
+/* GenDPDESweepOrder, the order of the pair updates every platform follows (docs/theory.md section 6): each pair
+ * exactly once; blocks of one colour share no particle (what makes the parallel sweep equal to the sequential one);
+ * a pure function of positions, box and pairs (periodic images, thread count); the plain sequence when the box is
+ * too small for blocks. The pairs come from an O(N^2) search written here. */
+
+#include "TestScenes.h"
+#include "TestUtilities.h"
+#include "internal/BoxGeometry.h"
+#include "internal/GenDPDESweepOrder.h"
+#include "openmm/internal/ThreadPool.h"
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+using namespace TestScenes;
+
+struct Pairs {
+    std::vector<int> ij;   // i0, j0, i1, j1, ...
+    int size() const {
+        return ij.size()/2;
+    }
+};
+
+/** All pairs closer than range, sorted by (i, j), by brute force (nearest image in a reduced box if periodic). */
+Pairs findPairs(const std::vector<Vec3>& positions, const Vec3 box[3], bool periodic, double range) {
+    Pairs pairs;
+    for (size_t i = 0; i < positions.size(); i++)
+        for (size_t j = i + 1; j < positions.size(); j++) {
+            Vec3 d = positions[i] - positions[j];
+            if (periodic) {
+                d -= box[2]*std::round(d[2]/box[2][2]);
+                d -= box[1]*std::round(d[1]/box[1][1]);
+                d -= box[0]*std::round(d[0]/box[0][0]);
+            }
+            if (d.dot(d) < range*range) {
+                pairs.ij.push_back(i);
+                pairs.ij.push_back(j);
+            }
+        }
+    return pairs;
+}
+
+GenDPDESweepOrder buildOrder(const Scene& scene, const std::vector<Vec3>& positions, const Pairs& pairs,
+                             ThreadPool* threads = nullptr) {
+    GenDPDESweepOrder order;
+    order.build(positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
+                pairs.ij.data(), pairs.ij.data() + 1, 2, threads);
+    return order;
+}
+
+void checkProperties(const Scene& scene, const std::string& label) {
+    const Pairs pairs = findPairs(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff);
+    const GenDPDESweepOrder order = buildOrder(scene, scene.positions, pairs);
+    // Each pair exactly once.
+    std::vector<int> seen(order.getOrder());
+    std::sort(seen.begin(), seen.end());
+    for (int k = 0; k < pairs.size(); k++)
+        if ((int) seen.size() != pairs.size() || seen[k] != k)
+            throw std::runtime_error(label + ": the order does not hold every pair exactly once");
+    // Blocks of one colour share no particle; pairs inside a block are in increasing first particle per group of
+    // runs (the interleaving keeps each particle's own list in increasing j).
+    const std::vector<int>& groups = order.getGroupStart();
+    const std::vector<int>& blocks = order.getBlockStart();
+    ASSERT_EQUAL(9, order.getNumGroups());
+    int blocksWithPairs = 0;
+    for (int g = 0; g < order.getNumGroups(); g++) {
+        std::vector<int> owner(scene.positions.size(), -1);
+        for (int b = groups[g]; b < groups[g + 1]; b++) {
+            blocksWithPairs += blocks[b + 1] > blocks[b];
+            std::vector<int> lastPartner(scene.positions.size(), -1);
+            for (int n = blocks[b]; n < blocks[b + 1]; n++) {
+                const int k = order.getOrder()[n];
+                for (int particle : {pairs.ij[2*k], pairs.ij[2*k + 1]}) {
+                    if (owner[particle] != -1 && owner[particle] != b)
+                        throw std::runtime_error(label + ": particle " + std::to_string(particle) + " is in blocks "
+                                                 + std::to_string(owner[particle]) + " and " + std::to_string(b)
+                                                 + " of group " + std::to_string(g));
+                    owner[particle] = b;
+                }
+                const int i = pairs.ij[2*k], j = pairs.ij[2*k + 1];
+                if (j <= lastPartner[i])
+                    throw std::runtime_error(label + ": the pairs of particle " + std::to_string(i)
+                                             + " are out of order in block " + std::to_string(b));
+                lastPartner[i] = j;
+            }
+        }
+    }
+    ASSERT_EQUAL(order.getBlockStart().back(), pairs.size());
+    // The extra group (pairs not in adjacent cells) must stay empty for pairs in range.
+    ASSERT_EQUAL(blocks[groups[8]], blocks[groups[9]]);
+    if (order.getNumCells()[0] >= 8 && blocksWithPairs < 64)
+        throw std::runtime_error(label + ": expected the pairs to spread over many blocks");
+}
+
+void testProperties() {
+    for (bool periodic : {true, false}) {
+        const std::string label = periodic ? "periodic" : "open";
+        // 16^3 particles: 8 cells and 4 blocks per direction, 8 blocks per colour; 20^3: an odd number of blocks
+        // would break the parity across the boundary, so the periodic box gets 8 cells, the open one 11.
+        checkProperties(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 1), label + " liquid");
+        checkProperties(makeLatticeLiquid(20, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 2), label + " large");
+        checkProperties(makeRandomGas(2000, 0.3*referenceDensity, GenDPDEForce::VB, periodic, 3), label + " gas");
+    }
+    Scene triclinic = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 4);
+    const double edge = triclinic.box[0][0];
+    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+    checkProperties(triclinic, "triclinic");
+}
+
+/** Moving particles by lattice vectors (another periodic image) or sharing the work among threads changes nothing. */
+void testPureFunction() {
+    Scene scene = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 5);
+    const Pairs pairs = findPairs(scene.positions, scene.box, true, cutoff);
+    const std::vector<int> reference = buildOrder(scene, scene.positions, pairs).getOrder();
+    std::vector<Vec3> shifted = scene.positions;
+    for (size_t i = 0; i < shifted.size(); i++)
+        shifted[i] += scene.box[i % 3]*((int) (i % 5) - 2);
+    ASSERT(reference == buildOrder(scene, shifted, pairs).getOrder());
+    for (int numThreads : {1, 2, 3}) {
+        ThreadPool threads(numThreads);
+        ASSERT(reference == buildOrder(scene, scene.positions, pairs, &threads).getOrder());
+    }
+}
+
+/** A box that holds fewer than four cells along every direction is one block: the plain sequence, the pairs in
+ *  (i, j) order with the lists of four consecutive particles interleaved. */
+void testSmallBoxIsTheSequentialOrder() {
+    Scene scene = makeLatticeLiquid(3, referenceDensity, 0.2, GenDPDEForce::VB, true, 6);
+    const Pairs pairs = findPairs(scene.positions, scene.box, true, cutoff);
+    const GenDPDESweepOrder order = buildOrder(scene, scene.positions, pairs);
+    for (int k = 0; k < 3; k++)
+        ASSERT(order.getNumCells()[k] <= 2);
+    // The interleaving written out independently: for each group of four consecutive first particles present,
+    // rank by rank.
+    std::vector<int> expected, firsts;
+    for (int k = 0; k < pairs.size(); k++)
+        if (firsts.empty() || firsts.back() != pairs.ij[2*k])
+            firsts.push_back(pairs.ij[2*k]);
+    for (size_t g = 0; g < firsts.size(); g += 4) {
+        std::vector<std::vector<int>> lists;
+        for (size_t f = g; f < std::min(firsts.size(), g + 4); f++) {
+            lists.emplace_back();
+            for (int k = 0; k < pairs.size(); k++)
+                if (pairs.ij[2*k] == firsts[f])
+                    lists.back().push_back(k);
+        }
+        for (size_t rank = 0; ; rank++) {
+            bool any = false;
+            for (const std::vector<int>& list : lists)
+                if (rank < list.size()) {
+                    expected.push_back(list[rank]);
+                    any = true;
+                }
+            if (!any)
+                break;
+        }
+    }
+    ASSERT(expected == order.getOrder());
+}
+
+int main() {
+    return runTestProgram([]() {
+        testProperties();
+        testPureFunction();
+        testSmallBoxIsTheSequentialOrder();
+    });
+}

@@ -1,8 +1,7 @@
 #include "internal/GenDPDESweepOrder.h"
 #include "internal/BoxGeometry.h"
-#include "openmm/internal/ThreadPool.h"
+#include "internal/ParallelFor.h"
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 using namespace GenDPDEPlugin;
@@ -14,22 +13,6 @@ const int numColours = 8;
 /** Cells are at least this factor times the range wide, so that rounding can never put a pair in range two cells
  *  apart. */
 const double cellMargin = 1.0 + 1e-9;
-
-/** Run body(begin, end) over [0, count) in pieces, on the pool's threads if there is a pool. */
-template <class Body>
-void forRanges(ThreadPool* threads, int count, Body body) {
-    if (threads == nullptr || threads->getNumThreads() < 2 || count < 4096) {
-        body(0, count);
-        return;
-    }
-    const int chunk = 2048;
-    std::atomic<int> next(0);
-    threads->execute([&](ThreadPool& pool, int thread) {
-        for (int begin = next.fetch_add(chunk); begin < count; begin = next.fetch_add(chunk))
-            body(begin, std::min(count, begin + chunk));
-    });
-    threads->waitForThreads();
-}
 
 /**
  * Copy the pairs listed[0..count) (sorted by their first particle) to output, with the lists of each four
@@ -61,7 +44,7 @@ void interleaveRuns(const int* listed, int count, const int* pairI, int stride, 
 } // namespace
 
 void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
-                                     double range) {
+                                     double range, ThreadPool* threads) {
     this->periodic = periodic;
     const int numParticles = positions.size();
     Vec3 extent, low;
@@ -87,17 +70,19 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
         numBlocks[k] = (numCells[k] + 1)/2;
     }
     particleCell.resize(numParticles);
-    for (int i = 0; i < numParticles; i++)
-        for (int k = 0; k < 3; k++) {
-            double unit;
-            if (periodic) {
-                const double s = BoxGeometry::fractionalCoordinates(positions[i], boxVectors)[k];
-                unit = s - std::floor(s);
+    parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+        for (int i = begin; i < end; i++) {
+            const Vec3 s = periodic ? BoxGeometry::fractionalCoordinates(positions[i], boxVectors) : Vec3();
+            for (int k = 0; k < 3; k++) {
+                double unit;
+                if (periodic)
+                    unit = s[k] - std::floor(s[k]);
+                else
+                    unit = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
+                particleCell[i][k] = std::max(0, std::min(numCells[k] - 1, (int) (unit*numCells[k])));
             }
-            else
-                unit = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
-            particleCell[i][k] = std::max(0, std::min(numCells[k] - 1, (int) (unit*numCells[k])));
         }
+    });
 }
 
 int GenDPDESweepOrder::homeCell(int a, int b, int k) const {
@@ -122,7 +107,7 @@ int GenDPDESweepOrder::homeCell(int a, int b, int k) const {
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
                               double range, int numPairs, const int* pairI, const int* pairJ, int stride,
                               ThreadPool* threads) {
-    computeCells(positions, boxVectors, periodic, range);
+    computeCells(positions, boxVectors, periodic, range, threads);
 
     // Slots: the blocks in sweep order (colour by colour, by block index within a colour), then one slot for the
     // pairs whose cells are not adjacent.
@@ -144,7 +129,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
 
     // Each pair's slot.
     pairSlot.resize(numPairs);
-    forRanges(threads, numPairs, [&](int begin, int end) {
+    parallelFor(threads, numPairs, 4096, [&](int begin, int end) {
         for (int k = begin; k < end; k++) {
             const std::array<int, 3>& ci = particleCell[pairI[(size_t) k*stride]];
             const std::array<int, 3>& cj = particleCell[pairJ[(size_t) k*stride]];
@@ -172,7 +157,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
 
     // Within each block, the lists of four consecutive first particles interleaved.
     order.resize(numPairs);
-    forRanges(threads, slot, [&](int begin, int end) {
+    parallelFor(threads, slot, 8, [&](int begin, int end) {
         for (int s = begin; s < end; s++)
             interleaveRuns(&sorted[blockStart[s]], blockStart[s + 1] - blockStart[s], pairI, stride,
                            &order[blockStart[s]]);

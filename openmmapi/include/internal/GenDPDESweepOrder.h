@@ -66,7 +66,7 @@ public:
     }
 private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
-                      double range);
+                      double range, OpenMM::ThreadPool* threads);
     int homeCell(int a, int b, int k) const;
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;

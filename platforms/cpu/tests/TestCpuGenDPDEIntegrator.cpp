@@ -7,6 +7,10 @@ int main() {
     return runTestProgram([]() {
         loadPlugins();
         platform = &OpenMM::Platform::getPlatformByName("CPU");
-        IntegratorTests::runIntegratorTests();
+        // The shared tests with 1, 2 and 3 threads (the results must not depend on the thread count).
+        for (const char* threads : {"1", "2", "3"}) {
+            platform->setPropertyDefaultValue("Threads", threads);
+            IntegratorTests::runIntegratorTests();
+        }
     });
 }

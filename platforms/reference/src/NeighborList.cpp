@@ -1,5 +1,6 @@
 #include "NeighborList.h"
 #include "internal/BoxGeometry.h"
+#include "internal/ParallelFor.h"
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -32,28 +33,36 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
     return false;
 }
 
-void NeighborList::build(const std::vector<Vec3>& positions) {
+namespace {
+/** Particles per range when threads share the work (fixed, so ranges do not depend on the thread count). */
+const int particleChunk = 256;
+}
+
+void NeighborList::build(const std::vector<Vec3>& positions, ThreadPool* threads) {
     Vec3 extent;
-    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent);
+    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent, threads);
     sortIntoCells(unit, extent);
-    collectCandidates(periodic ? wrappedPositions : positions);
+    collectCandidates(periodic ? wrappedPositions : positions, threads);
     builtPositions = positions;
     for (int k = 0; k < 3; k++)
         builtBox[k] = box.getVectors()[k];
     built = true;
 }
 
-std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent) const {
+std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent,
+                                                    ThreadPool* threads) const {
     // Coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
     const int numParticles = positions.size();
     std::vector<Vec3> unit(numParticles);
     if (periodic) {
         extent = BoxGeometry::perpendicularWidths(box.getVectors());
-        for (int i = 0; i < numParticles; i++) {
-            Vec3 s = BoxGeometry::fractionalCoordinates(wrappedPositions[i], box.getVectors());
-            for (int k = 0; k < 3; k++)
-                unit[i][k] = s[k] - std::floor(s[k]);
-        }
+        parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+            for (int i = begin; i < end; i++) {
+                Vec3 s = BoxGeometry::fractionalCoordinates(wrappedPositions[i], box.getVectors());
+                for (int k = 0; k < 3; k++)
+                    unit[i][k] = s[k] - std::floor(s[k]);
+            }
+        });
         return unit;
     }
     Vec3 low = numParticles > 0 ? positions[0] : Vec3(), high = low;
@@ -120,17 +129,15 @@ std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimen
     return neighborCells;
 }
 
-void NeighborList::collectCandidates(const std::vector<Vec3>& r) {
+void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end,
+                                  const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
+                                  std::vector<int>& found) {
     // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted.
-    const int numParticles = r.size();
-    const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
     const double listCutoff = cutoff + skin, listCutoff2 = listCutoff*listCutoff;
-    candidateStart.assign(numParticles + 1, 0);
-    candidates.clear();
-    for (int i = 0; i < numParticles; i++) {
+    for (int i = begin; i < end; i++) {
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
-        size_t first = candidates.size();
+        size_t first = found.size();
         for (int nx : neighborCells[0][cx])
             for (int ny : neighborCells[1][cy])
                 for (int nz : neighborCells[2][cz]) {
@@ -141,55 +148,142 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r) {
                             continue;
                         Vec3 d = periodic ? box.nearestImage(r[i] - r[j]) : r[i] - r[j];
                         if (d.dot(d) < listCutoff2)
-                            candidates.push_back(j);
+                            found.push_back(j);
                     }
                 }
-        std::sort(candidates.begin() + first, candidates.end());
-        candidateStart[i + 1] = candidates.size();
+        std::sort(found.begin() + first, found.end());
+        candidateStart[i + 1] = found.size() - first;
     }
 }
 
-template <class Displacement>
-void NeighborList::collectPairs(int numParticles, Displacement displacement) {
-    // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
-    // store-to-load forwarding). The buffer only grows, so it is never re-initialised.
-    if (pairs.size() < candidates.size())
-        pairs.resize(candidates.size());
-    numPairs = 0;
-    const double cutoff2 = cutoff*cutoff;
+void NeighborList::collectCandidates(const std::vector<Vec3>& r, ThreadPool* threads) {
+    const int numParticles = r.size();
+    const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
+    candidateStart.assign(numParticles + 1, 0);
+    const int numChunks = numRanges(numParticles, particleChunk);
+    chunkCandidates.resize(numChunks);
+    parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            chunkCandidates[c].clear();
+            findCandidates(r, c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), neighborCells,
+                           chunkCandidates[c]);
+        }
+    });
     for (int i = 0; i < numParticles; i++)
+        candidateStart[i + 1] += candidateStart[i];
+    candidates.resize(candidateStart[numParticles]);
+    candidateFirst.resize(candidates.size());
+    parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            const int first = c*particleChunk, last = std::min(numParticles, (c + 1)*particleChunk);
+            std::copy(chunkCandidates[c].begin(), chunkCandidates[c].end(), candidates.begin() + candidateStart[first]);
+            for (int i = first; i < last; i++)
+                std::fill(candidateFirst.begin() + candidateStart[i], candidateFirst.begin() + candidateStart[i + 1], i);
+        }
+    });
+    // The transposed list: for each particle, the candidates in which it is second, by increasing first particle.
+    lowerStart.assign(numParticles + 1, 0);
+    for (int j : candidates)
+        lowerStart[j + 1]++;
+    for (int i = 0; i < numParticles; i++)
+        lowerStart[i + 1] += lowerStart[i];
+    lowerCandidates.resize(candidates.size());
+    std::vector<int> fill(lowerStart.begin(), lowerStart.end() - 1);
+    for (size_t c = 0; c < candidates.size(); c++)
+        lowerCandidates[fill[candidates[c]]++] = c;
+}
+
+template <class Displacement>
+void NeighborList::findPairs(int begin, int end, Displacement displacement, std::vector<ParticlePair>& found) const {
+    const double cutoff2 = cutoff*cutoff;
+    for (int i = begin; i < end; i++)
         for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
             const int j = candidates[m];
             const Vec3 d = displacement(i, j);
             if (d.dot(d) < cutoff2) {
-                ParticlePair& pair = pairs[numPairs++];
+                found.emplace_back();
+                ParticlePair& pair = found.back();
                 pair.i = i;
                 pair.j = j;
                 pair.delta = d;
             }
         }
-    // Distances in a pass of their own: independent square roots pipeline instead of stalling the search above.
-    for (size_t k = 0; k < numPairs; k++)
-        pairs[k].r = std::sqrt(pairs[k].delta.dot(pairs[k].delta));
 }
 
-PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) {
+template <class Displacement>
+void NeighborList::collectPairs(int numParticles, Displacement displacement, ThreadPool* threads) {
+    if (threads == nullptr || threads->getNumThreads() < 2) {
+        // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
+        // store-to-load forwarding). The buffer only grows, so it is never re-initialised.
+        if (pairs.size() < candidates.size())
+            pairs.resize(candidates.size());
+        numPairs = 0;
+        const double cutoff2 = cutoff*cutoff;
+        for (int i = 0; i < numParticles; i++)
+            for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
+                const int j = candidates[m];
+                const Vec3 d = displacement(i, j);
+                if (d.dot(d) < cutoff2) {
+                    ParticlePair& pair = pairs[numPairs++];
+                    pair.i = i;
+                    pair.j = j;
+                    pair.delta = d;
+                }
+            }
+    }
+    else {
+        // Each range of particles finds its pairs, then the ranges are copied in order: the same list.
+        const int numChunks = numRanges(numParticles, particleChunk);
+        chunkPairs.resize(numChunks);
+        parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+            for (int c = chunkBegin; c < chunkEnd; c++) {
+                chunkPairs[c].clear();
+                findPairs(c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), displacement, chunkPairs[c]);
+            }
+        });
+        std::vector<size_t> offset(numChunks + 1, 0);
+        for (int c = 0; c < numChunks; c++)
+            offset[c + 1] = offset[c] + chunkPairs[c].size();
+        numPairs = offset[numChunks];
+        if (pairs.size() < numPairs)
+            pairs.resize(numPairs);
+        parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+            for (int c = chunkBegin; c < chunkEnd; c++)
+                std::copy(chunkPairs[c].begin(), chunkPairs[c].end(), pairs.begin() + offset[c]);
+        });
+    }
+    // Distances in a pass of their own: independent square roots pipeline instead of stalling the search above.
+    parallelFor(threads, numPairs, 8192, [&](int begin, int end) {
+        for (int k = begin; k < end; k++)
+            pairs[k].r = std::sqrt(pairs[k].delta.dot(pairs[k].delta));
+    });
+}
+
+void NeighborList::refresh(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], ThreadPool* threads) {
     const int numParticles = positions.size();
+    currentPositions = &positions;
     if (periodic) {
         box = PeriodicBox(boxVectors);
         wrappedPositions.resize(numParticles);
-        for (int i = 0; i < numParticles; i++)
-            wrappedPositions[i] = box.wrap(positions[i]);
+        parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+            for (int i = begin; i < end; i++)
+                wrappedPositions[i] = box.wrap(positions[i]);
+        });
     }
     if (needsRebuild(positions, boxVectors))
-        build(positions);
+        build(positions, threads);
+}
+
+PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], ThreadPool* threads) {
+    refresh(positions, boxVectors, threads);
+    const int numParticles = positions.size();
     if (!periodic)
-        collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; });
+        collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; }, threads);
     else if (box.isTriclinic())
         collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); });
+            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); }, threads);
     else
         collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); });
+            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); }, threads);
     return getPairs();
 }

@@ -18,6 +18,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     volume.resize(numParticles);
     pressure.resize(numParticles);
     forceCoefficient.resize(numParticles);
+    particleVirial.resize(numParticles);
     readParameters(force);
 }
 
@@ -38,20 +39,67 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
     observablesValid = false;
 }
 
+void ReferenceCalcGenDPDEForceKernel::checkConfiguration(ContextImpl& context, int firstBadParticle) const {
+    const std::vector<Vec3>& positions = extractPositions(context);
+    if (firstBadParticle >= 0) {
+        const Vec3& r = positions[firstBadParticle];
+        std::ostringstream message;
+        message << "GenDPDEForce: the position of particle " << firstBadParticle << " is not finite (" << r[0] << ", "
+                << r[1] << ", " << r[2] << ") at step " << context.getStepCount();
+        throw OpenMMException(message.str());
+    }
+    if (periodic)
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, extractBoxVectors(context));
+}
+
+int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Vec3>& positions, int begin, int end) {
+    for (int i = begin; i < end; i++)
+        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
+            return i;
+    return -1;
+}
+
+ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(int i,
+        const ParticleModel& model, double& freeEnergy) {
+    // docs/theory.md sections 3-4: the volume, the Tait pressure and free energy, and pi_i dV_i/dn0_i.
+    const double n0 = primitiveDensity[i];
+    if (estimator == GenDPDEForce::VA && n0 == 0.0)
+        return NoNeighbor;
+    const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
+    model.tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
+    if (!(std::isfinite(freeEnergy) && std::isfinite(pressure[i])))
+        return Overflow;
+    volume[i] = v.volume;
+    // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
+    forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
+    return Valid;
+}
+
+void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, int i, ContextImpl& context) const {
+    std::ostringstream message;
+    if (status == NoNeighbor) {
+        message.precision(12);
+        message << "GenDPDEForce: particle " << i << " has no neighbor within the cutoff (" << cutoff
+                << " nm) at step " << context.getStepCount() << ", so its VA volume 1/n0 is undefined. "
+                << "Use the VB estimator, a larger cutoff or a denser system";
+    }
+    else {
+        const double n0 = primitiveDensity[i];
+        const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
+                                    : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
+        message.precision(6);
+        message << "GenDPDEForce: the Tait equation of state of particle " << i << " overflows at its density "
+                << density << " nm^-3 (" << density/referenceDensity << " n0) at step " << context.getStepCount()
+                << ": the simulation has become unstable (reduce the step size) or the Tait parameters are extreme";
+    }
+    throw OpenMMException(message.str());
+}
+
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
     const std::vector<Vec3>& positions = extractPositions(context);
-    Vec3* box = extractBoxVectors(context);
     const int numParticles = positions.size();
-    for (int i = 0; i < numParticles; i++)
-        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2]))) {
-            std::ostringstream message;
-            message << "GenDPDEForce: the position of particle " << i << " is not finite (" << positions[i][0] << ", "
-                    << positions[i][1] << ", " << positions[i][2] << ") at step " << context.getStepCount();
-            throw OpenMMException(message.str());
-        }
-    if (periodic)
-        BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
-    const PairView pairs = neighborList->update(positions, box);
+    checkConfiguration(context, firstNonFinitePosition(positions, 0, numParticles));
+    const PairView pairs = neighborList->update(positions, extractBoxVectors(context));
 
     // docs/theory.md sections 2-3: primitive densities n0_i = sum_j w(r_ij).
     const Physics::DensityWeight weight(cutoff);
@@ -63,63 +111,44 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     }
 
     // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
-    const Physics::TaitEquationOfState tait(referenceDensity, referencePressure, bulkModulus, exponent);
-    const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
+    const ParticleModel model(*this);
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
-        const double n0 = primitiveDensity[i];
-        if (estimator == GenDPDEForce::VA && n0 == 0.0) {
-            std::ostringstream message;
-            message.precision(12);
-            message << "GenDPDEForce: particle " << i << " has no neighbor within the cutoff (" << cutoff
-                    << " nm) at step " << context.getStepCount() << ", so its VA volume 1/n0 is undefined. "
-                    << "Use the VB estimator, a larger cutoff or a denser system";
-            throw OpenMMException(message.str());
-        }
-        Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : volumeVB(n0));
         double freeEnergy;
-        tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
-        if (!(std::isfinite(freeEnergy) && std::isfinite(pressure[i]))) {
-            std::ostringstream message;
-            message.precision(6);
-            message << "GenDPDEForce: the Tait equation of state of particle " << i << " overflows at its density "
-                    << 1.0/v.volume << " nm^-3 (" << 1.0/(v.volume*referenceDensity) << " n0) at step "
-                    << context.getStepCount() << ": the simulation has become unstable (reduce the step size) or "
-                    << "the Tait parameters are extreme";
-            throw OpenMMException(message.str());
-        }
-        volume[i] = v.volume;
+        const ParticleStatus status = evaluateParticle(i, model, freeEnergy);
+        if (status != Valid)
+            throwParticleError(status, i, context);
         energy.add(freeEnergy);
-        // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
-        forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
     }
     return energy.sum();
 }
 
-double ReferenceCalcGenDPDEForceKernel::computePairForces(std::vector<Vec3>* forces) const {
-    // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij.
+double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces) {
+    // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij, summed
+    // per first particle, then over particles in the fixed order (as the CPU platform does).
     const Physics::DensityWeight weight(cutoff);
-    FixedOrderSum::Accumulator virial;
+    std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {
-        if (pair.r == 0.0) {
-            virial.add(0.0);   // coincident particles: counted in the density, no direction, no force
-            continue;
-        }
+        if (pair.r == 0.0)
+            continue;   // coincident particles: counted in the density, no direction, no force
         double scale = (forceCoefficient[pair.i] + forceCoefficient[pair.j])*weight.derivative(pair.r)/pair.r;
         if (forces != nullptr) {
             Vec3 force = pair.delta*scale;
             (*forces)[pair.i] += force;
             (*forces)[pair.j] -= force;
         }
-        virial.add(scale*pair.r*pair.r);
+        particleVirial[pair.i] += scale*pair.r*pair.r;
     }
+    FixedOrderSum::Accumulator virial;
+    for (double w : particleVirial)
+        virial.add(w);
     return virial.sum();
 }
 
 double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
     double energy = computeDensitiesAndEnergy(context);
     if (includeForces)
-        computePairForces(&extractForces(context));
+        computePairForces(context, &extractForces(context));
     return energy;
 }
 
@@ -130,7 +159,7 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
             && box[2] == observedBox[2])
         return observables;
     computeDensitiesAndEnergy(context);
-    observables.virial = computePairForces(nullptr);
+    observables.virial = computePairForces(context, nullptr);
     observables.primitiveDensities = primitiveDensity;
     observables.volumes = volume;
     observables.pressures = pressure;

@@ -3,6 +3,7 @@
 
 #include "GenDPDEKernels.h"
 #include "NeighborList.h"
+#include "internal/GenDPDEPhysics.h"
 #include "openmm/Vec3.h"
 #include <memory>
 #include <vector>
@@ -27,13 +28,31 @@ public:
     const NeighborList& getNeighborList() const {
         return *neighborList;
     }
-private:
+protected:
+    /** What evaluateParticle() needs per evaluation: the Tait equation of state and the V-B estimator. */
+    struct ParticleModel {
+        explicit ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel) :
+                tait(kernel.referenceDensity, kernel.referencePressure, kernel.bulkModulus, kernel.exponent),
+                volumeVB(kernel.cutoff/kernel.cutoffScaling) {
+        }
+        Physics::TaitEquationOfState tait;
+        Physics::VolumeEstimatorVB volumeVB;
+    };
+    enum ParticleStatus {Valid, NoNeighbor, Overflow};
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
     void readParameters(const GenDPDEForce& force);
+    /** Throw if firstBadParticle >= 0 (a non-finite position) or the cutoff exceeds half the box. */
+    void checkConfiguration(OpenMM::ContextImpl& context, int firstBadParticle) const;
+    /** The first particle in [begin, end) whose position is not finite, or -1. */
+    static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
+    /** Volume, pressure and force coefficient of particle i from primitiveDensity[i]; its free energy (kJ/mol). */
+    ParticleStatus evaluateParticle(int i, const ParticleModel& model, double& freeEnergy);
+    /** The error for particle i, naming it, its density and the step. */
+    [[noreturn]] void throwParticleError(ParticleStatus status, int i, OpenMM::ContextImpl& context) const;
     /** Pair sweep and particle pass: fills the per-particle arrays and returns U = sum_i f(n_i) (kJ/mol). */
-    double computeDensitiesAndEnergy(OpenMM::ContextImpl& context);
+    virtual double computeDensitiesAndEnergy(OpenMM::ContextImpl& context);
     /** Pair sweep for F_i (added to *forces unless null); returns the virial W (kJ/mol). */
-    double computePairForces(std::vector<OpenMM::Vec3>* forces) const;
+    virtual double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces);
     double cutoff, cutoffScaling;
     double referenceDensity, referencePressure, bulkModulus, exponent;
     GenDPDEForce::DensityEstimator estimator;
@@ -42,6 +61,7 @@ private:
     // Per particle, at the positions of the last evaluation.
     std::vector<double> primitiveDensity, volume, pressure;
     std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
+    std::vector<double> particleVirial;     // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
     // Observables and the configuration they belong to.
     GenDPDEObservables observables;
     std::vector<OpenMM::Vec3> observedPositions;

@@ -3,6 +3,7 @@
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
+#include "internal/FixedOrderSum.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPairSweep.h"
 #include "internal/GenDPDEPhysics.h"
@@ -41,32 +42,46 @@ PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context,
     return neighborList->update(extractPositions(context), box);
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::kick(std::vector<Vec3>& velocities, const std::vector<Vec3>& forces,
-                                               double timeStep) const {
+void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
+                                               const std::vector<Vec3>& forces, double timeStep) {
     for (size_t i = 0; i < velocities.size(); i++)
         if (inverseMasses[i] != 0.0)
             velocities[i] += forces[i]*(timeStep*inverseMasses[i]);
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize,
-                                                            double maxDisplacement) const {
-    // One cheap pass (a few flops per particle) before anything changes: every force finite, and no particle
-    // about to move farther than maxDisplacement (GenDPDEStepTerms) with its velocity after the kicks.
+int ReferenceIntegrateGenDPDEStepKernel::firstUnstableParticle(ContextImpl& context, double stepSize,
+                                                               double maxDisplacement, int begin, int end) const {
+    // A few flops per particle: the force finite, and the particle not about to move farther than maxDisplacement
+    // (GenDPDEStepTerms) with its velocity after the kicks.
     const std::vector<Vec3>& forces = extractForces(context);
     const std::vector<Vec3>& velocities = extractVelocities(context);
     const double limit2 = maxDisplacement*maxDisplacement;
-    for (size_t i = 0; i < forces.size(); i++) {
-        if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2]))) {
-            throw OpenMMException(GenDPDEIntegratorUtilities::nonFiniteForceMessage(i, forces[i],
-                                                                                   context.getStepCount()));
-        }
+    for (int i = begin; i < end; i++) {
+        if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2])))
+            return i;
         const Vec3 displacement = (velocities[i] + forces[i]*(stepSize*inverseMasses[i]))*stepSize;
-        const double distance2 = displacement.dot(displacement);
-        if (inverseMasses[i] != 0.0 && !(distance2 <= limit2)) {
-            throw OpenMMException(GenDPDEIntegratorUtilities::unstableStepMessage(i, std::sqrt(distance2),
-                                                                                 maxDisplacement, context.getStepCount()));
-        }
+        if (inverseMasses[i] != 0.0 && !(displacement.dot(displacement) <= limit2))
+            return i;
     }
+    return -1;
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int i, double stepSize,
+                                                        double maxDisplacement) const {
+    const Vec3& force = extractForces(context)[i];
+    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
+        throw OpenMMException(GenDPDEIntegratorUtilities::nonFiniteForceMessage(i, force, context.getStepCount()));
+    const Vec3 displacement = (extractVelocities(context)[i] + force*(stepSize*inverseMasses[i]))*stepSize;
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableStepMessage(i, std::sqrt(displacement.dot(displacement)),
+                                                                         maxDisplacement, context.getStepCount()));
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize,
+                                                            double maxDisplacement) {
+    // One cheap pass before anything changes.
+    const int unstable = firstUnstableParticle(context, stepSize, maxDisplacement, 0, inverseMasses.size());
+    if (unstable >= 0)
+        throwUnstable(context, unstable, stepSize, maxDisplacement);
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
@@ -89,13 +104,24 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
     // before the step (positions have not moved yet), and the error names the particle and the step.
     const int failed = sweepIsoenergetic(pairs.begin(), order.data(), order.size(), parameters, inverseMasses.data(),
                                          velocities.data(), internalEnergies.data());
-    if (failed < 0)
-        return;
+    if (failed >= 0)
+        failSweep(pairs, order, failed, velocities, step);
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
+                                                    std::vector<Vec3>& velocities, long long step) {
     const int particle = failedParticle(pairs.begin(), order.data(), failed, internalEnergies.data());
     const double value = internalEnergies[particle];
     velocities = savedVelocities;
     internalEnergies = savedInternalEnergies;
     throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, value, step));
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vector<Vec3>& positions,
+                                                const std::vector<Vec3>& velocities, double timeStep) {
+    for (size_t i = 0; i < positions.size(); i++)
+        if (inverseMasses[i] != 0.0)
+            positions[i] += velocities[i]*timeStep;
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
@@ -107,35 +133,37 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
     const std::vector<Vec3>& forces = extractForces(context);
     const double dt = integrator.getStepSize();
     if (!terms.pairSweep)
-        kick(velocities, forces, dt);
+        kick(context, velocities, forces, dt);
     else {
         if (terms.internalEnergies) {
             savedVelocities = velocities;
             savedInternalEnergies = internalEnergies;
         }
-        kick(velocities, forces, 0.5*dt);
+        kick(context, velocities, forces, 0.5*dt);
         sweep(context, currentPairs(context, pairListSource), velocities, integrator, terms);
-        kick(velocities, forces, 0.5*dt);
+        kick(context, velocities, forces, 0.5*dt);
     }
-    std::vector<Vec3>& positions = extractPositions(context);
-    for (size_t i = 0; i < positions.size(); i++)
-        if (inverseMasses[i] != 0.0)
-            positions[i] += velocities[i]*dt;
+    drift(context, extractPositions(context), velocities, dt);
     ReferencePlatform::PlatformData& data = platformData(context);
     data.time += dt;
     data.stepCount++;
 }
 
-double ReferenceIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {
+double ReferenceIntegrateGenDPDEStepKernel::kineticEnergy(int i, const std::vector<Vec3>& velocities,
+                                                          const std::vector<Vec3>& forces, double halfStep) const {
     // Velocities are half a step behind the positions: K at the current time uses v + (dt/2) F/m.
+    if (inverseMasses[i] == 0.0)
+        return 0.0;
+    const Vec3 v = velocities[i] + forces[i]*(halfStep*inverseMasses[i]);
+    return 0.5*v.dot(v)/inverseMasses[i];
+}
+
+double ReferenceIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {
     const std::vector<Vec3>& velocities = extractVelocities(context);
     const std::vector<Vec3>& forces = extractForces(context);
     const double halfStep = 0.5*integrator.getStepSize();
-    double energy = 0.0;
+    FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (size_t i = 0; i < velocities.size(); i++)
-        if (inverseMasses[i] != 0.0) {
-            Vec3 v = velocities[i] + forces[i]*(halfStep*inverseMasses[i]);
-            energy += 0.5*v.dot(v)/inverseMasses[i];
-        }
-    return energy;
+        energy.add(kineticEnergy(i, velocities, forces, halfStep));
+    return energy.sum();
 }

@@ -40,21 +40,38 @@ public:
     void setSeed(int seed) override {
         this->seed = seed;
     }
-private:
+protected:
+    // The stages of a step (execute() is the one home of their sequence); a parallel platform overrides them.
     /** The pairs closer than the cutoff at the current positions: the source's, or from our own list. */
-    PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource);
+    virtual PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource);
     /**
      * Throw, naming the particle and the step, before anything changes, if a force is not finite or a particle
      * would move farther than maxDisplacement (nm) in this step (a blown-up simulation).
      */
-    void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement) const;
+    virtual void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement);
     /**
      * The pair updates in the order of GenDPDESweepOrder (Isoenergetic or Isothermal). If an internal energy would
      * become <= 0, restore the velocities and internal energies saved before the step and throw.
      */
-    void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
-               const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
-    void kick(std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces, double timeStep) const;
+    virtual void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
+                       const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
+    /** v += timeStep F/m for every particle with mass. */
+    virtual void kick(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& velocities,
+                      const std::vector<OpenMM::Vec3>& forces, double timeStep);
+    /** x += timeStep v for every particle with mass. */
+    virtual void drift(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& positions,
+                       const std::vector<OpenMM::Vec3>& velocities, double timeStep);
+    /** The first particle in [begin, end) with a non-finite force or a step longer than maxDisplacement, or -1. */
+    int firstUnstableParticle(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement, int begin,
+                              int end) const;
+    /** The error for particle i found by firstUnstableParticle(), naming it and the step. */
+    [[noreturn]] void throwUnstable(OpenMM::ContextImpl& context, int i, double stepSize, double maxDisplacement) const;
+    /** Particle i's kinetic energy with on-step velocities (kJ/mol); 0 for a massless particle. */
+    double kineticEnergy(int i, const std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces,
+                         double halfStep) const;
+    /** The sweep's failure at position failed of the order: restore the saved state and throw. */
+    [[noreturn]] void failSweep(PairView pairs, const std::vector<int>& order, int failed,
+                                std::vector<OpenMM::Vec3>& velocities, long long step);
     double cutoff = 0.0;
     int seed = 0;
     std::vector<double> inverseMasses, internalEnergies;

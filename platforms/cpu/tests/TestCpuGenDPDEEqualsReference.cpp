@@ -1,0 +1,139 @@
+/* The CPU platform computes exactly what Reference computes, with any number of threads: energies, forces,
+ * observables and virials of the force tests' scenes, and trajectories (positions, velocities, internal energies)
+ * after 1000 isoenergetic steps of a liquid large enough for the sweep to run many blocks of a colour at once
+ * (14^3 particles: 8 cells and 4 blocks per direction, 8 blocks per colour). Compared bit for bit. */
+
+#include "TestGenDPDEIntegrator.h"
+#include "TestPlugins.h"
+#include <sstream>
+
+OpenMM::Platform* platform;
+
+using namespace IntegratorTests;
+
+const std::vector<std::string> threadCounts = {"1", "2", "3"};
+
+Context* makeContext(System& system, Integrator& integrator, const std::string& platformName,
+                     const std::string& threads) {
+    if (platformName == "Reference")
+        return new Context(system, integrator, Platform::getPlatformByName("Reference"));
+    return new Context(system, integrator, Platform::getPlatformByName("CPU"), {{"Threads", threads}});
+}
+
+void assertSame(double expected, double found, const std::string& what) {
+    if (!(expected == found)) {
+        std::ostringstream message;
+        message.precision(17);
+        message << what << ": Reference " << expected << ", CPU " << found;
+        throw std::runtime_error(message.str());
+    }
+}
+
+void assertSame(const std::vector<Vec3>& expected, const std::vector<Vec3>& found, const std::string& what) {
+    for (size_t i = 0; i < expected.size(); i++)
+        for (int k = 0; k < 3; k++)
+            assertSame(expected[i][k], found[i][k], what + " of particle " + std::to_string(i));
+}
+
+void assertSame(const std::vector<double>& expected, const std::vector<double>& found, const std::string& what) {
+    for (size_t i = 0; i < expected.size(); i++)
+        assertSame(expected[i], found[i], what + " of particle " + std::to_string(i));
+}
+
+void testForcesAndObservables() {
+    TestScenes::forEachStandardScene(0.2, 51, [](Scene& scene, const std::string& label) {
+        VerletIntegrator reference(0.001);
+        std::unique_ptr<Context> expected(makeContext(scene.system, reference, "Reference", ""));
+        expected->setPositions(scene.positions);
+        const State state = expected->getState(State::Energy | State::Forces);
+        for (const std::string& threads : threadCounts) {
+            const std::string what = label + ", " + threads + " thread(s)";
+            VerletIntegrator integrator(0.001);
+            std::unique_ptr<Context> context(makeContext(scene.system, integrator, "CPU", threads));
+            context->setPositions(scene.positions);
+            const State found = context->getState(State::Energy | State::Forces);
+            assertSame(state.getPotentialEnergy(), found.getPotentialEnergy(), what + ": energy");
+            assertSame(state.getForces(), found.getForces(), what + ": force");
+            assertSame(scene.force->getParticleDensities(*expected), scene.force->getParticleDensities(*context),
+                       what + ": density");
+            assertSame(scene.force->getParticlePressures(*expected), scene.force->getParticlePressures(*context),
+                       what + ": pressure");
+            assertSame(scene.force->getVirial(*expected), scene.force->getVirial(*context), what + ": virial");
+        }
+    });
+}
+
+struct Trajectory {
+    std::vector<Vec3> positions, velocities;
+    std::vector<double> energies;
+    double kinetic;
+};
+
+Trajectory run(const std::string& platformName, const std::string& threads, GenDPDEIntegrator::Mode mode, int steps,
+               bool ownPairs) {
+    Scene scene = makeLatticeLiquid(14, referenceDensity, 0.1, GenDPDEForce::VB, true, 61);
+    if (ownPairs)
+        scene.force->setForceGroup(1);   // not integrated: the integrator finds its own pairs
+    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+    integrator.setIntegrationForceGroups(ownPairs ? (1<<0) | (1<<1) : 1<<0);
+    integrator.setCutoffDistance(ownPairs ? 0.9*cutoff : 0.0);
+    integrator.setTemperature(temperature);
+    integrator.setRandomNumberSeed(77);
+    integrator.setMode(mode);
+    std::unique_ptr<Context> context(makeContext(scene.system, integrator, platformName, threads));
+    context->setPositions(scene.positions);
+    context->setVelocitiesToTemperature(temperature, 5);
+    integrator.setInternalEnergiesToTemperature(temperature, 6);
+    integrator.step(steps);
+    const State state = context->getState(State::Positions | State::Velocities | State::Energy);
+    return {state.getPositions(), state.getVelocities(), integrator.getInternalEnergies(), state.getKineticEnergy()};
+}
+
+void compareTrajectories(GenDPDEIntegrator::Mode mode, int steps, bool ownPairs, const std::string& label) {
+    const Trajectory expected = run("Reference", "", mode, steps, ownPairs);
+    for (const std::string& threads : threadCounts) {
+        const std::string what = label + ", " + threads + " thread(s)";
+        const Trajectory found = run("CPU", threads, mode, steps, ownPairs);
+        assertSame(expected.positions, found.positions, what + ": position");
+        assertSame(expected.velocities, found.velocities, what + ": velocity");
+        assertSame(expected.energies, found.energies, what + ": internal energy");
+        assertSame(expected.kinetic, found.kinetic, what + ": kinetic energy");
+    }
+}
+
+/** An internal energy that becomes <= 0 is reported for the same particle and step on both platforms. */
+void testSameFailure() {
+    std::vector<std::string> messages;
+    for (const std::string platformName : {"Reference", "CPU"}) {
+        Scene scene = makeLatticeLiquid(14, referenceDensity, 0.1, GenDPDEForce::VB, true, 62);
+        GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+        std::vector<double> temperatures(scene.system.getNumParticles(), temperature);
+        for (int i : {100, 1500, 2600})
+            temperatures[i] = 1e-9;
+        integrator.setParticleTemperatures(temperatures);
+        std::unique_ptr<Context> context(makeContext(scene.system, integrator, platformName, "3"));
+        context->setPositions(scene.positions);
+        context->setVelocitiesToTemperature(temperature, 5);
+        try {
+            integrator.step(1);
+        }
+        catch (const OpenMMException& e) {
+            messages.push_back(e.what());
+        }
+    }
+    ASSERT_EQUAL(2, (int) messages.size());
+    if (messages[0] != messages[1])
+        throw std::runtime_error("different failures: Reference '" + messages[0] + "', CPU '" + messages[1] + "'");
+}
+
+int main() {
+    return runTestProgram([]() {
+        loadPlugins();
+        platform = &Platform::getPlatformByName("CPU");
+        testForcesAndObservables();
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, 1000, false, "1000 isoenergetic steps");
+        compareTrajectories(GenDPDEIntegrator::Isothermal, 200, false, "200 isothermal steps");
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, 100, true, "100 steps on the integrator's own pairs");
+        testSameFailure();
+    });
+}

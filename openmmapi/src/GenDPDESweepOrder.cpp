@@ -44,7 +44,7 @@ void interleaveRuns(const int* listed, int count, const int* pairI, int stride, 
 } // namespace
 
 void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
-                                     double range, ThreadPool* threads) {
+                                     double range, int numThreads) {
     this->periodic = periodic;
     const int numParticles = positions.size();
     Vec3 extent, low;
@@ -70,44 +70,29 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
         numBlocks[k] = (numCells[k] + 1)/2;
     }
     particleCell.resize(numParticles);
-    parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+    const Vec3* position = positions.data();
+    const Vec3 box[3] = {boxVectors[0], boxVectors[1], boxVectors[2]};
+    const std::array<int, 3> cells = numCells;
+    std::array<int, 3>* cell = particleCell.data();
+    parallelFor(numThreads, numParticles, 4096, [=](int begin, int end) {
         for (int i = begin; i < end; i++) {
-            const Vec3 s = periodic ? BoxGeometry::fractionalCoordinates(positions[i], boxVectors) : Vec3();
+            const Vec3 s = periodic ? BoxGeometry::fractionalCoordinates(position[i], box) : Vec3();
             for (int k = 0; k < 3; k++) {
                 double unit;
                 if (periodic)
                     unit = s[k] - std::floor(s[k]);
                 else
-                    unit = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
-                particleCell[i][k] = std::max(0, std::min(numCells[k] - 1, (int) (unit*numCells[k])));
+                    unit = extent[k] > 0.0 ? (position[i][k] - low[k])/extent[k] : 0.0;
+                cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit*cells[k])));
             }
         }
     });
 }
 
-int GenDPDESweepOrder::homeCell(int a, int b, int k) const {
-    if (a == b)
-        return a;
-    const int n = numCells[k];
-    if (periodic) {
-        if ((a + 1) % n == b)
-            return a;
-        if ((b + 1) % n == a)
-            return b;
-    }
-    else {
-        if (b == a + 1)
-            return a;
-        if (a == b + 1)
-            return b;
-    }
-    return -1;
-}
-
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
                               double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-                              ThreadPool* threads) {
-    computeCells(positions, boxVectors, periodic, range, threads);
+                              int numThreads) {
+    computeCells(positions, boxVectors, periodic, range, numThreads);
 
     // Slots: the blocks in sweep order (colour by colour, by block index within a colour), then one slot for the
     // pairs whose cells are not adjacent.
@@ -127,37 +112,64 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     const int extraSlot = slot++;
     groupStart.push_back(slot);
 
-    // Each pair's slot.
+    // Each pair's slot. Along each direction the home cell is the one the other follows (d = c_j - c_i, taken
+    // modulo n_k into [-1, 1] if periodic); a pair with |d| > 1 along some direction goes to the extra slot.
     pairSlot.resize(numPairs);
-    parallelFor(threads, numPairs, 4096, [&](int begin, int end) {
+    const std::array<int, 3>* cell = particleCell.data();
+    const int* blockSlot = slotOfBlock.data();
+    int* slotOfPair = pairSlot.data();
+    const std::array<int, 3> cells = numCells, blocks = numBlocks;
+    parallelFor(numThreads, numPairs, 4096, [=](int begin, int end) {
         for (int k = begin; k < end; k++) {
-            const std::array<int, 3>& ci = particleCell[pairI[(size_t) k*stride]];
-            const std::array<int, 3>& cj = particleCell[pairJ[(size_t) k*stride]];
-            int home[3];
+            const std::array<int, 3>& ci = cell[pairI[(size_t) k*stride]];
+            const std::array<int, 3>& cj = cell[pairJ[(size_t) k*stride]];
+            int block[3];
             bool adjacent = true;
-            for (int d = 0; d < 3; d++) {
-                home[d] = homeCell(ci[d], cj[d], d);
-                adjacent = adjacent && home[d] >= 0;
+            for (int dim = 0; dim < 3; dim++) {
+                int d = cj[dim] - ci[dim];
+                if (periodic)
+                    d += (d < -1 ? cells[dim] : 0) - (d > 1 ? cells[dim] : 0);
+                adjacent = adjacent & ((unsigned) (d + 1) <= 2u);
+                block[dim] = (d == -1 ? cj[dim] : ci[dim]) >> 1;
             }
-            pairSlot[k] = adjacent ? slotOfBlock[((home[2]/2)*numBlocks[1] + home[1]/2)*numBlocks[0] + home[0]/2]
-                                   : extraSlot;
+            slotOfPair[k] = adjacent ? blockSlot[(block[2]*blocks[1] + block[1])*blocks[0] + block[0]] : extraSlot;
         }
     });
 
-    // A stable counting sort by slot keeps each block's pairs in (i, j) order.
-    blockStart.assign(slot + 1, 0);
-    for (int k = 0; k < numPairs; k++)
-        blockStart[pairSlot[k] + 1]++;
-    for (int s = 0; s < slot; s++)
-        blockStart[s + 1] += blockStart[s];
+    // A stable counting sort by slot keeps each block's pairs in (i, j) order: counts per range of pairs, then each
+    // range writes its pairs from its own offsets (the result does not depend on the ranges).
+    const int numSlots = slot;
+    const int numPairRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
+    const int pairsPerRange = numRanges(numPairs, numPairRanges);
+    rangeCount.assign((size_t) numPairRanges*numSlots, 0);
+    int* count = rangeCount.data();
+    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
+        for (int r = rangeBegin; r < rangeEnd; r++)
+            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++)
+                count[(size_t) r*numSlots + slotOfPair[k]]++;
+    });
+    blockStart.assign(numSlots + 1, 0);
+    int total = 0;
+    for (int s = 0; s < numSlots; s++) {
+        blockStart[s] = total;
+        for (int r = 0; r < numPairRanges; r++) {
+            const int n = count[(size_t) r*numSlots + s];
+            count[(size_t) r*numSlots + s] = total;   // now the range's first position in slot s
+            total += n;
+        }
+    }
+    blockStart[numSlots] = total;
     sorted.resize(numPairs);
-    slotCount.assign(blockStart.begin(), blockStart.end() - 1);
-    for (int k = 0; k < numPairs; k++)
-        sorted[slotCount[pairSlot[k]]++] = k;
+    int* sortedPairs = sorted.data();
+    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
+        for (int r = rangeBegin; r < rangeEnd; r++)
+            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++)
+                sortedPairs[count[(size_t) r*numSlots + slotOfPair[k]]++] = k;
+    });
 
     // Within each block, the lists of four consecutive first particles interleaved.
     order.resize(numPairs);
-    parallelFor(threads, slot, 8, [&](int begin, int end) {
+    parallelFor(numThreads, numSlots, 8, [&](int begin, int end) {
         for (int s = begin; s < end; s++)
             interleaveRuns(&sorted[blockStart[s]], blockStart[s + 1] - blockStart[s], pairI, stride,
                            &order[blockStart[s]]);

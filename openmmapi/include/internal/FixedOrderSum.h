@@ -6,6 +6,8 @@
  * summed by one thread, the chunk sums combined in chunk order) then give the same bits for the energy and the
  * virial. */
 
+#include "internal/ParallelFor.h"
+#include <algorithm>
 #include <vector>
 
 namespace GenDPDEPlugin {
@@ -44,6 +46,27 @@ inline double combine(const std::vector<double>& chunkSums) {
     for (double s : chunkSums)
         total += s;
     return total;
+}
+
+/**
+ * sum_i term(i) over [0, count) in the fixed order, the chunks summed on numThreads threads (the parallel form;
+ * chunkSums is the caller's scratch). term must be safe to call from several threads at once.
+ */
+template <class Term>
+double parallelSum(int numThreads, int count, Term term, std::vector<double>& chunkSums) {
+    const int chunks = numChunks(count);
+    chunkSums.assign(chunks, 0.0);
+    double* sums = chunkSums.data();
+    parallelFor(numThreads, chunks, 1, [=](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            double partial = 0.0;
+            const int last = std::min(count, (c + 1)*chunkSize);
+            for (int i = c*chunkSize; i < last; i++)
+                partial += term(i);
+            sums[c] = partial;
+        }
+    });
+    return combine(chunkSums);
 }
 
 } // namespace FixedOrderSum

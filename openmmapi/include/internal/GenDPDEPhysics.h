@@ -37,12 +37,22 @@ public:
     }
     /** w(r) (1/length^3) */
     double value(double r) const {
-        double x = 1.0 - r*inverseCutoff;
-        return r < cutoff ? valueScale*x*x : 0.0;
+        return r < cutoff ? valueInside(r) : 0.0;
     }
     /** dw/dr (1/length^4) */
     double derivative(double r) const {
-        return r < cutoff ? derivativeScale*(1.0 - r*inverseCutoff) : 0.0;
+        return r < cutoff ? derivativeInside(r) : 0.0;
+    }
+    /** The formulas without the test r < R, for branch-free loops that mask the terms themselves. */
+    double valueInside(double r) const {
+        double x = 1.0 - r*inverseCutoff;
+        return valueScale*x*x;
+    }
+    double derivativeInside(double r) const {
+        return derivativeScale*(1.0 - r*inverseCutoff);
+    }
+    double getCutoff() const {
+        return cutoff;
     }
 private:
     double cutoff, inverseCutoff, valueScale, derivativeScale;

@@ -5,10 +5,6 @@
 #include <array>
 #include <vector>
 
-namespace OpenMM {
-class ThreadPool;
-}
-
 namespace GenDPDEPlugin {
 
 /**
@@ -38,12 +34,12 @@ class GenDPDESweepOrder {
 public:
     /**
      * Build the order for the pairs (pairI[k], pairJ[k]), k < numPairs, sorted by (i, j) with i < j, all closer
-     * than range (nm), at these positions (nm) and box vectors (used only if periodic). With a thread pool the work
-     * is shared among its threads; the result is the same.
+     * than range (nm), at these positions (nm) and box vectors (used only if periodic). numThreads threads share
+     * the work; the result is the same for any number.
      */
     void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-               OpenMM::ThreadPool* threads = nullptr);
+               int numThreads = 1);
     /** The number of groups run one after another: the colours, then possibly the group of non-adjacent pairs. */
     int getNumGroups() const {
         return groupStart.size() - 1;
@@ -66,12 +62,11 @@ public:
     }
 private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
-                      double range, OpenMM::ThreadPool* threads);
-    int homeCell(int a, int b, int k) const;
+                      double range, int numThreads);
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairSlot, slotOfBlock, slotCount, groupStart, blockStart, order, sorted;
+    std::vector<int> pairSlot, slotOfBlock, rangeCount, groupStart, blockStart, order, sorted;
 };
 
 } // namespace GenDPDEPlugin

@@ -9,180 +9,246 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-/** Particles per range of work (fixed: the ranges do not depend on the number of threads). */
-const int particleChunk = 256;
+
+/** Slots per range of work (fixed: the ranges do not depend on the number of threads). */
+const int slotChunk = 256;
+
+/**
+ * What a gather along a row needs: the slot positions, the rows and Reference's pair arithmetic. The displacement of
+ * a neighbor j < i is r_i - r_j, the exact negative of the r_j - r_i Reference computes for the pair (j, i) (IEEE
+ * subtraction and the nearest-image rounding are odd functions), so the distance, the weight and the force term
+ * come out with Reference's bits.
+ */
+template <class NearestImage>
+struct RowGather {
+    const Vec3* position;
+    const int* rowStart;
+    const int* upperStart;
+    const int* neighbors;
+    NearestImage nearestImage;
+    double cutoff2;
+    Physics::DensityWeight weight;
+    /** r_s - r_t (nearest image) and its squared length. */
+    Vec3 displacement(int s, int t, double& r2) const {
+        const Vec3 d = nearestImage(position[s] - position[t]);
+        r2 = d.dot(d);
+        return d;
+    }
+    /** Whether Reference lists the pair (r^2 < R^2). */
+    bool listed(double r2) const {
+        return r2 < cutoff2;
+    }
+    /** 1 where a listed pair's weight and its derivative are nonzero (r < R too), else 0: a mask, not a branch. */
+    double mask(double r2, double r) const {
+        return (double) (listed(r2) & (r < weight.getCutoff()));
+    }
+    /** The pair's w(r), masked: Reference's bits in range, 0 beyond (a product by 1 or 0, no branch). */
+    double weightTerm(double r, double in) const {
+        return in*weight.valueInside(r);
+    }
+    /**
+     * The pair's force scale (c_s + c_t) w'(r)/r, masked, 0 beyond range or at r = 0 (where Reference skips the
+     * pair); r = 0 is replaced by 1 in the division so that the product stays finite.
+     */
+    double forceScale(double r, double in, double coefficientSum) const {
+        const double positive = (double) (r > 0.0);
+        return (in*positive)*(coefficientSum*weight.derivativeInside(r)/(r + (1.0 - positive)));
+    }
+};
+
+template <class NearestImage>
+RowGather<NearestImage> rowGather(const CellOrderedCandidates& layout, NearestImage nearestImage, double cutoff) {
+    return {layout.getPositions().data(), layout.getRowStart().data(), layout.getUpperStart().data(),
+            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff)};
 }
 
-void CpuCalcGenDPDEForceKernel::evaluateCandidates(ThreadPool& threads) {
-    const std::vector<int>& start = neighborList->getCandidateStart();
-    const std::vector<int>& candidates = neighborList->getCandidates();
-    const int numParticles = start.size() - 1;
-    candidateDelta.resize(candidates.size());
-    candidateDistance.resize(candidates.size());
-    candidateWeight.resize(candidates.size());
-    const Physics::DensityWeight weight(cutoff);
-    const double cutoff2 = cutoff*cutoff;
-    parallelFor(&threads, numParticles, particleChunk, [&](int begin, int end) {
-        for (int i = begin; i < end; i++)
-            for (int m = start[i]; m < start[i + 1]; m++) {
-                const Vec3 d = neighborList->displacement(i, candidates[m]);
-                candidateDelta[m] = d;
-                if (d.dot(d) < cutoff2) {
-                    const double r = std::sqrt(d.dot(d));
-                    candidateDistance[m] = r;
-                    candidateWeight[m] = weight.value(r);
-                }
-                else {
-                    candidateDistance[m] = -1.0;
-                    candidateWeight[m] = 0.0;
-                }
-            }
-    });
+} // namespace
+
+template <class Body>
+void CpuCalcGenDPDEForceKernel::withRowGather(Body body) {
+    // The nearest-image rule chosen once per pass, not once per pair.
+    const PeriodicBox box = neighborList->getBox();
+    if (!neighborList->isPeriodic())
+        body(rowGather(layout, [](const Vec3& d) { return d; }, cutoff));
+    else if (box.isTriclinic())
+        body(rowGather(layout, [box](const Vec3& d) { return box.nearestImageTriclinic(d); }, cutoff));
+    else
+        body(rowGather(layout, [box](const Vec3& d) { return box.nearestImageRectangular(d); }, cutoff));
 }
 
 double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
-    ThreadPool& threads = platformData(context).threads;
+    const int threads = extractNumThreads(context);
     const std::vector<Vec3>& positions = extractPositions(context);
     const int numParticles = positions.size();
-    std::vector<int> firstBad(numRanges(numParticles, particleChunk), -1);
-    parallelFor(&threads, numParticles, particleChunk, [&](int begin, int end) {
-        firstBad[begin/particleChunk] = firstNonFinitePosition(positions, begin, end);
+    std::vector<int> firstBad(numRanges(numParticles, slotChunk), -1);
+    parallelFor(threads, numParticles, slotChunk, [&](int begin, int end) {
+        firstBad[begin/slotChunk] = firstNonFinitePosition(positions, begin, end);
     });
     const auto bad = std::find_if(firstBad.begin(), firstBad.end(), [](int i) { return i >= 0; });
     checkConfiguration(context, bad == firstBad.end() ? -1 : *bad);
-    neighborList->refresh(positions, extractBoxVectors(context), &threads);
-    evaluateCandidates(threads);
+    neighborList->refresh(positions, extractBoxVectors(context), threads);
+    layout.update(*neighborList, threads);
 
-    // docs/theory.md sections 2-3: n0_i = sum_j w(r_ij), gathered in Reference's order of addition.
-    const std::vector<int>& start = neighborList->getCandidateStart();
-    const std::vector<int>& lowerStart = neighborList->getLowerStart();
-    const std::vector<int>& lower = neighborList->getLowerCandidates();
-    parallelFor(&threads, numParticles, particleChunk, [&](int begin, int end) {
-        for (int i = begin; i < end; i++) {
-            double n0 = 0.0;
-            for (int l = lowerStart[i]; l < lowerStart[i + 1]; l++)
-                n0 += candidateWeight[lower[l]];
-            for (int m = start[i]; m < start[i + 1]; m++)
-                n0 += candidateWeight[m];
-            primitiveDensity[i] = n0;
-        }
-    });
-
-    // docs/theory.md sections 2-4: volumes, pressures and free energies; U = sum_i f(n_i) in fixed chunks. The error
+    // docs/theory.md sections 2-4: n0_i = sum_j w(r_ij) along the row, then the particle's volume, pressure and free
+    // energy, all in slot order (threads writing particle arrays at random would share cache lines). The error
     // reported is that of the lowest failing particle, as the sequential loop would report it.
+    const int* particleOf = layout.getParticle().data();
+    slotDensity.resize(numParticles);
+    slotState.resize(numParticles);
+    slotCoefficient.resize(numParticles);
+    double* density = slotDensity.data();
+    ParticleState* state = slotState.data();
+    double* coefficient = slotCoefficient.data();
+    listedFlags.resize(layout.getNeighbors().size());
+    char* listed = listedFlags.data();
     const ParticleModel model(*this);
-    const int numChunks = FixedOrderSum::numChunks(numParticles);
-    chunkSums.assign(numChunks, 0.0);
-    std::vector<int> failedParticle(numChunks, INT_MAX);
-    std::vector<ParticleStatus> failedStatus(numChunks, Valid);
-    parallelFor(&threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            double partial = 0.0;
-            const int last = std::min(numParticles, (c + 1)*FixedOrderSum::chunkSize);
-            for (int i = c*FixedOrderSum::chunkSize; i < last; i++) {
-                double freeEnergy;
-                const ParticleStatus status = evaluateParticle(i, model, freeEnergy);
-                if (status != Valid) {
-                    failedParticle[c] = i;
-                    failedStatus[c] = status;
-                    break;
+    std::vector<int> failedParticle(numRanges(numParticles, slotChunk), INT_MAX);
+    std::vector<ParticleStatus> failedStatus(failedParticle.size(), Valid);
+    int* failed = failedParticle.data();
+    ParticleStatus* status = failedStatus.data();
+    withRowGather([&](auto gather) {
+        parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+            for (int s = begin; s < end; s++) {
+                double n0 = 0.0;
+                for (int m = gather.rowStart[s]; m < gather.upperStart[s]; m++) {
+                    double r2;
+                    gather.displacement(s, gather.neighbors[m], r2);
+                    const double r = std::sqrt(r2);
+                    n0 += gather.weightTerm(r, gather.mask(r2, r));
                 }
-                partial += freeEnergy;
+                // The pairs (i, j > i): also marked for collectPairs().
+                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++) {
+                    double r2;
+                    gather.displacement(s, gather.neighbors[m], r2);
+                    const double r = std::sqrt(r2);
+                    n0 += gather.weightTerm(r, gather.mask(r2, r));
+                    listed[m] = gather.listed(r2);
+                }
+                density[s] = n0;
+                const ParticleStatus particleStatus = evaluateParticle(n0, model, state[s]);
+                const int i = particleOf[s];
+                if (particleStatus != Valid && i < failed[begin/slotChunk]) {
+                    failed[begin/slotChunk] = i;
+                    status[begin/slotChunk] = particleStatus;
+                }
+                coefficient[s] = state[s].forceCoefficient;
             }
-            chunkSums[c] = partial;
+        });
+    });
+    // The per-particle arrays in particle order, each thread writing its own range.
+    const int* slotOf = layout.getSlot().data();
+    parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+        for (int i = begin; i < end; i++) {
+            primitiveDensity[i] = density[slotOf[i]];
+            storeParticle(i, state[slotOf[i]]);
         }
     });
-    for (int c = 0; c < numChunks; c++)
-        if (failedParticle[c] != INT_MAX)
-            throwParticleError(failedStatus[c], failedParticle[c], context);
-    return FixedOrderSum::combine(chunkSums);
+    const auto lowest = std::min_element(failedParticle.begin(), failedParticle.end());
+    if (*lowest != INT_MAX)
+        throwParticleError(failedStatus[lowest - failedParticle.begin()], *lowest, context);
+    // U = sum_i f(n_i)
+    return FixedOrderSum::parallelSum(threads, numParticles,
+                                      [state, slotOf](int i) { return state[slotOf[i]].freeEnergy; }, chunkSums);
 }
 
 double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces) {
-    // docs/theory.md section 4, as Reference: the pair coefficients once per candidate, then each particle gathers
-    // its force in Reference's order of addition, and its share of the virial (pairs in which it is first).
-    ThreadPool& threads = platformData(context).threads;
-    const std::vector<int>& start = neighborList->getCandidateStart();
-    const std::vector<int>& candidates = neighborList->getCandidates();
-    const std::vector<int>& lowerStart = neighborList->getLowerStart();
-    const std::vector<int>& lower = neighborList->getLowerCandidates();
-    const int numParticles = start.size() - 1;
-    const Physics::DensityWeight weight(cutoff);
-    candidateScale.resize(candidates.size());
-    parallelFor(&threads, numParticles, particleChunk, [&](int begin, int end) {
-        for (int i = begin; i < end; i++)
-            for (int m = start[i]; m < start[i + 1]; m++) {
-                const double r = candidateDistance[m];
-                // Out of range (r < 0) or coincident (r = 0): no force.
-                candidateScale[m] = r > 0.0 ? (forceCoefficient[i] + forceCoefficient[candidates[m]])
-                                              *weight.derivative(r)/r : 0.0;
-            }
-    });
-    parallelFor(&threads, numParticles, particleChunk, [&](int begin, int end) {
-        for (int i = begin; i < end; i++) {
-            if (forces != nullptr) {
-                Vec3& force = (*forces)[i];
-                for (int l = lowerStart[i]; l < lowerStart[i + 1]; l++) {
-                    const int c = lower[l];
-                    if (candidateDistance[c] > 0.0)
-                        force -= candidateDelta[c]*candidateScale[c];
+    // docs/theory.md section 4, as Reference: each particle gathers its force along its row, and its share of the
+    // virial from the pairs in which it is first (the upper part of the row).
+    const int threads = extractNumThreads(context);
+    const int numSlots = layout.getNumSlots();
+    const int* particleOf = layout.getParticle().data();
+    const double* coefficient = slotCoefficient.data();
+    slotForce.resize(numSlots);
+    slotVirial.resize(numSlots);
+    Vec3* slotF = slotForce.data();
+    double* slotW = slotVirial.data();
+    const Vec3* initialForce = forces != nullptr ? forces->data() : nullptr;
+    withRowGather([&](auto gather) {
+        parallelFor(threads, numSlots, slotChunk, [=](int begin, int end) {
+            for (int s = begin; s < end; s++) {
+                // Added to the force already there, term by term, as Reference adds them.
+                Vec3 f = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
+                double sum = 0.0;
+                // The pairs (j, i), then (i, j): the virial counts the second kind only.
+                for (int m = gather.rowStart[s]; m < gather.upperStart[s]; m++) {
+                    const int t = gather.neighbors[m];
+                    double r2;
+                    const Vec3 d = gather.displacement(s, t, r2);
+                    const double r = std::sqrt(r2);
+                    f += d*gather.forceScale(r, gather.mask(r2, r), coefficient[s] + coefficient[t]);
                 }
-                for (int m = start[i]; m < start[i + 1]; m++)
-                    if (candidateDistance[m] > 0.0)
-                        force += candidateDelta[m]*candidateScale[m];
+                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++) {
+                    const int t = gather.neighbors[m];
+                    double r2;
+                    const Vec3 d = gather.displacement(s, t, r2);
+                    const double r = std::sqrt(r2);
+                    const double scale = gather.forceScale(r, gather.mask(r2, r), coefficient[s] + coefficient[t]);
+                    f += d*scale;
+                    sum += scale*r*r;
+                }
+                slotF[s] = f;
+                slotW[s] = sum;
             }
-            double virial = 0.0;
-            for (int m = start[i]; m < start[i + 1]; m++)
-                if (candidateDistance[m] > 0.0)
-                    virial += candidateScale[m]*candidateDistance[m]*candidateDistance[m];
-            particleVirial[i] = virial;
+        });
+    });
+    // Back to particle order, each thread writing its own range.
+    const int* slotOf = layout.getSlot().data();
+    double* virial = particleVirial.data();
+    Vec3* force = forces != nullptr ? forces->data() : nullptr;
+    parallelFor(threads, numSlots, slotChunk, [=](int begin, int end) {
+        for (int i = begin; i < end; i++) {
+            virial[i] = slotW[slotOf[i]];
+            if (force != nullptr)
+                force[i] = slotF[slotOf[i]];
         }
     });
-    const int numChunks = FixedOrderSum::numChunks(numParticles);
-    chunkSums.assign(numChunks, 0.0);
-    parallelFor(&threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            double partial = 0.0;
-            const int last = std::min(numParticles, (c + 1)*FixedOrderSum::chunkSize);
-            for (int i = c*FixedOrderSum::chunkSize; i < last; i++)
-                partial += particleVirial[i];
-            chunkSums[c] = partial;
-        }
-    });
-    return FixedOrderSum::combine(chunkSums);
+    return FixedOrderSum::parallelSum(threads, numSlots, [virial](int i) { return virial[i]; }, chunkSums);
 }
 
-PairView CpuCalcGenDPDEForceKernel::collectPairs(ThreadPool& threads) {
-    // The candidates in range, in candidate order: (i, j) order, as Reference's list.
-    const std::vector<int>& start = neighborList->getCandidateStart();
-    const std::vector<int>& candidates = neighborList->getCandidates();
-    const int numParticles = start.size() - 1;
-    const int numChunks = numRanges(numParticles, particleChunk);
-    chunkCounts.assign(numChunks + 1, 0);
-    parallelFor(&threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
+    // The pairs marked by the last evaluation, from the upper parts of the rows by increasing first particle: the
+    // pairs in (i, j) order, as Reference's list.
+    const int numParticles = layout.getNumSlots();
+    const int numChunks = numRanges(numParticles, slotChunk);
+    const int* particleOf = layout.getParticle().data();
+    const int* slotOf = layout.getSlot().data();
+    const int* rowStart = layout.getRowStart().data();
+    const int* upperStart = layout.getUpperStart().data();
+    const char* listed = listedFlags.data();
+    pairOffset.assign(numChunks + 1, 0);
+    int* offset = pairOffset.data();
+    parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
-            const int first = start[c*particleChunk], last = start[std::min(numParticles, (c + 1)*particleChunk)];
-            chunkCounts[c + 1] = std::count_if(candidateDistance.begin() + first, candidateDistance.begin() + last,
-                                               [](double r) { return r >= 0.0; });
+            int count = 0;
+            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++)
+                for (int m = upperStart[slotOf[i]]; m < rowStart[slotOf[i] + 1]; m++)
+                    count += listed[m];
+            offset[c + 1] = count;
         }
     });
     for (int c = 0; c < numChunks; c++)
-        chunkCounts[c + 1] += chunkCounts[c];
-    pairs.resize(chunkCounts[numChunks]);
-    parallelFor(&threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            int next = chunkCounts[c];
-            const int last = std::min(numParticles, (c + 1)*particleChunk);
-            for (int i = c*particleChunk; i < last; i++)
-                for (int m = start[i]; m < start[i + 1]; m++)
-                    if (candidateDistance[m] >= 0.0) {
-                        ParticlePair& pair = pairs[next++];
-                        pair.i = i;
-                        pair.j = candidates[m];
-                        pair.delta = candidateDelta[m];
-                        pair.r = candidateDistance[m];
-                    }
-        }
+        pairOffset[c + 1] += pairOffset[c];
+    pairs.resize(pairOffset[numChunks]);
+    ParticlePair* pair = pairs.data();
+    withRowGather([&](auto gather) {
+        parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
+            for (int c = chunkBegin; c < chunkEnd; c++) {
+                int next = offset[c];
+                for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
+                    const int s = slotOf[i];
+                    for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
+                        if (listed[m]) {
+                            double r2;
+                            const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
+                            pair[next].i = i;
+                            pair[next].j = particleOf[gather.neighbors[m]];
+                            pair[next].delta = d;
+                            pair[next].r = std::sqrt(r2);
+                            next++;
+                        }
+                }
+            }
+        });
     });
     return PairView(pairs.data(), pairs.size());
 }

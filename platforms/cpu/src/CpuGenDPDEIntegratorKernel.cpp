@@ -18,19 +18,19 @@ const int particleChunk = 1024;
 
 PairView CpuIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEForceImpl* pairListSource) {
     // The source, if any, was evaluated at the current positions just before this step (see execute()).
-    ThreadPool& threads = platformData(context).threads;
+    const int threads = extractNumThreads(context);
     if (pairListSource != nullptr)
         return dynamic_cast<CpuCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl()).collectPairs(threads);
     const Vec3* box = extractBoxVectors(context);
     if (context.getSystem().usesPeriodicBoundaryConditions())
         BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
-    return neighborList->update(extractPositions(context), box, &threads);
+    return neighborList->update(extractPositions(context), box, threads);
 }
 
 void CpuIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize, double maxDisplacement) {
     const int numParticles = inverseMasses.size();
     std::vector<int> firstUnstable(numRanges(numParticles, particleChunk), -1);
-    parallelFor(&platformData(context).threads, numParticles, particleChunk, [&](int begin, int end) {
+    parallelFor(extractNumThreads(context), numParticles, particleChunk, [&](int begin, int end) {
         firstUnstable[begin/particleChunk] = firstUnstableParticle(context, stepSize, maxDisplacement, begin, end);
     });
     for (int i : firstUnstable)
@@ -40,59 +40,67 @@ void CpuIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, doub
 
 void CpuIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
                                          const std::vector<Vec3>& forces, double timeStep) {
-    parallelFor(&platformData(context).threads, velocities.size(), particleChunk, [&](int begin, int end) {
+    Vec3* v = velocities.data();
+    const Vec3* f = forces.data();
+    const double* inverseMass = inverseMasses.data();
+    parallelFor(extractNumThreads(context), velocities.size(), particleChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++)
-            if (inverseMasses[i] != 0.0)
-                velocities[i] += forces[i]*(timeStep*inverseMasses[i]);
+            if (inverseMass[i] != 0.0)
+                v[i] += f[i]*(timeStep*inverseMass[i]);
     });
 }
 
 void CpuIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vector<Vec3>& positions,
                                           const std::vector<Vec3>& velocities, double timeStep) {
-    parallelFor(&platformData(context).threads, positions.size(), particleChunk, [&](int begin, int end) {
+    Vec3* x = positions.data();
+    const Vec3* v = velocities.data();
+    const double* inverseMass = inverseMasses.data();
+    parallelFor(extractNumThreads(context), positions.size(), particleChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++)
-            if (inverseMasses[i] != 0.0)
-                positions[i] += velocities[i]*timeStep;
+            if (inverseMass[i] != 0.0)
+                x[i] += v[i]*timeStep;
     });
 }
 
 void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
                                           const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
     // docs/theory.md section 6: the colours one after another, the blocks of a colour in parallel.
-    ThreadPool& threads = platformData(context).threads;
+    const int threads = extractNumThreads(context);
     const long long step = context.getStepCount();
     const int stride = sizeof(ParticlePair)/sizeof(int);
     const bool anyPairs = pairs.size() > 0;
     sweepOrder.build(extractPositions(context), extractBoxVectors(context),
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
-                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, &threads);
-    const std::vector<int>& order = sweepOrder.getOrder();
+                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, threads);
+    const int* order = sweepOrder.getOrder().data();
     const std::vector<int>& groupStart = sweepOrder.getGroupStart();
-    const std::vector<int>& blockStart = sweepOrder.getBlockStart();
+    const int* blockStart = sweepOrder.getBlockStart().data();
     const PairSweepParameters parameters(integrator, terms, cutoff, seed, step);
+    const ParticlePair* pair = pairs.begin();
+    const double* inverseMass = inverseMasses.data();
+    Vec3* v = velocities.data();
+    double* energy = internalEnergies.data();
     for (int group = 0; group < sweepOrder.getNumGroups(); group++) {
         const int firstBlock = groupStart[group], numBlocks = groupStart[group + 1] - firstBlock;
         blockFailure.assign(numBlocks, -1);
-        parallelFor(&threads, numBlocks, 1, [&](int begin, int end) {
+        int* failure = blockFailure.data();
+        parallelFor(threads, numBlocks, 1, [=](int begin, int end) {
             for (int b = firstBlock + begin; b < firstBlock + end; b++) {
-                const int* blockOrder = order.data() + blockStart[b];
+                const int* blockOrder = order + blockStart[b];
                 const int count = blockStart[b + 1] - blockStart[b];
-                if (!terms.internalEnergies)
-                    sweepIsothermal(pairs.begin(), blockOrder, count, parameters, inverseMasses.data(),
-                                    velocities.data());
+                if (!parameters.terms.internalEnergies)
+                    sweepIsothermal(pair, blockOrder, count, parameters, inverseMass, v);
                 else {
-                    const int failed = sweepIsoenergetic(pairs.begin(), blockOrder, count, parameters,
-                                                         inverseMasses.data(), velocities.data(),
-                                                         internalEnergies.data());
+                    const int failed = sweepIsoenergetic(pair, blockOrder, count, parameters, inverseMass, v, energy);
                     if (failed >= 0)
-                        blockFailure[b - firstBlock] = blockStart[b] + failed;
+                        failure[b - firstBlock] = blockStart[b] + failed;
                 }
             }
         });
         // The first failing pair of the sequence: in the first block (of this first failing colour) that failed.
         for (int failed : blockFailure)
             if (failed >= 0)
-                failSweep(pairs, order, failed, velocities, step);
+                failSweep(pairs, sweepOrder.getOrder(), failed, velocities, step);
     }
 }
 
@@ -100,17 +108,6 @@ double CpuIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
     const std::vector<Vec3>& velocities = extractVelocities(context);
     const std::vector<Vec3>& forces = extractForces(context);
     const double halfStep = 0.5*integrator.getStepSize();
-    const int numParticles = velocities.size();
-    const int numChunks = FixedOrderSum::numChunks(numParticles);
-    chunkSums.assign(numChunks, 0.0);
-    parallelFor(&platformData(context).threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            double partial = 0.0;
-            const int last = std::min(numParticles, (c + 1)*FixedOrderSum::chunkSize);
-            for (int i = c*FixedOrderSum::chunkSize; i < last; i++)
-                partial += kineticEnergy(i, velocities, forces, halfStep);
-            chunkSums[c] = partial;
-        }
-    });
-    return FixedOrderSum::combine(chunkSums);
+    return FixedOrderSum::parallelSum(extractNumThreads(context), velocities.size(),
+            [&](int i) { return kineticEnergy(i, velocities, forces, halfStep); }, chunkSums);
 }

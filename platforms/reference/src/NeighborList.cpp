@@ -38,25 +38,26 @@ namespace {
 const int particleChunk = 256;
 }
 
-void NeighborList::build(const std::vector<Vec3>& positions, ThreadPool* threads) {
+void NeighborList::build(const std::vector<Vec3>& positions, int numThreads) {
     Vec3 extent;
-    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent, threads);
+    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent, numThreads);
     sortIntoCells(unit, extent);
-    collectCandidates(periodic ? wrappedPositions : positions, threads);
+    collectCandidates(periodic ? wrappedPositions : positions, numThreads);
     builtPositions = positions;
     for (int k = 0; k < 3; k++)
         builtBox[k] = box.getVectors()[k];
     built = true;
+    buildCount++;
 }
 
 std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent,
-                                                    ThreadPool* threads) const {
+                                                    int numThreads) const {
     // Coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
     const int numParticles = positions.size();
     std::vector<Vec3> unit(numParticles);
     if (periodic) {
         extent = BoxGeometry::perpendicularWidths(box.getVectors());
-        parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+        parallelFor(numThreads, numParticles, 4096, [&](int begin, int end) {
             for (int i = begin; i < end; i++) {
                 Vec3 s = BoxGeometry::fractionalCoordinates(wrappedPositions[i], box.getVectors());
                 for (int k = 0; k < 3; k++)
@@ -156,13 +157,13 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
     }
 }
 
-void NeighborList::collectCandidates(const std::vector<Vec3>& r, ThreadPool* threads) {
+void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {
     const int numParticles = r.size();
     const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
     candidateStart.assign(numParticles + 1, 0);
     const int numChunks = numRanges(numParticles, particleChunk);
     chunkCandidates.resize(numChunks);
-    parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             chunkCandidates[c].clear();
             findCandidates(r, c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), neighborCells,
@@ -172,25 +173,11 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, ThreadPool* thr
     for (int i = 0; i < numParticles; i++)
         candidateStart[i + 1] += candidateStart[i];
     candidates.resize(candidateStart[numParticles]);
-    candidateFirst.resize(candidates.size());
-    parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            const int first = c*particleChunk, last = std::min(numParticles, (c + 1)*particleChunk);
-            std::copy(chunkCandidates[c].begin(), chunkCandidates[c].end(), candidates.begin() + candidateStart[first]);
-            for (int i = first; i < last; i++)
-                std::fill(candidateFirst.begin() + candidateStart[i], candidateFirst.begin() + candidateStart[i + 1], i);
-        }
+    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++)
+            std::copy(chunkCandidates[c].begin(), chunkCandidates[c].end(),
+                      candidates.begin() + candidateStart[c*particleChunk]);
     });
-    // The transposed list: for each particle, the candidates in which it is second, by increasing first particle.
-    lowerStart.assign(numParticles + 1, 0);
-    for (int j : candidates)
-        lowerStart[j + 1]++;
-    for (int i = 0; i < numParticles; i++)
-        lowerStart[i + 1] += lowerStart[i];
-    lowerCandidates.resize(candidates.size());
-    std::vector<int> fill(lowerStart.begin(), lowerStart.end() - 1);
-    for (size_t c = 0; c < candidates.size(); c++)
-        lowerCandidates[fill[candidates[c]]++] = c;
 }
 
 template <class Displacement>
@@ -211,8 +198,8 @@ void NeighborList::findPairs(int begin, int end, Displacement displacement, std:
 }
 
 template <class Displacement>
-void NeighborList::collectPairs(int numParticles, Displacement displacement, ThreadPool* threads) {
-    if (threads == nullptr || threads->getNumThreads() < 2) {
+void NeighborList::collectPairs(int numParticles, Displacement displacement, int numThreads) {
+    if (numThreads < 2) {
         // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
         // store-to-load forwarding). The buffer only grows, so it is never re-initialised.
         if (pairs.size() < candidates.size())
@@ -235,7 +222,7 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, Thr
         // Each range of particles finds its pairs, then the ranges are copied in order: the same list.
         const int numChunks = numRanges(numParticles, particleChunk);
         chunkPairs.resize(numChunks);
-        parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
             for (int c = chunkBegin; c < chunkEnd; c++) {
                 chunkPairs[c].clear();
                 findPairs(c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), displacement, chunkPairs[c]);
@@ -247,43 +234,43 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, Thr
         numPairs = offset[numChunks];
         if (pairs.size() < numPairs)
             pairs.resize(numPairs);
-        parallelFor(threads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
             for (int c = chunkBegin; c < chunkEnd; c++)
                 std::copy(chunkPairs[c].begin(), chunkPairs[c].end(), pairs.begin() + offset[c]);
         });
     }
     // Distances in a pass of their own: independent square roots pipeline instead of stalling the search above.
-    parallelFor(threads, numPairs, 8192, [&](int begin, int end) {
+    parallelFor(numThreads, numPairs, 8192, [&](int begin, int end) {
         for (int k = begin; k < end; k++)
             pairs[k].r = std::sqrt(pairs[k].delta.dot(pairs[k].delta));
     });
 }
 
-void NeighborList::refresh(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], ThreadPool* threads) {
+void NeighborList::refresh(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], int numThreads) {
     const int numParticles = positions.size();
     currentPositions = &positions;
     if (periodic) {
         box = PeriodicBox(boxVectors);
         wrappedPositions.resize(numParticles);
-        parallelFor(threads, numParticles, 4096, [&](int begin, int end) {
+        parallelFor(numThreads, numParticles, 4096, [&](int begin, int end) {
             for (int i = begin; i < end; i++)
                 wrappedPositions[i] = box.wrap(positions[i]);
         });
     }
     if (needsRebuild(positions, boxVectors))
-        build(positions, threads);
+        build(positions, numThreads);
 }
 
-PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], ThreadPool* threads) {
-    refresh(positions, boxVectors, threads);
+PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], int numThreads) {
+    refresh(positions, boxVectors, numThreads);
     const int numParticles = positions.size();
     if (!periodic)
-        collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; }, threads);
+        collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; }, numThreads);
     else if (box.isTriclinic())
         collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); }, threads);
+            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); }, numThreads);
     else
         collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); }, threads);
+            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); }, numThreads);
     return getPairs();
 }

@@ -2,7 +2,7 @@
 #define GENDPDE_NEIGHBOR_LIST_H_
 
 #include "openmm/Vec3.h"
-#include "openmm/internal/ThreadPool.h"
+
 #include <array>
 #include <cmath>
 #include <vector>
@@ -99,29 +99,33 @@ private:
  * history, so a run continued from a checkpoint (with a freshly built list) reproduces the uninterrupted run bit
  * for bit.
  *
- * Given a thread pool (the CPU platform), the work is shared among its threads: the candidates and pairs are the
- * same, in the same order. For gathers over all neighbors of a particle, the list also keeps, for each particle,
- * the candidates in which it is the second particle (the transposed list), in increasing order of the first.
+ * Given several threads (the CPU platform), they share the work: the candidates and pairs are the same, in the same
+ * order.
  */
 class NeighborList {
 public:
-    /** The skin the kernels use, as a fraction of the cutoff: candidates within 1.15 R, rebuilt after 0.075 R. */
-    static constexpr double defaultSkinFraction = 0.15;
+    /** The skin the kernels use, as a fraction of the cutoff: candidates within 1.1 R, rebuilt after 0.05 R. */
+    static constexpr double defaultSkinFraction = 0.1;
     NeighborList(double cutoff, double skin, bool periodic);
     /** The pairs at these positions (box ignored unless periodic). Rebuilds the candidate list only when needed. */
     PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
-                    OpenMM::ThreadPool* threads = nullptr);
+                    int numThreads = 1);
     /**
      * Wrap these positions and rebuild the candidates if needed, without collecting the pairs: for a caller that
      * evaluates the candidates itself (displacement()).
      */
     void refresh(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
-                 OpenMM::ThreadPool* threads = nullptr);
-    /** r_i - r_j at the positions of the last refresh() or update(): the nearest image if periodic. */
-    OpenMM::Vec3 displacement(int i, int j) const {
-        if (!periodic)
-            return (*currentPositions)[i] - (*currentPositions)[j];
-        return box.nearestImage(wrappedPositions[i] - wrappedPositions[j]);
+                 int numThreads = 1);
+    bool isPeriodic() const {
+        return periodic;
+    }
+    /** The box of the last refresh() (periodic only). */
+    const PeriodicBox& getBox() const {
+        return box;
+    }
+    /** The positions of the last refresh(), wrapped into the box if periodic (nm). */
+    const std::vector<OpenMM::Vec3>& getRefreshedPositions() const {
+        return periodic ? wrappedPositions : *currentPositions;
     }
     /** The candidates j > i of particle i are candidates[candidateStart[i]] ... [candidateStart[i + 1] - 1]. */
     const std::vector<int>& getCandidateStart() const {
@@ -130,19 +134,13 @@ public:
     const std::vector<int>& getCandidates() const {
         return candidates;
     }
-    /**
-     * The candidates in which particle j is the second: indices into getCandidates(),
-     * lowerCandidates[lowerStart[j]] ... [lowerStart[j + 1] - 1], in increasing order of their first particle.
-     */
-    const std::vector<int>& getLowerStart() const {
-        return lowerStart;
+    /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
+    const std::vector<int>& getCellOrder() const {
+        return cellParticles;
     }
-    const std::vector<int>& getLowerCandidates() const {
-        return lowerCandidates;
-    }
-    /** The first particle of each candidate (candidates[c] is the second). */
-    const std::vector<int>& getCandidateFirst() const {
-        return candidateFirst;
+    /** How many times the candidates have been built: a change means new candidates. */
+    long long getBuildCount() const {
+        return buildCount;
     }
     double getCutoff() const {
         return cutoff;
@@ -153,27 +151,28 @@ public:
     }
 private:
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
-    void build(const std::vector<OpenMM::Vec3>& positions, OpenMM::ThreadPool* threads);
+    void build(const std::vector<OpenMM::Vec3>& positions, int numThreads);
     /** Positions mapped into [0, 1)^3 (fractional if periodic, else the bounding box); extent: its widths (nm). */
     std::vector<OpenMM::Vec3> unitCellCoordinates(const std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3& extent,
-                                                  OpenMM::ThreadPool* threads) const;
+                                                  int numThreads) const;
     /** Choose the cell grid for this extent and sort the particles into it (cellStart, cellParticles). */
     void sortIntoCells(const std::vector<OpenMM::Vec3>& unit, const OpenMM::Vec3& extent);
     /** For each dimension and cell coordinate, the distinct cell coordinates within one step. */
     std::array<std::vector<std::vector<int>>, 3> neighborCellsPerDimension() const;
-    /** The candidates of each particle (j > i within cutoff + skin), from the cells around it; the transposed list. */
-    void collectCandidates(const std::vector<OpenMM::Vec3>& positions, OpenMM::ThreadPool* threads);
+    /** The candidates of each particle (j > i within cutoff + skin), from the cells around it. */
+    void collectCandidates(const std::vector<OpenMM::Vec3>& positions, int numThreads);
     /** The candidates of particles begin .. end - 1, appended to `found` (their counts in candidateStart[i + 1]). */
     void findCandidates(const std::vector<OpenMM::Vec3>& positions, int begin, int end,
                         const std::array<std::vector<std::vector<int>>, 3>& neighborCells, std::vector<int>& found);
     /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
     template <class Displacement>
-    void collectPairs(int numParticles, Displacement displacement, OpenMM::ThreadPool* threads);
+    void collectPairs(int numParticles, Displacement displacement, int numThreads);
     /** The pairs among the candidates of particles begin .. end - 1, appended to `found`. */
     template <class Displacement>
     void findPairs(int begin, int end, Displacement displacement, std::vector<ParticlePair>& found) const;
     double cutoff, skin;
     bool periodic, built = false;
+    long long buildCount = 0;
     PeriodicBox box;                               // the current box
     OpenMM::Vec3 builtBox[3];                      // the box when the candidates were built
     std::vector<OpenMM::Vec3> builtPositions;
@@ -182,8 +181,6 @@ private:
     std::vector<int> candidates;
     std::array<int, 3> numCells;                   // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
-    std::vector<int> candidateFirst;               // the first particle of each candidate
-    std::vector<int> lowerStart, lowerCandidates;  // the transposed list (see getLowerCandidates())
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr;   // those of the last refresh (not periodic)
     std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;

@@ -59,19 +59,18 @@ int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Ve
     return -1;
 }
 
-ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(int i,
-        const ParticleModel& model, double& freeEnergy) {
+ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(double n0,
+        const ParticleModel& model, ParticleState& state) const {
     // docs/theory.md sections 3-4: the volume, the Tait pressure and free energy, and pi_i dV_i/dn0_i.
-    const double n0 = primitiveDensity[i];
     if (estimator == GenDPDEForce::VA && n0 == 0.0)
         return NoNeighbor;
     const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
-    model.tait.evaluate(1.0/v.volume, pressure[i], freeEnergy);
-    if (!(std::isfinite(freeEnergy) && std::isfinite(pressure[i])))
+    model.tait.evaluate(1.0/v.volume, state.pressure, state.freeEnergy);
+    if (!(std::isfinite(state.freeEnergy) && std::isfinite(state.pressure)))
         return Overflow;
-    volume[i] = v.volume;
+    state.volume = v.volume;
     // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
-    forceCoefficient[i] = (n0 > 0.0 ? pressure[i]*v.derivative : 0.0);
+    state.forceCoefficient = (n0 > 0.0 ? state.pressure*v.derivative : 0.0);
     return Valid;
 }
 
@@ -114,11 +113,12 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     const ParticleModel model(*this);
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
-        double freeEnergy;
-        const ParticleStatus status = evaluateParticle(i, model, freeEnergy);
+        ParticleState state;
+        const ParticleStatus status = evaluateParticle(primitiveDensity[i], model, state);
         if (status != Valid)
             throwParticleError(status, i, context);
-        energy.add(freeEnergy);
+        storeParticle(i, state);
+        energy.add(state.freeEnergy);
     }
     return energy.sum();
 }

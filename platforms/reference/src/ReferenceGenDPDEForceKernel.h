@@ -39,14 +39,27 @@ protected:
         Physics::VolumeEstimatorVB volumeVB;
     };
     enum ParticleStatus {Valid, NoNeighbor, Overflow};
+    /** What evaluateParticle() finds for one particle. */
+    struct ParticleState {
+        double volume;             // V (nm^3)
+        double pressure;           // pi (kJ/mol/nm^3)
+        double forceCoefficient;   // pi dV/dn0 (kJ/mol nm^3)
+        double freeEnergy;         // f (kJ/mol)
+    };
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
     void readParameters(const GenDPDEForce& force);
     /** Throw if firstBadParticle >= 0 (a non-finite position) or the cutoff exceeds half the box. */
     void checkConfiguration(OpenMM::ContextImpl& context, int firstBadParticle) const;
     /** The first particle in [begin, end) whose position is not finite, or -1. */
     static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
-    /** Volume, pressure and force coefficient of particle i from primitiveDensity[i]; its free energy (kJ/mol). */
-    ParticleStatus evaluateParticle(int i, const ParticleModel& model, double& freeEnergy);
+    /** The state of a particle of primitive density n0 (nm^-3); valid only if the status is Valid. */
+    ParticleStatus evaluateParticle(double n0, const ParticleModel& model, ParticleState& state) const;
+    /** Store particle i's state in the per-particle arrays. */
+    void storeParticle(int i, const ParticleState& state) {
+        volume[i] = state.volume;
+        pressure[i] = state.pressure;
+        forceCoefficient[i] = state.forceCoefficient;
+    }
     /** The error for particle i, naming it, its density and the step. */
     [[noreturn]] void throwParticleError(ParticleStatus status, int i, OpenMM::ContextImpl& context) const;
     /** Pair sweep and particle pass: fills the per-particle arrays and returns U = sum_i f(n_i) (kJ/mol). */

@@ -34,6 +34,11 @@ inline OpenMM::Vec3* extractBoxVectors(OpenMM::ContextImpl& context) {
     return platformData(context).periodicBoxVectors;
 }
 
+/** The number of threads the platform was given (the CPU platform's "Threads" property). */
+inline int extractNumThreads(OpenMM::ContextImpl& context) {
+    return platformData(context).threads.getNumThreads();
+}
+
 } // namespace GenDPDEPlugin
 
 #endif /*GENDPDE_REFERENCE_KERNEL_ACCESS_H_*/

@@ -15,18 +15,18 @@ const int numColours = 8;
 const double cellMargin = 1.0 + 1e-9;
 
 /**
- * Copy the pairs listed[0..count) (sorted by their first particle) to output, with the lists of each four
- * consecutive distinct first particles interleaved: the first pair of each list, then the second of each, ...
+ * Copy the pairs listed[0..count) (sorted by their first particles first[0..count)) to output, with the lists of each
+ * four consecutive distinct first particles interleaved: the first pair of each list, then the second of each, ...
  */
-void interleaveRuns(const int* listed, int count, const int* pairI, int stride, int* output) {
+void interleaveRuns(const int* listed, const int* first, int count, int* output) {
     int next = 0, start = 0;
     while (start < count) {
         // Up to four runs of equal first particle, starting at `start`.
         int runStart[5], numRuns = 0, end = start;
         while (numRuns < 4 && end < count) {
             runStart[numRuns++] = end;
-            const int first = pairI[(size_t) listed[end]*stride];
-            while (end < count && pairI[(size_t) listed[end]*stride] == first)
+            const int particle = first[end];
+            while (end < count && first[end] == particle)
                 end++;
         }
         runStart[numRuns] = end;
@@ -160,18 +160,23 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     }
     blockStart[numSlots] = total;
     sorted.resize(numPairs);
+    sortedFirst.resize(numPairs);
     int* sortedPairs = sorted.data();
+    int* firstOfSorted = sortedFirst.data();   // their first particles, for the interleaving to read in order
     parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++)
-                sortedPairs[count[(size_t) r*numSlots + slotOfPair[k]]++] = k;
+            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++) {
+                const int position = count[(size_t) r*numSlots + slotOfPair[k]]++;
+                sortedPairs[position] = k;
+                firstOfSorted[position] = pairI[(size_t) k*stride];
+            }
     });
 
     // Within each block, the lists of four consecutive first particles interleaved.
     order.resize(numPairs);
     parallelFor(numThreads, numSlots, 8, [&](int begin, int end) {
         for (int s = begin; s < end; s++)
-            interleaveRuns(&sorted[blockStart[s]], blockStart[s + 1] - blockStart[s], pairI, stride,
+            interleaveRuns(&sorted[blockStart[s]], &sortedFirst[blockStart[s]], blockStart[s + 1] - blockStart[s],
                            &order[blockStart[s]]);
     });
 }

@@ -54,6 +54,15 @@ public:
     double getCutoff() const {
         return cutoff;
     }
+    double getInverseCutoff() const {
+        return inverseCutoff;
+    }
+    double getValueScale() const {
+        return valueScale;
+    }
+    double getDerivativeScale() const {
+        return derivativeScale;
+    }
 private:
     double cutoff, inverseCutoff, valueScale, derivativeScale;
 };

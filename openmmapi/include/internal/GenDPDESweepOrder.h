@@ -66,7 +66,7 @@ private:
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairSlot, slotOfBlock, rangeCount, groupStart, blockStart, order, sorted;
+    std::vector<int> pairSlot, slotOfBlock, rangeCount, groupStart, blockStart, order, sorted, sortedFirst;
 };
 
 } // namespace GenDPDEPlugin

@@ -15,7 +15,7 @@ void CellOrderedCandidates::update(const NeighborList& list, int numThreads) {
         buildRows(list, numThreads);
     const Vec3* source = list.getRefreshedPositions().data();
     const int* particleOf = particle.data();
-    positions.resize(particle.size());
+    positions.resize(particle.size() + 1);   // one Vec3 of padding: vector loads read 4 doubles from a Vec3
     Vec3* target = positions.data();
     parallelFor(numThreads, particle.size(), slotChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++)

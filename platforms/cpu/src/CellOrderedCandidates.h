@@ -49,7 +49,7 @@ public:
     const std::vector<int>& getNeighbors() const {
         return neighbors;
     }
-    /** The positions of the list's last refresh() (wrapped if periodic), in slot order (nm). */
+    /** The positions of the list's last refresh() (wrapped if periodic), in slot order (nm), and one padding Vec3. */
     const std::vector<OpenMM::Vec3>& getPositions() const {
         return positions;
     }

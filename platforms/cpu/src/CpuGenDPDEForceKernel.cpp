@@ -1,5 +1,6 @@
 #include "CpuGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
+#include "RowGatherAvx2.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
@@ -76,6 +77,29 @@ void CpuCalcGenDPDEForceKernel::withRowGather(Body body) {
         body(rowGather(layout, [box](const Vec3& d) { return box.nearestImageRectangular(d); }, cutoff));
 }
 
+const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
+    const PeriodicBox& box = neighborList->getBox();
+    if (!RowGatherAvx2::enabled() || (neighborList->isPeriodic() && box.isTriclinic()))
+        return nullptr;
+    const Physics::DensityWeight weight(cutoff);
+    RowGatherAvx2::Rows& rows = *vectorRows;
+    rows.position = layout.getPositions().data();
+    rows.rowStart = layout.getRowStart().data();
+    rows.upperStart = layout.getUpperStart().data();
+    rows.neighbors = layout.getNeighbors().data();
+    rows.periodic = neighborList->isPeriodic();
+    for (int k = 0; k < 3; k++) {
+        rows.boxLength[k] = rows.periodic ? box.getVectors()[k][k] : 0.0;
+        rows.inverseBoxLength[k] = rows.periodic ? box.getInverseDiagonal()[k] : 0.0;
+    }
+    rows.cutoff = cutoff;
+    rows.cutoff2 = cutoff*cutoff;
+    rows.inverseCutoff = weight.getInverseCutoff();
+    rows.valueScale = weight.getValueScale();
+    rows.derivativeScale = weight.getDerivativeScale();
+    return &rows;
+}
+
 double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
     const int threads = extractNumThreads(context);
     const std::vector<Vec3>& positions = extractPositions(context);
@@ -102,29 +126,29 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     listedFlags.resize(layout.getNeighbors().size());
     char* listed = listedFlags.data();
     const ParticleModel model(*this);
+    const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
     std::vector<int> failedParticle(numRanges(numParticles, slotChunk), INT_MAX);
     std::vector<ParticleStatus> failedStatus(failedParticle.size(), Valid);
     int* failed = failedParticle.data();
     ParticleStatus* status = failedStatus.data();
     withRowGather([&](auto gather) {
         parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+            if (vectorRows != nullptr)
+                RowGatherAvx2::densities(*vectorRows, begin, end, density, listed);
+            else
+                for (int s = begin; s < end; s++) {
+                    double n0 = 0.0;
+                    for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
+                        double r2;
+                        gather.displacement(s, gather.neighbors[m], r2);
+                        const double r = std::sqrt(r2);
+                        n0 += gather.weightTerm(r, gather.mask(r2, r));
+                        listed[m] = gather.listed(r2);   // read by collectPairs()
+                    }
+                    density[s] = n0;
+                }
             for (int s = begin; s < end; s++) {
-                double n0 = 0.0;
-                for (int m = gather.rowStart[s]; m < gather.upperStart[s]; m++) {
-                    double r2;
-                    gather.displacement(s, gather.neighbors[m], r2);
-                    const double r = std::sqrt(r2);
-                    n0 += gather.weightTerm(r, gather.mask(r2, r));
-                }
-                // The pairs (i, j > i): also marked for collectPairs().
-                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++) {
-                    double r2;
-                    gather.displacement(s, gather.neighbors[m], r2);
-                    const double r = std::sqrt(r2);
-                    n0 += gather.weightTerm(r, gather.mask(r2, r));
-                    listed[m] = gather.listed(r2);
-                }
-                density[s] = n0;
+                const double n0 = density[s];
                 const ParticleStatus particleStatus = evaluateParticle(n0, model, state[s]);
                 const int i = particleOf[s];
                 if (particleStatus != Valid && i < failed[begin/slotChunk]) {
@@ -163,11 +187,18 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     Vec3* slotF = slotForce.data();
     double* slotW = slotVirial.data();
     const Vec3* initialForce = forces != nullptr ? forces->data() : nullptr;
+    const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
     withRowGather([&](auto gather) {
         parallelFor(threads, numSlots, slotChunk, [=](int begin, int end) {
+            // Added to the force already there, term by term, as Reference adds them.
+            for (int s = begin; s < end; s++)
+                slotF[s] = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
+            if (vectorRows != nullptr) {
+                RowGatherAvx2::forces(*vectorRows, coefficient, begin, end, slotF, slotW);
+                return;
+            }
             for (int s = begin; s < end; s++) {
-                // Added to the force already there, term by term, as Reference adds them.
-                Vec3 f = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
+                Vec3 f = slotF[s];
                 double sum = 0.0;
                 // The pairs (j, i), then (i, j): the virial counts the second kind only.
                 for (int m = gather.rowStart[s]; m < gather.upperStart[s]; m++) {
@@ -206,23 +237,26 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
 }
 
 PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
-    // The pairs marked by the last evaluation, from the upper parts of the rows by increasing first particle: the
-    // pairs in (i, j) order, as Reference's list.
+    // The entries the last density pass marked, from the upper parts of the rows by increasing first particle: the
+    // pairs in (i, j) order, as Reference's list. Counts per range of particles, then each row's first position.
     const int numParticles = layout.getNumSlots();
     const int numChunks = numRanges(numParticles, slotChunk);
-    const int* particleOf = layout.getParticle().data();
     const int* slotOf = layout.getSlot().data();
     const int* rowStart = layout.getRowStart().data();
     const int* upperStart = layout.getUpperStart().data();
     const char* listed = listedFlags.data();
+    slotPairStart.resize(numParticles);
+    int* pairStart = slotPairStart.data();
     pairOffset.assign(numChunks + 1, 0);
     int* offset = pairOffset.data();
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int count = 0;
-            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++)
+            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
+                pairStart[slotOf[i]] = count;   // relative to the range, for now
                 for (int m = upperStart[slotOf[i]]; m < rowStart[slotOf[i] + 1]; m++)
                     count += listed[m];
+            }
             offset[c + 1] = count;
         }
     });
@@ -230,24 +264,20 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
         pairOffset[c + 1] += pairOffset[c];
     pairs.resize(pairOffset[numChunks]);
     ParticlePair* pair = pairs.data();
+    const int* particleOf = layout.getParticle().data();
     withRowGather([&](auto gather) {
         parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
-            for (int c = chunkBegin; c < chunkEnd; c++) {
-                int next = offset[c];
+            for (int c = chunkBegin; c < chunkEnd; c++)
                 for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
                     const int s = slotOf[i];
+                    ParticlePair* next = pair + offset[c] + pairStart[s];
                     for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
                         if (listed[m]) {
                             double r2;
                             const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
-                            pair[next].i = i;
-                            pair[next].j = particleOf[gather.neighbors[m]];
-                            pair[next].delta = d;
-                            pair[next].r = std::sqrt(r2);
-                            next++;
+                            *next++ = {i, particleOf[gather.neighbors[m]], d, std::sqrt(r2)};
                         }
                 }
-            }
         });
     });
     return PairView(pairs.data(), pairs.size());

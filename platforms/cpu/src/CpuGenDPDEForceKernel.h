@@ -3,6 +3,8 @@
 
 #include "CellOrderedCandidates.h"
 #include "ReferenceGenDPDEForceKernel.h"
+#include "RowGatherAvx2.h"
+#include <memory>
 #include <vector>
 
 namespace GenDPDEPlugin {
@@ -26,7 +28,7 @@ public:
     }
     /**
      * The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order (the pair list the
-     * integrator sweeps), collected on this many threads.
+     * integrator sweeps), on this many threads.
      */
     PairView collectPairs(int threads);
 protected:
@@ -36,6 +38,9 @@ private:
     /** body(gather) with the RowGather (CpuGenDPDEForceKernel.cpp) for this box: open, rectangular or triclinic. */
     template <class Body>
     void withRowGather(Body body);
+    /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box). */
+    const RowGatherAvx2::Rows* vectorRowsOrNull();
+    std::unique_ptr<RowGatherAvx2::Rows> vectorRows{new RowGatherAvx2::Rows()};
     CellOrderedCandidates layout;               // the neighbor list's candidates as full rows in cell order
     // Per slot: what the passes find, before it is copied to the particle arrays.
     std::vector<double> slotDensity, slotCoefficient, slotVirial;
@@ -43,7 +48,8 @@ private:
     std::vector<OpenMM::Vec3> slotForce;
     std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)
     std::vector<char> listedFlags;              // per row entry: a pair closer than the cutoff (upper parts only)
-    std::vector<int> pairOffset;                // collectPairs(): the first pair of each range of first particles
+    // collectPairs(): the first pair of each range of particles, of each row within its range; the pairs.
+    std::vector<int> pairOffset, slotPairStart;
     std::vector<ParticlePair> pairs;
 };
 

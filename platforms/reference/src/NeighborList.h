@@ -52,6 +52,10 @@ public:
     const OpenMM::Vec3* getVectors() const {
         return vectors;
     }
+    /** 1/ax, 1/by, 1/cz (1/nm). */
+    const OpenMM::Vec3& getInverseDiagonal() const {
+        return inverseDiagonal;
+    }
 private:
     OpenMM::Vec3 vectors[3], inverseDiagonal;
     bool triclinic = false;

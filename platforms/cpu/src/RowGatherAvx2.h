@@ -1,0 +1,44 @@
+#ifndef GENDPDE_ROW_GATHER_AVX2_H_
+#define GENDPDE_ROW_GATHER_AVX2_H_
+
+#include "openmm/Vec3.h"
+
+namespace GenDPDEPlugin {
+
+/**
+ * The row gathers of the CPU force kernel (CpuGenDPDEForceKernel.cpp) four pairs at a time with AVX2, for open and
+ * rectangular periodic boxes. Each lane performs the scalar kernel's IEEE operations in the same order (no fused
+ * multiply-add: these functions are compiled for AVX2 without FMA), and the lanes are added to the particle's sums
+ * one after another in row order, so the results are the scalar kernel's, hence Reference's, to the last bit
+ * (tests/TestCpuGenDPDEEqualsReference.cpp runs both kernels).
+ */
+namespace RowGatherAvx2 {
+
+/** Whether this processor runs AVX2 (checked once), and the GENDPDE_CPU_VECTOR environment variable is not "0". */
+bool enabled();
+
+/** What the gathers read: slot positions, rows (CellOrderedCandidates), box and the pair arithmetic's constants. */
+struct Rows {
+    const OpenMM::Vec3* position;   // slot order, wrapped if periodic (nm)
+    const int* rowStart;
+    const int* upperStart;
+    const int* neighbors;
+    bool periodic;                  // rectangular box if true
+    double boxLength[3], inverseBoxLength[3];
+    double cutoff, cutoff2, inverseCutoff;
+    double valueScale, derivativeScale;   // of Physics::DensityWeight
+};
+
+/** n0 of slots [begin, end) (nm^-3) into density[s]; listed[m] = whether entry m is closer than the cutoff. */
+void densities(const Rows& rows, int begin, int end, double* density, char* listed);
+
+/**
+ * The force on slots [begin, end): force[s] starts at its value on entry and gains the row's terms in order;
+ * virial[s] = sum over the upper part of the row of (scale r) r (kJ/mol). coefficient: pi dV/dn0 per slot.
+ */
+void forces(const Rows& rows, const double* coefficient, int begin, int end, OpenMM::Vec3* force, double* virial);
+
+} // namespace RowGatherAvx2
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_ROW_GATHER_AVX2_H_*/

@@ -3,7 +3,8 @@
 import argparse
 import warnings
 
-from . import benchmark_force, benchmark_integrator, rdf, speed_vs_error, table3, timing, tune_fcut
+from . import benchmark_cpu, benchmark_force, benchmark_integrator, rdf, speed_vs_error, table3, timing, tune_fcut
+from .cli import apply_threads
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
 SUBCOMMANDS = (
@@ -14,6 +15,7 @@ SUBCOMMANDS = (
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
     ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),
     ("benchmark-integrator", benchmark_integrator, "GenDPDEIntegrator: ms per step against a force evaluation"),
+    ("benchmark-cpu", benchmark_cpu, "the CPU platform's threads side by side with Reference: ms, speed-ups, memory"),
 )
 
 
@@ -25,6 +27,10 @@ def main(argv=None):
         module.add_arguments(subcommands.add_parser(name, help=summary, description=module.__doc__,
                                                     formatter_class=argparse.RawDescriptionHelpFormatter))
     arguments = parser.parse_args(argv)
+    try:
+        apply_threads(arguments)
+    except ValueError as error:
+        parser.error(str(error))
     return arguments.run(arguments)
 
 

@@ -13,7 +13,7 @@ import dataclasses
 import openmm
 from openmm import unit
 
-from .cli import add_cutoffs, chosen_cutoffs
+from .cli import add_cutoffs, chosen_cutoffs, context_threads, platform_description
 from .customgb import custom_gb_equivalent
 from .presets import ARGON_STATE, ARGON_UNITS, liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
@@ -29,6 +29,7 @@ class ForceBenchmark:
     num_particles: int
     cutoff: float
     platform: str
+    threads: int                 # the CPU platform's Threads, 1 elsewhere
     evaluation_ms: dict          # candidate -> median ms per force evaluation
     vb_over_va: float            # GenDPDE VB / VA, per evaluation
     custom_gb_speedup: dict      # estimator -> median CustomGB/GenDPDE per evaluation
@@ -79,6 +80,7 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
     step_seconds = alternating_rounds(step, rounds, progress)
     return ForceBenchmark(
         num_particles=num_particles, cutoff=cutoff, platform=platform_name,
+        threads=context_threads(contexts["GenDPDE VB"]),
         evaluation_ms={name: 1e3 * median(values) for name, values in seconds.items()},
         vb_over_va=median_ratio(seconds, "GenDPDE VB", "GenDPDE VA"),
         custom_gb_speedup={estimator: median_ratio(seconds, f"CustomGB {estimator}", f"GenDPDE {estimator}")
@@ -115,7 +117,7 @@ def run(arguments):
         progress.label = f"benchmark-force N={n} R*={cutoff}"
         results.append(benchmark(n, cutoff, arguments.platform, rounds, progress))
     progress.finish()
-    print_results(f"Force evaluation on the {arguments.platform} platform, medians of alternating rounds "
+    print_results(f"Force evaluation on the {platform_description(arguments)}, medians of alternating rounds "
                   f"(same configuration for all four columns of each row):", format_table(results), results,
                   arguments.json)
 

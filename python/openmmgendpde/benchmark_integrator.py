@@ -23,7 +23,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from .cli import DEFAULT_CUTOFF, add_cutoff
+from .cli import DEFAULT_CUTOFF, add_cutoff, context_threads, platform_description
 from .presets import liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
                           print_results)
@@ -44,6 +44,7 @@ class IntegratorBenchmark:
     num_particles: int
     cutoff: float
     platform: str
+    threads: int                      # the CPU platform's Threads, 1 elsewhere
     milliseconds: dict                # candidate -> median ms per call (force evaluation or step)
     isoenergetic_over_force: float
     isothermal_over_force: float
@@ -175,7 +176,7 @@ def benchmark(num_particles, cutoff=DEFAULT_CUTOFF, platform_name="Reference", r
                                               f"N = {num_particles} {name}: kinetic temperature")
                     for name in THERMOSTATS}
     return IntegratorBenchmark(
-        num_particles=num_particles, cutoff=cutoff, platform=platform_name,
+        num_particles=num_particles, cutoff=cutoff, platform=platform_name, threads=context_threads(force_context),
         milliseconds={name: 1e3 * median(values) / calls for name, values in seconds.items()},
         isoenergetic_over_force=median_ratio(seconds, "Isoenergetic step", "force evaluation"),
         isothermal_over_force=median_ratio(seconds, "Isothermal step", "force evaluation"),
@@ -223,8 +224,8 @@ def run(arguments):
         progress.label = f"benchmark-integrator N={n}"
         results.append(benchmark(n, arguments.cutoff, arguments.platform, arguments.rounds, progress))
     progress.finish()
-    print_results(f"GenDPDEIntegrator on the {arguments.platform} platform, liquid argon R* = {arguments.cutoff}, VB; "
-                  f"medians of alternating rounds from the same state:", format_table(results), results,
+    print_results(f"GenDPDEIntegrator on the {platform_description(arguments)}, liquid argon R* = "
+                  f"{arguments.cutoff}, VB; medians of alternating rounds from the same state:", format_table(results), results,
                   arguments.json)
     print()
     print(f"GenDPDEIntegrator (Isothermal) against OpenMM's DPDIntegrator (friction gamma/m), same System and "

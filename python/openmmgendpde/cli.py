@@ -15,6 +15,37 @@ DEFAULT_CUTOFF = ARGON_CUTOFFS[1].cutoff
 
 def add_platform(parser):
     parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
+    parser.add_argument("--threads", type=int,
+                        help="threads of the CPU platform (its Threads property; default: OpenMM's, one per core)")
+
+
+def apply_threads(arguments):
+    """Make --threads the CPU platform's default Threads for every Context this process creates (OpenMM's own
+    mechanism, Platform.setPropertyDefaultValue). Raises ValueError for a bad count or a platform without threads."""
+    threads = getattr(arguments, "threads", None)
+    if threads is None:
+        return
+    if arguments.platform != "CPU":
+        raise ValueError(f"--threads = {threads} applies to the CPU platform only, not to --platform "
+                         f"{arguments.platform}")
+    if threads < 1:
+        raise ValueError(f"--threads = {threads} is not allowed; it must be >= 1")
+    import openmm
+    openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", str(threads))
+
+
+def context_threads(context):
+    """The threads a Context computes on: the CPU platform's Threads property, else 1."""
+    platform = context.getPlatform()
+    return int(platform.getPropertyValue(context, "Threads")) if platform.getName() == "CPU" else 1
+
+
+def platform_description(arguments):
+    """'Reference platform', 'CPU platform, 2 threads' (the count a CPU Context gets now)."""
+    if arguments.platform != "CPU":
+        return f"{arguments.platform} platform"
+    import openmm
+    return f"CPU platform, {openmm.Platform.getPlatformByName('CPU').getPropertyDefaultValue('Threads')} threads"
 
 
 def add_progress(parser):

@@ -9,7 +9,7 @@ import dataclasses
 
 from openmm import unit
 
-from .cli import add_cutoffs, add_rounds, chosen_cutoffs
+from .cli import add_cutoffs, add_rounds, chosen_cutoffs, platform_description
 from .measurement import alternating_rounds, median, median_ratio
 from .presets import ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from .progress import Progress
@@ -53,8 +53,8 @@ def run(arguments):
     progress.finish()
     time_unit = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
     print(f"Wall time per isoenergetic GenDPDE step, {protocol.num_particles} particles, dt* = {protocol.time_step} "
-          f"({protocol.time_step * time_unit:.4f} ps), {arguments.platform} platform; medians of {rounds} alternating "
-          f"rounds of {steps} steps")
+          f"({protocol.time_step * time_unit:.4f} ps), {platform_description(arguments)}; medians of {rounds} "
+          f"alternating rounds of {steps} steps")
     print("| R_cut* | VA (ms/step) | VB (ms/step) | VB/VA | VB/VA published (Table IV) |")
     print("|---|---|---|---|---|")
     for row in rows:

@@ -1,7 +1,9 @@
 """Every subcommand of `python3 -m openmmgendpde` end to end at its quick size."""
 
 import csv
+import json
 
+import openmm
 import pytest
 from openmm import unit
 
@@ -94,6 +96,47 @@ def test_benchmarks_quick(capsys):
             assert abs(float(cell.split("+-")[0]) / bath - 1) < 0.1
 
 
+@pytest.fixture
+def cpu_threads_default():
+    """The CPU platform's default Threads, restored after a test whose --threads changes it (process-wide)."""
+    platform = openmm.Platform.getPlatformByName("CPU")
+    original = platform.getPropertyDefaultValue("Threads")
+    yield
+    platform.setPropertyDefaultValue("Threads", original)
+
+
+def test_benchmark_cpu_quick(tmp_path, capsys):
+    path = tmp_path / "cpu.json"
+    main(["benchmark-cpu", "--particles", "500", "--rounds", "2", "--json", str(path)])
+    out = capsys.readouterr().out
+    for label in ("| 500 | CPU, 1 thread |", "| 500 | CPU, 2 threads |", "| 500 | Reference |"):
+        assert label in out
+    (result,) = json.loads(path.read_text())
+    assert result["thread_counts"] == [1, 2]
+    assert result["force_speedup"]["1"] == 1.0 and result["step_speedup"]["1"] == 1.0   # the baseline itself
+    assert all(value > 0 for value in result["milliseconds"].values())
+    # A Context holds at least its positions, velocities and forces (72 bytes per particle) and its neighbour rows.
+    assert result["memory_bytes_per_particle"] > 72
+
+
+def test_threads_sets_the_cpu_platform_and_is_reported(tmp_path, cpu_threads_default):
+    path = tmp_path / "force.json"
+    main(["benchmark-force", "--particles", "500", "--cutoffs", "1.3365", "--rounds", "1", "--platform", "CPU",
+          "--threads", "1", "--json", str(path)])
+    (result,) = json.loads(path.read_text())
+    assert result["platform"] == "CPU" and result["threads"] == 1
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--platform", "Reference", "--threads", "2"], "--threads = 2 applies to the CPU platform only"),
+    (["--platform", "CPU", "--threads", "0"], "--threads = 0 is not allowed; it must be >= 1"),
+])
+def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default):
+    with pytest.raises(SystemExit):
+        main(["benchmark-force", "--particles", "500"] + arguments)
+    assert message in capsys.readouterr().err
+
+
 def test_too_short_production_is_refused():
     with pytest.raises(SystemExit, match="at least 20"):
         main(["table3", "--quick", "--production", "4"])
@@ -103,5 +146,6 @@ def test_help_lists_every_subcommand(capsys):
     with pytest.raises(SystemExit):
         main(["--help"])
     out = capsys.readouterr().out
-    for name in ("table3", "rdf", "timing", "tune-fcut", "speed-vs-error", "benchmark-force", "benchmark-integrator"):
+    for name in ("table3", "rdf", "timing", "tune-fcut", "speed-vs-error", "benchmark-force", "benchmark-integrator",
+                 "benchmark-cpu"):
         assert name in out

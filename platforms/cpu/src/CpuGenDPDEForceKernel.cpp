@@ -237,47 +237,61 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
 }
 
 PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
-    // The entries the last density pass marked, from the upper parts of the rows by increasing first particle: the
-    // pairs in (i, j) order, as Reference's list. Counts per range of particles, then each row's first position.
+    // The entries the last density pass marked in the upper parts of the rows; the rows by increasing first particle
+    // give the pairs in (i, j) order, as Reference's list. Rows are read in slot order (in memory order): each row's
+    // count, then each row's first position (a prefix sum in particle order), then each row writes its pairs there.
     const int numParticles = layout.getNumSlots();
     const int numChunks = numRanges(numParticles, slotChunk);
+    const int* particleOf = layout.getParticle().data();
     const int* slotOf = layout.getSlot().data();
     const int* rowStart = layout.getRowStart().data();
     const int* upperStart = layout.getUpperStart().data();
     const char* listed = listedFlags.data();
     slotPairStart.resize(numParticles);
     int* pairStart = slotPairStart.data();
+    parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+        for (int s = begin; s < end; s++) {
+            int count = 0;
+            for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
+                count += listed[m];
+            pairStart[s] = count;
+        }
+    });
     pairOffset.assign(numChunks + 1, 0);
     int* offset = pairOffset.data();
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
-            int count = 0;
-            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
-                pairStart[slotOf[i]] = count;   // relative to the range, for now
-                for (int m = upperStart[slotOf[i]]; m < rowStart[slotOf[i] + 1]; m++)
-                    count += listed[m];
-            }
-            offset[c + 1] = count;
+            int total = 0;
+            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++)
+                total += pairStart[slotOf[i]];
+            offset[c + 1] = total;
         }
     });
     for (int c = 0; c < numChunks; c++)
         pairOffset[c + 1] += pairOffset[c];
+    parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            int next = offset[c];
+            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
+                const int count = pairStart[slotOf[i]];
+                pairStart[slotOf[i]] = next;
+                next += count;
+            }
+        }
+    });
     pairs.resize(pairOffset[numChunks]);
     ParticlePair* pair = pairs.data();
-    const int* particleOf = layout.getParticle().data();
     withRowGather([&](auto gather) {
-        parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
-            for (int c = chunkBegin; c < chunkEnd; c++)
-                for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
-                    const int s = slotOf[i];
-                    ParticlePair* next = pair + offset[c] + pairStart[s];
-                    for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
-                        if (listed[m]) {
-                            double r2;
-                            const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
-                            *next++ = {i, particleOf[gather.neighbors[m]], d, std::sqrt(r2)};
-                        }
-                }
+        parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+            for (int s = begin; s < end; s++) {
+                ParticlePair* next = pair + pairStart[s];
+                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
+                    if (listed[m]) {
+                        double r2;
+                        const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
+                        *next++ = {particleOf[s], particleOf[gather.neighbors[m]], d, std::sqrt(r2)};
+                    }
+            }
         });
     });
     return PairView(pairs.data(), pairs.size());

@@ -48,7 +48,7 @@ private:
     std::vector<OpenMM::Vec3> slotForce;
     std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)
     std::vector<char> listedFlags;              // per row entry: a pair closer than the cutoff (upper parts only)
-    // collectPairs(): the first pair of each range of particles, of each row within its range; the pairs.
+    // collectPairs(): the first pair of each range of particles and of each row; the pairs.
     std::vector<int> pairOffset, slotPairStart;
     std::vector<ParticlePair> pairs;
 };

@@ -61,7 +61,7 @@ std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& pos
             for (int i = begin; i < end; i++) {
                 Vec3 s = BoxGeometry::fractionalCoordinates(wrappedPositions[i], box.getVectors());
                 for (int k = 0; k < 3; k++)
-                    unit[i][k] = s[k] - std::floor(s[k]);
+                    unit[i][k] = s[k] - BoxGeometry::floorToInteger(s[k]);
             }
         });
         return unit;
@@ -147,7 +147,7 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
                         int j = cellParticles[m];
                         if (j <= i)
                             continue;
-                        Vec3 d = periodic ? box.nearestImage(r[i] - r[j]) : r[i] - r[j];
+                        Vec3 d = periodic ? box.nearestImage(r[i] - cellPositions[m]) : r[i] - cellPositions[m];
                         if (d.dot(d) < listCutoff2)
                             found.push_back(j);
                     }
@@ -160,6 +160,11 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
 void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {
     const int numParticles = r.size();
     const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
+    // The positions in cell order, so that scanning a cell reads consecutive memory (exact copies: the same
+    // candidates).
+    cellPositions.resize(numParticles);
+    for (int m = 0; m < numParticles; m++)
+        cellPositions[m] = r[cellParticles[m]];
     candidateStart.assign(numParticles + 1, 0);
     const int numChunks = numRanges(numParticles, particleChunk);
     chunkCandidates.resize(numChunks);

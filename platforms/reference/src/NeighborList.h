@@ -1,6 +1,7 @@
 #ifndef GENDPDE_NEIGHBOR_LIST_H_
 #define GENDPDE_NEIGHBOR_LIST_H_
 
+#include "internal/BoxGeometry.h"
 #include "openmm/Vec3.h"
 
 #include <array>
@@ -23,27 +24,22 @@ public:
     }
     /** r moved by a lattice vector into [0, ax) x [0, by) x [0, cz). */
     OpenMM::Vec3 wrap(OpenMM::Vec3 r) const {
-        r -= vectors[2]*std::floor(r[2]*inverseDiagonal[2]);
-        r -= vectors[1]*std::floor(r[1]*inverseDiagonal[1]);
-        r -= vectors[0]*std::floor(r[0]*inverseDiagonal[0]);
+        r -= vectors[2]*BoxGeometry::floorToInteger(r[2]*inverseDiagonal[2]);
+        r -= vectors[1]*BoxGeometry::floorToInteger(r[1]*inverseDiagonal[1]);
+        r -= vectors[0]*BoxGeometry::floorToInteger(r[0]*inverseDiagonal[0]);
         return r;
-    }
-    /** x rounded to the nearest integer (ties to even), branch-free; exact for |x| < 2^51. */
-    static double roundToInteger(double x) {
-        const double shifter = 6755399441055744.0;   // 1.5 * 2^52: the sum's last bit is the units digit
-        return (x + shifter) - shifter;
     }
     /** The nearest image of a difference d in a rectangular box. */
     OpenMM::Vec3 nearestImageRectangular(OpenMM::Vec3 d) const {
         for (int k = 0; k < 3; k++)
-            d[k] -= vectors[k][k]*roundToInteger(d[k]*inverseDiagonal[k]);
+            d[k] -= vectors[k][k]*BoxGeometry::roundToInteger(d[k]*inverseDiagonal[k]);
         return d;
     }
     /** The nearest image of a difference d in a reduced triclinic box (OpenMM's convention). */
     OpenMM::Vec3 nearestImageTriclinic(OpenMM::Vec3 d) const {
-        d -= vectors[2]*roundToInteger(d[2]*inverseDiagonal[2]);
-        d -= vectors[1]*roundToInteger(d[1]*inverseDiagonal[1]);
-        d -= vectors[0]*roundToInteger(d[0]*inverseDiagonal[0]);
+        d -= vectors[2]*BoxGeometry::roundToInteger(d[2]*inverseDiagonal[2]);
+        d -= vectors[1]*BoxGeometry::roundToInteger(d[1]*inverseDiagonal[1]);
+        d -= vectors[0]*BoxGeometry::roundToInteger(d[0]*inverseDiagonal[0]);
         return d;
     }
     OpenMM::Vec3 nearestImage(const OpenMM::Vec3& d) const {
@@ -185,6 +181,7 @@ private:
     std::vector<int> candidates;
     std::array<int, 3> numCells;                   // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
+    std::vector<OpenMM::Vec3> cellPositions;       // the positions of cellParticles, during a build
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr;   // those of the last refresh (not periodic)
     std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;

@@ -2,6 +2,7 @@
 #include "internal/BoxGeometry.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <cmath>
 
@@ -19,18 +20,26 @@ PeriodicBox::PeriodicBox(const Vec3 boxVectors[3]) {
 NeighborList::NeighborList(double cutoff, double skin, bool periodic) : cutoff(cutoff), skin(skin), periodic(periodic) {
 }
 
-bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 boxVectors[3]) const {
+bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], int numThreads) const {
     if (!built || positions.size() != builtPositions.size())
         return true;
     if (periodic && !(boxVectors[0] == builtBox[0] && boxVectors[1] == builtBox[1] && boxVectors[2] == builtBox[2]))
         return true;
-    double limit = 0.25*skin*skin;   // (skin/2)^2: two particles approach each other by at most skin
-    for (size_t i = 0; i < positions.size(); i++) {
-        Vec3 moved = positions[i] - builtPositions[i];
-        if (moved.dot(moved) > limit)
-            return true;
-    }
-    return false;
+    const double limit = 0.25*skin*skin;   // (skin/2)^2: two particles approach each other by at most skin
+    const Vec3* now = positions.data();
+    const Vec3* then = builtPositions.data();
+    std::atomic<bool> moved(false);
+    std::atomic<bool>* anyMoved = &moved;
+    parallelFor(numThreads, positions.size(), 8192, [=](int begin, int end) {
+        bool found = false;
+        for (int i = begin; i < end; i++) {
+            const Vec3 d = now[i] - then[i];
+            found |= d.dot(d) > limit;
+        }
+        if (found)
+            anyMoved->store(true, std::memory_order_relaxed);
+    });
+    return moved.load();
 }
 
 namespace {
@@ -257,12 +266,15 @@ void NeighborList::refresh(const std::vector<Vec3>& positions, const Vec3 boxVec
     if (periodic) {
         box = PeriodicBox(boxVectors);
         wrappedPositions.resize(numParticles);
-        parallelFor(numThreads, numParticles, 4096, [&](int begin, int end) {
+        const PeriodicBox current = box;
+        const Vec3* position = positions.data();
+        Vec3* wrapped = wrappedPositions.data();
+        parallelFor(numThreads, numParticles, 4096, [=](int begin, int end) {
             for (int i = begin; i < end; i++)
-                wrappedPositions[i] = box.wrap(positions[i]);
+                wrapped[i] = current.wrap(position[i]);
         });
     }
-    if (needsRebuild(positions, boxVectors))
+    if (needsRebuild(positions, boxVectors, numThreads))
         build(positions, numThreads);
 }
 

@@ -150,7 +150,8 @@ public:
         return PairView(pairs.data(), numPairs);
     }
 private:
-    bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3]) const;
+    bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
+                      int numThreads) const;
     void build(const std::vector<OpenMM::Vec3>& positions, int numThreads);
     /** Positions mapped into [0, 1)^3 (fractional if periodic, else the bounding box); extent: its widths (nm). */
     std::vector<OpenMM::Vec3> unitCellCoordinates(const std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3& extent,

@@ -16,7 +16,7 @@ import pathlib
 import numpy as np
 import openmm
 
-from .cli import add_cutoff, add_output
+from .cli import add_cutoff, add_output, platform_description
 from .plotting import panels, save
 from .presets import liquid_argon
 from .progress import Progress
@@ -117,7 +117,7 @@ def run(arguments):
         points += measure(arguments.cutoff, estimator, steps, protocol, arguments.platform, progress)
     progress.finish()
     print(f"R_cut* = {arguments.cutoff}, {protocol.num_particles} particles, {protocol.production_time} time units per "
-          f"step size from one state equilibrated at dt* = {min(steps)}; {arguments.platform} platform")
+          f"step size from one state equilibrated at dt* = {min(steps)}; {platform_description(arguments)}")
     print("| estimator | dt* | wall s per time unit | energy drift /particle/time | |T_kin/T_harm - 1| "
           "| n-bar* | |dn-bar*| | P* | |dP*| |")
     print("|---|---|---|---|---|---|---|---|---|")

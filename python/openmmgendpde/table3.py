@@ -14,7 +14,7 @@ import pathlib
 
 import numpy as np
 
-from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs
+from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs, platform_description
 from .presets import ARGON_STATE, PUBLISHED_TABLE3
 from .progress import Progress
 from .statistics import block_average
@@ -115,7 +115,7 @@ def run(arguments):
     print(f"Table III: {protocol.num_particles} particles, dt* = {protocol.time_step}, thermostat "
           f"{protocol.thermostat_time} + isoenergetic equilibration {protocol.equilibration_time} + production "
           f"{protocol.production_time} time units, samples every {protocol.sample_interval}; "
-          f"{arguments.platform} platform", flush=True)
+          f"{platform_description(arguments)}", flush=True)
     progress = Progress(len(cases) * protocol.total_steps, "table3", always=arguments.progress)
     cells = []
     for cutoff, estimator in cases:

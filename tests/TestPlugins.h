@@ -15,6 +15,13 @@ inline void loadOpenMMCpuPlatform() {
     OpenMM::Platform::loadPluginLibrary(OPENMM_PLUGIN_DIR "/libOpenMMCPU.so");
 }
 
+/** Load one of OpenMM's GPU platforms ("OpenCL" or "CUDA") and this build's kernels for it. */
+inline void loadComputePlugins(const std::string& platformName) {
+    OpenMM::Platform::loadPluginLibrary(OPENMM_PLUGIN_DIR "/libOpenMM" + platformName + ".so");
+    OpenMM::Platform::loadPluginLibrary(GENDPDE_PLUGIN_DIR "/libOpenMMGenDPDEReference.so");
+    OpenMM::Platform::loadPluginLibrary(GENDPDE_PLUGIN_DIR "/libOpenMMGenDPDE" + platformName + ".so");
+}
+
 /** Load this build's kernel library for one platform ("Reference" or "CPU"). */
 inline void loadGenDPDEKernels(const std::string& platformName) {
     OpenMM::Platform::loadPluginLibrary(GENDPDE_PLUGIN_DIR "/libOpenMMGenDPDE" + platformName + ".so");

@@ -43,6 +43,37 @@ void interleaveRuns(const int* listed, const int* first, int count, int* output)
 
 } // namespace
 
+std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double range, bool periodic) {
+    std::array<int, 3> cells;
+    for (int k = 0; k < 3; k++) {
+        const double fit = std::floor(extent[k]/(cellMargin*range));
+        const int m = (int) std::min(fit, 1e6);
+        if (periodic)
+            cells[k] = (m >= 4 ? 4*(m/4) : (m >= 2 ? 2 : 1));
+        else
+            cells[k] = std::max(1, m);
+    }
+    return cells;
+}
+
+int GenDPDESweepOrder::blockSlots(const std::array<int, 3>& numBlocks, std::vector<int>& slotOfBlock,
+                                  std::vector<int>& groupStart) {
+    const int totalBlocks = numBlocks[0]*numBlocks[1]*numBlocks[2];
+    slotOfBlock.resize(totalBlocks);
+    groupStart.assign(1, 0);
+    int slot = 0;
+    for (int colour = 0; colour < numColours; colour++) {
+        for (int block = 0; block < totalBlocks; block++) {
+            const int bx = block % numBlocks[0], by = (block/numBlocks[0]) % numBlocks[1];
+            const int bz = block/(numBlocks[0]*numBlocks[1]);
+            if ((bx % 2) + 2*(by % 2) + 4*(bz % 2) == colour)
+                slotOfBlock[block] = slot++;
+        }
+        groupStart.push_back(slot);
+    }
+    return slot;
+}
+
 void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
                                      double range, int numThreads) {
     this->periodic = periodic;
@@ -60,15 +91,9 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
             }
         extent = high - low;
     }
-    for (int k = 0; k < 3; k++) {
-        const double fit = std::floor(extent[k]/(cellMargin*range));
-        const int m = (int) std::min(fit, 1e6);
-        if (periodic)
-            numCells[k] = (m >= 4 ? 4*(m/4) : (m >= 2 ? 2 : 1));
-        else
-            numCells[k] = std::max(1, m);
+    numCells = cellCounts(extent, range, periodic);
+    for (int k = 0; k < 3; k++)
         numBlocks[k] = (numCells[k] + 1)/2;
-    }
     particleCell.resize(numParticles);
     const Vec3* position = positions.data();
     const Vec3 box[3] = {boxVectors[0], boxVectors[1], boxVectors[2]};
@@ -96,19 +121,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
 
     // Slots: the blocks in sweep order (colour by colour, by block index within a colour), then one slot for the
     // pairs whose cells are not adjacent.
-    const int totalBlocks = numBlocks[0]*numBlocks[1]*numBlocks[2];
-    slotOfBlock.resize(totalBlocks);
-    groupStart.assign(1, 0);
-    int slot = 0;
-    for (int colour = 0; colour < numColours; colour++) {
-        for (int block = 0; block < totalBlocks; block++) {
-            const int bx = block % numBlocks[0], by = (block/numBlocks[0]) % numBlocks[1];
-            const int bz = block/(numBlocks[0]*numBlocks[1]);
-            if ((bx % 2) + 2*(by % 2) + 4*(bz % 2) == colour)
-                slotOfBlock[block] = slot++;
-        }
-        groupStart.push_back(slot);
-    }
+    int slot = blockSlots(numBlocks, slotOfBlock, groupStart);
     const int extraSlot = slot++;
     groupStart.push_back(slot);
 

@@ -56,6 +56,18 @@ public:
     const std::vector<int>& getOrder() const {
         return order;
     }
+    /**
+     * The number of cells along each direction for a region of these widths (nm: the perpendicular widths of a
+     * periodic box, or the extent of the particles' bounding box) and pair range (nm), as build() chooses them.
+     */
+    static std::array<int, 3> cellCounts(const OpenMM::Vec3& extent, double range, bool periodic);
+    /**
+     * The slots of the blocks (numBlocks along each direction, blocks numbered (b_z n_y + b_y) n_x + b_x) in sweep
+     * order: colour by colour, by block index within a colour; groupStart[c] is the first slot of colour c
+     * (groupStart has 9 elements). Returns the number of slots.
+     */
+    static int blockSlots(const std::array<int, 3>& numBlocks, std::vector<int>& slotOfBlock,
+                          std::vector<int>& groupStart);
     /** The number of cells along each direction chosen by the last build(). */
     const std::array<int, 3>& getNumCells() const {
         return numCells;

@@ -2,9 +2,9 @@
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
+#include "internal/GenDPDEForceErrors.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
-#include <sstream>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -27,12 +27,7 @@ void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& conte
 }
 
 void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
-    if (force.getCutoffDistance() != cutoff)
-        throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the cutoff distance; "
-                              "call Context.reinitialize() (or create a new Context) after changing it");
-    if (force.usesPeriodicBoundaryConditions() != periodic)
-        throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the nonbonded method; "
-                              "call Context.reinitialize() (or create a new Context) after changing it");
+    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic);
     estimator = force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
@@ -41,13 +36,9 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
 
 void ReferenceCalcGenDPDEForceKernel::checkConfiguration(ContextImpl& context, int firstBadParticle) const {
     const std::vector<Vec3>& positions = extractPositions(context);
-    if (firstBadParticle >= 0) {
-        const Vec3& r = positions[firstBadParticle];
-        std::ostringstream message;
-        message << "GenDPDEForce: the position of particle " << firstBadParticle << " is not finite (" << r[0] << ", "
-                << r[1] << ", " << r[2] << ") at step " << context.getStepCount();
-        throw OpenMMException(message.str());
-    }
+    if (firstBadParticle >= 0)
+        throw OpenMMException(GenDPDEForceErrors::nonFinitePosition(firstBadParticle, positions[firstBadParticle],
+                                                                    context.getStepCount()));
     if (periodic)
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, extractBoxVectors(context));
 }
@@ -75,23 +66,13 @@ ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel:
 }
 
 void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, int i, ContextImpl& context) const {
-    std::ostringstream message;
-    if (status == NoNeighbor) {
-        message.precision(12);
-        message << "GenDPDEForce: particle " << i << " has no neighbor within the cutoff (" << cutoff
-                << " nm) at step " << context.getStepCount() << ", so its VA volume 1/n0 is undefined. "
-                << "Use the VB estimator, a larger cutoff or a denser system";
-    }
-    else {
-        const double n0 = primitiveDensity[i];
-        const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                    : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
-        message.precision(6);
-        message << "GenDPDEForce: the Tait equation of state of particle " << i << " overflows at its density "
-                << density << " nm^-3 (" << density/referenceDensity << " n0) at step " << context.getStepCount()
-                << ": the simulation has become unstable (reduce the step size) or the Tait parameters are extreme";
-    }
-    throw OpenMMException(message.str());
+    if (status == NoNeighbor)
+        throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
+    const double n0 = primitiveDensity[i];
+    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
+                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, density, referenceDensity,
+                                                                      context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {

@@ -1,0 +1,54 @@
+#ifndef GENDPDE_FORCE_ERRORS_H_
+#define GENDPDE_FORCE_ERRORS_H_
+
+/* The errors a GenDPDEForce evaluation reports, in the same words on every platform. */
+
+#include "GenDPDEForce.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/Vec3.h"
+#include <sstream>
+#include <string>
+
+namespace GenDPDEPlugin {
+namespace GenDPDEForceErrors {
+
+inline std::string nonFinitePosition(int particle, const OpenMM::Vec3& r, long long step) {
+    std::ostringstream message;
+    message << "GenDPDEForce: the position of particle " << particle << " is not finite (" << r[0] << ", " << r[1]
+            << ", " << r[2] << ") at step " << step;
+    return message.str();
+}
+
+inline std::string noNeighbor(int particle, double cutoff, long long step) {
+    std::ostringstream message;
+    message.precision(12);
+    message << "GenDPDEForce: particle " << particle << " has no neighbor within the cutoff (" << cutoff
+            << " nm) at step " << step << ", so its VA volume 1/n0 is undefined. "
+            << "Use the VB estimator, a larger cutoff or a denser system";
+    return message.str();
+}
+
+/** density: the particle's density n = 1/V (nm^-3); referenceDensity: the Tait n0 (nm^-3). */
+inline std::string equationOfStateOverflow(int particle, double density, double referenceDensity, long long step) {
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEForce: the Tait equation of state of particle " << particle << " overflows at its density "
+            << density << " nm^-3 (" << density/referenceDensity << " n0) at step " << step
+            << ": the simulation has become unstable (reduce the step size) or the Tait parameters are extreme";
+    return message.str();
+}
+
+/** updateParametersInContext() may not change the cutoff or the nonbonded method of a Context's force. */
+inline void checkUnchangeableParameters(const GenDPDEForce& force, double cutoff, bool periodic) {
+    if (force.getCutoffDistance() != cutoff)
+        throw OpenMM::OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the cutoff distance; "
+                                      "call Context.reinitialize() (or create a new Context) after changing it");
+    if (force.usesPeriodicBoundaryConditions() != periodic)
+        throw OpenMM::OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the nonbonded method; "
+                                      "call Context.reinitialize() (or create a new Context) after changing it");
+}
+
+} // namespace GenDPDEForceErrors
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_FORCE_ERRORS_H_*/

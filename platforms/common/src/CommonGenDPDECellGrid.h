@@ -1,0 +1,60 @@
+#ifndef COMMON_GENDPDE_CELL_GRID_H_
+#define COMMON_GENDPDE_CELL_GRID_H_
+
+#include "openmm/common/ComputeArray.h"
+#include "openmm/common/ComputeContext.h"
+#include "openmm/common/ComputeKernel.h"
+#include "openmm/common/ComputeProgram.h"
+#include "openmm/common/ComputeVectorTypes.h"
+#include <array>
+#include <map>
+#include <string>
+
+namespace GenDPDEPlugin {
+
+/**
+ * The cell grid of the GenDPDE device kernels (kernels/gendpdeCells.cc), rebuilt on the device at every evaluation:
+ * GenDPDESweepOrder's cells (at least the pair range wide; periodic: in the reduced box's fractional coordinates,
+ * open: over the particles' bounding box), the particles listed cell by cell and by original index inside a cell,
+ * with their positions copied into that order. The force's gathers and the integrator's sweep order both read it.
+ */
+class CommonGenDPDECellGrid {
+public:
+    /** range: the pair range R (nm). */
+    CommonGenDPDECellGrid(OpenMM::ComputeContext& cc, bool periodic, double range);
+    /** The defines the grid's kernels need (add the program's own, then compile cells + the program's source). */
+    std::map<std::string, std::string> defines() const;
+    /** Create the grid's kernels from a program compiled from kernels/gendpdeCells.cc (and more). */
+    void createKernels(OpenMM::ComputeProgram program);
+    /** Rebuild at the current positions (the context must be current). */
+    void build();
+    /** (n_x, n_y, n_z, n_x n_y n_z) of the last build, as a kernel argument. */
+    OpenMM::mm_int4 getCellsArgument() const {
+        return OpenMM::mm_int4(numCells[0], numCells[1], numCells[2], numCells[0]*numCells[1]*numCells[2]);
+    }
+    const std::array<int, 3>& getNumCells() const {
+        return numCells;
+    }
+    /** Set three consecutive kernel arguments to the box vectors a, b, c (mixed precision when asMixed, else real). */
+    void setBoxArguments(OpenMM::ComputeKernel& kernel, int index, bool asMixed) const;
+    /** Exclusive prefix sums of counts[0..n) into starts[0..n], the total also into totalOut[totalIndex]. */
+    void exclusiveScan(OpenMM::ArrayInterface& counts, OpenMM::ArrayInterface& starts, int n,
+                       OpenMM::ArrayInterface& totalOut, int totalIndex);
+    OpenMM::ComputeArray cellStart;    // int, n_cells + 1: the first sorted index of each cell
+    OpenMM::ComputeArray sortedSlot;   // int: the slot (position in posq) of each particle in cell order
+    OpenMM::ComputeArray sortedAtom;   // int: its original index
+    OpenMM::ComputeArray sortedCell;   // int: its cell
+    OpenMM::ComputeArray sortedPos;    // real4: its position (posq)
+private:
+    void setMixed4(OpenMM::ComputeKernel& kernel, int index, double x, double y, double z) const;
+    OpenMM::ComputeContext& cc;
+    bool periodic;
+    double range;
+    std::array<int, 3> numCells;
+    OpenMM::ComputeArray cellCount, cellFill, slotCell, bounds, scanTotal;
+    OpenMM::ComputeKernel findBoundsKernel, assignKernel, scanKernel, fillKernel, sortKernel;
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*COMMON_GENDPDE_CELL_GRID_H_*/

@@ -1,0 +1,229 @@
+#include "CommonGenDPDEForceKernel.h"
+#include "CommonGenDPDEKernelSources.h"
+#include "internal/BoxGeometry.h"
+#include "internal/FixedOrderSum.h"
+#include "internal/GenDPDEForceErrors.h"
+#include "internal/GenDPDEPhysics.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/common/ComputeForceInfo.h"
+#include "openmm/common/ContextSelector.h"
+#include "openmm/internal/ContextImpl.h"
+#include <climits>
+#include <cmath>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+/** Every particle interacts alike (no particle parameters yet): OpenMM may reorder any of them. */
+class CommonCalcGenDPDEForceKernel::ForceInfo : public ComputeForceInfo {
+public:
+    bool areParticlesIdentical(int particle1, int particle2) override {
+        return true;
+    }
+};
+
+namespace {
+const int noValue = INT_MAX;
+}
+
+void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
+    ContextSelector selector(cc);
+    cutoff = force.getCutoffDistance();
+    periodic = force.usesPeriodicBoundaryConditions();
+    readParameters(force);
+    const int numAtoms = cc.getNumAtoms();
+    const bool useDouble = cc.getUseDoublePrecision();
+    const int realSize = useDouble ? sizeof(double) : sizeof(float);
+    primitiveDensity.initialize(cc, numAtoms, realSize, "gendpdePrimitiveDensity");
+    volume.initialize(cc, numAtoms, realSize, "gendpdeVolume");
+    pressure.initialize(cc, numAtoms, realSize, "gendpdePressure");
+    forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
+    particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
+    errors.initialize<int>(cc, 2, "gendpdeForceErrors");
+
+    // The V-B tables from the host's arrays (one source for every platform), in the context's precision.
+    using namespace Physics;
+    const int numPieces = (VolumeVBPolynomials::lastOctave - VolumeVBPolynomials::firstOctave + 1)
+                          *VolumeVBPolynomials::subintervals;
+    std::vector<double> coefficients(&VolumeVBPolynomials::coefficients[0][0][0],
+                                     &VolumeVBPolynomials::coefficients[0][0][0] + numPieces*14*2);
+    vbCoefficients.initialize(cc, numPieces*14, 2*realSize, "gendpdeVBCoefficients");
+    std::vector<double> quadrature;
+    for (const double* table : {VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared,
+                                VolumeVBQuadrature::coefficient})
+        quadrature.insert(quadrature.end(), table, table + VolumeVBQuadrature::numPairs);
+    vbQuadrature.initialize(cc, quadrature.size(), realSize, "gendpdeVBQuadrature");
+    if (useDouble) {
+        vbCoefficients.upload(coefficients.data());
+        vbQuadrature.upload(quadrature);
+    }
+    else {
+        std::vector<float> single(coefficients.begin(), coefficients.end());
+        vbCoefficients.upload(single.data());
+        vbQuadrature.upload(quadrature, true);
+    }
+
+    grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff));
+    std::map<std::string, std::string> defines = grid->defines();
+    defines["VB_FIRST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::firstOctave);
+    defines["VB_LAST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::lastOctave);
+    defines["VB_QUADRATURE_PAIRS"] = cc.intToString(VolumeVBQuadrature::numPairs);
+    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::gendpdeCells
+                                               + CommonGenDPDEKernelSources::gendpdeForce, defines);
+    grid->createKernels(program);
+    densityKernel = program->createKernel("computeDensities");
+    densityKernel->addArg();   // cells
+    densityKernel->addArg(grid->cellStart);
+    densityKernel->addArg(grid->sortedCell);
+    densityKernel->addArg(grid->sortedAtom);
+    densityKernel->addArg(grid->sortedPos);
+    for (int i = 0; i < 8; i++)
+        densityKernel->addArg();   // box (3), model, tait, taitPower, vb, estimator
+    densityKernel->addArg(vbCoefficients);
+    densityKernel->addArg(vbQuadrature);
+    densityKernel->addArg(primitiveDensity);
+    densityKernel->addArg(volume);
+    densityKernel->addArg(pressure);
+    densityKernel->addArg(forceCoefficient);
+    densityKernel->addArg(cc.getEnergyBuffer());
+    densityKernel->addArg(errors);
+    forceKernel = program->createKernel("computeForces");
+    forceKernel->addArg();   // cells
+    forceKernel->addArg(grid->cellStart);
+    forceKernel->addArg(grid->sortedCell);
+    forceKernel->addArg(grid->sortedSlot);
+    forceKernel->addArg(grid->sortedPos);
+    for (int i = 0; i < 4; i++)
+        forceKernel->addArg();   // box (3), model
+    forceKernel->addArg(forceCoefficient);
+    forceKernel->addArg(cc.getLongForceBuffer());
+    forceKernel->addArg();   // includeForces
+    forceKernel->addArg();   // includeVirial
+    forceKernel->addArg(particleVirial);
+    cc.addForce(new ForceInfo());
+}
+
+void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
+    readParameters(force);
+}
+
+void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
+    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic);
+    estimator = force.getDensityEstimator();
+    cutoffScaling = force.getCutoffScaling();
+    force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+}
+
+void CommonCalcGenDPDEForceKernel::setModelArguments() {
+    // The same constants as Physics::DensityWeight, TaitEquationOfState and VolumeEstimatorVB.
+    const Physics::DensityWeight weight(cutoff);
+    const double rt = cutoff/cutoffScaling, rt3 = rt*rt*rt;
+    const double vb[3] = {(2.0*Physics::Pi/15.0)*rt3, 4.0*Physics::Pi*rt3, -(8.0*Physics::Pi*Physics::Pi/15.0)*rt3*rt3};
+    const int taitPower = (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0
+                           ? (int) exponent - 1 : -1);
+    const double model[4] = {cutoff, weight.getInverseCutoff(), weight.getValueScale(), weight.getDerivativeScale()};
+    const double tait[4] = {referenceDensity, referencePressure, bulkModulus, exponent};
+    const double vb4[4] = {vb[0], vb[1], vb[2], 0.0};
+    const mm_int4 cells = grid->getCellsArgument();
+    densityKernel->setArg(0, cells);
+    forceKernel->setArg(0, cells);
+    grid->setBoxArguments(densityKernel, 5, false);
+    grid->setBoxArguments(forceKernel, 5, false);
+    if (cc.getUseDoublePrecision()) {
+        densityKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
+        densityKernel->setArg(9, mm_double4(tait[0], tait[1], tait[2], tait[3]));
+        densityKernel->setArg(11, mm_double4(vb4[0], vb4[1], vb4[2], vb4[3]));
+        forceKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
+    }
+    else {
+        densityKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
+        densityKernel->setArg(9, mm_float4((float) tait[0], (float) tait[1], (float) tait[2], (float) tait[3]));
+        densityKernel->setArg(11, mm_float4((float) vb4[0], (float) vb4[1], (float) vb4[2], 0.0f));
+        forceKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
+    }
+    densityKernel->setArg(10, taitPower);
+    densityKernel->setArg(12, estimator == GenDPDEForce::VA ? 0 : 1);
+}
+
+void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
+    if (periodic) {
+        Vec3 box[3];
+        cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
+    }
+    grid->build();
+    setModelArguments();
+    errors.upload(std::vector<int>{noValue, noValue});
+    densityKernel->execute(cc.getNumAtoms());
+    std::vector<int> found;
+    errors.download(found);
+    if (found[0] == noValue && found[1] == noValue)
+        return;
+    // The first particle in index order whose position, then whose state, is bad (as the Reference platform checks).
+    std::vector<Vec3> positions;
+    context.getPositions(positions);
+    for (int i = 0; i < (int) positions.size(); i++)
+        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
+            throw OpenMMException(GenDPDEForceErrors::nonFinitePosition(i, positions[i], cc.getStepCount()));
+    const int particle = found[1]/4, status = found[1]%4;
+    if (status == 1)
+        throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, cc.getStepCount()));
+    std::vector<int> atoms;
+    std::vector<double> densities;
+    grid->sortedAtom.download(atoms);
+    primitiveDensity.download(densities, true);
+    double n0 = 0.0;
+    for (int k = 0; k < (int) atoms.size(); k++)
+        if (atoms[k] == particle)
+            n0 = densities[k];
+    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
+                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, referenceDensity,
+                                                                      cc.getStepCount()));
+}
+
+void CommonCalcGenDPDEForceKernel::computeForces(bool includeForces, bool includeVirial) {
+    forceKernel->setArg(11, includeForces ? 1 : 0);
+    forceKernel->setArg(12, includeVirial ? 1 : 0);
+    forceKernel->execute(cc.getNumAtoms());
+}
+
+double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
+    ContextSelector selector(cc);
+    computeDensities(context);
+    if (includeForces)
+        computeForces(true, false);
+    return 0.0;   // the energy is in the context's energy buffer
+}
+
+const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextImpl& context) {
+    ContextSelector selector(cc);
+    computeDensities(context);
+    computeForces(false, true);
+    std::vector<int> atoms;
+    std::vector<double> n0, v, pi, w;
+    grid->sortedAtom.download(atoms);
+    primitiveDensity.download(n0, true);
+    volume.download(v, true);
+    pressure.download(pi, true);
+    particleVirial.download(w, true);
+    const int numAtoms = cc.getNumAtoms();
+    observables.primitiveDensities.resize(numAtoms);
+    observables.volumes.resize(numAtoms);
+    observables.densities.resize(numAtoms);
+    observables.pressures.resize(numAtoms);
+    std::vector<double> virial(numAtoms);
+    for (int k = 0; k < numAtoms; k++) {
+        const int i = atoms[k];
+        observables.primitiveDensities[i] = n0[k];
+        observables.volumes[i] = v[k];
+        observables.densities[i] = 1.0/v[k];
+        observables.pressures[i] = pi[k];
+        virial[i] = w[k];
+    }
+    FixedOrderSum::Accumulator sum;
+    for (double value : virial)
+        sum.add(value);
+    observables.virial = sum.sum();
+    return observables;
+}

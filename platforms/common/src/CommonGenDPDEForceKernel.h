@@ -1,0 +1,49 @@
+#ifndef COMMON_GENDPDE_FORCE_KERNEL_H_
+#define COMMON_GENDPDE_FORCE_KERNEL_H_
+
+#include "CommonGenDPDECellGrid.h"
+#include "GenDPDEKernels.h"
+#include "openmm/common/ComputeArray.h"
+#include "openmm/common/ComputeContext.h"
+#include <memory>
+
+namespace GenDPDEPlugin {
+
+/**
+ * GenDPDEForce on OpenMM's Common compute platforms (OpenCL, CUDA): the two passes of kernels/gendpdeForce.cc over
+ * the device cell grid, forces in fixed point, energy in the context's energy buffer, in the context's precision.
+ * A particle whose state is invalid (no neighbour under V-A, an overflowing equation of state, a non-finite position)
+ * stops the evaluation with the Reference platform's error, naming the particle and the step.
+ */
+class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
+public:
+    CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
+            CalcGenDPDEForceKernel(name, platform), cc(cc) {
+    }
+    void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
+    double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
+    void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
+    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) override;
+private:
+    class ForceInfo;
+    void readParameters(const GenDPDEForce& force);
+    /** Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid. */
+    void computeDensities(OpenMM::ContextImpl& context);
+    /** The force pass: forces into the force buffer and/or each particle's half virial. */
+    void computeForces(bool includeForces, bool includeVirial);
+    void setModelArguments();
+    OpenMM::ComputeContext& cc;
+    double cutoff, cutoffScaling;
+    double referenceDensity, referencePressure, bulkModulus, exponent;
+    GenDPDEForce::DensityEstimator estimator;
+    bool periodic;
+    std::unique_ptr<CommonGenDPDECellGrid> grid;
+    OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
+    OpenMM::ComputeArray vbCoefficients, vbQuadrature, errors;
+    OpenMM::ComputeKernel densityKernel, forceKernel;
+    GenDPDEObservables observables;
+};
+
+} // namespace GenDPDEPlugin
+
+#endif /*COMMON_GENDPDE_FORCE_KERNEL_H_*/

@@ -1,0 +1,316 @@
+#include "CommonGenDPDEIntegratorKernel.h"
+#include "CommonGenDPDEKernelSources.h"
+#include "internal/BoxGeometry.h"
+#include "internal/CounterRandom.h"
+#include "internal/FixedOrderSum.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
+#include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDESweepOrder.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/common/ContextSelector.h"
+#include "openmm/internal/ContextImpl.h"
+#include <climits>
+#include <cmath>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+namespace {
+const int noValue = INT_MAX;
+}
+
+void CommonIntegrateGenDPDEStepKernel::setMixed(ComputeKernel& kernel, int index, double value) {
+    if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
+        kernel->setArg(index, value);
+    else
+        kernel->setArg(index, (float) value);
+}
+
+void CommonIntegrateGenDPDEStepKernel::setMixed4(ComputeKernel& kernel, int index, double x, double y, double z,
+                                                 double w) {
+    if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
+        kernel->setArg(index, mm_double4(x, y, z, w));
+    else
+        kernel->setArg(index, mm_float4((float) x, (float) y, (float) z, (float) w));
+}
+
+void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                  double cutoff, int seed, const std::vector<double>& internalEnergies) {
+    cc.initializeContexts();
+    ContextSelector selector(cc);
+    this->cutoff = cutoff;
+    this->seed = seed;
+    periodic = context.getSystem().usesPeriodicBoundaryConditions();
+    const int numAtoms = cc.getNumAtoms();
+    const bool mixedIsDouble = cc.getUseDoublePrecision() || cc.getUseMixedPrecision();
+    const int mixedSize = mixedIsDouble ? sizeof(double) : sizeof(float);
+    energies.initialize(cc, numAtoms, mixedSize, "gendpdeInternalEnergies");
+    savedEnergies.initialize(cc, numAtoms, mixedSize, "gendpdeSavedInternalEnergies");
+    savedVelm.initialize(cc, cc.getVelm().getSize(), cc.getVelm().getElementSize(), "gendpdeSavedVelm");
+    kinetic.initialize(cc, numAtoms, mixedSize, "gendpdeKineticEnergy");
+    slotOfAtom.initialize<int>(cc, numAtoms, "gendpdeSlotOfAtom");
+    status.initialize<int>(cc, 4, "gendpdeStepStatus");
+    setInternalEnergies(internalEnergies);
+
+    // The ziggurat of CounterRandom, from the host's table (double where the device has it).
+    const CounterRandom::ZigguratTable& table = CounterRandom::ZigguratTable::get();
+    const bool doubleRandom = cc.getSupportsDoublePrecision();
+    const int randomSize = doubleRandom ? sizeof(double) : sizeof(float);
+    zigguratX.initialize(cc, 257, randomSize, "gendpdeZigguratX");
+    zigguratF.initialize(cc, 257, randomSize, "gendpdeZigguratF");
+    zigguratRatio.initialize(cc, 256, randomSize, "gendpdeZigguratRatio");
+    zigguratX.upload(std::vector<double>(table.x, table.x + 257), true);
+    zigguratF.upload(std::vector<double>(table.f, table.f + 257), true);
+    zigguratRatio.upload(std::vector<double>(table.ratio, table.ratio + 256), true);
+
+    blockSlotArray.initialize<int>(cc, 1, "gendpdeSlotOfBlock");
+    blockCount.initialize<int>(cc, 1, "gendpdeBlockCount");
+    blockStart.initialize<int>(cc, 2, "gendpdeBlockStart");
+    blockPairs.initialize<mm_int2>(cc, 1, "gendpdeBlockPairs");
+    orderedPairs.initialize<mm_int2>(cc, 1, "gendpdeOrderedPairs");
+
+    grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff > 0.0 ? cutoff : 1.0));
+    std::map<std::string, std::string> defines = grid->defines();
+    if (doubleRandom)
+        defines["GENDPDE_DOUBLE_RANDOM"] = "1";
+    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::gendpdeCells
+            + CommonGenDPDEKernelSources::gendpdeRandom + CommonGenDPDEKernelSources::gendpdeIntegrator, defines);
+    grid->createKernels(program);
+    resetKernel = program->createKernel("resetStatus");
+    resetKernel->addArg(status);
+    checkKernel = program->createKernel("checkStep");
+    checkKernel->addArg(cc.getVelm());
+    checkKernel->addArg(cc.getLongForceBuffer());
+    checkKernel->addArg(cc.getAtomIndexArray());
+    checkKernel->addArg();   // step size
+    checkKernel->addArg();   // largest displacement
+    checkKernel->addArg(status);
+    kickKernel = program->createKernel("kick");
+    kickKernel->addArg(cc.getVelm());
+    kickKernel->addArg(cc.getLongForceBuffer());
+    kickKernel->addArg();   // time step
+    driftKernel = program->createKernel("drift");
+    driftKernel->addArg(cc.getPosq());
+    driftKernel->addArg(cc.getPosqCorrection());
+    driftKernel->addArg(cc.getVelm());
+    driftKernel->addArg();   // time step
+    kineticKernel = program->createKernel("kineticEnergies");
+    kineticKernel->addArg(cc.getVelm());
+    kineticKernel->addArg(cc.getLongForceBuffer());
+    kineticKernel->addArg();   // half step
+    kineticKernel->addArg(kinetic);
+    invertKernel = program->createKernel("invertAtomIndex");
+    invertKernel->addArg(cc.getAtomIndexArray());
+    invertKernel->addArg(slotOfAtom);
+    findPairsKernel = program->createKernel("findBlockPairs");
+    findPairsKernel->addArg();   // cells
+    findPairsKernel->addArg();   // blocks
+    findPairsKernel->addArg(grid->cellStart);
+    findPairsKernel->addArg(grid->sortedCell);
+    findPairsKernel->addArg(grid->sortedAtom);
+    findPairsKernel->addArg(grid->sortedSlot);
+    findPairsKernel->addArg(cc.getPosq());
+    findPairsKernel->addArg(cc.getPosqCorrection());
+    for (int i = 0; i < 4; i++)
+        findPairsKernel->addArg();   // box (3), cutoff
+    findPairsKernel->addArg(blockSlotArray);
+    findPairsKernel->addArg();   // fill
+    findPairsKernel->addArg(blockCount);
+    findPairsKernel->addArg(blockStart);
+    findPairsKernel->addArg(blockPairs);
+    findPairsKernel->addArg(status);
+    orderKernel = program->createKernel("orderBlockPairs");
+    orderKernel->addArg();   // number of slots
+    orderKernel->addArg(blockStart);
+    orderKernel->addArg(blockPairs);
+    orderKernel->addArg(orderedPairs);
+    sweepKernel = program->createKernel("sweepColour");
+    sweepKernel->addArg();   // first slot
+    sweepKernel->addArg();   // number of slots
+    sweepKernel->addArg(blockStart);
+    sweepKernel->addArg(orderedPairs);
+    sweepKernel->addArg(slotOfAtom);
+    sweepKernel->addArg(cc.getPosq());
+    sweepKernel->addArg(cc.getPosqCorrection());
+    sweepKernel->addArg(cc.getVelm());
+    sweepKernel->addArg(energies);
+    for (int i = 0; i < 10; i++)
+        sweepKernel->addArg();   // box (3), parameters, heat, boltzmann, terms, seed, step (2)
+    sweepKernel->addArg(zigguratX);
+    sweepKernel->addArg(zigguratF);
+    sweepKernel->addArg(zigguratRatio);
+    sweepKernel->addArg(status);
+}
+
+const std::vector<double>& CommonIntegrateGenDPDEStepKernel::getInternalEnergies() const {
+    ContextSelector selector(cc);
+    energies.download(hostEnergies, true);
+    return hostEnergies;
+}
+
+void CommonIntegrateGenDPDEStepKernel::setInternalEnergies(const std::vector<double>& internalEnergies) {
+    ContextSelector selector(cc);
+    if ((int) internalEnergies.size() != cc.getNumAtoms())
+        throw OpenMMException("GenDPDEIntegrator: " + std::to_string(internalEnergies.size()) + " internal energies "
+                              "for " + std::to_string(cc.getNumAtoms()) + " particles");
+    energies.upload(internalEnergies, true);
+}
+
+void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int particle, double stepSize,
+                                                     double maxDisplacement) {
+    std::vector<Vec3> forces, velocities;
+    context.getForces(forces);
+    context.getVelocities(velocities);
+    const Vec3& force = forces[particle];
+    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
+        throw OpenMMException(GenDPDEIntegratorUtilities::nonFiniteForceMessage(particle, force, cc.getStepCount()));
+    const double inverseMass = 1.0/context.getSystem().getParticleMass(particle);
+    const Vec3 displacement = (velocities[particle] + force*(stepSize*inverseMass))*stepSize;
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableStepMessage(particle,
+            std::sqrt(displacement.dot(displacement)), maxDisplacement, cc.getStepCount()));
+}
+
+void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                    const GenDPDEStepTerms& terms) {
+    // The step check, and the pairs counted per block; then one download tells both (nothing has changed yet).
+    const int numAtoms = cc.getNumAtoms();
+    resetKernel->execute(1);
+    setMixed(checkKernel, 3, integrator.getStepSize());
+    setMixed(checkKernel, 4, terms.maxDisplacement);
+    checkKernel->execute(numAtoms);
+    if (terms.pairSweep) {
+        if (periodic) {
+            Vec3 box[3];
+            cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
+            BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
+        }
+        grid->build();
+        const std::array<int, 3>& cells = grid->getNumCells();
+        if (cells != blockGridCells) {
+            blockGridCells = cells;
+            const std::array<int, 3> blocks = {(cells[0] + 1)/2, (cells[1] + 1)/2, (cells[2] + 1)/2};
+            const int numSlots = GenDPDESweepOrder::blockSlots(blocks, slotOfBlock, groupStart);
+            blockSlotArray.resize(numSlots);
+            blockSlotArray.upload(slotOfBlock);
+            blockCount.resize(numSlots);
+            blockStart.resize(numSlots + 1);
+            findPairsKernel->setArg(1, mm_int4(blocks[0], blocks[1], blocks[2], numSlots));
+        }
+        findPairsKernel->setArg(0, grid->getCellsArgument());
+        grid->setBoxArguments(findPairsKernel, 8, true);
+        setMixed(findPairsKernel, 11, cutoff);
+        findPairsKernel->setArg(13, 0);
+        cc.clearBuffer(blockCount);
+        findPairsKernel->execute(numAtoms);
+        grid->exclusiveScan(blockCount, blockStart, (int) blockCount.getSize(), status, 1);
+    }
+    std::vector<int> found;
+    status.download(found);
+    if (found[0] != noValue)
+        throwUnstable(context, found[0], integrator.getStepSize(), terms.maxDisplacement);
+    if (!terms.pairSweep)
+        return;
+    if (found[3] != 0)
+        throw OpenMMException("GenDPDEIntegrator: " + std::to_string(found[3]) + " pairs in range lie in cells that "
+                              "are not adjacent at step " + std::to_string(cc.getStepCount())
+                              + " (an internal error of the cell grid)");
+    const int numPairs = found[1];
+    if ((int) blockPairs.getSize() < numPairs) {
+        blockPairs.resize((int) (1.2*numPairs) + 1);
+        orderedPairs.resize(blockPairs.getSize());
+    }
+    findPairsKernel->setArg(13, 1);
+    cc.clearBuffer(blockCount);
+    findPairsKernel->execute(numAtoms);
+    orderKernel->setArg(0, (int) blockCount.getSize());
+    orderKernel->execute((int) blockCount.getSize());
+    invertKernel->execute(numAtoms);
+}
+
+void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                             const GenDPDEStepTerms& terms) {
+    const double dt = integrator.getStepSize();
+    const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
+    const long long step = cc.getStepCount();
+    grid->setBoxArguments(sweepKernel, 9, true);
+    setMixed4(sweepKernel, 12, cutoff, dt, std::sqrt(dt), friction);
+    setMixed4(sweepKernel, 13, heatConduction, integrator.getHeatCapacity(),
+              std::sqrt(2.0*Physics::Boltzmann*heatConduction),
+              std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature()));
+    setMixed(sweepKernel, 14, Physics::Boltzmann);
+    sweepKernel->setArg(15, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
+                            | (terms.internalEnergies ? 4 : 0));
+    sweepKernel->setArg(16, (unsigned int) seed);
+    sweepKernel->setArg(17, (unsigned int) (unsigned long long) step);
+    sweepKernel->setArg(18, (unsigned int) (((unsigned long long) step) >> 32));
+    for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
+        const int numSlots = groupStart[colour + 1] - groupStart[colour];
+        if (numSlots == 0)
+            continue;
+        sweepKernel->setArg(0, groupStart[colour]);
+        sweepKernel->setArg(1, numSlots);
+        sweepKernel->execute(numSlots, 64);
+    }
+    if (!terms.internalEnergies)
+        return;
+    std::vector<int> found;
+    status.download(found);
+    if (found[2] == noValue)
+        return;
+    // Roll back to the state before the step and name the particle, as the Reference platform does.
+    std::vector<mm_int2> pairs;
+    orderedPairs.download(pairs);
+    std::vector<double> failed;
+    energies.download(failed, true);
+    const mm_int2 pair = pairs[found[2]];
+    const int particle = (failed[pair.x] > 0.0 ? pair.y : pair.x);
+    savedVelm.copyTo(cc.getVelm());
+    savedEnergies.copyTo(energies);
+    throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, failed[particle], step));
+}
+
+void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                               const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
+    // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
+    // velocity Verlet (leapfrog form: one full kick). The device finds its own pairs (pairListSource is not used).
+    ContextSelector selector(cc);
+    preparePairs(context, integrator, terms);
+    const double dt = integrator.getStepSize();
+    const int numAtoms = cc.getNumAtoms();
+    if (!terms.pairSweep) {
+        setMixed(kickKernel, 2, dt);
+        kickKernel->execute(numAtoms);
+    }
+    else {
+        if (terms.internalEnergies) {
+            cc.getVelm().copyTo(savedVelm);
+            energies.copyTo(savedEnergies);
+        }
+        setMixed(kickKernel, 2, 0.5*dt);
+        kickKernel->execute(numAtoms);
+        sweep(context, integrator, terms);
+        kickKernel->execute(numAtoms);
+    }
+    setMixed(driftKernel, 3, dt);
+    driftKernel->execute(numAtoms);
+    cc.setTime(cc.getTime() + dt);
+    cc.setStepCount(cc.getStepCount() + 1);
+    cc.reorderAtoms();
+}
+
+double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
+                                                              const GenDPDEIntegrator& integrator) {
+    ContextSelector selector(cc);
+    setMixed(kineticKernel, 2, 0.5*integrator.getStepSize());
+    kineticKernel->execute(cc.getNumAtoms());
+    std::vector<double> perSlot;
+    kinetic.download(perSlot, true);
+    const std::vector<int>& atomIndex = cc.getAtomIndex();
+    std::vector<double> perAtom(perSlot.size());
+    for (size_t slot = 0; slot < perSlot.size(); slot++)
+        perAtom[atomIndex[slot]] = perSlot[slot];
+    FixedOrderSum::Accumulator sum;   // summed in particle order, as the host platforms sum it
+    for (double e : perAtom)
+        sum.add(e);
+    return sum.sum();
+}

@@ -1,0 +1,181 @@
+/* GenDPDEForce on the device (docs/theory.md sections 2-4), in two passes over the cell grid of gendpdeCells.cc, one
+ * thread per particle in cell order, each gathering over its neighbours (every pair is computed by both particles, so
+ * no thread writes another particle's sums: no atomics, and a fixed summation order):
+ *   computeDensities  n0_i = sum_j w(r_ij), then V_i, pi_i, pi_i dV_i/dn0_i and f(n_i) (energy),
+ *   computeForces     F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij (fixed point), and the virial.
+ * Everything in `real` precision. The V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) come from the
+ * host's arrays, converted to `real`. */
+
+/** r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the smallest width). */
+inline DEVICE real3 pairDelta(real3 ri, real3 rj, real4 boxA, real4 boxB, real4 boxC) {
+    real3 d = ri - rj;
+#ifdef USE_PERIODIC
+    real scale = floor(d.z/boxC.z + (real) 0.5);
+    d -= make_real3(boxC.x, boxC.y, boxC.z)*scale;
+    scale = floor(d.y/boxB.y + (real) 0.5);
+    d -= make_real3(boxB.x, boxB.y, boxB.z)*scale;
+    scale = floor(d.x/boxA.x + (real) 0.5);
+    d.x -= boxA.x*scale;
+#endif
+    return d;
+}
+
+/** The V-B integrals (I, J) of Physics::volumeIntegralsVB at k > 0, with the same three branches. */
+inline DEVICE real2 volumeIntegralsVB(real k, GLOBAL const real2* RESTRICT coefficients,
+                                      GLOBAL const real* RESTRICT quadrature) {
+    int exponent;
+    const real fraction = frexp(k, &exponent);   // k = fraction 2^exponent, fraction in [1/2, 1)
+    const int octave = exponent - 1;
+    if (octave >= VB_FIRST_OCTAVE && octave <= VB_LAST_OCTAVE) {
+        // The piece from the top two bits of the mantissa m = 2 fraction in [1, 2); t in [-1, 1), exact.
+        const real m = 2*fraction;
+        const int piece = (int) ((m - 1)*4);
+        const real t = 8*(m - 1) - (2*piece + 1);
+        GLOBAL const real2* c = &coefficients[((octave - VB_FIRST_OCTAVE)*4 + piece)*14];
+        // Estrin's scheme, as Physics::VolumeVBPolynomials::estrin13, for I (.x) and J (.y).
+        const real t2 = t*t, t4 = t2*t2, t8 = t4*t4;
+        real aI[7], aJ[7];
+        for (int q = 0; q < 7; q++) {
+            aI[q] = c[2*q].x + c[2*q + 1].x*t;
+            aJ[q] = c[2*q].y + c[2*q + 1].y*t;
+        }
+        const real I = ((aI[0] + aI[1]*t2) + (aI[2] + aI[3]*t2)*t4) + ((aI[4] + aI[5]*t2) + aI[6]*t4)*t8;
+        const real J = ((aJ[0] + aJ[1]*t2) + (aJ[2] + aJ[3]*t2)*t4) + ((aJ[4] + aJ[5]*t2) + aJ[6]*t4)*t8;
+        return make_real2(I, J);
+    }
+    if (k < 1) {
+        const real s = sqrt(k);
+        const real arctangent = atan(1/s);
+        const real logarithm = log1p(k) - log(k);
+        return make_real2(((real) 1)/3 - k - (1 - k)*s*arctangent + k*logarithm,
+                          (real) 1.5 - logarithm + (1 - 3*k)/(2*s)*arctangent);
+    }
+    real I = 0, J = 0;
+    for (int q = 0; q < VB_QUADRATURE_PAIRS; q++) {
+        const real a = 1/(quadrature[q] + k);
+        const real b = 1/(quadrature[VB_QUADRATURE_PAIRS + q] + k);
+        const real w = quadrature[2*VB_QUADRATURE_PAIRS + q];
+        I += w*(a + b);
+        J += w*(a*a + b*b);
+    }
+    return make_real2(I, J);
+}
+
+/** x^p for an integer p >= 0, by binary powering (as Physics::TaitEquationOfState). */
+inline DEVICE real integerPower(real x, int p) {
+    real result = 1;
+    while (p > 0) {
+        if (p & 1)
+            result *= x;
+        x *= x;
+        p >>= 1;
+    }
+    return result;
+}
+
+/**
+ * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
+ * tait = (reference density, reference pressure, bulk modulus, exponent), vb = (k per density, volume scale,
+ * derivative scale, 0), estimator 0 = V-A, 1 = V-B. errors[0] gets the smallest original index of a particle whose
+ * position is not finite, errors[1] the smallest 4 i + status over the particles whose state is invalid (1: no
+ * neighbour under V-A, 2: the equation of state overflows).
+ */
+KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
+        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const real4* RESTRICT sortedPos,
+        real4 boxA, real4 boxB, real4 boxC, real4 model, real4 tait, int taitPower, real4 vb, int estimator,
+        GLOBAL const real2* RESTRICT vbCoefficients, GLOBAL const real* RESTRICT vbQuadrature,
+        GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
+        GLOBAL real* RESTRICT forceCoefficient, GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT errors) {
+    const real cutoff2 = model.x*model.x;
+    mixed energy = 0;
+    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const real3 ri = trimTo3(sortedPos[k]);
+        if (!(isfinite(ri.x) && isfinite(ri.y) && isfinite(ri.z)))
+            ATOMIC_MIN(&errors[0], sortedAtom[k]);
+        const int3 home = cellCoordinates(sortedCell[k], cells);
+        real n0 = 0;
+        FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
+            for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
+                const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
+                const real r2 = dot(d, d);
+                if (m != k && r2 < cutoff2) {
+                    const real x = 1 - sqrt(r2)*model.y;
+                    n0 += model.z*x*x;
+                }
+            }
+        }
+        // docs/theory.md sections 3-4: the volume, the Tait pressure and free energy, and pi dV/dn0.
+        real v, derivative;
+        int status = 0;
+        if (estimator == 0) {
+            if (n0 == 0)
+                status = 1;
+            v = 1/n0;
+            derivative = -v*v;
+        }
+        else {
+            if (n0 == 0) {
+                v = vb.y/3;
+                derivative = 0;   // diverges, but multiplies no pair: an isolated particle has no pair in range
+            }
+            else {
+                const real2 integrals = volumeIntegralsVB(vb.x*n0, vbCoefficients, vbQuadrature);
+                v = vb.y*integrals.x;
+                derivative = vb.z*integrals.y;
+            }
+        }
+        const real n = 1/v, x = n/tait.x;
+        const real xPowGammaMinusOne = (taitPower >= 0 ? integerPower(x, taitPower) : pow(x, tait.w - 1));
+        const real pi = tait.y + tait.z*(xPowGammaMinusOne*x - 1);
+        const real f = (tait.z - tait.y)/n + tait.z/((tait.w - 1)*tait.x)*xPowGammaMinusOne;
+        if (status == 0 && !(isfinite(f) && isfinite(pi)))
+            status = 2;
+        if (status != 0)
+            ATOMIC_MIN(&errors[1], 4*sortedAtom[k] + status);
+        primitiveDensity[k] = n0;
+        volume[k] = v;
+        pressure[k] = pi;
+        forceCoefficient[k] = (n0 > 0 ? pi*derivative : 0);
+        energy += f;
+    }
+    energyBuffer[GLOBAL_ID] += energy;
+}
+
+/**
+ * Pass 2: F_i (added to the fixed-point force buffer in slot order) and, if particleVirial is requested, each
+ * particle's half of sum_j r_ij . F_ij.
+ */
+KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
+        GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
+        real4 boxA, real4 boxB, real4 boxC, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
+        GLOBAL mm_long* RESTRICT forceBuffers, int includeForces, int includeVirial,
+        GLOBAL real* RESTRICT particleVirial) {
+    const real cutoff2 = model.x*model.x;
+    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const real3 ri = trimTo3(sortedPos[k]);
+        const real ci = forceCoefficient[k];
+        const int3 home = cellCoordinates(sortedCell[k], cells);
+        real3 force = make_real3(0, 0, 0);
+        real virial = 0;
+        FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
+            for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
+                const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
+                const real r2 = dot(d, d);
+                if (r2 < cutoff2 && r2 > 0) {   // coincident particles: no direction, no force
+                    const real r = sqrt(r2);
+                    const real scale = (ci + forceCoefficient[m])*(model.w*(1 - r*model.y))/r;
+                    force += d*scale;
+                    virial += scale*r2;
+                }
+            }
+        }
+        if (includeForces) {
+            const int slot = sortedSlot[k];
+            forceBuffers[slot] += realToFixedPoint(force.x);
+            forceBuffers[slot + PADDED_NUM_ATOMS] += realToFixedPoint(force.y);
+            forceBuffers[slot + 2*PADDED_NUM_ATOMS] += realToFixedPoint(force.z);
+        }
+        if (includeVirial)
+            particleVirial[k] = virial/2;
+    }
+}

@@ -1,0 +1,169 @@
+/* The OpenCL platform against Reference, in single, mixed and double precision.
+ *
+ * Forces and observables of the force tests' scenes (and a triclinic box): the same sums in another order, so in
+ * double precision they agree to rounding (1e-10 relative, 1e-9 of the rms force; a wrong pair, image or formula
+ * gives 1e-4 or more); in single and mixed precision positions and sums carry float rounding (2^-24 = 6e-8 relative
+ * per operation, ~17 neighbours per particle, V-B's tables and the Tait power x^6 amplifying relative errors ~6x),
+ * so 1e-5 relative for energies and per-particle values and 1e-5 of the rms force for the rms force difference.
+ *
+ * Trajectories in double precision: the device applies the pair updates in the host's sequence with the same random
+ * variates, so what separates the two is rounding (the device's forces are fixed point, 2^-32 kJ/mol/nm, and its
+ * sums run in another order), amplified by the chaos of a liquid: over 20 steps of 0.005 ps (0.1 ps, a fraction of
+ * the ~1 ps Lyapunov time of liquid argon) a 1e-13 relative difference grows by at most a few decades, so positions
+ * agree to 1e-9 nm and velocities, internal energies and the kinetic energy to 1e-8 relative. An update out of
+ * sequence or a wrong variate gives differences of 1e-3 or more after one step.
+ *
+ * Failures: an internal energy that becomes <= 0 is reported for the same particle and step as on Reference. */
+
+#include "TestGenDPDEIntegrator.h"
+#include "TestPlugins.h"
+#include <cmath>
+
+OpenMM::Platform* platform;
+
+using namespace IntegratorTests;
+
+struct Tolerances {
+    double relative, force;
+};
+
+Tolerances tolerancesFor(const std::string& precision) {
+    return precision == "double" ? Tolerances{1e-10, 1e-9} : Tolerances{1e-5, 1e-5};
+}
+
+Context* makeContext(System& system, Integrator& integrator, const std::string& precision) {
+    if (precision.empty())
+        return new Context(system, integrator, Platform::getPlatformByName("Reference"));
+    return new Context(system, integrator, Platform::getPlatformByName("OpenCL"), {{"Precision", precision}});
+}
+
+void assertAllRelative(const std::vector<double>& expected, const std::vector<double>& found, double tolerance,
+                       const std::string& what) {
+    for (size_t i = 0; i < expected.size(); i++)
+        assertRelative(expected[i], found[i], tolerance, what + " of particle " + std::to_string(i));
+}
+
+void compareScene(Scene& scene, const std::string& label, const std::string& precision) {
+    const Tolerances tolerance = tolerancesFor(precision);
+    const std::string what = label + " (" + precision + ")";
+    VerletIntegrator referenceIntegrator(0.001), integrator(0.001);
+    std::unique_ptr<Context> expected(makeContext(scene.system, referenceIntegrator, ""));
+    std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
+    expected->setPositions(scene.positions);
+    context->setPositions(scene.positions);
+    const State a = expected->getState(State::Energy | State::Forces);
+    const State b = context->getState(State::Energy | State::Forces);
+    assertRelative(a.getPotentialEnergy(), b.getPotentialEnergy(), tolerance.relative, what + ": energy");
+    double squaredForce = 0.0, squaredDifference = 0.0;
+    for (size_t i = 0; i < a.getForces().size(); i++) {
+        squaredForce += a.getForces()[i].dot(a.getForces()[i]);
+        const Vec3 d = a.getForces()[i] - b.getForces()[i];
+        squaredDifference += d.dot(d);
+    }
+    assertClose(0.0, std::sqrt(squaredDifference), tolerance.force*std::sqrt(squaredForce), what + ": rms force");
+    assertAllRelative(scene.force->getParticleVolumes(*expected), scene.force->getParticleVolumes(*context),
+                      tolerance.relative, what + ": volume");
+    assertAllRelative(scene.force->getParticleDensities(*expected), scene.force->getParticleDensities(*context),
+                      tolerance.relative, what + ": density");
+    const std::vector<double> pa = scene.force->getParticlePressures(*expected);
+    const std::vector<double> pb = scene.force->getParticlePressures(*context);
+    double pressureScale = 0.0;   // pressures pass through zero: relative to the largest
+    for (double p : pa)
+        pressureScale = std::max(pressureScale, std::abs(p));
+    for (size_t i = 0; i < pa.size(); i++)
+        assertClose(pa[i], pb[i], tolerance.relative*pressureScale, what + ": pressure of particle " + std::to_string(i));
+    assertRelative(scene.force->getVirial(*expected), scene.force->getVirial(*context), 10*tolerance.relative,
+                   what + ": virial");
+}
+
+void testForcesAndObservables(const std::string& precision) {
+    TestScenes::forEachStandardScene(0.2, 51, [&](Scene& scene, const std::string& label) {
+        compareScene(scene, label, precision);
+    });
+    Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, GenDPDEForce::VB, true, 57);
+    const double edge = scene.box[0][0];
+    setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+    compareScene(scene, "VB triclinic", precision);
+}
+
+struct Trajectory {
+    std::vector<Vec3> positions, velocities;
+    std::vector<double> energies;
+    double kinetic;
+};
+
+Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic) {
+    Scene scene = makeLatticeLiquid(8, referenceDensity, 0.1, GenDPDEForce::VB, periodic, 61);
+    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+    integrator.setTemperature(temperature);
+    integrator.setRandomNumberSeed(77);
+    integrator.setMode(mode);
+    std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
+    context->setPositions(scene.positions);
+    context->setVelocitiesToTemperature(temperature, 5);
+    integrator.setInternalEnergiesToTemperature(temperature, 6);
+    integrator.step(steps);
+    const State state = context->getState(State::Positions | State::Velocities | State::Energy);
+    return {state.getPositions(), state.getVelocities(), integrator.getInternalEnergies(), state.getKineticEnergy()};
+}
+
+void compareTrajectories(GenDPDEIntegrator::Mode mode, bool periodic, const std::string& label) {
+    const int steps = 20;
+    const Trajectory expected = run("", mode, steps, periodic), found = run("double", mode, steps, periodic);
+    double speed2 = 0.0;
+    for (const Vec3& v : expected.velocities)
+        speed2 += v.dot(v);
+    const double speedScale = std::sqrt(speed2/expected.velocities.size());
+    for (size_t i = 0; i < expected.positions.size(); i++) {
+        const std::string particle = " of particle " + std::to_string(i);
+        assertVectorClose(expected.positions[i], found.positions[i], 1e-9, label + ": position" + particle);
+        assertVectorClose(expected.velocities[i], found.velocities[i], 1e-8*speedScale, label + ": velocity" + particle);
+        assertRelative(expected.energies[i], found.energies[i], 1e-8, label + ": internal energy" + particle);
+    }
+    assertRelative(expected.kinetic, found.kinetic, 1e-8, label + ": kinetic energy");
+}
+
+void testSameFailure() {
+    std::vector<std::string> messages;
+    for (const std::string precision : {"", "double", "mixed"}) {
+        Scene scene = makeLatticeLiquid(8, referenceDensity, 0.1, GenDPDEForce::VB, true, 62);
+        GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+        std::vector<double> temperatures(scene.system.getNumParticles(), temperature);
+        for (int i : {100, 300, 450})
+            temperatures[i] = 1e-9;
+        integrator.setParticleTemperatures(temperatures);
+        std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
+        context->setPositions(scene.positions);
+        context->setVelocitiesToTemperature(temperature, 5);
+        const State before = context->getState(State::Velocities);
+        try {
+            integrator.step(1);
+        }
+        catch (const OpenMMException& e) {
+            messages.push_back(e.what());
+        }
+        // Rolled back: the velocities and internal energies of before the step.
+        const State after = context->getState(State::Velocities);
+        for (size_t i = 0; i < before.getVelocities().size(); i++)
+            assertVectorClose(before.getVelocities()[i], after.getVelocities()[i], 0.0, "rolled-back velocity");
+        assertClose(1e-9, integrator.getParticleTemperatures()[100], 1e-15, "rolled-back temperature");
+    }
+    ASSERT_EQUAL(3, (int) messages.size());
+    for (int k = 1; k < 3; k++)
+        if (messages[0] != messages[k])
+            throw std::runtime_error("different failures: Reference '" + messages[0] + "', OpenCL '" + messages[k] + "'");
+}
+
+int main() {
+    return runTestProgram([]() {
+        loadComputePlugins("OpenCL");
+        platform = &Platform::getPlatformByName("OpenCL");
+        for (const std::string precision : {"double", "mixed", "single"})
+            testForcesAndObservables(precision);
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, true, "Isoenergetic");
+        compareTrajectories(GenDPDEIntegrator::Isothermal, true, "Isothermal");
+        compareTrajectories(GenDPDEIntegrator::Conservative, true, "Conservative");
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, false, "Isoenergetic, open boundaries");
+        testSameFailure();
+    });
+}

@@ -4,6 +4,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
+# PoCL (OpenCL on the CPU) compiles kernels slowly: both test suites share one cache of compiled kernels.
+export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
 echo "== C++ tests (ctest)"
 ctest --test-dir build --output-on-failure
 echo "== Python tests (pytest)"

@@ -45,7 +45,10 @@ def _load_kernel_libraries():
         return
     plugins = _os.path.join(_openmm_version.openmm_library_path, "plugins")
     for library in sorted(_glob.glob(_os.path.join(plugins, "libOpenMMGenDPDE*.so"))):
-        _openmm.Platform.loadPluginLibrary(library)
+        try:
+            _openmm.Platform.loadPluginLibrary(library)
+        except Exception:  # a GPU platform OpenMM cannot load here (e.g. no CUDA driver): as `import openmm` does
+            pass
 
 
 _load_kernel_libraries()

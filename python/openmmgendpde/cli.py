@@ -17,11 +17,22 @@ def add_platform(parser):
     parser.add_argument("--platform", default="Reference", help="OpenMM platform (default Reference)")
     parser.add_argument("--threads", type=int,
                         help="threads of the CPU platform (its Threads property; default: OpenMM's, one per core)")
+    parser.add_argument("--precision", choices=("single", "mixed", "double"),
+                        help="precision of a GPU platform, OpenCL or CUDA (its Precision property; default OpenMM's, "
+                             "single)")
 
 
 def apply_threads(arguments):
-    """Make --threads the CPU platform's default Threads for every Context this process creates (OpenMM's own
-    mechanism, Platform.setPropertyDefaultValue). Raises ValueError for a bad count or a platform without threads."""
+    """Make --threads the CPU platform's default Threads (and --precision a GPU platform's default Precision) for every
+    Context this process creates (OpenMM's own mechanism, Platform.setPropertyDefaultValue). Raises ValueError for a
+    bad count or a platform without threads (or precisions)."""
+    precision = getattr(arguments, "precision", None)
+    if precision is not None:
+        if arguments.platform not in ("OpenCL", "CUDA"):
+            raise ValueError(f"--precision = {precision} applies to the OpenCL and CUDA platforms only, not to "
+                             f"--platform {arguments.platform}")
+        import openmm
+        openmm.Platform.getPlatformByName(arguments.platform).setPropertyDefaultValue("Precision", precision)
     threads = getattr(arguments, "threads", None)
     if threads is None:
         return
@@ -41,7 +52,12 @@ def context_threads(context):
 
 
 def platform_description(arguments):
-    """'Reference platform', 'CPU platform, 2 threads' (the count a CPU Context gets now)."""
+    """'Reference platform', 'CPU platform, 2 threads' (the count a CPU Context gets now), 'CUDA platform, mixed
+    precision'."""
+    if arguments.platform in ("OpenCL", "CUDA"):
+        import openmm
+        precision = openmm.Platform.getPlatformByName(arguments.platform).getPropertyDefaultValue("Precision")
+        return f"{arguments.platform} platform, {precision} precision"
     if arguments.platform != "CPU":
         return f"{arguments.platform} platform"
     import openmm

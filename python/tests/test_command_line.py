@@ -130,6 +130,7 @@ def test_threads_sets_the_cpu_platform_and_is_reported(tmp_path, cpu_threads_def
 @pytest.mark.parametrize("arguments, message", [
     (["--platform", "Reference", "--threads", "2"], "--threads = 2 applies to the CPU platform only"),
     (["--platform", "CPU", "--threads", "0"], "--threads = 0 is not allowed; it must be >= 1"),
+    (["--platform", "CPU", "--precision", "mixed"], "--precision = mixed applies to the OpenCL and CUDA platforms only"),
 ])
 def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default):
     with pytest.raises(SystemExit):

@@ -9,6 +9,7 @@ import openmm
 import pytest
 from openmm import app, unit
 
+from conftest import GPU_PLATFORMS
 from helpers import (DENSITY, MIDDLE_CUTOFF, TEMPERATURE, assert_rejected_without_change, energy_and_forces,
                      lattice_liquid, make_context)
 from openmmgendpde import GenDPDEForce
@@ -147,8 +148,12 @@ def test_observables_are_quantity_arrays_consistent_with_the_model(platform):
     pressures = pressures.value_in_unit(PRESSURE)
     reduced_range = force.getCutoffDistance().value_in_unit(unit.nanometer) / force.getCutoffScaling()
     tait = [value.value_in_unit(value.unit) if unit.is_quantity(value) else value for value in force.getTaitParameters()]
+    # The host platforms call the model's own function (the same bits); the GPU platforms evaluate it on the device,
+    # where the compiler fuses multiply-adds (a few ulp).
+    exact = platform.getName() not in GPU_PLATFORMS
     for i in range(64):
-        assert volumes[i] == particleVolumeVB(n0[i], reduced_range)[0]
+        expected_volume = particleVolumeVB(n0[i], reduced_range)[0]
+        assert volumes[i] == (expected_volume if exact else pytest.approx(expected_volume, rel=1e-15))
         assert densities[i] == pytest.approx(1 / volumes[i], rel=1e-15)
         assert pressures[i] == pytest.approx(taitEquationOfState(densities[i], *tait)[0], rel=1e-14)
     energy, _ = energy_and_forces(context)

@@ -5,9 +5,9 @@ OpenMM::Platform* platform;
 
 int main() {
     return runTestProgram([]() {
-        loadComputePlugins("OpenCL");
-        platform = &OpenMM::Platform::getPlatformByName("OpenCL");
-        // The shared tests, whose tolerances are those of double precision (TestOpenCLGenDPDEEqualsReference
+        loadComputePlugins(GENDPDE_TEST_PLATFORM);
+        platform = &OpenMM::Platform::getPlatformByName(GENDPDE_TEST_PLATFORM);
+        // The shared tests, whose tolerances are those of double precision (TestComputeGenDPDEEqualsReference
         // compares single and mixed precision with Reference).
         platform->setPropertyDefaultValue("Precision", "double");
         ForceTests::runForceTests();

@@ -1,4 +1,4 @@
-/* The OpenCL platform against Reference, in single, mixed and double precision.
+/* A GPU platform (GENDPDE_TEST_PLATFORM: OpenCL or CUDA) against Reference, in single, mixed and double precision.
  *
  * Forces and observables of the force tests' scenes (and a triclinic box): the same sums in another order, so in
  * double precision they agree to rounding (1e-10 relative, 1e-9 of the rms force; a wrong pair, image or formula
@@ -34,7 +34,8 @@ Tolerances tolerancesFor(const std::string& precision) {
 Context* makeContext(System& system, Integrator& integrator, const std::string& precision) {
     if (precision.empty())
         return new Context(system, integrator, Platform::getPlatformByName("Reference"));
-    return new Context(system, integrator, Platform::getPlatformByName("OpenCL"), {{"Precision", precision}});
+    return new Context(system, integrator, Platform::getPlatformByName(GENDPDE_TEST_PLATFORM),
+                       {{"Precision", precision}});
 }
 
 void assertAllRelative(const std::vector<double>& expected, const std::vector<double>& found, double tolerance,
@@ -151,13 +152,14 @@ void testSameFailure() {
     ASSERT_EQUAL(3, (int) messages.size());
     for (int k = 1; k < 3; k++)
         if (messages[0] != messages[k])
-            throw std::runtime_error("different failures: Reference '" + messages[0] + "', OpenCL '" + messages[k] + "'");
+            throw std::runtime_error("different failures: Reference '" + messages[0] + "', "
+                                     GENDPDE_TEST_PLATFORM " '" + messages[k] + "'");
 }
 
 int main() {
     return runTestProgram([]() {
-        loadComputePlugins("OpenCL");
-        platform = &Platform::getPlatformByName("OpenCL");
+        loadComputePlugins(GENDPDE_TEST_PLATFORM);
+        platform = &Platform::getPlatformByName(GENDPDE_TEST_PLATFORM);
         for (const std::string precision : {"double", "mixed", "single"})
             testForcesAndObservables(precision);
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, true, "Isoenergetic");

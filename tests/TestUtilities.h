@@ -15,6 +15,28 @@
 #include <string>
 #include <vector>
 
+/**
+ * The precision of the platform under test: "double" on the host platforms; a GPU platform's test driver sets its
+ * Precision ("single", "mixed" or "double").
+ */
+inline std::string& testPrecision() {
+    static std::string precision = "double";
+    return precision;
+}
+
+/** Whether forces are computed in float (a GPU platform in single or mixed precision). */
+inline bool floatForces() {
+    return testPrecision() != "double";
+}
+
+/**
+ * A tolerance for double-precision forces, or the one for float forces (single and mixed precision: positions and
+ * pair sums in float, 2^-24 = 6e-8 relative per operation; a test that uses the second says why its value).
+ */
+inline double precisionTolerance(double doubleTolerance, double floatTolerance) {
+    return floatForces() ? floatTolerance : doubleTolerance;
+}
+
 inline void assertClose(double expected, double found, double tolerance, const std::string& what) {
     if (!(std::abs(expected - found) <= tolerance)) {
         std::ostringstream message;

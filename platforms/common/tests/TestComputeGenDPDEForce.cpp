@@ -3,13 +3,15 @@
 
 OpenMM::Platform* platform;
 
-int main() {
-    return runTestProgram([]() {
+int main(int argc, char** argv) {
+    const std::string precision = (argc > 1 ? argv[1] : "double");
+    return runTestProgram([&]() {
         loadComputePlugins(GENDPDE_TEST_PLATFORM);
         platform = &OpenMM::Platform::getPlatformByName(GENDPDE_TEST_PLATFORM);
-        // The shared tests, whose tolerances are those of double precision (TestComputeGenDPDEEqualsReference
-        // compares single and mixed precision with Reference).
-        platform->setPropertyDefaultValue("Precision", "double");
+        // The shared tests in the precision named on the command line (double by default); their tolerances follow
+        // it (precisionTolerance in TestUtilities.h).
+        platform->setPropertyDefaultValue("Precision", precision);
+        testPrecision() = precision;
         ForceTests::runForceTests();
     });
 }

@@ -1,4 +1,7 @@
 #ifdef __OPENCL_VERSION__
+#pragma OPENCL FP_CONTRACT OFF
+#endif
+#ifdef __OPENCL_VERSION__
 #define ATOMIC_MIN(p, v) atomic_min(p, v)
 #else
 #define ATOMIC_MIN(p, v) atomicMin(p, v)

@@ -6,15 +6,19 @@
  * Everything in `real` precision. The V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) come from the
  * host's arrays, converted to `real`. */
 
-/** r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the smallest width). */
+/**
+ * r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the smallest width). Image
+ * shifts round to nearest even (rint), which is odd-symmetric: r_j - r_i gets exactly the opposite vector, so both
+ * particles of a pair see the same pair.
+ */
 inline DEVICE real3 pairDelta(real3 ri, real3 rj, real4 boxA, real4 boxB, real4 boxC) {
     real3 d = ri - rj;
 #ifdef USE_PERIODIC
-    real scale = floor(d.z/boxC.z + (real) 0.5);
+    real scale = rint(d.z/boxC.z);
     d -= make_real3(boxC.x, boxC.y, boxC.z)*scale;
-    scale = floor(d.y/boxB.y + (real) 0.5);
+    scale = rint(d.y/boxB.y);
     d -= make_real3(boxB.x, boxB.y, boxB.z)*scale;
-    scale = floor(d.x/boxA.x + (real) 0.5);
+    scale = rint(d.x/boxA.x);
     d.x -= boxA.x*scale;
 #endif
     return d;
@@ -143,7 +147,12 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
 
 /**
  * Pass 2: F_i (added to the fixed-point force buffer in slot order) and, if particleVirial is requested, each
- * particle's half of sum_j r_ij . F_ij.
+ * particle's half of sum_j r_ij . F_ij. Every pair is computed by both its particles, from exactly opposite
+ * displacements (pairDelta), so both get exactly opposite pair forces. In double precision a particle sums them in
+ * double and converts once to fixed point (the total force vanishes to double rounding). With float forces each pair
+ * force is converted to fixed point (truncation toward zero is odd) and summed as integers: the total force vanishes
+ * exactly, where float sums would leave ~1e-7 of every particle's force in it (momentum is what DPD conserves), at
+ * the price of 2^-32 kJ/mol/nm of quantisation per pair, far below float rounding.
  */
 KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
         GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
@@ -155,25 +164,41 @@ KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOB
         const real3 ri = trimTo3(sortedPos[k]);
         const real ci = forceCoefficient[k];
         const int3 home = cellCoordinates(sortedCell[k], cells);
+#ifdef USE_DOUBLE_PRECISION
         real3 force = make_real3(0, 0, 0);
+#else
+        mm_long forceX = 0, forceY = 0, forceZ = 0;
+#endif
         real virial = 0;
         FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
             for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
                 const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
                 const real r2 = dot(d, d);
-                if (r2 < cutoff2 && r2 > 0) {   // coincident particles: no direction, no force
+                if (r2 < cutoff2 && r2 > 0) {   // coincident particles (and the particle itself): no force
                     const real r = sqrt(r2);
                     const real scale = (ci + forceCoefficient[m])*(model.w*(1 - r*model.y))/r;
+#ifdef USE_DOUBLE_PRECISION
                     force += d*scale;
+#else
+                    forceX += realToFixedPoint(d.x*scale);
+                    forceY += realToFixedPoint(d.y*scale);
+                    forceZ += realToFixedPoint(d.z*scale);
+#endif
                     virial += scale*r2;
                 }
             }
         }
         if (includeForces) {
             const int slot = sortedSlot[k];
+#ifdef USE_DOUBLE_PRECISION
             forceBuffers[slot] += realToFixedPoint(force.x);
             forceBuffers[slot + PADDED_NUM_ATOMS] += realToFixedPoint(force.y);
             forceBuffers[slot + 2*PADDED_NUM_ATOMS] += realToFixedPoint(force.z);
+#else
+            forceBuffers[slot] += forceX;
+            forceBuffers[slot + PADDED_NUM_ATOMS] += forceY;
+            forceBuffers[slot + 2*PADDED_NUM_ATOMS] += forceZ;
+#endif
         }
         if (includeVirial)
             particleVirial[k] = virial/2;

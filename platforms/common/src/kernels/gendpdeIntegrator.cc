@@ -98,14 +98,14 @@ KERNEL void invertAtomIndex(GLOBAL const int* RESTRICT atomIndex, GLOBAL int* RE
 inline DEVICE mixed3 mixedPairDelta(mixed3 ri, mixed3 rj, mixed4 boxA, mixed4 boxB, mixed4 boxC) {
     mixed3 d = ri - rj;
 #ifdef USE_PERIODIC
-    mixed scale = floor(d.z/boxC.z + (mixed) 0.5);
+    mixed scale = rint(d.z/boxC.z);
     d.x -= boxC.x*scale;
     d.y -= boxC.y*scale;
     d.z -= boxC.z*scale;
-    scale = floor(d.y/boxB.y + (mixed) 0.5);
+    scale = rint(d.y/boxB.y);
     d.x -= boxB.x*scale;
     d.y -= boxB.y*scale;
-    scale = floor(d.x/boxA.x + (mixed) 0.5);
+    scale = rint(d.x/boxA.x);
     d.x -= boxA.x*scale;
 #endif
     return d;

@@ -40,6 +40,11 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
     errors.initialize<int>(cc, 2, "gendpdeForceErrors");
+    // Per-type parameters, laid out for particle types: every particle has type 0 until types exist.
+    atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
+    atomType.upload(std::vector<int>(numAtoms, 0));
+    taitTable.initialize(cc, 1, 4*realSize, "gendpdeTaitTable");
+    taitPowerTable.initialize<int>(cc, 1, "gendpdeTaitPowerTable");
 
     // The V-B tables from the host's arrays (one source for every platform), in the context's precision.
     using namespace Physics;
@@ -63,6 +68,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
         vbQuadrature.upload(quadrature, true);
     }
 
+    uploadTypeTables();
     grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff));
     std::map<std::string, std::string> defines = grid->defines();
     defines["VB_FIRST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::firstOctave);
@@ -77,8 +83,13 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     densityKernel->addArg(grid->sortedCell);
     densityKernel->addArg(grid->sortedAtom);
     densityKernel->addArg(grid->sortedPos);
-    for (int i = 0; i < 8; i++)
-        densityKernel->addArg();   // box (3), model, tait, taitPower, vb, estimator
+    for (int i = 0; i < 4; i++)
+        densityKernel->addArg();   // box (3), model
+    densityKernel->addArg(atomType);
+    densityKernel->addArg(taitTable);
+    densityKernel->addArg(taitPowerTable);
+    densityKernel->addArg();   // vb
+    densityKernel->addArg();   // estimator
     densityKernel->addArg(vbCoefficients);
     densityKernel->addArg(vbQuadrature);
     densityKernel->addArg(primitiveDensity);
@@ -112,6 +123,23 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     estimator = force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+    if (taitTable.isInitialized())
+        uploadTypeTables();
+}
+
+void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
+    // The Tait equation of state of each type (Physics::TaitEquationOfState: gamma_T - 1 by multiplications when an
+    // integer in [1, 32]).
+    const std::vector<double> tait = {referenceDensity, referencePressure, bulkModulus, exponent};
+    if (cc.getUseDoublePrecision())
+        taitTable.upload(tait.data());
+    else {
+        const std::vector<float> single(tait.begin(), tait.end());
+        taitTable.upload(single.data());
+    }
+    const int taitPower = (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0
+                           ? (int) exponent - 1 : -1);
+    taitPowerTable.upload(std::vector<int>{taitPower});
 }
 
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
@@ -119,10 +147,7 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     const Physics::DensityWeight weight(cutoff);
     const double rt = cutoff/cutoffScaling, rt3 = rt*rt*rt;
     const double vb[3] = {(2.0*Physics::Pi/15.0)*rt3, 4.0*Physics::Pi*rt3, -(8.0*Physics::Pi*Physics::Pi/15.0)*rt3*rt3};
-    const int taitPower = (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0
-                           ? (int) exponent - 1 : -1);
     const double model[4] = {cutoff, weight.getInverseCutoff(), weight.getValueScale(), weight.getDerivativeScale()};
-    const double tait[4] = {referenceDensity, referencePressure, bulkModulus, exponent};
     const double vb4[4] = {vb[0], vb[1], vb[2], 0.0};
     const mm_int4 cells = grid->getCellsArgument();
     densityKernel->setArg(0, cells);
@@ -131,18 +156,15 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     grid->setBoxArguments(forceKernel, 5, false);
     if (cc.getUseDoublePrecision()) {
         densityKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
-        densityKernel->setArg(9, mm_double4(tait[0], tait[1], tait[2], tait[3]));
-        densityKernel->setArg(11, mm_double4(vb4[0], vb4[1], vb4[2], vb4[3]));
+        densityKernel->setArg(12, mm_double4(vb4[0], vb4[1], vb4[2], vb4[3]));
         forceKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
     }
     else {
         densityKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
-        densityKernel->setArg(9, mm_float4((float) tait[0], (float) tait[1], (float) tait[2], (float) tait[3]));
-        densityKernel->setArg(11, mm_float4((float) vb4[0], (float) vb4[1], (float) vb4[2], 0.0f));
+        densityKernel->setArg(12, mm_float4((float) vb4[0], (float) vb4[1], (float) vb4[2], 0.0f));
         forceKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
     }
-    densityKernel->setArg(10, taitPower);
-    densityKernel->setArg(12, estimator == GenDPDEForce::VA ? 0 : 1);
+    densityKernel->setArg(13, estimator == GenDPDEForce::VA ? 0 : 1);
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {

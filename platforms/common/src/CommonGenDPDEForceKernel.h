@@ -32,6 +32,8 @@ private:
     /** The force pass: forces into the force buffer and/or each particle's half virial. */
     void computeForces(bool includeForces, bool includeVirial);
     void setModelArguments();
+    /** The per-type tables (one type until particle types exist) from the parameters read last. */
+    void uploadTypeTables();
     OpenMM::ComputeContext& cc;
     double cutoff, cutoffScaling;
     double referenceDensity, referencePressure, bulkModulus, exponent;
@@ -40,6 +42,7 @@ private:
     std::unique_ptr<CommonGenDPDECellGrid> grid;
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
     OpenMM::ComputeArray vbCoefficients, vbQuadrature, errors;
+    OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
     OpenMM::ComputeKernel densityKernel, forceKernel;
     GenDPDEObservables observables;
 };

@@ -63,6 +63,12 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     zigguratF.upload(std::vector<double>(table.f, table.f + 257), true);
     zigguratRatio.upload(std::vector<double>(table.ratio, table.ratio + 256), true);
 
+    // Per-type parameters, laid out for particle types: every particle has type 0 until types exist.
+    atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
+    atomType.upload(std::vector<int>(numAtoms, 0));
+    pairTable.initialize(cc, 1, 4*mixedSize, "gendpdePairTable");
+    heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
+
     blockSlotArray.initialize<int>(cc, 1, "gendpdeSlotOfBlock");
     blockCount.initialize<int>(cc, 1, "gendpdeBlockCount");
     blockStart.initialize<int>(cc, 2, "gendpdeBlockStart");
@@ -134,8 +140,14 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     sweepKernel->addArg(cc.getPosqCorrection());
     sweepKernel->addArg(cc.getVelm());
     sweepKernel->addArg(energies);
-    for (int i = 0; i < 10; i++)
-        sweepKernel->addArg();   // box (3), parameters, heat, boltzmann, terms, seed, step (2)
+    for (int i = 0; i < 4; i++)
+        sweepKernel->addArg();   // box (3), parameters
+    sweepKernel->addArg(atomType);
+    sweepKernel->addArg(pairTable);
+    sweepKernel->addArg(heatCapacityTable);
+    sweepKernel->addArg(1);   // number of types
+    for (int i = 0; i < 5; i++)
+        sweepKernel->addArg();   // boltzmann, terms, seed, step (2)
     sweepKernel->addArg(zigguratX);
     sweepKernel->addArg(zigguratF);
     sweepKernel->addArg(zigguratRatio);
@@ -233,16 +245,29 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
     const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
     const long long step = cc.getStepCount();
     grid->setBoxArguments(sweepKernel, 9, true);
-    setMixed4(sweepKernel, 12, cutoff, dt, std::sqrt(dt), friction);
-    setMixed4(sweepKernel, 13, heatConduction, integrator.getHeatCapacity(),
-              std::sqrt(2.0*Physics::Boltzmann*heatConduction),
-              std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature()));
-    setMixed(sweepKernel, 14, Physics::Boltzmann);
-    sweepKernel->setArg(15, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
+    setMixed4(sweepKernel, 12, cutoff, dt, std::sqrt(dt), 0.0);
+    // The type tables (one type): the integrator's parameters may change between steps, so they are uploaded
+    // when they do.
+    const std::vector<double> pairParameters = {friction, heatConduction, std::sqrt(2.0*Physics::Boltzmann*heatConduction),
+                                      std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature())};
+    const std::vector<double> capacity = {integrator.getHeatCapacity()};
+    if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
+        if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
+            pairTable.upload(pairParameters.data());
+        else {
+            const std::vector<float> single(pairParameters.begin(), pairParameters.end());
+            pairTable.upload(single.data());
+        }
+        heatCapacityTable.upload(capacity, true);
+        uploadedPairTable = pairParameters;
+        uploadedHeatCapacities = capacity;
+    }
+    setMixed(sweepKernel, 17, Physics::Boltzmann);
+    sweepKernel->setArg(18, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
                             | (terms.internalEnergies ? 4 : 0));
-    sweepKernel->setArg(16, (unsigned int) seed);
-    sweepKernel->setArg(17, (unsigned int) (unsigned long long) step);
-    sweepKernel->setArg(18, (unsigned int) (((unsigned long long) step) >> 32));
+    sweepKernel->setArg(19, (unsigned int) seed);
+    sweepKernel->setArg(20, (unsigned int) (unsigned long long) step);
+    sweepKernel->setArg(21, (unsigned int) (((unsigned long long) step) >> 32));
     for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
         const int numSlots = groupStart[colour + 1] - groupStart[colour];
         if (numSlots == 0)

@@ -53,6 +53,8 @@ private:
     std::array<int, 3> blockGridCells = {0, 0, 0};
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, slotOfAtom, status, kinetic;
     OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
+    OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // type by original index; per-type parameters
+    std::vector<double> uploadedPairTable, uploadedHeatCapacities;
     OpenMM::ComputeArray blockSlotArray, blockCount, blockStart, blockPairs, orderedPairs;
     OpenMM::ComputeKernel resetKernel, checkKernel, kickKernel, driftKernel, kineticKernel, invertKernel;
     OpenMM::ComputeKernel findPairsKernel, orderKernel, sweepKernel;

@@ -79,14 +79,17 @@ inline DEVICE real integerPower(real x, int p) {
 
 /**
  * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
- * tait = (reference density, reference pressure, bulk modulus, exponent), vb = (k per density, volume scale,
+ * taitTable[t] = (reference density, reference pressure, bulk modulus, exponent) and taitPower[t] (gamma - 1 if
+ * an integer, else -1) for particle type t = atomType[original index] (one type until types exist: the tables are
+ * laid out for them), vb = (k per density, volume scale,
  * derivative scale, 0), estimator 0 = V-A, 1 = V-B. errors[0] gets the smallest original index of a particle whose
  * position is not finite, errors[1] the smallest 4 i + status over the particles whose state is invalid (1: no
  * neighbour under V-A, 2: the equation of state overflows).
  */
 KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
         GLOBAL const int* RESTRICT sortedAtom, GLOBAL const real4* RESTRICT sortedPos,
-        real4 boxA, real4 boxB, real4 boxC, real4 model, real4 tait, int taitPower, real4 vb, int estimator,
+        real4 boxA, real4 boxB, real4 boxC, real4 model, GLOBAL const int* RESTRICT atomType,
+        GLOBAL const real4* RESTRICT taitTable, GLOBAL const int* RESTRICT taitPowerTable, real4 vb, int estimator,
         GLOBAL const real2* RESTRICT vbCoefficients, GLOBAL const real* RESTRICT vbQuadrature,
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
         GLOBAL real* RESTRICT forceCoefficient, GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT errors) {
@@ -128,6 +131,9 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
                 derivative = vb.z*integrals.y;
             }
         }
+        const int type = atomType[sortedAtom[k]];
+        const real4 tait = taitTable[type];
+        const int taitPower = taitPowerTable[type];
         const real n = 1/v, x = n/tait.x;
         const real xPowGammaMinusOne = (taitPower >= 0 ? integerPower(x, taitPower) : pow(x, tait.w - 1));
         const real pi = tait.y + tait.z*(xPowGammaMinusOne*x - 1);

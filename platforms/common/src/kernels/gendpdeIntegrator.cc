@@ -238,20 +238,25 @@ inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction
 
 /**
  * One colour of the sweep: thread t runs block slot firstSlot + t, its pairs in order (GenDPDEPairSweep.h).
- * parameters = (cutoff, dt, sqrt(dt), friction), heat = (heat conduction, heat capacity, alpha = sqrt(2 k_B kappa),
- * sigma of the Isothermal bath); terms bit 0: dissipation, bit 1: conduction, bit 2: internal energies.
+ * parameters = (cutoff, dt, sqrt(dt), 0); per type pair (types: atomType by original index; one type until particle
+ * types exist, the tables are laid out for them) pairTable[t_i numTypes + t_j] = (friction, heat conduction,
+ * alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath); heatCapacity[t] per type (a pair uses its first
+ * particle's: per-type C_V needs Physics::pairTemperatures generalised first); terms bit 0: dissipation, bit 1:
+ * conduction, bit 2: internal energies.
  */
 KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT blockStart,
         GLOBAL const int2* RESTRICT orderedPairs, GLOBAL const int* RESTRICT slotOfAtom,
         GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
         GLOBAL mixed4* RESTRICT velm, GLOBAL mixed* RESTRICT energies, mixed4 boxA, mixed4 boxB, mixed4 boxC,
-        mixed4 parameters, mixed4 heat, mixed boltzmann, int terms, unsigned int seed, unsigned int stepLow,
+        mixed4 parameters, GLOBAL const int* RESTRICT atomType, GLOBAL const mixed4* RESTRICT pairTable,
+        GLOBAL const mixed* RESTRICT heatCapacityTable, int numTypes, mixed boltzmann, int terms, unsigned int seed,
+        unsigned int stepLow,
         unsigned int stepHigh, GLOBAL const randomReal* RESTRICT zigguratX,
         GLOBAL const randomReal* RESTRICT zigguratF, GLOBAL const randomReal* RESTRICT zigguratRatio,
         GLOBAL int* RESTRICT status) {
     if (status[2] != NO_VALUE)
         return;   // an earlier colour failed
-    const mixed cutoff = parameters.x, stepSize = parameters.y, sqrtStepSize = parameters.z, friction = parameters.w;
+    const mixed cutoff = parameters.x, stepSize = parameters.y, sqrtStepSize = parameters.z;
     const bool dissipation = (terms & 1) != 0, conduction = (terms & 2) != 0, internalEnergies = (terms & 4) != 0;
     for (int t = GLOBAL_ID; t < numSlots; t += GLOBAL_SIZE) {
         const int s = firstSlot + t;
@@ -266,10 +271,13 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
                 continue;
             const mixed omegaR = 1 - r/cutoff;
             const mixed3 e = d*(1/r);
+            const int typeI = atomType[pair.x];
+            const mixed4 pairParameters = pairTable[typeI*numTypes + atomType[pair.y]];
+            const mixed friction = pairParameters.x;
             GenDPDEStream random;
             initPairStream(&random, seed, stepLow, stepHigh, (unsigned int) pair.x, (unsigned int) pair.y);
             if (!internalEnergies) {
-                dissipativePairUpdate(e, omegaR, friction, heat.w, stepSize, sqrtStepSize, &vi, &vj,
+                dissipativePairUpdate(e, omegaR, friction, pairParameters.w, stepSize, sqrtStepSize, &vi, &vj,
                                       (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
                 velm[si] = vi;
                 velm[sj] = vj;
@@ -280,7 +288,7 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
             const mixed sum = ei + ej, product = ei*ej;
             const mixed reciprocal = 1/(product*sum);
             const mixed inverseSum = product*reciprocal, inverseProduct = sum*reciprocal;
-            const mixed heatCapacity = heat.y;
+            const mixed heatCapacity = heatCapacityTable[typeI];
             const mixed pairThermalEnergy = 2*boltzmann*product*inverseSum/heatCapacity;
             const mixed inverseTemperatureDifference = heatCapacity*(ej - ei)*inverseProduct;
             const mixed frictionFactor = (boltzmann/heatCapacity)*(ei*ei + ej*ej)*inverseSum*inverseSum;
@@ -295,8 +303,8 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
             }
             if (conduction) {
                 // Physics::conductiveHeat
-                const mixed flow = heat.x*omegaR*omegaR*inverseTemperatureDifference*stepSize
-                        + heat.z*omegaR*sqrtStepSize*(mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio);
+                const mixed flow = pairParameters.y*omegaR*omegaR*inverseTemperatureDifference*stepSize
+                        + pairParameters.z*omegaR*sqrtStepSize*(mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio);
                 ei += flow;
                 ej -= flow;
             }

@@ -24,6 +24,10 @@ public:
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) override;
+    /** The cell grid of the last evaluation (the integrator's sweep reuses it at the same positions). */
+    CommonGenDPDECellGrid& getCellGrid() {
+        return *grid;
+    }
 private:
     class ForceInfo;
     void readParameters(const GenDPDEForce& force);

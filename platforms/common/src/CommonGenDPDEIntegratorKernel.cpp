@@ -1,5 +1,7 @@
 #include "CommonGenDPDEIntegratorKernel.h"
+#include "CommonGenDPDEForceKernel.h"
 #include "CommonGenDPDEKernelSources.h"
+#include "internal/GenDPDEForceImpl.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
@@ -115,6 +117,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     findPairsKernel->addArg(grid->sortedCell);
     findPairsKernel->addArg(grid->sortedAtom);
     findPairsKernel->addArg(grid->sortedSlot);
+    boundGrid = grid.get();
     findPairsKernel->addArg(cc.getPosq());
     findPairsKernel->addArg(cc.getPosqCorrection());
     for (int i = 0; i < 4; i++)
@@ -183,7 +186,7 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
 }
 
 void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                    const GenDPDEStepTerms& terms) {
+                                                    const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
     // The step check, and the pairs counted per block; then one download tells both (nothing has changed yet).
     const int numAtoms = cc.getNumAtoms();
     resetKernel->execute(1);
@@ -196,8 +199,21 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
             cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
             BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
         }
-        grid->build();
-        const std::array<int, 3>& cells = grid->getNumCells();
+        // The cells of the force just evaluated at these positions with this range, if there is one (the same
+        // grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
+        CommonGenDPDECellGrid* cellGrid = grid.get();
+        if (pairListSource != nullptr)
+            cellGrid = &dynamic_cast<CommonCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl()).getCellGrid();
+        else
+            grid->build();
+        if (cellGrid != boundGrid) {
+            findPairsKernel->setArg(2, cellGrid->cellStart);
+            findPairsKernel->setArg(3, cellGrid->sortedCell);
+            findPairsKernel->setArg(4, cellGrid->sortedAtom);
+            findPairsKernel->setArg(5, cellGrid->sortedSlot);
+            boundGrid = cellGrid;
+        }
+        const std::array<int, 3>& cells = cellGrid->getNumCells();
         if (cells != blockGridCells) {
             blockGridCells = cells;
             const std::array<int, 3> blocks = {(cells[0] + 1)/2, (cells[1] + 1)/2, (cells[2] + 1)/2};
@@ -208,7 +224,7 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
             blockStart.resize(numSlots + 1);
             findPairsKernel->setArg(1, mm_int4(blocks[0], blocks[1], blocks[2], numSlots));
         }
-        findPairsKernel->setArg(0, grid->getCellsArgument());
+        findPairsKernel->setArg(0, cellGrid->getCellsArgument());
         grid->setBoxArguments(findPairsKernel, 8, true);
         setMixed(findPairsKernel, 11, cutoff);
         findPairsKernel->setArg(13, 0);
@@ -297,9 +313,9 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
 void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
     // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
-    // velocity Verlet (leapfrog form: one full kick). The device finds its own pairs (pairListSource is not used).
+    // velocity Verlet (leapfrog form: one full kick).
     ContextSelector selector(cc);
-    preparePairs(context, integrator, terms);
+    preparePairs(context, integrator, terms, pairListSource);
     const double dt = integrator.getStepSize();
     const int numAtoms = cc.getNumAtoms();
     if (!terms.pairSweep) {

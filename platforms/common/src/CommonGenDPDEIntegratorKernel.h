@@ -38,7 +38,7 @@ public:
 private:
     /** Find and order the pairs (after the step check); throws, changing nothing, if the step is unstable. */
     void preparePairs(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                      const GenDPDEStepTerms& terms);
+                      const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource);
     /** The sweep, colour by colour; rolls back and throws if an internal energy became <= 0. */
     void sweep(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, double maxDisplacement);
@@ -48,7 +48,8 @@ private:
     double cutoff = 0.0;
     int seed = 0;
     bool periodic = false;
-    std::unique_ptr<CommonGenDPDECellGrid> grid;
+    std::unique_ptr<CommonGenDPDECellGrid> grid;   // own cells, when no force's can be reused
+    CommonGenDPDECellGrid* boundGrid = nullptr;     // the grid whose arrays findPairsKernel reads
     std::vector<int> slotOfBlock, groupStart;
     std::array<int, 3> blockGridCells = {0, 0, 0};
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, slotOfAtom, status, kinetic;

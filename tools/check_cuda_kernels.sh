@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Compile the device kernels (platforms/common/src/kernels) as CUDA, as OpenMM's CUDA platform would at run time,
+# on a machine without a GPU: OpenMM's CUDA prelude (common.cu and vectorOps.cu from an OpenMM source checkout of
+# the supported version) + the defines and typedefs of each precision + the kernels, through nvcc --ptx for sm_90.
+# Prints the number of kernels in each program; any compile error is printed and fails the script.
+#   tools/check_cuda_kernels.sh OPENMM_SOURCE_DIR
+set -euo pipefail
+openmm=${1:?"usage: tools/check_cuda_kernels.sh OPENMM_SOURCE_DIR (a checkout of openmm/openmm)"}
+kernels="$(cd "$(dirname "$0")/.." && pwd)/platforms/common/src/kernels"
+nvcc=${NVCC:-/usr/local/cuda/bin/nvcc}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+prelude="$openmm/platforms/cuda/src/kernels/common.cu $openmm/platforms/cuda/src/kernels/vectorOps.cu"
+for precision in single mixed double; do
+    case $precision in
+        single) real=float; mixed=float; flag="";;
+        mixed) real=float; mixed=double; flag="#define USE_MIXED_PRECISION 1";;
+        double) real=double; mixed=double; flag="#define USE_DOUBLE_PRECISION 1";;
+    esac
+    {
+        echo "$flag"
+        printf '#define %s %s\n' NUM_ATOMS 1000 PADDED_NUM_ATOMS 1024 SCAN_GROUP_SIZE 256 BOUNDS_GROUP_SIZE 128 \
+            USE_PERIODIC 1 VB_FIRST_OCTAVE -4 VB_LAST_OCTAVE 3 VB_QUADRATURE_PAIRS 12 GENDPDE_DOUBLE_RANDOM 1
+        for n in 2 3 4; do
+            echo "#define make_real$n make_$real$n"
+            echo "#define make_mixed$n make_$mixed$n"
+        done
+        for n in "" 2 3 4; do
+            echo "typedef $real$n real$n;"
+            echo "typedef $mixed$n mixed$n;"
+        done
+        echo "typedef unsigned int tileflags;"
+        cat $prelude
+    } > "$work/prelude.cu"
+    cat "$work/prelude.cu" "$kernels/gendpdeCells.cc" "$kernels/gendpdeForce.cc" > "$work/force.cu"
+    cat "$work/prelude.cu" "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" "$kernels/gendpdeIntegrator.cc" \
+        > "$work/integrator.cu"
+    for program in force integrator; do
+        "$nvcc" --ptx -arch=sm_90 -o "$work/$program.ptx" "$work/$program.cu"
+        echo "$precision $program: $(grep -c '\.entry' "$work/$program.ptx") kernels"
+    done
+done

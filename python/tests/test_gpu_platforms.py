@@ -13,6 +13,7 @@ from openmm import unit
 from conftest import GPU_PLATFORMS
 from helpers import argon_integrator, energy_and_forces, lattice_liquid, make_context, rms, TEMPERATURE
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+from openmmgendpde.physics import particleVolumeVB
 
 pytestmark = pytest.mark.skipif(not GPU_PLATFORMS, reason="no GPU platform (OpenCL or CUDA) in this OpenMM")
 
@@ -93,3 +94,42 @@ def test_checkpoint_continues_the_same_trajectory(name):
     second_energies = values(integrator.getInternalEnergies())
     assert np.array_equal(first, second)
     assert np.array_equal(first_energies, second_energies)
+
+
+@pytest.mark.parametrize("name", GPU_PLATFORMS)
+@pytest.mark.parametrize("precision", ["single", "double"])
+def test_vb_estimator_on_the_device_over_the_whole_k_range(name, precision):
+    """The device's V-B volume against the host's (Physics::volumeIntegralsVB, ~1e-15) at the device's own primitive
+    densities, for k = (2 pi/15) Rt^3 n0 from 1e-7 to ~600: every branch (closed forms below 1/16, the polynomial
+    table from 1/16 to 16, quadrature above) and both sides of each switch. Isolated groups far apart in an open box:
+    pairs at distances from 0.001 R to 0.9995 R (small k), and clusters of 2 to 600 coincident particles (n0 = (M - 1)
+    w(0), k = (M - 1)/f^3 with f = 1). Single precision evaluates the same branches in float: each is a few float
+    operations on a positive sum or a short polynomial, with at most ~2 bits lost to cancellation in the closed forms
+    near k = 1/16, so 1e-6 relative (8 float ulps) over the whole range; double: 1e-14 (device fused multiply-adds)."""
+    cutoff = 0.6
+    system = openmm.System()
+    force = GenDPDEForce(cutoff)
+    force.setNonbondedMethod(GenDPDEForce.CutoffNonPeriodic)
+    force.setCutoffScaling(1.0)
+    system.addForce(force)
+    positions = []
+    origin = 0.0
+
+    def add(points):
+        nonlocal origin
+        for p in points:
+            system.addParticle(40.0)
+            positions.append((origin + p, 0.0, 0.0))
+        origin += 10 * cutoff
+
+    for fraction in np.concatenate([np.geomspace(1e-3, 0.5, 12), 1 - np.geomspace(5e-4, 0.5, 12)]):
+        add([0.0, fraction * cutoff])
+    for size in (2, 3, 5, 9, 17, 18, 33, 65, 129, 257, 600):
+        add([0.0] * size)
+    context = gpu_context(system, positions, name, precision)
+    n0 = values(force.getPrimitiveDensities(context))
+    volumes = values(force.getParticleVolumes(context))
+    k = (2 * np.pi / 15) * cutoff**3 * n0
+    assert k.min() < 1e-6 and k.max() > 500 and np.any((k > 1 / 16) & (k < 16))
+    expected = np.array([particleVolumeVB(n, cutoff)[0] for n in n0])
+    assert np.max(np.abs(volumes / expected - 1)) <= (1e-6 if precision == "single" else 1e-14)

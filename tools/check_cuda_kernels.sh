@@ -6,7 +6,9 @@
 #   tools/check_cuda_kernels.sh OPENMM_SOURCE_DIR
 set -euo pipefail
 openmm=${1:?"usage: tools/check_cuda_kernels.sh OPENMM_SOURCE_DIR (a checkout of openmm/openmm)"}
-kernels="$(cd "$(dirname "$0")/.." && pwd)/platforms/common/src/kernels"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+kernels="$root/platforms/common/src/kernels"
+core="$root/openmmapi/include/internal/GenDPDEPhysicsCore.h"
 nvcc=${NVCC:-/usr/local/cuda/bin/nvcc}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -32,9 +34,11 @@ for precision in single mixed double; do
         echo "typedef unsigned int tileflags;"
         cat $prelude
     } > "$work/prelude.cu"
-    cat "$work/prelude.cu" "$kernels/gendpdeCells.cc" "$kernels/gendpdeForce.cc" > "$work/force.cu"
-    cat "$work/prelude.cu" "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" "$kernels/gendpdeIntegrator.cc" \
-        > "$work/integrator.cu"
+    # As CommonGenDPDEKernelSources::physicsCore: the shared core in real (force) or mixed (integrator) precision.
+    core_in() { printf '#define GENDPDE_REAL %s\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"; cat "$core"; }
+    { cat "$work/prelude.cu"; core_in real; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeForce.cc"; } > "$work/force.cu"
+    { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
+        "$kernels/gendpdeIntegrator.cc"; } > "$work/integrator.cu"
     for program in force integrator; do
         "$nvcc" --ptx -arch=sm_90 -o "$work/$program.ptx" "$work/$program.cu"
         echo "$precision $program: $(grep -c '\.entry' "$work/$program.ptx") kernels"

@@ -21,6 +21,11 @@
 namespace GenDPDEPlugin {
 namespace Physics {
 
+// The scalar core shared with the device kernels, in double precision.
+#define GENDPDE_REAL double
+#include "GenDPDEPhysicsCore.h"
+#undef GENDPDE_REAL
+
 constexpr double Pi = 3.14159265358979323846;
 /** Boltzmann's constant in OpenMM units, kJ/(mol K): k_B N_A (exact SI values), as OpenMM defines it. */
 constexpr double Boltzmann = 1.380649e-23*6.02214076e23/1000.0;
@@ -159,24 +164,14 @@ inline VolumeIntegralsVB volumeIntegralsVB(double k) {
                 VolumeVBPolynomials::coefficients[(octave - VolumeVBPolynomials::firstOctave)
                                                   *VolumeVBPolynomials::subintervals + piece], t);
     }
-    if (k < 1.0) {   // below the polynomial range: k < 1/16 (or subnormal)
-        double s = std::sqrt(k);
-        double arctangent = std::atan(1.0/s);
-        double logarithm = std::log1p(k) - std::log(k);  // ln((k+1)/k)
-        double I = 1.0/3.0 - k - (1.0 - k)*s*arctangent + k*logarithm;
-        double J = 1.5 - logarithm + (1.0 - 3.0*k)/(2.0*s)*arctangent;
-        return {I, J};
-    }
-    // Above the polynomial range, k >= 16: Gauss-Legendre quadrature (VolumeVBTables.h).
-    using namespace VolumeVBQuadrature;
-    double I = 0.0, J = 0.0;
-    for (int m = 0; m < numPairs; m++) {
-        double a = 1.0/(nodeSquared[m] + k);
-        double b = 1.0/(mirrorNodeSquared[m] + k);
-        I += coefficient[m]*(a + b);
-        J += coefficient[m]*(a*a + b*b);
-    }
-    return {I, J};
+    VolumeIntegralsVB integrals;
+    if (k < 1.0)   // below the polynomial range: k < 1/16 (or subnormal)
+        gendpdeVolumeIntegralsClosedForm(k, &integrals.I, &integrals.J);
+    else           // above it, k >= 16: Gauss-Legendre quadrature (VolumeVBTables.h)
+        gendpdeVolumeIntegralsQuadrature(k, VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared,
+                                         VolumeVBQuadrature::coefficient, VolumeVBQuadrature::numPairs,
+                                         &integrals.I, &integrals.J);
+    return integrals;
 }
 
 /**
@@ -223,24 +218,10 @@ public:
     }
     /** Pressure pi(n) and free energy per particle f(n) at density n, with one power between them. */
     void evaluate(double density, double& pressure, double& freeEnergy) const {
-        double x = density/referenceDensity;
-        double xPowGammaMinusOne = (integerPower >= 0 ? power(x, integerPower) : std::pow(x, exponent - 1.0));
-        pressure = referencePressure + bulkModulus*(xPowGammaMinusOne*x - 1.0);
-        freeEnergy = (bulkModulus - referencePressure)/density
-                   + bulkModulus/((exponent - 1.0)*referenceDensity)*xPowGammaMinusOne;
+        gendpdeTait(density, referenceDensity, referencePressure, bulkModulus, exponent, integerPower, &pressure,
+                    &freeEnergy);
     }
 private:
-    /** x^p for a non-negative integer p, by binary powering. */
-    static double power(double x, int p) {
-        double result = 1.0;
-        while (p > 0) {
-            if (p & 1)
-                result *= x;
-            x *= x;
-            p >>= 1;
-        }
-        return result;
-    }
     double referenceDensity, referencePressure, bulkModulus, exponent;
     int integerPower;
 };
@@ -267,19 +248,12 @@ inline double randomWeight(double r, double cutoff) {
 inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double friction, double noiseAmplitude,
                                     double stepSize, double sqrtStepSize, double inverseMassI, double inverseMassJ,
                                     OpenMM::Vec3& vi, OpenMM::Vec3& vj, double xi) {
-    const double inverseReducedMass = inverseMassI + inverseMassJ;
-    const double frictionHalf = 0.5*friction*omegaR*omegaR*stepSize;
-    // (The reciprocal first: it then runs alongside the square root that produced noiseAmplitude.)
-    const double implicitFactor = 1.0/(1.0 + inverseReducedMass*frictionHalf);
-    const double randomHalf = 0.5*noiseAmplitude*omegaR*sqrtStepSize*xi;
-    const double u0 = e.dot(vi - vj);
-    const double explicitHalf = randomHalf - frictionHalf*u0;
-    const double u1 = u0 + inverseReducedMass*explicitHalf;
-    const double implicitHalf = (randomHalf - frictionHalf*u1)*implicitFactor;
-    const double impulse = explicitHalf + implicitHalf;
+    double kineticChange;
+    const double impulse = gendpdePairImpulse(e.dot(vi - vj), omegaR, friction, noiseAmplitude, stepSize,
+                                              sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
     vi += e*(impulse*inverseMassI);
     vj -= e*(impulse*inverseMassJ);
-    return impulse*(u0 + 0.5*inverseReducedMass*impulse);
+    return kineticChange;
 }
 
 /**
@@ -303,13 +277,10 @@ struct PairTemperatures {
 };
 
 inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacity, double boltzmann) {
-    const double sum = energyI + energyJ, product = energyI*energyJ;
-    const double reciprocal = 1.0/(product*sum);
-    const double inverseSum = product*reciprocal, inverseProduct = sum*reciprocal;
-    // Theta = 2 eps_i eps_j/(C_V (eps_i + eps_j)); (beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 = (eps_i^2 + eps_j^2)/sum^2.
-    return {2.0*boltzmann*product*inverseSum/heatCapacity,
-            heatCapacity*(energyJ - energyI)*inverseProduct,
-            (boltzmann/heatCapacity)*(energyI*energyI + energyJ*energyJ)*inverseSum*inverseSum};
+    PairTemperatures result;
+    gendpdePairTemperatures(energyI, energyJ, heatCapacity, boltzmann, &result.pairThermalEnergy,
+                            &result.inverseTemperatureDifference, &result.frictionFactor);
+    return result;
 }
 
 /**
@@ -318,7 +289,8 @@ inline PairTemperatures pairTemperatures(double energyI, double energyJ, double 
  */
 inline double conductiveHeat(double omegaR, double heatConduction, double randomAmplitude,
                              double inverseTemperatureDifference, double stepSize, double sqrtStepSize, double xiQ) {
-    return heatConduction*omegaR*omegaR*inverseTemperatureDifference*stepSize + randomAmplitude*omegaR*sqrtStepSize*xiQ;
+    return gendpdeConductiveHeat(omegaR, heatConduction, randomAmplitude, inverseTemperatureDifference, stepSize,
+                                 sqrtStepSize, xiQ);
 }
 
 } // namespace Physics

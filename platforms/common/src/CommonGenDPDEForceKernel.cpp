@@ -74,8 +74,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     defines["VB_FIRST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::firstOctave);
     defines["VB_LAST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::lastOctave);
     defines["VB_QUADRATURE_PAIRS"] = cc.intToString(VolumeVBQuadrature::numPairs);
-    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::gendpdeCells
-                                               + CommonGenDPDEKernelSources::gendpdeForce, defines);
+    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
+            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, defines);
     grid->createKernels(program);
     densityKernel = program->createKernel("computeDensities");
     densityKernel->addArg();   // cells

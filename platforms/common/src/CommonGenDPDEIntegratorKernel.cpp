@@ -81,8 +81,9 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     std::map<std::string, std::string> defines = grid->defines();
     if (doubleRandom)
         defines["GENDPDE_DOUBLE_RANDOM"] = "1";
-    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::gendpdeCells
-            + CommonGenDPDEKernelSources::gendpdeRandom + CommonGenDPDEKernelSources::gendpdeIntegrator, defines);
+    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("mixed")
+            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeRandom
+            + CommonGenDPDEKernelSources::gendpdeIntegrator, defines);
     grid->createKernels(program);
     resetKernel = program->createKernel("resetStatus");
     resetKernel->addArg(status);

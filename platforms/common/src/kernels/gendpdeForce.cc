@@ -3,8 +3,8 @@
  * no thread writes another particle's sums: no atomics, and a fixed summation order):
  *   computeDensities  n0_i = sum_j w(r_ij), then V_i, pi_i, pi_i dV_i/dn0_i and f(n_i) (energy),
  *   computeForces     F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij (fixed point), and the virial.
- * Everything in `real` precision. The V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) come from the
- * host's arrays, converted to `real`. */
+ * Everything in `real` precision; the formulas from GenDPDEPhysicsCore.h (GENDPDE_REAL = real), the V-B tables
+ * (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays, converted to `real`. */
 
 /**
  * r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the smallest width). Image
@@ -24,7 +24,11 @@ inline DEVICE real3 pairDelta(real3 ri, real3 rj, real4 boxA, real4 boxB, real4 
     return d;
 }
 
-/** The V-B integrals (I, J) of Physics::volumeIntegralsVB at k > 0, with the same three branches. */
+/**
+ * The V-B integrals (I, J) of Physics::volumeIntegralsVB at k > 0, with the same three branches: the piece of the
+ * polynomial table from frexp (the host reads the same bits of k), the closed forms and the quadrature from the
+ * shared core (GenDPDEPhysicsCore.h).
+ */
 inline DEVICE real2 volumeIntegralsVB(real k, GLOBAL const real2* RESTRICT coefficients,
                                       GLOBAL const real* RESTRICT quadrature) {
     int exponent;
@@ -47,34 +51,13 @@ inline DEVICE real2 volumeIntegralsVB(real k, GLOBAL const real2* RESTRICT coeff
         const real J = ((aJ[0] + aJ[1]*t2) + (aJ[2] + aJ[3]*t2)*t4) + ((aJ[4] + aJ[5]*t2) + aJ[6]*t4)*t8;
         return make_real2(I, J);
     }
-    if (k < 1) {
-        const real s = sqrt(k);
-        const real arctangent = atan(1/s);
-        const real logarithm = log1p(k) - log(k);
-        return make_real2(((real) 1)/3 - k - (1 - k)*s*arctangent + k*logarithm,
-                          (real) 1.5 - logarithm + (1 - 3*k)/(2*s)*arctangent);
-    }
-    real I = 0, J = 0;
-    for (int q = 0; q < VB_QUADRATURE_PAIRS; q++) {
-        const real a = 1/(quadrature[q] + k);
-        const real b = 1/(quadrature[VB_QUADRATURE_PAIRS + q] + k);
-        const real w = quadrature[2*VB_QUADRATURE_PAIRS + q];
-        I += w*(a + b);
-        J += w*(a*a + b*b);
-    }
+    real I, J;
+    if (k < 1)
+        gendpdeVolumeIntegralsClosedForm(k, &I, &J);
+    else
+        gendpdeVolumeIntegralsQuadrature(k, quadrature, &quadrature[VB_QUADRATURE_PAIRS],
+                                         &quadrature[2*VB_QUADRATURE_PAIRS], VB_QUADRATURE_PAIRS, &I, &J);
     return make_real2(I, J);
-}
-
-/** x^p for an integer p >= 0, by binary powering (as Physics::TaitEquationOfState). */
-inline DEVICE real integerPower(real x, int p) {
-    real result = 1;
-    while (p > 0) {
-        if (p & 1)
-            result *= x;
-        x *= x;
-        p >>= 1;
-    }
-    return result;
 }
 
 /**
@@ -134,10 +117,8 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
         const int type = atomType[sortedAtom[k]];
         const real4 tait = taitTable[type];
         const int taitPower = taitPowerTable[type];
-        const real n = 1/v, x = n/tait.x;
-        const real xPowGammaMinusOne = (taitPower >= 0 ? integerPower(x, taitPower) : pow(x, tait.w - 1));
-        const real pi = tait.y + tait.z*(xPowGammaMinusOne*x - 1);
-        const real f = (tait.z - tait.y)/n + tait.z/((tait.w - 1)*tait.x)*xPowGammaMinusOne;
+        real pi, f;
+        gendpdeTait(1/v, tait.x, tait.y, tait.z, tait.w, taitPower, &pi, &f);
         if (status == 0 && !(isfinite(f) && isfinite(pi)))
             status = 2;
         if (status != 0)

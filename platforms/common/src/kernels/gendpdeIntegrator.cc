@@ -1,7 +1,8 @@
 /* GenDPDEIntegrator on the device (docs/theory.md sections 5-7): kicks, drift, and the Shardlow sweep in the order
  * of GenDPDESweepOrder (blocks of 2x2x2 cells in 8 colours, one launch per colour, one thread per block, the block's
  * pairs in (i, j) order with the lists of four consecutive first particles interleaved), so that the device applies
- * the pair updates in the sequence of the host platforms. Velocities in `mixed` precision (velm, w = 1/m), internal
+ * the pair updates in the sequence of the host platforms, with the pair physics of GenDPDEPhysicsCore.h
+ * (GENDPDE_REAL = mixed). Velocities in `mixed` precision (velm, w = 1/m), internal
  * energies in `mixed` precision indexed by original particle index (atom reordering never moves them).
  *
  * status[0]: the smallest original index of a particle whose step would be unstable; status[1]: the number of pairs;
@@ -211,29 +212,21 @@ KERNEL void orderBlockPairs(int numSlots, GLOBAL const int* RESTRICT blockStart,
     }
 }
 
-/**
- * Physics::dissipativePairUpdate: the dissipative and random impulse of one pair along e, in two stages (explicit
- * half, implicit half solved exactly). Returns the change of the pair's kinetic energy.
- */
+/** Physics::dissipativePairUpdate on velm entries: the impulse of the shared core applied along e. */
 inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction, mixed noiseAmplitude,
         mixed stepSize, mixed sqrtStepSize, mixed4* vi, mixed4* vj, mixed xi) {
     const mixed inverseMassI = vi->w, inverseMassJ = vj->w;
-    const mixed inverseReducedMass = inverseMassI + inverseMassJ;
-    const mixed frictionHalf = (mixed) 0.5*friction*omegaR*omegaR*stepSize;
-    const mixed implicitFactor = 1/(1 + inverseReducedMass*frictionHalf);
-    const mixed randomHalf = (mixed) 0.5*noiseAmplitude*omegaR*sqrtStepSize*xi;
     const mixed u0 = e.x*(vi->x - vj->x) + e.y*(vi->y - vj->y) + e.z*(vi->z - vj->z);
-    const mixed explicitHalf = randomHalf - frictionHalf*u0;
-    const mixed u1 = u0 + inverseReducedMass*explicitHalf;
-    const mixed implicitHalf = (randomHalf - frictionHalf*u1)*implicitFactor;
-    const mixed impulse = explicitHalf + implicitHalf;
+    mixed kineticChange;
+    const mixed impulse = gendpdePairImpulse(u0, omegaR, friction, noiseAmplitude, stepSize, sqrtStepSize,
+                                             inverseMassI + inverseMassJ, xi, &kineticChange);
     vi->x += e.x*(impulse*inverseMassI);
     vi->y += e.y*(impulse*inverseMassI);
     vi->z += e.z*(impulse*inverseMassI);
     vj->x -= e.x*(impulse*inverseMassJ);
     vj->y -= e.y*(impulse*inverseMassJ);
     vj->z -= e.z*(impulse*inverseMassJ);
-    return impulse*(u0 + (mixed) 0.5*inverseReducedMass*impulse);
+    return kineticChange;
 }
 
 /**
@@ -283,15 +276,10 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
                 velm[sj] = vj;
                 continue;
             }
-            // Physics::pairTemperatures
             mixed ei = energies[pair.x], ej = energies[pair.y];
-            const mixed sum = ei + ej, product = ei*ej;
-            const mixed reciprocal = 1/(product*sum);
-            const mixed inverseSum = product*reciprocal, inverseProduct = sum*reciprocal;
-            const mixed heatCapacity = heatCapacityTable[typeI];
-            const mixed pairThermalEnergy = 2*boltzmann*product*inverseSum/heatCapacity;
-            const mixed inverseTemperatureDifference = heatCapacity*(ej - ei)*inverseProduct;
-            const mixed frictionFactor = (boltzmann/heatCapacity)*(ei*ei + ej*ej)*inverseSum*inverseSum;
+            mixed pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
+            gendpdePairTemperatures(ei, ej, heatCapacityTable[typeI], boltzmann, &pairThermalEnergy,
+                                    &inverseTemperatureDifference, &frictionFactor);
             if (dissipation) {
                 const mixed kineticChange = dissipativePairUpdate(e, omegaR, friction*(1 + frictionFactor),
                         sqrt(2*friction*pairThermalEnergy), stepSize, sqrtStepSize, &vi, &vj,
@@ -302,9 +290,9 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
                 velm[sj] = vj;
             }
             if (conduction) {
-                // Physics::conductiveHeat
-                const mixed flow = pairParameters.y*omegaR*omegaR*inverseTemperatureDifference*stepSize
-                        + pairParameters.z*omegaR*sqrtStepSize*(mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio);
+                const mixed flow = gendpdeConductiveHeat(omegaR, pairParameters.y, pairParameters.z,
+                        inverseTemperatureDifference, stepSize, sqrtStepSize,
+                        (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
                 ei += flow;
                 ej -= flow;
             }

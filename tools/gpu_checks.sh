@@ -5,8 +5,9 @@
 #   tools/gpu_checks.sh prepare        here, with network: the wheels the GPU machine lacks, into gpu-wheels/
 #   tools/gpu_checks.sh run OUTDIR     there (gpu-wheels/ carried along): install OpenMM 8.6.1 with its CUDA platform
 #                                      into a fresh venv, build and install this plugin with its C++ tests, run the
-#                                      CUDA tests, then the benchmarks in mixed precision at N = 1e5 and 1e6; every
-#                                      output into OUTDIR (build log, ctest log, benchmark tables and JSON)
+#                                      CUDA tests, a per-part profile of a step at N = 1e6 (GENDPDE_PROFILE), then
+#                                      the benchmarks in mixed precision at N = 1e5 and 1e6; every output into
+#                                      OUTDIR (build log, ctest log, profile, benchmark tables and JSON)
 #
 # The benchmarks are the package's own commands (docs/performance.md): benchmark-force (GenDPDEForce against the
 # same potential as a CustomGBForce, V-A and V-B) and benchmark-integrator (every GenDPDEIntegrator mode, OpenMM's
@@ -41,6 +42,11 @@ print([openmm.Platform.getPlatform(i).getName() for i in range(openmm.Platform.g
     CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "$venv/bin/python" -m pip install --no-build-isolation --no-deps \
         -C build-dir=/tmp/gendpde-gpu-build -C cmake.define.GENDPDE_BUILD_TESTS=ON . > "$out/build.log" 2>&1
     ctest --test-dir /tmp/gendpde-gpu-build -R CUDA --output-on-failure > "$out/ctest-cuda.txt" 2>&1 || true
+    # Where the device time goes (GENDPDE_PROFILE: each part synchronised and timed; the totals print at exit).
+    "$venv/bin/python" tools/time_steps.py --state /tmp/gendpde-state-1000188.npz --particles 1000188 --platform CUDA \
+        --precision mixed --what step --count 20 > "$out/profile-cuda-1000188.txt" 2>&1 || true
+    GENDPDE_PROFILE=1 "$venv/bin/python" tools/time_steps.py --state /tmp/gendpde-state-1000188.npz --platform CUDA \
+        --precision mixed --what step --count 20 >> "$out/profile-cuda-1000188.txt" 2>&1 || true
     for n in 108000 1000188; do
         "$venv/bin/python" -m openmmgendpde benchmark-force --platform CUDA --precision mixed --particles $n \
             --cutoffs 1.6839 --rounds 5 --json "$out/benchmark-force-cuda-$n.json" > "$out/benchmark-force-cuda-$n.txt" 2>&1 || true

@@ -42,6 +42,8 @@ def main():
     parser.add_argument("--particles", type=int, default=32000, help="for a new state (default 32000)")
     parser.add_argument("--platform", default="CPU")
     parser.add_argument("--threads", type=int, help="the CPU platform's Threads")
+    parser.add_argument("--precision", choices=("single", "mixed", "double"),
+                        help="a GPU platform's Precision (OpenCL, CUDA)")
     parser.add_argument("--what", choices=("force", "step"), default="step",
                         help="force: getState with energy and forces; step: Isoenergetic steps (default)")
     parser.add_argument("--count", type=int, default=100, help="calls timed (default 100), after 10 untimed")
@@ -52,6 +54,8 @@ def main():
     num_particles = len(saved["positions"])
     model = liquid_argon(num_particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
     properties = {"Threads": str(arguments.threads)} if arguments.threads else {}
+    if arguments.precision:
+        properties["Precision"] = arguments.precision
     context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(arguments.platform),
                              properties)
     context.setPositions(saved["positions"])

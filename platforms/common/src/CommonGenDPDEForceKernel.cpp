@@ -173,10 +173,10 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
     }
-    grid->build();
+    profiler.time("cell grid", [&]() { grid->build(); });
     setModelArguments();
     errors.upload(std::vector<int>{noValue, noValue});
-    densityKernel->execute(cc.getNumAtoms());
+    profiler.time("densities, particle state", [&]() { densityKernel->execute(cc.getNumAtoms()); });
     std::vector<int> found;
     errors.download(found);
     if (found[0] == noValue && found[1] == noValue)
@@ -207,7 +207,7 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
 void CommonCalcGenDPDEForceKernel::computeForces(bool includeForces, bool includeVirial) {
     forceKernel->setArg(11, includeForces ? 1 : 0);
     forceKernel->setArg(12, includeVirial ? 1 : 0);
-    forceKernel->execute(cc.getNumAtoms());
+    profiler.time(includeForces ? "forces" : "virial", [&]() { forceKernel->execute(cc.getNumAtoms()); });
 }
 
 double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {

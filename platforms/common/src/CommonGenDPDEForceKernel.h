@@ -2,6 +2,7 @@
 #define COMMON_GENDPDE_FORCE_KERNEL_H_
 
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
@@ -18,7 +19,7 @@ namespace GenDPDEPlugin {
 class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
 public:
     CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
-            CalcGenDPDEForceKernel(name, platform), cc(cc) {
+            CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {
     }
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
@@ -49,6 +50,7 @@ private:
     OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
     OpenMM::ComputeKernel densityKernel, forceKernel;
     GenDPDEObservables observables;
+    CommonGenDPDEProfiler profiler;
 };
 
 } // namespace GenDPDEPlugin

@@ -190,10 +190,12 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
                                                     const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
     // The step check, and the pairs counted per block; then one download tells both (nothing has changed yet).
     const int numAtoms = cc.getNumAtoms();
-    resetKernel->execute(1);
     setMixed(checkKernel, 3, integrator.getStepSize());
     setMixed(checkKernel, 4, terms.maxDisplacement);
-    checkKernel->execute(numAtoms);
+    profiler.time("step check", [&]() {
+        resetKernel->execute(1);
+        checkKernel->execute(numAtoms);
+    });
     if (terms.pairSweep) {
         if (periodic) {
             Vec3 box[3];
@@ -206,7 +208,7 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         if (pairListSource != nullptr)
             cellGrid = &dynamic_cast<CommonCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl()).getCellGrid();
         else
-            grid->build();
+            profiler.time("cell grid (own)", [&]() { grid->build(); });
         if (cellGrid != boundGrid) {
             findPairsKernel->setArg(2, cellGrid->cellStart);
             findPairsKernel->setArg(3, cellGrid->sortedCell);
@@ -229,9 +231,11 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         grid->setBoxArguments(findPairsKernel, 8, true);
         setMixed(findPairsKernel, 11, cutoff);
         findPairsKernel->setArg(13, 0);
-        cc.clearBuffer(blockCount);
-        findPairsKernel->execute(numAtoms);
-        grid->exclusiveScan(blockCount, blockStart, (int) blockCount.getSize(), status, 1);
+        profiler.time("pairs: count per block", [&]() {
+            cc.clearBuffer(blockCount);
+            findPairsKernel->execute(numAtoms);
+            grid->exclusiveScan(blockCount, blockStart, (int) blockCount.getSize(), status, 1);
+        });
     }
     std::vector<int> found;
     status.download(found);
@@ -249,11 +253,15 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         orderedPairs.resize(blockPairs.getSize());
     }
     findPairsKernel->setArg(13, 1);
-    cc.clearBuffer(blockCount);
-    findPairsKernel->execute(numAtoms);
     orderKernel->setArg(0, (int) blockCount.getSize());
-    orderKernel->execute((int) blockCount.getSize());
-    invertKernel->execute(numAtoms);
+    profiler.time("pairs: list per block", [&]() {
+        cc.clearBuffer(blockCount);
+        findPairsKernel->execute(numAtoms);
+    });
+    profiler.time("pairs: sort, interleave", [&]() {
+        orderKernel->execute((int) blockCount.getSize());
+        invertKernel->execute(numAtoms);
+    });
 }
 
 void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDEIntegrator& integrator,
@@ -285,14 +293,16 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
     sweepKernel->setArg(19, (unsigned int) seed);
     sweepKernel->setArg(20, (unsigned int) (unsigned long long) step);
     sweepKernel->setArg(21, (unsigned int) (((unsigned long long) step) >> 32));
-    for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
-        const int numSlots = groupStart[colour + 1] - groupStart[colour];
-        if (numSlots == 0)
-            continue;
-        sweepKernel->setArg(0, groupStart[colour]);
-        sweepKernel->setArg(1, numSlots);
-        sweepKernel->execute(numSlots, 64);
-    }
+    profiler.time("sweep (8 colours)", [&]() {
+        for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
+            const int numSlots = groupStart[colour + 1] - groupStart[colour];
+            if (numSlots == 0)
+                continue;
+            sweepKernel->setArg(0, groupStart[colour]);
+            sweepKernel->setArg(1, numSlots);
+            sweepKernel->execute(numSlots, 64);
+        }
+    });
     if (!terms.internalEnergies)
         return;
     std::vector<int> found;
@@ -321,7 +331,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
     const int numAtoms = cc.getNumAtoms();
     if (!terms.pairSweep) {
         setMixed(kickKernel, 2, dt);
-        kickKernel->execute(numAtoms);
+        profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
     else {
         if (terms.internalEnergies) {
@@ -329,12 +339,12 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
             energies.copyTo(savedEnergies);
         }
         setMixed(kickKernel, 2, 0.5*dt);
-        kickKernel->execute(numAtoms);
+        profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
         sweep(context, integrator, terms);
-        kickKernel->execute(numAtoms);
+        profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
     setMixed(driftKernel, 3, dt);
-    driftKernel->execute(numAtoms);
+    profiler.time("kicks, drift", [&]() { driftKernel->execute(numAtoms); });
     cc.setTime(cc.getTime() + dt);
     cc.setStepCount(cc.getStepCount() + 1);
     cc.reorderAtoms();

@@ -2,6 +2,7 @@
 #define COMMON_GENDPDE_INTEGRATOR_KERNEL_H_
 
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
@@ -20,7 +21,7 @@ namespace GenDPDEPlugin {
 class CommonIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
     CommonIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
-            IntegrateGenDPDEStepKernel(name, platform), cc(cc) {
+            IntegrateGenDPDEStepKernel(name, platform), cc(cc), profiler(cc, "GenDPDEIntegrator") {
     }
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                     const std::vector<double>& internalEnergies) override;
@@ -60,6 +61,7 @@ private:
     OpenMM::ComputeKernel resetKernel, checkKernel, kickKernel, driftKernel, kineticKernel, invertKernel;
     OpenMM::ComputeKernel findPairsKernel, orderKernel, sweepKernel;
     mutable std::vector<double> hostEnergies;
+    CommonGenDPDEProfiler profiler;
 };
 
 } // namespace GenDPDEPlugin

@@ -14,6 +14,10 @@ from conftest import GPU_PLATFORMS
 from helpers import argon_integrator, energy_and_forces, lattice_liquid, make_context, rms, TEMPERATURE
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.physics import particleVolumeVB
+from openmmgendpde.presets import liquid_argon
+from openmmgendpde.statistics import block_average
+from openmmgendpde.units import BOLTZMANN
+from scipy import stats
 
 pytestmark = pytest.mark.skipif(not GPU_PLATFORMS, reason="no GPU platform (OpenCL or CUDA) in this OpenMM")
 
@@ -167,3 +171,37 @@ def test_atom_reordering_changes_nothing(name):
     assert np.max(np.abs(positions2 - positions)) <= 1e-8
     assert np.max(np.abs(velocities2 - velocities)) <= 1e-8 * np.max(np.abs(velocities))
     np.testing.assert_allclose(energies2, energies, rtol=1e-8)
+
+
+@pytest.mark.parametrize("name", GPU_PLATFORMS)
+def test_equilibrium_identities_in_mixed_precision(name):
+    """The equilibrium of test_integrator_physics.py (its derivations), run on the device in mixed precision, shorter:
+    liquid argon (500 particles, V-B, the published parameters, dt* = 0.005), 10 time units of equilibration, then
+    100 samples 0.2 time units apart. Expected: T_kin/T_harm = 1 - 1/A = 0.99987, within 5 standard errors of 10
+    block means (2 time units each, past the ~2 time units in which the internal energies decorrelate; ~0.7% each);
+    without the Ito term of the friction the ratio would be 1.040, ~6 standard errors off. eps_i/(k_B T_harm) follows
+    Gamma(C_V/k_B + 1): Kolmogorov-Smirnov on 4 snapshots 5 time units apart (2000 values) above p = 0.001, while
+    Gamma(C_V/k_B) (the shape off by one) is rejected below p = 1e-6."""
+    argon = liquid_argon(500, 1.6839, "VB", time_step=0.005, seed=11)
+    integrator = argon.integrator
+    context = openmm.Context(argon.system, integrator, openmm.Platform.getPlatformByName(name), {"Precision": "mixed"})
+    context.setPositions(argon.positions)
+    context.setVelocitiesToTemperature(argon.temperature, 11)
+    integrator.step(2000)
+    kinetic, temperatures = [], []
+    for _ in range(100):
+        integrator.step(40)
+        kinetic.append(context.getState(getEnergy=True).getKineticEnergy().value_in_unit(unit.kilojoule_per_mole))
+        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    kinetic, temperatures = np.array(kinetic), np.array(temperatures)
+    boltzmann = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+    c = integrator.getHeatCapacity().value_in_unit(unit.kilojoule_per_mole / unit.kelvin) / boltzmann
+    n = temperatures.shape[1]
+    a = (3 * n - 3) / 2 + n * (c + 1)
+    harmonic = 1 / np.mean(1 / temperatures, axis=1)
+    ratio = 2 * kinetic / ((3 * n - 3) * boltzmann) / harmonic
+    error = block_average(ratio, 10, name="T_kin/T_harm").standard_error
+    assert abs(ratio.mean() - (1 - 1 / a)) < 5 * error
+    reduced = (c * temperatures / harmonic[:, None])[::25].ravel()
+    assert stats.kstest(reduced, stats.gamma(c + 1).cdf).pvalue > 1e-3
+    assert stats.kstest(reduced, stats.gamma(c).cdf).pvalue < 1e-6

@@ -20,8 +20,10 @@ prepare)
     rm -rf gpu-wheels && mkdir gpu-wheels
     python=.venv/bin/python
     # Pure-Python or manylinux wheels for the GPU machine's python3 (the same 3.11 as here is assumed; check there).
+    # (The package's commands import only numpy and tqdm at the top; the rest lazily.)
     $python -m pip download -q -d gpu-wheels "openmm==$openmm_version" \
-        "$(grep '^swig==' requirements.txt)" "$(grep '^scikit-build-core==' requirements.txt)"
+        "$(grep '^swig==' requirements.txt)" "$(grep '^scikit-build-core==' requirements.txt)" \
+        "$(grep '^numpy==' requirements.txt)" "$(grep '^tqdm==' requirements.txt)"
     $python -m pip download -q --no-deps -d gpu-wheels "openmm-cuda-13==$openmm_version"
     du -sh gpu-wheels
     ;;
@@ -32,7 +34,7 @@ run)
     venv=/tmp/gendpde-gpu-venv
     python3 -m venv --system-site-packages "$venv"
     "$venv/bin/python" -m pip install -q --no-index --find-links gpu-wheels "openmm==$openmm_version" swig \
-        scikit-build-core > "$out/pip.log" 2>&1
+        scikit-build-core numpy tqdm > "$out/pip.log" 2>&1
     "$venv/bin/python" -m pip install -q --no-index --no-deps gpu-wheels/openmm_cuda_13-*.whl >> "$out/pip.log" 2>&1
     # libOpenMMCUDA looks for the NVIDIA runtime wheels' libraries; the toolkit's serve instead.
     export LD_LIBRARY_PATH="/usr/local/cuda/lib64:${LD_LIBRARY_PATH:-}"

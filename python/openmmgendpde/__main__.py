@@ -3,7 +3,8 @@
 import argparse
 import warnings
 
-from . import benchmark_cpu, benchmark_force, benchmark_integrator, rdf, speed_vs_error, table3, timing, tune_fcut
+from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, rdf, speed_vs_error, table3, timing,
+               tune_fcut)
 from .cli import apply_threads
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
@@ -12,6 +13,7 @@ SUBCOMMANDS = (
     ("rdf", rdf, "radial distribution functions of the six cases, plotted like Fig. 1 (PNG and PDF)"),
     ("timing", timing, "Table IV analogue: wall time per step with VA and VB, and their ratio, per cutoff"),
     ("tune-fcut", tune_fcut, "find f_cut of VB so that the mean density is n0, with its uncertainty"),
+    ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties measured back"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
     ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),
     ("benchmark-integrator", benchmark_integrator, "GenDPDEIntegrator: ms per step against a force evaluation"),
@@ -21,7 +23,7 @@ SUBCOMMANDS = (
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m openmmgendpde",
-                                     description="GenDPDE for OpenMM: liquid-argon studies and benchmarks.")
+                                     description="GenDPDE for OpenMM: fluid calibration, liquid-argon studies and benchmarks.")
     subcommands = parser.add_subparsers(title="subcommands", required=True, metavar="SUBCOMMAND")
     for name, module, summary in SUBCOMMANDS:
         module.add_arguments(subcommands.add_parser(name, help=summary, description=module.__doc__,

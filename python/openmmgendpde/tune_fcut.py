@@ -32,8 +32,9 @@ class CutoffScalingEstimate:
     last_cutoff_scaling: float   # f_cut of the last run, at which n-bar* was measured
 
 
-def mean_density_on_frames(force, context, frames, cutoff_scaling):
-    """n-bar* averaged over frames, with the force's f_cut set to cutoff_scaling (restored afterwards)."""
+def mean_density_on_frames(force, context, frames, cutoff_scaling, units=ARGON_UNITS):
+    """n-bar averaged over frames (positions in nm), with the force's f_cut set to cutoff_scaling (restored
+    afterwards): in the reduced ``units`` (argon's by default), or in nm^-3 if ``units`` is None."""
     original = force.getCutoffScaling()
     force.setCutoffScaling(cutoff_scaling)
     force.updateParametersInContext(context)
@@ -43,7 +44,8 @@ def mean_density_on_frames(force, context, frames, cutoff_scaling):
         values.append(np.mean(force.getParticleDensities(context).value_in_unit(unit.nanometer**-3)))
     force.setCutoffScaling(original)
     force.updateParametersInContext(context)
-    return ARGON_UNITS.from_openmm(float(np.mean(values)), "number_density")
+    mean = float(np.mean(values))
+    return mean if units is None else units.from_openmm(mean, "number_density")
 
 
 def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, max_iterations=5, progress=None,

@@ -1,0 +1,327 @@
+"""Any fluid, not only argon: from physical properties and a coarse-graining level to every GenDPDE parameter
+(docs/fluids.md; the `calibrate` subcommand measures the model's properties back).
+
+>>> water = WATER                                          # 298.15 K, 0.1 MPa (a Fluid; see its definition)
+>>> parameters = coarse_grain(water, molecules_per_particle=4, neighbors=20)
+>>> model = parameters.liquid(500)                          # System, GenDPDEForce, GenDPDEIntegrator, positions
+
+The mapping (k_B T0, n0 ... in OpenMM units; N_m molecules per particle; N_R neighbours within the cutoff):
+
+    m = N_m M/N_A                 n0 = rho/m                    R = (3 N_R/(4 pi n0))^(1/3)   (or R given)
+    B_T = 1/(gamma_T kappa_T)     pi0 = P - n0 k_B T            C_V = N_m c_v (per particle)
+    gamma = 1575 eta/(2 pi n0^2 R^5)          kappa = 315 lambda T^2/(2 pi n0^2 R^5)
+
+The Tait form makes the bulk modulus n dpi/dn equal 1/kappa_T at n0 (gamma_T B_T); pi0 leaves out the kinetic
+pressure n0 k_B T, which the particles' motion adds. gamma and kappa are the kinetic-theory values for the weights
+omega_D = omega_q = (1 - r/R)^2: the dissipative pair friction alone gives the viscosity
+eta_D = (gamma n0^2/30) int d^3r r^2 omega_D = 2 pi gamma n0^2 R^5/1575, and the conduction term, linearised in the
+temperature difference (1/theta_i - 1/theta_j = (theta_j - theta_i)/T^2), the conductivity
+lambda_q = (kappa n0^2/(6 T^2)) int d^3r r^2 omega_q = 2 pi kappa n0^2 R^5/(315 T^2). What the model actually gives
+(the kinetic and conservative parts add to both, the estimator shifts the density) is measured by `calibrate`.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import openmm
+from openmm import app, unit
+
+from . import GenDPDEForce, GenDPDEIntegrator
+from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, estimator_value
+from .units import BOLTZMANN, ReducedUnits
+
+#: The OpenMM units of the parameters (plain floats in GenDPDEParameters).
+FRICTION = unit.amu / unit.picosecond
+HEAT_CONDUCTION = unit.kilojoule_per_mole * unit.kelvin / unit.picosecond
+PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+VISCOSITY = unit.amu / (unit.nanometer * unit.picosecond)
+CONDUCTIVITY = unit.kilojoule_per_mole / (unit.picosecond * unit.nanometer * unit.kelvin)
+HEAT_CAPACITY = unit.kilojoule_per_mole / unit.kelvin
+
+
+def _in_openmm(quantity, target, name):
+    """A Quantity in ``target`` (an OpenMM unit, energies per mole): directly if compatible, else per particle
+    (SI: J, Pa, W ...) times Avogadro's number. Raises ValueError naming the property if neither works."""
+    if not unit.is_quantity(quantity):
+        raise ValueError(f"{name} = {quantity!r} needs a unit (an openmm.unit Quantity compatible with {target})")
+    if quantity.unit.is_compatible(target):
+        return quantity.value_in_unit(target)
+    per_mole = quantity * unit.AVOGADRO_CONSTANT_NA
+    if per_mole.unit.is_compatible(target):
+        return per_mole.value_in_unit(target)
+    raise ValueError(f"{name} = {quantity} is not compatible with {target}")
+
+
+def heat_capacity_per_molecule(value):
+    """c_v per molecule in kJ/mol/K from a Quantity per molecule (J/K), per mole of molecules (J/(mol K),
+    kJ/mol/K), or a plain number in units of k_B."""
+    if unit.is_quantity(value):
+        return _in_openmm(value, HEAT_CAPACITY, "heat_capacity")
+    return float(value) * BOLTZMANN.value_in_unit(HEAT_CAPACITY)
+
+
+@dataclasses.dataclass(frozen=True)
+class Fluid:
+    """A fluid at one state point; every property an openmm.unit Quantity in any compatible unit (SI per molecule,
+    or per mole), except heat_capacity, which may also be a number in k_B per molecule."""
+    name: str
+    temperature: unit.Quantity            # T0
+    pressure: unit.Quantity               # P0
+    mass_density: unit.Quantity           # rho
+    compressibility: unit.Quantity        # isothermal, kappa_T
+    heat_capacity: object                 # isochoric, per molecule (c_v)
+    shear_viscosity: unit.Quantity        # eta
+    thermal_conductivity: unit.Quantity   # lambda
+    molar_mass: unit.Quantity             # M
+    tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
+
+
+@dataclasses.dataclass(frozen=True)
+class GenDPDEParameters:
+    """Every parameter of GenDPDEForce and GenDPDEIntegrator for one fluid, coarse-graining level and cutoff, as plain
+    floats in OpenMM units (nm, amu, ps, kJ/mol, K), with the targets they came from."""
+    fluid: Fluid
+    molecules_per_particle: float
+    mass: float                   # amu, one particle
+    temperature: float            # K, T0
+    density: float                # nm^-3, n0
+    reference_pressure: float     # kJ/mol/nm^3, pi0
+    bulk_modulus: float           # kJ/mol/nm^3, B_T
+    tait_exponent: float          # gamma_T
+    cutoff: float                 # nm, R
+    neighbors: float              # particles within R at n0
+    cutoff_scaling: float         # f_cut of V-B (a first estimate until `calibrate` tunes it)
+    friction: float               # amu/ps, gamma
+    heat_conduction: float        # kJ K/(mol ps), kappa
+    heat_capacity: float          # kJ/mol/K, C_V per particle
+
+    @property
+    def units(self):
+        """The reduced units of the model: mass of a particle, length n0^(-1/3), energy L^3/kappa_T (k_B = 1)."""
+        length = self.density ** (-1 / 3)
+        return ReducedUnits(mass=self.mass * unit.amu, length=length * unit.nanometer,
+                            energy=length**3 * self.tait_exponent * self.bulk_modulus * unit.kilojoule_per_mole)
+
+    def reduced(self):
+        """The parameters in the model's reduced units (the paper's Table II for argon)."""
+        u = self.units
+        kb = BOLTZMANN.value_in_unit(HEAT_CAPACITY)
+        return {
+            "T0*": u.from_openmm(self.temperature, "temperature"),
+            "n0*": u.from_openmm(self.density, "number_density"),
+            "pi0*": u.from_openmm(self.reference_pressure, "pressure"),
+            "B_T*": u.from_openmm(self.bulk_modulus, "pressure"),
+            "gamma_T": self.tait_exponent,
+            "R*": u.from_openmm(self.cutoff, "length"),
+            "f_cut": self.cutoff_scaling,
+            "gamma*": u.from_openmm(self.friction, "friction"),
+            "kappa*": u.from_openmm(self.heat_conduction, "heat_conduction"),
+            "C_V*": self.heat_capacity / kb,
+        }
+
+    def targets(self):
+        """The fluid's properties that the model should reproduce, in OpenMM units: pressure, bulk modulus
+        1/kappa_T, temperature, viscosity, conductivity, and the density n0."""
+        f = self.fluid
+        return {
+            "density": self.density,
+            "pressure": _in_openmm(f.pressure, PRESSURE, "pressure"),
+            "bulk_modulus": _in_openmm(1 / f.compressibility, PRESSURE, "1/compressibility"),
+            "temperature": f.temperature.value_in_unit(unit.kelvin),
+            "shear_viscosity": _in_openmm(f.shear_viscosity, VISCOSITY, "shear_viscosity"),
+            "thermal_conductivity": _in_openmm(f.thermal_conductivity, CONDUCTIVITY, "thermal_conductivity"),
+        }
+
+    def with_cutoff_scaling(self, cutoff_scaling):
+        return dataclasses.replace(self, cutoff_scaling=cutoff_scaling)
+
+    def with_transport(self, friction, heat_conduction):
+        return dataclasses.replace(self, friction=friction, heat_conduction=heat_conduction)
+
+    def liquid(self, num_particles=None, estimator="VB", mode=GenDPDEIntegrator.Isoenergetic, time_step=0.01,
+               seed=0, density=None, cells=None):
+        """The fluid at n0 (or ``density``, nm^-3) in a periodic box on an FCC lattice: a cube of num_particles = 4 m^3
+        particles, or ``cells`` = (n_x, n_y, n_z) cubic FCC cells (any rectangular box: slabs, elongated boxes).
+        Returns a FluidModel with its System (one GenDPDEForce), GenDPDEIntegrator (step ``time_step`` in reduced time
+        units, bath temperature T0), topology and positions (nm)."""
+        density = self.density if density is None else density
+        if cells is None:
+            if num_particles is None:
+                raise ValueError("give num_particles (4 m^3, a cube) or cells = (n_x, n_y, n_z)")
+            m = round((num_particles / 4) ** (1 / 3))
+            if 4 * m**3 != num_particles:
+                raise ValueError(f"num_particles = {num_particles} is not allowed; a cube holds 4 m^3 "
+                                 f"(500, 864, 2048, 4000, ...); give cells for other boxes")
+            cells = (m, m, m)
+        positions, box = fcc_box(density, cells)
+        num_particles = len(positions)
+        widths = [box[k][k] for k in range(3)]
+        if self.cutoff > min(widths) / 2:
+            raise ValueError(f"the box {widths[0]:.3f} x {widths[1]:.3f} x {widths[2]:.3f} nm is less than twice the "
+                             f"cutoff {self.cutoff:.3f} nm across; use more cells")
+        system = openmm.System()
+        box = [openmm.Vec3(*row) for row in box]
+        system.setDefaultPeriodicBoxVectors(*box)
+        for _ in range(num_particles):
+            system.addParticle(self.mass)
+        force = GenDPDEForce(self.cutoff)
+        force.setDensityEstimator(estimator_value(estimator))
+        force.setCutoffScaling(self.cutoff_scaling)
+        force.setTaitParameters(self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent)
+        system.addForce(force)
+        step = self.units.to_openmm(time_step, "time").value_in_unit(unit.picosecond)
+        integrator = GenDPDEIntegrator(step, self.friction, self.heat_conduction, self.heat_capacity)
+        integrator.setTemperature(self.temperature)
+        integrator.setRandomNumberSeed(seed)
+        integrator.setMode(mode)
+        topology = app.Topology()
+        chain = topology.addChain()
+        for _ in range(num_particles):
+            topology.addAtom("CG", None, topology.addResidue("CG", chain))
+        topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))
+        return FluidModel(system, force, integrator, topology, positions, self)
+
+
+@dataclasses.dataclass
+class FluidModel:
+    """A ready model of a fluid in OpenMM units."""
+    system: openmm.System
+    force: GenDPDEForce
+    integrator: GenDPDEIntegrator
+    topology: app.Topology
+    positions: np.ndarray       # nm
+    parameters: GenDPDEParameters
+
+    @property
+    def num_particles(self):
+        return self.system.getNumParticles()
+
+    @property
+    def volume(self):
+        a, b, c = self.system.getDefaultPeriodicBoxVectors()
+        return a[0].value_in_unit(unit.nanometer) * b[1].value_in_unit(unit.nanometer) * c[2].value_in_unit(unit.nanometer)
+
+
+def fcc_box(density, cells):
+    """(positions, box): an FCC lattice at ``density`` (nm^-3) of n_x x n_y x n_z cubic cells (4 particles each,
+    edge (4/density)^(1/3)) filling a rectangular periodic box; positions (nm) as an N x 3 array, the box as three
+    rows (nm)."""
+    nx, ny, nz = (int(c) for c in cells)
+    if min(nx, ny, nz) < 1:
+        raise ValueError(f"cells = {cells} is not allowed; each count must be >= 1")
+    if not density > 0:
+        raise ValueError(f"density = {density} is not allowed; it must be > 0")
+    edge = (4 / density) ** (1 / 3)
+    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]]) + 0.25
+    grid = np.array([(x, y, z) for x in range(nx) for y in range(ny) for z in range(nz)], dtype=float)
+    positions = (grid[:, None, :] + basis[None, :, :]).reshape(-1, 3) * edge
+    return positions, [[nx * edge, 0, 0], [0, ny * edge, 0], [0, 0, nz * edge]]
+
+
+def set_temperature_field(integrator, positions, temperature):
+    """Set every particle's internal temperature theta_i = temperature(r_i) (K; r_i in nm, a row of ``positions``,
+    e.g. State.getPositions(asNumpy=True) or a plain N x 3 array): a temperature field, such as two regions at two
+    temperatures for a heat-conduction study. The integrator must be bound to its Context."""
+    if unit.is_quantity(positions):
+        positions = positions.value_in_unit(unit.nanometer)
+    values = []
+    for r in np.asarray(positions, dtype=float):
+        t = temperature(r)
+        t = t.value_in_unit(unit.kelvin) if unit.is_quantity(t) else float(t)
+        values.append(t)
+    integrator.setParticleTemperatures(values)
+
+
+def cutoff_scaling_guess(neighbors):
+    """A first f_cut for V-B: argon's tuned values (Table II) interpolated in the number of neighbours (f_cut sets the
+    reduced range Rt = R/f_cut of the partition of unity and depends on the structure mostly through it), held
+    constant outside the published range. `calibrate` tunes it for the fluid itself."""
+    counts = [entry.neighbors for entry in ARGON_CUTOFFS]
+    values = [entry.cutoff_scaling for entry in ARGON_CUTOFFS]
+    return float(np.interp(neighbors, counts, values))
+
+
+def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cutoff_scaling=None):
+    """Every GenDPDE parameter for ``fluid`` with ``molecules_per_particle`` molecules per particle and either
+    ``neighbors`` particles within the cutoff at n0 or the ``cutoff`` itself (a length Quantity or nm); the formulas
+    are the module's. Raises ValueError naming a bad argument."""
+    if not (molecules_per_particle > 0):
+        raise ValueError(f"molecules_per_particle = {molecules_per_particle} is not allowed; it must be > 0")
+    if (neighbors is None) == (cutoff is None):
+        raise ValueError("give exactly one of neighbors (particles within the cutoff) and cutoff")
+    if not fluid.tait_exponent > 1:
+        raise ValueError(f"tait_exponent = {fluid.tait_exponent} is not allowed; it must be > 1")
+    temperature = fluid.temperature.value_in_unit(unit.kelvin)
+    molar_mass = fluid.molar_mass.value_in_unit(unit.gram / unit.mole)
+    mass = molecules_per_particle * molar_mass                                    # amu (g/mol per particle)
+    mass_density = _in_openmm(fluid.mass_density, unit.amu / unit.nanometer**3, "mass_density")
+    density = mass_density / mass
+    kt = BOLTZMANN.value_in_unit(HEAT_CAPACITY) * temperature
+    bulk_modulus = _in_openmm(1 / fluid.compressibility, PRESSURE, "1/compressibility") / fluid.tait_exponent
+    reference_pressure = _in_openmm(fluid.pressure, PRESSURE, "pressure") - density * kt
+    if cutoff is None:
+        if not neighbors > 0:
+            raise ValueError(f"neighbors = {neighbors} is not allowed; it must be > 0")
+        cutoff = (3 * neighbors / (4 * math.pi * density)) ** (1 / 3)
+    else:
+        cutoff = cutoff.value_in_unit(unit.nanometer) if unit.is_quantity(cutoff) else float(cutoff)
+        if not cutoff > 0:
+            raise ValueError(f"cutoff = {cutoff} nm is not allowed; it must be > 0")
+        neighbors = 4 * math.pi / 3 * density * cutoff**3
+    r5 = density**2 * cutoff**5
+    friction = 1575 * _in_openmm(fluid.shear_viscosity, VISCOSITY, "shear_viscosity") / (2 * math.pi * r5)
+    heat_conduction = (315 * _in_openmm(fluid.thermal_conductivity, CONDUCTIVITY, "thermal_conductivity")
+                       * temperature**2 / (2 * math.pi * r5))
+    return GenDPDEParameters(
+        fluid=fluid, molecules_per_particle=molecules_per_particle, mass=mass, temperature=temperature,
+        density=density, reference_pressure=reference_pressure, bulk_modulus=bulk_modulus,
+        tait_exponent=fluid.tait_exponent, cutoff=cutoff, neighbors=neighbors,
+        cutoff_scaling=cutoff_scaling_guess(neighbors) if cutoff_scaling is None else cutoff_scaling,
+        friction=friction, heat_conduction=heat_conduction,
+        heat_capacity=molecules_per_particle * heat_capacity_per_molecule(fluid.heat_capacity))
+
+
+def _argon_fluid():
+    """Liquid argon as the paper models it (5 atoms per particle), its properties written in physical units from
+    the reduced state (ARGON_STATE, ARGON_UNITS: T0, P0, the density n0* = 1, kappa_T0* = 1, C_V* = 12.51 k_B per
+    particle) and the molar mass of the paper's particle mass (40.00 g/mol per atom). The paper's Table I of
+    transport properties was not available here: eta and lambda are the values that the mapping turns into its
+    Table II, one value each for all three cutoffs (gamma* R*^5 = 99.848 and kappa* R*^5 = 0.0337 reproduce all three
+    printed gamma* and kappa* to their last digit, python/tests/test_fluid.py): 2.40e-4 Pa s and 0.138 W/(m K),
+    liquid argon's magnitudes at this state."""
+    u = ARGON_UNITS
+    s = ARGON_STATE
+    atoms = 5
+    t0 = s.temperature
+    viscosity_unit = u.unit("mass") / (u.unit("length") * u.unit("time"))
+    conductivity_unit = (u.unit("heat_capacity") / (u.unit("length") * u.unit("time")))
+    return Fluid(
+        name="liquid argon (Colella et al. 2025)",
+        temperature=u.to_openmm(t0, "temperature"),
+        pressure=u.to_openmm(s.pressure, "pressure"),
+        mass_density=u.unit("mass") * s.density / u.unit("length") ** 3,
+        compressibility=1 / u.unit("pressure") / (s.tait_exponent * s.bulk_modulus),
+        heat_capacity=s.heat_capacity / atoms,
+        shear_viscosity=(2 * math.pi * 99.848 / 1575) * viscosity_unit,
+        thermal_conductivity=(2 * math.pi * 0.0337 / (315 * t0**2)) * conductivity_unit,
+        molar_mass=u.unit("mass").value_in_unit(unit.amu) / atoms * unit.gram / unit.mole,
+        tait_exponent=s.tait_exponent)
+
+
+#: Liquid argon of the paper: coarse_grain(ARGON, 5, cutoff=1.6839 L) is its R* = 1.6839 model (Table II).
+ARGON = _argon_fluid()
+
+#: Liquid water at 298.15 K and 0.1 MPa (IAPWS-95 values as tabulated by NIST: 997.05 kg/m^3, kappa_T = 0.4525/GPa,
+#: c_v = 74.44 J/(mol K); viscosity 0.8900 mPa s, thermal conductivity 0.6065 W/(m K)); gamma_T = 7 (Tait).
+WATER = Fluid(
+    name="liquid water, 298.15 K, 0.1 MPa",
+    temperature=298.15 * unit.kelvin,
+    pressure=0.1 * unit.megapascal,
+    mass_density=997.05 * unit.kilogram / unit.meter**3,
+    compressibility=0.4525e-9 / unit.pascal,
+    heat_capacity=74.44 * unit.joule / (unit.mole * unit.kelvin),
+    shear_viscosity=0.8900e-3 * unit.pascal * unit.second,
+    thermal_conductivity=0.6065 * unit.watt / (unit.meter * unit.kelvin),
+    molar_mass=18.015 * unit.gram / unit.mole,
+    tait_exponent=7.0)

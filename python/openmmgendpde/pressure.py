@@ -21,8 +21,9 @@ from . import GenDPDEForce, GenDPDEIntegrator
 from .physics import particleVolumeVA, particleVolumeVB
 
 
-def virial_tensor(force, context):
-    """W (3 x 3, kJ/mol) of ``force`` (a GenDPDEForce in the Context's System) at the Context's positions."""
+def virial_tensor(force, context, per_particle=False):
+    """W (3 x 3, kJ/mol) of ``force`` (a GenDPDEForce in the Context's System) at the Context's positions; with
+    ``per_particle``, N x 3 x 3: each pair's term split equally between its two particles (they sum to W)."""
     force = GenDPDEForce.cast(force)
     state = context.getState(getPositions=True)
     box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
@@ -50,7 +51,13 @@ def virial_tensor(force, context):
     i, j, delta, r = i[keep], j[keep], delta[keep], r[keep]
     weight_derivative = -15.0 / (np.pi * cutoff**4) * (1 - r / cutoff)   # w'(r)
     scale = (coefficient[i] + coefficient[j]) * weight_derivative / r    # F_ij = scale r_ij
-    return np.einsum("p,pa,pb->ab", scale, delta, delta)
+    if not per_particle:
+        return np.einsum("p,pa,pb->ab", scale, delta, delta)
+    terms = 0.5 * np.einsum("p,pa,pb->pab", scale, delta, delta)
+    result = np.zeros((len(positions), 3, 3))
+    np.add.at(result, i, terms)
+    np.add.at(result, j, terms)
+    return result
 
 
 def pressure_tensor(force, context, state=None):

@@ -3,13 +3,14 @@ flow reads. Each report bins the particles by their wrapped coordinate along ``a
 coordinate) into ``bins`` equal slices and writes, per bin, one CSV row:
 
     step, time (ps), bin, centre (nm), particles, number density (nm^-3), mean theta (K), kinetic temperature (K),
-    v_x, v_y, v_z (nm/ps)
+    v_x, v_y, v_z (nm/ps), and with a GenDPDEForce given, P_xx, P_yy, P_zz, P_xy, P_xz, P_yz (kJ/mol/nm^3)
 
 The number density is the count over the slice volume; mean theta is the mean internal temperature theta_i (NaN
 without a GenDPDEIntegrator); the kinetic temperature is m |v - v_bin|^2 summed over the slice's particles over
 3 (n_bin - 1) k_B (the slice's mean velocity removed, its 3 degrees of freedom with it; NaN for fewer than 2
-particles); v is the slice's mean velocity. Pressure components per slice are not reported: they need the
-per-particle virial tensor, which GenDPDEForce does not provide yet.
+particles); v is the slice's mean velocity. The pressure tensor of a slice is (sum over its particles of
+m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half of its pairs' virial tensors
+(openmmgendpde.pressure, rectangular boxes; the slices' pressures average to the system's).
 """
 
 
@@ -17,13 +18,15 @@ import numpy as np
 from openmm import unit
 
 from . import GenDPDEIntegrator
+from .pressure import virial_tensor
 from .units import BOLTZMANN
 
 
-def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=None):
+def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=None, virials=None):
     """The profile of one configuration as a dict of arrays (one value per bin), in OpenMM units: 'centre',
-    'count', 'density', 'theta', 'kinetic_temperature', 'velocity' (bins x 3). positions (nm), velocities (nm/ps)
-    N x 3 arrays; masses (amu) N; box three rows (nm, reduced form); temperatures theta_i (K) or None."""
+    'count', 'density', 'theta', 'kinetic_temperature', 'velocity' (bins x 3), 'pressure' (bins x 3 x 3, NaN without
+    virials). positions (nm), velocities (nm/ps) N x 3 arrays; masses (amu) N; box three rows (nm, reduced form);
+    temperatures theta_i (K) or None; virials the per-particle virial tensors (N x 3 x 3, kJ/mol) or None."""
     positions, velocities = np.asarray(positions, float), np.asarray(velocities, float)
     masses, box = np.asarray(masses, float), np.asarray(box, float)
     if not (0 <= axis <= 2) or bins < 1:
@@ -36,7 +39,7 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
     width = box[axis, axis]
     result = {"centre": (np.arange(bins) + 0.5) * width / bins, "count": np.zeros(bins, int),
               "density": np.zeros(bins), "theta": np.full(bins, np.nan), "kinetic_temperature": np.full(bins, np.nan),
-              "velocity": np.full((bins, 3), np.nan)}
+              "velocity": np.full((bins, 3), np.nan), "pressure": np.full((bins, 3, 3), np.nan)}
     for b in range(bins):
         members = index == b
         n = int(members.sum())
@@ -49,17 +52,21 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
         result["velocity"][b] = mean_velocity
         if temperatures is not None:
             result["theta"][b] = float(np.mean(np.asarray(temperatures, float)[members]))
+        relative = v - mean_velocity
         if n > 1:
-            relative = v - mean_velocity
             result["kinetic_temperature"][b] = float((m * (relative**2).sum(axis=1)).sum() / (3 * (n - 1) * kb))
+        if virials is not None:
+            kinetic = np.einsum("i,ia,ib->ab", m, relative, relative)
+            result["pressure"][b] = (kinetic + np.asarray(virials)[members].sum(axis=0)) / volume
     return result
 
 
 class ProfileReporter:
     """Writes profiles along ``axis`` every ``reportInterval`` steps to ``file`` (a path or an open file), as CSV.
-    Works with any integrator; mean theta needs a GenDPDEIntegrator."""
+    Works with any integrator; mean theta needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
+    (rectangular periodic box)."""
 
-    def __init__(self, file, reportInterval, axis=2, bins=20):
+    def __init__(self, file, reportInterval, axis=2, bins=20, force=None):
         if reportInterval < 1:
             raise ValueError(f"reportInterval = {reportInterval} is not allowed; it must be >= 1")
         if not (0 <= axis <= 2) or bins < 1:
@@ -68,8 +75,10 @@ class ProfileReporter:
         self._out = open(file, "w") if self._own else file
         self._interval, self._axis, self._bins = reportInterval, axis, bins
         self._masses = None
+        self._force = force
+        pressure = ",Pxx,Pyy,Pzz,Pxy,Pxz,Pyz" if force is not None else ""
         self._out.write("step,time_ps,bin,centre_nm,particles,density_nm-3,theta_K,kinetic_temperature_K,"
-                        "vx_nm/ps,vy_nm/ps,vz_nm/ps\n")
+                        f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}\n")
 
     def describeNextReport(self, simulation):
         steps = self._interval - simulation.currentStep % self._interval
@@ -87,13 +96,19 @@ class ProfileReporter:
         values = profile(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer),
                          state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond),
                          self._masses, state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer),
-                         self._axis, self._bins, temperatures)
+                         self._axis, self._bins, temperatures,
+                         virial_tensor(self._force, simulation.context, per_particle=True) if self._force else None)
         step, time = simulation.currentStep, state.getTime().value_in_unit(unit.picosecond)
         for b in range(self._bins):
             v = values["velocity"][b]
             self._out.write(f"{step},{time:.6g},{b},{values['centre'][b]:.6g},{values['count'][b]},"
                             f"{values['density'][b]:.6g},{values['theta'][b]:.6g},"
-                            f"{values['kinetic_temperature'][b]:.6g},{v[0]:.6g},{v[1]:.6g},{v[2]:.6g}\n")
+                            f"{values['kinetic_temperature'][b]:.6g},{v[0]:.6g},{v[1]:.6g},{v[2]:.6g}")
+            if self._force is not None:
+                p = values["pressure"][b]
+                self._out.write("," + ",".join(f"{x:.6g}" for x in (p[0, 0], p[1, 1], p[2, 2], p[0, 1], p[0, 2],
+                                                                    p[1, 2])))
+            self._out.write("\n")
         self._out.flush()
 
     def __del__(self):

@@ -47,7 +47,7 @@ def test_profile_reporter_against_direct_bins():
     set_temperature_field(model.integrator, model.positions, lambda r: 280.0 if r[2] < length / 2 else 320.0)
     out = io.StringIO()
     bins = 8
-    simulation.reporters.append(ProfileReporter(out, 5, axis=2, bins=bins))
+    simulation.reporters.append(ProfileReporter(out, 5, axis=2, bins=bins, force=model.force))
     simulation.step(5)
     rows = [line.split(",") for line in out.getvalue().strip().splitlines()[1:]]
     assert len(rows) == bins and all(int(row[0]) == 5 for row in rows)
@@ -64,6 +64,16 @@ def test_profile_reporter_against_direct_bins():
         assert float(row[6]) == pytest.approx(mean_theta, rel=1e-5)
         assert float(row[7]) == pytest.approx(kinetic, rel=1e-5)
         assert [float(x) for x in row[8:11]] == pytest.approx(mean_v, rel=1e-5, abs=1e-6)
+    # The slices' pressure tensors: the traces of their virial parts add up to GenDPDEForce.getVirial (the C++ sum
+    # over pairs), once each slice's kinetic part (its direct kinetic temperature) is taken off. 1e-4: the CSV's six
+    # digits of P, K and the kinetic temperature.
+    kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+    virial_trace = 0.0
+    for row, (count, kinetic, mean_theta, mean_v) in zip(rows, expected):
+        pxx, pyy, pzz = (float(x) for x in row[11:14])
+        virial_trace += (pxx + pyy + pzz) * volume - 3 * (count - 1) * kb * kinetic
+    scalar = model.force.getVirial(simulation.context).value_in_unit(unit.kilojoule_per_mole)
+    assert virial_trace == pytest.approx(scalar, rel=1e-4)
     # The step of theta and the shear wave show up where they were put.
     assert float(rows[0][6]) < 300 < float(rows[-1][6])
     assert float(rows[1][8]) > 0.2 and float(rows[5][8]) < -0.2

@@ -138,3 +138,13 @@ def test_slab_box_model_and_a_temperature_field():
     assert theta == pytest.approx(expected, rel=1e-12)
     with pytest.raises(ValueError, match="less than twice the cutoff"):
         parameters.liquid(cells=(1, 3, 8))
+
+
+def test_stability_criterion_separates_a_good_step_from_a_blow_up():
+    """The step-size test of openmmgendpde.stability on argon (V-B, Isoenergetic, 500 particles): dt* = 0.01 (the
+    step of every argon study here, 10^5-step runs without a failure, docs/argon.md) passes; dt* = 1 (a particle
+    crosses a neighbour's range in a few steps) fails."""
+    from openmmgendpde.stability import _passes
+    parameters = coarse_grain(ARGON, 5, neighbors=20)
+    assert _passes(parameters, "VB", "Isoenergetic", 0.01, 1000, 500, "CPU", 1)
+    assert not _passes(parameters, "VB", "Isoenergetic", 1.0, 1000, 500, "CPU", 1)

@@ -148,3 +148,56 @@ def test_stability_criterion_separates_a_good_step_from_a_blow_up():
     parameters = coarse_grain(ARGON, 5, neighbors=20)
     assert _passes(parameters, "VB", "Isoenergetic", 0.01, 1000, 500, "CPU", 1)
     assert not _passes(parameters, "VB", "Isoenergetic", 1.0, 1000, 500, "CPU", 1)
+
+
+def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
+    """A case with a known answer for the wave-decay measurement that calibrate uses for the conductivity: particles
+    on an FCC lattice too heavy to move (1e9 amu: they drift 1e-5 of a spacing), no conservative force, no friction,
+    only heat conduction (a GenDPDEForce is in the System only to make it periodic: OpenMM's System is periodic when
+    a force is; its forces move nothing here). A wave theta_i = T0 (1 + e sin(k z_i)) (e = 0.1) then obeys, to first order in e,
+    d theta_i/dt = kappa/(C_V T0^2) sum_j omega_q(r_ij) (theta_j - theta_i), so its amplitude decays at exactly
+        Gamma = kappa/(C_V T0^2) sum_j omega_q(r_0j) (1 - cos(k z_0j))
+    (every lattice site alike; the sum over one site's neighbours, computed here with numpy). Measured: the mean of
+    4 replicas (the conductive noise averages out) fitted by calibrate's decay fit, dt small against 1/Gamma (50
+    steps per decay time, Shardlow error ~1%); tolerance 5% (second order in e ~1%, the noise left ~2%)."""
+    import openmm
+    from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+    from openmmgendpde.calibrate import _decay_rate
+    density, temperature, heat_capacity, kappa = 8.0, 300.0, 0.3, 2.0e4
+    positions, box = fcc_box(density, (4, 4, 8))
+    cutoff = 0.9
+    edges = np.diag(box)
+    k = 2 * np.pi / edges[2]
+    delta = positions - positions[0]
+    delta -= edges * np.round(delta / edges)
+    r = np.sqrt((delta**2).sum(axis=1))
+    near = (r > 0) & (r < cutoff)
+    omega = (1 - r[near] / cutoff) ** 2
+    expected = kappa / (heat_capacity * temperature**2) * np.sum(omega * (1 - np.cos(k * delta[near, 2])))
+    curves = []
+    dt = 1 / (50 * expected)
+    for seed in range(1, 5):
+        system = openmm.System()
+        system.setDefaultPeriodicBoxVectors(*[openmm.Vec3(*row) for row in box])
+        for _ in positions:
+            system.addParticle(1e9)
+        periodic = GenDPDEForce(cutoff)
+        periodic.setNonbondedMethod(GenDPDEForce.CutoffPeriodic)
+        system.addForce(periodic)
+        integrator = GenDPDEIntegrator(dt, 0.0, kappa, heat_capacity)
+        integrator.setCutoffDistance(cutoff)
+        integrator.setRandomNumberSeed(seed)
+        context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName("CPU"))
+        context.setPositions(positions)
+        set_temperature_field(integrator, positions, lambda p: temperature * (1 + 0.1 * np.sin(k * p[2])))
+        amplitudes = []
+        for n in range(41):
+            if n:
+                integrator.step(5)
+            theta = integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
+            amplitudes.append(2 * np.mean(theta * np.sin(k * positions[:, 2])))
+        curves.append(amplitudes)
+    times = dt * 5 * np.arange(41)
+    measured = _decay_rate(times, np.mean(curves, axis=0))
+    print(f"lattice-sum decay rate {expected:.5f}/ps, measured {measured:.5f}/ps")
+    assert measured == pytest.approx(expected, rel=0.05)

@@ -2,6 +2,7 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "openmm/OpenMMException.h"
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -74,4 +75,13 @@ std::string GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(int particle, d
             << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or increase "
             << "the heat capacity (the relative fluctuations of eps_i scale like sqrt(k_B/C_V))";
     return message.str();
+}
+
+std::string GenDPDEIntegratorUtilities::unstableParticleMessage(int particle, const Vec3& velocity, const Vec3& force,
+                                                               double inverseMass, double stepSize,
+                                                               double maxDisplacement, long long step) {
+    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
+        return nonFiniteForceMessage(particle, force, step);
+    const Vec3 displacement = (velocity + force*(stepSize*inverseMass))*stepSize;
+    return unstableStepMessage(particle, std::sqrt(displacement.dot(displacement)), maxDisplacement, step);
 }

@@ -50,6 +50,13 @@ public:
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
     static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);
     static std::string nonPositiveEnergyMessage(int particle, double energy, long long step);
+    /**
+     * Why a step is refused for a particle (velocity v, force F, 1/m, step dt): its force is not finite, or it
+     * would move |(v + dt F/m) dt| > maxDisplacement.
+     */
+    static std::string unstableParticleMessage(int particle, const OpenMM::Vec3& velocity, const OpenMM::Vec3& force,
+                                               double inverseMass, double stepSize, double maxDisplacement,
+                                               long long step);
 };
 
 } // namespace GenDPDEPlugin

@@ -191,6 +191,16 @@ public:
         VolumeIntegralsVB integrals = volumeIntegralsVB(kPerDensity*primitiveDensity);
         return {volumeScale*integrals.I, derivativeScale*integrals.J};
     }
+    /** k = getKPerDensity() n0; V = getVolumeScale() I(k); dV/dn0 = getDerivativeScale() J(k). */
+    double getKPerDensity() const {
+        return kPerDensity;
+    }
+    double getVolumeScale() const {
+        return volumeScale;
+    }
+    double getDerivativeScale() const {
+        return derivativeScale;
+    }
 private:
     double kPerDensity, volumeScale, derivativeScale;
 };
@@ -210,11 +220,14 @@ class TaitEquationOfState {
 public:
     TaitEquationOfState(double referenceDensity, double referencePressure, double bulkModulus, double exponent) :
             referenceDensity(referenceDensity), referencePressure(referencePressure), bulkModulus(bulkModulus),
-            exponent(exponent), integerPower(-1) {
-        // gamma_T is usually an integer (6 for argon, 7 for water): then x^(gamma_T - 1) by multiplications,
-        // exact to a few ulp and several times cheaper than pow().
-        if (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0)
-            integerPower = (int) exponent - 1;
+            exponent(exponent), integerPower(integerPowerOf(exponent)) {
+    }
+    /**
+     * gamma_T - 1 when gamma_T is an integer in [2, 33], else -1. gamma_T is usually an integer (6 for argon, 7 for
+     * water): then x^(gamma_T - 1) by multiplications, exact to a few ulp and several times cheaper than pow().
+     */
+    static int integerPowerOf(double exponent) {
+        return (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0) ? (int) exponent - 1 : -1;
     }
     /** Pressure pi(n) and free energy per particle f(n) at density n, with one power between them. */
     void evaluate(double density, double& pressure, double& freeEnergy) const {

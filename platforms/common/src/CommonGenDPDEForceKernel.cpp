@@ -128,8 +128,7 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
 }
 
 void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
-    // The Tait equation of state of each type (Physics::TaitEquationOfState: gamma_T - 1 by multiplications when an
-    // integer in [1, 32]).
+    // The Tait equation of state of each type (Physics::TaitEquationOfState).
     const std::vector<double> tait = {referenceDensity, referencePressure, bulkModulus, exponent};
     if (cc.getUseDoublePrecision())
         taitTable.upload(tait.data());
@@ -137,18 +136,15 @@ void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
         const std::vector<float> single(tait.begin(), tait.end());
         taitTable.upload(single.data());
     }
-    const int taitPower = (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0
-                           ? (int) exponent - 1 : -1);
-    taitPowerTable.upload(std::vector<int>{taitPower});
+    taitPowerTable.upload(std::vector<int>{Physics::TaitEquationOfState::integerPowerOf(exponent)});
 }
 
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
     // The same constants as Physics::DensityWeight, TaitEquationOfState and VolumeEstimatorVB.
     const Physics::DensityWeight weight(cutoff);
-    const double rt = cutoff/cutoffScaling, rt3 = rt*rt*rt;
-    const double vb[3] = {(2.0*Physics::Pi/15.0)*rt3, 4.0*Physics::Pi*rt3, -(8.0*Physics::Pi*Physics::Pi/15.0)*rt3*rt3};
+    const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
     const double model[4] = {cutoff, weight.getInverseCutoff(), weight.getValueScale(), weight.getDerivativeScale()};
-    const double vb4[4] = {vb[0], vb[1], vb[2], 0.0};
+    const double vb4[4] = {volumeVB.getKPerDensity(), volumeVB.getVolumeScale(), volumeVB.getDerivativeScale(), 0.0};
     const mm_int4 cells = grid->getCellsArgument();
     densityKernel->setArg(0, cells);
     forceKernel->setArg(0, cells);
@@ -198,10 +194,8 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
     for (int k = 0; k < (int) atoms.size(); k++)
         if (atoms[k] == particle)
             n0 = densities[k];
-    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, referenceDensity,
-                                                                      cc.getStepCount()));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, n0, estimator, cutoff/cutoffScaling,
+                                                                      referenceDensity, cc.getStepCount()));
 }
 
 void CommonCalcGenDPDEForceKernel::computeForces(bool includeForces, bool includeVirial) {

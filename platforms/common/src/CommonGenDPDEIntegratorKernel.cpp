@@ -6,6 +6,7 @@
 #include "internal/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
+#include "internal/GenDPDEPairSweep.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/OpenMMException.h"
@@ -177,13 +178,9 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
     std::vector<Vec3> forces, velocities;
     context.getForces(forces);
     context.getVelocities(velocities);
-    const Vec3& force = forces[particle];
-    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
-        throw OpenMMException(GenDPDEIntegratorUtilities::nonFiniteForceMessage(particle, force, cc.getStepCount()));
-    const double inverseMass = 1.0/context.getSystem().getParticleMass(particle);
-    const Vec3 displacement = (velocities[particle] + force*(stepSize*inverseMass))*stepSize;
-    throw OpenMMException(GenDPDEIntegratorUtilities::unstableStepMessage(particle,
-            std::sqrt(displacement.dot(displacement)), maxDisplacement, cc.getStepCount()));
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(particle, velocities[particle],
+            forces[particle], 1.0/context.getSystem().getParticleMass(particle), stepSize, maxDisplacement,
+            cc.getStepCount()));
 }
 
 void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const GenDPDEIntegrator& integrator,
@@ -266,16 +263,14 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
 
 void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                              const GenDPDEStepTerms& terms) {
-    const double dt = integrator.getStepSize();
-    const double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
     const long long step = cc.getStepCount();
+    const PairSweepParameters p(integrator, terms, cutoff, seed, step);   // what the host platforms' sweep uses
     grid->setBoxArguments(sweepKernel, 9, true);
-    setMixed4(sweepKernel, 12, cutoff, dt, std::sqrt(dt), 0.0);
+    setMixed4(sweepKernel, 12, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
     // The type tables (one type): the integrator's parameters may change between steps, so they are uploaded
     // when they do.
-    const std::vector<double> pairParameters = {friction, heatConduction, std::sqrt(2.0*Physics::Boltzmann*heatConduction),
-                                      std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature())};
-    const std::vector<double> capacity = {integrator.getHeatCapacity()};
+    const std::vector<double> pairParameters = {p.friction, p.heatConduction, p.heatNoise, p.bathNoise};
+    const std::vector<double> capacity = {p.heatCapacity};
     if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
         if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
             pairTable.upload(pairParameters.data());
@@ -290,9 +285,9 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
     setMixed(sweepKernel, 17, Physics::Boltzmann);
     sweepKernel->setArg(18, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
                             | (terms.internalEnergies ? 4 : 0));
-    sweepKernel->setArg(19, (unsigned int) seed);
-    sweepKernel->setArg(20, (unsigned int) (unsigned long long) step);
-    sweepKernel->setArg(21, (unsigned int) (((unsigned long long) step) >> 32));
+    sweepKernel->setArg(19, p.seed);
+    sweepKernel->setArg(20, (unsigned int) p.step);
+    sweepKernel->setArg(21, (unsigned int) (p.step >> 32));
     profiler.time("sweep (8 colours)", [&]() {
         for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
             const int numSlots = groupStart[colour + 1] - groupStart[colour];

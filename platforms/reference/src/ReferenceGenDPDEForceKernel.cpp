@@ -68,11 +68,8 @@ ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel:
 void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, int i, ContextImpl& context) const {
     if (status == NoNeighbor)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
-    const double n0 = primitiveDensity[i];
-    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, density, referenceDensity,
-                                                                      context.getStepCount()));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, primitiveDensity[i], estimator,
+            cutoff/cutoffScaling, referenceDensity, context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {

@@ -68,12 +68,8 @@ int ReferenceIntegrateGenDPDEStepKernel::firstUnstableParticle(ContextImpl& cont
 
 void ReferenceIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int i, double stepSize,
                                                         double maxDisplacement) const {
-    const Vec3& force = extractForces(context)[i];
-    if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
-        throw OpenMMException(GenDPDEIntegratorUtilities::nonFiniteForceMessage(i, force, context.getStepCount()));
-    const Vec3 displacement = (extractVelocities(context)[i] + force*(stepSize*inverseMasses[i]))*stepSize;
-    throw OpenMMException(GenDPDEIntegratorUtilities::unstableStepMessage(i, std::sqrt(displacement.dot(displacement)),
-                                                                         maxDisplacement, context.getStepCount()));
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(i, extractVelocities(context)[i],
+            extractForces(context)[i], inverseMasses[i], stepSize, maxDisplacement, context.getStepCount()));
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize,

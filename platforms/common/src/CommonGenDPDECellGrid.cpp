@@ -1,4 +1,5 @@
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEArguments.h"
 #include "internal/BoxGeometry.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/OpenMMException.h"
@@ -23,8 +24,7 @@ CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, bool periodic, 
     sortedAtom.initialize<int>(cc, numAtoms, "gendpdeSortedAtom");
     sortedCell.initialize<int>(cc, numAtoms, "gendpdeSortedCell");
     sortedPos.initialize(cc, numAtoms, cc.getPosq().getElementSize(), "gendpdeSortedPos");
-    const bool mixedIsDouble = cc.getUseDoublePrecision() || cc.getUseMixedPrecision();
-    bounds.initialize(cc, 6, mixedIsDouble ? sizeof(double) : sizeof(float), "gendpdeBounds");
+    bounds.initialize(cc, 6, mixedIsDouble(cc) ? sizeof(double) : sizeof(float), "gendpdeBounds");
     scanTotal.initialize<int>(cc, 1, "gendpdeScanTotal");
 }
 
@@ -70,24 +70,12 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     sortKernel->addArg(sortedPos);
 }
 
-void CommonGenDPDECellGrid::setMixed4(ComputeKernel& kernel, int index, double x, double y, double z) const {
-    if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
-        kernel->setArg(index, mm_double4(x, y, z, 0.0));
-    else
-        kernel->setArg(index, mm_float4((float) x, (float) y, (float) z, 0.0f));
-}
-
 void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bool asMixed) const {
     Vec3 box[3];
     cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
-    for (int k = 0; k < 3; k++) {
-        if (asMixed)
-            setMixed4(kernel, index + k, box[k][0], box[k][1], box[k][2]);
-        else if (cc.getUseDoublePrecision())
-            kernel->setArg(index + k, mm_double4(box[k][0], box[k][1], box[k][2], 0.0));
-        else
-            kernel->setArg(index + k, mm_float4((float) box[k][0], (float) box[k][1], (float) box[k][2], 0.0f));
-    }
+    const bool asDouble = asMixed ? mixedIsDouble(cc) : cc.getUseDoublePrecision();
+    for (int k = 0; k < 3; k++)
+        setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 0.0);
 }
 
 void CommonGenDPDECellGrid::exclusiveScan(ArrayInterface& counts, ArrayInterface& starts, int n,
@@ -129,8 +117,8 @@ void CommonGenDPDECellGrid::build() {
     cc.clearBuffer(cellFill);
     const mm_int4 cells = getCellsArgument();
     setBoxArguments(assignKernel, 2, true);
-    setMixed4(assignKernel, 5, low[0], low[1], low[2]);
-    setMixed4(assignKernel, 6, extent[0], extent[1], extent[2]);
+    setMixed4(cc, assignKernel, 5, low[0], low[1], low[2], 0.0);
+    setMixed4(cc, assignKernel, 6, extent[0], extent[1], extent[2], 0.0);
     assignKernel->setArg(7, cells);
     const int numAtoms = cc.getNumAtoms();
     assignKernel->execute(numAtoms);

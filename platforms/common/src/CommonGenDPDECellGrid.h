@@ -46,7 +46,6 @@ public:
     OpenMM::ComputeArray sortedCell;   // int: its cell
     OpenMM::ComputeArray sortedPos;    // real4: its position (posq)
 private:
-    void setMixed4(OpenMM::ComputeKernel& kernel, int index, double x, double y, double z) const;
     OpenMM::ComputeContext& cc;
     bool periodic;
     double range;

@@ -1,4 +1,5 @@
 #include "CommonGenDPDEForceKernel.h"
+#include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
@@ -58,15 +59,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                                 VolumeVBQuadrature::coefficient})
         quadrature.insert(quadrature.end(), table, table + VolumeVBQuadrature::numPairs);
     vbQuadrature.initialize(cc, quadrature.size(), realSize, "gendpdeVBQuadrature");
-    if (useDouble) {
-        vbCoefficients.upload(coefficients.data());
-        vbQuadrature.upload(quadrature);
-    }
-    else {
-        std::vector<float> single(coefficients.begin(), coefficients.end());
-        vbCoefficients.upload(single.data());
-        vbQuadrature.upload(quadrature, true);
-    }
+    uploadValues(vbCoefficients, coefficients, useDouble);
+    uploadValues(vbQuadrature, quadrature, useDouble);
 
     uploadTypeTables();
     grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff));
@@ -130,12 +124,7 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
 void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
     // The Tait equation of state of each type (Physics::TaitEquationOfState).
     const std::vector<double> tait = {referenceDensity, referencePressure, bulkModulus, exponent};
-    if (cc.getUseDoublePrecision())
-        taitTable.upload(tait.data());
-    else {
-        const std::vector<float> single(tait.begin(), tait.end());
-        taitTable.upload(single.data());
-    }
+    uploadValues(taitTable, tait, cc.getUseDoublePrecision());
     taitPowerTable.upload(std::vector<int>{Physics::TaitEquationOfState::integerPowerOf(exponent)});
 }
 
@@ -150,16 +139,9 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     forceKernel->setArg(0, cells);
     grid->setBoxArguments(densityKernel, 5, false);
     grid->setBoxArguments(forceKernel, 5, false);
-    if (cc.getUseDoublePrecision()) {
-        densityKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
-        densityKernel->setArg(12, mm_double4(vb4[0], vb4[1], vb4[2], vb4[3]));
-        forceKernel->setArg(8, mm_double4(model[0], model[1], model[2], model[3]));
-    }
-    else {
-        densityKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
-        densityKernel->setArg(12, mm_float4((float) vb4[0], (float) vb4[1], (float) vb4[2], 0.0f));
-        forceKernel->setArg(8, mm_float4((float) model[0], (float) model[1], (float) model[2], (float) model[3]));
-    }
+    for (ComputeKernel* kernel : {&densityKernel, &forceKernel})
+        setReal4(cc, *kernel, 8, model[0], model[1], model[2], model[3]);
+    setReal4(cc, densityKernel, 12, vb4[0], vb4[1], vb4[2], vb4[3]);
     densityKernel->setArg(13, estimator == GenDPDEForce::VA ? 0 : 1);
 }
 

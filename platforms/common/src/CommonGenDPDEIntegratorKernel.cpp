@@ -1,4 +1,5 @@
 #include "CommonGenDPDEIntegratorKernel.h"
+#include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEForceKernel.h"
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/GenDPDEForceImpl.h"
@@ -22,21 +23,6 @@ namespace {
 const int noValue = INT_MAX;
 }
 
-void CommonIntegrateGenDPDEStepKernel::setMixed(ComputeKernel& kernel, int index, double value) {
-    if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
-        kernel->setArg(index, value);
-    else
-        kernel->setArg(index, (float) value);
-}
-
-void CommonIntegrateGenDPDEStepKernel::setMixed4(ComputeKernel& kernel, int index, double x, double y, double z,
-                                                 double w) {
-    if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
-        kernel->setArg(index, mm_double4(x, y, z, w));
-    else
-        kernel->setArg(index, mm_float4((float) x, (float) y, (float) z, (float) w));
-}
-
 void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                   double cutoff, int seed, const std::vector<double>& internalEnergies) {
     cc.initializeContexts();
@@ -45,8 +31,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     this->seed = seed;
     periodic = context.getSystem().usesPeriodicBoundaryConditions();
     const int numAtoms = cc.getNumAtoms();
-    const bool mixedIsDouble = cc.getUseDoublePrecision() || cc.getUseMixedPrecision();
-    const int mixedSize = mixedIsDouble ? sizeof(double) : sizeof(float);
+    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
     energies.initialize(cc, numAtoms, mixedSize, "gendpdeInternalEnergies");
     savedEnergies.initialize(cc, numAtoms, mixedSize, "gendpdeSavedInternalEnergies");
     savedVelm.initialize(cc, cc.getVelm().getSize(), cc.getVelm().getElementSize(), "gendpdeSavedVelm");
@@ -187,8 +172,8 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
                                                     const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
     // The step check, and the pairs counted per block; then one download tells both (nothing has changed yet).
     const int numAtoms = cc.getNumAtoms();
-    setMixed(checkKernel, 3, integrator.getStepSize());
-    setMixed(checkKernel, 4, terms.maxDisplacement);
+    setMixed(cc, checkKernel, 3, integrator.getStepSize());
+    setMixed(cc, checkKernel, 4, terms.maxDisplacement);
     profiler.time("step check", [&]() {
         resetKernel->execute(1);
         checkKernel->execute(numAtoms);
@@ -226,7 +211,7 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         }
         findPairsKernel->setArg(0, cellGrid->getCellsArgument());
         grid->setBoxArguments(findPairsKernel, 8, true);
-        setMixed(findPairsKernel, 11, cutoff);
+        setMixed(cc, findPairsKernel, 11, cutoff);
         findPairsKernel->setArg(13, 0);
         profiler.time("pairs: count per block", [&]() {
             cc.clearBuffer(blockCount);
@@ -266,23 +251,18 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
     const long long step = cc.getStepCount();
     const PairSweepParameters p(integrator, terms, cutoff, seed, step);   // what the host platforms' sweep uses
     grid->setBoxArguments(sweepKernel, 9, true);
-    setMixed4(sweepKernel, 12, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
+    setMixed4(cc, sweepKernel, 12, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
     // The type tables (one type): the integrator's parameters may change between steps, so they are uploaded
     // when they do.
     const std::vector<double> pairParameters = {p.friction, p.heatConduction, p.heatNoise, p.bathNoise};
     const std::vector<double> capacity = {p.heatCapacity};
     if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
-        if (cc.getUseDoublePrecision() || cc.getUseMixedPrecision())
-            pairTable.upload(pairParameters.data());
-        else {
-            const std::vector<float> single(pairParameters.begin(), pairParameters.end());
-            pairTable.upload(single.data());
-        }
-        heatCapacityTable.upload(capacity, true);
+        uploadValues(pairTable, pairParameters, mixedIsDouble(cc));
+        uploadValues(heatCapacityTable, capacity, mixedIsDouble(cc));
         uploadedPairTable = pairParameters;
         uploadedHeatCapacities = capacity;
     }
-    setMixed(sweepKernel, 17, Physics::Boltzmann);
+    setMixed(cc, sweepKernel, 17, Physics::Boltzmann);
     sweepKernel->setArg(18, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
                             | (terms.internalEnergies ? 4 : 0));
     sweepKernel->setArg(19, p.seed);
@@ -325,7 +305,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
     const double dt = integrator.getStepSize();
     const int numAtoms = cc.getNumAtoms();
     if (!terms.pairSweep) {
-        setMixed(kickKernel, 2, dt);
+        setMixed(cc, kickKernel, 2, dt);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
     else {
@@ -333,12 +313,12 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
             cc.getVelm().copyTo(savedVelm);
             energies.copyTo(savedEnergies);
         }
-        setMixed(kickKernel, 2, 0.5*dt);
+        setMixed(cc, kickKernel, 2, 0.5*dt);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
         sweep(context, integrator, terms);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
-    setMixed(driftKernel, 3, dt);
+    setMixed(cc, driftKernel, 3, dt);
     profiler.time("kicks, drift", [&]() { driftKernel->execute(numAtoms); });
     cc.setTime(cc.getTime() + dt);
     cc.setStepCount(cc.getStepCount() + 1);
@@ -348,7 +328,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
 double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
                                                               const GenDPDEIntegrator& integrator) {
     ContextSelector selector(cc);
-    setMixed(kineticKernel, 2, 0.5*integrator.getStepSize());
+    setMixed(cc, kineticKernel, 2, 0.5*integrator.getStepSize());
     kineticKernel->execute(cc.getNumAtoms());
     std::vector<double> perSlot;
     kinetic.download(perSlot, true);

@@ -43,8 +43,6 @@ private:
     /** The sweep, colour by colour; rolls back and throws if an internal energy became <= 0. */
     void sweep(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, double maxDisplacement);
-    void setMixed(OpenMM::ComputeKernel& kernel, int index, double value);
-    void setMixed4(OpenMM::ComputeKernel& kernel, int index, double x, double y, double z, double w);
     OpenMM::ComputeContext& cc;
     double cutoff = 0.0;
     int seed = 0;

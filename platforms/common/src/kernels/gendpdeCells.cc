@@ -199,3 +199,33 @@ inline DEVICE int shiftCell(int c, int d, int n) {
     for (int cz = shiftCell(home.z, dz_, cells.z), cy = shiftCell(home.y, dy_, cells.y), \
              cx = shiftCell(home.x, dx_, cells.x), cell = (cz*cells.y + cy)*cells.x + cx, \
              once_ = (cx >= 0 && cy >= 0 && cz >= 0); once_; once_ = 0)
+
+#ifdef USE_PERIODIC
+#define GENDPDE_PERIODIC 1
+#else
+#define GENDPDE_PERIODIC 0
+#endif
+
+/**
+ * name(r_i, r_j, box) = r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the
+ * smallest width), in one precision. Image shifts round to nearest even (rint), which is odd-symmetric: r_j - r_i
+ * gets exactly the opposite vector, so both particles of a pair see the same pair.
+ */
+#define GENDPDE_NEAREST_IMAGE(name, scalar, vector3, vector4) \
+inline DEVICE vector3 name(vector3 ri, vector3 rj, vector4 boxA, vector4 boxB, vector4 boxC) { \
+    vector3 d = ri - rj; \
+    if (GENDPDE_PERIODIC) { \
+        scalar scale = rint(d.z/boxC.z); \
+        d.x -= boxC.x*scale; \
+        d.y -= boxC.y*scale; \
+        d.z -= boxC.z*scale; \
+        scale = rint(d.y/boxB.y); \
+        d.x -= boxB.x*scale; \
+        d.y -= boxB.y*scale; \
+        scale = rint(d.x/boxA.x); \
+        d.x -= boxA.x*scale; \
+    } \
+    return d; \
+}
+GENDPDE_NEAREST_IMAGE(pairDelta, real, real3, real4)            /* the force's positions, `real` */
+GENDPDE_NEAREST_IMAGE(mixedPairDelta, mixed, mixed3, mixed4)    /* the integrator's, `mixed` */

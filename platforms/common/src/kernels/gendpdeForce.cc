@@ -7,24 +7,6 @@
  * (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays, converted to `real`. */
 
 /**
- * r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the smallest width). Image
- * shifts round to nearest even (rint), which is odd-symmetric: r_j - r_i gets exactly the opposite vector, so both
- * particles of a pair see the same pair.
- */
-inline DEVICE real3 pairDelta(real3 ri, real3 rj, real4 boxA, real4 boxB, real4 boxC) {
-    real3 d = ri - rj;
-#ifdef USE_PERIODIC
-    real scale = rint(d.z/boxC.z);
-    d -= make_real3(boxC.x, boxC.y, boxC.z)*scale;
-    scale = rint(d.y/boxB.y);
-    d -= make_real3(boxB.x, boxB.y, boxB.z)*scale;
-    scale = rint(d.x/boxA.x);
-    d.x -= boxA.x*scale;
-#endif
-    return d;
-}
-
-/**
  * The V-B integrals (I, J) of Physics::volumeIntegralsVB at k > 0, with the same three branches: the piece of the
  * polynomial table from frexp (the host reads the same bits of k), the closed forms and the quadrature from the
  * shared core (GenDPDEPhysicsCore.h).

@@ -95,23 +95,6 @@ KERNEL void invertAtomIndex(GLOBAL const int* RESTRICT atomIndex, GLOBAL int* RE
         slotOfAtom[atomIndex[slot]] = slot;
 }
 
-/** r_i - r_j for the nearest image, in mixed precision. */
-inline DEVICE mixed3 mixedPairDelta(mixed3 ri, mixed3 rj, mixed4 boxA, mixed4 boxB, mixed4 boxC) {
-    mixed3 d = ri - rj;
-#ifdef USE_PERIODIC
-    mixed scale = rint(d.z/boxC.z);
-    d.x -= boxC.x*scale;
-    d.y -= boxC.y*scale;
-    d.z -= boxC.z*scale;
-    scale = rint(d.y/boxB.y);
-    d.x -= boxB.x*scale;
-    d.y -= boxB.y*scale;
-    scale = rint(d.x/boxA.x);
-    d.x -= boxA.x*scale;
-#endif
-    return d;
-}
-
 /**
  * The pairs (i < j, original indices, closer than the cutoff) by block: with fill == 0 count them per block slot,
  * with fill != 0 list them in their slot's range (in any order; orderBlockPairs orders them). A pair's block is

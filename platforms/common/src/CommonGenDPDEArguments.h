@@ -1,0 +1,55 @@
+#ifndef COMMON_GENDPDE_ARGUMENTS_H_
+#define COMMON_GENDPDE_ARGUMENTS_H_
+
+/* Kernel arguments and small uploads in a context's precisions: `real` is double in double precision only, `mixed`
+ * in mixed and double precision. Values come as doubles and are narrowed where the device type is float. */
+
+#include "openmm/common/ArrayInterface.h"
+#include "openmm/common/ComputeContext.h"
+#include "openmm/common/ComputeKernel.h"
+#include "openmm/common/ComputeVectorTypes.h"
+#include <vector>
+
+namespace GenDPDEPlugin {
+
+inline bool mixedIsDouble(OpenMM::ComputeContext& cc) {
+    return cc.getUseDoublePrecision() || cc.getUseMixedPrecision();
+}
+
+inline void setVector4(OpenMM::ComputeKernel& kernel, int index, bool asDouble, double x, double y, double z, double w) {
+    if (asDouble)
+        kernel->setArg(index, OpenMM::mm_double4(x, y, z, w));
+    else
+        kernel->setArg(index, OpenMM::mm_float4((float) x, (float) y, (float) z, (float) w));
+}
+
+inline void setReal4(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double x, double y,
+                     double z, double w) {
+    setVector4(kernel, index, cc.getUseDoublePrecision(), x, y, z, w);
+}
+
+inline void setMixed4(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double x, double y,
+                      double z, double w) {
+    setVector4(kernel, index, mixedIsDouble(cc), x, y, z, w);
+}
+
+inline void setMixed(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double value) {
+    if (mixedIsDouble(cc))
+        kernel->setArg(index, value);
+    else
+        kernel->setArg(index, (float) value);
+}
+
+/** Upload ``values`` into ``array`` (elements of any width: real, real2, real4 ...), as doubles or as floats. */
+inline void uploadValues(OpenMM::ArrayInterface& array, const std::vector<double>& values, bool asDouble) {
+    if (asDouble)
+        array.upload(values.data());
+    else {
+        const std::vector<float> single(values.begin(), values.end());
+        array.upload(single.data());
+    }
+}
+
+} // namespace GenDPDEPlugin
+
+#endif /*COMMON_GENDPDE_ARGUMENTS_H_*/

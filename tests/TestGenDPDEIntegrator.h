@@ -391,4 +391,33 @@ void runIntegratorTests() {
     testHeatConduction();
 }
 
+/** The state a run ends in, for comparing platforms. */
+struct Trajectory {
+    std::vector<Vec3> positions, velocities;
+    std::vector<double> energies;
+    double kinetic;
+};
+
+/**
+ * A lattice liquid of cellsPerSide^3 particles (V-B, seed 61) after `steps` steps in `mode` (seed 77, velocities and
+ * internal energies drawn at T0 with seeds 5 and 6), in the Context that makeContext creates. ownPairs: the pair
+ * range is 0.9 R, so the integrator cannot reuse the force's pairs and finds its own.
+ */
+inline Trajectory runLatticeLiquid(int cellsPerSide, bool periodic, GenDPDEIntegrator::Mode mode, int steps,
+                                   bool ownPairs, const std::function<Context*(System&, Integrator&)>& makeContext) {
+    Scene scene = makeLatticeLiquid(cellsPerSide, referenceDensity, 0.1, GenDPDEForce::VB, periodic, 61);
+    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
+    integrator.setCutoffDistance(ownPairs ? 0.9*cutoff : 0.0);
+    integrator.setTemperature(temperature);
+    integrator.setRandomNumberSeed(77);
+    integrator.setMode(mode);
+    std::unique_ptr<Context> context(makeContext(scene.system, integrator));
+    context->setPositions(scene.positions);
+    context->setVelocitiesToTemperature(temperature, 5);
+    integrator.setInternalEnergiesToTemperature(temperature, 6);
+    integrator.step(steps);
+    const State state = context->getState(State::Positions | State::Velocities | State::Energy);
+    return {state.getPositions(), state.getVelocities(), integrator.getInternalEnergies(), state.getKineticEnergy()};
+}
+
 } // namespace IntegratorTests

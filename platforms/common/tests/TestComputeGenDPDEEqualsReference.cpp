@@ -87,27 +87,10 @@ void testForcesAndObservables(const std::string& precision) {
     compareScene(scene, "VB triclinic", precision);
 }
 
-struct Trajectory {
-    std::vector<Vec3> positions, velocities;
-    std::vector<double> energies;
-    double kinetic;
-};
-
-/** ownPairs: the pair range differs from the force's cutoff, so the sweep cannot reuse the force's cells. */
 Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic, bool ownPairs) {
-    Scene scene = makeLatticeLiquid(8, referenceDensity, 0.1, GenDPDEForce::VB, periodic, 61);
-    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
-    integrator.setCutoffDistance(ownPairs ? 0.9*cutoff : 0.0);
-    integrator.setTemperature(temperature);
-    integrator.setRandomNumberSeed(77);
-    integrator.setMode(mode);
-    std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
-    context->setPositions(scene.positions);
-    context->setVelocitiesToTemperature(temperature, 5);
-    integrator.setInternalEnergiesToTemperature(temperature, 6);
-    integrator.step(steps);
-    const State state = context->getState(State::Positions | State::Velocities | State::Energy);
-    return {state.getPositions(), state.getVelocities(), integrator.getInternalEnergies(), state.getKineticEnergy()};
+    return runLatticeLiquid(8, periodic, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
+        return makeContext(system, integrator, precision);
+    });
 }
 
 void compareTrajectories(GenDPDEIntegrator::Mode mode, bool periodic, bool ownPairs, const std::string& label) {

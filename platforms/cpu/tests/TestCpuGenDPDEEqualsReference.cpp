@@ -71,30 +71,11 @@ void testForcesAndObservables() {
     checkForcesAndObservables(scene, "VB triclinic");
 }
 
-struct Trajectory {
-    std::vector<Vec3> positions, velocities;
-    std::vector<double> energies;
-    double kinetic;
-};
-
 Trajectory run(const std::string& platformName, const std::string& threads, GenDPDEIntegrator::Mode mode, int steps,
                bool ownPairs) {
-    Scene scene = makeLatticeLiquid(14, referenceDensity, 0.1, GenDPDEForce::VB, true, 61);
-    if (ownPairs)
-        scene.force->setForceGroup(1);   // not integrated: the integrator finds its own pairs
-    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
-    integrator.setIntegrationForceGroups(ownPairs ? (1<<0) | (1<<1) : 1<<0);
-    integrator.setCutoffDistance(ownPairs ? 0.9*cutoff : 0.0);
-    integrator.setTemperature(temperature);
-    integrator.setRandomNumberSeed(77);
-    integrator.setMode(mode);
-    std::unique_ptr<Context> context(makeContext(scene.system, integrator, platformName, threads));
-    context->setPositions(scene.positions);
-    context->setVelocitiesToTemperature(temperature, 5);
-    integrator.setInternalEnergiesToTemperature(temperature, 6);
-    integrator.step(steps);
-    const State state = context->getState(State::Positions | State::Velocities | State::Energy);
-    return {state.getPositions(), state.getVelocities(), integrator.getInternalEnergies(), state.getKineticEnergy()};
+    return runLatticeLiquid(14, true, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
+        return makeContext(system, integrator, platformName, threads);
+    });
 }
 
 void compareTrajectories(GenDPDEIntegrator::Mode mode, int steps, bool ownPairs, const std::string& label) {

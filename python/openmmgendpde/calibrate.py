@@ -106,7 +106,6 @@ class Calibration:
         if self.estimator == "VA":
             return self.parameters.cutoff_scaling
         scaling = self.parameters.cutoff_scaling
-        history = []
         for iteration in range(self.plan.tuning_iterations):
             self.parameters = self.parameters.with_cutoff_scaling(scaling)
             model, context = self._equilibrated()
@@ -118,11 +117,11 @@ class Calibration:
             densities = [mean_density_on_frames(model.force, context, frames, f, units=None) for f in trial]
             current = mean_density_on_frames(model.force, context, frames, scaling, units=None)
             slope = STRUCTURE_RESPONSE*(densities[1] - densities[0])/(trial[1] - trial[0])
-            scaling = scaling + (self.parameters.density - current)/slope
-            history.append((trial[0]/0.98, current))
-            self.report(f"  f_cut iteration {iteration + 1}: n-bar = {current:.4f} nm^-3 at f_cut = "
-                        f"{history[-1][0]:.4f} (n0 = {self.parameters.density:.4f}), d n-bar/d f_cut = "
-                        f"{slope:.3f} nm^-3: f_cut -> {scaling:.4f}")
+            next_scaling = scaling + (self.parameters.density - current)/slope
+            self.report(f"  f_cut iteration {iteration + 1}: n-bar = {current:.4f} nm^-3 at f_cut = {scaling:.4f} "
+                        f"(n0 = {self.parameters.density:.4f}), d n-bar/d f_cut = {slope:.3f} nm^-3: f_cut -> "
+                        f"{next_scaling:.4f}")
+            scaling = next_scaling
         self.parameters = self.parameters.with_cutoff_scaling(scaling)
         return scaling
 

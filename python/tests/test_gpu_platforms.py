@@ -12,7 +12,7 @@ from openmm import unit
 
 from conftest import GPU_PLATFORMS
 from helpers import argon_integrator, energy_and_forces, lattice_liquid, make_context, rms, TEMPERATURE
-from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+from openmmgendpde import GenDPDEForce
 from openmmgendpde.physics import particleVolumeVB
 from openmmgendpde.presets import liquid_argon
 from openmmgendpde.statistics import block_average
@@ -26,6 +26,17 @@ PRECISIONS = ["single", "mixed", "double"]
 
 def values(quantity):
     return np.asarray(quantity._value if unit.is_quantity(quantity) else quantity)
+
+
+def argon_start(system, positions, name, precision, seed):
+    """(context, integrator): the argon model's GenDPDEIntegrator (random seed ``seed``, every theta_i = T0) on the
+    GPU platform ``name``, velocities drawn at T0 with seed + 1."""
+    integrator = argon_integrator(0.01 * unit.picosecond)
+    integrator.setRandomNumberSeed(seed)
+    integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
+    context = gpu_context(system, positions, name, precision, integrator)
+    context.setVelocitiesToTemperature(TEMPERATURE * unit.kelvin, seed + 1)
+    return context, integrator
 
 
 def gpu_context(system, positions, name, precision, integrator=None):
@@ -82,11 +93,7 @@ def test_checkpoint_continues_the_same_trajectory(name):
     """A checkpoint holds the device's internal energies and step: continuing from it repeats the trajectory to the
     last bit (the device's sequence of pair updates and variates is a function of the state and the step)."""
     system, force, positions = lattice_liquid(6, seed=5)
-    integrator = argon_integrator(0.01 * unit.picosecond)
-    integrator.setRandomNumberSeed(21)
-    integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
-    context = gpu_context(system, positions, name, "mixed", integrator)
-    context.setVelocitiesToTemperature(TEMPERATURE * unit.kelvin, 22)
+    context, integrator = argon_start(system, positions, name, "mixed", 21)
     integrator.step(5)
     checkpoint = context.createCheckpoint()
     integrator.step(10)
@@ -158,11 +165,7 @@ def test_atom_reordering_changes_nothing(name):
             for _ in range(system.getNumParticles()):
                 nothing.addParticle([])
             system.addForce(nothing)
-        integrator = argon_integrator(0.01 * unit.picosecond)
-        integrator.setRandomNumberSeed(31)
-        integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
-        context = gpu_context(system, positions, name, "double", integrator)
-        context.setVelocitiesToTemperature(TEMPERATURE * unit.kelvin, 32)
+        context, integrator = argon_start(system, positions, name, "double", 31)
         integrator.step(600)
         state = context.getState(getPositions=True, getVelocities=True)
         results.append((values(state.getPositions(asNumpy=True)), values(state.getVelocities(asNumpy=True)),

@@ -7,7 +7,7 @@ import pytest
 from openmm import unit
 
 from conftest import PLATFORMS
-from helpers import energy_and_forces, lattice_liquid, make_context
+from helpers import lattice_liquid, make_context
 from openmmgendpde import GenDPDEForce
 from openmmgendpde.pressure import pressure_tensor, virial_tensor
 

@@ -71,6 +71,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
             + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, defines);
     grid->createKernels(program);
+    resetErrorsKernel = program->createKernel("resetErrors");
+    resetErrorsKernel->addArg(errors);
     densityKernel = program->createKernel("computeDensities");
     densityKernel->addArg();   // cells
     densityKernel->addArg(grid->cellStart);
@@ -153,8 +155,10 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
     }
     profiler.time("cell grid", [&]() { grid->build(); });
     setModelArguments();
-    errors.upload(std::vector<int>{noValue, noValue});
-    profiler.time("densities, particle state", [&]() { densityKernel->execute(cc.getNumAtoms()); });
+    profiler.time("densities, particle state", [&]() {
+        resetErrorsKernel->execute(1);
+        densityKernel->execute(cc.getNumAtoms());
+    });
     std::vector<int> found;
     errors.download(found);
     if (found[0] == noValue && found[1] == noValue)

@@ -48,7 +48,7 @@ private:
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
     OpenMM::ComputeArray vbCoefficients, vbQuadrature, errors;
     OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
-    OpenMM::ComputeKernel densityKernel, forceKernel;
+    OpenMM::ComputeKernel resetErrorsKernel, densityKernel, forceKernel;
     GenDPDEObservables observables;
     CommonGenDPDEProfiler profiler;
 };

@@ -6,6 +6,12 @@
  * Everything in `real` precision; the formulas from GenDPDEPhysicsCore.h (GENDPDE_REAL = real), the V-B tables
  * (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays, converted to `real`. */
 
+/** errors[0] = errors[1] = none (INT_MAX), on the device, before each density pass. */
+KERNEL void resetErrors(GLOBAL int* RESTRICT errors) {
+    if (GLOBAL_ID == 0)
+        errors[0] = errors[1] = 0x7FFFFFFF;
+}
+
 /**
  * The V-B integrals (I, J) of Physics::volumeIntegralsVB at k > 0, with the same three branches: the piece of the
  * polynomial table from frexp (the host reads the same bits of k), the closed forms and the quadrature from the

@@ -3,6 +3,7 @@
 
 #include "openmm/Context.h"
 #include "openmm/Force.h"
+#include <map>
 #include <vector>
 
 namespace GenDPDEPlugin {
@@ -30,9 +31,15 @@ struct GenDPDEObservables;
  * F_i = sum_j [pi_i dV_i/dn0_i + pi_j dV_j/dn0_j] w'(r_ij) e_ij, which is pairwise antisymmetric and conserves
  * momentum. Coincident particles count in the density but exert no force on each other.
  *
+ * Particle types (docs/types.md). Every particle has a type, an integer (0 unless setParticleType() says otherwise),
+ * and each type may have its own Tait parameters (addTypeParameters()); a type without them uses
+ * setTaitParameters(). Particle i then has the equation of state of its type, f_i(n_i), while its density counts
+ * every neighbour whatever its type: the volumes V_i partition the space the particles fill, so the mixture's
+ * volume is the sum of its particles' volumes and each particle's pressure follows from its own.
+ *
  * All parameters can be set before the Context is created. The estimator, the cutoff scaling and the Tait
- * parameters can also be changed afterwards with updateParametersInContext(); the cutoff distance and the
- * nonbonded method cannot. The per-particle observables (densities, volumes, pressures) and the virial are
+ * parameters (per type too) can also be changed afterwards with updateParametersInContext(); the cutoff distance,
+ * the nonbonded method and the particle types cannot. The per-particle observables (densities, volumes, pressures) and the virial are
  * computed from the Context's current positions on request.
  *
  * The defaults are the liquid-argon model of Colella et al. (J. Chem. Theory Comput. 2025) in OpenMM units
@@ -103,11 +110,41 @@ public:
     double getBulkModulus() const;
     /** Get the Tait exponent gamma_T (dimensionless). */
     double getTaitExponent() const;
+    /**
+     * Set the type of a particle: any integer (particles never given one have type 0). Read when a Context is
+     * created; the particle index is checked against the System then.
+     *
+     * @param index   the particle, >= 0
+     * @param type    its type
+     */
+    void setParticleType(int index, int type);
+    /** Get the type of a particle (0 if none was set). */
+    int getParticleType(int index) const;
+    /** The particles whose type was set, as particle -> type (every other particle has type 0). */
+    const std::map<int, int>& getParticleTypes() const;
+    /**
+     * Give a type its own Tait parameters (see setTaitParameters for units and ranges). Each type may appear in one
+     * entry; types without an entry use the force's own parameters. The type must be one that some particle has
+     * when a Context is created.
+     *
+     * @return the index of the entry
+     */
+    int addTypeParameters(int type, double referenceDensity, double referencePressure, double bulkModulus,
+                          double exponent);
+    /** The number of entries added with addTypeParameters(). */
+    int getNumTypeParameters() const;
+    /** Get an entry of addTypeParameters(): its type and Tait parameters (n0 in nm^-3, pi0 and B_T in kJ/mol/nm^3). */
+    void getTypeParameters(int index, int& type, double& referenceDensity, double& referencePressure,
+                           double& bulkModulus, double& exponent) const;
+    /** Change an entry of addTypeParameters() (same units and checks). */
+    void setTypeParameters(int index, int type, double referenceDensity, double referencePressure,
+                           double bulkModulus, double exponent);
     /** Returns true if the force uses periodic boundaries (nonbonded method CutoffPeriodic). */
     bool usesPeriodicBoundaryConditions() const override;
     /**
-     * Copy the estimator, the cutoff scaling and the Tait parameters into a Context that already exists, without
-     * reinitialising it. The cutoff distance and the nonbonded method cannot be changed this way.
+     * Copy the estimator, the cutoff scaling and the Tait parameters (the force's and each type's) into a Context
+     * that already exists, without reinitialising it. The cutoff distance, the nonbonded method and the particle
+     * types cannot be changed this way.
      */
     void updateParametersInContext(OpenMM::Context& context);
     /** The primitive density n0_i of every particle (in nm^-3) at the Context's current positions. */
@@ -132,6 +169,14 @@ private:
     double referenceDensity, referencePressure, bulkModulus, exponent;
     NonbondedMethod nonbondedMethod;
     DensityEstimator estimator;
+    std::map<int, int> particleTypes;
+    struct TypeEntry {
+        int type;
+        double referenceDensity, referencePressure, bulkModulus, exponent;
+    };
+    std::vector<TypeEntry> typeParameters;
+    void checkTypeEntry(int index, int type, double referenceDensity, double referencePressure, double bulkModulus,
+                        double exponent) const;
 };
 
 } // namespace GenDPDEPlugin

@@ -4,6 +4,7 @@
 #include "openmm/Integrator.h"
 #include "openmm/Kernel.h"
 #include <iosfwd>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -68,8 +69,16 @@ class IntegrateGenDPDEStepKernel;
  * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
  * simulation has become unstable (reduce the step size).
  *
- * Parameters can be changed at any time and take effect at the next step, except the cutoff, which is read when
- * the Context is created. Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
+ * Particle types (docs/types.md). Every particle has a type, an integer (0 unless setParticleType() says otherwise;
+ * set them as on the System's GenDPDEForce). A type may have its own heat capacity (addTypeHeatCapacity()), and a
+ * pair of types its own friction and heat conduction (addTypePair()); the others use the integrator's. A pair
+ * update of particles of types a and b then uses gamma_ab, kappa_ab and theta_i = eps_i/C_V(a), theta_j =
+ * eps_j/C_V(b), with the Ito term of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2; the total
+ * energy and momentum are conserved as before, and at equilibrium every particle's eps_i follows the Gamma law of
+ * its own C_V (docs/types.md lists the identities).
+ *
+ * Parameters can be changed at any time and take effect at the next step, except the cutoff and the particle types,
+ * which are read when the Context is created. Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
  * moved. Constraints and virtual sites are not supported (refused when the Context is created).
  */
 class GenDPDEIntegrator : public OpenMM::Integrator {
@@ -110,6 +119,42 @@ public:
     double getCutoffDistance() const;
     /** Set the cutoff R (in nm), >= 0; 0 takes that of the System's GenDPDEForce. Read when a Context is created. */
     void setCutoffDistance(double distance);
+    /**
+     * Set the type of a particle: any integer (particles never given one have type 0). Read when a Context is
+     * created; the particle index is checked against the System then.
+     */
+    void setParticleType(int index, int type);
+    /** Get the type of a particle (0 if none was set). */
+    int getParticleType(int index) const;
+    /** The particles whose type was set, as particle -> type (every other particle has type 0). */
+    const std::map<int, int>& getParticleTypes() const;
+    /**
+     * Give a type its own heat capacity C_V (in kJ/(mol K)), in the range of setHeatCapacity. Each type may appear
+     * in one entry; the others use getHeatCapacity(). Like setHeatCapacity, a change keeps the internal energies.
+     *
+     * @return the index of the entry
+     */
+    int addTypeHeatCapacity(int type, double heatCapacity);
+    /** The number of entries added with addTypeHeatCapacity(). */
+    int getNumTypeHeatCapacities() const;
+    /** Get an entry of addTypeHeatCapacity(): its type and C_V (in kJ/(mol K)). */
+    void getTypeHeatCapacity(int index, int& type, double& heatCapacity) const;
+    /** Change an entry of addTypeHeatCapacity(). */
+    void setTypeHeatCapacity(int index, int type, double heatCapacity);
+    /**
+     * Give the pairs of particles of types type1 and type2 (in either order; type1 = type2 for like pairs) their own
+     * friction gamma (in amu/ps, >= 0) and heat conduction kappa (in kJ K/(mol ps), >= 0); pairs of types without
+     * an entry use getFriction() and getHeatConduction(). Each pair of types may appear in one entry.
+     *
+     * @return the index of the entry
+     */
+    int addTypePair(int type1, int type2, double friction, double heatConduction);
+    /** The number of entries added with addTypePair(). */
+    int getNumTypePairs() const;
+    /** Get an entry of addTypePair(): its types, friction (amu/ps) and heat conduction (kJ K/(mol ps)). */
+    void getTypePairParameters(int index, int& type1, int& type2, double& friction, double& heatConduction) const;
+    /** Change an entry of addTypePair(). */
+    void setTypePairParameters(int index, int type1, int type2, double friction, double heatConduction);
     /** Get the random number seed (0: a seed is chosen when the Context is created). */
     int getRandomNumberSeed() const;
     /** Set the random number seed; 0 chooses one when the Context is created. Read when a Context is created. */
@@ -129,13 +174,13 @@ public:
     void setTemperature(double temperature);
     /**
      * Set each particle's temperature theta_i (in K), each in [1e-50, 1e50], one per particle, i.e. eps_i = C_V
-     * theta_i. Before a Context exists: the initial condition (its length is checked against the System when the
+     * theta_i with the C_V of the particle's type. Before a Context exists: the initial condition (its length is checked against the System when the
      * Context is created). Afterwards: the internal energies of the Context, now.
      */
     void setParticleTemperatures(const std::vector<double>& temperatures);
     /**
      * Draw every particle's internal energy from its equilibrium distribution at temperature T (in K), > 0: the
-     * Gamma law with shape C_V/k_B + 1 and scale k_B T (docs/theory.md section 8), so that the harmonic mean of theta_i
+     * Gamma law with shape C_V/k_B + 1 (C_V of the particle's type) and scale k_B T (docs/theory.md section 8), so that the harmonic mean of theta_i
      * is T and its mean T (1 + k_B/C_V). The counterpart of Context::setVelocitiesToTemperature() for the internal
      * energies; needs a Context. Setting every theta_i = T instead (setTemperature) leaves the internal energies
      * k_B T per particle short of equilibrium at T.
@@ -182,7 +227,11 @@ private:
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;
     /** eps_i at Context creation: from initialTemperatures, else the bath temperature, else all zero (not set). */
-    std::vector<double> initialInternalEnergies(int numParticles) const;
+    std::vector<double> initialInternalEnergies(const OpenMM::System& system) const;
+    /** C_V of each particle of the System (kJ/(mol K)), from the particle types and the heat capacities now. */
+    std::vector<double> particleHeatCapacities(const OpenMM::System& system) const;
+    void checkTypeHeatCapacity(int index, int type, double heatCapacity) const;
+    void checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const;
     /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
     void checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const;
     void requireTemperatures() const;
@@ -193,6 +242,18 @@ private:
     // The per-particle state lives in the kernel once a Context exists (eps_i; all zero until set). Before that,
     // the configured initial condition: these temperatures, or, if empty, every particle at `temperature`.
     std::vector<double> initialTemperatures;
+    std::map<int, int> particleTypes;
+    std::map<int, int> contextParticleTypes;   // the particle types read when the bound Context was created
+    struct TypeHeatCapacity {
+        int type;
+        double heatCapacity;
+    };
+    struct TypePair {
+        int type1, type2;
+        double friction, heatConduction;
+    };
+    std::vector<TypeHeatCapacity> typeHeatCapacities;
+    std::vector<TypePair> typePairs;
     OpenMM::Kernel kernel;
 };
 

@@ -4,6 +4,7 @@
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include <sstream>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -98,6 +99,64 @@ double GenDPDEForce::getBulkModulus() const {
 
 double GenDPDEForce::getTaitExponent() const {
     return exponent;
+}
+
+void GenDPDEForce::setParticleType(int index, int type) {
+    if (index < 0)
+        reject("GenDPDEForce", "particle index in setParticleType", index, "", ">= 0");
+    particleTypes[index] = type;
+}
+
+int GenDPDEForce::getParticleType(int index) const {
+    const auto found = particleTypes.find(index);
+    return found == particleTypes.end() ? 0 : found->second;
+}
+
+const std::map<int, int>& GenDPDEForce::getParticleTypes() const {
+    return particleTypes;
+}
+
+void GenDPDEForce::checkTypeEntry(int index, int type, double referenceDensity, double referencePressure,
+                                  double bulkModulus, double exponent) const {
+    const std::string entry = "GenDPDEForce type parameters " + std::to_string(index) + " (type "
+                              + std::to_string(type) + ")";
+    requireInRange(entry, "Tait reference density n0", referenceDensity, Ranges::referenceDensity);
+    requireInRange(entry, "Tait reference pressure pi0", referencePressure, Ranges::referencePressure);
+    requireInRange(entry, "Tait bulk modulus B_T", bulkModulus, Ranges::bulkModulus);
+    requireInRange(entry, "Tait exponent gamma_T", exponent, Ranges::taitExponent, true);
+    for (int other = 0; other < (int) typeParameters.size(); other++)
+        if (other != index && typeParameters[other].type == type)
+            throw OpenMMException(entry + ": type " + std::to_string(type) + " already has parameters (entry "
+                                  + std::to_string(other) + "); change that entry with setTypeParameters()");
+}
+
+int GenDPDEForce::addTypeParameters(int type, double referenceDensity, double referencePressure, double bulkModulus,
+                                    double exponent) {
+    checkTypeEntry(typeParameters.size(), type, referenceDensity, referencePressure, bulkModulus, exponent);
+    typeParameters.push_back({type, referenceDensity, referencePressure, bulkModulus, exponent});
+    return typeParameters.size() - 1;
+}
+
+int GenDPDEForce::getNumTypeParameters() const {
+    return typeParameters.size();
+}
+
+void GenDPDEForce::getTypeParameters(int index, int& type, double& referenceDensity, double& referencePressure,
+                                     double& bulkModulus, double& exponent) const {
+    requireIndex("GenDPDEForce", "type parameters index", index, typeParameters.size());
+    const TypeEntry& entry = typeParameters[index];
+    type = entry.type;
+    referenceDensity = entry.referenceDensity;
+    referencePressure = entry.referencePressure;
+    bulkModulus = entry.bulkModulus;
+    exponent = entry.exponent;
+}
+
+void GenDPDEForce::setTypeParameters(int index, int type, double referenceDensity, double referencePressure,
+                                     double bulkModulus, double exponent) {
+    requireIndex("GenDPDEForce", "type parameters index", index, typeParameters.size());
+    checkTypeEntry(index, type, referenceDensity, referencePressure, bulkModulus, exponent);
+    typeParameters[index] = {type, referenceDensity, referencePressure, bulkModulus, exponent};
 }
 
 bool GenDPDEForce::usesPeriodicBoundaryConditions() const {

@@ -6,10 +6,12 @@
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include "openmm/serialization/SerializationNode.h"
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -82,6 +84,98 @@ void GenDPDEIntegrator::setCutoffDistance(double distance) {
     cutoff = distance;
 }
 
+void GenDPDEIntegrator::setParticleType(int index, int type) {
+    if (index < 0)
+        reject(integratorName, "particle index in setParticleType", index, "", ">= 0");
+    particleTypes[index] = type;
+}
+
+int GenDPDEIntegrator::getParticleType(int index) const {
+    const auto found = particleTypes.find(index);
+    return found == particleTypes.end() ? 0 : found->second;
+}
+
+const std::map<int, int>& GenDPDEIntegrator::getParticleTypes() const {
+    return particleTypes;
+}
+
+void GenDPDEIntegrator::checkTypeHeatCapacity(int index, int type, double heatCapacity) const {
+    const std::string entry = std::string(integratorName) + " type heat capacity " + std::to_string(index) + " (type "
+                              + std::to_string(type) + ")";
+    requireInRange(entry, "heat capacity", heatCapacity, Ranges::heatCapacity);
+    for (int other = 0; other < (int) typeHeatCapacities.size(); other++)
+        if (other != index && typeHeatCapacities[other].type == type)
+            throw OpenMMException(entry + ": type " + std::to_string(type) + " already has a heat capacity (entry "
+                                  + std::to_string(other) + "); change that entry with setTypeHeatCapacity()");
+}
+
+int GenDPDEIntegrator::addTypeHeatCapacity(int type, double heatCapacity) {
+    checkTypeHeatCapacity(typeHeatCapacities.size(), type, heatCapacity);
+    typeHeatCapacities.push_back({type, heatCapacity});
+    return typeHeatCapacities.size() - 1;
+}
+
+int GenDPDEIntegrator::getNumTypeHeatCapacities() const {
+    return typeHeatCapacities.size();
+}
+
+void GenDPDEIntegrator::getTypeHeatCapacity(int index, int& type, double& heatCapacity) const {
+    requireIndex(integratorName, "type heat capacity index", index, typeHeatCapacities.size());
+    type = typeHeatCapacities[index].type;
+    heatCapacity = typeHeatCapacities[index].heatCapacity;
+}
+
+void GenDPDEIntegrator::setTypeHeatCapacity(int index, int type, double heatCapacity) {
+    requireIndex(integratorName, "type heat capacity index", index, typeHeatCapacities.size());
+    checkTypeHeatCapacity(index, type, heatCapacity);
+    typeHeatCapacities[index] = {type, heatCapacity};
+}
+
+void GenDPDEIntegrator::checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const {
+    const std::string entry = std::string(integratorName) + " type pair " + std::to_string(index) + " (types "
+                              + std::to_string(type1) + ", " + std::to_string(type2) + ")";
+    requireInRange(entry, "friction", friction, Ranges::friction);
+    requireInRange(entry, "heat conduction", heatConduction, Ranges::heatConduction);
+    for (int other = 0; other < (int) typePairs.size(); other++) {
+        const TypePair& p = typePairs[other];
+        if (other != index && ((p.type1 == type1 && p.type2 == type2) || (p.type1 == type2 && p.type2 == type1)))
+            throw OpenMMException(entry + ": this pair of types already has parameters (entry " + std::to_string(other)
+                                  + "); change that entry with setTypePairParameters()");
+    }
+}
+
+int GenDPDEIntegrator::addTypePair(int type1, int type2, double friction, double heatConduction) {
+    checkTypePair(typePairs.size(), type1, type2, friction, heatConduction);
+    typePairs.push_back({type1, type2, friction, heatConduction});
+    return typePairs.size() - 1;
+}
+
+int GenDPDEIntegrator::getNumTypePairs() const {
+    return typePairs.size();
+}
+
+void GenDPDEIntegrator::getTypePairParameters(int index, int& type1, int& type2, double& friction,
+                                              double& heatConduction) const {
+    requireIndex(integratorName, "type pair index", index, typePairs.size());
+    const TypePair& p = typePairs[index];
+    type1 = p.type1;
+    type2 = p.type2;
+    friction = p.friction;
+    heatConduction = p.heatConduction;
+}
+
+void GenDPDEIntegrator::setTypePairParameters(int index, int type1, int type2, double friction, double heatConduction) {
+    requireIndex(integratorName, "type pair index", index, typePairs.size());
+    checkTypePair(index, type1, type2, friction, heatConduction);
+    typePairs[index] = {type1, type2, friction, heatConduction};
+}
+
+std::vector<double> GenDPDEIntegrator::particleHeatCapacities(const System& system) const {
+    const ParticleTypeIndex types(context != nullptr ? contextParticleTypes : particleTypes, system.getNumParticles(),
+                                  integratorName);
+    return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
+}
+
 int GenDPDEIntegrator::getRandomNumberSeed() const {
     return randomSeed;
 }
@@ -128,9 +222,10 @@ void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& tempe
     if ((int) temperatures.size() != numParticles)
         reject(integratorName, "number of particle temperatures", temperatures.size(), "",
                "the number of particles in the System, " + std::to_string(numParticles));
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
     std::vector<double> energies(numParticles);
     for (int i = 0; i < numParticles; i++)
-        energies[i] = heatCapacity*temperatures[i];
+        energies[i] = capacity[i]*temperatures[i];
     boundKernel().setInternalEnergies(energies);
 }
 
@@ -138,12 +233,13 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
     requireInRange(integratorName, "temperature", temperature, Ranges::temperature);
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: setInternalEnergiesToTemperature() needs a Context");
-    // eps_i ~ Gamma(C_V/k_B + 1, k_B T), each a pure function of (randomSeed, i): the same on every machine.
-    const double shape = heatCapacity/Physics::Boltzmann + 1.0, scale = Physics::Boltzmann*temperature;
-    std::vector<double> energies(context->getSystem().getNumParticles());
+    // eps_i ~ Gamma(C_i/k_B + 1, k_B T), each a pure function of (randomSeed, i): the same on every machine.
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
+    const double scale = Physics::Boltzmann*temperature;
+    std::vector<double> energies(capacity.size());
     for (size_t i = 0; i < energies.size(); i++) {
         CounterRandom::ParticleStream random((std::uint32_t) randomSeed, (std::uint32_t) i);
-        energies[i] = scale*random.gamma(shape);
+        energies[i] = scale*random.gamma(capacity[i]/Physics::Boltzmann + 1.0);
     }
     boundKernel().setInternalEnergies(energies);
 }
@@ -151,9 +247,14 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {
     if (context != nullptr)
         return boundKernel().getInternalEnergies();
+    // Before a Context: the configured temperatures times C_V; types refer to particles not known yet, so only
+    // particles within initialTemperatures are looked up.
     std::vector<double> energies = getParticleTemperatures();
-    for (double& e : energies)
-        e *= heatCapacity;
+    const ParticleTypeIndex types(particleTypes, std::max<int>(energies.size(), particleTypes.empty() ? 0
+                                  : particleTypes.rbegin()->first + 1), integratorName);
+    const std::vector<double> capacity = GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
+    for (size_t i = 0; i < energies.size(); i++)
+        energies[i] *= capacity[i];
     return energies;
 }
 
@@ -173,8 +274,9 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
         throw OpenMMException(message.str());
     }
     std::vector<double> temperatures = boundKernel().getInternalEnergies();
-    for (double& t : temperatures)
-        t /= heatCapacity;
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
+    for (size_t i = 0; i < temperatures.size(); i++)
+        temperatures[i] /= capacity[i];
     return temperatures;
 }
 
@@ -198,19 +300,18 @@ void GenDPDEIntegrator::checkSystem(const System& system) const {
     }
 }
 
-std::vector<double> GenDPDEIntegrator::initialInternalEnergies(int numParticles) const {
+std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& system) const {
     // docs/integrator.md, "Temperatures and internal energies": the temperatures set before the Context, else the
     // bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for them).
-    if (!initialTemperatures.empty()) {
-        if ((int) initialTemperatures.size() != numParticles)
-            reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
-                   "the number of particles in the System, " + std::to_string(numParticles));
-        std::vector<double> energies(numParticles);
-        for (int i = 0; i < numParticles; i++)
-            energies[i] = heatCapacity*initialTemperatures[i];
-        return energies;
-    }
-    return std::vector<double>(numParticles, heatCapacity*temperature);
+    const int numParticles = system.getNumParticles();
+    if (!initialTemperatures.empty() && (int) initialTemperatures.size() != numParticles)
+        reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
+               "the number of particles in the System, " + std::to_string(numParticles));
+    const std::vector<double> capacity = particleHeatCapacities(system);
+    std::vector<double> energies(numParticles);
+    for (int i = 0; i < numParticles; i++)
+        energies[i] = capacity[i]*(initialTemperatures.empty() ? temperature : initialTemperatures[i]);
+    return energies;
 }
 
 void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
@@ -224,7 +325,9 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox(integratorName, range, box);
     }
-    const std::vector<double> energies = initialInternalEnergies(system.getNumParticles());
+    // The types, and every type named by an entry, are checked here, before anything is bound.
+    typePairTable(*this, ParticleTypeIndex(particleTypes, system.getNumParticles(), integratorName));
+    const std::vector<double> energies = initialInternalEnergies(system);
     int seed = randomSeed;
     if (seed == 0) {
         std::random_device device;
@@ -234,6 +337,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     kernel = contextRef.getPlatform().createKernel(IntegrateGenDPDEStepKernel::Name(), contextRef);
     kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies);
     pairRange = range;
+    contextParticleTypes = particleTypes;
     context = &contextRef;
     owner = &contextRef.getOwner();
 }

@@ -2,6 +2,7 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "openmm/OpenMMException.h"
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -13,8 +14,17 @@ GenDPDEStepTerms GenDPDEIntegratorUtilities::stepTerms(const GenDPDEIntegrator& 
     const GenDPDEIntegrator::Mode mode = integrator.getMode();
     GenDPDEStepTerms terms;
     terms.internalEnergies = (mode == GenDPDEIntegrator::Isoenergetic);
-    terms.dissipation = (mode != GenDPDEIntegrator::Conservative && integrator.getFriction() > 0.0);
-    terms.conduction = (terms.internalEnergies && integrator.getHeatConduction() > 0.0);
+    // A term runs if any pair of types has it (the integrator's default, or an addTypePair entry).
+    double friction = integrator.getFriction(), heatConduction = integrator.getHeatConduction();
+    for (int entry = 0; entry < integrator.getNumTypePairs(); entry++) {
+        int type1, type2;
+        double entryFriction, entryHeatConduction;
+        integrator.getTypePairParameters(entry, type1, type2, entryFriction, entryHeatConduction);
+        friction = std::max(friction, entryFriction);
+        heatConduction = std::max(heatConduction, entryHeatConduction);
+    }
+    terms.dissipation = (mode != GenDPDEIntegrator::Conservative && friction > 0.0);
+    terms.conduction = (terms.internalEnergies && heatConduction > 0.0);
     terms.pairSweep = terms.dissipation || terms.conduction;
     terms.maxDisplacement = pairRange > 0.0 ? pairRange : std::numeric_limits<double>::infinity();
     return terms;

@@ -5,6 +5,7 @@
 
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/Vec3.h"
 #include <sstream>
@@ -45,8 +46,15 @@ inline std::string equationOfStateOverflow(int particle, double primitiveDensity
     return message.str();
 }
 
-/** updateParametersInContext() may not change the cutoff or the nonbonded method of a Context's force. */
-inline void checkUnchangeableParameters(const GenDPDEForce& force, double cutoff, bool periodic) {
+/**
+ * updateParametersInContext() may not change the cutoff, the nonbonded method or the particle types of a Context's
+ * force (types: those the Context was created with).
+ */
+inline void checkUnchangeableParameters(const GenDPDEForce& force, double cutoff, bool periodic,
+                                        const ParticleTypeIndex& types) {
+    if (!(ParticleTypeIndex(force.getParticleTypes(), types.getParticleTypeIndices().size(), "GenDPDEForce") == types))
+        throw OpenMM::OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the particle types; "
+                                      "call Context.reinitialize() (or create a new Context) after changing them");
     if (force.getCutoffDistance() != cutoff)
         throw OpenMM::OpenMMException("GenDPDEForce: updateParametersInContext() cannot change the cutoff distance; "
                                       "call Context.reinitialize() (or create a new Context) after changing it");

@@ -9,27 +9,42 @@
 #include "internal/CounterRandom.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace GenDPDEPlugin {
 
-/** What every pair update of one step needs, read once from the integrator. */
+/**
+ * What every pair update of one step needs, read once per step from the integrator: the step, and the per-type
+ * tables (GenDPDETypes.h) with the noise amplitudes derived from them. types holds the particle types of the Context
+ * and must outlive the parameters.
+ */
 struct PairSweepParameters {
     PairSweepParameters(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, double cutoff, int seed,
-                        long long step) :
+                        long long step, const ParticleTypeIndex& types) :
             terms(terms), cutoff(cutoff), stepSize(integrator.getStepSize()), sqrtStepSize(std::sqrt(stepSize)),
-            friction(integrator.getFriction()), heatConduction(integrator.getHeatConduction()),
-            heatCapacity(integrator.getHeatCapacity()),
-            heatNoise(std::sqrt(2.0*Physics::Boltzmann*heatConduction)),
-            bathNoise(std::sqrt(2.0*friction*Physics::Boltzmann*integrator.getTemperature())),
-            seed((std::uint32_t) seed), step((std::uint64_t) step) {
+            table(typePairTable(integrator, types)), numTypes(table.numTypes),
+            particleType(types.getParticleTypeIndices().data()), seed((std::uint32_t) seed),
+            step((std::uint64_t) step) {
+        for (int ab = 0; ab < numTypes*numTypes; ab++) {
+            heatNoise.push_back(std::sqrt(2.0*Physics::Boltzmann*table.heatConduction[ab]));
+            bathNoise.push_back(std::sqrt(2.0*table.friction[ab]*Physics::Boltzmann*integrator.getTemperature()));
+        }
+    }
+    /** The type index of particle i. */
+    int typeOf(int i) const {
+        return numTypes == 1 ? 0 : particleType[i];
     }
     GenDPDEStepTerms terms;
-    double cutoff, stepSize, sqrtStepSize, friction, heatConduction, heatCapacity;
-    double heatNoise;   // alpha = sqrt(2 k_B kappa)
-    double bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode
+    double cutoff, stepSize, sqrtStepSize;
+    TypePairTable table;             // C_V per type, gamma and kappa per pair of types (index a*numTypes + b)
+    std::vector<double> heatNoise;   // alpha = sqrt(2 k_B kappa) per pair of types
+    std::vector<double> bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode per pair of types
+    int numTypes;
+    const int* particleType;
     std::uint32_t seed;
     std::uint64_t step;
 };
@@ -74,18 +89,20 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
             continue;
         const double omegaR = Physics::randomWeight(pair.r, p.cutoff);
         CounterRandom::PairStream random(p.seed, p.step, i, j);
+        const int a = p.typeOf(i), b = p.typeOf(j), ab = a*p.numTypes + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
-                                                                                 p.heatCapacity, Physics::Boltzmann);
+                p.table.heatCapacity[a], p.table.heatCapacity[b], Physics::Boltzmann);
         if (p.terms.dissipation) {
+            const double friction = p.table.friction[ab];
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
-                    p.friction*(1.0 + temperatures.frictionFactor),
-                    std::sqrt(2.0*p.friction*temperatures.pairThermalEnergy), p.stepSize, p.sqrtStepSize,
+                    friction*(1.0 + temperatures.frictionFactor),
+                    std::sqrt(2.0*friction*temperatures.pairThermalEnergy), p.stepSize, p.sqrtStepSize,
                     inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
             energies[i] -= 0.5*kineticChange;
             energies[j] -= 0.5*kineticChange;
         }
         if (p.terms.conduction) {
-            const double heat = Physics::conductiveHeat(omegaR, p.heatConduction, p.heatNoise,
+            const double heat = Physics::conductiveHeat(omegaR, p.table.heatConduction[ab], p.heatNoise[ab],
                     temperatures.inverseTemperatureDifference, p.stepSize, p.sqrtStepSize, random.normal());
             energies[i] += heat;
             energies[j] -= heat;
@@ -107,8 +124,9 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(p.seed, p.step, i, j);
-        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::randomWeight(pair.r, p.cutoff), p.friction,
-                                       p.bathNoise, p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
+        const int ab = p.typeOf(i)*p.numTypes + p.typeOf(j);
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::randomWeight(pair.r, p.cutoff),
+                                       p.table.friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
                                        velocities[i], velocities[j], random.normal());
     }
 }

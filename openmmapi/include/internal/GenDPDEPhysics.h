@@ -270,13 +270,14 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
 }
 
 /**
- * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V), from one division.
+ * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type).
  *
  * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
- * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = (k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2, beta = 1/theta.
+ * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2, beta = 1/theta
+ * ((k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 when both particles have the same C_V).
  * Why (derivation: docs/theory.md section 7): Theta_ij depends on eps_i and eps_j, which every random kick changes
  * (mechanical heating), so the noise of the momentum equation is multiplicative. Its equilibrium, the microcanonical
- * density prod_i eps_i^(C_V/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i
+ * density prod_i eps_i^(C_i/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i
  * follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise
  * with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the
  * relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it the kinetic temperature exceeds the
@@ -289,9 +290,10 @@ struct PairTemperatures {
     double frictionFactor;                 // the Ito term above (dimensionless)
 };
 
-inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacity, double boltzmann) {
+inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacityI, double heatCapacityJ,
+                                         double boltzmann) {
     PairTemperatures result;
-    gendpdePairTemperatures(energyI, energyJ, heatCapacity, boltzmann, &result.pairThermalEnergy,
+    gendpdePairTemperatures(energyI, energyJ, heatCapacityI, heatCapacityJ, boltzmann, &result.pairThermalEnergy,
                             &result.inverseTemperatureDifference, &result.frictionFactor);
     return result;
 }

@@ -80,19 +80,21 @@ GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBA
 }
 
 /**
- * What a pair update needs from the internal energies eps_i, eps_j (section 7), from one division: k_B Theta_ij with
- * 1/Theta_ij = (1/theta_i + 1/theta_j)/2, 1/theta_i - 1/theta_j, and the Ito factor of the friction
- * (k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 (GenDPDEPhysics.h, PairTemperatures, says why).
+ * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 7 and 9),
+ * with beta = 1/theta = C/eps: k_B Theta_ij with 1/Theta_ij = (beta_i + beta_j)/2, beta_i - beta_j, and the Ito
+ * factor of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2 = k_B (beta_i/eps_i + beta_j/eps_j)
+ * /(beta_i + beta_j)^2 (GenDPDEPhysics.h, PairTemperatures, says why). beta = 1/theta stays within the range of the
+ * temperatures, so no intermediate overflows for any allowed eps and C_V.
  */
-GENDPDE_CORE void gendpdePairTemperatures(GENDPDE_REAL energyI, GENDPDE_REAL energyJ, GENDPDE_REAL heatCapacity,
-                                          GENDPDE_REAL boltzmann, GENDPDE_REAL* pairThermalEnergy,
-                                          GENDPDE_REAL* inverseTemperatureDifference, GENDPDE_REAL* frictionFactor) {
-    const GENDPDE_REAL sum = energyI + energyJ, product = energyI*energyJ;
-    const GENDPDE_REAL reciprocal = 1/(product*sum);
-    const GENDPDE_REAL inverseSum = product*reciprocal, inverseProduct = sum*reciprocal;
-    *pairThermalEnergy = 2*boltzmann*product*inverseSum/heatCapacity;
-    *inverseTemperatureDifference = heatCapacity*(energyJ - energyI)*inverseProduct;
-    *frictionFactor = (boltzmann/heatCapacity)*(energyI*energyI + energyJ*energyJ)*inverseSum*inverseSum;
+GENDPDE_CORE void gendpdePairTemperatures(GENDPDE_REAL energyI, GENDPDE_REAL energyJ, GENDPDE_REAL heatCapacityI,
+                                          GENDPDE_REAL heatCapacityJ, GENDPDE_REAL boltzmann,
+                                          GENDPDE_REAL* pairThermalEnergy, GENDPDE_REAL* inverseTemperatureDifference,
+                                          GENDPDE_REAL* frictionFactor) {
+    const GENDPDE_REAL betaI = heatCapacityI/energyI, betaJ = heatCapacityJ/energyJ;
+    const GENDPDE_REAL inverseSum = 1/(betaI + betaJ);
+    *pairThermalEnergy = 2*boltzmann*inverseSum;
+    *inverseTemperatureDifference = betaI - betaJ;
+    *frictionFactor = boltzmann*(betaI/energyI + betaJ/energyJ)*inverseSum*inverseSum;
 }
 
 /**

@@ -15,12 +15,16 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-/** Every particle interacts alike (no particle parameters yet): OpenMM may reorder any of them. */
+/** Particles of the same type interact alike: OpenMM may exchange them when it reorders the atoms. */
 class CommonCalcGenDPDEForceKernel::ForceInfo : public ComputeForceInfo {
 public:
-    bool areParticlesIdentical(int particle1, int particle2) override {
-        return true;
+    explicit ForceInfo(const std::vector<int>& typeIndex) : typeIndex(typeIndex) {
     }
+    bool areParticlesIdentical(int particle1, int particle2) override {
+        return typeIndex[particle1] == typeIndex[particle2];
+    }
+private:
+    std::vector<int> typeIndex;
 };
 
 namespace {
@@ -31,6 +35,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     ContextSelector selector(cc);
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();
+    types.reset(new ParticleTypeIndex(force.getParticleTypes(), system.getNumParticles(), "GenDPDEForce"));
     readParameters(force);
     const int numAtoms = cc.getNumAtoms();
     const bool useDouble = cc.getUseDoublePrecision();
@@ -41,11 +46,14 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
     errors.initialize<int>(cc, 2, "gendpdeForceErrors");
-    // Per-type parameters, laid out for particle types: every particle has type 0 until types exist.
+    // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
+    const int numTypes = types->getNumTypes();
+    std::vector<int> typeIndex = types->getParticleTypeIndices();
+    typeIndex.resize(numAtoms, 0);   // padding atoms
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
-    atomType.upload(std::vector<int>(numAtoms, 0));
-    taitTable.initialize(cc, 1, 4*realSize, "gendpdeTaitTable");
-    taitPowerTable.initialize<int>(cc, 1, "gendpdeTaitPowerTable");
+    atomType.upload(typeIndex);
+    taitTable.initialize(cc, numTypes, 4*realSize, "gendpdeTaitTable");
+    taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
 
     // The V-B tables from the host's arrays (one source for every platform), in the context's precision.
     using namespace Physics;
@@ -107,7 +115,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     forceKernel->addArg();   // includeForces
     forceKernel->addArg();   // includeVirial
     forceKernel->addArg(particleVirial);
-    cc.addForce(new ForceInfo());
+    cc.addForce(new ForceInfo(types->getParticleTypeIndices()));
 }
 
 void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
@@ -115,19 +123,25 @@ void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context,
 }
 
 void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
-    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic);
+    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
+    std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
     estimator = force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
-    force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+    taitByType = tait;
     if (taitTable.isInitialized())
         uploadTypeTables();
 }
 
 void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
     // The Tait equation of state of each type (Physics::TaitEquationOfState).
-    const std::vector<double> tait = {referenceDensity, referencePressure, bulkModulus, exponent};
+    std::vector<double> tait;
+    std::vector<int> power;
+    for (const TaitParameters& p : taitByType) {
+        tait.insert(tait.end(), {p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent});
+        power.push_back(Physics::TaitEquationOfState::integerPowerOf(p.exponent));
+    }
     uploadValues(taitTable, tait, cc.getUseDoublePrecision());
-    taitPowerTable.upload(std::vector<int>{Physics::TaitEquationOfState::integerPowerOf(exponent)});
+    taitPowerTable.upload(power);
 }
 
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
@@ -181,7 +195,7 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         if (atoms[k] == particle)
             n0 = densities[k];
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, n0, estimator, cutoff/cutoffScaling,
-                                                                      referenceDensity, cc.getStepCount()));
+            taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, cc.getStepCount()));
 }
 
 void CommonCalcGenDPDEForceKernel::computeForces(bool includeForces, bool includeVirial) {

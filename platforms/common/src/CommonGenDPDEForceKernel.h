@@ -4,6 +4,7 @@
 #include "CommonGenDPDECellGrid.h"
 #include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
 #include <memory>
@@ -37,11 +38,12 @@ private:
     /** The force pass: forces into the force buffer and/or each particle's half virial. */
     void computeForces(bool includeForces, bool includeVirial);
     void setModelArguments();
-    /** The per-type tables (one type until particle types exist) from the parameters read last. */
+    /** The per-type Tait tables from the parameters read last. */
     void uploadTypeTables();
     OpenMM::ComputeContext& cc;
     double cutoff, cutoffScaling;
-    double referenceDensity, referencePressure, bulkModulus, exponent;
+    std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
+    std::vector<TaitParameters> taitByType;    // by type index
     GenDPDEForce::DensityEstimator estimator;
     bool periodic;
     std::unique_ptr<CommonGenDPDECellGrid> grid;

@@ -51,11 +51,16 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     zigguratF.upload(std::vector<double>(table.f, table.f + 257), true);
     zigguratRatio.upload(std::vector<double>(table.ratio, table.ratio + 256), true);
 
-    // Per-type parameters, laid out for particle types: every particle has type 0 until types exist.
+    // Per-type parameters (GenDPDETypes.h): each particle's type index by original index; the tables by type.
+    types.reset(new ParticleTypeIndex(integrator.getParticleTypes(), context.getSystem().getNumParticles(),
+                                      "GenDPDEIntegrator"));
+    const int numTypes = types->getNumTypes();
+    std::vector<int> typeIndex = types->getParticleTypeIndices();
+    typeIndex.resize(numAtoms, 0);   // padding atoms
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
-    atomType.upload(std::vector<int>(numAtoms, 0));
-    pairTable.initialize(cc, 1, 4*mixedSize, "gendpdePairTable");
-    heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
+    atomType.upload(typeIndex);
+    pairTable.initialize(cc, numTypes*numTypes, 4*mixedSize, "gendpdePairTable");
+    heatCapacityTable.initialize(cc, numTypes, mixedSize, "gendpdeHeatCapacityTable");
 
     blockSlotArray.initialize<int>(cc, 1, "gendpdeSlotOfBlock");
     blockCount.initialize<int>(cc, 1, "gendpdeBlockCount");
@@ -135,7 +140,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     sweepKernel->addArg(atomType);
     sweepKernel->addArg(pairTable);
     sweepKernel->addArg(heatCapacityTable);
-    sweepKernel->addArg(1);   // number of types
+    sweepKernel->addArg(numTypes);
     for (int i = 0; i < 5; i++)
         sweepKernel->addArg();   // boltzmann, terms, seed, step (2)
     sweepKernel->addArg(zigguratX);
@@ -249,13 +254,15 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
 void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                              const GenDPDEStepTerms& terms) {
     const long long step = cc.getStepCount();
-    const PairSweepParameters p(integrator, terms, cutoff, seed, step);   // what the host platforms' sweep uses
+    const PairSweepParameters p(integrator, terms, cutoff, seed, step, *types);   // as the host platforms' sweep
     grid->setBoxArguments(sweepKernel, 9, true);
     setMixed4(cc, sweepKernel, 12, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
-    // The type tables (one type): the integrator's parameters may change between steps, so they are uploaded
-    // when they do.
-    const std::vector<double> pairParameters = {p.friction, p.heatConduction, p.heatNoise, p.bathNoise};
-    const std::vector<double> capacity = {p.heatCapacity};
+    // The type tables: the integrator's parameters may change between steps, so they are uploaded when they do.
+    std::vector<double> pairParameters;
+    for (int ab = 0; ab < p.numTypes*p.numTypes; ab++)
+        pairParameters.insert(pairParameters.end(), {p.table.friction[ab], p.table.heatConduction[ab],
+                                                     p.heatNoise[ab], p.bathNoise[ab]});
+    const std::vector<double>& capacity = p.table.heatCapacity;
     if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
         uploadValues(pairTable, pairParameters, mixedIsDouble(cc));
         uploadValues(heatCapacityTable, capacity, mixedIsDouble(cc));

@@ -4,6 +4,7 @@
 #include "CommonGenDPDECellGrid.h"
 #include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
 #include <memory>
@@ -53,6 +54,7 @@ private:
     std::array<int, 3> blockGridCells = {0, 0, 0};
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, slotOfAtom, status, kinetic;
     OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
+    std::unique_ptr<ParticleTypeIndex> types;   // the integrator's particle types, read at initialize()
     OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // type by original index; per-type parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
     OpenMM::ComputeArray blockSlotArray, blockCount, blockStart, blockPairs, orderedPairs;

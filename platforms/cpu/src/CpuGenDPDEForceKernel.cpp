@@ -126,6 +126,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     listedFlags.resize(layout.getNeighbors().size());
     char* listed = listedFlags.data();
     const ParticleModel model(*this);
+    const int* typeOf = types->getParticleTypeIndices().data();
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
     std::vector<int> failedParticle(numRanges(numParticles, slotChunk), INT_MAX);
     std::vector<ParticleStatus> failedStatus(failedParticle.size(), Valid);
@@ -149,8 +150,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                 }
             for (int s = begin; s < end; s++) {
                 const double n0 = density[s];
-                const ParticleStatus particleStatus = evaluateParticle(n0, model, state[s]);
                 const int i = particleOf[s];
+                const ParticleStatus particleStatus = evaluateParticle(n0, typeOf[i], model, state[s]);
                 if (particleStatus != Valid && i < failed[begin/slotChunk]) {
                     failed[begin/slotChunk] = i;
                     status[begin/slotChunk] = particleStatus;

@@ -19,6 +19,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     pressure.resize(numParticles);
     forceCoefficient.resize(numParticles);
     particleVirial.resize(numParticles);
+    types.reset(new ParticleTypeIndex(force.getParticleTypes(), numParticles, "GenDPDEForce"));
     readParameters(force);
 }
 
@@ -27,10 +28,11 @@ void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& conte
 }
 
 void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
-    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic);
+    GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
+    std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
     estimator = force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
-    force.getTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+    taitByType = tait;
     observablesValid = false;
 }
 
@@ -51,12 +53,12 @@ int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Ve
 }
 
 ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(double n0,
-        const ParticleModel& model, ParticleState& state) const {
+        int type, const ParticleModel& model, ParticleState& state) const {
     // docs/theory.md sections 3-4: the volume, the Tait pressure and free energy, and pi_i dV_i/dn0_i.
     if (estimator == GenDPDEForce::VA && n0 == 0.0)
         return NoNeighbor;
     const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
-    model.tait.evaluate(1.0/v.volume, state.pressure, state.freeEnergy);
+    model.tait[type].evaluate(1.0/v.volume, state.pressure, state.freeEnergy);
     if (!(std::isfinite(state.freeEnergy) && std::isfinite(state.pressure)))
         return Overflow;
     state.volume = v.volume;
@@ -69,7 +71,8 @@ void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, 
     if (status == NoNeighbor)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, primitiveDensity[i], estimator,
-            cutoff/cutoffScaling, referenceDensity, context.getStepCount()));
+            cutoff/cutoffScaling, taitByType[types->getParticleTypeIndices()[i]].referenceDensity,
+            context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
@@ -89,10 +92,11 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
 
     // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const ParticleModel model(*this);
+    const std::vector<int>& type = types->getParticleTypeIndices();
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
         ParticleState state;
-        const ParticleStatus status = evaluateParticle(primitiveDensity[i], model, state);
+        const ParticleStatus status = evaluateParticle(primitiveDensity[i], type[i], model, state);
         if (status != Valid)
             throwParticleError(status, i, context);
         storeParticle(i, state);

@@ -4,6 +4,7 @@
 #include "GenDPDEKernels.h"
 #include "NeighborList.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/Vec3.h"
 #include <memory>
 #include <vector>
@@ -29,13 +30,14 @@ public:
         return *neighborList;
     }
 protected:
-    /** What evaluateParticle() needs per evaluation: the Tait equation of state and the V-B estimator. */
+    /** What evaluateParticle() needs per evaluation: the Tait equation of state of each type and the V-B estimator. */
     struct ParticleModel {
         explicit ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel) :
-                tait(kernel.referenceDensity, kernel.referencePressure, kernel.bulkModulus, kernel.exponent),
                 volumeVB(kernel.cutoff/kernel.cutoffScaling) {
+            for (const TaitParameters& p : kernel.taitByType)
+                tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
         }
-        Physics::TaitEquationOfState tait;
+        std::vector<Physics::TaitEquationOfState> tait;   // by type index
         Physics::VolumeEstimatorVB volumeVB;
     };
     enum ParticleStatus {Valid, NoNeighbor, Overflow};
@@ -52,8 +54,8 @@ protected:
     void checkConfiguration(OpenMM::ContextImpl& context, int firstBadParticle) const;
     /** The first particle in [begin, end) whose position is not finite, or -1. */
     static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
-    /** The state of a particle of primitive density n0 (nm^-3); valid only if the status is Valid. */
-    ParticleStatus evaluateParticle(double n0, const ParticleModel& model, ParticleState& state) const;
+    /** The state of a particle of primitive density n0 (nm^-3) and type index type; valid only if the status is Valid. */
+    ParticleStatus evaluateParticle(double n0, int type, const ParticleModel& model, ParticleState& state) const;
     /** Store particle i's state in the per-particle arrays. */
     void storeParticle(int i, const ParticleState& state) {
         volume[i] = state.volume;
@@ -67,7 +69,8 @@ protected:
     /** Pair sweep for F_i (added to *forces unless null); returns the virial W (kJ/mol). */
     virtual double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces);
     double cutoff, cutoffScaling;
-    double referenceDensity, referencePressure, bulkModulus, exponent;
+    std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
+    std::vector<TaitParameters> taitByType;    // by type index
     GenDPDEForce::DensityEstimator estimator;
     bool periodic;
     std::unique_ptr<NeighborList> neighborList;

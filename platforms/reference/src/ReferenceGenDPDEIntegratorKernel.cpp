@@ -22,6 +22,7 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
     this->cutoff = cutoff;
     this->seed = seed;
     internalEnergies = energies;
+    types.reset(new ParticleTypeIndex(integrator.getParticleTypes(), system.getNumParticles(), "GenDPDEIntegrator"));
     inverseMasses.resize(system.getNumParticles());
     for (int i = 0; i < system.getNumParticles(); i++) {
         double mass = system.getParticleMass(i);
@@ -91,7 +92,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
                      anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride);
     const std::vector<int>& order = sweepOrder.getOrder();
-    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step);
+    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *types);
     if (!terms.internalEnergies) {
         sweepIsothermal(pairs.begin(), order.data(), order.size(), parameters, inverseMasses.data(), velocities.data());
         return;

@@ -2,6 +2,7 @@
 #define REFERENCE_GENDPDE_INTEGRATOR_KERNEL_H_
 
 #include "GenDPDEKernels.h"
+#include "internal/GenDPDETypes.h"
 #include "NeighborList.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/Vec3.h"
@@ -74,6 +75,7 @@ protected:
                                 std::vector<OpenMM::Vec3>& velocities, long long step);
     double cutoff = 0.0;
     int seed = 0;
+    std::unique_ptr<ParticleTypeIndex> types;   // the integrator's particle types, read at initialize()
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
     GenDPDESweepOrder sweepOrder;

@@ -214,11 +214,9 @@ inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction
 
 /**
  * One colour of the sweep: thread t runs block slot firstSlot + t, its pairs in order (GenDPDEPairSweep.h).
- * parameters = (cutoff, dt, sqrt(dt), 0); per type pair (types: atomType by original index; one type until particle
- * types exist, the tables are laid out for them) pairTable[t_i numTypes + t_j] = (friction, heat conduction,
- * alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath); heatCapacity[t] per type (a pair uses its first
- * particle's: per-type C_V needs Physics::pairTemperatures generalised first); terms bit 0: dissipation, bit 1:
- * conduction, bit 2: internal energies.
+ * parameters = (cutoff, dt, sqrt(dt), 0); per pair of type indices (GenDPDETypes.h; atomType by original index)
+ * pairTable[t_i numTypes + t_j] = (friction, heat conduction, alpha = sqrt(2 k_B kappa), sigma of the Isothermal
+ * bath); heatCapacityTable[t] = C_V of type t; terms bit 0: dissipation, bit 1: conduction, bit 2: internal energies.
  */
 KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT blockStart,
         GLOBAL const int2* RESTRICT orderedPairs, GLOBAL const int* RESTRICT slotOfAtom,
@@ -247,8 +245,8 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
                 continue;
             const mixed omegaR = 1 - r/cutoff;
             const mixed3 e = d*(1/r);
-            const int typeI = atomType[pair.x];
-            const mixed4 pairParameters = pairTable[typeI*numTypes + atomType[pair.y]];
+            const int typeI = atomType[pair.x], typeJ = atomType[pair.y];
+            const mixed4 pairParameters = pairTable[typeI*numTypes + typeJ];
             const mixed friction = pairParameters.x;
             GenDPDEStream random;
             initPairStream(&random, seed, stepLow, stepHigh, (unsigned int) pair.x, (unsigned int) pair.y);
@@ -261,8 +259,8 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
             }
             mixed ei = energies[pair.x], ej = energies[pair.y];
             mixed pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
-            gendpdePairTemperatures(ei, ej, heatCapacityTable[typeI], boltzmann, &pairThermalEnergy,
-                                    &inverseTemperatureDifference, &frictionFactor);
+            gendpdePairTemperatures(ei, ej, heatCapacityTable[typeI], heatCapacityTable[typeJ], boltzmann,
+                                    &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
             if (dissipation) {
                 const mixed kineticChange = dissipativePairUpdate(e, omegaR, friction*(1 + frictionFactor),
                         sqrt(2*friction*pairThermalEnergy), stepSize, sqrtStepSize, &vi, &vj,

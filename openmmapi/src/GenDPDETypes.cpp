@@ -1,0 +1,88 @@
+#include "internal/GenDPDETypes.h"
+#include "openmm/OpenMMException.h"
+#include <algorithm>
+#include <set>
+
+using namespace GenDPDEPlugin;
+using namespace OpenMM;
+
+ParticleTypeIndex::ParticleTypeIndex(const std::map<int, int>& particleTypes, int numParticles,
+                                     const std::string& owner) : owner(owner) {
+    if (!particleTypes.empty() && particleTypes.rbegin()->first >= numParticles)
+        throw OpenMMException(owner + ": setParticleType() was given particle " + std::to_string(
+                particleTypes.rbegin()->first) + ", but the System has " + std::to_string(numParticles) + " particles");
+    std::set<int> distinct;
+    if ((int) particleTypes.size() < numParticles)
+        distinct.insert(0);   // some particle was never given a type
+    for (const auto& entry : particleTypes)
+        distinct.insert(entry.second);
+    types.assign(distinct.begin(), distinct.end());
+    particleTypeIndex.assign(numParticles, indexOf(0));
+    for (const auto& entry : particleTypes)
+        particleTypeIndex[entry.first] = indexOf(entry.second);
+}
+
+int ParticleTypeIndex::indexOf(int type) const {
+    const auto found = std::lower_bound(types.begin(), types.end(), type);
+    return (found != types.end() && *found == type) ? (int) (found - types.begin()) : -1;
+}
+
+int ParticleTypeIndex::requireIndexOf(int type, const std::string& entry) const {
+    const int index = indexOf(type);
+    if (index < 0) {
+        std::string known;
+        for (int t : types)
+            known += (known.empty() ? "" : ", ") + std::to_string(t);
+        throw OpenMMException(owner + ": " + entry + " names type " + std::to_string(type) + ", which no particle "
+                              "has (the particles' types are " + known + "); set the particle types with "
+                              "setParticleType() or remove the entry");
+    }
+    return index;
+}
+
+std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEForce& force,
+                                                               const ParticleTypeIndex& types) {
+    TaitParameters defaults;
+    force.getTaitParameters(defaults.referenceDensity, defaults.referencePressure, defaults.bulkModulus,
+                            defaults.exponent);
+    std::vector<TaitParameters> table(types.getNumTypes(), defaults);
+    for (int entry = 0; entry < force.getNumTypeParameters(); entry++) {
+        int type;
+        TaitParameters p;
+        force.getTypeParameters(entry, type, p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
+        table[types.requireIndexOf(type, "type parameters " + std::to_string(entry))] = p;
+    }
+    return table;
+}
+
+TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, const ParticleTypeIndex& types) {
+    TypePairTable table;
+    const int n = table.numTypes = types.getNumTypes();
+    table.heatCapacity.assign(n, integrator.getHeatCapacity());
+    table.friction.assign(n*n, integrator.getFriction());
+    table.heatConduction.assign(n*n, integrator.getHeatConduction());
+    for (int entry = 0; entry < integrator.getNumTypeHeatCapacities(); entry++) {
+        int type;
+        double heatCapacity;
+        integrator.getTypeHeatCapacity(entry, type, heatCapacity);
+        table.heatCapacity[types.requireIndexOf(type, "type heat capacity " + std::to_string(entry))] = heatCapacity;
+    }
+    for (int entry = 0; entry < integrator.getNumTypePairs(); entry++) {
+        int type1, type2;
+        double friction, heatConduction;
+        integrator.getTypePairParameters(entry, type1, type2, friction, heatConduction);
+        const int a = types.requireIndexOf(type1, "type pair " + std::to_string(entry));
+        const int b = types.requireIndexOf(type2, "type pair " + std::to_string(entry));
+        table.friction[a*n + b] = table.friction[b*n + a] = friction;
+        table.heatConduction[a*n + b] = table.heatConduction[b*n + a] = heatConduction;
+    }
+    return table;
+}
+
+std::vector<double> GenDPDEPlugin::particleHeatCapacities(const TypePairTable& table, const ParticleTypeIndex& types) {
+    std::vector<double> result;
+    result.reserve(types.getParticleTypeIndices().size());
+    for (int t : types.getParticleTypeIndices())
+        result.push_back(table.heatCapacity[t]);
+    return result;
+}

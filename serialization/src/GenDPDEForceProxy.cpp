@@ -9,7 +9,8 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-const int currentVersion = 1;
+// Version 2 (0.3): particle types and per-type Tait parameters. Version 1 files (no types) are still read.
+const int currentVersion = 2;
 }
 
 GenDPDEForceProxy::GenDPDEForceProxy() : SerializationProxy("GenDPDEForce") {
@@ -30,6 +31,18 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
     node.setDoubleProperty("pi0", pi0);
     node.setDoubleProperty("bulkModulus", bulkModulus);
     node.setDoubleProperty("gammaT", exponent);
+    SerializationNode& particleTypes = node.createChildNode("ParticleTypes");
+    for (const auto& entry : force.getParticleTypes())
+        particleTypes.createChildNode("Particle").setIntProperty("index", entry.first).setIntProperty("type",
+                                                                                                      entry.second);
+    SerializationNode& typeParameters = node.createChildNode("TypeParameters");
+    for (int index = 0; index < force.getNumTypeParameters(); index++) {
+        int type;
+        force.getTypeParameters(index, type, n0, pi0, bulkModulus, exponent);
+        typeParameters.createChildNode("Type").setIntProperty("type", type).setDoubleProperty("n0", n0)
+                .setDoubleProperty("pi0", pi0).setDoubleProperty("bulkModulus", bulkModulus)
+                .setDoubleProperty("gammaT", exponent);
+    }
 }
 
 void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
@@ -49,5 +62,13 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
     force->setCutoffScaling(node.getDoubleProperty("cutoffScaling"));
     force->setTaitParameters(node.getDoubleProperty("n0"), node.getDoubleProperty("pi0"),
                              node.getDoubleProperty("bulkModulus"), node.getDoubleProperty("gammaT"));
+    if (version >= 2) {
+        for (const SerializationNode& particle : node.getChildNode("ParticleTypes").getChildren())
+            force->setParticleType(particle.getIntProperty("index"), particle.getIntProperty("type"));
+        for (const SerializationNode& type : node.getChildNode("TypeParameters").getChildren())
+            force->addTypeParameters(type.getIntProperty("type"), type.getDoubleProperty("n0"),
+                                     type.getDoubleProperty("pi0"), type.getDoubleProperty("bulkModulus"),
+                                     type.getDoubleProperty("gammaT"));
+    }
     return force.release();
 }

@@ -8,7 +8,8 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-const int currentVersion = 1;
+// Version 2 (0.3): particle types, per-type heat capacities and type pairs. Version 1 files are still read.
+const int currentVersion = 2;
 }
 
 GenDPDEIntegratorProxy::GenDPDEIntegratorProxy() : SerializationProxy("GenDPDEIntegrator") {
@@ -32,6 +33,26 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
     SerializationNode& temperatures = node.createChildNode("ParticleTemperatures");
     for (double t : integrator.initialTemperatures)
         temperatures.createChildNode("Particle").setDoubleProperty("t", t);
+    SerializationNode& particleTypes = node.createChildNode("ParticleTypes");
+    for (const auto& entry : integrator.getParticleTypes())
+        particleTypes.createChildNode("Particle").setIntProperty("index", entry.first).setIntProperty("type",
+                                                                                                      entry.second);
+    SerializationNode& heatCapacities = node.createChildNode("TypeHeatCapacities");
+    for (int index = 0; index < integrator.getNumTypeHeatCapacities(); index++) {
+        int type;
+        double heatCapacity;
+        integrator.getTypeHeatCapacity(index, type, heatCapacity);
+        heatCapacities.createChildNode("Type").setIntProperty("type", type).setDoubleProperty("heatCapacity",
+                                                                                            heatCapacity);
+    }
+    SerializationNode& typePairs = node.createChildNode("TypePairs");
+    for (int index = 0; index < integrator.getNumTypePairs(); index++) {
+        int type1, type2;
+        double friction, heatConduction;
+        integrator.getTypePairParameters(index, type1, type2, friction, heatConduction);
+        typePairs.createChildNode("Pair").setIntProperty("type1", type1).setIntProperty("type2", type2)
+                .setDoubleProperty("friction", friction).setDoubleProperty("heatConduction", heatConduction);
+    }
 }
 
 void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
@@ -56,5 +77,14 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
         temperatures.push_back(particle.getDoubleProperty("t"));
     if (!temperatures.empty())
         integrator->setParticleTemperatures(temperatures);
+    if (version >= 2) {
+        for (const SerializationNode& particle : node.getChildNode("ParticleTypes").getChildren())
+            integrator->setParticleType(particle.getIntProperty("index"), particle.getIntProperty("type"));
+        for (const SerializationNode& type : node.getChildNode("TypeHeatCapacities").getChildren())
+            integrator->addTypeHeatCapacity(type.getIntProperty("type"), type.getDoubleProperty("heatCapacity"));
+        for (const SerializationNode& pair : node.getChildNode("TypePairs").getChildren())
+            integrator->addTypePair(pair.getIntProperty("type1"), pair.getIntProperty("type2"),
+                                    pair.getDoubleProperty("friction"), pair.getDoubleProperty("heatConduction"));
+    }
     return integrator.release();
 }

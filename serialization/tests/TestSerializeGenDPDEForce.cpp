@@ -3,6 +3,7 @@
 #include "TestUtilities.h"
 #include "OpenMM.h"
 #include "openmm/serialization/XmlSerializer.h"
+#include <memory>
 #include <sstream>
 
 using namespace GenDPDEPlugin;
@@ -31,6 +32,45 @@ void testSerialization() {
     ASSERT_EQUAL(force.getForceGroup(), copy->getForceGroup());
     ASSERT_EQUAL(force.getName(), copy->getName());
     delete copy;
+}
+
+/** Particle types (non-consecutive, negative) and per-type Tait parameters survive a round trip. */
+void testTypesRoundTrip() {
+    GenDPDEForce force(1.0);
+    force.setParticleType(3, 42);
+    force.setParticleType(0, -7);
+    force.setParticleType(10, 42);
+    force.addTypeParameters(42, 3.5, -1.25, 80.0, 7.0);
+    force.addTypeParameters(-7, 5.5, 2.5, 60.0, 4.5);
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+    std::unique_ptr<GenDPDEForce> copy(XmlSerializer::deserialize<GenDPDEForce>(buffer));
+    ASSERT(copy->getParticleTypes() == force.getParticleTypes());
+    ASSERT_EQUAL(0, copy->getParticleType(5));
+    ASSERT_EQUAL(2, copy->getNumTypeParameters());
+    for (int index = 0; index < 2; index++) {
+        int type1, type2;
+        double a1[4], a2[4];
+        force.getTypeParameters(index, type1, a1[0], a1[1], a1[2], a1[3]);
+        copy->getTypeParameters(index, type2, a2[0], a2[1], a2[2], a2[3]);
+        ASSERT_EQUAL(type1, type2);
+        for (int k = 0; k < 4; k++)
+            ASSERT_EQUAL(a1[k], a2[k]);
+    }
+}
+
+/** A version-1 file (0.2, before particle types) is still read: no types, its own Tait parameters. */
+void testVersion1() {
+    std::stringstream v1("<?xml version=\"1.0\" ?>\n<Force bulkModulus=\"67.5\" cutoff=\"1.234\" cutoffScaling=\"1.41\" "
+                         "estimator=\"0\" forceGroup=\"5\" gammaT=\"6.5\" method=\"0\" n0=\"4.5\" name=\"argon\" "
+                         "pi0=\"47.25\" type=\"GenDPDEForce\" version=\"1\"/>\n");
+    std::unique_ptr<GenDPDEForce> force(XmlSerializer::deserialize<GenDPDEForce>(v1));
+    ASSERT_EQUAL(1.234, force->getCutoffDistance());
+    ASSERT_EQUAL(GenDPDEForce::VA, force->getDensityEstimator());
+    ASSERT_EQUAL(4.5, force->getReferenceDensity());
+    ASSERT_EQUAL(47.25, force->getReferencePressure());
+    ASSERT(force->getParticleTypes().empty());
+    ASSERT_EQUAL(0, force->getNumTypeParameters());
 }
 
 /** A System holding the force round-trips through XmlSerializer, and the copy computes the same energy. */
@@ -64,7 +104,7 @@ void testFutureVersion() {
     std::stringstream buffer;
     XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
     std::string xml = buffer.str();
-    size_t position = xml.find("version=\"1\"");
+    size_t position = xml.find("version=\"2\"");
     ASSERT(position != std::string::npos);
     xml.replace(position, 11, "version=\"99\"");
     std::stringstream future(xml);
@@ -75,6 +115,8 @@ int main() {
     return runTestProgram([]() {
         loadGenDPDEKernels("Reference");
         testSerialization();
+        testTypesRoundTrip();
+        testVersion1();
         testSystemRoundTrip();
         testFutureVersion();
     });

@@ -2,6 +2,7 @@
 #include "TestUtilities.h"
 #include "OpenMM.h"
 #include "openmm/serialization/XmlSerializer.h"
+#include <memory>
 #include <sstream>
 
 using namespace GenDPDEPlugin;
@@ -35,8 +36,61 @@ void testSerialization() {
     delete copy;
 }
 
+/** Particle types (non-consecutive, negative), per-type heat capacities and type pairs survive a round trip. */
+void testTypesRoundTrip() {
+    GenDPDEIntegrator integrator(0.01, 1000.0, 2000.0, 0.1);
+    integrator.setParticleType(2, 42);
+    integrator.setParticleType(0, -7);
+    integrator.addTypeHeatCapacity(42, 0.25);
+    integrator.addTypeHeatCapacity(-7, 0.5);
+    integrator.addTypePair(42, -7, 123.0, 456.0);
+    integrator.addTypePair(42, 42, 0.0, 789.0);
+    std::stringstream buffer;
+    XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);
+    std::unique_ptr<Integrator> deserialized(XmlSerializer::deserialize<Integrator>(buffer));
+    GenDPDEIntegrator* copy = dynamic_cast<GenDPDEIntegrator*>(deserialized.get());
+    ASSERT(copy != nullptr);
+    ASSERT(copy->getParticleTypes() == integrator.getParticleTypes());
+    ASSERT_EQUAL(2, copy->getNumTypeHeatCapacities());
+    for (int index = 0; index < 2; index++) {
+        int type1, type2;
+        double c1, c2;
+        integrator.getTypeHeatCapacity(index, type1, c1);
+        copy->getTypeHeatCapacity(index, type2, c2);
+        ASSERT_EQUAL(type1, type2);
+        ASSERT_EQUAL(c1, c2);
+    }
+    ASSERT_EQUAL(2, copy->getNumTypePairs());
+    for (int index = 0; index < 2; index++) {
+        int a1, b1, a2, b2;
+        double f1, k1, f2, k2;
+        integrator.getTypePairParameters(index, a1, b1, f1, k1);
+        copy->getTypePairParameters(index, a2, b2, f2, k2);
+        ASSERT(a1 == a2 && b1 == b2 && f1 == f2 && k1 == k2);
+    }
+}
+
+/** A version-1 file (0.2, before particle types) is still read. */
+void testVersion1() {
+    std::stringstream v1("<?xml version=\"1.0\" ?>\n<Integrator constraintTolerance=\"1e-05\" cutoff=\"0\" "
+                         "friction=\"1644.8\" heatCapacity=\"0.104\" heatConduction=\"2999.1\" "
+                         "integrationForceGroups=\"-1\" mode=\"0\" randomSeed=\"5\" stepSize=\"0.0123\" "
+                         "temperature=\"125.7\" type=\"GenDPDEIntegrator\" version=\"1\">"
+                         "<ParticleTemperatures/></Integrator>\n");
+    std::unique_ptr<Integrator> deserialized(XmlSerializer::deserialize<Integrator>(v1));
+    GenDPDEIntegrator* integrator = dynamic_cast<GenDPDEIntegrator*>(deserialized.get());
+    ASSERT(integrator != nullptr);
+    ASSERT_EQUAL(1644.8, integrator->getFriction());
+    ASSERT_EQUAL(0.104, integrator->getHeatCapacity());
+    ASSERT(integrator->getParticleTypes().empty());
+    ASSERT_EQUAL(0, integrator->getNumTypePairs());
+    ASSERT_EQUAL(0, integrator->getNumTypeHeatCapacities());
+}
+
 int main() {
     return runTestProgram([]() {
         testSerialization();
+        testTypesRoundTrip();
+        testVersion1();
     });
 }

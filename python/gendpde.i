@@ -101,8 +101,31 @@ RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
         std::memcpy(PyArray_DATA((PyArrayObject*) $result), $1.data(), size*sizeof(double));
 }
 
+/* Getters with output arguments return a list of them, as OpenMM's own wrappers do (e.g.
+ * DPDIntegrator.getTypePairParameters). Only reference parameters match, so the setters' value parameters of the
+ * same names are untouched. */
 %apply double& OUTPUT { double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent };
+%apply int& OUTPUT { int& type, int& type1, int& type2 };
+%apply double& OUTPUT { double& heatCapacity, double& friction, double& heatConduction };
 %apply double& OUTPUT { double& volume, double& derivative, double& value, double& pressure, double& freeEnergy };
+
+/* Particle types (getParticleTypes) become a dict {particle index: type}, a copy. */
+%typemap(out) const std::map<int, int>& {
+    $result = PyDict_New();
+    if ($result == NULL)
+        SWIG_fail;
+    for (std::map<int, int>::const_iterator entry = $1->begin(); entry != $1->end(); ++entry) {
+        PyObject* key = PyLong_FromLong(entry->first);
+        PyObject* value = PyLong_FromLong(entry->second);
+        int status = (key != NULL && value != NULL) ? PyDict_SetItem($result, key, value) : -1;
+        Py_XDECREF(key);
+        Py_XDECREF(value);
+        if (status < 0) {
+            Py_CLEAR($result);
+            SWIG_fail;
+        }
+    }
+}
 
 %ignore GenDPDEPlugin::GenDPDEForce::createImpl;
 %include "GenDPDEForce.h"

@@ -13,11 +13,17 @@
 
 namespace BruteForce {
 
+/** Tait parameters n0, pi0, B_T, gamma_T. */
+struct Tait {
+    double n0, pi0, bulkModulus, gammaT;
+};
+
 struct Model {
     double cutoff;
     bool useVB;
     double cutoffScaling;
     double n0, pi0, bulkModulus, gammaT;
+    std::vector<Tait> particleTait;   // per particle, for mixtures; empty: every particle has n0, pi0, B_T, gamma_T
     bool periodic;
     OpenMM::Vec3 box[3];
 };
@@ -101,9 +107,11 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
             dV = -1.0/(n0i*n0i);
         }
         double density = 1.0/V;
-        double pressure = model.pi0 + model.bulkModulus*(std::pow(density/model.n0, model.gammaT) - 1.0);
-        result.energy += (model.bulkModulus - model.pi0)/density
-                       + model.bulkModulus/((model.gammaT - 1.0)*model.n0)*std::pow(density/model.n0, model.gammaT - 1.0);
+        const Tait t = model.particleTait.empty() ? Tait{model.n0, model.pi0, model.bulkModulus, model.gammaT}
+                                                  : model.particleTait[i];
+        double pressure = t.pi0 + t.bulkModulus*(std::pow(density/t.n0, t.gammaT) - 1.0);
+        result.energy += (t.bulkModulus - t.pi0)/density
+                       + t.bulkModulus/((t.gammaT - 1.0)*t.n0)*std::pow(density/t.n0, t.gammaT - 1.0);
         result.volume[i] = V;
         result.pressure[i] = pressure;
         coefficient[i] = pressure*dV;

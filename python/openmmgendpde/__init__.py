@@ -57,15 +57,26 @@ from ._wrapping import (DIMENSIONLESS, NUMBER_DENSITY, PRESSURE, accept_units, a
 
 __all__ = ["GenDPDEForce", "GenDPDEIntegrator"]
 
+
+def _units_of(arguments):
+    """The units of an argument list of accept_units, for the matching getter's return_units."""
+    return [argument_unit for _, argument_unit in arguments]
+
+
 GenDPDEForce = _swig.GenDPDEForce
 
 accept_units(GenDPDEForce, "__init__", [("cutoff", _unit.nanometer)])
 accept_units(GenDPDEForce, "setCutoffDistance", [("distance", _unit.nanometer)])
 return_units(GenDPDEForce, "getCutoffDistance", _unit.nanometer)
 accept_units(GenDPDEForce, "setCutoffScaling", [("scaling", DIMENSIONLESS)])
-accept_units(GenDPDEForce, "setTaitParameters", [("referenceDensity", NUMBER_DENSITY), ("referencePressure", PRESSURE),
-                                                 ("bulkModulus", PRESSURE), ("exponent", DIMENSIONLESS)])
-return_units(GenDPDEForce, "getTaitParameters", [NUMBER_DENSITY, PRESSURE, PRESSURE, DIMENSIONLESS])
+_TAIT = [("referenceDensity", NUMBER_DENSITY), ("referencePressure", PRESSURE), ("bulkModulus", PRESSURE),
+         ("exponent", DIMENSIONLESS)]
+accept_units(GenDPDEForce, "setTaitParameters", _TAIT)
+return_units(GenDPDEForce, "getTaitParameters", _units_of(_TAIT))
+# Particle types are plain ints (setParticleType, getParticleType, getParticleTypes: a dict {particle: type}).
+accept_units(GenDPDEForce, "addTypeParameters", [("type", DIMENSIONLESS)] + _TAIT)
+accept_units(GenDPDEForce, "setTypeParameters", [("index", DIMENSIONLESS), ("type", DIMENSIONLESS)] + _TAIT)
+return_units(GenDPDEForce, "getTypeParameters", [DIMENSIONLESS] + _units_of(_TAIT))
 return_units(GenDPDEForce, "getReferenceDensity", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getReferencePressure", PRESSURE)
 return_units(GenDPDEForce, "getBulkModulus", PRESSURE)
@@ -89,6 +100,15 @@ accept_units(GenDPDEIntegrator, "setHeatConduction", [("heatConduction", _HEAT_C
 return_units(GenDPDEIntegrator, "getHeatConduction", _HEAT_CONDUCTION)
 accept_units(GenDPDEIntegrator, "setHeatCapacity", [("heatCapacity", _HEAT_CAPACITY)])
 return_units(GenDPDEIntegrator, "getHeatCapacity", _HEAT_CAPACITY)
+_TYPE_HEAT_CAPACITY = [("type", DIMENSIONLESS), ("heatCapacity", _HEAT_CAPACITY)]
+accept_units(GenDPDEIntegrator, "addTypeHeatCapacity", _TYPE_HEAT_CAPACITY)
+accept_units(GenDPDEIntegrator, "setTypeHeatCapacity", [("index", DIMENSIONLESS)] + _TYPE_HEAT_CAPACITY)
+return_units(GenDPDEIntegrator, "getTypeHeatCapacity", _units_of(_TYPE_HEAT_CAPACITY))
+_TYPE_PAIR = [("type1", DIMENSIONLESS), ("type2", DIMENSIONLESS), ("friction", _FRICTION),
+              ("heatConduction", _HEAT_CONDUCTION)]
+accept_units(GenDPDEIntegrator, "addTypePair", _TYPE_PAIR)
+accept_units(GenDPDEIntegrator, "setTypePairParameters", [("index", DIMENSIONLESS)] + _TYPE_PAIR)
+return_units(GenDPDEIntegrator, "getTypePairParameters", _units_of(_TYPE_PAIR))
 accept_units(GenDPDEIntegrator, "setCutoffDistance", [("distance", _unit.nanometer)])
 return_units(GenDPDEIntegrator, "getCutoffDistance", _unit.nanometer)
 accept_units(GenDPDEIntegrator, "setTemperature", [("temperature", _unit.kelvin)])

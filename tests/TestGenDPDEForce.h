@@ -446,27 +446,6 @@ void testEquationOfStateOverflow() {
     assertThrowsMentioning([&]() { context.getState(State::Energy); }, {"overflows", "particle 0", "step 0"});
 }
 
-/**
- * Give the particles of a scene three types in turn, 7, -3 and 0 (non-consecutive, one negative, one the default):
- * type 7 its own Tait parameters (denser, softer, gamma_T 7), type -3 others (a non-integer gamma_T, by pow()),
- * type 0 the force's. With `sameAsForce`, both entries repeat the force's own parameters.
- */
-void makeBinaryMixture(Scene& scene, bool sameAsForce) {
-    for (int i = 0; i < scene.system.getNumParticles(); i++)
-        if (i % 3 != 2)
-            scene.force->setParticleType(i, i % 3 == 0 ? 7 : -3);
-    double n0, pi0, bulkModulus, gammaT;
-    scene.force->getTaitParameters(n0, pi0, bulkModulus, gammaT);
-    if (sameAsForce) {
-        scene.force->addTypeParameters(7, n0, pi0, bulkModulus, gammaT);
-        scene.force->addTypeParameters(-3, n0, pi0, bulkModulus, gammaT);
-    }
-    else {
-        scene.force->addTypeParameters(7, 1.3*n0, 0.5*pi0, 0.6*bulkModulus, 7.0);
-        scene.force->addTypeParameters(-3, 0.8*n0, -0.3*pi0, 1.5*bulkModulus, 5.5);
-    }
-}
-
 /** A three-component mixture equals the brute force, which evaluates each particle with its own type's Tait law. */
 void testMixtureAgainstBruteForce() {
     for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
@@ -474,10 +453,10 @@ void testMixtureAgainstBruteForce() {
             const std::string label = std::string("mixture ") + (estimator == GenDPDEForce::VA ? "VA" : "VB")
                                       + (periodic ? " periodic" : " open");
             Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, periodic, 101);
-            makeBinaryMixture(liquid, false);
+            setMixtureTypes(liquid, false);
             checkAgainstBruteForce(liquid, label);
             Scene compressed = makeLatticeLiquid(7, 2.0*referenceDensity, 0.15, estimator, periodic, 102);
-            makeBinaryMixture(compressed, false);
+            setMixtureTypes(compressed, false);
             checkAgainstBruteForce(compressed, label + " compressed");
         }
 }
@@ -491,7 +470,7 @@ void testIdenticalTypesAreBitwiseNoTypes() {
     for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
         Scene plain = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, true, 103);
         Scene typed = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, true, 103);
-        makeBinaryMixture(typed, true);
+        setMixtureTypes(typed, true);
         VerletIntegrator integrator1(0.001), integrator2(0.001);
         Context a(plain.system, integrator1, *platform), b(typed.system, integrator2, *platform);
         a.setPositions(plain.positions);
@@ -517,7 +496,7 @@ void testIdenticalTypesAreBitwiseNoTypes() {
  */
 void testTypesInContext() {
     Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VB, true, 104);
-    makeBinaryMixture(scene, false);
+    setMixtureTypes(scene, false);
     VerletIntegrator integrator(0.001);
     Context context(scene.system, integrator, *platform);
     context.setPositions(scene.positions);

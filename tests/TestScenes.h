@@ -100,6 +100,27 @@ inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::Densi
 }
 
 /**
+ * Give the particles of a scene three types in turn, 7, -3 and 0 (non-consecutive, one negative, one the default):
+ * type 7 its own Tait parameters (denser, softer, gamma_T 7), type -3 others (a non-integer gamma_T, by pow()),
+ * type 0 the force's. With `sameAsForce`, both entries repeat the force's own parameters.
+ */
+inline void setMixtureTypes(Scene& scene, bool sameAsForce) {
+    for (int i = 0; i < scene.system.getNumParticles(); i++)
+        if (i % 3 != 2)
+            scene.force->setParticleType(i, i % 3 == 0 ? 7 : -3);
+    double n0, pi0, bulkModulus, gammaT;
+    scene.force->getTaitParameters(n0, pi0, bulkModulus, gammaT);
+    if (sameAsForce) {
+        scene.force->addTypeParameters(7, n0, pi0, bulkModulus, gammaT);
+        scene.force->addTypeParameters(-3, n0, pi0, bulkModulus, gammaT);
+    }
+    else {
+        scene.force->addTypeParameters(7, 1.3*n0, 0.5*pi0, 0.6*bulkModulus, 7.0);
+        scene.force->addTypeParameters(-3, 0.8*n0, -0.3*pi0, 1.5*bulkModulus, 5.5);
+    }
+}
+
+/**
  * The scenes that every force test runs through: V-A and V-B, periodic and open, each as a liquid (216 particles
  * on a jittered lattice at n0), a compressed liquid (343 particles at 5 n0), a gas of 27 dimers and (V-B only, which
  * allows isolated particles) a dilute random gas at 0.1 n0. `jitter` is the lattice jitter (fraction of the

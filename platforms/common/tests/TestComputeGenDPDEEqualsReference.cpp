@@ -85,18 +85,23 @@ void testForcesAndObservables(const std::string& precision) {
     const double edge = scene.box[0][0];
     setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
     compareScene(scene, "VB triclinic", precision);
+    Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
+    setMixtureTypes(mixture, false);
+    compareScene(mixture, "VB three-type mixture", precision);
 }
 
-Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic, bool ownPairs) {
+Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic, bool ownPairs,
+               bool mixture) {
     return runLatticeLiquid(8, periodic, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
         return makeContext(system, integrator, precision);
-    });
+    }, mixture);
 }
 
-void compareTrajectories(GenDPDEIntegrator::Mode mode, bool periodic, bool ownPairs, const std::string& label) {
+void compareTrajectories(GenDPDEIntegrator::Mode mode, bool periodic, bool ownPairs, const std::string& label,
+                         bool mixture = false) {
     const int steps = 20;
-    const Trajectory expected = run("", mode, steps, periodic, ownPairs);
-    const Trajectory found = run("double", mode, steps, periodic, ownPairs);
+    const Trajectory expected = run("", mode, steps, periodic, ownPairs, mixture);
+    const Trajectory found = run("double", mode, steps, periodic, ownPairs, mixture);
     double speed2 = 0.0;
     for (const Vec3& v : expected.velocities)
         speed2 += v.dot(v);
@@ -153,6 +158,8 @@ int main() {
         compareTrajectories(GenDPDEIntegrator::Conservative, true, false, "Conservative");
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, false, false, "Isoenergetic, open boundaries");
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, true, true, "Isoenergetic, the sweep's own cells");
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, true, false, "Isoenergetic, a three-type mixture", true);
+        compareTrajectories(GenDPDEIntegrator::Isothermal, true, false, "Isothermal, a three-type mixture", true);
         testSameFailure();
     });
 }

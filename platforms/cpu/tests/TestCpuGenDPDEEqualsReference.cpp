@@ -69,20 +69,24 @@ void testForcesAndObservables() {
     const double edge = scene.box[0][0];
     setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
     checkForcesAndObservables(scene, "VB triclinic");
+    Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
+    setMixtureTypes(mixture, false);
+    checkForcesAndObservables(mixture, "VB three-type mixture");
 }
 
 Trajectory run(const std::string& platformName, const std::string& threads, GenDPDEIntegrator::Mode mode, int steps,
-               bool ownPairs) {
+               bool ownPairs, bool mixture) {
     return runLatticeLiquid(14, true, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
         return makeContext(system, integrator, platformName, threads);
-    });
+    }, mixture);
 }
 
-void compareTrajectories(GenDPDEIntegrator::Mode mode, int steps, bool ownPairs, const std::string& label) {
-    const Trajectory expected = run("Reference", "", mode, steps, ownPairs);
+void compareTrajectories(GenDPDEIntegrator::Mode mode, int steps, bool ownPairs, const std::string& label,
+                         bool mixture = false) {
+    const Trajectory expected = run("Reference", "", mode, steps, ownPairs, mixture);
     for (const std::string& threads : threadCounts) {
         const std::string what = label + ", " + threads + " thread(s)";
-        const Trajectory found = run("CPU", threads, mode, steps, ownPairs);
+        const Trajectory found = run("CPU", threads, mode, steps, ownPairs, mixture);
         assertSame(expected.positions, found.positions, what + ": position");
         assertSame(expected.velocities, found.velocities, what + ": velocity");
         assertSame(expected.energies, found.energies, what + ": internal energy");
@@ -123,6 +127,7 @@ int main() {
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, 1000, false, "1000 isoenergetic steps");
         compareTrajectories(GenDPDEIntegrator::Isothermal, 200, false, "200 isothermal steps");
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, 100, true, "100 steps on the integrator's own pairs");
+        compareTrajectories(GenDPDEIntegrator::Isoenergetic, 200, false, "200 isoenergetic steps of a mixture", true);
         testSameFailure();
     });
 }

@@ -82,6 +82,72 @@ def test_internal_energies_follow_the_gamma_law(equilibrium_samples):
     assert stats.kstest(reduced, stats.gamma(c).cdf).pvalue < 1e-6
 
 
+@pytest.fixture(scope="module")
+def mixture_samples():
+    """A two-type mixture of the argon model (500 particles; docs/types.md): odd particles have type 1 with C_V = 6 k_B
+    (argon's is 12.51 k_B), n0 1.2 times and B_T 0.7 times argon's; pairs (0, 1) have 2 gamma and kappa/2, pairs
+    (1, 1) gamma/2 and 2 kappa. dt* = 0.005: 10 time units of equilibration, then 300 samples 0.2 time units apart
+    on the CPU platform (bitwise the Reference dynamics)."""
+    argon = liquid_argon(500, 1.6839, "VB", time_step=0.005, seed=13)
+    integrator, force = argon.integrator, argon.force
+    n0, pi0, bulk_modulus, exponent = force.getTaitParameters()
+    friction, conduction = integrator.getFriction(), integrator.getHeatConduction()
+    for i in range(1, 500, 2):
+        force.setParticleType(i, 1)
+        integrator.setParticleType(i, 1)
+    force.addTypeParameters(1, 1.2 * n0, pi0, 0.7 * bulk_modulus, exponent)
+    integrator.addTypeHeatCapacity(1, 6 * KB)
+    integrator.addTypePair(0, 1, 2 * friction, 0.5 * conduction)
+    integrator.addTypePair(1, 1, 0.5 * friction, 2 * conduction)
+    simulation = argon.simulation(platform="CPU", velocity_seed=13)
+    integrator.step(2000)
+    kinetic, temperatures = [], []
+    for _ in range(300):
+        integrator.step(40)
+        kinetic.append(simulation.context.getState(getEnergy=True).getKineticEnergy().value_in_unit(ENERGY))
+        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    capacity = np.where(np.arange(500) % 2 == 1, 6 * KB,
+                        integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin))
+    return np.array(kinetic), np.array(temperatures), capacity
+
+
+def test_mixture_equilibrium_identities_hold_per_type(mixture_samples):
+    """docs/types.md: with per-type C_V the stationary law on the shell is Dirichlet(d/2, c_1 + 1, ..., c_N + 1)
+    (c_i = C_i/k_B), so A = d/2 + sum_i (c_i + 1), <1/theta_i> = k_B (A - 1)/(E - U) for every particle whatever
+    its type, hence for each type T_kin/T_harm = 1 - 1/A and <theta>/T_harm = (1 + k_B/C_type)(1 - 1/A): 1.0797 for
+    argon's C_V and 1.1665 for 6 k_B. Tolerance: 5 block standard errors (15 blocks of 20 samples, 4 time units;
+    ~0.5% for T_kin/T_harm, ~0.1% for <theta>/T_harm). Measured: T_kin/T_harm 1.0020 and 1.0052 (expected 0.9998),
+    <theta>/T_harm 1.1691 +- 0.0012 (6 k_B) and 1.0801 +- 0.0007 (argon). A sweep that gave both particles of a pair
+    the first one's C_V (tried) misses T_kin/T_harm by 0.25, 68 standard errors."""
+    kinetic, temperatures, capacity = mixture_samples
+    n = temperatures.shape[1]
+    a = (3 * n - 3) / 2 + np.sum(capacity / KB + 1)
+    kinetic_temperature = 2 * kinetic / ((3 * n - 3) * KB)
+    for heat_capacity in np.unique(capacity):
+        theta = temperatures[:, capacity == heat_capacity]
+        harmonic = 1 / np.mean(1 / theta, axis=1)
+        ratio = kinetic_temperature / harmonic
+        error = block_average(ratio, 15, name="T_kin/T_harm").standard_error
+        assert abs(ratio.mean() - (1 - 1 / a)) < 5 * error, heat_capacity / KB
+        mean_ratio = theta.mean(axis=1) / harmonic
+        error = block_average(mean_ratio, 15, name="<theta>/T_harm").standard_error
+        assert abs(mean_ratio.mean() - (1 + KB / heat_capacity) * (1 - 1 / a)) < 5 * error, heat_capacity / KB
+
+
+def test_mixture_internal_energies_follow_the_gamma_law_of_their_type(mixture_samples):
+    """Each type's eps_i/(k_B T_harm) is Gamma-distributed with shape C_type/k_B + 1 (7 for the 6 k_B type, 13.51
+    for argon's), tested as in test_internal_energies_follow_the_gamma_law on samples 5 time units apart (12
+    snapshots x 250 particles per type); the other type's shape is rejected."""
+    _, temperatures, capacity = mixture_samples
+    harmonic = 1 / np.mean(1 / temperatures, axis=1)
+    shapes = {value: value / KB + 1 for value in np.unique(capacity)}
+    for heat_capacity, shape in shapes.items():
+        reduced = (heat_capacity * temperatures[:, capacity == heat_capacity] / (KB * harmonic[:, None]))[::25]
+        assert stats.kstest(reduced.ravel(), stats.gamma(shape).cdf).pvalue > 1e-3
+        other = [s for value, s in shapes.items() if value != heat_capacity][0]
+        assert stats.kstest(reduced.ravel(), stats.gamma(other).cdf).pvalue < 1e-6
+
+
 def _pair(mode, heat_capacity, temperature):
     """Two particles (2 and 3 amu) 0.5 nm apart along x, cutoff 1 nm, no conservative force, separating at
     0.1 nm/ps, with a common perpendicular velocity (so that e_ij stays exactly along x)."""

@@ -36,6 +36,18 @@ def make_state(path, num_particles):
              velocities=state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)[order])
 
 
+def give_types(model, count):
+    force, integrator = model.force, model.integrator
+    for i in range(model.num_particles):
+        force.setParticleType(i, i % count)
+        integrator.setParticleType(i, i % count)
+    for a in range(count):
+        force.addTypeParameters(a, *force.getTaitParameters())
+        integrator.addTypeHeatCapacity(a, integrator.getHeatCapacity())
+        for b in range(a, count):
+            integrator.addTypePair(a, b, integrator.getFriction(), integrator.getHeatConduction())
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--state", required=True, help=".npz file of the state (made if absent)")
@@ -47,12 +59,17 @@ def main():
     parser.add_argument("--what", choices=("force", "step"), default="step",
                         help="force: getState with energy and forces; step: Isoenergetic steps (default)")
     parser.add_argument("--count", type=int, default=100, help="calls timed (default 100), after 10 untimed")
+    parser.add_argument("--types", type=int, default=0,
+                        help="give the particles this many types in turn (0.3+), each with argon's parameters in "
+                             "its own entries, so that the physics is the same and only the type tables differ")
     arguments = parser.parse_args()
     if not os.path.exists(arguments.state):
         make_state(arguments.state, arguments.particles)
     saved = np.load(arguments.state)
     num_particles = len(saved["positions"])
     model = liquid_argon(num_particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    if arguments.types > 0:
+        give_types(model, arguments.types)
     properties = {"Threads": str(arguments.threads)} if arguments.threads else {}
     if arguments.precision:
         properties["Precision"] = arguments.precision

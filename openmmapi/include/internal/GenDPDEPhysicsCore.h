@@ -80,7 +80,7 @@ GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBA
 }
 
 /**
- * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 7 and 9),
+ * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 5 and 7),
  * with beta = 1/theta = C/eps: k_B Theta_ij with 1/Theta_ij = (beta_i + beta_j)/2, beta_i - beta_j, and the Ito
  * factor of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2 = k_B (beta_i/eps_i + beta_j/eps_j)
  * /(beta_i + beta_j)^2 (GenDPDEPhysics.h, PairTemperatures, says why). beta = 1/theta stays within the range of the

@@ -60,7 +60,7 @@ def main():
                         help="force: getState with energy and forces; step: Isoenergetic steps (default)")
     parser.add_argument("--count", type=int, default=100, help="calls timed (default 100), after 10 untimed")
     parser.add_argument("--types", type=int, default=0,
-                        help="give the particles this many types in turn (0.3+), each with argon's parameters in "
+                        help="give the particles this many types in turn (needs particle types), each with argon's parameters in "
                              "its own entries, so that the physics is the same and only the type tables differ")
     arguments = parser.parse_args()
     if not os.path.exists(arguments.state):

@@ -9,7 +9,7 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-// Version 2 (0.3): particle types and per-type Tait parameters. Version 1 files (no types) are still read.
+// Version 2: particle types and per-type Tait parameters. Version 1 files (no types) are still read.
 const int currentVersion = 2;
 }
 

@@ -8,7 +8,7 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-// Version 2 (0.3): particle types, per-type heat capacities and type pairs. Version 1 files are still read.
+// Version 2: particle types, per-type heat capacities and type pairs. Version 1 files are still read.
 const int currentVersion = 2;
 }
 

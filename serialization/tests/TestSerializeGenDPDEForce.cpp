@@ -59,7 +59,7 @@ void testTypesRoundTrip() {
     }
 }
 
-/** A version-1 file (0.2, before particle types) is still read: no types, its own Tait parameters. */
+/** A version-1 file (written before particle types) is still read: no types, its own Tait parameters. */
 void testVersion1() {
     std::stringstream v1("<?xml version=\"1.0\" ?>\n<Force bulkModulus=\"67.5\" cutoff=\"1.234\" cutoffScaling=\"1.41\" "
                          "estimator=\"0\" forceGroup=\"5\" gammaT=\"6.5\" method=\"0\" n0=\"4.5\" name=\"argon\" "

@@ -70,7 +70,7 @@ void testTypesRoundTrip() {
     }
 }
 
-/** A version-1 file (0.2, before particle types) is still read. */
+/** A version-1 file (written before particle types) is still read. */
 void testVersion1() {
     std::stringstream v1("<?xml version=\"1.0\" ?>\n<Integrator constraintTolerance=\"1e-05\" cutoff=\"0\" "
                          "friction=\"1644.8\" heatCapacity=\"0.104\" heatConduction=\"2999.1\" "

@@ -1,0 +1,238 @@
+"""Free surfaces (`slab`, docs/interfaces.md): a liquid-argon slab in vacuum run with V-A and with V-B, and the
+estimators' volumes measured against the exact partition-of-unity volume (openmmgendpde.interfaces).
+
+Dynamics: an FCC slab of argon particles (default 5 x 5 x 10 cells, 1000 particles) at n* = 0.82, where the Tait
+pressure vanishes, in a periodic box three times as long as the slab (vacuum on both sides); R* = 1.6839, f_cut =
+1.35, internal energies and velocities drawn at T0, isoenergetic GenDPDE at dt* = 0.01. Every --every time units it
+reports the slab's core (the middle half of its initial thickness, around its centre of mass): the true number
+density (particles over volume) and the mean estimated density n_i there, and the slab's width (twice the 90th
+percentile of the distance from its mid-plane) relative to the initial thickness.
+
+Oracle: at the start and the end of each run (and for bulk liquids at several densities), each particle's volume from
+V-A (1/n0), V-B and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
+averaged in slices by depth; for the bulk, the mean and scatter of V_estimator/V_exact.
+"""
+
+import copy
+import csv
+import dataclasses
+import os
+
+import numpy as np
+import openmm
+from openmm import unit
+
+from . import GenDPDEForce, GenDPDEIntegrator
+from .cli import add_output, add_platform
+from .fluid import fcc_box
+from .interfaces import partition_of_unity_volumes
+from .presets import ARGON_UNITS, liquid_argon
+
+NM = unit.nanometer
+
+
+@dataclasses.dataclass
+class Model:
+    """A GenDPDE argon System at given positions in a rectangular periodic box, bound to a Context."""
+    context: openmm.Context
+    force: GenDPDEForce
+    integrator: GenDPDEIntegrator
+    box: np.ndarray          # edges (nm)
+    temperature: unit.Quantity
+
+    def positions(self):
+        """nm, N x 3, wrapped into the box."""
+        x = self.context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(NM)
+        return x - np.floor(x / self.box) * self.box
+
+
+def argon_model(positions, box, estimator, cutoff=1.6839, platform="Reference", seed=1):
+    """The liquid-argon model (presets.liquid_argon's parameters at R* = ``cutoff``) for ``positions`` (nm) in a
+    rectangular box of edges ``box`` (nm): a Context with velocities and internal energies drawn at T0, Isoenergetic."""
+    argon = liquid_argon(500, cutoff, estimator, time_step=0.01, seed=seed)
+    system = openmm.System()
+    system.setDefaultPeriodicBoxVectors(*(openmm.Vec3(*row) for row in np.diag(box)))
+    for _ in range(len(positions)):
+        system.addParticle(argon.system.getParticleMass(0))
+    force = copy.copy(argon.force)
+    system.addForce(force)
+    integrator = copy.copy(argon.integrator)
+    context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName(platform))
+    context.setPositions(positions * NM)
+    context.setVelocitiesToTemperature(argon.temperature, seed)
+    integrator.setInternalEnergiesToTemperature(argon.temperature, seed)
+    return Model(context, force, integrator, np.asarray(box, float), argon.temperature)
+
+
+def slab_positions(cells=(5, 5, 10), density=0.82, vacuum=3.0):
+    """(positions nm, box edges nm, thickness nm): an FCC slab at ``density`` (reduced) of ``cells`` cubic cells,
+    normal to z, centred in a box ``vacuum`` times as long as the slab along z."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    positions, box = fcc_box(density / length**3, cells)
+    edges = np.diag(np.asarray(box, float)).copy()
+    thickness = edges[2]
+    edges[2] *= vacuum
+    positions[:, 2] += 0.5 * (edges[2] - thickness)
+    return positions, edges, thickness
+
+
+def depth(positions, box, axis=2):
+    """Each particle's distance (nm) from the slab's mid-plane: the plane through the circular mean of the
+    coordinates along ``axis`` (periodic)."""
+    width = box[axis]
+    angle = 2 * np.pi * positions[:, axis] / width
+    centre = (np.arctan2(np.sin(angle).mean(), np.cos(angle).mean()) % (2 * np.pi)) * width / (2 * np.pi)
+    return np.abs((positions[:, axis] - centre + width / 2) % width - width / 2)
+
+
+@dataclasses.dataclass
+class SlabSample:
+    time: float            # reduced
+    core_density: float    # true number density of the core (reduced)
+    core_estimate: float   # mean n_i of the core's particles (reduced)
+    width: float           # twice the 90th percentile of the depth, over the initial thickness
+
+
+def sample_slab(model, thickness, time):
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    x = model.positions()
+    d = depth(x, model.box)
+    core = d < thickness / 4
+    area = model.box[0] * model.box[1]
+    estimates = model.force.getParticleDensities(model.context).value_in_unit(NM**-3)
+    return SlabSample(time, core.sum() / (area * thickness / 2) * length**3,
+                      float(estimates[core].mean()) * length**3, 2 * np.percentile(d, 90) / thickness)
+
+
+def run_slab(estimator, duration=100.0, every=10.0, cells=(5, 5, 10), platform="CPU", seed=5, report=None):
+    """Run the slab with ``estimator`` for ``duration`` reduced time units; a list of SlabSample every ``every``
+    time units (the first at t = 0), and the Model at the end."""
+    positions, box, thickness = slab_positions(cells)
+    model = argon_model(positions, box, estimator, platform=platform, seed=seed)
+    tau = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
+    dt = model.integrator.getStepSize().value_in_unit(unit.picosecond) / tau
+    steps = int(round(every / dt))
+    samples = [sample_slab(model, thickness, 0.0)]
+    while samples[-1].time < duration - 1e-9:
+        model.integrator.step(steps)
+        samples.append(sample_slab(model, thickness, samples[-1].time + steps * dt))
+        if report is not None:
+            report(samples[-1])
+    return samples, model, thickness
+
+
+def estimator_volumes(model):
+    """(V-A volumes 1/n0, V-B volumes, exact partition-of-unity volumes with kernel range Rt = R/f_cut), nm^3, at the
+    model's current positions (the force's estimator is left as it was)."""
+    force, context = model.force, model.context
+    n0 = force.getPrimitiveDensities(context).value_in_unit(NM**-3)
+    estimator = force.getDensityEstimator()
+    force.setDensityEstimator(GenDPDEForce.VB)
+    force.updateParametersInContext(context)
+    vb = force.getParticleVolumes(context).value_in_unit(NM**3)
+    force.setDensityEstimator(estimator)
+    force.updateParametersInContext(context)
+    reduced_range = force.getCutoffDistance().value_in_unit(NM) / force.getCutoffScaling()
+    exact = partition_of_unity_volumes(model.positions(), reduced_range, box=model.box)
+    return 1 / n0, vb, exact
+
+
+def depth_profile(model, thickness, bin_width=0.25):
+    """Rows (depth from, depth to in units of the initial half thickness, particles, true density, then the mean
+    density 1/V of the exact volume, V-B and V-A; densities reduced) of slices by depth."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    va, vb, exact = estimator_volumes(model)
+    d = depth(model.positions(), model.box) / (thickness / 2)
+    area = model.box[0] * model.box[1]
+    rows = []
+    for low in np.arange(0, d.max() + bin_width, bin_width):
+        members = (d >= low) & (d < low + bin_width)
+        if members.sum() < 10:
+            continue
+        true = members.sum() / (2 * area * bin_width * thickness / 2) * length**3
+        rows.append((low, low + bin_width, int(members.sum()), true,
+                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va))))
+    return rows
+
+
+def bulk_comparison(densities=(0.7, 0.82, 1.0, 1.2), cells=(5, 5, 5), steps=2000, platform="CPU", seed=7):
+    """For bulk liquids at each reduced density (FCC melted by ``steps`` Isothermal V-B steps): rows (density,
+    mean and standard deviation over particles of V_VB/V_exact, the same for V_VA/V_exact, correlation of V_VB with
+    V_exact). The exact volumes average to 1/n exactly (the partition of unity fills the box)."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    rows = []
+    for density in densities:
+        positions, box = fcc_box(density / length**3, cells)
+        model = argon_model(positions, np.diag(np.asarray(box, float)), "VB", platform=platform, seed=seed)
+        model.integrator.setMode(GenDPDEIntegrator.Isothermal)
+        model.integrator.step(steps)
+        va, vb, exact = estimator_volumes(model)
+        rows.append((density, float(np.mean(vb / exact)), float(np.std(vb / exact)), float(np.mean(va / exact)),
+                     float(np.std(va / exact)), float(np.corrcoef(vb, exact)[0, 1])))
+    return rows
+
+
+def plot(runs, profiles, path_stem):
+    """Left: the core's true density (solid) and mean n_i (dashed) against time for each estimator; right: the
+    density by depth at the end of the V-B run: true, exact partition of unity, V-B, V-A."""
+    from .plotting import panels, save
+    figure, (left, right) = panels(2)
+    for (estimator, samples), colour in zip(runs.items(), ("C0", "C1")):
+        t = [s.time for s in samples]
+        left.plot(t, [s.core_density for s in samples], color=colour, label=f"{estimator}: true density")
+        left.plot(t, [s.core_estimate for s in samples], color=colour, linestyle="--", label=f"{estimator}: mean n_i")
+    left.set_xlabel("t*")
+    left.set_ylabel("core density n*")
+    left.legend(frameon=False, fontsize=8)
+    if "VB" in profiles:
+        rows = np.array(profiles["VB"])
+        centre = 0.5 * (rows[:, 0] + rows[:, 1])
+        for column, label in zip((3, 4, 5, 6), ("true", "exact partition of unity", "V-B", "V-A")):
+            right.plot(centre, rows[:, column], marker="o", markersize=3, label=label)
+        right.set_xlabel("depth / initial half thickness")
+        right.set_ylabel("density n* (V-B run, end)")
+    save(figure, path_stem, right if "VB" in profiles else None)
+
+
+def run(arguments):
+    os.makedirs(arguments.output, exist_ok=True)
+    duration, every = (10.0, 5.0) if arguments.quick else (arguments.duration, arguments.every)
+    cells = (5, 5, 6) if arguments.quick else (5, 5, 10)
+    runs, profiles = {}, {}
+    for estimator in ("VA", "VB"):
+        print(f"{estimator}: slab of {4 * np.prod(cells)} particles, {duration:g} time units")
+        samples, model, thickness = run_slab(estimator, duration, every, cells, arguments.platform)
+        runs[estimator] = samples
+        print("   t*   core true n*   core mean n_i*   width/initial")
+        for s in samples:
+            print(f"{s.time:6.1f}   {s.core_density:12.3f}   {s.core_estimate:14.3f}   {s.width:13.2f}")
+        if not arguments.no_oracle:
+            profiles[estimator] = depth_profile(model, thickness)
+            print(f"{estimator} at t* = {samples[-1].time:g}: density by depth (units of the initial half "
+                  f"thickness; particles): true, exact partition of unity, V-B, V-A")
+            for row in profiles[estimator]:
+                print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
+    with open(os.path.join(arguments.output, "slab.csv"), "w", newline="") as out:
+        writer = csv.writer(out)
+        writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width"])
+        for estimator, samples in runs.items():
+            for s in samples:
+                writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width])
+    if not arguments.no_oracle:
+        print("bulk liquids (V-B runs): n*, V_VB/V_exact mean and sd, V_VA/V_exact mean and sd, corr(V_VB, V_exact)")
+        for row in bulk_comparison(cells=(4, 4, 4) if arguments.quick else (5, 5, 5),
+                                   steps=200 if arguments.quick else 2000, platform=arguments.platform):
+            print("  {:5.2f}: {:6.3f} {:6.3f}   {:6.3f} {:6.3f}   {:5.2f}".format(*row))
+    plot(runs, profiles, os.path.join(arguments.output, "slab"))
+    print(f"wrote {arguments.output}/slab.csv, slab.png, slab.pdf")
+
+
+def add_arguments(parser):
+    add_platform(parser)
+    parser.set_defaults(platform="CPU")
+    add_output(parser, "slab.csv and the plots")
+    parser.add_argument("--duration", type=float, default=100.0, help="time units per run (default 100)")
+    parser.add_argument("--every", type=float, default=10.0, help="time units between samples (default 10)")
+    parser.add_argument("--quick", action="store_true", help="a 600-particle slab for 10 time units (seconds)")
+    parser.add_argument("--no-oracle", action="store_true", help="skip the exact volumes (the slow part)")
+    parser.set_defaults(run=run)

@@ -211,6 +211,82 @@ inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
 }
 
 /**
+ * The first moment of a particle's neighbourhood (docs/interfaces.md), g_i = sum_j phi(r_ij) e_ij with e_ij the unit
+ * vector from j to i and the dimensionless weight phi(r) = (r/R)(1 - r/R)^2 for r < R: zero for a particle whose
+ * neighbours surround it evenly, pointing away from the neighbours for one at a surface. phi and phi' vanish at R
+ * (so g_i and its gradient are continuous as pairs cross the cutoff) and phi at 0 (a close pair does not dominate).
+ * Its gradient with respect to the pair vector d = r_i - r_j is H(d) = phi'(r) e e^T + (phi(r)/r)(I - e e^T).
+ */
+class MomentWeight {
+public:
+    explicit MomentWeight(double cutoff) : inverseCutoff(1.0/cutoff) {
+    }
+    /** phi(r) for r < R (dimensionless). */
+    double valueInside(double r) const {
+        const double x = r*inverseCutoff, y = 1.0 - x;
+        return x*y*y;
+    }
+    /** phi'(r) for r < R (1/length). */
+    double derivativeInside(double r) const {
+        const double x = r*inverseCutoff;
+        return inverseCutoff*(1.0 - x)*(1.0 - 3.0*x);
+    }
+private:
+    double inverseCutoff;
+};
+
+/** A V-C volume and its derivatives with respect to the primitive density n0 and to G = |g|^2. */
+struct ParticleVolumeVC {
+    double volume;              // length^3
+    double derivative;          // dV/dn0 at fixed G, length^6
+    double momentDerivative;    // dV/dG at fixed n0, length^3
+};
+
+/**
+ * V-C, the partition-of-unity estimator with a one-sidedness correction (docs/interfaces.md):
+ *   V = V_B(n0) (1 + alpha a^2/(1 + a^2)),   a^2 = c^2 G/(n0^2 + eps^2),   G = |g|^2,
+ * with c = 30/(pi R^3), so that a = 1 for a particle at the flat surface of a uniform fluid (half its neighbourhood
+ * empty), eps = 3/(4 pi R^3) (a tenth of one neighbour's weight at r = 0, which keeps a^2 and its derivatives finite
+ * as a particle loses its last neighbours), and alpha = 2 (chosen against the exact volume; a slab then holds).
+ * V_B is V-B with reduced range Rt = R/f_cut. The factor is 1 in the mean field of a homogeneous fluid and grows
+ * to 1 + alpha/2 at a free surface, where the exact partition-of-unity volume is about twice the interior's.
+ */
+class VolumeEstimatorVC {
+public:
+    static constexpr double alpha = 2.0;
+    VolumeEstimatorVC(double cutoff, double reducedRange) : volumeVB(reducedRange) {
+        const double r3 = cutoff*cutoff*cutoff;
+        const double c = 30.0/(Pi*r3), eps = 3.0/(4.0*Pi*r3);
+        momentScale = c*c;
+        densitySoftening = eps*eps;
+    }
+    /** The volume at primitive density n0 >= 0 and squared moment G >= 0; dV/dn0 is -infinity at n0 = 0. */
+    ParticleVolumeVC operator()(double primitiveDensity, double squaredMoment) const {
+        const ParticleVolume b = volumeVB(primitiveDensity);
+        const double inverse = 1.0/(primitiveDensity*primitiveDensity + densitySoftening);
+        const double a2 = momentScale*squaredMoment*inverse;
+        const double denominator = 1.0/(1.0 + a2);
+        const double factor = 1.0 + alpha*a2*denominator;
+        const double slope = alpha*denominator*denominator;   // d factor/d a^2
+        return {b.volume*factor, b.derivative*factor - b.volume*slope*2.0*a2*primitiveDensity*inverse,
+                b.volume*slope*momentScale*inverse};
+    }
+    const VolumeEstimatorVB& getVolumeVB() const {
+        return volumeVB;
+    }
+    /** c^2 and eps^2 of the definition (1/length^6). */
+    double getMomentScale() const {
+        return momentScale;
+    }
+    double getDensitySoftening() const {
+        return densitySoftening;
+    }
+private:
+    VolumeEstimatorVB volumeVB;
+    double momentScale, densitySoftening;
+};
+
+/**
  * The Tait equation of state and the per-particle mechanical free energy (docs/theory.md section 4):
  *   pi(n) = pi0 + B_T [ (n/n0)^gamma_T - 1 ]
  *   f(n)  = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1),     with pi = n^2 df/dn.

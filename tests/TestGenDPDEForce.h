@@ -24,8 +24,7 @@ using namespace TestScenes;
 inline BruteForce::Model bruteForceModel(const Scene& scene) {
     BruteForce::Model model;
     model.cutoff = scene.force->getCutoffDistance();
-    model.useVB = scene.force->getDensityEstimator() != GenDPDEForce::VA;
-    model.useVC = scene.force->getDensityEstimator() == GenDPDEForce::VC;
+    model.useVB = scene.force->getDensityEstimator() == GenDPDEForce::VB;
     model.cutoffScaling = scene.force->getCutoffScaling();
     scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
     if (!scene.force->getParticleTypes().empty() || scene.force->getNumTypeParameters() > 0)
@@ -50,11 +49,6 @@ inline BruteForce::Model bruteForceModel(const Scene& scene) {
 double energyAt(Context& context, const std::vector<Vec3>& positions) {
     context.setPositions(positions);
     return context.getState(State::Energy).getPotentialEnergy();
-}
-
-/** Whether the platform under test has the VC estimator (the GPU platforms refuse it, see testVCRefusedOnGpu). */
-bool platformHasVC() {
-    return platform->getName() == "Reference" || platform->getName() == "CPU";
 }
 
 double rmsForce(const std::vector<Vec3>& forces) {
@@ -215,10 +209,7 @@ void testSymmetries() {
  * truncation error is ~1e-12 relative, and the rounding error eps |U| / 1e-6 is ~1e-9 of |W|.
  */
 void testVirial() {
-    std::vector<GenDPDEForce::DensityEstimator> estimators = {GenDPDEForce::VA, GenDPDEForce::VB};
-    if (platformHasVC())
-        estimators.push_back(GenDPDEForce::VC);
-    for (GenDPDEForce::DensityEstimator estimator : estimators) {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
         Scene open = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, false, 31);
         VerletIntegrator integrator(0.001);
         Context context(open.system, integrator, *platform);
@@ -553,69 +544,7 @@ void testTypesBadInput() {
     ASSERT(type == 4 && values[0] == 1.0 && values[3] == 2.0);
 }
 
-/**
- * VC's energy, volumes, densities and pressures equal the independent brute-force evaluation (which computes the
- * moments g_i over every image and applies the factor of docs/interfaces.md itself), and its forces and virial are
- * the exact derivatives of its energy (finite differences, as for VA and VB), on the standard scenes: liquids,
- * compressed liquids, open boundaries (free surfaces, where the factor matters), dimers and a dilute gas with
- * isolated particles.
- */
-void testVCAgainstBruteForceAndFiniteDifferences() {
-    forEachStandardScene(0.15, 111, [](Scene& scene, const std::string& label) {
-        if (label.compare(0, 2, "VB") != 0)
-            return;
-        scene.force->setDensityEstimator(GenDPDEForce::VC);
-        scene.force->setCutoffScaling(1.57);
-        const std::string vc = "VC" + label.substr(2);
-        VerletIntegrator integrator(0.001);
-        Context context(scene.system, integrator, *platform);
-        context.setPositions(scene.positions);
-        const BruteForce::Result expected = BruteForce::evaluate(bruteForceModel(scene), scene.positions);
-        const double relative = precisionTolerance(1e-10, 1e-5);
-        assertRelative(expected.energy, context.getState(State::Energy).getPotentialEnergy(), relative,
-                       vc + " energy");
-        const std::vector<double> volumes = scene.force->getParticleVolumes(context);
-        const std::vector<double> pressures = scene.force->getParticlePressures(context);
-        for (size_t i = 0; i < volumes.size(); i++) {
-            assertRelative(expected.volume[i], volumes[i], relative, vc + " V_i");
-            assertClose(expected.pressure[i], pressures[i],
-                        relative*std::max(scene.force->getBulkModulus(), std::abs(expected.pressure[i])), vc + " pi_i");
-        }
-        checkFiniteDifferences(scene, vc);
-    });
-    // A free surface: the outer layer of an open lattice liquid gets a larger volume than with VB.
-    Scene open = makeLatticeLiquid(6, referenceDensity, 0.0, GenDPDEForce::VB, false, 112);
-    open.force->setCutoffScaling(1.57);
-    VerletIntegrator integrator(0.001);
-    Context context(open.system, integrator, *platform);
-    context.setPositions(open.positions);
-    const std::vector<double> vb = open.force->getParticleVolumes(context);
-    open.force->setDensityEstimator(GenDPDEForce::VC);
-    open.force->updateParametersInContext(context);
-    const std::vector<double> vc = open.force->getParticleVolumes(context);
-    // Particle 0 is a corner of the lattice (three faces empty), particle 3*36 + 3*6 + 3 near the centre.
-    ASSERT(vc[0]/vb[0] > 2.0);
-    ASSERT(vc[129]/vb[129] < 1.2);
-}
-
-/** The GPU platforms refuse VC when the Context is created or the estimator is changed, saying where it runs. */
-void testVCRefusedOnGpu() {
-    Scene scene = makeLatticeLiquid(5, referenceDensity, 0.2, GenDPDEForce::VB, true, 113);
-    VerletIntegrator integrator(0.001);
-    Context context(scene.system, integrator, *platform);
-    context.setPositions(scene.positions);
-    scene.force->setDensityEstimator(GenDPDEForce::VC);
-    assertThrowsMentioning([&]() { scene.force->updateParametersInContext(context); },
-                           {"VC", "not available", "Reference or CPU"});
-    VerletIntegrator integrator2(0.001);
-    assertThrowsMentioning([&]() { Context fresh(scene.system, integrator2, *platform); }, {"VC", "not available"});
-}
-
 void runForceTests() {
-    if (platformHasVC())
-        testVCAgainstBruteForceAndFiniteDifferences();
-    else
-        testVCRefusedOnGpu();
     testTypesBadInput();
     testMixtureAgainstBruteForce();
     testIdenticalTypesAreBitwiseNoTypes();

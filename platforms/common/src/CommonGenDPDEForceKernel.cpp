@@ -125,9 +125,6 @@ void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context,
 void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
     std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
-    if (force.getDensityEstimator() == GenDPDEForce::VC)
-        throw OpenMMException("GenDPDEForce: the VC estimator is not available on the " + getPlatform().getName()
-                              + " platform yet; use VA or VB here, or the Reference or CPU platform");
     estimator = force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     taitByType = tait;
@@ -197,9 +194,7 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
     for (int k = 0; k < (int) atoms.size(); k++)
         if (atoms[k] == particle)
             n0 = densities[k];
-    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, n0, estimator, cutoff/cutoffScaling,
             taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, cc.getStepCount()));
 }
 

@@ -8,9 +8,11 @@ reports the slab's core (the middle half of its initial thickness, around its ce
 density (particles over volume) and the mean estimated density n_i there, and the slab's width (twice the 90th
 percentile of the distance from its mid-plane) relative to the initial thickness.
 
-Oracle: at the start and the end of each run (and for bulk liquids at several densities), each particle's volume from
+Oracle: at the end of each run (and for a droplet of 1000 particles after 10 time units with V-B, and for bulk
+liquids at several densities), each particle's volume from
 V-A (1/n0), V-B and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
-averaged in slices by depth; for the bulk, the mean and scatter of V_estimator/V_exact.
+averaged in slices by depth (shells by radius for the droplet); for the bulk, the mean and scatter of
+V_estimator/V_exact.
 """
 
 import copy
@@ -155,6 +157,48 @@ def depth_profile(model, thickness, bin_width=0.25):
     return rows
 
 
+def droplet_positions(num_particles=1000, density=0.82, vacuum=3.0):
+    """(positions nm, box edges nm, radius nm): the ``num_particles`` sites of an FCC lattice at ``density``
+    (reduced) nearest a lattice centre, centred in a cubic box ``vacuum`` times the droplet's diameter."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    cells = int(np.ceil((num_particles / 4) ** (1 / 3) * 1.6))
+    positions, box = fcc_box(density / length**3, (cells, cells, cells))
+    centre = np.diag(np.asarray(box, float)) / 2
+    distance = np.linalg.norm(positions - centre, axis=1)
+    chosen = np.argsort(distance)[:num_particles]
+    radius = (3 * num_particles / (4 * np.pi * density)) ** (1 / 3) * length
+    edge = 2 * radius * vacuum
+    return positions[chosen] - centre + edge / 2, np.full(3, edge), radius
+
+
+def radial_profile(model, radius, bin_width=0.2):
+    """Rows (distance from, to in units of the initial radius, particles, true density, then the mean density 1/V
+    of the exact volume, V-B and V-A; densities reduced) of spherical shells around the droplet's centre of mass
+    (the droplet must not straddle the box: its box is large)."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    va, vb, exact = estimator_volumes(model)
+    x = model.positions()
+    d = np.linalg.norm(x - x.mean(axis=0), axis=1) / radius
+    rows = []
+    for low in np.arange(0, d.max() + bin_width, bin_width):
+        members = (d >= low) & (d < low + bin_width)
+        if members.sum() < 10:
+            continue
+        shell = 4 * np.pi / 3 * ((low + bin_width) ** 3 - low**3) * radius**3
+        rows.append((low, low + bin_width, int(members.sum()), members.sum() / shell * length**3,
+                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va))))
+    return rows
+
+
+def run_droplet(estimator="VB", duration=10.0, num_particles=1000, platform="CPU", seed=5):
+    """A droplet of ``num_particles`` at n* = 0.82 run for ``duration`` time units; (Model, initial radius nm)."""
+    positions, box, radius = droplet_positions(num_particles)
+    model = argon_model(positions, box, estimator, platform=platform, seed=seed)
+    tau = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
+    model.integrator.step(int(round(duration * tau / model.integrator.getStepSize().value_in_unit(unit.picosecond))))
+    return model, radius
+
+
 def bulk_comparison(densities=(0.7, 0.82, 1.0, 1.2), cells=(5, 5, 5), steps=2000, platform="CPU", seed=7):
     """For bulk liquids at each reduced density (FCC melted by ``steps`` Isothermal V-B steps): rows (density,
     mean and standard deviation over particles of V_VB/V_exact, the same for V_VA/V_exact, correlation of V_VB with
@@ -219,6 +263,12 @@ def run(arguments):
             for s in samples:
                 writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width])
     if not arguments.no_oracle:
+        count = 400 if arguments.quick else 1000
+        model, radius = run_droplet("VB", 10.0, count, arguments.platform)
+        print(f"VB droplet of {count} particles at t* = 10: density by distance from its centre (units of the initial "
+              f"radius; particles): true, exact partition of unity, V-B, V-A")
+        for row in radial_profile(model, radius):
+            print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
         print("bulk liquids (V-B runs): n*, V_VB/V_exact mean and sd, V_VA/V_exact mean and sd, corr(V_VB, V_exact)")
         for row in bulk_comparison(cells=(4, 4, 4) if arguments.quick else (5, 5, 5),
                                    steps=200 if arguments.quick else 2000, platform=arguments.platform):

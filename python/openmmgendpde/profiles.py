@@ -3,7 +3,8 @@ flow reads. Each report bins the particles by their wrapped coordinate along ``a
 coordinate) into ``bins`` equal slices and writes, per bin, one CSV row:
 
     step, time (ps), bin, centre (nm), particles, number density (nm^-3), mean theta (K), kinetic temperature (K),
-    v_x, v_y, v_z (nm/ps), and with a GenDPDEForce given, P_xx, P_yy, P_zz, P_xy, P_xz, P_yz (kJ/mol/nm^3)
+    v_x, v_y, v_z (nm/ps), and with a GenDPDEForce given, P_xx, P_yy, P_zz, P_xy, P_xz, P_yz (kJ/mol/nm^3), and
+    with particle types given, for each type t: its number density (nm^-3) and harmonic-mean theta (K)
 
 The number density is the count over the slice volume; mean theta is the mean internal temperature theta_i (NaN
 without a GenDPDEIntegrator); the kinetic temperature is m |v - v_bin|^2 summed over the slice's particles over
@@ -22,11 +23,14 @@ from .pressure import virial_tensor
 from .units import BOLTZMANN
 
 
-def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=None, virials=None):
+def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=None, virials=None, types=None):
     """The profile of one configuration as a dict of arrays (one value per bin), in OpenMM units: 'centre',
     'count', 'density', 'theta', 'kinetic_temperature', 'velocity' (bins x 3), 'pressure' (bins x 3 x 3, NaN without
     virials). positions (nm), velocities (nm/ps) N x 3 arrays; masses (amu) N; box three rows (nm, reduced form);
-    temperatures theta_i (K) or None; virials the per-particle virial tensors (N x 3 x 3, kJ/mol) or None."""
+    temperatures theta_i (K) or None; virials the per-particle virial tensors (N x 3 x 3, kJ/mol) or None. With
+    ``types`` (one integer per particle, docs/types.md) also 'types' (the distinct types, ascending),
+    'type_density' (bins x types) and 'type_theta' (bins x types: each type's harmonic-mean theta, the temperature
+    that is the same for every type at equilibrium; NaN without temperatures or particles)."""
     positions, velocities = np.asarray(positions, float), np.asarray(velocities, float)
     masses, box = np.asarray(masses, float), np.asarray(box, float)
     if not (0 <= axis <= 2) or bins < 1:
@@ -40,6 +44,17 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
     result = {"centre": (np.arange(bins) + 0.5) * width / bins, "count": np.zeros(bins, int),
               "density": np.zeros(bins), "theta": np.full(bins, np.nan), "kinetic_temperature": np.full(bins, np.nan),
               "velocity": np.full((bins, 3), np.nan), "pressure": np.full((bins, 3, 3), np.nan)}
+    if types is not None:
+        types = np.asarray(types)
+        result["types"] = np.unique(types)
+        result["type_density"] = np.zeros((bins, len(result["types"])))
+        result["type_theta"] = np.full((bins, len(result["types"])), np.nan)
+        for k, t in enumerate(result["types"]):
+            for b in range(bins):
+                members = (index == b) & (types == t)
+                result["type_density"][b, k] = members.sum() / volume
+                if temperatures is not None and members.any():
+                    result["type_theta"][b, k] = 1 / np.mean(1 / np.asarray(temperatures, float)[members])
     for b in range(bins):
         members = index == b
         n = int(members.sum())
@@ -66,7 +81,7 @@ class ProfileReporter:
     Works with any integrator; mean theta needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
     (rectangular periodic box)."""
 
-    def __init__(self, file, reportInterval, axis=2, bins=20, force=None):
+    def __init__(self, file, reportInterval, axis=2, bins=20, force=None, types=None):
         if reportInterval < 1:
             raise ValueError(f"reportInterval = {reportInterval} is not allowed; it must be >= 1")
         if not (0 <= axis <= 2) or bins < 1:
@@ -76,9 +91,12 @@ class ProfileReporter:
         self._interval, self._axis, self._bins = reportInterval, axis, bins
         self._masses = None
         self._force = force
+        self._types = None if types is None else np.asarray(types)
         pressure = ",Pxx,Pyy,Pzz,Pxy,Pxz,Pyz" if force is not None else ""
+        by_type = "".join(f",density_type{t}_nm-3,theta_harmonic_type{t}_K"
+                          for t in ([] if types is None else np.unique(self._types)))
         self._out.write("step,time_ps,bin,centre_nm,particles,density_nm-3,theta_K,kinetic_temperature_K,"
-                        f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}\n")
+                        f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}{by_type}\n")
 
     def describeNextReport(self, simulation):
         steps = self._interval - simulation.currentStep % self._interval
@@ -97,7 +115,8 @@ class ProfileReporter:
                          state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond),
                          self._masses, state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer),
                          self._axis, self._bins, temperatures,
-                         virial_tensor(self._force, simulation.context, per_particle=True) if self._force else None)
+                         virial_tensor(self._force, simulation.context, per_particle=True) if self._force else None,
+                         self._types)
         step, time = simulation.currentStep, state.getTime().value_in_unit(unit.picosecond)
         for b in range(self._bins):
             v = values["velocity"][b]
@@ -108,6 +127,9 @@ class ProfileReporter:
                 p = values["pressure"][b]
                 self._out.write("," + ",".join(f"{x:.6g}" for x in (p[0, 0], p[1, 1], p[2, 2], p[0, 1], p[0, 2],
                                                                     p[1, 2])))
+            if self._types is not None:
+                for k in range(len(values["types"])):
+                    self._out.write(f",{values['type_density'][b, k]:.6g},{values['type_theta'][b, k]:.6g}")
             self._out.write("\n")
         self._out.flush()
 

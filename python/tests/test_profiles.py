@@ -84,3 +84,55 @@ def test_profile_refuses_bad_arguments():
         profile(np.zeros((2, 3)), np.zeros((2, 3)), np.ones(2), np.eye(3), axis=3)
     with pytest.raises(ValueError, match="reportInterval = 0"):
         ProfileReporter(io.StringIO(), 0)
+
+
+def test_profile_by_type_against_direct_counts():
+    """Two types in alternating halves of the particles, with different temperatures: each type's density in a
+    bin is its count over the bin volume, and its harmonic-mean theta the harmonic mean of its particles there
+    (written out here); the per-type densities add up to the bin's."""
+    rng = np.random.default_rng(4)
+    positions = rng.uniform(0, 2.0, (200, 3))
+    types = np.where(np.arange(200) % 2 == 0, 5, -1)
+    theta = np.where(types == 5, 300.0, 100.0) * rng.uniform(0.8, 1.2, 200)
+    box = np.diag([2.0, 2.0, 2.0])
+    values = profile(positions, np.zeros((200, 3)), np.ones(200), box, axis=2, bins=4, temperatures=theta,
+                     types=types)
+    assert list(values["types"]) == [-1, 5]
+    volume = 8.0 / 4
+    for b in range(4):
+        members = (positions[:, 2] * 2).astype(int) == b
+        for k, t in enumerate([-1, 5]):
+            chosen = members & (types == t)
+            assert values["type_density"][b, k] == pytest.approx(chosen.sum() / volume)
+            assert values["type_theta"][b, k] == pytest.approx(len(theta[chosen]) / np.sum(1 / theta[chosen]))
+        assert values["type_density"][b].sum() == pytest.approx(values["density"][b])
+
+
+def test_profile_reporter_writes_the_type_columns():
+    """The reporter with types: one density and one theta column per type, in ascending type order, matching
+    profile() on the same State (NaN theta without a GenDPDEIntegrator)."""
+    system = openmm.System()
+    system.setDefaultPeriodicBoxVectors(openmm.Vec3(2, 0, 0), openmm.Vec3(0, 2, 0), openmm.Vec3(0, 0, 2))
+    positions = np.random.default_rng(5).uniform(0, 2.0, (50, 3))
+    for _ in range(50):
+        system.addParticle(1.0)
+    topology = app.Topology()
+    chain = topology.addChain()
+    for _ in range(50):
+        topology.addAtom("X", None, topology.addResidue("X", chain))
+    simulation = app.Simulation(topology, system, openmm.VerletIntegrator(0.001),
+                                openmm.Platform.getPlatformByName("Reference"))
+    simulation.context.setPositions(positions)
+    types = [3 if i < 20 else 1 for i in range(50)]
+    out = io.StringIO()
+    simulation.reporters.append(ProfileReporter(out, 1, axis=2, bins=2, types=types))
+    simulation.step(1)
+    header, *rows = [line.split(",") for line in out.getvalue().strip().splitlines()]
+    assert header[-4:] == ["density_type1_nm-3", "theta_harmonic_type1_K", "density_type3_nm-3", "theta_harmonic_type3_K"]
+    state = simulation.context.getState(getPositions=True)
+    values = profile(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), np.zeros((50, 3)), np.ones(50),
+                     np.diag([2.0, 2.0, 2.0]), 2, 2, types=types)
+    for b, row in enumerate(rows):
+        assert float(row[-4]) == pytest.approx(values["type_density"][b, 0], rel=1e-5)
+        assert float(row[-2]) == pytest.approx(values["type_density"][b, 1], rel=1e-5)
+        assert row[-3] == "nan" and row[-1] == "nan"

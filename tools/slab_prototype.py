@@ -2,6 +2,7 @@
 
     .venv/bin/python tools/slab_prototype.py VB 1.35 0 100      # estimator, f_cut, alpha, duration (time units)
     .venv/bin/python tools/slab_prototype.py VC 1.57 2 100
+    .venv/bin/python tools/slab_prototype.py VF 1.2 1.5 100     # f_cut = 1.2 + 1.5 (n0* - 0.6)
     .venv/bin/python tools/slab_prototype.py --bulk VC 2 1.45 1.57 1.65   # mean n_i of bulk liquids at n* = 0.82, 1
 
 Reduced argon units (m = L = u = k_B = 1; T0* = 0.011054, pi0* = 0.116056, B_T* = 1/6, gamma_T = 6, R* = 1.6839).
@@ -9,7 +10,8 @@ The slab: 1000 particles on an FCC lattice at n* = 0.82, 5 x 5 x 10 cells, in a 
 velocity Verlet (dt* = 0.01) with an explicit DPD thermostat at T0 (gamma* = 7.37) - not GenDPDE's Shardlow
 sweep, which is enough to tell whether a slab holds. Prints the core's true density and mean n_i every 10 time units.
 
-Estimators: VB (docs/theory.md section 3, closed forms, fine for the k of liquids) and the candidate VC:
+Estimators: VB (docs/theory.md section 3, closed forms, fine for the k of liquids), VF (V-B with the density-
+dependent f_cut = a + b (n0* - 0.6), arguments a and b in place of f_cut and alpha) and the candidate VC:
 V = V_B (1 + alpha a^2/(1 + a^2)), a^2 = c^2 |g|^2/(n0^2 + eps^2), g = sum_j (r/R)(1 - r/R)^2 e_ij,
 c = 30/(pi R^3), eps = 3/(4 pi R^3), with its exact force (the gradient of U = sum_i f(1/V_i)). This candidate was
 also written in the plugin (commit 1993d77, reverted in the next commit); docs/interfaces.md has what both measured.
@@ -45,8 +47,16 @@ def forces(x, box, estimator, cutoff_scaling, alpha):
     w = 15 / (2 * np.pi * R**3) * (1 - r / R) ** 2
     w_prime = -15 / (np.pi * R**4) * (1 - r / R)
     n0 = np.bincount(i, w, n) + np.bincount(j, w, n)
-    big_i, big_j = volume_integrals_vb(2 * np.pi / 15 * rt**3 * np.maximum(n0, 1e-300))
+    if estimator == "VF":
+        # f_cut = cutoff_scaling + alpha (n0 - 0.6), at least 1: V-B with a density-dependent f_cut.
+        linear = cutoff_scaling + alpha * (n0 - 0.6)
+        scaling, d_scaling = np.maximum(linear, 1.0), np.where(linear > 1.0, alpha, 0.0)
+        rt = R / scaling
+    k = 2 * np.pi / 15 * rt**3 * np.maximum(n0, 1e-300)
+    big_i, big_j = volume_integrals_vb(k)
     volume, d_volume = 4 * np.pi * rt**3 * big_i, -8 * np.pi**2 / 15 * rt**6 * big_j
+    if estimator == "VF":   # plus dV/dRt dRt/dn0, dV/dRt = 12 pi Rt^2 (I - k J)
+        d_volume = d_volume + 12 * np.pi * rt**2 * (big_i - k * big_j) * (-R * d_scaling / scaling**2)
     if estimator == "VC":
         phi = (r / R) * (1 - r / R) ** 2
         phi_prime = (1 - r / R) * (1 - 3 * r / R) / R
@@ -118,11 +128,11 @@ def slab(estimator, cutoff_scaling, alpha, duration, seed=1):
 
 
 def bulk(estimator, alpha, scalings):
-    """Mean n_i of bulk liquids at n* = 0.82 and 1 (1000 VB steps with velocity rescaling at T0 from the lattice)
-    evaluated with ``estimator`` at each f_cut."""
+    """Mean n_i of bulk liquids at n* = 0.7, 0.82 and 1 (1000 VB steps with velocity rescaling at T0 from the
+    lattice) evaluated with ``estimator`` at each f_cut (VF: each a, with b = alpha)."""
     for cutoff_scaling in scalings:
         values = []
-        for density in (0.82, 1.0):
+        for density in (0.7, 0.82, 1.0):
             x, box = fcc(density, (5, 5, 5))
             rng = np.random.default_rng(3)
             v = rng.normal(0, np.sqrt(T0), x.shape)
@@ -134,8 +144,8 @@ def bulk(estimator, alpha, scalings):
                 v += 0.005 * f
                 v *= np.sqrt(T0 / ((v * v).sum() / (3 * len(x))))
             values.append(forces(x, box, estimator, cutoff_scaling, alpha)[1].mean())
-        print(f"{estimator} alpha {alpha} f_cut {cutoff_scaling}: mean n_i {values[0]:.3f} at n* = 0.82, "
-              f"{values[1]:.3f} at n* = 1", flush=True)
+        print(f"{estimator} alpha {alpha} f_cut {cutoff_scaling}: mean n_i {values[0]:.3f} at n* = 0.7, "
+              f"{values[1]:.3f} at 0.82, {values[2]:.3f} at 1", flush=True)
 
 
 if __name__ == "__main__":

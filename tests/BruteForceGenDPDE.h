@@ -7,6 +7,7 @@
  * forms or the Gauss rule of GenDPDEPhysics.h), and the formulas of docs/theory.md are written out again here. */
 
 #include "openmm/Vec3.h"
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -21,6 +22,7 @@ struct Tait {
 struct Model {
     double cutoff;
     bool useVB;
+    bool useVC = false;   // V-B times the one-sidedness factor of docs/interfaces.md (useVB must be true too)
     double cutoffScaling;
     double n0, pi0, bulkModulus, gammaT;
     std::vector<Tait> particleTait;   // per particle, for mixtures; empty: every particle has n0, pi0, B_T, gamma_T
@@ -81,6 +83,17 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
             if (i != j)
                 for (const OpenMM::Vec3& d : displacementsInRange(model, positions[i] - positions[j]))
                     result.primitiveDensity[i] += w(std::sqrt(d.dot(d)));
+    // V-C: the first moments g_i = sum over neighbours and images of (r/R)(1 - r/R)^2 d/r.
+    std::vector<OpenMM::Vec3> moment(n);
+    if (model.useVC)
+        for (int i = 0; i < n; i++)
+            for (int j = 0; j < n; j++)
+                if (i != j)
+                    for (const OpenMM::Vec3& d : displacementsInRange(model, positions[i] - positions[j])) {
+                        const double r = std::sqrt(d.dot(d));
+                        if (r > 0.0)
+                            moment[i] += d*((r/R)*(1 - r/R)*(1 - r/R)/r);
+                    }
     std::vector<double> coefficient(n, 0.0);
     for (int i = 0; i < n; i++) {
         double n0i = result.primitiveDensity[i], V, dV;
@@ -105,6 +118,15 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
         else {
             V = 1.0/n0i;
             dV = -1.0/(n0i*n0i);
+        }
+        if (model.useVC) {
+            // V = V_B (1 + 3 x^2/(1 + x^2)), x = max(0, a^2 - 0.4)/0.3, a^2 = c^2 |g|^2/(n0^2 + eps^2),
+            // c = 30/(pi R^3), eps = 3/(4 pi R^3).
+            const double c = 30.0/(pi*R*R*R), eps = 3.0/(4.0*pi*R*R*R);
+            const double a2 = c*c*moment[i].dot(moment[i])/(n0i*n0i + eps*eps);
+            const double x = std::max(0.0, a2 - 0.4)/0.3;
+            V *= 1.0 + 3.0*x*x/(1.0 + x*x);
+            dV = 0.0;   // the forces of V-C are checked by finite differences, not here
         }
         double density = 1.0/V;
         const Tait t = model.particleTait.empty() ? Tait{model.n0, model.pi0, model.bulkModulus, model.gammaT}

@@ -24,7 +24,8 @@ using namespace TestScenes;
 inline BruteForce::Model bruteForceModel(const Scene& scene) {
     BruteForce::Model model;
     model.cutoff = scene.force->getCutoffDistance();
-    model.useVB = scene.force->getDensityEstimator() == GenDPDEForce::VB;
+    model.useVB = scene.force->getDensityEstimator() != GenDPDEForce::VA;
+    model.useVC = scene.force->getDensityEstimator() == GenDPDEForce::VC;
     model.cutoffScaling = scene.force->getCutoffScaling();
     scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
     if (!scene.force->getParticleTypes().empty() || scene.force->getNumTypeParameters() > 0)
@@ -122,13 +123,12 @@ void testTriclinicBox() {
  * ~(h/l)^2/6 ~ 1e-7 relative (l ~ 0.1 nm, the scale over which forces vary) and the rounding error eps |U|/h stays
  * below 1e-6 of the rms force for these systems, hence the 1e-5 tolerance.
  */
-void checkFiniteDifferences(Scene& scene, const std::string& label) {
+void checkFiniteDifferences(Scene& scene, const std::string& label, double h = 1e-4) {
     VerletIntegrator integrator(0.001);
     Context context(scene.system, integrator, *platform);
     context.setPositions(scene.positions);
     std::vector<Vec3> forces = context.getState(State::Forces).getForces();
     double scale = rmsForce(forces);
-    const double h = 1e-4;
     int numParticles = scene.positions.size();
     for (int i = 0; i < numParticles; i += std::max(1, numParticles/12))
         for (int k = 0; k < 3; k++) {
@@ -147,7 +147,7 @@ void testFiniteDifferences() {
     // precision (on every platform), against the brute force above.
     if (floatForces())
         return;
-    forEachStandardScene(0.2, 11, checkFiniteDifferences);
+    forEachStandardScene(0.2, 11, [](Scene& scene, const std::string& label) { checkFiniteDifferences(scene, label); });
 }
 
 /** Sum of forces vanishes; energy is invariant under translation, rotation (open) and periodic image shifts. */
@@ -209,7 +209,7 @@ void testSymmetries() {
  * truncation error is ~1e-12 relative, and the rounding error eps |U| / 1e-6 is ~1e-9 of |W|.
  */
 void testVirial() {
-    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB}) {
+    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB, GenDPDEForce::VC}) {
         Scene open = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, false, 31);
         VerletIntegrator integrator(0.001);
         Context context(open.system, integrator, *platform);
@@ -544,7 +544,62 @@ void testTypesBadInput() {
     ASSERT(type == 4 && values[0] == 1.0 && values[3] == 2.0);
 }
 
+/**
+ * VC's energy, volumes, densities and pressures equal the independent brute-force evaluation (which computes the
+ * moments g_i over every image and applies the factor of docs/interfaces.md itself), and its forces and virial are
+ * the exact derivatives of its energy (finite differences, as for VA and VB), on the standard scenes: liquids,
+ * compressed liquids, open boundaries (free surfaces, where the factor matters), dimers and a dilute gas with
+ * isolated particles.
+ */
+void testVCAgainstBruteForceAndFiniteDifferences() {
+    forEachStandardScene(0.15, 111, [](Scene& scene, const std::string& label) {
+        if (label.compare(0, 2, "VB") != 0)
+            return;
+        scene.force->setDensityEstimator(GenDPDEForce::VC);
+        scene.force->setCutoffScaling(1.35);
+        const std::string vc = "VC" + label.substr(2);
+        VerletIntegrator integrator(0.001);
+        Context context(scene.system, integrator, *platform);
+        context.setPositions(scene.positions);
+        const BruteForce::Result expected = BruteForce::evaluate(bruteForceModel(scene), scene.positions);
+        // Float forces: as checkAgainstBruteForce (densities ~1e-6 relative, the Tait power x6), and the surface
+        // factor depends on a^2 = c^2 |g|^2/(n0^2 + eps^2), whose relative error (2e-6, from n0^2) the factor's
+        // elasticity a^2 factor'/factor (at most 2.2, at a^2 = 0.54) carries into V: 6 (1e-6 + 2.2 x 2e-6) ~ 3e-5,
+        // hence 5e-5.
+        const double relative = precisionTolerance(1e-10, 5e-5);
+        assertRelative(expected.energy, context.getState(State::Energy).getPotentialEnergy(), relative,
+                       vc + " energy");
+        const std::vector<double> volumes = scene.force->getParticleVolumes(context);
+        const std::vector<double> pressures = scene.force->getParticlePressures(context);
+        for (size_t i = 0; i < volumes.size(); i++) {
+            assertRelative(expected.volume[i], volumes[i], relative, vc + " V_i");
+            assertClose(expected.pressure[i], pressures[i],
+                        relative*std::max(scene.force->getBulkModulus(), std::abs(expected.pressure[i])), vc + " pi_i");
+        }
+        // VC's factor bends sharply above its threshold in a dilute gas (its curvature in a^2 is 2 alpha/w^2 = 67):
+        // a step of 2.5e-5 nm keeps the central difference's truncation error below the tolerance (at 1e-4 nm it
+        // reaches 3e-5 of a 2000 kJ/mol/nm force there). With float forces no step resolves the derivative
+        // (testFiniteDifferences says why): there the brute force above checks the formulas.
+        if (!floatForces())
+            checkFiniteDifferences(scene, vc, 2.5e-5);
+    });
+    // A free surface: the outer layer of an open lattice liquid gets a larger volume than with VB.
+    Scene open = makeLatticeLiquid(6, referenceDensity, 0.0, GenDPDEForce::VB, false, 112);
+    open.force->setCutoffScaling(1.35);
+    VerletIntegrator integrator(0.001);
+    Context context(open.system, integrator, *platform);
+    context.setPositions(open.positions);
+    const std::vector<double> vb = open.force->getParticleVolumes(context);
+    open.force->setDensityEstimator(GenDPDEForce::VC);
+    open.force->updateParametersInContext(context);
+    const std::vector<double> vc = open.force->getParticleVolumes(context);
+    // Particle 0 is a corner of the lattice (three faces empty), particle 3*36 + 3*6 + 3 near the centre.
+    ASSERT(vc[0]/vb[0] > 2.0);
+    ASSERT(vc[129]/vb[129] < 1.2);
+}
+
 void runForceTests() {
+    testVCAgainstBruteForceAndFiniteDifferences();
     testTypesBadInput();
     testMixtureAgainstBruteForce();
     testIdenticalTypesAreBitwiseNoTypes();

@@ -59,6 +59,7 @@ def main():
     parser.add_argument("--what", choices=("force", "step"), default="step",
                         help="force: getState with energy and forces; step: Isoenergetic steps (default)")
     parser.add_argument("--count", type=int, default=100, help="calls timed (default 100), after 10 untimed")
+    parser.add_argument("--estimator", choices=("VA", "VB", "VC"), default="VB", help="density estimator (default VB)")
     parser.add_argument("--types", type=int, default=0,
                         help="give the particles this many types in turn (needs particle types), each with argon's parameters in "
                              "its own entries, so that the physics is the same and only the type tables differ")
@@ -67,7 +68,7 @@ def main():
         make_state(arguments.state, arguments.particles)
     saved = np.load(arguments.state)
     num_particles = len(saved["positions"])
-    model = liquid_argon(num_particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    model = liquid_argon(num_particles, CUTOFF, arguments.estimator, seed=1, mode=GenDPDEIntegrator.Isoenergetic)
     if arguments.types > 0:
         give_types(model, arguments.types)
     properties = {"Threads": str(arguments.threads)} if arguments.threads else {}

@@ -24,6 +24,12 @@ struct GenDPDEObservables;
  *  - VB (partition of unity): V_i = 4 pi Rt^3 int_0^1 y^2 (1-y)^2/(y^2 + k_i) dy with Rt = R/f_cut and
  *    k_i = (2 pi/15) Rt^3 n0_i. It is finite for an isolated particle ((4 pi/3) Rt^3), tends to VA at high density
  *    and removes the pairing instability. f_cut >= 1 (the cutoff scaling) tunes the mean density.
+ *  - VC (V-B with a surface correction): V_i = V_B(n0_i) (1 + 3 x_i^2/(1 + x_i^2)), x_i = max(0, a_i^2 - 0.4)/0.3,
+ *    where a_i measures how one-sided the neighbourhood is: a_i^2 = c^2 |g_i|^2/(n0_i^2 + eps^2) with
+ *    g_i = sum_j (r_ij/R)(1 - r_ij/R)^2 e_ij, c = 30/(pi R^3) (a_i = 1 at a flat free surface), eps = 3/(4 pi R^3).
+ *    V-B is blind to a neighbourhood empty on one side; V-C gives such particles the larger volume the exact
+ *    partition of unity gives them, so that free surfaces and droplets hold instead of foaming, and is V-B itself
+ *    for the particles of a bulk liquid (below the threshold). docs/interfaces.md.
  *
  * Each particle has the Tait pressure pi(n) = pi0 + B_T [(n/n0)^gamma_T - 1] and free energy
  * f(n) = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1), and the potential energy is
@@ -60,7 +66,12 @@ public:
         /** Traditional estimator V = 1/n0. */
         VA = 0,
         /** Partition-of-unity estimator; removes the pairing instability. */
-        VB = 1
+        VB = 1,
+        /**
+         * V-B with a surface correction from the first moment of the neighbourhood: V-B in bulk liquids, and free
+         * surfaces and droplets hold instead of foaming (docs/interfaces.md).
+         */
+        VC = 2
     };
     /**
      * Create a GenDPDEForce.
@@ -76,13 +87,13 @@ public:
     NonbondedMethod getNonbondedMethod() const;
     /** Set the method used for periodic boundaries. Takes effect when a Context is created. */
     void setNonbondedMethod(NonbondedMethod method);
-    /** Get the density estimator (VA or VB). */
+    /** Get the density estimator (VA, VB or VC). */
     DensityEstimator getDensityEstimator() const;
-    /** Set the density estimator (VA or VB). */
+    /** Set the density estimator (VA, VB or VC). */
     void setDensityEstimator(DensityEstimator estimator);
     /** Get the cutoff scaling f_cut of the VB estimator (dimensionless). */
     double getCutoffScaling() const;
-    /** Set the cutoff scaling f_cut >= 1 of the VB estimator (dimensionless; Rt = R/f_cut). Ignored by VA. */
+    /** Set the cutoff scaling f_cut >= 1 of the VB and VC estimators (dimensionless; Rt = R/f_cut). Ignored by VA. */
     void setCutoffScaling(double scaling);
     /**
      * Set the parameters of the Tait equation of state.

@@ -52,8 +52,8 @@ GenDPDEForce::DensityEstimator GenDPDEForce::getDensityEstimator() const {
 }
 
 void GenDPDEForce::setDensityEstimator(DensityEstimator estimator) {
-    if (estimator != VA && estimator != VB)
-        reject("GenDPDEForce", "density estimator", (int) estimator, "", "VA (0) or VB (1)");
+    if (estimator != VA && estimator != VB && estimator != VC)
+        reject("GenDPDEForce", "density estimator", (int) estimator, "", "VA (0), VB (1) or VC (2)");
     this->estimator = estimator;
 }
 

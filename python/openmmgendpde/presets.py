@@ -79,16 +79,31 @@ def argon_cutoff(cutoff):
                      f"{', '.join(str(entry.cutoff) for entry in ARGON_CUTOFFS)}")
 
 
+#: f_cut of the VC estimator (docs/interfaces.md) where it has been tuned (`tune-fcut --estimator VC`, n-bar* = 1
+#: at the state point); elsewhere the published f_cut of VB, from which it differs little (VC is VB in bulk).
+VC_CUTOFF_SCALING = {1.6839: 1.3525}
+
+
 def estimator_value(estimator):
-    """GenDPDEForce.VA/VB from 'VA', 'VB' or the enum value itself."""
+    """GenDPDEForce.VA/VB/VC from 'VA', 'VB', 'VC' or the enum value itself."""
+    names = {"VA": GenDPDEForce.VA, "VB": GenDPDEForce.VB, "VC": GenDPDEForce.VC}
     if isinstance(estimator, str):
-        names = {"VA": GenDPDEForce.VA, "VB": GenDPDEForce.VB}
         if estimator.upper() not in names:
-            raise ValueError(f"estimator must be 'VA' or 'VB', not '{estimator}'")
+            raise ValueError(f"estimator must be 'VA', 'VB' or 'VC', not '{estimator}'")
         return names[estimator.upper()]
-    if estimator not in (GenDPDEForce.VA, GenDPDEForce.VB):
-        raise ValueError(f"estimator must be GenDPDEForce.VA or GenDPDEForce.VB, not {estimator}")
+    if estimator not in names.values():
+        raise ValueError(f"estimator must be GenDPDEForce.VA, VB or VC, not {estimator}")
     return estimator
+
+
+def default_cutoff_scaling(cutoff, estimator):
+    """The f_cut of ``estimator`` at R_cut* = ``cutoff``: the published one (of VB), or VC_CUTOFF_SCALING for VC
+    where it has been tuned."""
+    if estimator_value(estimator) == GenDPDEForce.VC:
+        for tuned, value in VC_CUTOFF_SCALING.items():
+            if abs(tuned - cutoff) < 1e-6:
+                return value
+    return argon_cutoff(cutoff).cutoff_scaling
 
 
 def fcc_lattice(num_particles, edge):
@@ -145,7 +160,8 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
     """Liquid argon at n0* = 1 in a cubic periodic box, particles on an FCC lattice.
 
     ``num_particles`` is 4 m^3 (an FCC lattice of m^3 cells); ``cutoff`` is R_cut* (one of the published 1.3365,
-    1.6839, 2.1564); ``cutoff_scaling`` defaults to the published f_cut for that cutoff; ``estimator`` is 'VA' or
+    1.6839, 2.1564); ``cutoff_scaling`` defaults to the published f_cut for that cutoff (VC: ``default_cutoff_scaling``);
+    ``estimator`` is 'VA', 'VC' or
     'VB'. The GenDPDEIntegrator has the published gamma*, kappa* and C_V*, step ``time_step`` (reduced, or a time
     Quantity), the bath temperature T0 at which every particle starts, and random seed ``seed`` (0: chosen when the
     Context is created). Returns a LiquidArgon whose System holds one GenDPDEForce. Bad arguments raise ValueError
@@ -176,7 +192,7 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
         system.addParticle(mass)
     force = GenDPDEForce(units.to_openmm(parameters.cutoff, "length"))
     force.setDensityEstimator(estimator_value(estimator))
-    force.setCutoffScaling(parameters.cutoff_scaling if cutoff_scaling is None else cutoff_scaling)
+    force.setCutoffScaling(default_cutoff_scaling(cutoff, estimator) if cutoff_scaling is None else cutoff_scaling)
     force.setTaitParameters(units.to_openmm(state.density, "number_density"),
                             units.to_openmm(state.reference_pressure, "pressure"),
                             units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent)
@@ -203,5 +219,5 @@ def pressure_unit_mpa():
 
 
 __all__ = ["ARGON_CUTOFFS", "ARGON_STATE", "ARGON_UNITS", "ArgonCutoff", "ArgonState", "LiquidArgon",
-           "PUBLISHED_TABLE3", "PUBLISHED_TABLE4_RATIO", "argon_cutoff", "fcc_lattice", "liquid_argon",
-           "pressure_unit_mpa"]
+           "PUBLISHED_TABLE3", "PUBLISHED_TABLE4_RATIO", "VC_CUTOFF_SCALING", "argon_cutoff", "default_cutoff_scaling",
+           "fcc_lattice", "liquid_argon", "pressure_unit_mpa"]

@@ -1,16 +1,18 @@
-"""Free surfaces (`slab`, docs/interfaces.md): a liquid-argon slab in vacuum run with V-A and with V-B, and the
+"""Free surfaces (`slab`, docs/interfaces.md): a liquid-argon slab in vacuum run with V-A, V-B and V-C, and the
 estimators' volumes measured against the exact partition-of-unity volume (openmmgendpde.interfaces).
 
 Dynamics: an FCC slab of argon particles (default 5 x 5 x 10 cells, 1000 particles) at n* = 0.82, where the Tait
 pressure vanishes, in a periodic box three times as long as the slab (vacuum on both sides); R* = 1.6839, f_cut =
-1.35, internal energies and velocities drawn at T0, isoenergetic GenDPDE at dt* = 0.01. Every --every time units it
-reports the slab's core (the middle half of its initial thickness, around its centre of mass): the true number
-density (particles over volume) and the mean estimated density n_i there, and the slab's width (twice the 90th
-percentile of the distance from its mid-plane) relative to the initial thickness.
+1.35 (V-C: 1.3525, presets.VC_CUTOFF_SCALING), internal energies and velocities drawn at T0, isoenergetic GenDPDE
+at dt* = 0.01. Every --every time units it reports the slab's core (the middle half of its initial thickness,
+around its centre of mass): the true number density (particles over volume) and the mean estimated density n_i
+there, the slab's width (twice the 90th percentile of the distance from its mid-plane) relative to the initial
+thickness, and the surface tension (L_z/2)(P_zz - (P_xx + P_yy)/2) from the pressure tensor (two faces). Without
+--quick, also the coexistence density: where the pressure of bulk liquids at n* = 0.7, 0.75, 0.8 vanishes.
 
 Oracle: at the end of each run (and for a droplet of 1000 particles after 10 time units with V-B, and for bulk
 liquids at several densities), each particle's volume from
-V-A (1/n0), V-B and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
+V-A (1/n0), V-B, V-C and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
 averaged in slices by depth (shells by radius for the droplet); for the bulk, the mean and scatter of
 V_estimator/V_exact.
 """
@@ -28,6 +30,7 @@ from . import GenDPDEForce, GenDPDEIntegrator
 from .cli import add_output, add_platform
 from .fluid import fcc_box
 from .interfaces import partition_of_unity_volumes
+from .pressure import pressure_tensor
 from .presets import ARGON_UNITS, liquid_argon
 
 NM = unit.nanometer
@@ -93,6 +96,7 @@ class SlabSample:
     core_density: float    # true number density of the core (reduced)
     core_estimate: float   # mean n_i of the core's particles (reduced)
     width: float           # twice the 90th percentile of the depth, over the initial thickness
+    tension: float         # (L_z/2) (P_zz - (P_xx + P_yy)/2): the surface tension of each of the two faces (reduced)
 
 
 def sample_slab(model, thickness, time):
@@ -102,8 +106,12 @@ def sample_slab(model, thickness, time):
     core = d < thickness / 4
     area = model.box[0] * model.box[1]
     estimates = model.force.getParticleDensities(model.context).value_in_unit(NM**-3)
+    p = pressure_tensor(model.force, model.context)
+    tension = 0.5 * model.box[2] * (p[2, 2] - 0.5 * (p[0, 0] + p[1, 1]))                   # kJ/mol/nm^2
+    tension_unit = ARGON_UNITS.unit("energy").value_in_unit(unit.kilojoule_per_mole) / length**2
     return SlabSample(time, core.sum() / (area * thickness / 2) * length**3,
-                      float(estimates[core].mean()) * length**3, 2 * np.percentile(d, 90) / thickness)
+                      float(estimates[core].mean()) * length**3, 2 * np.percentile(d, 90) / thickness,
+                      float(tension) / tension_unit)
 
 
 def run_slab(estimator, duration=100.0, every=10.0, cells=(5, 5, 10), platform="CPU", seed=5, report=None):
@@ -124,26 +132,28 @@ def run_slab(estimator, duration=100.0, every=10.0, cells=(5, 5, 10), platform="
 
 
 def estimator_volumes(model):
-    """(V-A volumes 1/n0, V-B volumes, exact partition-of-unity volumes with kernel range Rt = R/f_cut), nm^3, at the
-    model's current positions (the force's estimator is left as it was)."""
+    """(V-A volumes 1/n0, V-B volumes, V-C volumes, exact partition-of-unity volumes with kernel range Rt = R/f_cut),
+    nm^3, at the model's current positions (the force's estimator is left as it was)."""
     force, context = model.force, model.context
     n0 = force.getPrimitiveDensities(context).value_in_unit(NM**-3)
     estimator = force.getDensityEstimator()
-    force.setDensityEstimator(GenDPDEForce.VB)
-    force.updateParametersInContext(context)
-    vb = force.getParticleVolumes(context).value_in_unit(NM**3)
+    volumes = []
+    for trial in (GenDPDEForce.VB, GenDPDEForce.VC):
+        force.setDensityEstimator(trial)
+        force.updateParametersInContext(context)
+        volumes.append(force.getParticleVolumes(context).value_in_unit(NM**3))
     force.setDensityEstimator(estimator)
     force.updateParametersInContext(context)
     reduced_range = force.getCutoffDistance().value_in_unit(NM) / force.getCutoffScaling()
     exact = partition_of_unity_volumes(model.positions(), reduced_range, box=model.box)
-    return 1 / n0, vb, exact
+    return 1 / n0, volumes[0], volumes[1], exact
 
 
 def depth_profile(model, thickness, bin_width=0.25):
     """Rows (depth from, depth to in units of the initial half thickness, particles, true density, then the mean
-    density 1/V of the exact volume, V-B and V-A; densities reduced) of slices by depth."""
+    density 1/V of the exact volume, V-B, V-A and V-C; densities reduced) of slices by depth."""
     length = ARGON_UNITS.unit("length").value_in_unit(NM)
-    va, vb, exact = estimator_volumes(model)
+    va, vb, vc, exact = estimator_volumes(model)
     d = depth(model.positions(), model.box) / (thickness / 2)
     area = model.box[0] * model.box[1]
     rows = []
@@ -153,7 +163,7 @@ def depth_profile(model, thickness, bin_width=0.25):
             continue
         true = members.sum() / (2 * area * bin_width * thickness / 2) * length**3
         rows.append((low, low + bin_width, int(members.sum()), true,
-                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va))))
+                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va, vc))))
     return rows
 
 
@@ -173,10 +183,10 @@ def droplet_positions(num_particles=1000, density=0.82, vacuum=3.0):
 
 def radial_profile(model, radius, bin_width=0.2):
     """Rows (distance from, to in units of the initial radius, particles, true density, then the mean density 1/V
-    of the exact volume, V-B and V-A; densities reduced) of spherical shells around the droplet's centre of mass
-    (the droplet must not straddle the box: its box is large)."""
+    of the exact volume, V-B, V-A and V-C; densities reduced) of spherical shells around the droplet's centre of
+    mass (the droplet must not straddle the box: its box is large)."""
     length = ARGON_UNITS.unit("length").value_in_unit(NM)
-    va, vb, exact = estimator_volumes(model)
+    va, vb, vc, exact = estimator_volumes(model)
     x = model.positions()
     d = np.linalg.norm(x - x.mean(axis=0), axis=1) / radius
     rows = []
@@ -186,7 +196,7 @@ def radial_profile(model, radius, bin_width=0.2):
             continue
         shell = 4 * np.pi / 3 * ((low + bin_width) ** 3 - low**3) * radius**3
         rows.append((low, low + bin_width, int(members.sum()), members.sum() / shell * length**3,
-                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va))))
+                     *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va, vc))))
     return rows
 
 
@@ -199,10 +209,36 @@ def run_droplet(estimator="VB", duration=10.0, num_particles=1000, platform="CPU
     return model, radius
 
 
+def bulk_pressure(estimator, density, steps=2000, platform="CPU", seed=9):
+    """The pressure P* (reduced, virial with on-step velocities) of a bulk liquid of 500 particles at reduced
+    ``density``: FCC melted by ``steps`` Isothermal steps at T0, then ``steps`` isoenergetic steps sampled every 100."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    positions, box = fcc_box(density / length**3, (5, 5, 5))
+    model = argon_model(positions, np.diag(np.asarray(box, float)), estimator, platform=platform, seed=seed)
+    model.integrator.setMode(GenDPDEIntegrator.Isothermal)
+    model.integrator.step(steps)
+    model.integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+    pressure_unit = ARGON_UNITS.unit("pressure").value_in_unit(unit.kilojoule_per_mole / NM**3)
+    values = []
+    for _ in range(steps // 100):
+        model.integrator.step(100)
+        values.append(np.trace(pressure_tensor(model.force, model.context)) / 3 / pressure_unit)
+    return float(np.mean(values))
+
+
+def coexistence_density(estimator, densities=(0.7, 0.75, 0.8), platform="CPU"):
+    """The density (reduced) at which the bulk pressure vanishes, by linear interpolation through bulk_pressure at
+    ``densities``: the density a liquid keeps against vacuum. Also the pressures."""
+    pressures = [bulk_pressure(estimator, density, platform=platform) for density in densities]
+    slope, intercept = np.polyfit(densities, pressures, 1)
+    return -intercept / slope, pressures
+
+
 def bulk_comparison(densities=(0.7, 0.82, 1.0, 1.2), cells=(5, 5, 5), steps=2000, platform="CPU", seed=7):
     """For bulk liquids at each reduced density (FCC melted by ``steps`` Isothermal V-B steps): rows (density,
     mean and standard deviation over particles of V_VB/V_exact, the same for V_VA/V_exact, correlation of V_VB with
-    V_exact). The exact volumes average to 1/n exactly (the partition of unity fills the box)."""
+    V_exact, mean and standard deviation of V_VC/V_exact). The exact volumes average to 1/n exactly (the partition of
+    unity fills the box).""" 
     length = ARGON_UNITS.unit("length").value_in_unit(NM)
     rows = []
     for density in densities:
@@ -210,9 +246,10 @@ def bulk_comparison(densities=(0.7, 0.82, 1.0, 1.2), cells=(5, 5, 5), steps=2000
         model = argon_model(positions, np.diag(np.asarray(box, float)), "VB", platform=platform, seed=seed)
         model.integrator.setMode(GenDPDEIntegrator.Isothermal)
         model.integrator.step(steps)
-        va, vb, exact = estimator_volumes(model)
+        va, vb, vc, exact = estimator_volumes(model)
         rows.append((density, float(np.mean(vb / exact)), float(np.std(vb / exact)), float(np.mean(va / exact)),
-                     float(np.std(va / exact)), float(np.corrcoef(vb, exact)[0, 1])))
+                     float(np.std(va / exact)), float(np.corrcoef(vb, exact)[0, 1]), float(np.mean(vc / exact)),
+                     float(np.std(vc / exact))))
     return rows
 
 
@@ -221,7 +258,7 @@ def plot(runs, profiles, path_stem):
     density by depth at the end of the V-B run: true, exact partition of unity, V-B, V-A."""
     from .plotting import panels, save
     figure, (left, right) = panels(2)
-    for (estimator, samples), colour in zip(runs.items(), ("C0", "C1")):
+    for (estimator, samples), colour in zip(runs.items(), ("C0", "C1", "C2")):
         t = [s.time for s in samples]
         left.plot(t, [s.core_density for s in samples], color=colour, label=f"{estimator}: true density")
         left.plot(t, [s.core_estimate for s in samples], color=colour, linestyle="--", label=f"{estimator}: mean n_i")
@@ -231,7 +268,7 @@ def plot(runs, profiles, path_stem):
     if "VB" in profiles:
         rows = np.array(profiles["VB"])
         centre = 0.5 * (rows[:, 0] + rows[:, 1])
-        for column, label in zip((3, 4, 5, 6), ("true", "exact partition of unity", "V-B", "V-A")):
+        for column, label in zip((3, 4, 5, 6, 7), ("true", "exact partition of unity", "V-B", "V-A", "V-C")):
             right.plot(centre, rows[:, column], marker="o", markersize=3, label=label)
         right.set_xlabel("depth / initial half thickness")
         right.set_ylabel("density n* (V-B run, end)")
@@ -243,36 +280,46 @@ def run(arguments):
     duration, every = (10.0, 5.0) if arguments.quick else (arguments.duration, arguments.every)
     cells = (5, 5, 6) if arguments.quick else (5, 5, 10)
     runs, profiles = {}, {}
-    for estimator in ("VA", "VB"):
+    for estimator in ("VA", "VB", "VC"):
         print(f"{estimator}: slab of {4 * np.prod(cells)} particles, {duration:g} time units")
         samples, model, thickness = run_slab(estimator, duration, every, cells, arguments.platform)
         runs[estimator] = samples
-        print("   t*   core true n*   core mean n_i*   width/initial")
+        print("   t*   core true n*   core mean n_i*   width/initial   surface tension*")
         for s in samples:
-            print(f"{s.time:6.1f}   {s.core_density:12.3f}   {s.core_estimate:14.3f}   {s.width:13.2f}")
+            print(f"{s.time:6.1f}   {s.core_density:12.3f}   {s.core_estimate:14.3f}   {s.width:13.2f}   "
+                  f"{s.tension:16.4f}")
+        late = [s for s in samples if s.time > duration / 2]
+        print(f"{estimator}: over the second half, core true n* {np.mean([s.core_density for s in late]):.3f}, "
+              f"surface tension* {np.mean([s.tension for s in late]):.4f} (sd {np.std([s.tension for s in late]):.4f})")
         if not arguments.no_oracle:
             profiles[estimator] = depth_profile(model, thickness)
             print(f"{estimator} at t* = {samples[-1].time:g}: density by depth (units of the initial half "
-                  f"thickness; particles): true, exact partition of unity, V-B, V-A")
+                  f"thickness; particles): true, exact partition of unity, V-B, V-A, V-C")
             for row in profiles[estimator]:
-                print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
+                print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
     with open(os.path.join(arguments.output, "slab.csv"), "w", newline="") as out:
         writer = csv.writer(out)
-        writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width"])
+        writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width", "surface_tension"])
         for estimator, samples in runs.items():
             for s in samples:
-                writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width])
+                writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width, s.tension])
     if not arguments.no_oracle:
         count = 400 if arguments.quick else 1000
         model, radius = run_droplet("VB", 10.0, count, arguments.platform)
         print(f"VB droplet of {count} particles at t* = 10: density by distance from its centre (units of the initial "
-              f"radius; particles): true, exact partition of unity, V-B, V-A")
+              f"radius; particles): true, exact partition of unity, V-B, V-A, V-C")
         for row in radial_profile(model, radius):
-            print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
-        print("bulk liquids (V-B runs): n*, V_VB/V_exact mean and sd, V_VA/V_exact mean and sd, corr(V_VB, V_exact)")
+            print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
+        print("bulk liquids (V-B runs): n*, V_VB/V_exact mean and sd, V_VA/V_exact mean and sd, corr(V_VB, V_exact), "
+              "V_VC/V_exact mean and sd")
         for row in bulk_comparison(cells=(4, 4, 4) if arguments.quick else (5, 5, 5),
                                    steps=200 if arguments.quick else 2000, platform=arguments.platform):
-            print("  {:5.2f}: {:6.3f} {:6.3f}   {:6.3f} {:6.3f}   {:5.2f}".format(*row))
+            print("  {:5.2f}: {:6.3f} {:6.3f}   {:6.3f} {:6.3f}   {:5.2f}   {:6.3f} {:6.3f}".format(*row))
+    if not arguments.quick:
+        for estimator in ("VB", "VC"):
+            density, pressures = coexistence_density(estimator, platform=arguments.platform)
+            print(f"{estimator}: bulk P* {', '.join(f'{p:.4f}' for p in pressures)} at n* = 0.7, 0.75, 0.8: "
+                  f"P* = 0 at n* = {density:.3f} (the coexistence density with vacuum)")
     plot(runs, profiles, os.path.join(arguments.output, "slab"))
     print(f"wrote {arguments.output}/slab.csv, slab.png, slab.pdf")
 

@@ -1,4 +1,4 @@
-"""Tune f_cut of the VB estimator so that the mean density equals the imposed one (`tune-fcut`); the paper tuned it
+"""Tune f_cut of the VB (or VC) estimator so that the mean density equals the imposed one (`tune-fcut`); the paper tuned it
 by hand.
 
 Self-consistent iteration: run VB at the current f_cut (openmmgendpde.study protocol) keeping production frames;
@@ -14,7 +14,7 @@ import numpy as np
 from openmm import unit
 
 from .cli import add_cutoff
-from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff
+from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff, default_cutoff_scaling
 from .progress import Progress
 from .statistics import block_average
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
@@ -49,14 +49,14 @@ def mean_density_on_frames(force, context, frames, cutoff_scaling, units=ARGON_U
 
 
 def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, max_iterations=5, progress=None,
-         report=print):
-    """A CutoffScalingEstimate: f_cut solving n-bar*(f_cut) = n0* on the straight line through the last run, with
-    its standard error and that run's n-bar*."""
+         report=print, estimator="VB"):
+    """A CutoffScalingEstimate: f_cut of ``estimator`` ('VB' or 'VC') solving n-bar*(f_cut) = n0* on the straight
+    line through the last run, with its standard error and that run's n-bar*."""
     target = ARGON_STATE.density
-    cutoff_scaling = start if start is not None else argon_cutoff(cutoff).cutoff_scaling
+    cutoff_scaling = start if start is not None else default_cutoff_scaling(cutoff, estimator)
     running = None
     for iteration in range(1, max_iterations + 1):
-        run = run_argon(cutoff, "VB", protocol, platform, cutoff_scaling, frames=10, progress=progress,
+        run = run_argon(cutoff, estimator, protocol, platform, cutoff_scaling, frames=10, progress=progress,
                         continue_from=running)
         samples, argon, simulation = run.samples, run.argon, run.simulation
         running = (argon, simulation)
@@ -88,19 +88,21 @@ def run(arguments):
     progress = Progress(arguments.max_iterations * protocol.total_steps, f"tune-fcut R*={arguments.cutoff}",
                         always=arguments.progress)
     estimate = tune(arguments.cutoff, protocol, arguments.platform, arguments.start, arguments.tolerance,
-                    arguments.max_iterations, progress, report=lambda line: print(line, flush=True))
+                    arguments.max_iterations, progress, report=lambda line: print(line, flush=True),
+                    estimator=arguments.estimator)
     progress.finish()
     published = argon_cutoff(arguments.cutoff).cutoff_scaling
     print(f"R_cut* = {arguments.cutoff}: f_cut = {estimate.cutoff_scaling:.4f} +- {estimate.standard_error:.4f} for "
           f"n-bar* = {ARGON_STATE.density} (last run: f_cut = {estimate.last_cutoff_scaling:.4f}, n-bar* = "
           f"{estimate.density:.4f} +- {estimate.density_error:.4f}; tolerance {arguments.tolerance}, "
-          f"{estimate.iterations} iteration(s)); published f_cut = {published}")
+          f"{estimate.iterations} iteration(s)); published f_cut of VB = {published}")
     return estimate
 
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
     add_cutoff(parser)
+    parser.add_argument("--estimator", choices=("VB", "VC"), default="VB", help="the estimator to tune (default VB)")
     parser.add_argument("--start", type=float, help="initial f_cut (default: the published value)")
     parser.add_argument("--tolerance", type=float, default=0.001, help="|n-bar* - n0*| accepted (default 0.001)")
     parser.add_argument("--max-iterations", type=int, default=5, help="iterations at most (default 5)")

@@ -30,14 +30,8 @@ inline std::string noNeighbor(int particle, double cutoff, long long step) {
     return message.str();
 }
 
-/**
- * The Tait equation of state overflows for a particle of primitive density n0 (nm^-3) under the force's estimator
- * (V-B with reduced range Rt = R/f_cut, nm); referenceDensity: the Tait n0 (nm^-3).
- */
-inline std::string equationOfStateOverflow(int particle, double primitiveDensity, GenDPDEForce::DensityEstimator estimator,
-                                           double reducedRange, double referenceDensity, long long step) {
-    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(primitiveDensity)
-                                : Physics::volumeVB(primitiveDensity, reducedRange)).volume;
+/** The Tait equation of state overflows for a particle at density n (nm^-3); referenceDensity: its Tait n0. */
+inline std::string equationOfStateOverflow(int particle, double density, double referenceDensity, long long step) {
     std::ostringstream message;
     message.precision(6);
     message << "GenDPDEForce: the Tait equation of state of particle " << particle << " overflows at its density "

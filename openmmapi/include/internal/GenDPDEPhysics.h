@@ -211,6 +211,91 @@ inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
 }
 
 /**
+ * The first moment of a particle's neighbourhood (docs/interfaces.md), g_i = sum_j phi(r_ij) e_ij with e_ij the unit
+ * vector from j to i and the dimensionless weight phi(r) = (r/R)(1 - r/R)^2 for r < R: zero for a particle whose
+ * neighbours surround it evenly, pointing away from the neighbours for one at a surface. phi and phi' vanish at R
+ * (so g_i and its gradient are continuous as pairs cross the cutoff) and phi at 0 (a close pair does not dominate).
+ * Its gradient with respect to the pair vector d = r_i - r_j is H(d) = phi'(r) e e^T + (phi(r)/r)(I - e e^T).
+ */
+class MomentWeight {
+public:
+    explicit MomentWeight(double cutoff) : inverseCutoff(1.0/cutoff) {
+    }
+    /** phi(r) for r < R (dimensionless). */
+    double valueInside(double r) const {
+        const double x = r*inverseCutoff, y = 1.0 - x;
+        return x*y*y;
+    }
+    /** phi(r)/r = (1/R)(1 - r/R)^2 for r < R (1/length), without a division. */
+    double valueOverDistanceInside(double r) const {
+        const double y = 1.0 - r*inverseCutoff;
+        return inverseCutoff*y*y;
+    }
+    /** phi'(r) for r < R (1/length). */
+    double derivativeInside(double r) const {
+        const double x = r*inverseCutoff;
+        return inverseCutoff*(1.0 - x)*(1.0 - 3.0*x);
+    }
+private:
+    double inverseCutoff;
+};
+
+/** A V-C volume and its derivatives with respect to the primitive density n0 and to G = |g|^2. */
+struct ParticleVolumeVC {
+    double volume;              // length^3
+    double derivative;          // dV/dn0 at fixed G, length^6
+    double momentDerivative;    // dV/dG at fixed n0, length^3
+};
+
+/**
+ * V-C, the partition-of-unity estimator with a surface correction (docs/interfaces.md):
+ *   V = V_B(n0) (1 + alpha x^2/(1 + x^2)),   x = max(0, a^2 - t)/w,   a^2 = c^2 G/(n0^2 + eps^2),   G = |g|^2,
+ * with c = 30/(pi R^3), so that a = 1 for a particle at the flat surface of a uniform fluid (half its neighbourhood
+ * empty), eps = 3/(4 pi R^3) (a tenth of one neighbour's weight at r = 0, which keeps a^2 and its derivatives finite
+ * as a particle loses its last neighbours), alpha = 3, threshold t = 0.4 and width w = 0.3 (gendpdeSurfaceFactor;
+ * chosen against the exact volume, the slab and the bulk state point, docs/interfaces.md). V_B is V-B with reduced
+ * range Rt = R/f_cut.
+ * The factor is exactly 1 below the threshold, where the one-sidedness of a liquid's disorder lies (mean a^2 ~ 0.1
+ * in bulk argon), so the bulk is V-B's and the correction cannot reward a liquid for restructuring; above it the
+ * factor rises smoothly (continuous first derivative) towards 1 + alpha for a particle facing empty space, which
+ * the exact partition of unity gives the larger volume of the space it faces.
+ */
+class VolumeEstimatorVC {
+public:
+    VolumeEstimatorVC(double cutoff, double reducedRange) : volumeVB(reducedRange) {
+        const double r3 = cutoff*cutoff*cutoff;
+        const double c = 30.0/(Pi*r3), eps = 3.0/(4.0*Pi*r3);
+        momentScale = c*c;
+        densitySoftening = eps*eps;
+    }
+    /** The volume at primitive density n0 >= 0 and squared moment G >= 0; dV/dn0 is -infinity at n0 = 0. */
+    ParticleVolumeVC operator()(double primitiveDensity, double squaredMoment) const {
+        const ParticleVolume b = volumeVB(primitiveDensity);
+        const double inverse = 1.0/(primitiveDensity*primitiveDensity + densitySoftening);
+        const double a2 = momentScale*squaredMoment*inverse;
+        double factor, slope;   // the factor and its derivative with respect to a^2
+        gendpdeSurfaceFactor(a2, &factor, &slope);
+        if (slope == 0.0)
+            return {b.volume, b.derivative, 0.0};
+        return {b.volume*factor, b.derivative*factor - b.volume*slope*2.0*a2*primitiveDensity*inverse,
+                b.volume*slope*momentScale*inverse};
+    }
+    const VolumeEstimatorVB& getVolumeVB() const {
+        return volumeVB;
+    }
+    /** c^2 and eps^2 of the definition (1/length^6). */
+    double getMomentScale() const {
+        return momentScale;
+    }
+    double getDensitySoftening() const {
+        return densitySoftening;
+    }
+private:
+    VolumeEstimatorVB volumeVB;
+    double momentScale, densitySoftening;
+};
+
+/**
  * The Tait equation of state and the per-particle mechanical free energy (docs/theory.md section 4):
  *   pi(n) = pi0 + B_T [ (n/n0)^gamma_T - 1 ]
  *   f(n)  = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1),     with pi = n^2 df/dn.

@@ -80,6 +80,24 @@ GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBA
 }
 
 /**
+ * The surface factor of V-C (docs/interfaces.md): V = V_B (1 + alpha x^2/(1 + x^2)) with x = max(0, a^2 - t)/w,
+ * alpha = 3, threshold t = 0.4, width w = 0.3, where a^2 measures how one-sided a particle's neighbourhood is
+ * (1 at a flat free surface). *factor receives 1 + alpha x^2/(1 + x^2), *slope its derivative with respect to a^2
+ * (both continuous at the threshold, where the factor is 1 and its slope 0).
+ */
+GENDPDE_CORE void gendpdeSurfaceFactor(GENDPDE_REAL a2, GENDPDE_REAL* factor, GENDPDE_REAL* slope) {
+    const GENDPDE_REAL alpha = 3, threshold = (GENDPDE_REAL) 0.4, inverseWidth = 1/(GENDPDE_REAL) 0.3;
+    if (!(a2 > threshold)) {
+        *factor = 1;
+        *slope = 0;
+        return;
+    }
+    const GENDPDE_REAL x = (a2 - threshold)*inverseWidth, denominator = 1/(1 + x*x);
+    *factor = 1 + alpha*x*x*denominator;
+    *slope = alpha*2*x*denominator*denominator*inverseWidth;
+}
+
+/**
  * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 5 and 7),
  * with beta = 1/theta = C/eps: k_B Theta_ij with 1/Theta_ij = (beta_i + beta_j)/2, beta_i - beta_j, and the Ito
  * factor of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2 = k_B (beta_i/eps_i + beta_j/eps_j)

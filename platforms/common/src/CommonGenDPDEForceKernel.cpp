@@ -45,6 +45,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     pressure.initialize(cc, numAtoms, realSize, "gendpdePressure");
     forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
+    momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // V-C's q_i (used only by V-C)
     errors.initialize<int>(cc, 2, "gendpdeForceErrors");
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
     const int numTypes = types->getNumTypes();
@@ -102,6 +103,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     densityKernel->addArg(forceCoefficient);
     densityKernel->addArg(cc.getEnergyBuffer());
     densityKernel->addArg(errors);
+    densityKernel->addArg();   // vc
+    densityKernel->addArg(momentForce);
     forceKernel = program->createKernel("computeForces");
     forceKernel->addArg();   // cells
     forceKernel->addArg(grid->cellStart);
@@ -115,6 +118,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     forceKernel->addArg();   // includeForces
     forceKernel->addArg();   // includeVirial
     forceKernel->addArg(particleVirial);
+    forceKernel->addArg();   // moments (V-C)
+    forceKernel->addArg(momentForce);
     cc.addForce(new ForceInfo(types->getParticleTypeIndices()));
 }
 
@@ -158,7 +163,10 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     for (ComputeKernel* kernel : {&densityKernel, &forceKernel})
         setReal4(cc, *kernel, 8, model[0], model[1], model[2], model[3]);
     setReal4(cc, densityKernel, 12, vb4[0], vb4[1], vb4[2], vb4[3]);
-    densityKernel->setArg(13, estimator == GenDPDEForce::VA ? 0 : 1);
+    densityKernel->setArg(13, estimator == GenDPDEForce::VA ? 0 : estimator == GenDPDEForce::VB ? 1 : 2);
+    const Physics::VolumeEstimatorVC volumeVC(cutoff, cutoff/cutoffScaling);
+    setReal4(cc, densityKernel, 22, volumeVC.getMomentScale(), volumeVC.getDensitySoftening(), 0.0, 0.0);
+    forceKernel->setArg(14, estimator == GenDPDEForce::VC ? 1 : 0);
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
@@ -194,7 +202,10 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
     for (int k = 0; k < (int) atoms.size(); k++)
         if (atoms[k] == particle)
             n0 = densities[k];
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, n0, estimator, cutoff/cutoffScaling,
+    // (V-C: the density of V-B at this n0, without the surface factor, whose moment is not kept.)
+    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
+                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
             taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, cc.getStepCount()));
 }
 

@@ -48,6 +48,7 @@ private:
     bool periodic;
     std::unique_ptr<CommonGenDPDECellGrid> grid;
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
+    OpenMM::ComputeArray momentForce;   // V-C: q = 2 pi dV/dG g per particle (real4, cell order)
     OpenMM::ComputeArray vbCoefficients, vbQuadrature, errors;
     OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
     OpenMM::ComputeKernel resetErrorsKernel, densityKernel, forceKernel;

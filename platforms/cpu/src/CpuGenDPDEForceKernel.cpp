@@ -29,6 +29,7 @@ struct RowGather {
     NearestImage nearestImage;
     double cutoff2;
     Physics::DensityWeight weight;
+    Physics::MomentWeight moment;
     /** r_s - r_t (nearest image) and its squared length. */
     Vec3 displacement(int s, int t, double& r2) const {
         const Vec3 d = nearestImage(position[s] - position[t]);
@@ -47,6 +48,21 @@ struct RowGather {
     double weightTerm(double r, double in) const {
         return in*weight.valueInside(r);
     }
+    /** VC: the pair's moment term phi(r) d/r as Reference adds it, masked, 0 beyond range or at r = 0. */
+    Vec3 momentTerm(const Vec3& d, double r, double in) const {
+        const double positive = (double) (r > 0.0);
+        return d*((in*positive)*moment.valueOverDistanceInside(r));
+    }
+    /**
+     * VC: the pair's force H(d) (q_s - q_t) as Reference computes it (e = d/r, H = phi' e e^T + (phi/r)(I - e e^T)),
+     * masked; along receives e.(q_s - q_t).
+     */
+    Vec3 momentForce(const Vec3& d, double r, double in, const Vec3& dq, double& along) const {
+        const double positive = (double) (r > 0.0), safe = r + (1.0 - positive);
+        const Vec3 e = d*(1.0/safe);
+        along = e.dot(dq);
+        return (e*(moment.derivativeInside(r)*along) + (dq - e*along)*moment.valueOverDistanceInside(r))*(in*positive);
+    }
     /**
      * The pair's force scale (c_s + c_t) w'(r)/r, masked, 0 beyond range or at r = 0 (where Reference skips the
      * pair); r = 0 is replaced by 1 in the division so that the product stays finite.
@@ -60,7 +76,8 @@ struct RowGather {
 template <class NearestImage>
 RowGather<NearestImage> rowGather(const CellOrderedCandidates& layout, NearestImage nearestImage, double cutoff) {
     return {layout.getPositions().data(), layout.getRowStart().data(), layout.getUpperStart().data(),
-            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff)};
+            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff),
+            Physics::MomentWeight(cutoff)};
 }
 
 } // namespace
@@ -79,8 +96,8 @@ void CpuCalcGenDPDEForceKernel::withRowGather(Body body) {
 
 const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
     const PeriodicBox& box = neighborList->getBox();
-    if (!RowGatherAvx2::enabled() || (neighborList->isPeriodic() && box.isTriclinic()))
-        return nullptr;
+    if (!RowGatherAvx2::enabled() || (neighborList->isPeriodic() && box.isTriclinic()) || usesMoments())
+        return nullptr;   // (VC's moments are gathered by the scalar loops)
     const Physics::DensityWeight weight(cutoff);
     RowGatherAvx2::Rows& rows = *vectorRows;
     rows.position = layout.getPositions().data();
@@ -123,6 +140,11 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     double* density = slotDensity.data();
     ParticleState* state = slotState.data();
     double* coefficient = slotCoefficient.data();
+    const bool moments = usesMoments();
+    slotMoment.resize(moments ? numParticles : 0);
+    slotMomentForce.resize(moments ? numParticles : 0);
+    Vec3* momentOf = slotMoment.data();
+    Vec3* momentForceOf = slotMomentForce.data();
     listedFlags.resize(layout.getNeighbors().size());
     char* listed = listedFlags.data();
     const ParticleModel model(*this);
@@ -139,19 +161,28 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
             else
                 for (int s = begin; s < end; s++) {
                     double n0 = 0.0;
+                    Vec3 g;
                     for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
                         double r2;
-                        gather.displacement(s, gather.neighbors[m], r2);
+                        const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
                         const double r = std::sqrt(r2);
-                        n0 += gather.weightTerm(r, gather.mask(r2, r));
+                        const double in = gather.mask(r2, r);
+                        n0 += gather.weightTerm(r, in);
+                        if (moments)
+                            g += gather.momentTerm(d, r, in);
                         listed[m] = gather.listed(r2);   // read by collectPairs()
                     }
                     density[s] = n0;
+                    if (moments)
+                        momentOf[s] = g;
                 }
             for (int s = begin; s < end; s++) {
                 const double n0 = density[s];
                 const int i = particleOf[s];
-                const ParticleStatus particleStatus = evaluateParticle(n0, typeOf[i], model, state[s]);
+                const double G = moments ? momentOf[s].dot(momentOf[s]) : 0.0;
+                const ParticleStatus particleStatus = evaluateParticle(n0, G, typeOf[i], model, state[s]);
+                if (moments)
+                    momentForceOf[s] = momentOf[s]*(2.0*state[s].momentCoefficient);   // as storeParticle()
                 if (particleStatus != Valid && i < failed[begin/slotChunk]) {
                     failed[begin/slotChunk] = i;
                     status[begin/slotChunk] = particleStatus;
@@ -165,6 +196,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++) {
             primitiveDensity[i] = density[slotOf[i]];
+            if (moments)
+                moment[i] = momentOf[slotOf[i]];
             storeParticle(i, state[slotOf[i]]);
         }
     });
@@ -183,6 +216,8 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     const int numSlots = layout.getNumSlots();
     const int* particleOf = layout.getParticle().data();
     const double* coefficient = slotCoefficient.data();
+    const bool moments = usesMoments();
+    const Vec3* momentForce = slotMomentForce.data();
     slotForce.resize(numSlots);
     slotVirial.resize(numSlots);
     Vec3* slotF = slotForce.data();
@@ -201,22 +236,26 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
             for (int s = begin; s < end; s++) {
                 Vec3 f = slotF[s];
                 double sum = 0.0;
-                // The pairs (j, i), then (i, j): the virial counts the second kind only.
-                for (int m = gather.rowStart[s]; m < gather.upperStart[s]; m++) {
+                // The pairs (j, i), then (i, j): the virial counts the second kind only. VC adds H(d) (q_s - q_t)
+                // to each pair's force before it is added, as Reference does.
+                for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
                     const int t = gather.neighbors[m];
                     double r2;
                     const Vec3 d = gather.displacement(s, t, r2);
                     const double r = std::sqrt(r2);
-                    f += d*gather.forceScale(r, gather.mask(r2, r), coefficient[s] + coefficient[t]);
-                }
-                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++) {
-                    const int t = gather.neighbors[m];
-                    double r2;
-                    const Vec3 d = gather.displacement(s, t, r2);
-                    const double r = std::sqrt(r2);
-                    const double scale = gather.forceScale(r, gather.mask(r2, r), coefficient[s] + coefficient[t]);
-                    f += d*scale;
-                    sum += scale*r*r;
+                    const double in = gather.mask(r2, r);
+                    const double scale = gather.forceScale(r, in, coefficient[s] + coefficient[t]);
+                    Vec3 term = d*scale;
+                    double virial = scale*r*r;
+                    // (q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.)
+                    if (moments && !(momentForce[s] == Vec3() && momentForce[t] == Vec3())) {
+                        double along;
+                        term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], along);
+                        virial += (r*gather.moment.derivativeInside(r)*along)*(in*(double) (r > 0.0));
+                    }
+                    f += term;
+                    if (m >= gather.upperStart[s])
+                        sum += virial;
                 }
                 slotF[s] = f;
                 slotW[s] = sum;

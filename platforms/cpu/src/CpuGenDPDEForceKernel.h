@@ -44,6 +44,7 @@ private:
     CellOrderedCandidates layout;               // the neighbor list's candidates as full rows in cell order
     // Per slot: what the passes find, before it is copied to the particle arrays.
     std::vector<double> slotDensity, slotCoefficient, slotVirial;
+    std::vector<OpenMM::Vec3> slotMoment, slotMomentForce;   // VC: g and q = 2 pi dV/dG g per slot
     std::vector<ParticleState> slotState;
     std::vector<OpenMM::Vec3> slotForce;
     std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)

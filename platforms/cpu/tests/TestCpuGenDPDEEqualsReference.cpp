@@ -72,6 +72,14 @@ void testForcesAndObservables() {
     Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
     setMixtureTypes(mixture, false);
     checkForcesAndObservables(mixture, "VB three-type mixture");
+    // VC (the scalar gathers compute the moments): the standard scenes of VB with the estimator switched.
+    TestScenes::forEachStandardScene(0.2, 59, [](Scene& scene, const std::string& label) {
+        if (label.compare(0, 2, "VB") != 0)
+            return;
+        scene.force->setDensityEstimator(GenDPDEForce::VC);
+        scene.force->setCutoffScaling(1.35);
+        checkForcesAndObservables(scene, "VC" + label.substr(2));
+    });
 }
 
 Trajectory run(const std::string& platformName, const std::string& threads, GenDPDEIntegrator::Mode mode, int steps,

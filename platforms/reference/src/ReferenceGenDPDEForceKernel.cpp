@@ -19,6 +19,8 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     pressure.resize(numParticles);
     forceCoefficient.resize(numParticles);
     particleVirial.resize(numParticles);
+    moment.resize(numParticles);
+    momentForce.resize(numParticles);
     types.reset(new ParticleTypeIndex(force.getParticleTypes(), numParticles, "GenDPDEForce"));
     readParameters(force);
 }
@@ -53,26 +55,46 @@ int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Ve
 }
 
 ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(double n0,
-        int type, const ParticleModel& model, ParticleState& state) const {
-    // docs/theory.md sections 3-4: the volume, the Tait pressure and free energy, and pi_i dV_i/dn0_i.
+        double G, int type, const ParticleModel& model, ParticleState& state) const {
+    // docs/theory.md sections 3-4 (VC: docs/interfaces.md): the volume, the Tait pressure and free energy, and
+    // pi_i dV_i/dn0_i (and pi_i dV_i/dG_i).
     if (estimator == GenDPDEForce::VA && n0 == 0.0)
         return NoNeighbor;
-    const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
-    model.tait[type].evaluate(1.0/v.volume, state.pressure, state.freeEnergy);
+    double volume, derivative, momentDerivative = 0.0;
+    if (estimator == GenDPDEForce::VC) {
+        const Physics::ParticleVolumeVC v = model.volumeVC(n0, G);
+        volume = v.volume;
+        derivative = v.derivative;
+        momentDerivative = v.momentDerivative;
+    }
+    else {
+        const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
+        volume = v.volume;
+        derivative = v.derivative;
+    }
+    model.tait[type].evaluate(1.0/volume, state.pressure, state.freeEnergy);
     if (!(std::isfinite(state.freeEnergy) && std::isfinite(state.pressure)))
         return Overflow;
-    state.volume = v.volume;
-    // An isolated particle (VB, n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
-    state.forceCoefficient = (n0 > 0.0 ? state.pressure*v.derivative : 0.0);
+    state.volume = volume;
+    // An isolated particle (VB, VC: n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
+    state.forceCoefficient = (n0 > 0.0 ? state.pressure*derivative : 0.0);
+    state.momentCoefficient = state.pressure*momentDerivative;
     return Valid;
+}
+
+double ReferenceCalcGenDPDEForceKernel::particleDensity(int i) const {
+    const ParticleModel model(*this);
+    const double n0 = primitiveDensity[i];
+    if (estimator == GenDPDEForce::VC)
+        return 1.0/model.volumeVC(n0, moment[i].dot(moment[i])).volume;
+    return 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0)).volume;
 }
 
 void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, int i, ContextImpl& context) const {
     if (status == NoNeighbor)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, primitiveDensity[i], estimator,
-            cutoff/cutoffScaling, taitByType[types->getParticleTypeIndices()[i]].referenceDensity,
-            context.getStepCount()));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, particleDensity(i),
+            taitByType[types->getParticleTypeIndices()[i]].referenceDensity, context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
@@ -89,6 +111,17 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         primitiveDensity[pair.i] += w;
         primitiveDensity[pair.j] += w;
     }
+    // VC (docs/interfaces.md): the first moments g_i = sum_j phi(r_ij) e_ij.
+    if (usesMoments()) {
+        const Physics::MomentWeight phi(cutoff);
+        std::fill(moment.begin(), moment.end(), Vec3());
+        for (const ParticlePair& pair : pairs)
+            if (pair.r > 0.0 && pair.r < cutoff) {
+                const Vec3 term = pair.delta*phi.valueOverDistanceInside(pair.r);
+                moment[pair.i] += term;
+                moment[pair.j] -= term;
+            }
+    }
 
     // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const ParticleModel model(*this);
@@ -96,7 +129,8 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
         ParticleState state;
-        const ParticleStatus status = evaluateParticle(primitiveDensity[i], type[i], model, state);
+        const ParticleStatus status = evaluateParticle(primitiveDensity[i], moment[i].dot(moment[i]), type[i], model,
+                                                       state);
         if (status != Valid)
             throwParticleError(status, i, context);
         storeParticle(i, state);
@@ -109,17 +143,28 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
     // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij, summed
     // per first particle, then over particles in the fixed order (as the CPU platform does).
     const Physics::DensityWeight weight(cutoff);
+    const Physics::MomentWeight phi(cutoff);
+    const bool moments = usesMoments();
     std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {
         if (pair.r == 0.0)
             continue;   // coincident particles: counted in the density, no direction, no force
         double scale = (forceCoefficient[pair.i] + forceCoefficient[pair.j])*weight.derivative(pair.r)/pair.r;
+        Vec3 force = pair.delta*scale;
+        double virial = scale*pair.r*pair.r;
+        // (q vanishes for the particles below V-C's threshold, nearly all of a bulk liquid: their pairs add nothing.)
+        if (moments && pair.r < cutoff && !(momentForce[pair.i] == Vec3() && momentForce[pair.j] == Vec3())) {
+            // VC: H(d) (q_i - q_j), H = phi' e e^T + (phi/r)(I - e e^T) (docs/interfaces.md).
+            const Vec3 e = pair.delta*(1.0/pair.r), dq = momentForce[pair.i] - momentForce[pair.j];
+            const double along = e.dot(dq);
+            force += e*(phi.derivativeInside(pair.r)*along) + (dq - e*along)*phi.valueOverDistanceInside(pair.r);
+            virial += pair.r*phi.derivativeInside(pair.r)*along;
+        }
         if (forces != nullptr) {
-            Vec3 force = pair.delta*scale;
             (*forces)[pair.i] += force;
             (*forces)[pair.j] -= force;
         }
-        particleVirial[pair.i] += scale*pair.r*pair.r;
+        particleVirial[pair.i] += virial;
     }
     FixedOrderSum::Accumulator virial;
     for (double w : particleVirial)

@@ -33,12 +33,14 @@ protected:
     /** What evaluateParticle() needs per evaluation: the Tait equation of state of each type and the V-B estimator. */
     struct ParticleModel {
         explicit ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel) :
-                volumeVB(kernel.cutoff/kernel.cutoffScaling) {
+                volumeVB(kernel.cutoff/kernel.cutoffScaling),
+                volumeVC(kernel.cutoff, kernel.cutoff/kernel.cutoffScaling) {
             for (const TaitParameters& p : kernel.taitByType)
                 tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
         }
         std::vector<Physics::TaitEquationOfState> tait;   // by type index
         Physics::VolumeEstimatorVB volumeVB;
+        Physics::VolumeEstimatorVC volumeVC;
     };
     enum ParticleStatus {Valid, NoNeighbor, Overflow};
     /** What evaluateParticle() finds for one particle. */
@@ -46,6 +48,7 @@ protected:
         double volume;             // V (nm^3)
         double pressure;           // pi (kJ/mol/nm^3)
         double forceCoefficient;   // pi dV/dn0 (kJ/mol nm^3)
+        double momentCoefficient;  // pi dV/dG (kJ/mol), VC only (else 0)
         double freeEnergy;         // f (kJ/mol)
     };
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
@@ -54,13 +57,25 @@ protected:
     void checkConfiguration(OpenMM::ContextImpl& context, int firstBadParticle) const;
     /** The first particle in [begin, end) whose position is not finite, or -1. */
     static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
-    /** The state of a particle of primitive density n0 (nm^-3) and type index type; valid only if the status is Valid. */
-    ParticleStatus evaluateParticle(double n0, int type, const ParticleModel& model, ParticleState& state) const;
+    /**
+     * The state of a particle of primitive density n0 (nm^-3), squared first moment G (VC only, else ignored) and
+     * type index type; valid only if the status is Valid.
+     */
+    ParticleStatus evaluateParticle(double n0, double G, int type, const ParticleModel& model,
+                                    ParticleState& state) const;
+    /** Whether the estimator needs the first moments of the neighbourhoods (VC). */
+    bool usesMoments() const {
+        return estimator == GenDPDEForce::VC;
+    }
+    /** The density 1/V of particle i from its primitive density and moment of the last evaluation (nm^-3). */
+    double particleDensity(int i) const;
     /** Store particle i's state in the per-particle arrays. */
     void storeParticle(int i, const ParticleState& state) {
         volume[i] = state.volume;
         pressure[i] = state.pressure;
         forceCoefficient[i] = state.forceCoefficient;
+        if (usesMoments())
+            momentForce[i] = moment[i]*(2.0*state.momentCoefficient);
     }
     /** The error for particle i, naming it, its density and the step. */
     [[noreturn]] void throwParticleError(ParticleStatus status, int i, OpenMM::ContextImpl& context) const;
@@ -78,6 +93,8 @@ protected:
     std::vector<double> primitiveDensity, volume, pressure;
     std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
     std::vector<double> particleVirial;     // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
+    std::vector<OpenMM::Vec3> moment;        // VC: g_i = sum_j phi(r_ij) e_ij (dimensionless)
+    std::vector<OpenMM::Vec3> momentForce;   // VC: q_i = 2 pi_i dV_i/dG_i g_i (kJ/mol)
     // Observables and the configuration they belong to.
     GenDPDEObservables observables;
     std::vector<OpenMM::Vec3> observedPositions;

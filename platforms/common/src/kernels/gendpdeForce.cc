@@ -53,7 +53,9 @@ inline DEVICE real2 volumeIntegralsVB(real k, GLOBAL const real2* RESTRICT coeff
  * taitTable[t] = (reference density, reference pressure, bulk modulus, exponent) and taitPower[t] (gamma - 1 if
  * an integer, else -1) for particle type t = atomType[original index] (one type until types exist: the tables are
  * laid out for them), vb = (k per density, volume scale,
- * derivative scale, 0), estimator 0 = V-A, 1 = V-B. errors[0] gets the smallest original index of a particle whose
+ * derivative scale, 0), estimator 0 = V-A, 1 = V-B, 2 = V-C; for V-C, vc = (c^2, eps^2, 0, 0) of
+ * Physics::VolumeEstimatorVC, and momentForce[k] receives q = 2 pi dV/dG g (g the first moment of the neighbourhood,
+ * G = |g|^2). errors[0] gets the smallest original index of a particle whose
  * position is not finite, errors[1] the smallest 4 i + status over the particles whose state is invalid (1: no
  * neighbour under V-A, 2: the equation of state overflows).
  */
@@ -63,7 +65,8 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
         GLOBAL const real4* RESTRICT taitTable, GLOBAL const int* RESTRICT taitPowerTable, real4 vb, int estimator,
         GLOBAL const real2* RESTRICT vbCoefficients, GLOBAL const real* RESTRICT vbQuadrature,
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
-        GLOBAL real* RESTRICT forceCoefficient, GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT errors) {
+        GLOBAL real* RESTRICT forceCoefficient, GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT errors,
+        real4 vc, GLOBAL real4* RESTRICT momentForce) {
     const real cutoff2 = model.x*model.x;
     mixed energy = 0;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
@@ -72,13 +75,17 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
             ATOMIC_MIN(&errors[0], sortedAtom[k]);
         const int3 home = cellCoordinates(sortedCell[k], cells);
         real n0 = 0;
+        real3 g = make_real3(0, 0, 0);
         FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
             for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
                 const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
                 const real r2 = dot(d, d);
                 if (m != k && r2 < cutoff2) {
-                    const real x = 1 - sqrt(r2)*model.y;
+                    const real r = sqrt(r2);
+                    const real x = 1 - r*model.y;
                     n0 += model.z*x*x;
+                    if (estimator == 2 && r > 0)
+                        g += d*(model.y*x*x);   // phi(r) e = (r/R)(1 - r/R)^2 d/r = d (1/R)(1 - r/R)^2
                 }
             }
         }
@@ -102,11 +109,28 @@ KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, G
                 derivative = vb.z*integrals.y;
             }
         }
+        // V-C (docs/interfaces.md): V_B times the surface factor of a^2 = c^2 G/(n0^2 + eps^2).
+        real momentDerivative = 0;
+        if (estimator == 2) {
+            const real inverse = 1/(n0*n0 + vc.y);
+            const real a2 = vc.x*dot(g, g)*inverse;
+            real factor, slope;
+            gendpdeSurfaceFactor(a2, &factor, &slope);
+            if (slope != 0) {
+                derivative = derivative*factor - v*slope*2*a2*n0*inverse;
+                momentDerivative = v*slope*vc.x*inverse;
+                v *= factor;
+            }
+        }
         const int type = atomType[sortedAtom[k]];
         const real4 tait = taitTable[type];
         const int taitPower = taitPowerTable[type];
         real pi, f;
         gendpdeTait(1/v, tait.x, tait.y, tait.z, tait.w, taitPower, &pi, &f);
+        if (estimator == 2) {
+            const real3 q = g*(2*pi*momentDerivative);
+            momentForce[k] = make_real4(q.x, q.y, q.z, 0);
+        }
         if (status == 0 && !(isfinite(f) && isfinite(pi)))
             status = 2;
         if (status != 0)
@@ -133,11 +157,12 @@ KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOB
         GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
         real4 boxA, real4 boxB, real4 boxC, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
         GLOBAL mm_long* RESTRICT forceBuffers, int includeForces, int includeVirial,
-        GLOBAL real* RESTRICT particleVirial) {
+        GLOBAL real* RESTRICT particleVirial, int moments, GLOBAL const real4* RESTRICT momentForce) {
     const real cutoff2 = model.x*model.x;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const real3 ri = trimTo3(sortedPos[k]);
         const real ci = forceCoefficient[k];
+        const real3 qi = (moments ? trimTo3(momentForce[k]) : make_real3(0, 0, 0));
         const int3 home = cellCoordinates(sortedCell[k], cells);
 #ifdef USE_DOUBLE_PRECISION
         real3 force = make_real3(0, 0, 0);
@@ -152,14 +177,25 @@ KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOB
                 if (r2 < cutoff2 && r2 > 0) {   // coincident particles (and the particle itself): no force
                     const real r = sqrt(r2);
                     const real scale = (ci + forceCoefficient[m])*(model.w*(1 - r*model.y))/r;
-#ifdef USE_DOUBLE_PRECISION
-                    force += d*scale;
-#else
-                    forceX += realToFixedPoint(d.x*scale);
-                    forceY += realToFixedPoint(d.y*scale);
-                    forceZ += realToFixedPoint(d.z*scale);
-#endif
+                    real3 pairForce = d*scale;
                     virial += scale*r2;
+                    const real3 qj = (moments ? trimTo3(momentForce[m]) : make_real3(0, 0, 0));
+                    if (qi.x != 0 || qi.y != 0 || qi.z != 0 || qj.x != 0 || qj.y != 0 || qj.z != 0) {
+                        // V-C: H(d) (q_i - q_j), H = phi' e e^T + (phi/r)(I - e e^T), phi = (r/R)(1 - r/R)^2;
+                        // q vanishes below the threshold, for nearly all of a bulk liquid.
+                        const real3 e = d*(1/r), dq = qi - qj;
+                        const real x = r*model.y, along = dot(e, dq);
+                        const real phiPrime = model.y*(1 - x)*(1 - 3*x), phiOverR = model.y*(1 - x)*(1 - x);
+                        pairForce += e*(phiPrime*along) + (dq - e*along)*phiOverR;
+                        virial += r*phiPrime*along;
+                    }
+#ifdef USE_DOUBLE_PRECISION
+                    force += pairForce;
+#else
+                    forceX += realToFixedPoint(pairForce.x);
+                    forceY += realToFixedPoint(pairForce.y);
+                    forceZ += realToFixedPoint(pairForce.z);
+#endif
                 }
             }
         }

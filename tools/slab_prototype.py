@@ -2,6 +2,8 @@
 
     .venv/bin/python tools/slab_prototype.py VB 1.35 0 100      # estimator, f_cut, alpha, duration (time units)
     .venv/bin/python tools/slab_prototype.py VC 1.57 2 100
+    .venv/bin/python tools/slab_prototype.py VC 1.35 3 100 0.4   # with the threshold t = 0.4 (the plugin's VC)
+    .venv/bin/python tools/slab_prototype.py --bulk-run VC 1.35 3 100 0.4   # bulk n* = 1 under VC's own dynamics
     .venv/bin/python tools/slab_prototype.py VF 1.2 1.5 100     # f_cut = 1.2 + 1.5 (n0* - 0.6)
     .venv/bin/python tools/slab_prototype.py --bulk VC 2 1.45 1.57 1.65   # mean n_i of bulk liquids at n* = 0.82, 1
 
@@ -13,8 +15,9 @@ sweep, which is enough to tell whether a slab holds. Prints the core's true dens
 Estimators: VB (docs/theory.md section 3, closed forms, fine for the k of liquids), VF (V-B with the density-
 dependent f_cut = a + b (n0* - 0.6), arguments a and b in place of f_cut and alpha) and the candidate VC:
 V = V_B (1 + alpha a^2/(1 + a^2)), a^2 = c^2 |g|^2/(n0^2 + eps^2), g = sum_j (r/R)(1 - r/R)^2 e_ij,
-c = 30/(pi R^3), eps = 3/(4 pi R^3), with its exact force (the gradient of U = sum_i f(1/V_i)). This candidate was
-also written in the plugin (commit 1993d77, reverted in the next commit); docs/interfaces.md has what both measured.
+c = 30/(pi R^3), eps = 3/(4 pi R^3), with its exact force (the gradient of U = sum_i f(1/V_i)), or with a threshold
+(x = max(0, a^2 - t)/w in place of a^2, w = 0.3), the form the plugin's VC has; docs/interfaces.md has what they
+measured.
 """
 
 import sys
@@ -34,8 +37,10 @@ def volume_integrals_vb(k):
             1.5 - logarithm + (1 - 3 * k) / (2 * s) * arctangent)
 
 
-def forces(x, box, estimator, cutoff_scaling, alpha):
-    """Forces, and the particles' densities n_i, for positions x in a periodic box (reduced units)."""
+def forces(x, box, estimator, cutoff_scaling, alpha, threshold=None, width=0.3):
+    """Forces, and the particles' densities n_i, for positions x in a periodic box (reduced units). VC: the factor
+    1 + alpha s with s = a^2/(1 + a^2), or with a threshold s = x^2/(1 + x^2), x = max(0, a^2 - threshold)/width
+    (the plugin's VC: alpha 3, threshold 0.4, width 0.3)."""
     n = len(x)
     rt = R / cutoff_scaling
     pairs = cKDTree(x % box, boxsize=box).query_pairs(R, output_type="ndarray")
@@ -64,8 +69,13 @@ def forces(x, box, estimator, cutoff_scaling, alpha):
         c2, eps2 = (30 / (np.pi * R**3)) ** 2, (3 / (4 * np.pi * R**3)) ** 2
         inverse = 1 / (n0**2 + eps2)
         a2 = c2 * (g * g).sum(1) * inverse
-        slope = alpha / (1 + a2) ** 2
-        factor = 1 + alpha * a2 / (1 + a2)
+        if threshold is None:
+            slope = alpha / (1 + a2) ** 2
+            factor = 1 + alpha * a2 / (1 + a2)
+        else:
+            xx = np.maximum(0, a2 - threshold) / width
+            slope = alpha * 2 * xx / (1 + xx * xx) ** 2 / width
+            factor = 1 + alpha * xx * xx / (1 + xx * xx)
         d_volume_d_moment = volume * slope * c2 * inverse
         d_volume = d_volume * factor - volume * slope * 2 * a2 * n0 * inverse
         volume = volume * factor
@@ -81,6 +91,7 @@ def forces(x, box, estimator, cutoff_scaling, alpha):
     f = np.zeros((n, 3))
     np.add.at(f, i, pair_force)
     np.add.at(f, j, -pair_force)
+    forces.last_a2 = a2 if estimator == "VC" else None
     return f, density, (i, j, e, r)
 
 
@@ -105,18 +116,29 @@ def dpd_step(x, v, f, box, model, rng, dt=0.01):
     return x, v, f, density
 
 
-def slab(estimator, cutoff_scaling, alpha, duration, seed=1):
-    x, box = fcc(0.82, (5, 5, 10))
-    thickness = box[2]
-    box[2] *= 3
-    x[:, 2] += thickness
+def slab(estimator, cutoff_scaling, alpha, duration, seed=1, threshold=None, bulk_run=False):
+    """The slab (or, with bulk_run, a bulk liquid of 500 particles at n* = 1, printing its mean n_i and mean a^2)."""
+    if bulk_run:
+        x, box = fcc(1.0, (5, 5, 5))
+        thickness = None
+    else:
+        x, box = fcc(0.82, (5, 5, 10))
+        thickness = box[2]
+        box[2] *= 3
+        x[:, 2] += thickness
     rng = np.random.default_rng(seed)
     v = rng.normal(0, np.sqrt(T0), x.shape)
     v -= v.mean(0)
-    model = (estimator, cutoff_scaling, alpha)
+    model = (estimator, cutoff_scaling, alpha, threshold)
     f, density, _ = forces(x, box, *model)
     for step in range(int(round(duration / 0.01)) + 1):
-        if step % 1000 == 0:
+        if step % 1000 == 0 and bulk_run:
+            a2 = forces.last_a2
+            print(f"{estimator} bulk n* = 1, f_cut {cutoff_scaling} alpha {alpha} threshold {threshold}: t* = "
+                  f"{step * 0.01:5.1f} mean n_i = {density.mean():.3f}" + ("" if a2 is None else
+                  f", mean a^2 = {a2.mean():.3f}, above the threshold {np.mean(a2 > (threshold or 0)):.3f}"),
+                  flush=True)
+        elif step % 1000 == 0:
             angle = 2 * np.pi * (x[:, 2] % box[2]) / box[2]
             centre = (np.arctan2(np.sin(angle).mean(), np.cos(angle).mean()) % (2 * np.pi)) * box[2] / (2 * np.pi)
             depth = np.abs((x[:, 2] % box[2] - centre + box[2] / 2) % box[2] - box[2] / 2)
@@ -153,5 +175,8 @@ if __name__ == "__main__":
     if sys.argv[1] == "--bulk":
         bulk(sys.argv[2], float(sys.argv[3]), [float(value) for value in sys.argv[4:]])
     else:
-        slab(sys.argv[1], float(sys.argv[2]), float(sys.argv[3]), float(sys.argv[4]))
+        run = sys.argv[1] == "--bulk-run"
+        arguments = sys.argv[2:] if run else sys.argv[1:]
+        slab(arguments[0], float(arguments[1]), float(arguments[2]), float(arguments[3]),
+             threshold=float(arguments[4]) if len(arguments) > 4 else None, bulk_run=run)
     print(f"{time.time() - start:.0f} s")

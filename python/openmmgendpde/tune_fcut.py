@@ -95,7 +95,8 @@ def run(arguments):
     print(f"R_cut* = {arguments.cutoff}: f_cut = {estimate.cutoff_scaling:.4f} +- {estimate.standard_error:.4f} for "
           f"n-bar* = {ARGON_STATE.density} (last run: f_cut = {estimate.last_cutoff_scaling:.4f}, n-bar* = "
           f"{estimate.density:.4f} +- {estimate.density_error:.4f}; tolerance {arguments.tolerance}, "
-          f"{estimate.iterations} iteration(s)); published f_cut of VB = {published}")
+          f"{estimate.iterations} iteration(s)); published f_cut{'' if arguments.estimator == 'VB' else ' of VB'} = "
+          f"{published}")
     return estimate
 
 

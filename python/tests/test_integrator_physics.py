@@ -21,6 +21,18 @@ ENERGY = unit.kilojoule_per_mole
 BLOCKS = 20
 
 
+def _sample_equilibrium(simulation, integrator, equilibration_steps, count, every=40):
+    """``equilibration_steps`` steps, then ``count`` samples ``every`` steps apart: (kinetic energies in kJ/mol,
+    count x N particle temperatures in K) as arrays."""
+    integrator.step(equilibration_steps)
+    kinetic, temperatures = [], []
+    for _ in range(count):
+        integrator.step(every)
+        kinetic.append(simulation.context.getState(getEnergy=True).getKineticEnergy().value_in_unit(ENERGY))
+        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    return np.array(kinetic), np.array(temperatures)
+
+
 @pytest.fixture(scope="module")
 def equilibrium_samples():
     """Liquid argon (500 particles, VB, R* = 1.6839, the published gamma*, kappa*, C_V*) with dt* = 0.005:
@@ -29,14 +41,9 @@ def equilibrium_samples():
     argon = liquid_argon(500, 1.6839, "VB", time_step=0.005, seed=11)
     simulation = argon.simulation(velocity_seed=11)
     integrator = argon.integrator
-    integrator.step(4000)
-    kinetic, temperatures = [], []
-    for _ in range(500):
-        integrator.step(40)
-        kinetic.append(simulation.context.getState(getEnergy=True).getKineticEnergy().value_in_unit(ENERGY))
-        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    kinetic, temperatures = _sample_equilibrium(simulation, integrator, 4000, 500)
     heat_capacity = integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin)
-    return np.array(kinetic), np.array(temperatures), heat_capacity
+    return kinetic, temperatures, heat_capacity
 
 
 def test_kinetic_temperature_equals_harmonic_mean_temperature(equilibrium_samples):
@@ -100,15 +107,10 @@ def mixture_samples():
     integrator.addTypePair(0, 1, 2 * friction, 0.5 * conduction)
     integrator.addTypePair(1, 1, 0.5 * friction, 2 * conduction)
     simulation = argon.simulation(platform="CPU", velocity_seed=13)
-    integrator.step(2000)
-    kinetic, temperatures = [], []
-    for _ in range(300):
-        integrator.step(40)
-        kinetic.append(simulation.context.getState(getEnergy=True).getKineticEnergy().value_in_unit(ENERGY))
-        temperatures.append(integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    kinetic, temperatures = _sample_equilibrium(simulation, integrator, 2000, 300)
     capacity = np.where(np.arange(500) % 2 == 1, 6 * KB,
                         integrator.getHeatCapacity().value_in_unit(ENERGY / unit.kelvin))
-    return np.array(kinetic), np.array(temperatures), capacity
+    return kinetic, temperatures, capacity
 
 
 def test_mixture_equilibrium_identities_hold_per_type(mixture_samples):

@@ -1,5 +1,6 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDETypes.h"
 #include "internal/LiquidArgon.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
@@ -102,14 +103,11 @@ double GenDPDEForce::getTaitExponent() const {
 }
 
 void GenDPDEForce::setParticleType(int index, int type) {
-    if (index < 0)
-        reject("GenDPDEForce", "particle index in setParticleType", index, "", ">= 0");
-    particleTypes[index] = type;
+    setParticleTypeIn(particleTypes, "GenDPDEForce", index, type);
 }
 
 int GenDPDEForce::getParticleType(int index) const {
-    const auto found = particleTypes.find(index);
-    return found == particleTypes.end() ? 0 : found->second;
+    return particleTypeIn(particleTypes, index);
 }
 
 const std::map<int, int>& GenDPDEForce::getParticleTypes() const {

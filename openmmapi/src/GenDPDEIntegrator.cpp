@@ -85,14 +85,11 @@ void GenDPDEIntegrator::setCutoffDistance(double distance) {
 }
 
 void GenDPDEIntegrator::setParticleType(int index, int type) {
-    if (index < 0)
-        reject(integratorName, "particle index in setParticleType", index, "", ">= 0");
-    particleTypes[index] = type;
+    setParticleTypeIn(particleTypes, integratorName, index, type);
 }
 
 int GenDPDEIntegrator::getParticleType(int index) const {
-    const auto found = particleTypes.find(index);
-    return found == particleTypes.end() ? 0 : found->second;
+    return particleTypeIn(particleTypes, index);
 }
 
 const std::map<int, int>& GenDPDEIntegrator::getParticleTypes() const {

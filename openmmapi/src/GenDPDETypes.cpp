@@ -1,4 +1,5 @@
 #include "internal/GenDPDETypes.h"
+#include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>
 #include <set>
@@ -38,6 +39,18 @@ int ParticleTypeIndex::requireIndexOf(int type, const std::string& entry) const 
                               "setParticleType() or remove the entry");
     }
     return index;
+}
+
+void GenDPDEPlugin::setParticleTypeIn(std::map<int, int>& particleTypes, const std::string& owner, int index,
+                                      int type) {
+    if (index < 0)
+        ParameterChecks::reject(owner, "particle index in setParticleType", index, "", ">= 0");
+    particleTypes[index] = type;
+}
+
+int GenDPDEPlugin::particleTypeIn(const std::map<int, int>& particleTypes, int index) {
+    const auto found = particleTypes.find(index);
+    return found == particleTypes.end() ? 0 : found->second;
 }
 
 std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEForce& force,

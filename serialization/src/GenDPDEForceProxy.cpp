@@ -1,5 +1,6 @@
 #include "GenDPDEForceProxy.h"
 #include "GenDPDEForce.h"
+#include "ParticleTypesXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <memory>
@@ -31,10 +32,7 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
     node.setDoubleProperty("pi0", pi0);
     node.setDoubleProperty("bulkModulus", bulkModulus);
     node.setDoubleProperty("gammaT", exponent);
-    SerializationNode& particleTypes = node.createChildNode("ParticleTypes");
-    for (const auto& entry : force.getParticleTypes())
-        particleTypes.createChildNode("Particle").setIntProperty("index", entry.first).setIntProperty("type",
-                                                                                                      entry.second);
+    serializeParticleTypes(node, force.getParticleTypes());
     SerializationNode& typeParameters = node.createChildNode("TypeParameters");
     for (int index = 0; index < force.getNumTypeParameters(); index++) {
         int type;
@@ -63,8 +61,7 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
     force->setTaitParameters(node.getDoubleProperty("n0"), node.getDoubleProperty("pi0"),
                              node.getDoubleProperty("bulkModulus"), node.getDoubleProperty("gammaT"));
     if (version >= 2) {
-        for (const SerializationNode& particle : node.getChildNode("ParticleTypes").getChildren())
-            force->setParticleType(particle.getIntProperty("index"), particle.getIntProperty("type"));
+        deserializeParticleTypes(node, *force);
         for (const SerializationNode& type : node.getChildNode("TypeParameters").getChildren())
             force->addTypeParameters(type.getIntProperty("type"), type.getDoubleProperty("n0"),
                                      type.getDoubleProperty("pi0"), type.getDoubleProperty("bulkModulus"),

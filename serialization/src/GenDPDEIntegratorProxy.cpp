@@ -1,5 +1,6 @@
 #include "GenDPDEIntegratorProxy.h"
 #include "GenDPDEIntegrator.h"
+#include "ParticleTypesXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <memory>
@@ -33,10 +34,7 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
     SerializationNode& temperatures = node.createChildNode("ParticleTemperatures");
     for (double t : integrator.initialTemperatures)
         temperatures.createChildNode("Particle").setDoubleProperty("t", t);
-    SerializationNode& particleTypes = node.createChildNode("ParticleTypes");
-    for (const auto& entry : integrator.getParticleTypes())
-        particleTypes.createChildNode("Particle").setIntProperty("index", entry.first).setIntProperty("type",
-                                                                                                      entry.second);
+    serializeParticleTypes(node, integrator.getParticleTypes());
     SerializationNode& heatCapacities = node.createChildNode("TypeHeatCapacities");
     for (int index = 0; index < integrator.getNumTypeHeatCapacities(); index++) {
         int type;
@@ -78,8 +76,7 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
     if (!temperatures.empty())
         integrator->setParticleTemperatures(temperatures);
     if (version >= 2) {
-        for (const SerializationNode& particle : node.getChildNode("ParticleTypes").getChildren())
-            integrator->setParticleType(particle.getIntProperty("index"), particle.getIntProperty("type"));
+        deserializeParticleTypes(node, *integrator);
         for (const SerializationNode& type : node.getChildNode("TypeHeatCapacities").getChildren())
             integrator->addTypeHeatCapacity(type.getIntProperty("type"), type.getDoubleProperty("heatCapacity"));
         for (const SerializationNode& pair : node.getChildNode("TypePairs").getChildren())

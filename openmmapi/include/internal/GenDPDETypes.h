@@ -46,6 +46,12 @@ private:
     std::vector<int> types, particleTypeIndex;
 };
 
+/** setParticleType() of a GenDPDEForce or GenDPDEIntegrator (owner: its class name): a negative index is refused. */
+void setParticleTypeIn(std::map<int, int>& particleTypes, const std::string& owner, int index, int type);
+
+/** getParticleType(): the type of particle index, 0 if none was set. */
+int particleTypeIn(const std::map<int, int>& particleTypes, int index);
+
 /** The four parameters of a Tait equation of state (OpenMM units, as GenDPDEForce::setTaitParameters). */
 struct TaitParameters {
     double referenceDensity, referencePressure, bulkModulus, exponent;

@@ -46,8 +46,7 @@ for repulsion in args.repulsion:
     types = np.repeat([0, 1], 500)
     for i in range(500, 1000):
         system.addParticle(system.getParticleMass(0))
-        force.setParticleType(i, 1)
-        integrator.setParticleType(i, 1)
+        force.setParticleType(i, 1)   # (the integrator takes the types from the force)
     cutoff = force.getCutoffDistance().value_in_unit(unit.nanometer)
     kt = (unit.MOLAR_GAS_CONSTANT_R * argon.temperature).value_in_unit(unit.kilojoule_per_mole)
     if repulsion > 0:

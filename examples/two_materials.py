@@ -38,8 +38,7 @@ types = np.repeat([0, 1], 500)
 for i in range(500, 1000):
     system.addParticle(4 * mass_argon)
 for i in np.flatnonzero(types == 1):
-    force.setParticleType(int(i), 1)          # the force and the integrator each know the types
-    integrator.setParticleType(int(i), 1)
+    force.setParticleType(int(i), 1)          # the integrator takes the types from the force (docs/types.md)
 
 n0, pi0, bulk_modulus, exponent = force.getTaitParameters()
 force.addTypeParameters(1, n0, pi0, 1.5 * bulk_modulus, exponent)   # same n0 and pi0: the same pressure at n0

@@ -88,6 +88,7 @@ RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticleDensities)
 RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticleVolumes)
 RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticlePressures)
 RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getVirial)
+RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::getParticleVirials)
 RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
 
 /* std::vector<double> results are returned as float64 numpy arrays. (Arguments use OpenMM's typemap, which takes

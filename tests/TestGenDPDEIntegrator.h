@@ -1,6 +1,6 @@
 /* Tests of GenDPDEIntegrator shared by every platform: a platform file defines `platform`, calls
- * runIntegratorTests(). The statistical tests (equilibrium identities, relaxation rate, order of the energy error)
- * are in python/tests/test_integrator_physics.py. */
+ * runIntegratorTests(). Particle types are tested in TestGenDPDEIntegratorTypes.h. The statistical tests (equilibrium
+ * identities, relaxation rate, order of the energy error) are in python/tests/test_integrator_physics.py. */
 
 #include "GenDPDEIntegrator.h"
 #include "TestScenes.h"
@@ -379,205 +379,11 @@ void testBadInput() {
     assertThrowsMentioning([&]() { noCutoff.step(1); }, {"cutoff", "setCutoffDistance"});
 }
 
-/**
- * The integrator's side of TestScenes::setMixtureTypes: the same types 7, -3, 0 in turn; type 7 with 3 C_V, type -3
- * with C_V/2, type 0 the integrator's; pairs (7, -3) with 2 gamma and kappa/2, (7, 7) with gamma/2 and 3 kappa,
- * (-3, 0) with no friction and 2 kappa, the others the integrator's. With sameAsDefaults, every entry repeats the
- * integrator's own values.
- */
-inline void setMixtureTypes(GenDPDEIntegrator& integrator, int numParticles, bool sameAsDefaults) {
-    for (int i = 0; i < numParticles; i++)
-        if (i % 3 != 2)
-            integrator.setParticleType(i, i % 3 == 0 ? 7 : -3);
-    const double c = integrator.getHeatCapacity(), g = integrator.getFriction(), k = integrator.getHeatConduction();
-    integrator.addTypeHeatCapacity(7, sameAsDefaults ? c : 3*c);
-    integrator.addTypeHeatCapacity(-3, sameAsDefaults ? c : 0.5*c);
-    integrator.addTypePair(7, -3, sameAsDefaults ? g : 2*g, sameAsDefaults ? k : 0.5*k);
-    integrator.addTypePair(7, 7, sameAsDefaults ? g : 0.5*g, sameAsDefaults ? k : 3*k);
-    integrator.addTypePair(-3, 0, sameAsDefaults ? g : 0.0, sameAsDefaults ? k : 2*k);
-}
+} // namespace IntegratorTests
 
-/**
- * Types whose parameters all equal the defaults give bit-identical trajectories to no types, in every mode (the
- * types select table entries and change no arithmetic); with their own parameters the trajectory differs.
- */
-void testIdenticalTypesAreBitwiseNoTypes() {
-    for (GenDPDEIntegrator::Mode mode : {GenDPDEIntegrator::Isoenergetic, GenDPDEIntegrator::Isothermal}) {
-        Run plain(4, 11), typed(4, 11), different(4, 11);
-        for (Run* run : {&typed, &different}) {
-            setMixtureTypes(run->scene, run == &typed);
-            setMixtureTypes(run->integrator, run->scene.system.getNumParticles(), run == &typed);
-        }
-        for (Run* run : {&plain, &typed, &different}) {
-            run->integrator.setMode(mode);
-            run->start();
-            run->integrator.step(100);
-        }
-        assertStatesIdentical(*plain.context, *typed.context, plain.integrator, typed.integrator,
-                              "types with the default parameters");
-        State a = plain.context->getState(State::Velocities), b = different.context->getState(State::Velocities);
-        ASSERT(!(a.getVelocities()[0] == b.getVelocities()[0]));
-    }
-}
+#include "TestGenDPDEIntegratorTypes.h"
 
-/**
- * A mixture (three types with different C_V, friction and conduction) conserves K + sum eps without conservative
- * forces to rounding error, as a single fluid does (each pair update is exact whatever the pair's parameters), and
- * the total momentum with them. Temperatures set per particle become eps_i = C_V(type) theta_i.
- */
-void testMixtureConservation() {
-    Run run(4, 12);
-    setMixtureTypes(run.scene, false);
-    const int n = run.scene.system.getNumParticles();
-    setMixtureTypes(run.integrator, n, false);
-    std::vector<double> temperatures(n);
-    for (int i = 0; i < n; i++)
-        temperatures[i] = temperature*(0.8 + 0.4*((i*37) % n)/n);
-    run.integrator.setParticleTemperatures(temperatures);
-    Context& context = run.start();
-    const std::vector<double> energies = run.integrator.getInternalEnergies();
-    for (int i : {0, 1, 2, 30, 31, 32}) {
-        const double capacity = heatCapacity*(i % 3 == 0 ? 3.0 : i % 3 == 1 ? 0.5 : 1.0);
-        assertRelative(capacity*temperatures[i], energies[i], 1e-15, "eps_i = C_V(type) theta_i");
-    }
-    Vec3 before;
-    for (int i = 0; i < n; i++)
-        before += context.getState(State::Velocities).getVelocities()[i]*particleMass;
-    run.integrator.step(1000);
-    Vec3 after;
-    State state = context.getState(State::Velocities);
-    double scale = 0;
-    for (int i = 0; i < n; i++) {
-        after += state.getVelocities()[i]*particleMass;
-        scale += particleMass*std::sqrt(state.getVelocities()[i].dot(state.getVelocities()[i]));
-    }
-    assertVectorClose(before, after, precisionTolerance(1e-10, 1e-6)*scale, "mixture: total momentum");
-
-    System free;
-    for (int i = 0; i < n; i++)
-        free.addParticle(particleMass);
-    GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
-    integrator.setCutoffDistance(cutoff);
-    setMixtureTypes(integrator, n, false);
-    integrator.setParticleTemperatures(temperatures);
-    Context freeContext(free, integrator, *platform);
-    freeContext.setPositions(run.scene.positions);
-    freeContext.setVelocitiesToTemperature(3*temperature, 7);
-    const double initial = integrator.getConservedEnergy();
-    integrator.step(1000);
-    assertRelative(initial, integrator.getConservedEnergy(), 1e-12, "mixture: K + sum eps without forces");
-}
-
-/**
- * Heat flow between two materials against the flux the model prescribes. Material A (type 1, C_V = 4000 k_B, 300 K)
- * fills x < 0 and material B (type 2, C_V = 1000 k_B, 75 K) x > 0, particles at rest on a lattice with no force and
- * no friction, so only conduction acts. Pairs (1, 2) have kappa_AB, pairs (1, 1) 3 kappa_AB, pairs (2, 2) the
- * integrator's kappa_AB/4. The heat A gains in a step is, from A-B pairs alone (A-A pairs move heat within A),
- *   dE_A = sum_{i in A, j in B} [kappa_AB omega_R^2 (1/theta_i - 1/theta_j) dt + alpha omega_R sqrt(dt) xi_ij],
- * with theta_i = eps_i/C_V(type i) and alpha^2 = 2 k_B kappa_AB. Over 400 steps the measured loss of A is compared
- * with the sum of the drift terms evaluated from the temperatures at the start of each step, within 4 sigma of the
- * noise (sigma^2 = sum over steps and A-B pairs of alpha^2 omega_R^2 dt; sigma is 3.5% of the flux here: on
- * Reference, expected -1386 kJ/mol, measured -1353, sigma 49). The temperatures
- * change by < 1e-3 per step, so evaluating the drift at the start of the step rather than when each pair is reached
- * biases the sum by < 1e-3 of itself. Using C_V of one type for both particles (theta_B 4 times too high), or the
- * default kappa for A-B pairs, changes the flux by a factor of about 4: far outside the tolerance.
- */
-void testTwoMaterialConduction() {
-    const int side = 6;
-    const double spacing = std::cbrt(1.0/referenceDensity);
-    System system;
-    std::vector<Vec3> positions;
-    std::vector<int> material;
-    for (int x = 0; x < side; x++)
-        for (int y = 0; y < side; y++)
-            for (int z = 0; z < side; z++) {
-                system.addParticle(particleMass);
-                positions.push_back(Vec3((x - side/2 + 0.5)*spacing, y*spacing, z*spacing));
-                material.push_back(x < side/2 ? 1 : 2);
-            }
-    const int n = positions.size();
-    const double kappa = 40.0/stepSize;   // kappa dt = 40 kJ K/mol
-    const double capacityA = 4000*boltzmann, capacityB = 1000*boltzmann;
-    GenDPDEIntegrator integrator(stepSize, 0.0, 0.25*kappa, capacityB);
-    integrator.setCutoffDistance(cutoff);
-    integrator.setRandomNumberSeed(41);
-    std::vector<double> initialTemperatures;
-    for (int i = 0; i < n; i++) {
-        integrator.setParticleType(i, material[i]);
-        initialTemperatures.push_back(material[i] == 1 ? 300.0 : 75.0);
-    }
-    integrator.addTypeHeatCapacity(1, capacityA);
-    integrator.addTypePair(1, 2, 0.0, kappa);
-    integrator.addTypePair(1, 1, 0.0, 3*kappa);
-    integrator.setParticleTemperatures(initialTemperatures);
-    Context context(system, integrator, *platform);
-    context.setPositions(positions);
-    // The A-B pairs and their omega_R^2, written out here.
-    std::vector<std::pair<int, int>> pairs;
-    std::vector<double> omega2;
-    for (int i = 0; i < n; i++)
-        for (int j = 0; j < n; j++)
-            if (material[i] == 1 && material[j] == 2) {
-                const Vec3 d = positions[i] - positions[j];
-                const double r = std::sqrt(d.dot(d));
-                if (r < cutoff) {
-                    pairs.emplace_back(i, j);
-                    omega2.push_back((1 - r/cutoff)*(1 - r/cutoff));
-                }
-            }
-    auto energyOfA = [&]() {
-        const std::vector<double> e = integrator.getInternalEnergies();
-        double sum = 0;
-        for (int i = 0; i < n; i++)
-            sum += material[i] == 1 ? e[i] : 0.0;
-        return sum;
-    };
-    const double initialA = energyOfA(), initialTotal = totalInternalEnergy(integrator);
-    double expected = 0, variance = 0;
-    for (int step = 0; step < 400; step++) {
-        const std::vector<double> e = integrator.getInternalEnergies();
-        for (size_t p = 0; p < pairs.size(); p++) {
-            const int i = pairs[p].first, j = pairs[p].second;
-            expected += kappa*omega2[p]*(capacityA/e[i] - capacityB/e[j])*stepSize;
-            variance += 2*boltzmann*kappa*omega2[p]*stepSize;
-        }
-        integrator.step(1);
-    }
-    const double measured = energyOfA() - initialA;
-    ASSERT(expected < -20*std::sqrt(variance));   // the test is sensitive: the flux is far above the noise
-    assertClose(expected, measured, 4*std::sqrt(variance), "heat gained by material A over 400 steps");
-    assertRelative(initialTotal, totalInternalEnergy(integrator), 1e-13, "sum eps of the two materials");
-}
-
-/** The type setters refuse bad values, duplicates and unknown types, naming the entry, the parameter and value. */
-void testTypesBadInput() {
-    GenDPDEIntegrator integrator(0.001, 1, 1, 1);
-    integrator.addTypePair(1, 2, 5.0, 6.0);
-    integrator.addTypeHeatCapacity(2, 3.0);
-    assertThrowsMentioning([&]() { integrator.addTypePair(2, 1, 5.0, 6.0); }, {"types 2, 1", "already", "entry 0"});
-    assertThrowsMentioning([&]() { integrator.addTypePair(1, 3, -5.0, 6.0); }, {"type pair 1", "friction", "-5"});
-    assertThrowsMentioning([&]() { integrator.addTypePair(1, 3, 5.0, NAN); }, {"heat conduction", "nan"});
-    assertThrowsMentioning([&]() { integrator.addTypeHeatCapacity(4, 0.0); }, {"type 4", "heat capacity", "= 0"});
-    assertThrowsMentioning([&]() { integrator.addTypeHeatCapacity(2, 1.0); }, {"type 2", "already"});
-    assertThrowsMentioning([&]() { integrator.setTypePairParameters(3, 1, 2, 1, 1); }, {"type pair index", "3"});
-    assertThrowsMentioning([&]() { integrator.setParticleType(-4, 1); }, {"particle index", "-4"});
-    ASSERT_EQUAL(1, integrator.getNumTypePairs());
-    ASSERT_EQUAL(1, integrator.getNumTypeHeatCapacities());
-    // At Context creation: a pair naming a type that no particle has, and a particle beyond the System.
-    Run run(4, 13);
-    for (int i = 0; i < 10; i++)
-        run.integrator.setParticleType(i, 1);
-    run.integrator.addTypePair(1, 5, 1.0, 1.0);
-    assertThrowsMentioning([&]() { run.start(); }, {"type pair 0", "type 5", "no particle", "0, 1"});
-    Run far(4, 14);
-    far.integrator.setParticleType(64, 1);
-    assertThrowsMentioning([&]() { far.start(); }, {"particle 64", "64 particles"});
-    // An entry added after the Context was created is checked at the next step.
-    Run later(4, 15);
-    later.start();
-    later.integrator.addTypeHeatCapacity(9, 1.0);
-    assertThrowsMentioning([&]() { later.integrator.step(1); }, {"type heat capacity 0", "type 9"});
-}
+namespace IntegratorTests {
 
 void runIntegratorTests() {
     testBadInput();
@@ -593,6 +399,7 @@ void runIntegratorTests() {
     testIdenticalTypesAreBitwiseNoTypes();
     testMixtureConservation();
     testTwoMaterialConduction();
+    testParticleTypesFromTheForce();
 }
 
 /** The state a run ends in, for comparing platforms. */

@@ -3,6 +3,7 @@
 
 /* Small liquid-argon-like Systems shared by the C++ tests (docs/theory.md section 9 in OpenMM units). */
 
+#include "BruteForceGenDPDE.h"
 #include "GenDPDEForce.h"
 #include "internal/LiquidArgon.h"
 #include "OpenMM.h"
@@ -120,25 +121,52 @@ inline void setMixtureTypes(Scene& scene, bool sameAsForce) {
     }
 }
 
+/** The estimators every test runs: all those the brute-force oracle evaluates (BruteForceGenDPDE.h). */
+inline std::vector<GenDPDEForce::DensityEstimator> testEstimators() {
+    std::vector<GenDPDEForce::DensityEstimator> result;
+    for (BruteForce::Estimator estimator : BruteForce::estimators)
+        result.push_back((GenDPDEForce::DensityEstimator) estimator);
+    return result;
+}
+
+/** "VA", "VB", ... */
+inline std::string estimatorLabel(GenDPDEForce::DensityEstimator estimator) {
+    return BruteForce::estimatorName(estimator);
+}
+
 /**
- * The scenes that every force test runs through: V-A and V-B, periodic and open, each as a liquid (216 particles
- * on a jittered lattice at n0), a compressed liquid (343 particles at 5 n0), a gas of 27 dimers and (V-B only, which
- * allows isolated particles) a dilute random gas at 0.1 n0. `jitter` is the lattice jitter (fraction of the
+ * A liquid slab in vacuum: a lattice liquid of cellsPerSide^3 particles at `density` (nm^-3) in a periodic box three
+ * times as long along z, the liquid in the middle third (two free surfaces normal to z).
+ */
+inline Scene makeSlab(int cellsPerSide, double density, double jitter, GenDPDEForce::DensityEstimator estimator,
+                      unsigned seed) {
+    Scene scene = makeLatticeLiquid(cellsPerSide, density, jitter, estimator, true, seed);
+    const double edge = scene.box[0][0];
+    setBox(scene, scene.box[0], scene.box[1], Vec3(0, 0, 3*edge));
+    for (Vec3& r : scene.positions)
+        r[2] += edge;
+    return scene;
+}
+
+/**
+ * The scenes that every force test runs through: every estimator (testEstimators), periodic and open, each as a
+ * liquid (216 particles on a jittered lattice at n0), a compressed liquid (343 particles at 5 n0), a gas of 27 dimers
+ * and, for estimators that allow isolated particles (not V-A), a dilute random gas at 0.1 n0. Open boundaries give
+ * the liquids free surfaces, where V-C's surface factor works. `jitter` is the lattice jitter (fraction of the
  * spacing); the four scenes use seeds firstSeed ... firstSeed + 3. check(scene, label) is called on each.
  */
 inline void forEachStandardScene(double jitter, unsigned firstSeed,
                                  const std::function<void(Scene&, const std::string&)>& check) {
-    for (GenDPDEForce::DensityEstimator estimator : {GenDPDEForce::VA, GenDPDEForce::VB})
+    for (GenDPDEForce::DensityEstimator estimator : testEstimators())
         for (bool periodic : {true, false}) {
-            std::string label = std::string(estimator == GenDPDEForce::VA ? "VA" : "VB")
-                                + (periodic ? " periodic" : " open");
+            std::string label = estimatorLabel(estimator) + (periodic ? " periodic" : " open");
             Scene liquid = makeLatticeLiquid(6, referenceDensity, jitter, estimator, periodic, firstSeed);
             check(liquid, label + " liquid");
             Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, jitter, estimator, periodic, firstSeed + 1);
             check(compressed, label + " compressed");
             Scene dimers = makeDimerGas(27, estimator, periodic, firstSeed + 2);
             check(dimers, label + " dimers");
-            if (estimator == GenDPDEForce::VB) {
+            if (BruteForce::allowsIsolatedParticles(estimator)) {
                 Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, firstSeed + 3);
                 check(gas, label + " dilute");
             }

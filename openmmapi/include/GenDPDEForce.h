@@ -171,11 +171,20 @@ public:
      * the pressure is P = (2K + W)/(3 V_box). It equals -3 V_box dU/dV_box under uniform scaling.
      */
     double getVirial(OpenMM::Context& context) const;
+    /**
+     * The virial tensor of every particle (in kJ/mol) at the Context's current positions: nine numbers per particle,
+     * row-major, W_i[3a + b] = sum_j (1/2) F_ij,a r_ij,b with F_ij the force on i from its pair with j and
+     * r_ij = r_i - r_j, so that each pair's tensor is shared equally by its two particles. They add up to the
+     * system's virial tensor W_ab = -dU/d epsilon_ab (the energy's response to the strain r -> (1 + epsilon) r of
+     * positions and box), whose trace is getVirial(); the pressure tensor of the system is
+     * P_ab = (sum_i m_i v_i,a v_i,b + W_ab)/V_box. Computed on request only, by the platform's own kernels.
+     */
+    std::vector<double> getParticleVirials(OpenMM::Context& context) const;
 protected:
     OpenMM::ForceImpl* createImpl() const override;
 private:
     GenDPDEForceImpl& getImpl(OpenMM::Context& context) const;
-    const GenDPDEObservables& observablesInContext(OpenMM::Context& context) const;
+    const GenDPDEObservables& observablesInContext(OpenMM::Context& context, bool particleVirials = false) const;
     double cutoff, cutoffScaling;
     double referenceDensity, referencePressure, bulkModulus, exponent;
     NonbondedMethod nonbondedMethod;

@@ -32,9 +32,12 @@ class IntegrateGenDPDEStepKernel;
  * v_n = v + (dt/2) F/m. Over a run this is the sequence [velocity Verlet(dt)] [pair updates(dt)] repeated, with
  * one force evaluation per step.
  *
- * Pair updates. The pairs are visited sequentially at fixed positions in a fixed order that depends only on the set
- * of pairs: sorted by (i, j) with i < j, with the lists of each block of four consecutive particles interleaved
- * (so that consecutive updates rarely share a particle, which lets the processor overlap them). Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
+ * Pair updates. The pairs are visited sequentially at fixed positions in a fixed order, a pure function of the
+ * positions, the box and the set of pairs (docs/theory.md section 6): the pairs grouped by 2 x 2 x 2 blocks of cells
+ * at least the pair range wide, the blocks in eight colours (two blocks of one colour share no particle, so a
+ * parallel platform runs them at once with the same result), within a block sorted by (i, j) with i < j and the
+ * lists of each four consecutive first particles interleaved (so that consecutive updates rarely share a particle).
+ * Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
  * the random impulse) followed by an implicit half solved exactly for the final relative velocity, i.e. a
  * Crank-Nicolson step of the pair's relative motion along e_ij, which keeps the stationary variance of the pair's
  * relative velocity exact for any dt. The kinetic energy the update removes from the pair goes, in equal halves,
@@ -69,8 +72,11 @@ class IntegrateGenDPDEStepKernel;
  * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
  * simulation has become unstable (reduce the step size).
  *
- * Particle types (docs/types.md). Every particle has a type, an integer (0 unless setParticleType() says otherwise;
- * set them as on the System's GenDPDEForce). A type may have its own heat capacity (addTypeHeatCapacity()), and a
+ * Particle types (docs/types.md). Every particle has a type, an integer (0 unless set). A particle's type is one
+ * setting: set the types on the System's GenDPDEForce and the integrator takes them from it when the Context is
+ * created (as it takes the pair range), or set them here (for a System whose GenDPDEForce treats every particle
+ * alike, or that has none), or set the same types on both; types that differ for a particle are refused when the
+ * Context is created, naming the particle. A type may have its own heat capacity (addTypeHeatCapacity()), and a
  * pair of types its own friction and heat conduction (addTypePair()); the others use the integrator's. A pair
  * update of particles of types a and b then uses gamma_ab, kappa_ab and theta_i = eps_i/C_V(a), theta_j =
  * eps_j/C_V(b), with the Ito term of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2; the total
@@ -226,10 +232,13 @@ private:
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;
-    /** eps_i at Context creation: from initialTemperatures, else the bath temperature, else all zero (not set). */
-    std::vector<double> initialInternalEnergies(const OpenMM::System& system) const;
-    /** C_V of each particle of the System (kJ/(mol K)), from the particle types and the heat capacities now. */
-    std::vector<double> particleHeatCapacities(const OpenMM::System& system) const;
+    /**
+     * eps_i at Context creation: from initialTemperatures, else the bath temperature, else all zero (not set); types:
+     * the particle types the Context will use.
+     */
+    std::vector<double> initialInternalEnergies(const OpenMM::System& system, const std::map<int, int>& types) const;
+    /** C_V of each particle of the System (kJ/(mol K)), from these particle types and the heat capacities now. */
+    std::vector<double> particleHeatCapacities(const OpenMM::System& system, const std::map<int, int>& types) const;
     void checkTypeHeatCapacity(int index, int type, double heatCapacity) const;
     void checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const;
     /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
@@ -243,7 +252,7 @@ private:
     // the configured initial condition: these temperatures, or, if empty, every particle at `temperature`.
     std::vector<double> initialTemperatures;
     std::map<int, int> particleTypes;
-    std::map<int, int> contextParticleTypes;   // the particle types read when the bound Context was created
+    std::map<int, int> contextParticleTypes;   // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)
     struct TypeHeatCapacity {
         int type;
         double heatCapacity;

@@ -7,10 +7,14 @@
 #include "openmm/KernelImpl.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
+#include <map>
 #include <string>
 #include <vector>
 
 namespace GenDPDEPlugin {
+
+class GenDPDEHostPairList;     // platforms/reference/src/NeighborList.h
+class CommonGenDPDECellGrid;   // platforms/common/src/CommonGenDPDECellGrid.h
 
 /** Per-particle observables of a GenDPDEForce at one configuration (OpenMM units). */
 struct GenDPDEObservables {
@@ -19,6 +23,44 @@ struct GenDPDEObservables {
     std::vector<double> volumes;              // V_i (nm^3)
     std::vector<double> pressures;            // pi_i (kJ/mol/nm^3)
     double virial = 0.0;                      // W = sum_{i<j} r_ij . F_ij (kJ/mol)
+    /** W_i,ab = sum_j (1/2) F_ij,a r_ij,b per particle, row-major (9 per particle, kJ/mol); only if asked for. */
+    std::vector<double> particleVirials;
+};
+
+/**
+ * The pairs a force kernel found in its last evaluation, lent to the integrator kernel of the same platform so that
+ * its sweep need not search them again. Each platform's integrator asks for the form it can use (a host list, a
+ * device cell grid) and gets null for any other, so any force kernel can meet any integrator kernel: without a source
+ * it can use, the integrator finds the pairs itself.
+ */
+class GenDPDEPairSource {
+public:
+    virtual ~GenDPDEPairSource() {}
+    /** The range within which the source holds every pair (nm); 0 before any evaluation. */
+    double getCutoff() const {
+        return foundCutoff;
+    }
+    /** The Context's step count at the evaluation that found the pairs: they are those of that step's positions. */
+    long long getStepCount() const {
+        return foundStep;
+    }
+    /** The pairs as a list on the host (Reference, CPU), or null. */
+    virtual GenDPDEHostPairList* getHostPairList() {
+        return nullptr;
+    }
+    /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
+    virtual CommonGenDPDECellGrid* getDeviceCellGrid() {
+        return nullptr;
+    }
+protected:
+    /** An evaluation has just found every pair closer than cutoff (nm) at the positions of this step. */
+    void pairsFound(double cutoff, long long step) {
+        foundCutoff = cutoff;
+        foundStep = step;
+    }
+private:
+    double foundCutoff = 0.0;
+    long long foundStep = -1;
 };
 
 /** The kernel that evaluates a GenDPDEForce. */
@@ -35,8 +77,18 @@ public:
     virtual double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) = 0;
     /** Copy the parameters that updateParametersInContext() may change. */
     virtual void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) = 0;
-    /** The observables at the Context's current positions. */
-    virtual const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) = 0;
+    /**
+     * The observables at the Context's current positions; the per-particle virial tensors only if particleVirials
+     * (they cost a pass of their own, which no step pays).
+     */
+    virtual const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) = 0;
+    /**
+     * The pairs of the last evaluation, for an integrator kernel of the same platform (valid until the next
+     * evaluation), or null if this kernel lends none.
+     */
+    virtual GenDPDEPairSource* getPairSource() {
+        return nullptr;
+    }
 };
 
 /** The kernel that advances a GenDPDEIntegrator by one step and owns the internal energies. */
@@ -53,18 +105,21 @@ public:
      * @param cutoff            the range of the pair interactions (nm); 0 if unknown (then no pair sweep may run)
      * @param seed              the random number seed actually used
      * @param internalEnergies  the initial eps_i (kJ/mol), one per particle
+     * @param particleTypes     the particles' types (particle -> type, others 0), the integrator's or the
+     *                          GenDPDEForce's (GenDPDEIntegratorUtilities::particleTypes), checked already
      */
     virtual void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
-                            const std::vector<double>& internalEnergies) = 0;
+                            const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) = 0;
     /**
      * One step. The forces of the integration groups at the current positions have just been computed.
      *
-     * @param terms            what the step contains (GenDPDEIntegratorUtilities::stepTerms)
-     * @param pairListSource   a GenDPDEForce among those just evaluated whose pairs (cutoff = the pair range) the
-     *                         sweep may reuse, or null: then the kernel finds the pairs itself
+     * @param terms        what the step contains (GenDPDEIntegratorUtilities::stepTerms)
+     * @param pairSource   the pairs of a GenDPDEForce just evaluated with the pair range as its cutoff
+     *                     (GenDPDEIntegratorUtilities::findPairSource), which the sweep may reuse if it is of a form
+     *                     this kernel can use and belongs to this step, or null: then the kernel finds the pairs
      */
     virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                         const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) = 0;
+                         const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) = 0;
     /** The kinetic energy with on-step velocities v + (dt/2) F/m (kJ/mol). */
     virtual double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
     virtual const std::vector<double>& getInternalEnergies() const = 0;

@@ -1,5 +1,6 @@
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "internal/LiquidArgon.h"
 #include "internal/ParameterChecks.h"
@@ -10,6 +11,10 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 using namespace ParameterChecks;
+
+// The physics core numbers the estimators as the API does.
+static_assert(GenDPDEForce::VA == GENDPDE_ESTIMATOR_VA && GenDPDEForce::VB == GENDPDE_ESTIMATOR_VB
+              && GenDPDEForce::VC == GENDPDE_ESTIMATOR_VC, "GenDPDEPhysicsCore.h numbers the estimators differently");
 
 namespace {
 // Default Tait parameters: liquid argon (internal/LiquidArgon.h) converted to OpenMM units.
@@ -174,8 +179,8 @@ void GenDPDEForce::updateParametersInContext(Context& context) {
     getImpl(context).updateParametersInContext(getContextImpl(context));
 }
 
-const GenDPDEObservables& GenDPDEForce::observablesInContext(Context& context) const {
-    return getImpl(context).getObservables(const_cast<GenDPDEForce*>(this)->getContextImpl(context));
+const GenDPDEObservables& GenDPDEForce::observablesInContext(Context& context, bool particleVirials) const {
+    return getImpl(context).getObservables(const_cast<GenDPDEForce*>(this)->getContextImpl(context), particleVirials);
 }
 
 std::vector<double> GenDPDEForce::getPrimitiveDensities(Context& context) const {
@@ -196,4 +201,8 @@ std::vector<double> GenDPDEForce::getParticlePressures(Context& context) const {
 
 double GenDPDEForce::getVirial(Context& context) const {
     return observablesInContext(context).virial;
+}
+
+std::vector<double> GenDPDEForce::getParticleVirials(Context& context) const {
+    return observablesInContext(context, true).particleVirials;
 }

@@ -36,6 +36,10 @@ void GenDPDEForceImpl::updateParametersInContext(ContextImpl& context) {
     context.systemChanged();
 }
 
-const GenDPDEObservables& GenDPDEForceImpl::getObservables(ContextImpl& context) {
-    return kernel.getAs<CalcGenDPDEForceKernel>().getObservables(context);
+const GenDPDEObservables& GenDPDEForceImpl::getObservables(ContextImpl& context, bool particleVirials) {
+    return kernel.getAs<CalcGenDPDEForceKernel>().getObservables(context, particleVirials);
+}
+
+GenDPDEPairSource* GenDPDEForceImpl::getPairSource() {
+    return kernel.getAs<CalcGenDPDEForceKernel>().getPairSource();
 }

@@ -3,20 +3,14 @@
 #include "GenDPDEKernels.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
-#include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
-#include "openmm/serialization/SerializationNode.h"
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <iostream>
-#include <locale>
 #include <random>
 #include <sstream>
 
@@ -167,9 +161,9 @@ void GenDPDEIntegrator::setTypePairParameters(int index, int type1, int type2, d
     typePairs[index] = {type1, type2, friction, heatConduction};
 }
 
-std::vector<double> GenDPDEIntegrator::particleHeatCapacities(const System& system) const {
-    const ParticleTypeIndex types(context != nullptr ? contextParticleTypes : particleTypes, system.getNumParticles(),
-                                  integratorName);
+std::vector<double> GenDPDEIntegrator::particleHeatCapacities(const System& system,
+                                                               const std::map<int, int>& typeOfParticle) const {
+    const ParticleTypeIndex types(typeOfParticle, system.getNumParticles(), integratorName);
     return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
 }
 
@@ -219,7 +213,7 @@ void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& tempe
     if ((int) temperatures.size() != numParticles)
         reject(integratorName, "number of particle temperatures", temperatures.size(), "",
                "the number of particles in the System, " + std::to_string(numParticles));
-    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     std::vector<double> energies(numParticles);
     for (int i = 0; i < numParticles; i++)
         energies[i] = capacity[i]*temperatures[i];
@@ -231,7 +225,7 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: setInternalEnergiesToTemperature() needs a Context");
     // eps_i ~ Gamma(C_i/k_B + 1, k_B T), each a pure function of (randomSeed, i): the same on every machine.
-    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     const double scale = Physics::Boltzmann*temperature;
     std::vector<double> energies(capacity.size());
     for (size_t i = 0; i < energies.size(); i++) {
@@ -271,7 +265,7 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
         throw OpenMMException(message.str());
     }
     std::vector<double> temperatures = boundKernel().getInternalEnergies();
-    const std::vector<double> capacity = particleHeatCapacities(context->getSystem());
+    const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     for (size_t i = 0; i < temperatures.size(); i++)
         temperatures[i] /= capacity[i];
     return temperatures;
@@ -297,14 +291,15 @@ void GenDPDEIntegrator::checkSystem(const System& system) const {
     }
 }
 
-std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& system) const {
+std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& system,
+                                                                const std::map<int, int>& types) const {
     // docs/integrator.md, "Temperatures and internal energies": the temperatures set before the Context, else the
     // bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for them).
     const int numParticles = system.getNumParticles();
     if (!initialTemperatures.empty() && (int) initialTemperatures.size() != numParticles)
         reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
                "the number of particles in the System, " + std::to_string(numParticles));
-    const std::vector<double> capacity = particleHeatCapacities(system);
+    const std::vector<double> capacity = particleHeatCapacities(system, types);
     std::vector<double> energies(numParticles);
     for (int i = 0; i < numParticles; i++)
         energies[i] = capacity[i]*(initialTemperatures.empty() ? temperature : initialTemperatures[i]);
@@ -322,9 +317,11 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox(integratorName, range, box);
     }
-    // The types, and every type named by an entry, are checked here, before anything is bound.
-    typePairTable(*this, ParticleTypeIndex(particleTypes, system.getNumParticles(), integratorName));
-    const std::vector<double> energies = initialInternalEnergies(system);
+    // The types (the integrator's or the GenDPDEForce's), and every type named by an entry, are checked here, before
+    // anything is bound.
+    const std::map<int, int> types = GenDPDEIntegratorUtilities::particleTypes(system, *this);
+    typePairTable(*this, ParticleTypeIndex(types, system.getNumParticles(), integratorName));
+    const std::vector<double> energies = initialInternalEnergies(system, types);
     int seed = randomSeed;
     if (seed == 0) {
         std::random_device device;
@@ -332,9 +329,9 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
             seed = (int) device();
     }
     kernel = contextRef.getPlatform().createKernel(IntegrateGenDPDEStepKernel::Name(), contextRef);
-    kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies);
+    kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies, types);
     pairRange = range;
-    contextParticleTypes = particleTypes;
+    contextParticleTypes = types;
     context = &contextRef;
     owner = &contextRef.getOwner();
 }
@@ -369,9 +366,9 @@ void GenDPDEIntegrator::step(int steps) {
         context->updateContextState();
         context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
         // The forces of the integration groups were evaluated just now: a GenDPDEForce among them has its pairs.
-        GenDPDEForceImpl* pairListSource = terms.pairSweep
-                ? GenDPDEIntegratorUtilities::findPairListSource(*context, *this, pairRange) : nullptr;
-        boundKernel().execute(*context, *this, terms, pairListSource);
+        GenDPDEPairSource* pairSource = terms.pairSweep
+                ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
+        boundKernel().execute(*context, *this, terms, pairSource);
     }
 }
 
@@ -408,117 +405,4 @@ void GenDPDEIntegrator::checkInternalEnergies(const std::vector<double>& energie
                     << Ranges::internalEnergy.maximum << "] kJ/mol (or all zero, not set)";
             throw OpenMMException(message.str());
         }
-}
-
-// Checkpoints (docs/integrator.md): magic, version, seed in use, count, the internal energies (binary, exact), and
-// the magic again as an end mark. Version 1 (0.1.x) had no magic: version, seed, a flag byte, count, energies.
-namespace {
-const std::int32_t checkpointMagic = 0x45504447;   // "GDPE"
-const std::int32_t checkpointVersion = 2;
-
-template <class T>
-void readOrFail(std::istream& stream, T& value, const char* what) {
-    stream.read(reinterpret_cast<char*>(&value), sizeof(T));
-    if (!stream)
-        throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint ends before its ") + what
-                              + " (truncated, or not written by a GenDPDEIntegrator)");
-}
-} // namespace
-
-void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
-    const IntegrateGenDPDEStepKernel& k = boundKernel();
-    const std::vector<double>& energies = k.getInternalEnergies();
-    const std::int32_t version = checkpointVersion, seed = k.getSeed(), count = energies.size();
-    stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
-    stream.write((const char*) &version, sizeof(version));
-    stream.write((const char*) &seed, sizeof(seed));
-    stream.write((const char*) &count, sizeof(count));
-    stream.write((const char*) energies.data(), sizeof(double)*count);
-    stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
-}
-
-void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
-    // Everything is read and checked before the integrator's state changes.
-    std::int32_t first, version, seed, count;
-    readOrFail(stream, first, "header");
-    if (first == checkpointMagic)
-        readOrFail(stream, version, "version");
-    else if (first == 1)
-        version = 1;
-    else
-        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds no GenDPDEIntegrator data (it was written by "
-                              "another integrator, or is corrupt)");
-    if (version < 1 || version > checkpointVersion)
-        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds integrator data of version "
-                              + std::to_string(version) + "; this build reads versions 1 to "
-                              + std::to_string(checkpointVersion));
-    readOrFail(stream, seed, "random seed");
-    if (version == 1) {
-        char unusedFlag;
-        readOrFail(stream, unusedFlag, "flags");
-    }
-    readOrFail(stream, count, "particle count");
-    const int numParticles = context->getSystem().getNumParticles();
-    if (count != numParticles)
-        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds " + std::to_string(count)
-                              + " internal energies, the System has " + std::to_string(numParticles) + " particles");
-    std::vector<double> energies(count);
-    if (count > 0) {
-        stream.read((char*) energies.data(), sizeof(double)*count);
-        if (!stream)
-            throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its internal energies (truncated)");
-    }
-    if (version >= 2) {
-        std::int32_t end;
-        readOrFail(stream, end, "end mark");
-        if (end != checkpointMagic)
-            throw OpenMMException("GenDPDEIntegrator: the checkpoint's integrator data has no end mark (corrupt)");
-    }
-    checkInternalEnergies(energies, "the checkpoint");
-    IntegrateGenDPDEStepKernel& k = boundKernel();
-    k.setSeed(seed);
-    k.setInternalEnergies(energies);
-}
-
-// States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies as exact hex floats.
-// Version 2 dropped version 1's temperaturesSet flag (an unset state is all zeros), which is still accepted.
-void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
-    const IntegrateGenDPDEStepKernel& k = boundKernel();
-    std::string text;
-    char buffer[40];
-    for (double e : k.getInternalEnergies()) {
-        std::snprintf(buffer, sizeof(buffer), "%a ", e);
-        text += buffer;
-    }
-    node.setIntProperty("GenDPDEIntegratorVersion", 2);
-    node.setIntProperty("seedInUse", k.getSeed());
-    node.setStringProperty("internalEnergies", text);
-}
-
-void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
-    // Everything is read and checked before the integrator's state changes.
-    if (!node.hasProperty("internalEnergies") || !node.hasProperty("GenDPDEIntegratorVersion")
-            || !node.hasProperty("seedInUse"))
-        throw OpenMMException("GenDPDEIntegrator: the State does not hold GenDPDEIntegrator parameters (it was saved "
-                              "with another integrator, or without getIntegratorParameters=True)");
-    const int version = node.getIntProperty("GenDPDEIntegratorVersion");
-    if (version < 1 || version > 2)
-        throw OpenMMException("GenDPDEIntegrator: the State holds integrator parameters of version "
-                              + std::to_string(version) + "; this build reads versions 1 to 2");
-    std::vector<double> energies;
-    std::istringstream text(node.getStringProperty("internalEnergies"));
-    text.imbue(std::locale::classic());
-    std::string token;
-    while (text >> token) {
-        char* end;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != '\0')
-            throw OpenMMException("GenDPDEIntegrator: the State's internal energies are corrupt: '" + token
-                                  + "' (entry " + std::to_string(energies.size()) + ") is not a number");
-        energies.push_back(value);
-    }
-    checkInternalEnergies(energies, "the State");
-    IntegrateGenDPDEStepKernel& k = boundKernel();
-    k.setSeed(node.getIntProperty("seedInUse"));
-    k.setInternalEnergies(energies);
 }

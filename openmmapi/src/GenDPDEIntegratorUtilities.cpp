@@ -46,8 +46,8 @@ double GenDPDEIntegratorUtilities::pairRange(const System& system, const GenDPDE
     return range;
 }
 
-GenDPDEForceImpl* GenDPDEIntegratorUtilities::findPairListSource(ContextImpl& context,
-        const GenDPDEIntegrator& integrator, double pairRange) {
+GenDPDEPairSource* GenDPDEIntegratorUtilities::findPairSource(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                              double pairRange) {
     const bool periodic = context.getSystem().usesPeriodicBoundaryConditions();
     for (ForceImpl* impl : context.getForceImpls()) {
         GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
@@ -56,9 +56,60 @@ GenDPDEForceImpl* GenDPDEIntegratorUtilities::findPairListSource(ContextImpl& co
         const GenDPDEForce& force = forceImpl->getOwner();
         if (force.getCutoffDistance() == pairRange && force.usesPeriodicBoundaryConditions() == periodic
                 && (integrator.getIntegrationForceGroups() & (1<<force.getForceGroup())) != 0)
-            return forceImpl;
+            return forceImpl->getPairSource();
     }
     return nullptr;
+}
+
+namespace {
+
+/** Throw, naming the first particle (in index order) whose type differs between two settings of the types. */
+void requireSameTypes(const std::map<int, int>& first, const std::string& firstName,
+                      const std::map<int, int>& second, const std::string& secondName, int numParticles) {
+    auto typeOf = [](const std::map<int, int>& types, int particle) {
+        const auto entry = types.find(particle);
+        return entry == types.end() ? 0 : entry->second;
+    };
+    std::vector<int> named;
+    for (const auto& entry : first)
+        named.push_back(entry.first);
+    for (const auto& entry : second)
+        named.push_back(entry.first);
+    std::sort(named.begin(), named.end());
+    for (int particle : named)
+        if (particle < numParticles && typeOf(first, particle) != typeOf(second, particle))
+            throw OpenMMException("GenDPDEIntegrator: particle " + std::to_string(particle) + " has type "
+                    + std::to_string(typeOf(first, particle)) + " on " + firstName + " but type "
+                    + std::to_string(typeOf(second, particle)) + " on " + secondName + ". A particle's type is one "
+                    "setting: set the types on the GenDPDEForce (the integrator then takes them), or the same types "
+                    "on both (docs/types.md)");
+}
+
+} // namespace
+
+std::map<int, int> GenDPDEIntegratorUtilities::particleTypes(const System& system,
+                                                             const GenDPDEIntegrator& integrator) {
+    const std::map<int, int>* forceTypes = nullptr;
+    std::string forceName;
+    for (int i = 0; i < system.getNumForces(); i++) {
+        const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
+        if (force == nullptr || force->getParticleTypes().empty())
+            continue;
+        const std::string name = "the GenDPDEForce (force " + std::to_string(i) + " of the System)";
+        if (forceTypes == nullptr) {
+            forceTypes = &force->getParticleTypes();
+            forceName = name;
+        }
+        else
+            requireSameTypes(*forceTypes, forceName, force->getParticleTypes(), name, system.getNumParticles());
+    }
+    const std::map<int, int>& own = integrator.getParticleTypes();
+    if (forceTypes == nullptr)
+        return own;
+    if (own.empty())
+        return *forceTypes;
+    requireSameTypes(own, "the GenDPDEIntegrator", *forceTypes, forceName, system.getNumParticles());
+    return own;
 }
 
 std::string GenDPDEIntegratorUtilities::nonFiniteForceMessage(int particle, const Vec3& force, long long step) {

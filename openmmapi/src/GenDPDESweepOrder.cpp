@@ -56,22 +56,22 @@ std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double rang
     return cells;
 }
 
-int GenDPDESweepOrder::blockSlots(const std::array<int, 3>& numBlocks, std::vector<int>& slotOfBlock,
+int GenDPDESweepOrder::blockRanks(const std::array<int, 3>& numBlocks, std::vector<int>& rankOfBlock,
                                   std::vector<int>& groupStart) {
     const int totalBlocks = numBlocks[0]*numBlocks[1]*numBlocks[2];
-    slotOfBlock.resize(totalBlocks);
+    rankOfBlock.resize(totalBlocks);
     groupStart.assign(1, 0);
-    int slot = 0;
+    int rank = 0;
     for (int colour = 0; colour < numColours; colour++) {
         for (int block = 0; block < totalBlocks; block++) {
             const int bx = block % numBlocks[0], by = (block/numBlocks[0]) % numBlocks[1];
             const int bz = block/(numBlocks[0]*numBlocks[1]);
             if ((bx % 2) + 2*(by % 2) + 4*(bz % 2) == colour)
-                slotOfBlock[block] = slot++;
+                rankOfBlock[block] = rank++;
         }
-        groupStart.push_back(slot);
+        groupStart.push_back(rank);
     }
-    return slot;
+    return rank;
 }
 
 void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
@@ -119,18 +119,18 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
                               int numThreads) {
     computeCells(positions, boxVectors, periodic, range, numThreads);
 
-    // Slots: the blocks in sweep order (colour by colour, by block index within a colour), then one slot for the
+    // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
     // pairs whose cells are not adjacent.
-    int slot = blockSlots(numBlocks, slotOfBlock, groupStart);
-    const int extraSlot = slot++;
-    groupStart.push_back(slot);
+    int rank = blockRanks(numBlocks, rankOfBlock, groupStart);
+    const int extraRank = rank++;
+    groupStart.push_back(rank);
 
-    // Each pair's slot. Along each direction the home cell is the one the other follows (d = c_j - c_i, taken
-    // modulo n_k into [-1, 1] if periodic); a pair with |d| > 1 along some direction goes to the extra slot.
-    pairSlot.resize(numPairs);
+    // Each pair's rank. Along each direction the home cell is the one the other follows (d = c_j - c_i, taken
+    // modulo n_k into [-1, 1] if periodic); a pair with |d| > 1 along some direction goes to the extra rank.
+    pairRank.resize(numPairs);
     const std::array<int, 3>* cell = particleCell.data();
-    const int* blockSlot = slotOfBlock.data();
-    int* slotOfPair = pairSlot.data();
+    const int* blockRank = rankOfBlock.data();
+    int* rankOfPair = pairRank.data();
     const std::array<int, 3> cells = numCells, blocks = numBlocks;
     parallelFor(numThreads, numPairs, 4096, [=](int begin, int end) {
         for (int k = begin; k < end; k++) {
@@ -145,33 +145,33 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
                 adjacent = adjacent & ((unsigned) (d + 1) <= 2u);
                 block[dim] = (d == -1 ? cj[dim] : ci[dim]) >> 1;
             }
-            slotOfPair[k] = adjacent ? blockSlot[(block[2]*blocks[1] + block[1])*blocks[0] + block[0]] : extraSlot;
+            rankOfPair[k] = adjacent ? blockRank[(block[2]*blocks[1] + block[1])*blocks[0] + block[0]] : extraRank;
         }
     });
 
-    // A stable counting sort by slot keeps each block's pairs in (i, j) order: counts per range of pairs, then each
+    // A stable counting sort by rank keeps each block's pairs in (i, j) order: counts per range of pairs, then each
     // range writes its pairs from its own offsets (the result does not depend on the ranges).
-    const int numSlots = slot;
+    const int numRanks = rank;
     const int numPairRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
     const int pairsPerRange = numRanges(numPairs, numPairRanges);
-    rangeCount.assign((size_t) numPairRanges*numSlots, 0);
+    rangeCount.assign((size_t) numPairRanges*numRanks, 0);
     int* count = rangeCount.data();
     parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
             for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++)
-                count[(size_t) r*numSlots + slotOfPair[k]]++;
+                count[(size_t) r*numRanks + rankOfPair[k]]++;
     });
-    blockStart.assign(numSlots + 1, 0);
+    blockStart.assign(numRanks + 1, 0);
     int total = 0;
-    for (int s = 0; s < numSlots; s++) {
+    for (int s = 0; s < numRanks; s++) {
         blockStart[s] = total;
         for (int r = 0; r < numPairRanges; r++) {
-            const int n = count[(size_t) r*numSlots + s];
-            count[(size_t) r*numSlots + s] = total;   // now the range's first position in slot s
+            const int n = count[(size_t) r*numRanks + s];
+            count[(size_t) r*numRanks + s] = total;   // now the range's first position in rank s
             total += n;
         }
     }
-    blockStart[numSlots] = total;
+    blockStart[numRanks] = total;
     sorted.resize(numPairs);
     sortedFirst.resize(numPairs);
     int* sortedPairs = sorted.data();
@@ -179,7 +179,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
             for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++) {
-                const int position = count[(size_t) r*numSlots + slotOfPair[k]]++;
+                const int position = count[(size_t) r*numRanks + rankOfPair[k]]++;
                 sortedPairs[position] = k;
                 firstOfSorted[position] = pairI[(size_t) k*stride];
             }
@@ -187,7 +187,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
 
     // Within each block, the lists of four consecutive first particles interleaved.
     order.resize(numPairs);
-    parallelFor(numThreads, numSlots, 8, [&](int begin, int end) {
+    parallelFor(numThreads, numRanks, 8, [&](int begin, int end) {
         for (int s = begin; s < end; s++)
             interleaveRuns(&sorted[blockStart[s]], &sortedFirst[blockStart[s]], blockStart[s + 1] - blockStart[s],
                            &order[blockStart[s]]);

@@ -188,17 +188,20 @@ def small_liquid():
     return lattice_liquid(3, density=27 / 2.0**3, cutoff=0.95)
 
 
-def test_types_reach_the_context():
-    """The per-type heat capacities apply to the particles of each type: u_i = C_V(type of i) T."""
+@pytest.mark.parametrize("on_integrator", [False, True], ids=["types on the force", "types on both"])
+def test_types_reach_the_context(on_integrator):
+    """The per-type heat capacities apply to the particles of each type, u_i = C_V(type of i) T, whether the types are
+    set on the force alone (the integrator takes them) or on both alike."""
     system, force, positions = small_liquid()
     integrator = make_integrator()
     integrator.setTemperature(100.0)
-    integrator.setParticleType(4, 7)
-    integrator.setParticleType(20, -2)
+    for particle, type_ in ((4, 7), (20, -2)):
+        force.setParticleType(particle, type_)
+        if on_integrator:
+            integrator.setParticleType(particle, type_)
     integrator.addTypeHeatCapacity(7, 0.3)
     integrator.addTypeHeatCapacity(-2, 0.02)
     integrator.addTypePair(7, -2, 5.0, 6.0)
-    force.setParticleType(4, 7)
     force.addTypeParameters(7, 5.0, 10.0, 20.0, 3.0)
     context = make_context(system, positions, openmm.Platform.getPlatformByName("Reference"), integrator)
     expected = np.full(27, 0.1 * 100.0)
@@ -207,6 +210,17 @@ def test_types_reach_the_context():
     np.testing.assert_allclose(energies, expected, rtol=1e-14)
     integrator.step(2)
     del context
+
+
+def test_types_that_differ_between_force_and_integrator_are_refused():
+    """A particle's type is one setting: the Context is refused, naming the particle and both types."""
+    system, force, positions = small_liquid()
+    integrator = make_integrator()
+    force.setParticleType(20, -2)
+    integrator.setParticleType(4, 7)
+    with pytest.raises(openmm.OpenMMException, match="particle 4 has type 7 on the GenDPDEIntegrator but type 0 on "
+                                                     "the GenDPDEForce"):
+        make_context(system, positions, openmm.Platform.getPlatformByName("Reference"), integrator)
 
 
 @pytest.mark.parametrize("configure, fragments", [

@@ -27,11 +27,10 @@ public:
     }
     std::vector<std::string> getKernelNames() override;
     void updateParametersInContext(OpenMM::ContextImpl& context);
-    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context);
-    /** The kernel, for an integrator on the same platform that wants to reuse its pair list. */
-    OpenMM::Kernel& getKernel() {
-        return kernel;
-    }
+    /** The observables at the Context's positions (the per-particle virial tensors if particleVirials). */
+    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials);
+    /** The pairs of the kernel's last evaluation, which an integrator kernel may reuse, or null (GenDPDEKernels.h). */
+    GenDPDEPairSource* getPairSource();
 private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;

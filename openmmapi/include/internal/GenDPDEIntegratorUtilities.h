@@ -4,11 +4,12 @@
 #include "GenDPDEIntegrator.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
+#include <map>
 #include <string>
 
 namespace GenDPDEPlugin {
 
-class GenDPDEForceImpl;
+class GenDPDEPairSource;
 
 /**
  * Which terms one step of a GenDPDEIntegrator contains, decided once from its mode and parameters for the API's
@@ -39,13 +40,21 @@ public:
      */
     static double pairRange(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
     /**
-     * The GenDPDEForce whose pair list a step may reuse instead of searching pairs again: one that has the pair
-     * range as its cutoff, the System's boundary conditions, and a force group among the integration groups (so
-     * that GenDPDEIntegrator::step, which evaluates those groups right before the kernel's execute(), has just
-     * built its list at the current positions). Null if there is none.
+     * The pairs a step may reuse instead of searching them again: the pair source (GenDPDEKernels.h) of a
+     * GenDPDEForce that has the pair range as its cutoff, the System's boundary conditions, and a force group among
+     * the integration groups (so that GenDPDEIntegrator::step, which evaluates those groups right before the
+     * kernel's execute(), has just found its pairs at the current positions). Null if there is none.
      */
-    static GenDPDEForceImpl* findPairListSource(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                double pairRange);
+    static GenDPDEPairSource* findPairSource(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                             double pairRange);
+    /**
+     * The particle types a Context's integrator uses (docs/types.md, "One type per particle"): a particle's type is
+     * one setting, made on the GenDPDEForce (the integrator then takes the force's types, as it takes the pair
+     * range), on the integrator (a GenDPDEForce that sets no types treats every particle alike), or on both alike.
+     * Throws, naming the particle and both types, if the integrator's types and a GenDPDEForce's, or two
+     * GenDPDEForces', differ for a particle.
+     */
+    static std::map<int, int> particleTypes(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
     /** The errors a step reports (every platform uses the same words). */
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
     static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);

@@ -87,7 +87,7 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
         const int i = pair.i, j = pair.j;
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
-        const double omegaR = Physics::randomWeight(pair.r, p.cutoff);
+        const double omegaR = Physics::gendpdeRandomWeight(pair.r, p.cutoff);
         CounterRandom::PairStream random(p.seed, p.step, i, j);
         const int a = p.typeOf(i), b = p.typeOf(j), ab = a*p.numTypes + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
@@ -102,7 +102,7 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
             energies[j] -= 0.5*kineticChange;
         }
         if (p.terms.conduction) {
-            const double heat = Physics::conductiveHeat(omegaR, p.table.heatConduction[ab], p.heatNoise[ab],
+            const double heat = Physics::gendpdeConductiveHeat(omegaR, p.table.heatConduction[ab], p.heatNoise[ab],
                     temperatures.inverseTemperatureDifference, p.stepSize, p.sqrtStepSize, random.normal());
             energies[i] += heat;
             energies[j] -= heat;
@@ -125,7 +125,7 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
             continue;
         CounterRandom::PairStream random(p.seed, p.step, i, j);
         const int ab = p.typeOf(i)*p.numTypes + p.typeOf(j);
-        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::randomWeight(pair.r, p.cutoff),
+        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
                                        p.table.friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
                                        velocities[i], velocities[j], random.normal());
     }

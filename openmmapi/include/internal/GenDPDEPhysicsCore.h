@@ -2,16 +2,25 @@
 #define GENDPDE_PHYSICS_CORE_H_
 
 /* -------------------------------------------------------------------------- *
- * The scalar core of GenDPDE's physics (docs/theory.md sections 3-7), written *
- * once in the common subset of C++ and of OpenMM's Common kernel dialect     *
- * (OpenCL C, CUDA): plain functions of scalars, results through pointers, no *
- * std::, no references, no includes.                                         *
+ * The physics core of GenDPDE (docs/theory.md sections 2-7): every formula   *
+ * the platforms evaluate, written once in the common subset of C++ and of    *
+ * OpenMM's Common kernel dialect (OpenCL C, CUDA): plain functions of        *
+ * scalars, results through pointers, no std::, no references, no includes.   *
+ * A platform kernel is loops and data movement around these functions.       *
  *                                                                            *
  * GenDPDEPhysics.h includes it for the host platforms (GENDPDE_REAL double,  *
  * inside namespace GenDPDEPlugin::Physics); the GPU platforms embed this     *
- * file in their device programs (GENDPDE_REAL real for the force, mixed for  *
- * the integrator). The includer defines GENDPDE_REAL, and on the device      *
- * GENDPDE_CORE (inline DEVICE) and GENDPDE_GLOBAL (GLOBAL).                  *
+ * file in their device programs (CommonGenDPDEKernelSources::physicsCore:    *
+ * GENDPDE_REAL real for the force, mixed for the integrator). The includer   *
+ * defines GENDPDE_REAL, GENDPDE_ISFINITE(x), the V-B table sizes             *
+ * GENDPDE_VB_FIRST_OCTAVE, GENDPDE_VB_LAST_OCTAVE, GENDPDE_VB_QUADRATURE_PAIRS *
+ * (VolumeVBTables.h), and on the device GENDPDE_CORE (inline DEVICE) and     *
+ * GENDPDE_GLOBAL (GLOBAL).                                                   *
+ *                                                                            *
+ * A new density estimator is a new constant below, a branch in               *
+ * gendpdeParticleVolume (and gendpdeEstimatorNeedsMoments if it reads the    *
+ * moments), its enum value in GenDPDEForce.h and its brute-force oracle in   *
+ * tests/BruteForceGenDPDE.h: every platform then runs it.                    *
  * -------------------------------------------------------------------------- */
 
 #ifndef GENDPDE_CORE
@@ -20,6 +29,230 @@
 #ifndef GENDPDE_GLOBAL
 #define GENDPDE_GLOBAL
 #endif
+
+/* The density estimators, as GenDPDEForce::DensityEstimator numbers them (GenDPDEPhysics.h checks that they agree). */
+#define GENDPDE_ESTIMATOR_VA 0   /* traditional, V = 1/n0 */
+#define GENDPDE_ESTIMATOR_VB 1   /* partition of unity */
+#define GENDPDE_ESTIMATOR_VC 2   /* V-B with the surface correction of the first moment */
+
+/* What gendpdeParticleState finds about a particle (every platform reports these with the same words). */
+#define GENDPDE_PARTICLE_VALID 0
+#define GENDPDE_PARTICLE_NO_NEIGHBOR 1   /* V-A and n0 = 0: the volume 1/n0 is undefined */
+#define GENDPDE_PARTICLE_OVERFLOW 2      /* the equation of state is not finite at the particle's density */
+
+/* ---- Weights (sections 2, 5; V-C's moment weight: docs/interfaces.md) ------------------------------------------- */
+
+/** The density weight w(r) = valueScale (1 - r/R)^2 for r < R (the caller tests r < R), valueScale = 15/(2 pi R^3). */
+GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeight(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff, GENDPDE_REAL valueScale) {
+    const GENDPDE_REAL x = 1 - r*inverseCutoff;
+    return valueScale*x*x;
+}
+
+/** w'(r) = derivativeScale (1 - r/R) for r < R, derivativeScale = -15/(pi R^4). */
+GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeightDerivative(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff,
+                                                         GENDPDE_REAL derivativeScale) {
+    return derivativeScale*(1 - r*inverseCutoff);
+}
+
+/** The scales of w and w' for cutoff R: 15/(2 pi R^3) (1/length^3) and -15/(pi R^4) (1/length^4). */
+GENDPDE_CORE void gendpdeDensityWeightScales(GENDPDE_REAL cutoff, GENDPDE_REAL* valueScale,
+                                             GENDPDE_REAL* derivativeScale) {
+    const GENDPDE_REAL pi = (GENDPDE_REAL) 3.14159265358979323846;
+    *valueScale = 15/(2*pi*cutoff*cutoff*cutoff);
+    *derivativeScale = -15/(pi*cutoff*cutoff*cutoff*cutoff);
+}
+
+/**
+ * V-C's moment weight over the distance, phi(r)/r = (1/R)(1 - r/R)^2 for r < R (1/length), with
+ * phi(r) = (r/R)(1 - r/R)^2: the first moment of a neighbourhood is g_i = sum_j phi(r_ij) e_ij = sum_j (phi/r) d_ij.
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdeMomentWeightOverDistance(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff) {
+    const GENDPDE_REAL y = 1 - r*inverseCutoff;
+    return inverseCutoff*y*y;
+}
+
+/** phi'(r) = (1/R)(1 - r/R)(1 - 3 r/R) for r < R (1/length). */
+GENDPDE_CORE GENDPDE_REAL gendpdeMomentWeightDerivative(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff) {
+    const GENDPDE_REAL x = r*inverseCutoff;
+    return inverseCutoff*(1 - x)*(1 - 3*x);
+}
+
+/** The weight of the random forces and heat flux, omega_R(r) = 1 - r/R for r < R (section 5). */
+GENDPDE_CORE GENDPDE_REAL gendpdeRandomWeight(GENDPDE_REAL r, GENDPDE_REAL cutoff) {
+    return 1 - r/cutoff;
+}
+
+/* ---- Volume estimators (section 3; V-C: section 3 and docs/interfaces.md) ---------------------------------------- */
+
+/** Whether an estimator reads the first moments g_i of the neighbourhoods (V-C). */
+GENDPDE_CORE int gendpdeEstimatorNeedsMoments(int estimator) {
+    return estimator == GENDPDE_ESTIMATOR_VC;
+}
+
+/**
+ * The constants of the estimators for cutoff R and reduced range Rt = R/f_cut, computed once per parameter set:
+ * k = kPerDensity n0 with kPerDensity = (2 pi/15) Rt^3; V_B = volumeScale I(k) with volumeScale = 4 pi Rt^3 (length^3);
+ * dV_B/dn0 = derivativeScale J(k) with derivativeScale = -(8 pi^2/15) Rt^6 (length^6); V-C's momentScale = c^2 with
+ * c = 30/(pi R^3) and densitySoftening = eps^2 with eps = 3/(4 pi R^3) (both 1/length^6).
+ */
+GENDPDE_CORE void gendpdeEstimatorConstants(GENDPDE_REAL cutoff, GENDPDE_REAL reducedRange, GENDPDE_REAL* kPerDensity,
+        GENDPDE_REAL* volumeScale, GENDPDE_REAL* derivativeScale, GENDPDE_REAL* momentScale,
+        GENDPDE_REAL* densitySoftening) {
+    const GENDPDE_REAL pi = (GENDPDE_REAL) 3.14159265358979323846;
+    const GENDPDE_REAL rt3 = reducedRange*reducedRange*reducedRange, r3 = cutoff*cutoff*cutoff;
+    *kPerDensity = (2*pi/15)*rt3;
+    *volumeScale = 4*pi*rt3;
+    *derivativeScale = -(8*pi*pi/15)*rt3*rt3;
+    const GENDPDE_REAL c = 30/(pi*r3), eps = 3/(4*pi*r3);
+    *momentScale = c*c;
+    *densitySoftening = eps*eps;
+}
+
+/**
+ * The V-B integrals I(k), J(k) below the polynomial range, 0 < k < 1/16: the closed forms, with ln((k+1)/k) as
+ * log1p(k) - log(k) so that no intermediate overflows for subnormal k.
+ */
+GENDPDE_CORE void gendpdeVolumeIntegralsClosedForm(GENDPDE_REAL k, GENDPDE_REAL* I, GENDPDE_REAL* J) {
+    const GENDPDE_REAL s = sqrt(k);
+    const GENDPDE_REAL arctangent = atan(1/s);
+    const GENDPDE_REAL logarithm = log1p(k) - log(k);
+    *I = (GENDPDE_REAL) 1/3 - k - (1 - k)*s*arctangent + k*logarithm;
+    *J = (GENDPDE_REAL) 1.5 - logarithm + (1 - 3*k)/(2*s)*arctangent;
+}
+
+/**
+ * The V-B integrals above the polynomial range, k >= 16: Gauss-Legendre quadrature of the integrands in mirror pairs
+ * of nodes y, 1 - y (squares nodeSquared, mirrorNodeSquared; one coefficient per pair; VolumeVBTables.h).
+ */
+GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
+        GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* coefficient,
+        GENDPDE_REAL* I, GENDPDE_REAL* J) {
+    GENDPDE_REAL sumI = 0, sumJ = 0;
+    for (int m = 0; m < GENDPDE_VB_QUADRATURE_PAIRS; m++) {
+        const GENDPDE_REAL a = 1/(nodeSquared[m] + k);
+        const GENDPDE_REAL b = 1/(mirrorNodeSquared[m] + k);
+        sumI += coefficient[m]*(a + b);
+        sumJ += coefficient[m]*(a*a + b*b);
+    }
+    *I = sumI;
+    *J = sumJ;
+}
+
+/**
+ * One polynomial of degree 13 at t by Estrin's scheme (pairs with t, then t^2, t^4, t^8: a dependency chain 4 steps
+ * deep instead of 13), its coefficients c_p at c[p*stride].
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdeEstrin13(GENDPDE_GLOBAL const GENDPDE_REAL* c, int stride, GENDPDE_REAL t) {
+    const GENDPDE_REAL t2 = t*t, t4 = t2*t2, t8 = t4*t4;
+    GENDPDE_REAL a[7];
+    for (int q = 0; q < 7; q++)
+        a[q] = c[(2*q)*stride] + c[(2*q + 1)*stride]*t;
+    const GENDPDE_REAL b0 = a[0] + a[1]*t2, b1 = a[2] + a[3]*t2, b2 = a[4] + a[5]*t2;
+    return (b0 + b1*t4) + (b2 + a[6]*t4)*t8;
+}
+
+/**
+ * The V-B integrals I(k) = int_0^1 y^2 (1-y)^2/(y^2 + k) dy and J(k) = -dI/dk at k > 0, each accurate to a few ulp
+ * (checked against 40-digit quadrature in the tests), in three branches:
+ *  - 1/16 <= k < 16, the range of liquids: piecewise polynomials of degree 13, 4 pieces per octave of k, generated
+ *    at 60 digits (VolumeVBTables.h; polynomials[((octave - first) 4 + piece) 28 + 2 p + {0, 1}] is c_p of {I, J}).
+ *    With k = m 2^octave, m in [1, 2), the top two bits of m pick the piece and t = 8 (m - 1) - (2 piece + 1) in
+ *    [-1, 1) is exact: no division, no transcendental function.
+ *  - k < 1/16: the closed forms (they lose digits to cancellation as k grows).
+ *  - k >= 16: 24-point Gauss-Legendre quadrature of the positive integrands (no cancellation).
+ * At k = 0 (an isolated particle) I = 1/3 and J diverges; callers handle it (gendpdeParticleVolume).
+ */
+GENDPDE_CORE void gendpdeVolumeIntegralsVB(GENDPDE_REAL k, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* I, GENDPDE_REAL* J) {
+    int exponent;
+    const GENDPDE_REAL fraction = frexp(k, &exponent);   // k = fraction 2^exponent, fraction in [1/2, 1)
+    const int octave = exponent - 1;
+    if (octave >= GENDPDE_VB_FIRST_OCTAVE && octave <= GENDPDE_VB_LAST_OCTAVE) {
+        const GENDPDE_REAL m = 2*fraction;
+        const int piece = (int) ((m - 1)*4);
+        const GENDPDE_REAL t = 8*(m - 1) - (2*piece + 1);
+        GENDPDE_GLOBAL const GENDPDE_REAL* c = polynomials + ((octave - GENDPDE_VB_FIRST_OCTAVE)*4 + piece)*28;
+        *I = gendpdeEstrin13(c, 2, t);
+        *J = gendpdeEstrin13(c + 1, 2, t);
+    }
+    else if (k < 1)
+        gendpdeVolumeIntegralsClosedForm(k, I, J);
+    else
+        gendpdeVolumeIntegralsQuadrature(k, nodeSquared, mirrorNodeSquared, quadratureCoefficient, I, J);
+}
+
+/**
+ * The surface factor of V-C (docs/interfaces.md): V = V_B (1 + alpha x^2/(1 + x^2)) with x = max(0, a^2 - t)/w,
+ * alpha = 3, threshold t = 0.4, width w = 0.3, where a^2 measures how one-sided a particle's neighbourhood is
+ * (1 at a flat free surface). *factor receives 1 + alpha x^2/(1 + x^2), *slope its derivative with respect to a^2
+ * (both continuous at the threshold, where the factor is 1 and its slope 0).
+ */
+GENDPDE_CORE void gendpdeSurfaceFactor(GENDPDE_REAL a2, GENDPDE_REAL* factor, GENDPDE_REAL* slope) {
+    const GENDPDE_REAL alpha = 3, threshold = (GENDPDE_REAL) 0.4, inverseWidth = 1/(GENDPDE_REAL) 0.3;
+    if (!(a2 > threshold)) {
+        *factor = 1;
+        *slope = 0;
+        return;
+    }
+    const GENDPDE_REAL x = (a2 - threshold)*inverseWidth, denominator = 1/(1 + x*x);
+    *factor = 1 + alpha*x*x*denominator;
+    *slope = alpha*2*x*denominator*denominator*inverseWidth;
+}
+
+/**
+ * A particle's volume V (length^3) and its derivatives dV/dn0 at fixed G (length^6) and dV/dG at fixed n0 (length^3,
+ * zero unless the estimator reads the moments), from its primitive density n0 >= 0 and, for V-C, the squared first
+ * moment G = |g|^2 of its neighbourhood (dimensionless; ignored by the others), with the constants of
+ * gendpdeEstimatorConstants and the V-B tables (gendpdeVolumeIntegralsVB):
+ *  - V-A: V = 1/n0, dV/dn0 = -1/n0^2. Returns GENDPDE_PARTICLE_NO_NEIGHBOR at n0 = 0 (then V is infinite).
+ *  - V-B: V = volumeScale I(k), dV/dn0 = derivativeScale J(k), k = kPerDensity n0; at n0 = 0 (no neighbour in range)
+ *    V = volumeScale/3 exactly and dV/dn0, which diverges like n0^(-1/2), is returned as 0: it only ever multiplies
+ *    w' of a pair in range, and a particle with such a pair has n0 > 0.
+ *  - V-C: V = V_B (1 + alpha x^2/(1 + x^2)) (gendpdeSurfaceFactor) of a^2 = c^2 G/(n0^2 + eps^2), so
+ *    dV/dn0 = V_B' factor - V_B slope 2 a^2 n0/(n0^2 + eps^2) and dV/dG = V_B slope c^2/(n0^2 + eps^2).
+ * Returns GENDPDE_PARTICLE_VALID otherwise.
+ */
+GENDPDE_CORE int gendpdeParticleVolume(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
+        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
+        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* volume, GENDPDE_REAL* derivative,
+        GENDPDE_REAL* momentDerivative) {
+    *momentDerivative = 0;
+    if (estimator == GENDPDE_ESTIMATOR_VA) {
+        const GENDPDE_REAL v = 1/n0;
+        *volume = v;
+        *derivative = -v*v;
+        return n0 == 0 ? GENDPDE_PARTICLE_NO_NEIGHBOR : GENDPDE_PARTICLE_VALID;
+    }
+    if (n0 == 0) {
+        *volume = volumeScale*((GENDPDE_REAL) 1/3);
+        *derivative = 0;
+    }
+    else {
+        GENDPDE_REAL I, J;
+        gendpdeVolumeIntegralsVB(kPerDensity*n0, polynomials, nodeSquared, mirrorNodeSquared, quadratureCoefficient,
+                                 &I, &J);
+        *volume = volumeScale*I;
+        *derivative = derivativeScale*J;
+    }
+    if (estimator == GENDPDE_ESTIMATOR_VC) {
+        const GENDPDE_REAL inverse = 1/(n0*n0 + densitySoftening);
+        const GENDPDE_REAL a2 = momentScale*G*inverse;
+        GENDPDE_REAL factor, slope;   // the factor and its derivative with respect to a^2
+        gendpdeSurfaceFactor(a2, &factor, &slope);
+        if (slope != 0) {
+            const GENDPDE_REAL v = *volume;
+            *derivative = *derivative*factor - v*slope*2*a2*n0*inverse;
+            *momentDerivative = v*slope*momentScale*inverse;
+            *volume = v*factor;
+        }
+    }
+    return GENDPDE_PARTICLE_VALID;
+}
+
+/* ---- Equation of state and the particle's state (section 4) ----------------------------------------------------- */
 
 /** x^p for an integer p >= 0, by binary powering (exact to a few ulp, several times cheaper than pow). */
 GENDPDE_CORE GENDPDE_REAL gendpdeIntegerPower(GENDPDE_REAL x, int p) {
@@ -50,52 +283,82 @@ GENDPDE_CORE void gendpdeTait(GENDPDE_REAL density, GENDPDE_REAL referenceDensit
 }
 
 /**
- * The V-B integrals I(k), J(k) (section 3) below the polynomial range, 0 < k < 1/16: the closed forms, with
- * ln((k+1)/k) as log1p(k) - log(k) so that no intermediate overflows for subnormal k.
+ * Everything a particle contributes to the force, from its primitive density n0, squared moment G (V-C) and its
+ * type's Tait parameters (gendpdeTait), with the estimator's constants and tables (gendpdeParticleVolume): its volume
+ * V, Tait pressure pi (energy/length^3) and free energy f (energy) at n = 1/V, the force coefficient pi dV/dn0
+ * (energy length^3; 0 for an isolated particle, which has no pair to use it) and V-C's moment force scale 2 pi dV/dG
+ * (energy; q_i = momentForceScale g_i enters the pair forces, gendpdeMomentPairForce). Returns
+ * GENDPDE_PARTICLE_VALID, or why the particle's state is invalid (then the evaluation must stop and say so).
  */
-GENDPDE_CORE void gendpdeVolumeIntegralsClosedForm(GENDPDE_REAL k, GENDPDE_REAL* I, GENDPDE_REAL* J) {
-    const GENDPDE_REAL s = sqrt(k);
-    const GENDPDE_REAL arctangent = atan(1/s);
-    const GENDPDE_REAL logarithm = log1p(k) - log(k);
-    *I = (GENDPDE_REAL) 1/3 - k - (1 - k)*s*arctangent + k*logarithm;
-    *J = (GENDPDE_REAL) 1.5 - logarithm + (1 - 3*k)/(2*s)*arctangent;
+GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
+        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
+        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL referenceDensity,
+        GENDPDE_REAL referencePressure, GENDPDE_REAL bulkModulus, GENDPDE_REAL exponent, int integerPower,
+        GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* freeEnergy, GENDPDE_REAL* forceCoefficient,
+        GENDPDE_REAL* momentForceScale) {
+    GENDPDE_REAL derivative, momentDerivative;
+    int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
+                                       densitySoftening, polynomials, nodeSquared, mirrorNodeSquared,
+                                       quadratureCoefficient, volume, &derivative, &momentDerivative);
+    gendpdeTait(1/(*volume), referenceDensity, referencePressure, bulkModulus, exponent, integerPower, pressure,
+                freeEnergy);
+    if (status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*freeEnergy) && GENDPDE_ISFINITE(*pressure)))
+        status = GENDPDE_PARTICLE_OVERFLOW;
+    *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
+    *momentForceScale = 2*((*pressure)*momentDerivative);
+    return status;
+}
+
+/* ---- Pair forces and virials (section 4) ------------------------------------------------------------------------ */
+
+/**
+ * The scale s of the central pair force F_ij = s d_ij (d_ij = r_i - r_j, r = |d_ij| > 0): s = (c_i + c_j) w'(r)/r,
+ * with coefficientSum = c_i + c_j the particles' force coefficients pi dV/dn0 and weightDerivative = w'(r).
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdePairForceScale(GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative,
+                                                GENDPDE_REAL r) {
+    return coefficientSum*weightDerivative/r;
 }
 
 /**
- * The V-B integrals above the polynomial range, k >= 16: Gauss-Legendre quadrature of the integrands in mirror pairs
- * of nodes y, 1 - y (squares nodeSquared, mirrorNodeSquared; one coefficient per pair; VolumeVBTables.h).
+ * V-C's pair force from the moments: H(d) (q_i - q_j) with H = phi'(r) e e^T + (phi(r)/r)(I - e e^T), the gradient of
+ * the pair's moment term phi(r) e with respect to d = r_i - r_j, e = d/r the unit vector (ex, ey, ez), r < R, and
+ * dq = q_i - q_j (energy). Stores it in force[0..2] (energy/length) and returns its virial d . H dq = r phi' (e . dq).
  */
-GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* coefficient,
-        int numPairs, GENDPDE_REAL* I, GENDPDE_REAL* J) {
-    GENDPDE_REAL sumI = 0, sumJ = 0;
-    for (int m = 0; m < numPairs; m++) {
-        const GENDPDE_REAL a = 1/(nodeSquared[m] + k);
-        const GENDPDE_REAL b = 1/(mirrorNodeSquared[m] + k);
-        sumI += coefficient[m]*(a + b);
-        sumJ += coefficient[m]*(a*a + b*b);
-    }
-    *I = sumI;
-    *J = sumJ;
+GENDPDE_CORE GENDPDE_REAL gendpdeMomentPairForce(GENDPDE_REAL ex, GENDPDE_REAL ey, GENDPDE_REAL ez, GENDPDE_REAL r,
+        GENDPDE_REAL inverseCutoff, GENDPDE_REAL dqx, GENDPDE_REAL dqy, GENDPDE_REAL dqz, GENDPDE_REAL* force) {
+    const GENDPDE_REAL along = ex*dqx + ey*dqy + ez*dqz;
+    const GENDPDE_REAL phiPrime = gendpdeMomentWeightDerivative(r, inverseCutoff);
+    const GENDPDE_REAL phiOverR = gendpdeMomentWeightOverDistance(r, inverseCutoff);
+    const GENDPDE_REAL alongScale = phiPrime*along;
+    force[0] = ex*alongScale + (dqx - ex*along)*phiOverR;
+    force[1] = ey*alongScale + (dqy - ey*along)*phiOverR;
+    force[2] = ez*alongScale + (dqz - ez*along)*phiOverR;
+    return r*phiPrime*along;
 }
 
 /**
- * The surface factor of V-C (docs/interfaces.md): V = V_B (1 + alpha x^2/(1 + x^2)) with x = max(0, a^2 - t)/w,
- * alpha = 3, threshold t = 0.4, width w = 0.3, where a^2 measures how one-sided a particle's neighbourhood is
- * (1 at a flat free surface). *factor receives 1 + alpha x^2/(1 + x^2), *slope its derivative with respect to a^2
- * (both continuous at the threshold, where the factor is 1 and its slope 0).
+ * Each particle's virial tensor gets half of each of its pairs': virial[3a + b] += (F_a/2) d_b for the pair force F
+ * on i and d = r_i - r_j (energy). The two halves are equal (F and d both change sign), so the particles' tensors
+ * add up to the system's W_ab = sum over pairs of F_a d_b = -dU/d(strain_ab).
  */
-GENDPDE_CORE void gendpdeSurfaceFactor(GENDPDE_REAL a2, GENDPDE_REAL* factor, GENDPDE_REAL* slope) {
-    const GENDPDE_REAL alpha = 3, threshold = (GENDPDE_REAL) 0.4, inverseWidth = 1/(GENDPDE_REAL) 0.3;
-    if (!(a2 > threshold)) {
-        *factor = 1;
-        *slope = 0;
-        return;
-    }
-    const GENDPDE_REAL x = (a2 - threshold)*inverseWidth, denominator = 1/(1 + x*x);
-    *factor = 1 + alpha*x*x*denominator;
-    *slope = alpha*2*x*denominator*denominator*inverseWidth;
+GENDPDE_CORE void gendpdeAddHalfPairVirial(GENDPDE_REAL fx, GENDPDE_REAL fy, GENDPDE_REAL fz, GENDPDE_REAL dx,
+                                           GENDPDE_REAL dy, GENDPDE_REAL dz, GENDPDE_REAL* virial) {
+    const GENDPDE_REAL hx = fx/2, hy = fy/2, hz = fz/2;
+    virial[0] += hx*dx;
+    virial[1] += hx*dy;
+    virial[2] += hx*dz;
+    virial[3] += hy*dx;
+    virial[4] += hy*dy;
+    virial[5] += hy*dz;
+    virial[6] += hz*dx;
+    virial[7] += hz*dy;
+    virial[8] += hz*dz;
 }
+
+/* ---- The integrator's pair updates (sections 5-7) --------------------------------------------------------------- */
 
 /**
  * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 5 and 7),

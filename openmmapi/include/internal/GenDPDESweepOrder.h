@@ -62,11 +62,11 @@ public:
      */
     static std::array<int, 3> cellCounts(const OpenMM::Vec3& extent, double range, bool periodic);
     /**
-     * The slots of the blocks (numBlocks along each direction, blocks numbered (b_z n_y + b_y) n_x + b_x) in sweep
-     * order: colour by colour, by block index within a colour; groupStart[c] is the first slot of colour c
-     * (groupStart has 9 elements). Returns the number of slots.
+     * The rank of each block in the sweep (numBlocks along each direction, blocks numbered (b_z n_y + b_y) n_x + b_x):
+     * colour by colour, by block index within a colour; groupStart[c] is the first rank of colour c (groupStart has
+     * 9 elements). Returns the number of ranks.
      */
-    static int blockSlots(const std::array<int, 3>& numBlocks, std::vector<int>& slotOfBlock,
+    static int blockRanks(const std::array<int, 3>& numBlocks, std::vector<int>& rankOfBlock,
                           std::vector<int>& groupStart);
     /** The number of cells along each direction chosen by the last build(). */
     const std::array<int, 3>& getNumCells() const {
@@ -78,7 +78,7 @@ private:
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairSlot, slotOfBlock, rangeCount, groupStart, blockStart, order, sorted, sortedFirst;
+    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order, sorted, sortedFirst;
 };
 
 } // namespace GenDPDEPlugin

@@ -21,42 +21,6 @@ namespace ParameterChecks {
     throw OpenMM::OpenMMException(message.str());
 }
 
-inline void requireFinite(const std::string& owner, const std::string& parameter, double value,
-                          const std::string& units = "") {
-    if (!std::isfinite(value))
-        reject(owner, parameter, value, units, "finite");
-}
-
-inline void requirePositive(const std::string& owner, const std::string& parameter, double value,
-                            const std::string& units = "") {
-    if (!std::isfinite(value) || !(value > 0.0))
-        reject(owner, parameter, value, units, "finite and > 0");
-}
-
-inline void requireNonNegative(const std::string& owner, const std::string& parameter, double value,
-                               const std::string& units = "") {
-    if (!std::isfinite(value) || !(value >= 0.0))
-        reject(owner, parameter, value, units, "finite and >= 0");
-}
-
-inline void requireAtLeast(const std::string& owner, const std::string& parameter, double value, double minimum,
-                           const std::string& units = "") {
-    if (!std::isfinite(value) || !(value >= minimum)) {
-        std::ostringstream allowed;
-        allowed << "finite and >= " << minimum;
-        reject(owner, parameter, value, units, allowed.str());
-    }
-}
-
-inline void requireGreaterThan(const std::string& owner, const std::string& parameter, double value, double minimum,
-                               const std::string& units = "") {
-    if (!std::isfinite(value) || !(value > minimum)) {
-        std::ostringstream allowed;
-        allowed << "finite and > " << minimum;
-        reject(owner, parameter, value, units, allowed.str());
-    }
-}
-
 /** A closed interval [minimum, maximum] of allowed values, with units for messages. */
 struct Range {
     double minimum, maximum;

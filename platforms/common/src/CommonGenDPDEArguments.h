@@ -8,9 +8,58 @@
 #include "openmm/common/ComputeContext.h"
 #include "openmm/common/ComputeKernel.h"
 #include "openmm/common/ComputeVectorTypes.h"
+#include "openmm/OpenMMException.h"
+#include <string>
 #include <vector>
 
 namespace GenDPDEPlugin {
+
+/**
+ * Adds a kernel's arguments in order, each with its named index (an enum beside the kernel's addArg list, in the
+ * order of the kernel's parameters), so that every later setArg() names the argument instead of counting it:
+ *     KernelArguments(kernel, "computeForces").array(ForceArgument::CellStart, cellStart).later(ForceArgument::Box)
+ * Throws if an index is out of order (an enum that no longer matches the list).
+ */
+class KernelArguments {
+public:
+    KernelArguments(OpenMM::ComputeKernel& kernel, const std::string& name) : kernel(kernel), name(name) {
+    }
+    /** An array argument. */
+    KernelArguments& array(int index, OpenMM::ArrayInterface& value) {
+        next(index);
+        kernel->addArg(value);
+        return *this;
+    }
+    /** A value set before each launch with setArg(index, ...). */
+    KernelArguments& later(int index) {
+        next(index);
+        kernel->addArg();
+        return *this;
+    }
+    /** A value fixed now. */
+    template <class T>
+    KernelArguments& value(int index, const T& value) {
+        next(index);
+        kernel->addArg(value);
+        return *this;
+    }
+    /** Check that every argument up to count (the enum's last entry) was added. */
+    void done(int count) const {
+        if (added != count)
+            throw OpenMM::OpenMMException("GenDPDE: kernel " + name + " got " + std::to_string(added)
+                                          + " arguments, its enum lists " + std::to_string(count));
+    }
+private:
+    void next(int index) {
+        if (index != added)
+            throw OpenMM::OpenMMException("GenDPDE: argument " + std::to_string(index) + " of kernel " + name
+                                          + " added in place " + std::to_string(added));
+        added++;
+    }
+    OpenMM::ComputeKernel& kernel;
+    std::string name;
+    int added = 0;
+};
 
 inline bool mixedIsDouble(OpenMM::ComputeContext& cc) {
     return cc.getUseDoublePrecision() || cc.getUseMixedPrecision();

@@ -9,9 +9,22 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
+
 const int scanGroupSize = 256;
 const int boundsGroupSize = 128;
+
+/** The arguments of kernels/gendpdeCells.cc's kernels, in the order of their parameters. */
+namespace AssignArgument {
+enum {Posq, PosqCorrection, BoxA, BoxB, BoxC, Low, Extent, Cells, SlotCell, CellCount, Count};
 }
+namespace ScanArgument {
+enum {Counts, Starts, Size, TotalOut, TotalIndex, Count};
+}
+namespace SortArgument {
+enum {Cells, CellStart, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count};
+}
+
+} // namespace
 
 CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, bool periodic, double range) :
         cc(cc), periodic(periodic), range(range), numCells({1, 1, 1}) {
@@ -45,29 +58,31 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     findBoundsKernel->addArg(cc.getPosqCorrection());
     findBoundsKernel->addArg(bounds);
     assignKernel = program->createKernel("assignCells");
-    assignKernel->addArg(cc.getPosq());
-    assignKernel->addArg(cc.getPosqCorrection());
-    for (int i = 0; i < 6; i++)
-        assignKernel->addArg();   // box vectors, low corner, extent, cells: set by build()
-    assignKernel->addArg(slotCell);
-    assignKernel->addArg(cellCount);
+    {
+        using namespace AssignArgument;
+        KernelArguments(assignKernel, "assignCells").array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection()).later(BoxA).later(BoxB).later(BoxC).later(Low)
+                .later(Extent).later(Cells).array(SlotCell, slotCell).array(CellCount, cellCount).done(Count);
+    }
     scanKernel = program->createKernel("exclusiveScan");
-    for (int i = 0; i < 5; i++)
-        scanKernel->addArg();
+    {
+        using namespace ScanArgument;
+        KernelArguments(scanKernel, "exclusiveScan").later(Counts).later(Starts).later(Size).later(TotalOut)
+                .later(TotalIndex).done(Count);
+    }
     fillKernel = program->createKernel("fillCells");
     fillKernel->addArg(slotCell);
     fillKernel->addArg(cellStart);
     fillKernel->addArg(cellFill);
     fillKernel->addArg(sortedSlot);
     sortKernel = program->createKernel("sortCells");
-    sortKernel->addArg();   // cells
-    sortKernel->addArg(cellStart);
-    sortKernel->addArg(sortedSlot);
-    sortKernel->addArg(cc.getAtomIndexArray());
-    sortKernel->addArg(sortedAtom);
-    sortKernel->addArg(sortedCell);
-    sortKernel->addArg(cc.getPosq());
-    sortKernel->addArg(sortedPos);
+    {
+        using namespace SortArgument;
+        KernelArguments(sortKernel, "sortCells").later(Cells).array(CellStart, cellStart)
+                .array(SortedSlot, sortedSlot).array(AtomIndex, cc.getAtomIndexArray())
+                .array(SortedAtom, sortedAtom).array(SortedCell, sortedCell).array(Posq, cc.getPosq())
+                .array(SortedPos, sortedPos).done(Count);
+    }
 }
 
 void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bool asMixed) const {
@@ -80,11 +95,11 @@ void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bo
 
 void CommonGenDPDECellGrid::exclusiveScan(ArrayInterface& counts, ArrayInterface& starts, int n,
                                           ArrayInterface& totalOut, int totalIndex) {
-    scanKernel->setArg(0, counts);
-    scanKernel->setArg(1, starts);
-    scanKernel->setArg(2, n);
-    scanKernel->setArg(3, totalOut);
-    scanKernel->setArg(4, totalIndex);
+    scanKernel->setArg(ScanArgument::Counts, counts);
+    scanKernel->setArg(ScanArgument::Starts, starts);
+    scanKernel->setArg(ScanArgument::Size, n);
+    scanKernel->setArg(ScanArgument::TotalOut, totalOut);
+    scanKernel->setArg(ScanArgument::TotalIndex, totalIndex);
     scanKernel->execute(scanGroupSize, scanGroupSize);
 }
 
@@ -116,14 +131,14 @@ void CommonGenDPDECellGrid::build() {
     cc.clearBuffer(cellCount);
     cc.clearBuffer(cellFill);
     const mm_int4 cells = getCellsArgument();
-    setBoxArguments(assignKernel, 2, true);
-    setMixed4(cc, assignKernel, 5, low[0], low[1], low[2], 0.0);
-    setMixed4(cc, assignKernel, 6, extent[0], extent[1], extent[2], 0.0);
-    assignKernel->setArg(7, cells);
+    setBoxArguments(assignKernel, AssignArgument::BoxA, true);
+    setMixed4(cc, assignKernel, AssignArgument::Low, low[0], low[1], low[2], 0.0);
+    setMixed4(cc, assignKernel, AssignArgument::Extent, extent[0], extent[1], extent[2], 0.0);
+    assignKernel->setArg(AssignArgument::Cells, cells);
     const int numAtoms = cc.getNumAtoms();
     assignKernel->execute(numAtoms);
     exclusiveScan(cellCount, cellStart, (int) total, scanTotal, 0);
     fillKernel->execute(numAtoms);
-    sortKernel->setArg(0, cells);
+    sortKernel->setArg(SortArgument::Cells, cells);
     sortKernel->execute((int) total);
 }

@@ -9,6 +9,7 @@
 #include "openmm/common/ComputeForceInfo.h"
 #include "openmm/common/ContextSelector.h"
 #include "openmm/internal/ContextImpl.h"
+#include <algorithm>
 #include <climits>
 #include <cmath>
 
@@ -28,8 +29,25 @@ private:
 };
 
 namespace {
+
 const int noValue = INT_MAX;
+
+/** The arguments of kernels/gendpdeForce.cc's kernels, in the order of their parameters. */
+namespace DensityArgument {
+enum {Cells, CellStart, SortedCell, SortedAtom, SortedPos, BoxA, BoxB, BoxC, Model, AtomType, TaitTable, TaitPower,
+      VolumeConstants, MomentConstants, Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure,
+      ForceCoefficient, MomentForce, Energy, Errors, Count};
 }
+namespace ForceArgument {
+enum {Cells, CellStart, SortedCell, SortedSlot, SortedPos, BoxA, BoxB, BoxC, Model, ForceCoefficient, Moments,
+      MomentForce, ForceBuffers, Count};
+}
+namespace VirialArgument {
+enum {Cells, CellStart, SortedCell, SortedPos, BoxA, BoxB, BoxC, Model, ForceCoefficient, Moments, MomentForce,
+      Tensors, ParticleVirial, ParticleVirialTensor, Count};
+}
+
+} // namespace
 
 void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
     ContextSelector selector(cc);
@@ -45,7 +63,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     pressure.initialize(cc, numAtoms, realSize, "gendpdePressure");
     forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
-    momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // V-C's q_i (used only by V-C)
+    particleVirialTensor.initialize(cc, 9*numAtoms, realSize, "gendpdeParticleVirialTensor");
+    momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // (used only by V-C)
     errors.initialize<int>(cc, 2, "gendpdeForceErrors");
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
     const int numTypes = types->getNumTypes();
@@ -56,70 +75,59 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     taitTable.initialize(cc, numTypes, 4*realSize, "gendpdeTaitTable");
     taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
 
-    // The V-B tables from the host's arrays (one source for every platform), in the context's precision.
+    // The V-B tables from the host's arrays (one source for every platform), in the context's precision, as the
+    // physics core reads them (gendpdeVolumeIntegralsVB).
     using namespace Physics;
     const int numPieces = (VolumeVBPolynomials::lastOctave - VolumeVBPolynomials::firstOctave + 1)
                           *VolumeVBPolynomials::subintervals;
-    std::vector<double> coefficients(&VolumeVBPolynomials::coefficients[0][0][0],
-                                     &VolumeVBPolynomials::coefficients[0][0][0] + numPieces*14*2);
-    vbCoefficients.initialize(cc, numPieces*14, 2*realSize, "gendpdeVBCoefficients");
+    const int numCoefficients = numPieces*(VolumeVBPolynomials::degree + 1)*2;
+    const std::vector<double> polynomials(Physics::volumePolynomials(), Physics::volumePolynomials() + numCoefficients);
+    polynomialTable.initialize(cc, numCoefficients, realSize, "gendpdeVolumePolynomials");
     std::vector<double> quadrature;
     for (const double* table : {VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared,
                                 VolumeVBQuadrature::coefficient})
         quadrature.insert(quadrature.end(), table, table + VolumeVBQuadrature::numPairs);
-    vbQuadrature.initialize(cc, quadrature.size(), realSize, "gendpdeVBQuadrature");
-    uploadValues(vbCoefficients, coefficients, useDouble);
-    uploadValues(vbQuadrature, quadrature, useDouble);
+    quadratureTable.initialize(cc, quadrature.size(), realSize, "gendpdeVolumeQuadrature");
+    uploadValues(polynomialTable, polynomials, useDouble);
+    uploadValues(quadratureTable, quadrature, useDouble);
 
     uploadTypeTables();
     grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff));
-    std::map<std::string, std::string> defines = grid->defines();
-    defines["VB_FIRST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::firstOctave);
-    defines["VB_LAST_OCTAVE"] = cc.intToString(VolumeVBPolynomials::lastOctave);
-    defines["VB_QUADRATURE_PAIRS"] = cc.intToString(VolumeVBQuadrature::numPairs);
     ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
-            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, defines);
+            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, grid->defines());
     grid->createKernels(program);
     resetErrorsKernel = program->createKernel("resetErrors");
     resetErrorsKernel->addArg(errors);
     densityKernel = program->createKernel("computeDensities");
-    densityKernel->addArg();   // cells
-    densityKernel->addArg(grid->cellStart);
-    densityKernel->addArg(grid->sortedCell);
-    densityKernel->addArg(grid->sortedAtom);
-    densityKernel->addArg(grid->sortedPos);
-    for (int i = 0; i < 4; i++)
-        densityKernel->addArg();   // box (3), model
-    densityKernel->addArg(atomType);
-    densityKernel->addArg(taitTable);
-    densityKernel->addArg(taitPowerTable);
-    densityKernel->addArg();   // vb
-    densityKernel->addArg();   // estimator
-    densityKernel->addArg(vbCoefficients);
-    densityKernel->addArg(vbQuadrature);
-    densityKernel->addArg(primitiveDensity);
-    densityKernel->addArg(volume);
-    densityKernel->addArg(pressure);
-    densityKernel->addArg(forceCoefficient);
-    densityKernel->addArg(cc.getEnergyBuffer());
-    densityKernel->addArg(errors);
-    densityKernel->addArg();   // vc
-    densityKernel->addArg(momentForce);
+    {
+        using namespace DensityArgument;
+        KernelArguments(densityKernel, "computeDensities").later(Cells).array(CellStart, grid->cellStart)
+                .array(SortedCell, grid->sortedCell).array(SortedAtom, grid->sortedAtom)
+                .array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB).later(BoxC).later(Model)
+                .array(AtomType, atomType).array(TaitTable, taitTable).array(TaitPower, taitPowerTable)
+                .later(VolumeConstants).later(MomentConstants).later(Estimator).array(Polynomials, polynomialTable)
+                .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
+                .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
+                .array(Energy, cc.getEnergyBuffer()).array(Errors, errors).done(Count);
+    }
     forceKernel = program->createKernel("computeForces");
-    forceKernel->addArg();   // cells
-    forceKernel->addArg(grid->cellStart);
-    forceKernel->addArg(grid->sortedCell);
-    forceKernel->addArg(grid->sortedSlot);
-    forceKernel->addArg(grid->sortedPos);
-    for (int i = 0; i < 4; i++)
-        forceKernel->addArg();   // box (3), model
-    forceKernel->addArg(forceCoefficient);
-    forceKernel->addArg(cc.getLongForceBuffer());
-    forceKernel->addArg();   // includeForces
-    forceKernel->addArg();   // includeVirial
-    forceKernel->addArg(particleVirial);
-    forceKernel->addArg();   // moments (V-C)
-    forceKernel->addArg(momentForce);
+    {
+        using namespace ForceArgument;
+        KernelArguments(forceKernel, "computeForces").later(Cells).array(CellStart, grid->cellStart)
+                .array(SortedCell, grid->sortedCell).array(SortedSlot, grid->sortedSlot)
+                .array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB).later(BoxC).later(Model)
+                .array(ForceCoefficient, forceCoefficient).later(Moments).array(MomentForce, momentForce)
+                .array(ForceBuffers, cc.getLongForceBuffer()).done(Count);
+    }
+    virialKernel = program->createKernel("computeVirials");
+    {
+        using namespace VirialArgument;
+        KernelArguments(virialKernel, "computeVirials").later(Cells).array(CellStart, grid->cellStart)
+                .array(SortedCell, grid->sortedCell).array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB)
+                .later(BoxC).later(Model).array(ForceCoefficient, forceCoefficient).later(Moments)
+                .array(MomentForce, momentForce).later(Tensors).array(ParticleVirial, particleVirial)
+                .array(ParticleVirialTensor, particleVirialTensor).done(Count);
+    }
     cc.addForce(new ForceInfo(types->getParticleTypeIndices()));
 }
 
@@ -130,7 +138,7 @@ void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context,
 void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
     std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
-    estimator = force.getDensityEstimator();
+    estimator = (int) force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     taitByType = tait;
     if (taitTable.isInitialized())
@@ -150,23 +158,28 @@ void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
 }
 
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
-    // The same constants as Physics::DensityWeight, TaitEquationOfState and VolumeEstimatorVB.
+    // The constants of the physics core (gendpdeDensityWeightScales, gendpdeEstimatorConstants), computed on the host.
     const Physics::DensityWeight weight(cutoff);
-    const Physics::VolumeEstimatorVB volumeVB(cutoff/cutoffScaling);
-    const double model[4] = {cutoff, weight.getInverseCutoff(), weight.getValueScale(), weight.getDerivativeScale()};
-    const double vb4[4] = {volumeVB.getKPerDensity(), volumeVB.getVolumeScale(), volumeVB.getDerivativeScale(), 0.0};
+    const Physics::VolumeEstimator constants(estimator, cutoff, cutoff/cutoffScaling);
     const mm_int4 cells = grid->getCellsArgument();
-    densityKernel->setArg(0, cells);
-    forceKernel->setArg(0, cells);
-    grid->setBoxArguments(densityKernel, 5, false);
-    grid->setBoxArguments(forceKernel, 5, false);
-    for (ComputeKernel* kernel : {&densityKernel, &forceKernel})
-        setReal4(cc, *kernel, 8, model[0], model[1], model[2], model[3]);
-    setReal4(cc, densityKernel, 12, vb4[0], vb4[1], vb4[2], vb4[3]);
-    densityKernel->setArg(13, estimator == GenDPDEForce::VA ? 0 : estimator == GenDPDEForce::VB ? 1 : 2);
-    const Physics::VolumeEstimatorVC volumeVC(cutoff, cutoff/cutoffScaling);
-    setReal4(cc, densityKernel, 22, volumeVC.getMomentScale(), volumeVC.getDensitySoftening(), 0.0, 0.0);
-    forceKernel->setArg(14, estimator == GenDPDEForce::VC ? 1 : 0);
+    densityKernel->setArg(DensityArgument::Cells, cells);
+    forceKernel->setArg(ForceArgument::Cells, cells);
+    virialKernel->setArg(VirialArgument::Cells, cells);
+    grid->setBoxArguments(densityKernel, DensityArgument::BoxA, false);
+    grid->setBoxArguments(forceKernel, ForceArgument::BoxA, false);
+    grid->setBoxArguments(virialKernel, VirialArgument::BoxA, false);
+    for (auto kernelAndIndex : {std::make_pair(&densityKernel, (int) DensityArgument::Model),
+                                std::make_pair(&forceKernel, (int) ForceArgument::Model),
+                                std::make_pair(&virialKernel, (int) VirialArgument::Model)})
+        setReal4(cc, *kernelAndIndex.first, kernelAndIndex.second, cutoff, weight.getInverseCutoff(),
+                 weight.getValueScale(), weight.getDerivativeScale());
+    setReal4(cc, densityKernel, DensityArgument::VolumeConstants, constants.getKPerDensity(),
+             constants.getVolumeScale(), constants.getDerivativeScale(), 0.0);
+    setReal4(cc, densityKernel, DensityArgument::MomentConstants, constants.getMomentScale(),
+             constants.getDensitySoftening(), 0.0, 0.0);
+    densityKernel->setArg(DensityArgument::Estimator, estimator);
+    forceKernel->setArg(ForceArgument::Moments, constants.needsMoments() ? 1 : 0);
+    virialKernel->setArg(VirialArgument::Moments, constants.needsMoments() ? 1 : 0);
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
@@ -181,6 +194,7 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         resetErrorsKernel->execute(1);
         densityKernel->execute(cc.getNumAtoms());
     });
+    pairsFound(cutoff, cc.getStepCount());
     std::vector<int> found;
     errors.download(found);
     if (found[0] == noValue && found[1] == noValue)
@@ -192,53 +206,48 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
             throw OpenMMException(GenDPDEForceErrors::nonFinitePosition(i, positions[i], cc.getStepCount()));
     const int particle = found[1]/4, status = found[1]%4;
-    if (status == 1)
+    if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, cc.getStepCount()));
     std::vector<int> atoms;
-    std::vector<double> densities;
+    std::vector<double> volumes;
     grid->sortedAtom.download(atoms);
-    primitiveDensity.download(densities, true);
-    double n0 = 0.0;
+    volume.download(volumes, true);
+    double density = 0.0;
     for (int k = 0; k < (int) atoms.size(); k++)
         if (atoms[k] == particle)
-            n0 = densities[k];
-    // (V-C: the density of V-B at this n0, without the surface factor, whose moment is not kept.)
-    const double density = 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0)
-                                : Physics::volumeVB(n0, cutoff/cutoffScaling)).volume;
+            density = 1.0/volumes[k];
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
             taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, cc.getStepCount()));
-}
-
-void CommonCalcGenDPDEForceKernel::computeForces(bool includeForces, bool includeVirial) {
-    forceKernel->setArg(11, includeForces ? 1 : 0);
-    forceKernel->setArg(12, includeVirial ? 1 : 0);
-    profiler.time(includeForces ? "forces" : "virial", [&]() { forceKernel->execute(cc.getNumAtoms()); });
 }
 
 double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
     ContextSelector selector(cc);
     computeDensities(context);
     if (includeForces)
-        computeForces(true, false);
+        profiler.time("forces", [&]() { forceKernel->execute(cc.getNumAtoms()); });
     return 0.0;   // the energy is in the context's energy buffer
 }
 
-const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextImpl& context) {
+const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextImpl& context, bool particleVirials) {
     ContextSelector selector(cc);
     computeDensities(context);
-    computeForces(false, true);
+    virialKernel->setArg(VirialArgument::Tensors, particleVirials ? 1 : 0);
+    profiler.time("virials", [&]() { virialKernel->execute(cc.getNumAtoms()); });
     std::vector<int> atoms;
-    std::vector<double> n0, v, pi, w;
+    std::vector<double> n0, v, pi, w, tensors;
     grid->sortedAtom.download(atoms);
     primitiveDensity.download(n0, true);
     volume.download(v, true);
     pressure.download(pi, true);
     particleVirial.download(w, true);
+    if (particleVirials)
+        particleVirialTensor.download(tensors, true);
     const int numAtoms = cc.getNumAtoms();
     observables.primitiveDensities.resize(numAtoms);
     observables.volumes.resize(numAtoms);
     observables.densities.resize(numAtoms);
     observables.pressures.resize(numAtoms);
+    observables.particleVirials.assign(particleVirials ? 9*numAtoms : 0, 0.0);
     std::vector<double> virial(numAtoms);
     for (int k = 0; k < numAtoms; k++) {
         const int i = atoms[k];
@@ -247,6 +256,8 @@ const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextIm
         observables.densities[i] = 1.0/v[k];
         observables.pressures[i] = pi[k];
         virial[i] = w[k];
+        if (particleVirials)
+            std::copy(&tensors[9*k], &tensors[9*k] + 9, &observables.particleVirials[9*i]);
     }
     FixedOrderSum::Accumulator sum;
     for (double value : virial)

@@ -12,12 +12,13 @@
 namespace GenDPDEPlugin {
 
 /**
- * GenDPDEForce on OpenMM's Common compute platforms (OpenCL, CUDA): the two passes of kernels/gendpdeForce.cc over
+ * GenDPDEForce on OpenMM's Common compute platforms (OpenCL, CUDA): the passes of kernels/gendpdeForce.cc over
  * the device cell grid, forces in fixed point, energy in the context's energy buffer, in the context's precision.
  * A particle whose state is invalid (no neighbour under V-A, an overflowing equation of state, a non-finite position)
- * stops the evaluation with the Reference platform's error, naming the particle and the step.
+ * stops the evaluation with the Reference platform's error, naming the particle and the step. It lends its cell grid
+ * to the integrator kernel (GenDPDEPairSource, as a device cell grid).
  */
-class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
+class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource {
 public:
     CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
             CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {
@@ -25,18 +26,19 @@ public:
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
-    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) override;
-    /** The cell grid of the last evaluation (the integrator's sweep reuses it at the same positions). */
-    CommonGenDPDECellGrid& getCellGrid() {
-        return *grid;
+    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
+    GenDPDEPairSource* getPairSource() override {
+        return this;
+    }
+    // GenDPDEPairSource: the cell grid of the last evaluation (the integrator's sweep reuses it at the same positions).
+    CommonGenDPDECellGrid* getDeviceCellGrid() override {
+        return grid.get();
     }
 private:
     class ForceInfo;
     void readParameters(const GenDPDEForce& force);
     /** Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid. */
     void computeDensities(OpenMM::ContextImpl& context);
-    /** The force pass: forces into the force buffer and/or each particle's half virial. */
-    void computeForces(bool includeForces, bool includeVirial);
     void setModelArguments();
     /** The per-type Tait tables from the parameters read last. */
     void uploadTypeTables();
@@ -44,14 +46,15 @@ private:
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
     std::vector<TaitParameters> taitByType;    // by type index
-    GenDPDEForce::DensityEstimator estimator;
+    int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
     std::unique_ptr<CommonGenDPDECellGrid> grid;
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
-    OpenMM::ComputeArray momentForce;   // V-C: q = 2 pi dV/dG g per particle (real4, cell order)
-    OpenMM::ComputeArray vbCoefficients, vbQuadrature, errors;
+    OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)
+    OpenMM::ComputeArray momentForce;   // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
+    OpenMM::ComputeArray polynomialTable, quadratureTable, errors;   // the V-B tables (real); error flags
     OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
-    OpenMM::ComputeKernel resetErrorsKernel, densityKernel, forceKernel;
+    OpenMM::ComputeKernel resetErrorsKernel, densityKernel, forceKernel, virialKernel;
     GenDPDEObservables observables;
     CommonGenDPDEProfiler profiler;
 };

@@ -1,8 +1,6 @@
 #include "CommonGenDPDEIntegratorKernel.h"
 #include "CommonGenDPDEArguments.h"
-#include "CommonGenDPDEForceKernel.h"
 #include "CommonGenDPDEKernelSources.h"
-#include "internal/GenDPDEForceImpl.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
@@ -20,11 +18,40 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
+
 const int noValue = INT_MAX;
+
+/** The arguments of kernels/gendpdeIntegrator.cc's kernels, in the order of their parameters. */
+namespace CheckArgument {
+enum {Velm, ForceBuffers, AtomIndex, StepSize, MaxDisplacement, Status, Count};
+}
+namespace KickArgument {
+enum {Velm, ForceBuffers, TimeStep, Count};
+}
+namespace DriftArgument {
+enum {Posq, PosqCorrection, Velm, TimeStep, Count};
+}
+namespace KineticArgument {
+enum {Velm, ForceBuffers, HalfStep, Energy, Count};
+}
+namespace FindPairsArgument {
+enum {Cells, Blocks, CellStart, SortedCell, SortedAtom, SortedSlot, Posq, PosqCorrection, BoxA, BoxB, BoxC, Cutoff,
+      RankOfBlock, Fill, BlockCount, BlockStart, BlockPairs, Status, Count};
+}
+namespace OrderArgument {
+enum {NumBlocks, BlockStart, BlockPairs, OrderedPairs, Count};
+}
+namespace SweepArgument {
+enum {FirstRank, NumRanks, BlockStart, OrderedPairs, SlotOfAtom, Posq, PosqCorrection, Velm, Energies, BoxA, BoxB,
+      BoxC, Parameters, AtomType, PairTable, HeatCapacityTable, NumTypes, Boltzmann, Terms, Seed, StepLow, StepHigh,
+      ZigguratX, ZigguratF, ZigguratRatio, Status, Count};
 }
 
+} // namespace
+
 void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                  double cutoff, int seed, const std::vector<double>& internalEnergies) {
+                                                  double cutoff, int seed, const std::vector<double>& internalEnergies,
+                                                  const std::map<int, int>& particleTypes) {
     cc.initializeContexts();
     ContextSelector selector(cc);
     this->cutoff = cutoff;
@@ -52,8 +79,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     zigguratRatio.upload(std::vector<double>(table.ratio, table.ratio + 256), true);
 
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index; the tables by type.
-    types.reset(new ParticleTypeIndex(integrator.getParticleTypes(), context.getSystem().getNumParticles(),
-                                      "GenDPDEIntegrator"));
+    types.reset(new ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(), "GenDPDEIntegrator"));
     const int numTypes = types->getNumTypes();
     std::vector<int> typeIndex = types->getParticleTypeIndices();
     typeIndex.resize(numAtoms, 0);   // padding atoms
@@ -62,7 +88,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     pairTable.initialize(cc, numTypes*numTypes, 4*mixedSize, "gendpdePairTable");
     heatCapacityTable.initialize(cc, numTypes, mixedSize, "gendpdeHeatCapacityTable");
 
-    blockSlotArray.initialize<int>(cc, 1, "gendpdeSlotOfBlock");
+    rankOfBlockArray.initialize<int>(cc, 1, "gendpdeRankOfBlock");
     blockCount.initialize<int>(cc, 1, "gendpdeBlockCount");
     blockStart.initialize<int>(cc, 2, "gendpdeBlockStart");
     blockPairs.initialize<mm_int2>(cc, 1, "gendpdeBlockPairs");
@@ -79,74 +105,54 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     resetKernel = program->createKernel("resetStatus");
     resetKernel->addArg(status);
     checkKernel = program->createKernel("checkStep");
-    checkKernel->addArg(cc.getVelm());
-    checkKernel->addArg(cc.getLongForceBuffer());
-    checkKernel->addArg(cc.getAtomIndexArray());
-    checkKernel->addArg();   // step size
-    checkKernel->addArg();   // largest displacement
-    checkKernel->addArg(status);
+    {
+        using namespace CheckArgument;
+        KernelArguments(checkKernel, "checkStep").array(Velm, cc.getVelm()).array(ForceBuffers, cc.getLongForceBuffer())
+                .array(AtomIndex, cc.getAtomIndexArray()).later(StepSize).later(MaxDisplacement)
+                .array(Status, status).done(Count);
+    }
     kickKernel = program->createKernel("kick");
-    kickKernel->addArg(cc.getVelm());
-    kickKernel->addArg(cc.getLongForceBuffer());
-    kickKernel->addArg();   // time step
+    KernelArguments(kickKernel, "kick").array(KickArgument::Velm, cc.getVelm())
+            .array(KickArgument::ForceBuffers, cc.getLongForceBuffer()).later(KickArgument::TimeStep)
+            .done(KickArgument::Count);
     driftKernel = program->createKernel("drift");
-    driftKernel->addArg(cc.getPosq());
-    driftKernel->addArg(cc.getPosqCorrection());
-    driftKernel->addArg(cc.getVelm());
-    driftKernel->addArg();   // time step
+    KernelArguments(driftKernel, "drift").array(DriftArgument::Posq, cc.getPosq())
+            .array(DriftArgument::PosqCorrection, cc.getPosqCorrection()).array(DriftArgument::Velm, cc.getVelm())
+            .later(DriftArgument::TimeStep).done(DriftArgument::Count);
     kineticKernel = program->createKernel("kineticEnergies");
-    kineticKernel->addArg(cc.getVelm());
-    kineticKernel->addArg(cc.getLongForceBuffer());
-    kineticKernel->addArg();   // half step
-    kineticKernel->addArg(kinetic);
+    KernelArguments(kineticKernel, "kineticEnergies").array(KineticArgument::Velm, cc.getVelm())
+            .array(KineticArgument::ForceBuffers, cc.getLongForceBuffer()).later(KineticArgument::HalfStep)
+            .array(KineticArgument::Energy, kinetic).done(KineticArgument::Count);
     invertKernel = program->createKernel("invertAtomIndex");
     invertKernel->addArg(cc.getAtomIndexArray());
     invertKernel->addArg(slotOfAtom);
     findPairsKernel = program->createKernel("findBlockPairs");
-    findPairsKernel->addArg();   // cells
-    findPairsKernel->addArg();   // blocks
-    findPairsKernel->addArg(grid->cellStart);
-    findPairsKernel->addArg(grid->sortedCell);
-    findPairsKernel->addArg(grid->sortedAtom);
-    findPairsKernel->addArg(grid->sortedSlot);
     boundGrid = grid.get();
-    findPairsKernel->addArg(cc.getPosq());
-    findPairsKernel->addArg(cc.getPosqCorrection());
-    for (int i = 0; i < 4; i++)
-        findPairsKernel->addArg();   // box (3), cutoff
-    findPairsKernel->addArg(blockSlotArray);
-    findPairsKernel->addArg();   // fill
-    findPairsKernel->addArg(blockCount);
-    findPairsKernel->addArg(blockStart);
-    findPairsKernel->addArg(blockPairs);
-    findPairsKernel->addArg(status);
+    {
+        using namespace FindPairsArgument;
+        KernelArguments(findPairsKernel, "findBlockPairs").later(Cells).later(Blocks)
+                .array(CellStart, grid->cellStart).array(SortedCell, grid->sortedCell)
+                .array(SortedAtom, grid->sortedAtom).array(SortedSlot, grid->sortedSlot).array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection()).later(BoxA).later(BoxB).later(BoxC).later(Cutoff)
+                .array(RankOfBlock, rankOfBlockArray).later(Fill).array(BlockCount, blockCount)
+                .array(BlockStart, blockStart).array(BlockPairs, blockPairs).array(Status, status).done(Count);
+    }
     orderKernel = program->createKernel("orderBlockPairs");
-    orderKernel->addArg();   // number of slots
-    orderKernel->addArg(blockStart);
-    orderKernel->addArg(blockPairs);
-    orderKernel->addArg(orderedPairs);
+    KernelArguments(orderKernel, "orderBlockPairs").later(OrderArgument::NumBlocks)
+            .array(OrderArgument::BlockStart, blockStart).array(OrderArgument::BlockPairs, blockPairs)
+            .array(OrderArgument::OrderedPairs, orderedPairs).done(OrderArgument::Count);
     sweepKernel = program->createKernel("sweepColour");
-    sweepKernel->addArg();   // first slot
-    sweepKernel->addArg();   // number of slots
-    sweepKernel->addArg(blockStart);
-    sweepKernel->addArg(orderedPairs);
-    sweepKernel->addArg(slotOfAtom);
-    sweepKernel->addArg(cc.getPosq());
-    sweepKernel->addArg(cc.getPosqCorrection());
-    sweepKernel->addArg(cc.getVelm());
-    sweepKernel->addArg(energies);
-    for (int i = 0; i < 4; i++)
-        sweepKernel->addArg();   // box (3), parameters
-    sweepKernel->addArg(atomType);
-    sweepKernel->addArg(pairTable);
-    sweepKernel->addArg(heatCapacityTable);
-    sweepKernel->addArg(numTypes);
-    for (int i = 0; i < 5; i++)
-        sweepKernel->addArg();   // boltzmann, terms, seed, step (2)
-    sweepKernel->addArg(zigguratX);
-    sweepKernel->addArg(zigguratF);
-    sweepKernel->addArg(zigguratRatio);
-    sweepKernel->addArg(status);
+    {
+        using namespace SweepArgument;
+        KernelArguments(sweepKernel, "sweepColour").later(FirstRank).later(NumRanks).array(BlockStart, blockStart)
+                .array(OrderedPairs, orderedPairs).array(SlotOfAtom, slotOfAtom).array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection()).array(Velm, cc.getVelm()).array(Energies, energies)
+                .later(BoxA).later(BoxB).later(BoxC).later(Parameters).array(AtomType, atomType)
+                .array(PairTable, pairTable).array(HeatCapacityTable, heatCapacityTable).value(NumTypes, numTypes)
+                .later(Boltzmann).later(Terms).later(Seed).later(StepLow).later(StepHigh)
+                .array(ZigguratX, zigguratX).array(ZigguratF, zigguratF).array(ZigguratRatio, zigguratRatio)
+                .array(Status, status).done(Count);
+    }
 }
 
 const std::vector<double>& CommonIntegrateGenDPDEStepKernel::getInternalEnergies() const {
@@ -174,11 +180,11 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
 }
 
 void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                    const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
+                                                    const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
     // The step check, and the pairs counted per block; then one download tells both (nothing has changed yet).
     const int numAtoms = cc.getNumAtoms();
-    setMixed(cc, checkKernel, 3, integrator.getStepSize());
-    setMixed(cc, checkKernel, 4, terms.maxDisplacement);
+    setMixed(cc, checkKernel, CheckArgument::StepSize, integrator.getStepSize());
+    setMixed(cc, checkKernel, CheckArgument::MaxDisplacement, terms.maxDisplacement);
     profiler.time("step check", [&]() {
         resetKernel->execute(1);
         checkKernel->execute(numAtoms);
@@ -189,35 +195,37 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
             cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
             BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
         }
-        // The cells of the force just evaluated at these positions with this range, if there is one (the same
-        // grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
-        CommonGenDPDECellGrid* cellGrid = grid.get();
-        if (pairListSource != nullptr)
-            cellGrid = &dynamic_cast<CommonCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl()).getCellGrid();
-        else
+        // The cells of the force just evaluated at these positions with this range, if its source lends them (the
+        // same grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
+        CommonGenDPDECellGrid* cellGrid = pairSource != nullptr ? pairSource->getDeviceCellGrid() : nullptr;
+        if (cellGrid == nullptr || pairSource->getCutoff() != cutoff
+                || pairSource->getStepCount() != cc.getStepCount()) {
+            cellGrid = grid.get();
             profiler.time("cell grid (own)", [&]() { grid->build(); });
+        }
         if (cellGrid != boundGrid) {
-            findPairsKernel->setArg(2, cellGrid->cellStart);
-            findPairsKernel->setArg(3, cellGrid->sortedCell);
-            findPairsKernel->setArg(4, cellGrid->sortedAtom);
-            findPairsKernel->setArg(5, cellGrid->sortedSlot);
+            using namespace FindPairsArgument;
+            findPairsKernel->setArg(CellStart, cellGrid->cellStart);
+            findPairsKernel->setArg(SortedCell, cellGrid->sortedCell);
+            findPairsKernel->setArg(SortedAtom, cellGrid->sortedAtom);
+            findPairsKernel->setArg(SortedSlot, cellGrid->sortedSlot);
             boundGrid = cellGrid;
         }
         const std::array<int, 3>& cells = cellGrid->getNumCells();
         if (cells != blockGridCells) {
             blockGridCells = cells;
             const std::array<int, 3> blocks = {(cells[0] + 1)/2, (cells[1] + 1)/2, (cells[2] + 1)/2};
-            const int numSlots = GenDPDESweepOrder::blockSlots(blocks, slotOfBlock, groupStart);
-            blockSlotArray.resize(numSlots);
-            blockSlotArray.upload(slotOfBlock);
-            blockCount.resize(numSlots);
-            blockStart.resize(numSlots + 1);
-            findPairsKernel->setArg(1, mm_int4(blocks[0], blocks[1], blocks[2], numSlots));
+            const int numRanks = GenDPDESweepOrder::blockRanks(blocks, rankOfBlock, groupStart);
+            rankOfBlockArray.resize(numRanks);
+            rankOfBlockArray.upload(rankOfBlock);
+            blockCount.resize(numRanks);
+            blockStart.resize(numRanks + 1);
+            findPairsKernel->setArg(FindPairsArgument::Blocks, mm_int4(blocks[0], blocks[1], blocks[2], numRanks));
         }
-        findPairsKernel->setArg(0, cellGrid->getCellsArgument());
-        grid->setBoxArguments(findPairsKernel, 8, true);
-        setMixed(cc, findPairsKernel, 11, cutoff);
-        findPairsKernel->setArg(13, 0);
+        findPairsKernel->setArg(FindPairsArgument::Cells, cellGrid->getCellsArgument());
+        grid->setBoxArguments(findPairsKernel, FindPairsArgument::BoxA, true);
+        setMixed(cc, findPairsKernel, FindPairsArgument::Cutoff, cutoff);
+        findPairsKernel->setArg(FindPairsArgument::Fill, 0);
         profiler.time("pairs: count per block", [&]() {
             cc.clearBuffer(blockCount);
             findPairsKernel->execute(numAtoms);
@@ -239,8 +247,8 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         blockPairs.resize((int) (1.2*numPairs) + 1);
         orderedPairs.resize(blockPairs.getSize());
     }
-    findPairsKernel->setArg(13, 1);
-    orderKernel->setArg(0, (int) blockCount.getSize());
+    findPairsKernel->setArg(FindPairsArgument::Fill, 1);
+    orderKernel->setArg(OrderArgument::NumBlocks, (int) blockCount.getSize());
     profiler.time("pairs: list per block", [&]() {
         cc.clearBuffer(blockCount);
         findPairsKernel->execute(numAtoms);
@@ -255,8 +263,8 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
                                              const GenDPDEStepTerms& terms) {
     const long long step = cc.getStepCount();
     const PairSweepParameters p(integrator, terms, cutoff, seed, step, *types);   // as the host platforms' sweep
-    grid->setBoxArguments(sweepKernel, 9, true);
-    setMixed4(cc, sweepKernel, 12, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
+    grid->setBoxArguments(sweepKernel, SweepArgument::BoxA, true);
+    setMixed4(cc, sweepKernel, SweepArgument::Parameters, cutoff, p.stepSize, p.sqrtStepSize, 0.0);
     // The type tables: the integrator's parameters may change between steps, so they are uploaded when they do.
     std::vector<double> pairParameters;
     for (int ab = 0; ab < p.numTypes*p.numTypes; ab++)
@@ -269,20 +277,20 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
         uploadedPairTable = pairParameters;
         uploadedHeatCapacities = capacity;
     }
-    setMixed(cc, sweepKernel, 17, Physics::Boltzmann);
-    sweepKernel->setArg(18, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
-                            | (terms.internalEnergies ? 4 : 0));
-    sweepKernel->setArg(19, p.seed);
-    sweepKernel->setArg(20, (unsigned int) p.step);
-    sweepKernel->setArg(21, (unsigned int) (p.step >> 32));
+    setMixed(cc, sweepKernel, SweepArgument::Boltzmann, Physics::Boltzmann);
+    sweepKernel->setArg(SweepArgument::Terms, (terms.dissipation ? 1 : 0) | (terms.conduction ? 2 : 0)
+                                              | (terms.internalEnergies ? 4 : 0));
+    sweepKernel->setArg(SweepArgument::Seed, p.seed);
+    sweepKernel->setArg(SweepArgument::StepLow, (unsigned int) p.step);
+    sweepKernel->setArg(SweepArgument::StepHigh, (unsigned int) (p.step >> 32));
     profiler.time("sweep (8 colours)", [&]() {
         for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
-            const int numSlots = groupStart[colour + 1] - groupStart[colour];
-            if (numSlots == 0)
+            const int numRanks = groupStart[colour + 1] - groupStart[colour];
+            if (numRanks == 0)
                 continue;
-            sweepKernel->setArg(0, groupStart[colour]);
-            sweepKernel->setArg(1, numSlots);
-            sweepKernel->execute(numSlots, 64);
+            sweepKernel->setArg(SweepArgument::FirstRank, groupStart[colour]);
+            sweepKernel->setArg(SweepArgument::NumRanks, numRanks);
+            sweepKernel->execute(numRanks, 64);
         }
     });
     if (!terms.internalEnergies)
@@ -304,15 +312,15 @@ void CommonIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, const GenDPDE
 }
 
 void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                               const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
+                                               const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
     // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
     // velocity Verlet (leapfrog form: one full kick).
     ContextSelector selector(cc);
-    preparePairs(context, integrator, terms, pairListSource);
+    preparePairs(context, integrator, terms, pairSource);
     const double dt = integrator.getStepSize();
     const int numAtoms = cc.getNumAtoms();
     if (!terms.pairSweep) {
-        setMixed(cc, kickKernel, 2, dt);
+        setMixed(cc, kickKernel, KickArgument::TimeStep, dt);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
     else {
@@ -320,12 +328,12 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
             cc.getVelm().copyTo(savedVelm);
             energies.copyTo(savedEnergies);
         }
-        setMixed(cc, kickKernel, 2, 0.5*dt);
+        setMixed(cc, kickKernel, KickArgument::TimeStep, 0.5*dt);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
         sweep(context, integrator, terms);
         profiler.time("kicks, drift", [&]() { kickKernel->execute(numAtoms); });
     }
-    setMixed(cc, driftKernel, 3, dt);
+    setMixed(cc, driftKernel, DriftArgument::TimeStep, dt);
     profiler.time("kicks, drift", [&]() { driftKernel->execute(numAtoms); });
     cc.setTime(cc.getTime() + dt);
     cc.setStepCount(cc.getStepCount() + 1);
@@ -335,7 +343,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
 double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
                                                               const GenDPDEIntegrator& integrator) {
     ContextSelector selector(cc);
-    setMixed(cc, kineticKernel, 2, 0.5*integrator.getStepSize());
+    setMixed(cc, kineticKernel, KineticArgument::HalfStep, 0.5*integrator.getStepSize());
     kineticKernel->execute(cc.getNumAtoms());
     std::vector<double> perSlot;
     kinetic.download(perSlot, true);

@@ -25,9 +25,9 @@ public:
             IntegrateGenDPDEStepKernel(name, platform), cc(cc), profiler(cc, "GenDPDEIntegrator") {
     }
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
-                    const std::vector<double>& internalEnergies) override;
+                    const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) override;
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
-                 GenDPDEForceImpl* pairListSource) override;
+                 GenDPDEPairSource* pairSource) override;
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override;
     void setInternalEnergies(const std::vector<double>& internalEnergies) override;
@@ -40,7 +40,7 @@ public:
 private:
     /** Find and order the pairs (after the step check); throws, changing nothing, if the step is unstable. */
     void preparePairs(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                      const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource);
+                      const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource);
     /** The sweep, colour by colour; rolls back and throws if an internal energy became <= 0. */
     void sweep(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, double maxDisplacement);
@@ -50,14 +50,14 @@ private:
     bool periodic = false;
     std::unique_ptr<CommonGenDPDECellGrid> grid;   // own cells, when no force's can be reused
     CommonGenDPDECellGrid* boundGrid = nullptr;     // the grid whose arrays findPairsKernel reads
-    std::vector<int> slotOfBlock, groupStart;
+    std::vector<int> rankOfBlock, groupStart;   // each block's rank in the sweep; each colour's first rank
     std::array<int, 3> blockGridCells = {0, 0, 0};
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, slotOfAtom, status, kinetic;
     OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
-    std::unique_ptr<ParticleTypeIndex> types;   // the integrator's particle types, read at initialize()
+    std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()
     OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // type by original index; per-type parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
-    OpenMM::ComputeArray blockSlotArray, blockCount, blockStart, blockPairs, orderedPairs;
+    OpenMM::ComputeArray rankOfBlockArray, blockCount, blockStart, blockPairs, orderedPairs;
     OpenMM::ComputeKernel resetKernel, checkKernel, kickKernel, driftKernel, kineticKernel, invertKernel;
     OpenMM::ComputeKernel findPairsKernel, orderKernel, sweepKernel;
     mutable std::vector<double> hostEnergies;

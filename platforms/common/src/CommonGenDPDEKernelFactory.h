@@ -13,15 +13,21 @@ namespace GenDPDEPlugin {
 
 /**
  * Creates the Common kernels on one of OpenMM's Common platforms: PlatformType is OpenCLPlatform or CudaPlatform,
- * whose PlatformData holds the ComputeContext (the first device's).
+ * whose PlatformData holds one ComputeContext per device. The kernels run on one device: a Context spread over
+ * several (DeviceIndex "0,1") is refused, naming the devices, rather than run on the first alone.
  */
 template <class PlatformType>
 class CommonGenDPDEKernelFactory : public OpenMM::KernelFactory {
 public:
     OpenMM::KernelImpl* createKernelImpl(std::string name, const OpenMM::Platform& platform,
                                          OpenMM::ContextImpl& context) const override {
-        OpenMM::ComputeContext& cc = *static_cast<typename PlatformType::PlatformData*>(context.getPlatformData())
-                                             ->contexts[0];
+        auto& data = *static_cast<typename PlatformType::PlatformData*>(context.getPlatformData());
+        const auto& contexts = data.contexts;
+        if (contexts.size() != 1)
+            throw OpenMM::OpenMMException("GenDPDE plugin: the " + platform.getName() + " kernels run on one device, "
+                    "and this Context uses " + std::to_string(contexts.size()) + " (DeviceIndex '"
+                    + data.propertyValues["DeviceIndex"] + "'); create the Context with one DeviceIndex");
+        OpenMM::ComputeContext& cc = *contexts[0];
         if (name == CalcGenDPDEForceKernel::Name())
             return new CommonCalcGenDPDEForceKernel(name, platform, cc);
         if (name == IntegrateGenDPDEStepKernel::Name())

@@ -1,6 +1,7 @@
 /* A GPU platform (GENDPDE_TEST_PLATFORM: OpenCL or CUDA) against Reference, in single, mixed and double precision.
  *
- * Forces and observables of the force tests' scenes (and a triclinic box): the same sums in another order, so in
+ * Forces, observables and virial tensors of the force tests' scenes (every estimator, triclinic boxes, a V-C slab):
+ * the same sums in another order, so in
  * double precision they agree to rounding (1e-10 relative, 1e-9 of the rms force; a wrong pair, image or formula
  * gives 1e-4 or more); in single and mixed precision positions and sums carry float rounding (2^-24 = 6e-8 relative
  * per operation, ~17 neighbours per particle, V-B's tables and the Tait power x^6 amplifying relative errors ~6x),
@@ -27,8 +28,10 @@ struct Tolerances {
     double relative, force;
 };
 
-Tolerances tolerancesFor(const std::string& precision) {
-    return precision == "double" ? Tolerances{1e-10, 1e-9} : Tolerances{1e-5, 1e-5};
+/** The tolerances of the comparison; V-C's surface factor carries 5 times V-B's float rounding (TestGenDPDEForce.h). */
+Tolerances tolerancesFor(const std::string& precision, GenDPDEForce::DensityEstimator estimator) {
+    const double scale = (estimator == GenDPDEForce::VC ? 5.0 : 1.0);
+    return precision == "double" ? Tolerances{1e-10, 1e-9} : Tolerances{1e-5*scale, 1e-5*scale};
 }
 
 Context* makeContext(System& system, Integrator& integrator, const std::string& precision) {
@@ -45,7 +48,7 @@ void assertAllRelative(const std::vector<double>& expected, const std::vector<do
 }
 
 void compareScene(Scene& scene, const std::string& label, const std::string& precision) {
-    const Tolerances tolerance = tolerancesFor(precision);
+    const Tolerances tolerance = tolerancesFor(precision, scene.force->getDensityEstimator());
     const std::string what = label + " (" + precision + ")";
     VerletIntegrator referenceIntegrator(0.001), integrator(0.001);
     std::unique_ptr<Context> expected(makeContext(scene.system, referenceIntegrator, ""));
@@ -75,19 +78,32 @@ void compareScene(Scene& scene, const std::string& label, const std::string& pre
         assertClose(pa[i], pb[i], tolerance.relative*pressureScale, what + ": pressure of particle " + std::to_string(i));
     assertRelative(scene.force->getVirial(*expected), scene.force->getVirial(*context), 10*tolerance.relative,
                    what + ": virial");
+    const std::vector<double> wa = scene.force->getParticleVirials(*expected);
+    const std::vector<double> wb = scene.force->getParticleVirials(*context);
+    double squaredElement = 0.0, squaredElementDifference = 0.0;
+    for (size_t k = 0; k < wa.size(); k++) {
+        squaredElement += wa[k]*wa[k];
+        squaredElementDifference += (wa[k] - wb[k])*(wa[k] - wb[k]);
+    }
+    assertClose(0.0, std::sqrt(squaredElementDifference), tolerance.force*std::sqrt(squaredElement),
+                what + ": rms virial tensor element");
 }
 
 void testForcesAndObservables(const std::string& precision) {
     TestScenes::forEachStandardScene(0.2, 51, [&](Scene& scene, const std::string& label) {
         compareScene(scene, label, precision);
     });
-    Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, GenDPDEForce::VB, true, 57);
-    const double edge = scene.box[0][0];
-    setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
-    compareScene(scene, "VB triclinic", precision);
+    for (GenDPDEForce::DensityEstimator estimator : testEstimators()) {
+        Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 57);
+        const double edge = scene.box[0][0];
+        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        compareScene(scene, estimatorLabel(estimator) + " triclinic", precision);
+    }
     Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
     setMixtureTypes(mixture, false);
     compareScene(mixture, "VB three-type mixture", precision);
+    Scene slab = makeSlab(6, 0.82*referenceDensity, 0.2, GenDPDEForce::VC, 59);
+    compareScene(slab, "VC slab", precision);
 }
 
 Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic, bool ownPairs,

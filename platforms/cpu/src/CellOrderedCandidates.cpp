@@ -6,8 +6,8 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-/** Slots per range of work. */
-const int slotChunk = 1024;
+/** Rows per range of work. */
+const int rowChunk = 1024;
 }
 
 void CellOrderedCandidates::update(const NeighborList& list, int numThreads) {
@@ -17,7 +17,7 @@ void CellOrderedCandidates::update(const NeighborList& list, int numThreads) {
     const int* particleOf = particle.data();
     positions.resize(particle.size() + 1);   // one Vec3 of padding: vector loads read 4 doubles from a Vec3
     Vec3* target = positions.data();
-    parallelFor(numThreads, particle.size(), slotChunk, [=](int begin, int end) {
+    parallelFor(numThreads, particle.size(), rowChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++)
             target[s] = source[particleOf[s]];
     });
@@ -25,50 +25,45 @@ void CellOrderedCandidates::update(const NeighborList& list, int numThreads) {
 
 void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) {
     particle = list.getCellOrder();
-    const int numSlots = particle.size();
-    slot.resize(numSlots);
-    for (int s = 0; s < numSlots; s++)
-        slot[particle[s]] = s;
+    const int numRows = particle.size();
+    row.resize(numRows);
+    for (int s = 0; s < numRows; s++)
+        row[particle[s]] = s;
     const std::vector<int>& candidateStart = list.getCandidateStart();
     const std::vector<int>& candidates = list.getCandidates();
 
     // Row sizes: the candidates (j, i) of each particle i, then its own candidates (i, j).
-    std::vector<int> lowerCount(numSlots, 0);
+    std::vector<int> lowerCount(numRows, 0);
     for (int j : candidates)
         lowerCount[j]++;
-    rowStart.assign(numSlots + 1, 0);
-    upperStart.resize(numSlots);
-    for (int s = 0; s < numSlots; s++) {
+    rowStart.assign(numRows + 1, 0);
+    upperStart.resize(numRows);
+    for (int s = 0; s < numRows; s++) {
         const int i = particle[s];
         upperStart[s] = rowStart[s] + lowerCount[i];
         rowStart[s + 1] = upperStart[s] + candidateStart[i + 1] - candidateStart[i];
     }
-    neighbors.resize(rowStart[numSlots]);
+    neighbors.resize(rowStart[numRows]);
 
     // The upper parts, row by row in parallel; the lower parts by one pass over the candidates in (i, j) order,
     // which appends each i to the row of j in increasing order of i.
     const int* particleOf = particle.data();
-    const int* slotOf = slot.data();
+    const int* rowOf = row.data();
     const int* start = candidateStart.data();
     const int* candidate = candidates.data();
     const int* upper = upperStart.data();
     int* neighbor = neighbors.data();
-    parallelFor(numThreads, numSlots, slotChunk, [=](int begin, int end) {
+    parallelFor(numThreads, numRows, rowChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++) {
             const int i = particleOf[s];
             for (int c = start[i], m = upper[s]; c < start[i + 1]; c++, m++)
-                neighbor[m] = slotOf[candidate[c]];
+                neighbor[m] = rowOf[candidate[c]];
         }
     });
     fill.assign(rowStart.begin(), rowStart.end() - 1);
-    for (int i = 0; i < numSlots; i++)
+    for (int i = 0; i < numRows; i++)
         for (int c = start[i]; c < start[i + 1]; c++)
-            neighbor[fill[slotOf[candidate[c]]]++] = slotOf[i];
+            neighbor[fill[rowOf[candidate[c]]]++] = rowOf[i];
     followedList = &list;
     followedBuild = list.getBuildCount();
-}
-
-size_t CellOrderedCandidates::memoryBytes() const {
-    return sizeof(int)*(particle.capacity() + slot.capacity() + rowStart.capacity() + upperStart.capacity()
-                        + neighbors.capacity() + fill.capacity()) + sizeof(Vec3)*positions.capacity();
 }

@@ -11,14 +11,14 @@ using namespace OpenMM;
 
 namespace {
 
-/** Slots per range of work (fixed: the ranges do not depend on the number of threads). */
-const int slotChunk = 256;
+/** Rows per range of work (fixed: the ranges do not depend on the number of threads). */
+const int rowChunk = 256;
 
 /**
- * What a gather along a row needs: the slot positions, the rows and Reference's pair arithmetic. The displacement of
- * a neighbor j < i is r_i - r_j, the exact negative of the r_j - r_i Reference computes for the pair (j, i) (IEEE
- * subtraction and the nearest-image rounding are odd functions), so the distance, the weight and the force term
- * come out with Reference's bits.
+ * What a gather along a row needs: the row positions, the rows and Reference's pair arithmetic (the physics core's
+ * functions, called as Reference calls them). The displacement of a neighbor j < i is r_i - r_j, the exact negative
+ * of the r_j - r_i Reference computes for the pair (j, i) (IEEE subtraction and the nearest-image rounding are odd
+ * functions), so the distance, the weight and the force term come out with Reference's bits.
  */
 template <class NearestImage>
 struct RowGather {
@@ -29,7 +29,6 @@ struct RowGather {
     NearestImage nearestImage;
     double cutoff2;
     Physics::DensityWeight weight;
-    Physics::MomentWeight moment;
     /** r_s - r_t (nearest image) and its squared length. */
     Vec3 displacement(int s, int t, double& r2) const {
         const Vec3 d = nearestImage(position[s] - position[t]);
@@ -51,17 +50,17 @@ struct RowGather {
     /** VC: the pair's moment term phi(r) d/r as Reference adds it, masked, 0 beyond range or at r = 0. */
     Vec3 momentTerm(const Vec3& d, double r, double in) const {
         const double positive = (double) (r > 0.0);
-        return d*((in*positive)*moment.valueOverDistanceInside(r));
+        return d*((in*positive)*Physics::momentWeightOverDistance(r, weight.getInverseCutoff()));
     }
     /**
-     * VC: the pair's force H(d) (q_s - q_t) as Reference computes it (e = d/r, H = phi' e e^T + (phi/r)(I - e e^T)),
-     * masked; along receives e.(q_s - q_t).
+     * VC: the pair's force H(d) (q_s - q_t) as Reference computes it (Physics::momentPairForce), masked; virial
+     * receives its d . F, masked.
      */
-    Vec3 momentForce(const Vec3& d, double r, double in, const Vec3& dq, double& along) const {
+    Vec3 momentForce(const Vec3& d, double r, double in, const Vec3& dq, double& virial) const {
         const double positive = (double) (r > 0.0), safe = r + (1.0 - positive);
-        const Vec3 e = d*(1.0/safe);
-        along = e.dot(dq);
-        return (e*(moment.derivativeInside(r)*along) + (dq - e*along)*moment.valueOverDistanceInside(r))*(in*positive);
+        const Vec3 force = Physics::momentPairForce(d*(1.0/safe), r, weight.getInverseCutoff(), dq, virial);
+        virial *= in*positive;
+        return force*(in*positive);
     }
     /**
      * The pair's force scale (c_s + c_t) w'(r)/r, masked, 0 beyond range or at r = 0 (where Reference skips the
@@ -69,15 +68,14 @@ struct RowGather {
      */
     double forceScale(double r, double in, double coefficientSum) const {
         const double positive = (double) (r > 0.0);
-        return (in*positive)*(coefficientSum*weight.derivativeInside(r)/(r + (1.0 - positive)));
+        return (in*positive)*Physics::gendpdePairForceScale(coefficientSum, weight.derivativeInside(r), r + (1.0 - positive));
     }
 };
 
 template <class NearestImage>
 RowGather<NearestImage> rowGather(const CellOrderedCandidates& layout, NearestImage nearestImage, double cutoff) {
     return {layout.getPositions().data(), layout.getRowStart().data(), layout.getUpperStart().data(),
-            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff),
-            Physics::MomentWeight(cutoff)};
+            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff)};
 }
 
 } // namespace
@@ -97,7 +95,7 @@ void CpuCalcGenDPDEForceKernel::withRowGather(Body body) {
 const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
     const PeriodicBox& box = neighborList->getBox();
     if (!RowGatherAvx2::enabled() || (neighborList->isPeriodic() && box.isTriclinic()) || usesMoments())
-        return nullptr;   // (VC's moments are gathered by the scalar loops)
+        return nullptr;   // (the moments of estimators that read them are gathered by the scalar loops)
     const Physics::DensityWeight weight(cutoff);
     RowGatherAvx2::Rows& rows = *vectorRows;
     rows.position = layout.getPositions().data();
@@ -121,9 +119,9 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     const int threads = extractNumThreads(context);
     const std::vector<Vec3>& positions = extractPositions(context);
     const int numParticles = positions.size();
-    std::vector<int> firstBad(numRanges(numParticles, slotChunk), -1);
-    parallelFor(threads, numParticles, slotChunk, [&](int begin, int end) {
-        firstBad[begin/slotChunk] = firstNonFinitePosition(positions, begin, end);
+    std::vector<int> firstBad(numRanges(numParticles, rowChunk), -1);
+    parallelFor(threads, numParticles, rowChunk, [&](int begin, int end) {
+        firstBad[begin/rowChunk] = firstNonFinitePosition(positions, begin, end);
     });
     const auto bad = std::find_if(firstBad.begin(), firstBad.end(), [](int i) { return i >= 0; });
     checkConfiguration(context, bad == firstBad.end() ? -1 : *bad);
@@ -131,31 +129,31 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     layout.update(*neighborList, threads);
 
     // docs/theory.md sections 2-4: n0_i = sum_j w(r_ij) along the row, then the particle's volume, pressure and free
-    // energy, all in slot order (threads writing particle arrays at random would share cache lines). The error
+    // energy, all in row order (threads writing particle arrays at random would share cache lines). The error
     // reported is that of the lowest failing particle, as the sequential loop would report it.
     const int* particleOf = layout.getParticle().data();
-    slotDensity.resize(numParticles);
-    slotState.resize(numParticles);
-    slotCoefficient.resize(numParticles);
-    double* density = slotDensity.data();
-    ParticleState* state = slotState.data();
-    double* coefficient = slotCoefficient.data();
+    rowDensity.resize(numParticles);
+    rowState.resize(numParticles);
+    rowCoefficient.resize(numParticles);
+    double* density = rowDensity.data();
+    Physics::ParticleState* state = rowState.data();
+    double* coefficient = rowCoefficient.data();
     const bool moments = usesMoments();
-    slotMoment.resize(moments ? numParticles : 0);
-    slotMomentForce.resize(moments ? numParticles : 0);
-    Vec3* momentOf = slotMoment.data();
-    Vec3* momentForceOf = slotMomentForce.data();
+    rowMoment.resize(moments ? numParticles : 0);
+    rowMomentForce.resize(moments ? numParticles : 0);
+    Vec3* momentOf = rowMoment.data();
+    Vec3* momentForceOf = rowMomentForce.data();
     listedFlags.resize(layout.getNeighbors().size());
     char* listed = listedFlags.data();
     const ParticleModel model(*this);
     const int* typeOf = types->getParticleTypeIndices().data();
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
-    std::vector<int> failedParticle(numRanges(numParticles, slotChunk), INT_MAX);
-    std::vector<ParticleStatus> failedStatus(failedParticle.size(), Valid);
+    std::vector<int> failedParticle(numRanges(numParticles, rowChunk), INT_MAX);
+    std::vector<int> failedStatus(failedParticle.size(), GENDPDE_PARTICLE_VALID);
     int* failed = failedParticle.data();
-    ParticleStatus* status = failedStatus.data();
+    int* status = failedStatus.data();
     withRowGather([&](auto gather) {
-        parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+        parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
             if (vectorRows != nullptr)
                 RowGatherAvx2::densities(*vectorRows, begin, end, density, listed);
             else
@@ -177,65 +175,70 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                         momentOf[s] = g;
                 }
             for (int s = begin; s < end; s++) {
-                const double n0 = density[s];
                 const int i = particleOf[s];
                 const double G = moments ? momentOf[s].dot(momentOf[s]) : 0.0;
-                const ParticleStatus particleStatus = evaluateParticle(n0, G, typeOf[i], model, state[s]);
+                const int particleStatus = Physics::particleState(model.estimator, model.tait[typeOf[i]], density[s],
+                                                                  G, state[s]);
                 if (moments)
-                    momentForceOf[s] = momentOf[s]*(2.0*state[s].momentCoefficient);   // as storeParticle()
-                if (particleStatus != Valid && i < failed[begin/slotChunk]) {
-                    failed[begin/slotChunk] = i;
-                    status[begin/slotChunk] = particleStatus;
+                    momentForceOf[s] = momentOf[s]*state[s].momentForceScale;   // as storeParticle()
+                if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin/rowChunk]) {
+                    failed[begin/rowChunk] = i;
+                    status[begin/rowChunk] = particleStatus;
                 }
                 coefficient[s] = state[s].forceCoefficient;
             }
         });
     });
     // The per-particle arrays in particle order, each thread writing its own range.
-    const int* slotOf = layout.getSlot().data();
-    parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+    const int* rowOf = layout.getRow().data();
+    parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++) {
-            primitiveDensity[i] = density[slotOf[i]];
+            primitiveDensity[i] = density[rowOf[i]];
             if (moments)
-                moment[i] = momentOf[slotOf[i]];
-            storeParticle(i, state[slotOf[i]]);
+                moment[i] = momentOf[rowOf[i]];
+            storeParticle(i, state[rowOf[i]]);
         }
     });
     const auto lowest = std::min_element(failedParticle.begin(), failedParticle.end());
     if (*lowest != INT_MAX)
-        throwParticleError(failedStatus[lowest - failedParticle.begin()], *lowest, context);
+        throwParticleError(failedStatus[lowest - failedParticle.begin()], *lowest, volume[*lowest], context);
     // U = sum_i f(n_i)
     return FixedOrderSum::parallelSum(threads, numParticles,
-                                      [state, slotOf](int i) { return state[slotOf[i]].freeEnergy; }, chunkSums);
+                                      [state, rowOf](int i) { return state[rowOf[i]].freeEnergy; }, chunkSums);
 }
 
-double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces) {
-    // docs/theory.md section 4, as Reference: each particle gathers its force along its row, and its share of the
-    // virial from the pairs in which it is first (the upper part of the row).
+double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,
+                                                    std::vector<double>* particleVirials) {
+    // docs/theory.md section 4, as Reference: each particle gathers its force along its row, its share of the virial
+    // from the pairs in which it is first (the upper part of the row) and, if asked, half of each pair's virial
+    // tensor (the scalar gathers then, which the observables alone ask for).
     const int threads = extractNumThreads(context);
-    const int numSlots = layout.getNumSlots();
+    const int numRows = layout.getNumRows();
     const int* particleOf = layout.getParticle().data();
-    const double* coefficient = slotCoefficient.data();
+    const double* coefficient = rowCoefficient.data();
     const bool moments = usesMoments();
-    const Vec3* momentForce = slotMomentForce.data();
-    slotForce.resize(numSlots);
-    slotVirial.resize(numSlots);
-    Vec3* slotF = slotForce.data();
-    double* slotW = slotVirial.data();
+    const Vec3* momentForce = rowMomentForce.data();
+    rowForce.resize(numRows);
+    rowVirial.resize(numRows);
+    rowVirialTensor.resize(particleVirials != nullptr ? numRows : 0);
+    Vec3* rowF = rowForce.data();
+    double* rowW = rowVirial.data();
+    Physics::Tensor* rowTensor = particleVirials != nullptr ? rowVirialTensor.data() : nullptr;
     const Vec3* initialForce = forces != nullptr ? forces->data() : nullptr;
-    const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
+    const RowGatherAvx2::Rows* vectorRows = particleVirials == nullptr ? vectorRowsOrNull() : nullptr;
     withRowGather([&](auto gather) {
-        parallelFor(threads, numSlots, slotChunk, [=](int begin, int end) {
+        parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
             // Added to the force already there, term by term, as Reference adds them.
             for (int s = begin; s < end; s++)
-                slotF[s] = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
+                rowF[s] = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
             if (vectorRows != nullptr) {
-                RowGatherAvx2::forces(*vectorRows, coefficient, begin, end, slotF, slotW);
+                RowGatherAvx2::forces(*vectorRows, coefficient, begin, end, rowF, rowW);
                 return;
             }
             for (int s = begin; s < end; s++) {
-                Vec3 f = slotF[s];
+                Vec3 f = rowF[s];
                 double sum = 0.0;
+                Physics::Tensor tensor;
                 // The pairs (j, i), then (i, j): the virial counts the second kind only. VC adds H(d) (q_s - q_t)
                 // to each pair's force before it is added, as Reference does.
                 for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
@@ -249,47 +252,58 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
                     double virial = scale*r*r;
                     // (q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.)
                     if (moments && !(momentForce[s] == Vec3() && momentForce[t] == Vec3())) {
-                        double along;
-                        term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], along);
-                        virial += (r*gather.moment.derivativeInside(r)*along)*(in*(double) (r > 0.0));
+                        double momentVirial;
+                        term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], momentVirial);
+                        virial += momentVirial;
                     }
                     f += term;
                     if (m >= gather.upperStart[s])
                         sum += virial;
+                    if (rowTensor != nullptr && in*(double) (r > 0.0) != 0.0)   // the pairs Reference visits
+                        Physics::addHalfPairVirial(term, d, tensor);
                 }
-                slotF[s] = f;
-                slotW[s] = sum;
+                rowF[s] = f;
+                rowW[s] = sum;
+                if (rowTensor != nullptr)
+                    rowTensor[s] = tensor;
             }
         });
     });
     // Back to particle order, each thread writing its own range.
-    const int* slotOf = layout.getSlot().data();
+    const int* rowOf = layout.getRow().data();
     double* virial = particleVirial.data();
     Vec3* force = forces != nullptr ? forces->data() : nullptr;
-    parallelFor(threads, numSlots, slotChunk, [=](int begin, int end) {
+    double* tensorOut = nullptr;
+    if (particleVirials != nullptr) {
+        particleVirials->resize(9*numRows);
+        tensorOut = particleVirials->data();
+    }
+    parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++) {
-            virial[i] = slotW[slotOf[i]];
+            virial[i] = rowW[rowOf[i]];
             if (force != nullptr)
-                force[i] = slotF[slotOf[i]];
+                force[i] = rowF[rowOf[i]];
+            if (tensorOut != nullptr)
+                std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9*i);
         }
     });
-    return FixedOrderSum::parallelSum(threads, numSlots, [virial](int i) { return virial[i]; }, chunkSums);
+    return FixedOrderSum::parallelSum(threads, numRows, [virial](int i) { return virial[i]; }, chunkSums);
 }
 
 PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     // The entries the last density pass marked in the upper parts of the rows; the rows by increasing first particle
-    // give the pairs in (i, j) order, as Reference's list. Rows are read in slot order (in memory order): each row's
+    // give the pairs in (i, j) order, as Reference's list. Rows are read in row order (in memory order): each row's
     // count, then each row's first position (a prefix sum in particle order), then each row writes its pairs there.
-    const int numParticles = layout.getNumSlots();
-    const int numChunks = numRanges(numParticles, slotChunk);
+    const int numParticles = layout.getNumRows();
+    const int numChunks = numRanges(numParticles, rowChunk);
     const int* particleOf = layout.getParticle().data();
-    const int* slotOf = layout.getSlot().data();
+    const int* rowOf = layout.getRow().data();
     const int* rowStart = layout.getRowStart().data();
     const int* upperStart = layout.getUpperStart().data();
     const char* listed = listedFlags.data();
-    slotPairStart.resize(numParticles);
-    int* pairStart = slotPairStart.data();
-    parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+    rowPairStart.resize(numParticles);
+    int* pairStart = rowPairStart.data();
+    parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++) {
             int count = 0;
             for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
@@ -302,8 +316,8 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int total = 0;
-            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++)
-                total += pairStart[slotOf[i]];
+            for (int i = c*rowChunk; i < std::min(numParticles, (c + 1)*rowChunk); i++)
+                total += pairStart[rowOf[i]];
             offset[c + 1] = total;
         }
     });
@@ -312,9 +326,9 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int next = offset[c];
-            for (int i = c*slotChunk; i < std::min(numParticles, (c + 1)*slotChunk); i++) {
-                const int count = pairStart[slotOf[i]];
-                pairStart[slotOf[i]] = next;
+            for (int i = c*rowChunk; i < std::min(numParticles, (c + 1)*rowChunk); i++) {
+                const int count = pairStart[rowOf[i]];
+                pairStart[rowOf[i]] = next;
                 next += count;
             }
         }
@@ -322,7 +336,7 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     pairs.resize(pairOffset[numChunks]);
     ParticlePair* pair = pairs.data();
     withRowGather([&](auto gather) {
-        parallelFor(threads, numParticles, slotChunk, [=](int begin, int end) {
+        parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
             for (int s = begin; s < end; s++) {
                 ParticlePair* next = pair + pairStart[s];
                 for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)

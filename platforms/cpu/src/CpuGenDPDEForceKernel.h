@@ -17,14 +17,21 @@ namespace GenDPDEPlugin {
  *   candidates laid out as full rows in cell order (CellOrderedCandidates), so that the gathers stay in cache;
  * - every per-particle sum is a gather along the particle's row, in the order in which Reference's pair loop adds
  *   the terms (the pairs in which the particle is second, by increasing first particle, then those in which it is
- *   first, by increasing second), each pair term recomputed from the positions with Reference's arithmetic; no
- *   thread writes what another reads, no pair array is stored, and the rounding is Reference's;
+ *   first, by increasing second), each pair term recomputed from the positions with the physics core's functions,
+ *   as Reference calls them; no thread writes what another reads, no pair array is stored, and the rounding is
+ *   Reference's;
  * - the energy and the virial are summed in fixed chunks (FixedOrderSum).
+ *
+ * It lends the integrator its pairs (collectPairs()), collected on the platform's threads.
  */
 class CpuCalcGenDPDEForceKernel : public ReferenceCalcGenDPDEForceKernel {
 public:
     CpuCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             ReferenceCalcGenDPDEForceKernel(name, platform) {
+    }
+    /** GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()). */
+    PairView getPairs(int numThreads) override {
+        return collectPairs(numThreads);
     }
     /**
      * The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order (the pair list the
@@ -33,24 +40,26 @@ public:
     PairView collectPairs(int threads);
 protected:
     double computeDensitiesAndEnergy(OpenMM::ContextImpl& context) override;
-    double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces) override;
+    double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces,
+                             std::vector<double>* particleVirials) override;
 private:
     /** body(gather) with the RowGather (CpuGenDPDEForceKernel.cpp) for this box: open, rectangular or triclinic. */
     template <class Body>
     void withRowGather(Body body);
-    /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box). */
+    /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box, VC). */
     const RowGatherAvx2::Rows* vectorRowsOrNull();
     std::unique_ptr<RowGatherAvx2::Rows> vectorRows{new RowGatherAvx2::Rows()};
     CellOrderedCandidates layout;               // the neighbor list's candidates as full rows in cell order
-    // Per slot: what the passes find, before it is copied to the particle arrays.
-    std::vector<double> slotDensity, slotCoefficient, slotVirial;
-    std::vector<OpenMM::Vec3> slotMoment, slotMomentForce;   // VC: g and q = 2 pi dV/dG g per slot
-    std::vector<ParticleState> slotState;
-    std::vector<OpenMM::Vec3> slotForce;
+    // Per row: what the passes find, before it is copied to the particle arrays.
+    std::vector<double> rowDensity, rowCoefficient, rowVirial;
+    std::vector<OpenMM::Vec3> rowMoment, rowMomentForce;   // VC: g and q = 2 pi dV/dG g per row
+    std::vector<Physics::ParticleState> rowState;
+    std::vector<OpenMM::Vec3> rowForce;
+    std::vector<Physics::Tensor> rowVirialTensor;   // each row's virial tensor, when the observables ask for them
     std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)
     std::vector<char> listedFlags;              // per row entry: a pair closer than the cutoff (upper parts only)
     // collectPairs(): the first pair of each range of particles and of each row; the pairs.
-    std::vector<int> pairOffset, slotPairStart;
+    std::vector<int> pairOffset, rowPairStart;
     std::vector<ParticlePair> pairs;
 };
 

@@ -1,9 +1,7 @@
 #include "CpuGenDPDEIntegratorKernel.h"
-#include "CpuGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
-#include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPairSweep.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
@@ -16,15 +14,8 @@ namespace {
 const int particleChunk = 1024;
 }
 
-PairView CpuIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEForceImpl* pairListSource) {
-    // The source, if any, was evaluated at the current positions just before this step (see execute()).
-    const int threads = extractNumThreads(context);
-    if (pairListSource != nullptr)
-        return dynamic_cast<CpuCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl()).collectPairs(threads);
-    const Vec3* box = extractBoxVectors(context);
-    if (context.getSystem().usesPeriodicBoundaryConditions())
-        BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
-    return neighborList->update(extractPositions(context), box, threads);
+int CpuIntegrateGenDPDEStepKernel::numThreads(ContextImpl& context) const {
+    return extractNumThreads(context);
 }
 
 void CpuIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize, double maxDisplacement) {

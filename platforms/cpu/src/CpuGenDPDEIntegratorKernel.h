@@ -19,7 +19,7 @@ public:
     }
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
 protected:
-    PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource) override;
+    int numThreads(OpenMM::ContextImpl& context) const override;
     void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement) override;
     void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
                const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) override;

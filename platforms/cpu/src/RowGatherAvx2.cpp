@@ -15,13 +15,13 @@ struct Lanes {
     __m256d dx, dy, dz, r2, r;
 };
 
-/** The neighbors' slots of entries m .. m + count - 1 (count <= 4); unused lanes point at s itself. */
-GENDPDE_AVX2 inline __m128i laneSlots(const int* neighbors, int m, int count, int s) {
+/** The neighbors' rows of entries m .. m + count - 1 (count <= 4); unused lanes point at s itself. */
+GENDPDE_AVX2 inline __m128i laneRows(const int* neighbors, int m, int count, int s) {
     if (count == 4)
         return _mm_loadu_si128(reinterpret_cast<const __m128i*>(neighbors + m));
-    int slots[4] = {s, s, s, s};
-    std::memcpy(slots, neighbors + m, sizeof(int)*count);
-    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(slots));
+    int rows[4] = {s, s, s, s};
+    std::memcpy(rows, neighbors + m, sizeof(int)*count);
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows));
 }
 
 /** x - L round(x/L) with round(v) = (v + 1.5 2^52) - 1.5 2^52, as PeriodicBox::nearestImageRectangular. */
@@ -32,10 +32,10 @@ GENDPDE_AVX2 inline __m256d nearestImage(__m256d x, double length, double invers
     return _mm256_sub_pd(x, _mm256_mul_pd(_mm256_set1_pd(length), rounded));
 }
 
-GENDPDE_AVX2 inline Lanes pairLanes(const RowGatherAvx2::Rows& rows, int s, __m128i slots) {
+GENDPDE_AVX2 inline Lanes pairLanes(const RowGatherAvx2::Rows& rows, int s, __m128i neighbors) {
     // Four unaligned loads of (x, y, z, next x) and a 4x4 transpose; the positions carry one padding Vec3.
     alignas(16) int t[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(t), slots);
+    _mm_store_si128(reinterpret_cast<__m128i*>(t), neighbors);
     const double* base = reinterpret_cast<const double*>(rows.position);   // Vec3 is double[3]
     const __m256d p0 = _mm256_loadu_pd(base + 3*t[0]), p1 = _mm256_loadu_pd(base + 3*t[1]);
     const __m256d p2 = _mm256_loadu_pd(base + 3*t[2]), p3 = _mm256_loadu_pd(base + 3*t[3]);
@@ -69,7 +69,7 @@ GENDPDE_AVX2 inline __m256d inRangeMask(const RowGatherAvx2::Rows& rows, const L
     return _mm256_and_pd(listedMask(rows, lanes), _mm256_cmp_pd(lanes.r, _mm256_set1_pd(rows.cutoff), _CMP_LT_OQ));
 }
 
-/** 1 - r/R, as DensityWeight computes it: 1 - r (1/R). */
+/** 1 - r/R, as gendpdeDensityWeight computes it: 1 - r (1/R). */
 GENDPDE_AVX2 inline __m256d oneMinusReduced(const RowGatherAvx2::Rows& rows, const Lanes& lanes) {
     return _mm256_sub_pd(_mm256_set1_pd(1.0), _mm256_mul_pd(lanes.r, _mm256_set1_pd(rows.inverseCutoff)));
 }
@@ -81,8 +81,8 @@ GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int 
         double n0 = 0.0;
         for (int m = rows.rowStart[s]; m < rows.rowStart[s + 1]; m += 4) {
             const int count = rows.rowStart[s + 1] - m < 4 ? rows.rowStart[s + 1] - m : 4;
-            const Lanes lanes = pairLanes(rows, s, laneSlots(rows.neighbors, m, count, s));
-            // w = (c x) x with x = 1 - r/R, masked (DensityWeight::valueInside).
+            const Lanes lanes = pairLanes(rows, s, laneRows(rows.neighbors, m, count, s));
+            // w = (c x) x with x = 1 - r/R, masked (gendpdeDensityWeight).
             const __m256d x = oneMinusReduced(rows, lanes);
             const __m256d w = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(rows.valueScale), x), x);
             _mm256_store_pd(weight, _mm256_and_pd(inRangeMask(rows, lanes), w));
@@ -106,12 +106,12 @@ GENDPDE_AVX2 void forcesAvx2(const RowGatherAvx2::Rows& rows, const double* coef
         const int upper = rows.upperStart[s];
         for (int m = rows.rowStart[s]; m < rows.rowStart[s + 1]; m += 4) {
             const int count = rows.rowStart[s + 1] - m < 4 ? rows.rowStart[s + 1] - m : 4;
-            const __m128i slots = laneSlots(rows.neighbors, m, count, s);
-            const Lanes lanes = pairLanes(rows, s, slots);
+            const __m128i neighbors = laneRows(rows.neighbors, m, count, s);
+            const Lanes lanes = pairLanes(rows, s, neighbors);
             // scale = ((c_s + c_t) w'(r))/r where in range and r > 0, else 0 (the division by 1 there).
             const __m256d positive = _mm256_cmp_pd(lanes.r, _mm256_setzero_pd(), _CMP_GT_OQ);
             alignas(16) int t[4];
-            _mm_store_si128(reinterpret_cast<__m128i*>(t), slots);
+            _mm_store_si128(reinterpret_cast<__m128i*>(t), neighbors);
             const __m256d sumOfCoefficients = _mm256_add_pd(_mm256_set1_pd(coefficient[s]),
                     _mm256_set_pd(coefficientBase[t[3]], coefficientBase[t[2]], coefficientBase[t[1]],
                                   coefficientBase[t[0]]));

@@ -7,19 +7,22 @@ namespace GenDPDEPlugin {
 
 /**
  * The row gathers of the CPU force kernel (CpuGenDPDEForceKernel.cpp) four pairs at a time with AVX2, for open and
- * rectangular periodic boxes. Each lane performs the scalar kernel's IEEE operations in the same order (no fused
- * multiply-add: these functions are compiled for AVX2 without FMA), and the lanes are added to the particle's sums
+ * rectangular periodic boxes: a four-lane transcription of the physics core's gendpdeDensityWeight,
+ * gendpdeDensityWeightDerivative and gendpdePairForceScale (the one place outside GenDPDEPhysicsCore.h where those
+ * formulas are written, because the core is scalar). Each lane performs the scalar kernel's IEEE operations in the
+ * same order (no fused multiply-add: these functions are compiled for AVX2 without FMA, and the build forbids
+ * contractions, -ffp-contract=off), and the lanes are added to the particle's sums
  * one after another in row order, so the results are the scalar kernel's, hence Reference's, to the last bit
- * (tests/TestCpuGenDPDEEqualsReference.cpp runs both kernels).
+ * (platforms/cpu/tests/TestCpuGenDPDEEqualsReference.cpp runs both kernels).
  */
 namespace RowGatherAvx2 {
 
 /** Whether this processor runs AVX2 (checked once), and the GENDPDE_CPU_VECTOR environment variable is not "0". */
 bool enabled();
 
-/** What the gathers read: slot positions, rows (CellOrderedCandidates), box and the pair arithmetic's constants. */
+/** What the gathers read: row positions, rows (CellOrderedCandidates), box and the pair arithmetic's constants. */
 struct Rows {
-    const OpenMM::Vec3* position;   // slot order, wrapped if periodic (nm)
+    const OpenMM::Vec3* position;   // row order, wrapped if periodic (nm)
     const int* rowStart;
     const int* upperStart;
     const int* neighbors;
@@ -29,12 +32,12 @@ struct Rows {
     double valueScale, derivativeScale;   // of Physics::DensityWeight
 };
 
-/** n0 of slots [begin, end) (nm^-3) into density[s]; listed[m] = whether entry m is closer than the cutoff. */
+/** n0 of rows [begin, end) (nm^-3) into density[s]; listed[m] = whether entry m is closer than the cutoff. */
 void densities(const Rows& rows, int begin, int end, double* density, char* listed);
 
 /**
- * The force on slots [begin, end): force[s] starts at its value on entry and gains the row's terms in order;
- * virial[s] = sum over the upper part of the row of (scale r) r (kJ/mol). coefficient: pi dV/dn0 per slot.
+ * The force on rows [begin, end): force[s] starts at its value on entry and gains the row's terms in order;
+ * virial[s] = sum over the upper part of the row of (scale r) r (kJ/mol). coefficient: pi dV/dn0 per row.
  */
 void forces(const Rows& rows, const double* coefficient, int begin, int end, OpenMM::Vec3* force, double* virial);
 

@@ -87,6 +87,17 @@ private:
 };
 
 /**
+ * The host form of a GenDPDEPairSource (GenDPDEKernels.h): the pairs a force kernel of the Reference or CPU platform
+ * found in its last evaluation, for the integrator kernel of the same platform.
+ */
+class GenDPDEHostPairList {
+public:
+    virtual ~GenDPDEHostPairList() {}
+    /** The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order. */
+    virtual PairView getPairs(int numThreads) = 0;
+};
+
+/**
  * All pairs of particles closer than a cutoff, listed once each with i < j, in lexicographic (i, j) order whatever
  * the positions or the history of the list. That canonical order makes any sequential sweep over the pairs a pure
  * function of the configuration.

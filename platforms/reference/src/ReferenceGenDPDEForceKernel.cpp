@@ -32,7 +32,7 @@ void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& conte
 void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
     std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
-    estimator = force.getDensityEstimator();
+    estimator = (int) force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     taitByType = tait;
     observablesValid = false;
@@ -54,46 +54,11 @@ int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Ve
     return -1;
 }
 
-ReferenceCalcGenDPDEForceKernel::ParticleStatus ReferenceCalcGenDPDEForceKernel::evaluateParticle(double n0,
-        double G, int type, const ParticleModel& model, ParticleState& state) const {
-    // docs/theory.md sections 3-4 (VC: docs/interfaces.md): the volume, the Tait pressure and free energy, and
-    // pi_i dV_i/dn0_i (and pi_i dV_i/dG_i).
-    if (estimator == GenDPDEForce::VA && n0 == 0.0)
-        return NoNeighbor;
-    double volume, derivative, momentDerivative = 0.0;
-    if (estimator == GenDPDEForce::VC) {
-        const Physics::ParticleVolumeVC v = model.volumeVC(n0, G);
-        volume = v.volume;
-        derivative = v.derivative;
-        momentDerivative = v.momentDerivative;
-    }
-    else {
-        const Physics::ParticleVolume v = (estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0));
-        volume = v.volume;
-        derivative = v.derivative;
-    }
-    model.tait[type].evaluate(1.0/volume, state.pressure, state.freeEnergy);
-    if (!(std::isfinite(state.freeEnergy) && std::isfinite(state.pressure)))
-        return Overflow;
-    state.volume = volume;
-    // An isolated particle (VB, VC: n0 = 0) is in no pair; its diverging dV/dn0 must not reach the arrays.
-    state.forceCoefficient = (n0 > 0.0 ? state.pressure*derivative : 0.0);
-    state.momentCoefficient = state.pressure*momentDerivative;
-    return Valid;
-}
-
-double ReferenceCalcGenDPDEForceKernel::particleDensity(int i) const {
-    const ParticleModel model(*this);
-    const double n0 = primitiveDensity[i];
-    if (estimator == GenDPDEForce::VC)
-        return 1.0/model.volumeVC(n0, moment[i].dot(moment[i])).volume;
-    return 1.0/(estimator == GenDPDEForce::VA ? Physics::volumeVA(n0) : model.volumeVB(n0)).volume;
-}
-
-void ReferenceCalcGenDPDEForceKernel::throwParticleError(ParticleStatus status, int i, ContextImpl& context) const {
-    if (status == NoNeighbor)
+void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, double volume,
+                                                         ContextImpl& context) const {
+    if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, particleDensity(i),
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, 1.0/volume,
             taitByType[types->getParticleTypeIndices()[i]].referenceDensity, context.getStepCount()));
 }
 
@@ -111,60 +76,76 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         primitiveDensity[pair.i] += w;
         primitiveDensity[pair.j] += w;
     }
-    // VC (docs/interfaces.md): the first moments g_i = sum_j phi(r_ij) e_ij.
+    // docs/theory.md section 3 (V-C): the first moments g_i = sum_j phi(r_ij) e_ij.
     if (usesMoments()) {
-        const Physics::MomentWeight phi(cutoff);
         std::fill(moment.begin(), moment.end(), Vec3());
         for (const ParticlePair& pair : pairs)
             if (pair.r > 0.0 && pair.r < cutoff) {
-                const Vec3 term = pair.delta*phi.valueOverDistanceInside(pair.r);
+                const Vec3 term = pair.delta*Physics::momentWeightOverDistance(pair.r, weight.getInverseCutoff());
                 moment[pair.i] += term;
                 moment[pair.j] -= term;
             }
     }
 
-    // docs/theory.md sections 2-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
+    // docs/theory.md sections 3-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
     const ParticleModel model(*this);
     const std::vector<int>& type = types->getParticleTypeIndices();
+    const bool moments = usesMoments();
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
-        ParticleState state;
-        const ParticleStatus status = evaluateParticle(primitiveDensity[i], moment[i].dot(moment[i]), type[i], model,
-                                                       state);
-        if (status != Valid)
-            throwParticleError(status, i, context);
+        Physics::ParticleState state;
+        const int status = Physics::particleState(model.estimator, model.tait[type[i]], primitiveDensity[i],
+                                                  moments ? moment[i].dot(moment[i]) : 0.0, state);
+        if (status != GENDPDE_PARTICLE_VALID)
+            throwParticleError(status, i, state.volume, context);
         storeParticle(i, state);
         energy.add(state.freeEnergy);
     }
     return energy.sum();
 }
 
-double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces) {
-    // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij; W = sum_{i<j} r_ij . F_ij, summed
-    // per first particle, then over particles in the fixed order (as the CPU platform does).
+double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,
+                                                          std::vector<double>* particleVirials) {
+    // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij (+ V-C's moment term);
+    // W = sum_{i<j} r_ij . F_ij, summed per first particle, then over particles in the fixed order (as the CPU platform
+    // does); the particles' virial tensors get half of each of their pairs' F r^T.
     const Physics::DensityWeight weight(cutoff);
-    const Physics::MomentWeight phi(cutoff);
     const bool moments = usesMoments();
     std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
+    Physics::Tensor* tensor = nullptr;
+    std::vector<Physics::Tensor> tensors;
+    if (particleVirials != nullptr) {
+        tensors.resize(particleVirial.size());
+        tensor = tensors.data();
+    }
     for (const ParticlePair& pair : neighborList->getPairs()) {
         if (pair.r == 0.0)
             continue;   // coincident particles: counted in the density, no direction, no force
-        double scale = (forceCoefficient[pair.i] + forceCoefficient[pair.j])*weight.derivative(pair.r)/pair.r;
+        const double scale = Physics::gendpdePairForceScale(forceCoefficient[pair.i] + forceCoefficient[pair.j],
+                                                   weight.derivative(pair.r), pair.r);
         Vec3 force = pair.delta*scale;
         double virial = scale*pair.r*pair.r;
         // (q vanishes for the particles below V-C's threshold, nearly all of a bulk liquid: their pairs add nothing.)
         if (moments && pair.r < cutoff && !(momentForce[pair.i] == Vec3() && momentForce[pair.j] == Vec3())) {
-            // VC: H(d) (q_i - q_j), H = phi' e e^T + (phi/r)(I - e e^T) (docs/interfaces.md).
-            const Vec3 e = pair.delta*(1.0/pair.r), dq = momentForce[pair.i] - momentForce[pair.j];
-            const double along = e.dot(dq);
-            force += e*(phi.derivativeInside(pair.r)*along) + (dq - e*along)*phi.valueOverDistanceInside(pair.r);
-            virial += pair.r*phi.derivativeInside(pair.r)*along;
+            double momentVirial;
+            force += Physics::momentPairForce(pair.delta*(1.0/pair.r), pair.r, weight.getInverseCutoff(),
+                                              momentForce[pair.i] - momentForce[pair.j], momentVirial);
+            virial += momentVirial;
         }
         if (forces != nullptr) {
             (*forces)[pair.i] += force;
             (*forces)[pair.j] -= force;
         }
         particleVirial[pair.i] += virial;
+        if (tensor != nullptr) {
+            Physics::addHalfPairVirial(force, pair.delta, tensor[pair.i]);
+            Physics::addHalfPairVirial(force, pair.delta, tensor[pair.j]);
+        }
+    }
+    if (particleVirials != nullptr) {
+        particleVirials->resize(9*tensors.size());
+        for (size_t i = 0; i < tensors.size(); i++)
+            std::copy(tensors[i].element, tensors[i].element + 9, particleVirials->data() + 9*i);
     }
     FixedOrderSum::Accumulator virial;
     for (double w : particleVirial)
@@ -175,18 +156,22 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
 double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
     double energy = computeDensitiesAndEnergy(context);
     if (includeForces)
-        computePairForces(context, &extractForces(context));
+        computePairForces(context, &extractForces(context), nullptr);
+    pairsFound(cutoff, context.getStepCount());
     return energy;
 }
 
-const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(ContextImpl& context) {
+const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(ContextImpl& context, bool particleVirials) {
     const std::vector<Vec3>& positions = extractPositions(context);
     Vec3* box = extractBoxVectors(context);
-    if (observablesValid && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1]
-            && box[2] == observedBox[2])
+    if (observablesValid && (observedVirials || !particleVirials) && positions == observedPositions
+            && box[0] == observedBox[0] && box[1] == observedBox[1] && box[2] == observedBox[2])
         return observables;
     computeDensitiesAndEnergy(context);
-    observables.virial = computePairForces(context, nullptr);
+    observables.virial = computePairForces(context, nullptr, particleVirials ? &observables.particleVirials : nullptr);
+    if (!particleVirials)
+        observables.particleVirials.clear();
+    pairsFound(cutoff, context.getStepCount());
     observables.primitiveDensities = primitiveDensity;
     observables.volumes = volume;
     observables.pressures = pressure;
@@ -197,5 +182,6 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
     for (int k = 0; k < 3; k++)
         observedBox[k] = box[k];
     observablesValid = true;
+    observedVirials = particleVirials;
     return observables;
 }

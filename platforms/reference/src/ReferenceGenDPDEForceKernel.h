@@ -13,10 +13,12 @@ namespace GenDPDEPlugin {
 
 /**
  * Reference (double precision, single thread) evaluation of GenDPDEForce, docs/theory.md sections 2-4:
- * one sweep over the pairs for the primitive densities, one pass over the particles for volumes, pressures and
- * free energies, and one sweep over the pairs for the forces and the virial.
+ * one sweep over the pairs for the primitive densities (and, for estimators that read them, the first moments), one
+ * pass over the particles for their states (the physics core's gendpdeParticleState), and one sweep over the pairs
+ * for the forces and the virial. It lends its pairs to the integrator kernel (GenDPDEPairSource, as a host list).
  */
-class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
+class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource,
+                                        public GenDPDEHostPairList {
 public:
     ReferenceCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             CalcGenDPDEForceKernel(name, platform) {
@@ -24,32 +26,28 @@ public:
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
-    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context) override;
-    /** The neighbor list; its pairs are those of the most recent evaluation. */
-    const NeighborList& getNeighborList() const {
-        return *neighborList;
+    const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
+    GenDPDEPairSource* getPairSource() override {
+        return this;
+    }
+    // GenDPDEPairSource: the neighbor list of the last evaluation.
+    GenDPDEHostPairList* getHostPairList() override {
+        return this;
+    }
+    // GenDPDEHostPairList: the pairs of the neighbor list's most recent evaluation.
+    PairView getPairs(int numThreads) override {
+        return neighborList->getPairs();
     }
 protected:
-    /** What evaluateParticle() needs per evaluation: the Tait equation of state of each type and the V-B estimator. */
+    /** What the particle pass needs per evaluation: the estimator and the Tait equation of state of each type. */
     struct ParticleModel {
         explicit ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel) :
-                volumeVB(kernel.cutoff/kernel.cutoffScaling),
-                volumeVC(kernel.cutoff, kernel.cutoff/kernel.cutoffScaling) {
+                estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling) {
             for (const TaitParameters& p : kernel.taitByType)
                 tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
         }
+        Physics::VolumeEstimator estimator;
         std::vector<Physics::TaitEquationOfState> tait;   // by type index
-        Physics::VolumeEstimatorVB volumeVB;
-        Physics::VolumeEstimatorVC volumeVC;
-    };
-    enum ParticleStatus {Valid, NoNeighbor, Overflow};
-    /** What evaluateParticle() finds for one particle. */
-    struct ParticleState {
-        double volume;             // V (nm^3)
-        double pressure;           // pi (kJ/mol/nm^3)
-        double forceCoefficient;   // pi dV/dn0 (kJ/mol nm^3)
-        double momentCoefficient;  // pi dV/dG (kJ/mol), VC only (else 0)
-        double freeEnergy;         // f (kJ/mol)
     };
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
     void readParameters(const GenDPDEForce& force);
@@ -57,36 +55,35 @@ protected:
     void checkConfiguration(OpenMM::ContextImpl& context, int firstBadParticle) const;
     /** The first particle in [begin, end) whose position is not finite, or -1. */
     static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
-    /**
-     * The state of a particle of primitive density n0 (nm^-3), squared first moment G (VC only, else ignored) and
-     * type index type; valid only if the status is Valid.
-     */
-    ParticleStatus evaluateParticle(double n0, double G, int type, const ParticleModel& model,
-                                    ParticleState& state) const;
     /** Whether the estimator needs the first moments of the neighbourhoods (VC). */
     bool usesMoments() const {
-        return estimator == GenDPDEForce::VC;
+        return Physics::gendpdeEstimatorNeedsMoments(estimator) != 0;
     }
-    /** The density 1/V of particle i from its primitive density and moment of the last evaluation (nm^-3). */
-    double particleDensity(int i) const;
     /** Store particle i's state in the per-particle arrays. */
-    void storeParticle(int i, const ParticleState& state) {
+    void storeParticle(int i, const Physics::ParticleState& state) {
         volume[i] = state.volume;
         pressure[i] = state.pressure;
         forceCoefficient[i] = state.forceCoefficient;
         if (usesMoments())
-            momentForce[i] = moment[i]*(2.0*state.momentCoefficient);
+            momentForce[i] = moment[i]*state.momentForceScale;
     }
-    /** The error for particle i, naming it, its density and the step. */
-    [[noreturn]] void throwParticleError(ParticleStatus status, int i, OpenMM::ContextImpl& context) const;
+    /**
+     * The error for particle i whose state has this status (Physics, GENDPDE_PARTICLE_*), naming it and the step;
+     * volume: its volume (nm^3).
+     */
+    [[noreturn]] void throwParticleError(int status, int i, double volume, OpenMM::ContextImpl& context) const;
     /** Pair sweep and particle pass: fills the per-particle arrays and returns U = sum_i f(n_i) (kJ/mol). */
     virtual double computeDensitiesAndEnergy(OpenMM::ContextImpl& context);
-    /** Pair sweep for F_i (added to *forces unless null); returns the virial W (kJ/mol). */
-    virtual double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces);
+    /**
+     * Pair sweep for F_i (added to *forces unless null) and, if particleVirials is not null, each particle's virial
+     * tensor (9 per particle, kJ/mol); returns the virial W (kJ/mol).
+     */
+    virtual double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces,
+                                     std::vector<double>* particleVirials);
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
     std::vector<TaitParameters> taitByType;    // by type index
-    GenDPDEForce::DensityEstimator estimator;
+    int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
     std::unique_ptr<NeighborList> neighborList;
     // Per particle, at the positions of the last evaluation.
@@ -99,7 +96,7 @@ protected:
     GenDPDEObservables observables;
     std::vector<OpenMM::Vec3> observedPositions;
     OpenMM::Vec3 observedBox[3];
-    bool observablesValid = false;
+    bool observablesValid = false, observedVirials = false;
 };
 
 } // namespace GenDPDEPlugin

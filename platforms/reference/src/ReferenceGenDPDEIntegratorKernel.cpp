@@ -1,10 +1,8 @@
 #include "ReferenceGenDPDEIntegratorKernel.h"
-#include "ReferenceGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
-#include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPairSweep.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
@@ -17,12 +15,13 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                     double cutoff, int seed, const std::vector<double>& energies) {
+                                                     double cutoff, int seed, const std::vector<double>& energies,
+                                                     const std::map<int, int>& particleTypes) {
     const System& system = context.getSystem();
     this->cutoff = cutoff;
     this->seed = seed;
     internalEnergies = energies;
-    types.reset(new ParticleTypeIndex(integrator.getParticleTypes(), system.getNumParticles(), "GenDPDEIntegrator"));
+    types.reset(new ParticleTypeIndex(particleTypes, system.getNumParticles(), "GenDPDEIntegrator"));
     inverseMasses.resize(system.getNumParticles());
     for (int i = 0; i < system.getNumParticles(); i++) {
         double mass = system.getParticleMass(i);
@@ -32,15 +31,16 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
         neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
 }
 
-PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEForceImpl* pairListSource) {
+PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEPairSource* pairSource,
+                                                           int numThreads) {
     // The source, if any, was evaluated at the current positions just before this step (see execute()).
-    if (pairListSource != nullptr)
-        return dynamic_cast<ReferenceCalcGenDPDEForceKernel&>(pairListSource->getKernel().getImpl())
-                .getNeighborList().getPairs();
+    GenDPDEHostPairList* list = pairSource != nullptr ? pairSource->getHostPairList() : nullptr;
+    if (list != nullptr && pairSource->getCutoff() == cutoff && pairSource->getStepCount() == context.getStepCount())
+        return list->getPairs(numThreads);
     const Vec3* box = extractBoxVectors(context);
     if (context.getSystem().usesPeriodicBoundaryConditions())
         BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
-    return neighborList->update(extractPositions(context), box);
+    return neighborList->update(extractPositions(context), box, numThreads);
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
@@ -122,7 +122,7 @@ void ReferenceIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vecto
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                  const GenDPDEStepTerms& terms, GenDPDEForceImpl* pairListSource) {
+                                                  const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
     // docs/theory.md section 6: half kick, pair sweep at fixed positions, half kick, drift; without pair terms,
     // velocity Verlet (leapfrog form: one full kick).
     checkStepIsStable(context, integrator.getStepSize(), terms.maxDisplacement);
@@ -137,7 +137,7 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
             savedInternalEnergies = internalEnergies;
         }
         kick(context, velocities, forces, 0.5*dt);
-        sweep(context, currentPairs(context, pairListSource), velocities, integrator, terms);
+        sweep(context, currentPairs(context, pairSource, numThreads(context)), velocities, integrator, terms);
         kick(context, velocities, forces, 0.5*dt);
     }
     drift(context, extractPositions(context), velocities, dt);

@@ -11,13 +11,11 @@
 
 namespace GenDPDEPlugin {
 
-class ReferenceCalcGenDPDEForceKernel;
-
 /**
  * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md sections 5-7): half kick,
- * pair sweep at fixed positions, half kick, drift. The pairs come from the GenDPDEForce that the API chose as the
- * pair-list source (GenDPDEIntegratorUtilities::findPairListSource; evaluated at these positions just before),
- * else from a neighbor list of the integrator's own.
+ * pair sweep at fixed positions, half kick, drift. The pairs come from the pair source the API found
+ * (GenDPDEIntegratorUtilities::findPairSource: a GenDPDEForce evaluated at these positions just before) if it
+ * offers them as a host list for this step and range, else from a neighbor list of the integrator's own.
  */
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
@@ -25,9 +23,9 @@ public:
             IntegrateGenDPDEStepKernel(name, platform) {
     }
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
-                    const std::vector<double>& internalEnergies) override;
+                    const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) override;
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
-                 GenDPDEForceImpl* pairListSource) override;
+                 GenDPDEPairSource* pairSource) override;
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override {
         return internalEnergies;
@@ -43,8 +41,15 @@ public:
     }
 protected:
     // The stages of a step (execute() is the one home of their sequence); a parallel platform overrides them.
-    /** The pairs closer than the cutoff at the current positions: the source's, or from our own list. */
-    virtual PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEForceImpl* pairListSource);
+    /**
+     * The pairs closer than the cutoff at the current positions: the source's if it lends them as a host list found
+     * at this step with this range, else from our own list; on this many threads.
+     */
+    PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEPairSource* pairSource, int numThreads);
+    /** The threads each stage may use (1; the CPU platform's "Threads"). */
+    virtual int numThreads(OpenMM::ContextImpl& context) const {
+        return 1;
+    }
     /**
      * Throw, naming the particle and the step, before anything changes, if a force is not finite or a particle
      * would move farther than maxDisplacement (nm) in this step (a blown-up simulation).
@@ -75,7 +80,7 @@ protected:
                                 std::vector<OpenMM::Vec3>& velocities, long long step);
     double cutoff = 0.0;
     int seed = 0;
-    std::unique_ptr<ParticleTypeIndex> types;   // the integrator's particle types, read at initialize()
+    std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
     GenDPDESweepOrder sweepOrder;

@@ -1,7 +1,4 @@
 #ifdef __OPENCL_VERSION__
-#pragma OPENCL FP_CONTRACT OFF
-#endif
-#ifdef __OPENCL_VERSION__
 #define ATOMIC_MIN(p, v) atomic_min(p, v)
 #else
 #define ATOMIC_MIN(p, v) atomicMin(p, v)
@@ -13,7 +10,10 @@
  * not depend on atom reordering or on the thread schedule.
  *
  * Defines: NUM_ATOMS, SCAN_GROUP_SIZE, BOUNDS_GROUP_SIZE, and USE_PERIODIC or not; USE_MIXED_PRECISION as OpenMM
- * sets it. The grid, cells = (n_x, n_y, n_z, n_x n_y n_z), is an argument: it changes with the box. */
+ * sets it. The grid, cells = (n_x, n_y, n_z, n_x n_y n_z), is an argument: it changes with the box. A slot, in every
+ * device kernel of the plugin, is an atom's position in OpenMM's per-atom arrays (posq, velm, the force buffers),
+ * which atom reordering changes; the original index never changes. The argument order of each kernel is the enum of
+ * the same name in CommonGenDPDECellGrid.cpp. */
 
 /** The position of the particle in slot `index`, in mixed precision (posq plus its correction when mixed). */
 inline DEVICE mixed3 loadMixedPosition(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,

@@ -7,7 +7,8 @@
  *
  * status[0]: the smallest original index of a particle whose step would be unstable; status[1]: the number of pairs;
  * status[2]: the sweep position of the first pair after which an internal energy is <= 0; status[3]: pairs found in
- * cells that are not adjacent (none are possible). Each is NO_VALUE (INT_MAX) or 0 until set. */
+ * cells that are not adjacent (none are possible). Each is NO_VALUE (INT_MAX) or 0 until set. The argument order of
+ * each kernel is the enum of the same name in CommonGenDPDEIntegratorKernel.cpp. */
 
 #define NO_VALUE 0x7FFFFFFF
 
@@ -96,15 +97,16 @@ KERNEL void invertAtomIndex(GLOBAL const int* RESTRICT atomIndex, GLOBAL int* RE
 }
 
 /**
- * The pairs (i < j, original indices, closer than the cutoff) by block: with fill == 0 count them per block slot,
- * with fill != 0 list them in their slot's range (in any order; orderBlockPairs orders them). A pair's block is
+ * The pairs (i < j, original indices, closer than the cutoff) by block: with fill == 0 count them per block, by the
+ * block's rank in the sweep (rankOfBlock), with fill != 0 list them in their block's range (in any order;
+ * orderBlockPairs orders them). A pair's block is
  * that of its home cell (along each direction the cell the other follows), as in GenDPDESweepOrder.
  */
 KERNEL void findBlockPairs(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cellStart,
         GLOBAL const int* RESTRICT sortedCell, GLOBAL const int* RESTRICT sortedAtom,
         GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
         GLOBAL const real4* RESTRICT posqCorrection, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed cutoff,
-        GLOBAL const int* RESTRICT slotOfBlock, int fill, GLOBAL int* RESTRICT blockCount,
+        GLOBAL const int* RESTRICT rankOfBlock, int fill, GLOBAL int* RESTRICT blockCount,
         GLOBAL const int* RESTRICT blockStart, GLOBAL int2* RESTRICT blockPairs, GLOBAL int* RESTRICT status) {
     const mixed cutoff2 = cutoff*cutoff;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
@@ -136,11 +138,11 @@ KERNEL void findBlockPairs(int4 cells, int4 blocks, GLOBAL const int* RESTRICT c
                     ATOMIC_ADD(&status[3], 1);
                     continue;
                 }
-                const int slot = slotOfBlock[(block[2]*blocks.y + block[1])*blocks.x + block[0]];
+                const int rank = rankOfBlock[(block[2]*blocks.y + block[1])*blocks.x + block[0]];
                 if (fill == 0)
-                    ATOMIC_ADD(&blockCount[slot], 1);
+                    ATOMIC_ADD(&blockCount[rank], 1);
                 else
-                    blockPairs[blockStart[slot] + ATOMIC_ADD(&blockCount[slot], 1)] = make_int2(i, j);
+                    blockPairs[blockStart[rank] + ATOMIC_ADD(&blockCount[rank], 1)] = make_int2(i, j);
             }
         }
     }
@@ -154,10 +156,10 @@ inline DEVICE bool pairBefore(int2 a, int2 b) {
  * Each block's pairs in sweep order: sorted by (i, j) (Shell sort in place), then the lists of each four consecutive
  * distinct first particles interleaved into orderedPairs (GenDPDESweepOrder's interleaveRuns).
  */
-KERNEL void orderBlockPairs(int numSlots, GLOBAL const int* RESTRICT blockStart, GLOBAL int2* RESTRICT blockPairs,
+KERNEL void orderBlockPairs(int numBlocks, GLOBAL const int* RESTRICT blockStart, GLOBAL int2* RESTRICT blockPairs,
                             GLOBAL int2* RESTRICT orderedPairs) {
-    for (int s = GLOBAL_ID; s < numSlots; s += GLOBAL_SIZE) {
-        const int begin = blockStart[s], count = blockStart[s + 1] - begin;
+    for (int b = GLOBAL_ID; b < numBlocks; b += GLOBAL_SIZE) {
+        const int begin = blockStart[b], count = blockStart[b + 1] - begin;
         GLOBAL int2* pairs = &blockPairs[begin];
         int gap = 1;
         while (gap < count/3)
@@ -213,28 +215,27 @@ inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction
 }
 
 /**
- * One colour of the sweep: thread t runs block slot firstSlot + t, its pairs in order (GenDPDEPairSweep.h).
+ * One colour of the sweep: thread t runs the block of rank firstRank + t, its pairs in order (GenDPDEPairSweep.h).
  * parameters = (cutoff, dt, sqrt(dt), 0); per pair of type indices (GenDPDETypes.h; atomType by original index)
  * pairTable[t_i numTypes + t_j] = (friction, heat conduction, alpha = sqrt(2 k_B kappa), sigma of the Isothermal
  * bath); heatCapacityTable[t] = C_V of type t; terms bit 0: dissipation, bit 1: conduction, bit 2: internal energies.
  */
-KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT blockStart,
+KERNEL void sweepColour(int firstRank, int numRanks, GLOBAL const int* RESTRICT blockStart,
         GLOBAL const int2* RESTRICT orderedPairs, GLOBAL const int* RESTRICT slotOfAtom,
         GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
         GLOBAL mixed4* RESTRICT velm, GLOBAL mixed* RESTRICT energies, mixed4 boxA, mixed4 boxB, mixed4 boxC,
         mixed4 parameters, GLOBAL const int* RESTRICT atomType, GLOBAL const mixed4* RESTRICT pairTable,
         GLOBAL const mixed* RESTRICT heatCapacityTable, int numTypes, mixed boltzmann, int terms, unsigned int seed,
-        unsigned int stepLow,
-        unsigned int stepHigh, GLOBAL const randomReal* RESTRICT zigguratX,
+        unsigned int stepLow, unsigned int stepHigh, GLOBAL const randomReal* RESTRICT zigguratX,
         GLOBAL const randomReal* RESTRICT zigguratF, GLOBAL const randomReal* RESTRICT zigguratRatio,
         GLOBAL int* RESTRICT status) {
     if (status[2] != NO_VALUE)
         return;   // an earlier colour failed
     const mixed cutoff = parameters.x, stepSize = parameters.y, sqrtStepSize = parameters.z;
     const bool dissipation = (terms & 1) != 0, conduction = (terms & 2) != 0, internalEnergies = (terms & 4) != 0;
-    for (int t = GLOBAL_ID; t < numSlots; t += GLOBAL_SIZE) {
-        const int s = firstSlot + t;
-        for (int n = blockStart[s]; n < blockStart[s + 1]; n++) {
+    for (int t = GLOBAL_ID; t < numRanks; t += GLOBAL_SIZE) {
+        const int b = firstRank + t;
+        for (int n = blockStart[b]; n < blockStart[b + 1]; n++) {
             const int2 pair = orderedPairs[n];
             const int si = slotOfAtom[pair.x], sj = slotOfAtom[pair.y];
             mixed4 vi = velm[si], vj = velm[sj];
@@ -243,7 +244,7 @@ KERNEL void sweepColour(int firstSlot, int numSlots, GLOBAL const int* RESTRICT 
             const mixed r = sqrt(dot(d, d));
             if (r == 0 || (vi.w == 0 && vj.w == 0))
                 continue;
-            const mixed omegaR = 1 - r/cutoff;
+            const mixed omegaR = gendpdeRandomWeight(r, cutoff);
             const mixed3 e = d*(1/r);
             const int typeI = atomType[pair.x], typeJ = atomType[pair.y];
             const mixed4 pairParameters = pairTable[typeI*numTypes + typeJ];

@@ -11,7 +11,12 @@ CPU platforms: energies, forces and every observable of GenDPDEForce (V-A and V-
 triclinic, a dilute gas), 60-step trajectories of GenDPDEIntegrator in every mode (positions, velocities, internal
 energies, conserved energy), a continuation from a checkpoint, the force-free DPD thermostat, the pointwise physics
 functions on a grid, and the numbers that `table3 --quick` and `tune-fcut --quick` write. Takes about a minute.
+V-C's force scenes are digested too (its arithmetic may be rearranged, so a change there is reported, not an error).
+
+    .venv/bin/python tools/result_digest.py --platforms OpenCL     # also (or only) another platform's force scenes
 """
+
+import argparse
 
 import contextlib
 import hashlib
@@ -53,7 +58,7 @@ def jittered(argon, seed, jitter=0.02):
 def force_scenes():
     """(name, system, force, positions) for a set of force evaluations."""
     scenes = []
-    for estimator in ("VA", "VB"):
+    for estimator in ("VA", "VB", "VC"):
         argon = liquid_argon(500, 1.6839, estimator)
         scenes.append((f"liquid-{estimator}", argon.system, argon.force, jittered(argon, 1)))
     argon = liquid_argon(500, 1.3365, "VB")
@@ -67,6 +72,9 @@ def force_scenes():
     argon.force.setNonbondedMethod(GenDPDEForce.CutoffNonPeriodic)
     argon.force.setCutoffScaling(1.41)
     scenes.append(("gas-VB", argon.system, argon.force, jittered(argon, 4) * 2.2))
+    argon = liquid_argon(500, 1.6839, "VC")   # an open cluster: V-C's surface factor at work
+    argon.force.setNonbondedMethod(GenDPDEForce.CutoffNonPeriodic)
+    scenes.append(("open-VC", argon.system, argon.force, jittered(argon, 8)))
     return scenes
 
 
@@ -144,8 +152,15 @@ def command_line_results():
     digest("tune-fcut --quick", numbers)
 
 
-def run():
+def run(arguments):
     print(f"# openmmgendpde {openmmgendpde.__version__}, OpenMM {openmm.__version__}", file=sys.stderr)
+    if arguments.platforms:   # only the force scenes of these platforms (e.g. OpenCL in double precision)
+        for name in arguments.platforms:
+            platform = openmm.Platform.getPlatformByName(name)
+            if name in ("OpenCL", "CUDA"):
+                platform.setPropertyDefaultValue("Precision", arguments.precision)
+            force_results(platform)
+        return
     physics_results()
     for name in ("Reference", "CPU"):
         platform = openmm.Platform.getPlatformByName(name)
@@ -155,4 +170,7 @@ def run():
 
 
 if __name__ == "__main__":
-    run()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--platforms", nargs="+", help="digest only the force scenes on these platforms")
+    parser.add_argument("--precision", default="double", help="of the GPU platforms (default double)")
+    run(parser.parse_args())

@@ -85,6 +85,17 @@ return_units(GenDPDEForce, "getPrimitiveDensities", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getParticleDensities", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getParticleVolumes", _unit.nanometer**3)
 return_units(GenDPDEForce, "getParticlePressures", PRESSURE)
+
+
+def _particle_virials(original):
+    def getParticleVirials(self, context):
+        return _unit.Quantity(original(self, context).reshape(-1, 3, 3), _unit.kilojoule_per_mole)
+    getParticleVirials.__doc__ = (original.__doc__ or "") + (
+        "\n\nReturns a Quantity holding an N x 3 x 3 numpy array (kJ/mol): element [i, a, b] is W_i,ab.")
+    return getParticleVirials
+
+
+GenDPDEForce.getParticleVirials = _particle_virials(GenDPDEForce.getParticleVirials)
 add_cast_copy_and_pickle(GenDPDEForce)
 
 GenDPDEIntegrator = _swig.GenDPDEIntegrator
@@ -122,8 +133,14 @@ return_units(GenDPDEIntegrator, "getInternalEnergies", _unit.kilojoule_per_mole)
 add_cast_copy_and_pickle(GenDPDEIntegrator)
 
 
+#: The density estimators, GenDPDEForce's enum value -> name ('VA', 'VB', ...), read from the class itself so that
+#: an estimator added to the C++ enum is known here (to the CLI's choices, repr, presets) without another list.
+ESTIMATOR_NAMES = {getattr(GenDPDEForce, name): name for name in sorted(dir(GenDPDEForce))
+                   if len(name) == 2 and name[0] == "V" and name[1].isupper()}
+
+
 def _force_repr(self):
-    estimator = "VA" if self.getDensityEstimator() == GenDPDEForce.VA else "VB"
+    estimator = ESTIMATOR_NAMES[self.getDensityEstimator()]
     method = "CutoffPeriodic" if self.usesPeriodicBoundaryConditions() else "CutoffNonPeriodic"
     n0, pi0, bulk, gamma = self.getTaitParameters()
     return (f"<GenDPDEForce cutoff={self.getCutoffDistance().value_in_unit(_unit.nanometer):g} nm, {method}, "

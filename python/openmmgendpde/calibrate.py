@@ -2,8 +2,9 @@
 
 1. The mapping (openmmgendpde.fluid.coarse_grain) gives every parameter; they are printed in OpenMM and reduced units.
 2. V-B's f_cut is tuned until the mean particle density n-bar equals n0 (as tune-fcut does for argon): on frames of an
-   isoenergetic run n-bar is evaluated at f_cut and at two trial values around it; the first step follows that
-   slope, later ones the secant through the runs (V-A has no f_cut).
+   isoenergetic run n-bar is evaluated at f_cut and at two trial values around it (f_cut (1 -+ 2%)), and every step
+   follows half that slope, since the structure follows f_cut and halves its effect (a secant between runs is too
+   noisy at the lengths of --quick; V-A has no f_cut).
 3. With the tuned model, measured side by side with the targets, each with its standard error (block averages, or
    the scatter of independent replicas):
    - n-bar, the virial pressure P (kinetic term included), the kinetic temperature and the harmonic mean of theta_i;
@@ -30,7 +31,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from . import GenDPDEIntegrator
+from . import ESTIMATOR_NAMES, GenDPDEIntegrator
 from .cli import add_platform, platform_description
 from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .statistics import block_average
@@ -343,7 +344,8 @@ def add_arguments(parser):
     parser.add_argument("--neighbors", type=float, default=20.0,
                         help="particles within the cutoff at n0 (default 20), unless --cutoff is given")
     parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
-    parser.add_argument("--estimator", choices=("VA", "VB"), default="VB")
+    parser.add_argument("--estimator", choices=list(ESTIMATOR_NAMES.values()), default="VB",
+                        help="the density estimator (default VB; VC is VB with free surfaces)")
     parser.add_argument("--particles", type=int, help="4 m^3 particles (default 2048; --quick 500)")
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check)")
     parser.add_argument("--seed", type=int, default=1)

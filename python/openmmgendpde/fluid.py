@@ -28,6 +28,7 @@ import openmm
 from openmm import app, unit
 
 from . import GenDPDEForce, GenDPDEIntegrator
+from .model import build_liquid, fcc_box
 from .presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, estimator_value
 from .units import BOLTZMANN, ReducedUnits
 
@@ -160,26 +161,11 @@ class GenDPDEParameters:
         if self.cutoff > min(widths) / 2:
             raise ValueError(f"the box {widths[0]:.3f} x {widths[1]:.3f} x {widths[2]:.3f} nm is less than twice the "
                              f"cutoff {self.cutoff:.3f} nm across; use more cells")
-        system = openmm.System()
-        box = [openmm.Vec3(*row) for row in box]
-        system.setDefaultPeriodicBoxVectors(*box)
-        for _ in range(num_particles):
-            system.addParticle(self.mass)
-        force = GenDPDEForce(self.cutoff)
-        force.setDensityEstimator(estimator_value(estimator))
-        force.setCutoffScaling(self.cutoff_scaling)
-        force.setTaitParameters(self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent)
-        system.addForce(force)
         step = self.units.to_openmm(time_step, "time").value_in_unit(unit.picosecond)
-        integrator = GenDPDEIntegrator(step, self.friction, self.heat_conduction, self.heat_capacity)
-        integrator.setTemperature(self.temperature)
-        integrator.setRandomNumberSeed(seed)
-        integrator.setMode(mode)
-        topology = app.Topology()
-        chain = topology.addChain()
-        for _ in range(num_particles):
-            topology.addAtom("CG", None, topology.addResidue("CG", chain))
-        topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))
+        system, force, integrator, topology = build_liquid(
+            [openmm.Vec3(*row) for row in box], num_particles, self.mass, self.cutoff, estimator_value(estimator),
+            self.cutoff_scaling, (self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent), step,
+            self.friction, self.heat_conduction, self.heat_capacity, self.temperature, seed, mode)
         return FluidModel(system, force, integrator, topology, positions, self)
 
 
@@ -201,22 +187,6 @@ class FluidModel:
     def volume(self):
         a, b, c = self.system.getDefaultPeriodicBoxVectors()
         return a[0].value_in_unit(unit.nanometer) * b[1].value_in_unit(unit.nanometer) * c[2].value_in_unit(unit.nanometer)
-
-
-def fcc_box(density, cells):
-    """(positions, box): an FCC lattice at ``density`` (nm^-3) of n_x x n_y x n_z cubic cells (4 particles each,
-    edge (4/density)^(1/3)) filling a rectangular periodic box; positions (nm) as an N x 3 array, the box as three
-    rows (nm)."""
-    nx, ny, nz = (int(c) for c in cells)
-    if min(nx, ny, nz) < 1:
-        raise ValueError(f"cells = {cells} is not allowed; each count must be >= 1")
-    if not density > 0:
-        raise ValueError(f"density = {density} is not allowed; it must be > 0")
-    edge = (4 / density) ** (1 / 3)
-    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]]) + 0.25
-    grid = np.array([(x, y, z) for x in range(nx) for y in range(ny) for z in range(nz)], dtype=float)
-    positions = (grid[:, None, :] + basis[None, :, :]).reshape(-1, 3) * edge
-    return positions, [[nx * edge, 0, 0], [0, ny * edge, 0], [0, 0, nz * edge]]
 
 
 def set_temperature_field(integrator, positions, temperature):

@@ -17,7 +17,6 @@ so the rule converges fast; the sum of the volumes of two particles equals the v
 """
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 
 def fibonacci_directions(count):
@@ -35,6 +34,7 @@ def partition_of_unity_volumes(positions, kernel_range, box=None, radial_points=
     rows of a diagonal box), or None for open space. Quadrature: ``radial_points`` Gauss-Legendre nodes in r times
     ``directions`` directions per particle (the defaults give ~1e-3 relative on liquid configurations; see the
     tests)."""
+    from scipy.spatial import cKDTree   # scipy is an extra (pip install .[studies]): needed here only
     positions = np.asarray(positions, dtype=float)
     h = float(kernel_range)
     if box is not None:

@@ -13,8 +13,9 @@ import numpy as np
 import openmm
 from openmm import app, unit
 
-from . import GenDPDEForce, GenDPDEIntegrator
+from . import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
 from .gendpde import LiquidArgon as _Model
+from .model import build_liquid, fcc_positions
 from .units import ReducedUnits
 
 ARGON_UNITS = ReducedUnits(mass=_Model.particleMass * unit.kilogram, length=_Model.length * unit.nanometer,
@@ -80,19 +81,22 @@ def argon_cutoff(cutoff):
 
 
 #: f_cut of the VC estimator (docs/interfaces.md) where it has been tuned (`tune-fcut --estimator VC`, n-bar* = 1
-#: at the state point); elsewhere the published f_cut of VB, from which it differs little (VC is VB in bulk).
-VC_CUTOFF_SCALING = {1.6839: 1.3525}
+#: at the state point; internal/LiquidArgon.h); elsewhere the published f_cut of VB, from which it differs little
+#: (VC is VB in bulk).
+VC_CUTOFF_SCALING = {c.cutoff: c.cutoffScalingVC for c in (_Model.getCutoff(i) for i in range(_Model.numCutoffs))
+                     if c.cutoffScalingVC > 0}
 
 
 def estimator_value(estimator):
-    """GenDPDEForce.VA/VB/VC from 'VA', 'VB', 'VC' or the enum value itself."""
-    names = {"VA": GenDPDEForce.VA, "VB": GenDPDEForce.VB, "VC": GenDPDEForce.VC}
+    """GenDPDEForce.VA, VB, ... from a name ('VA', 'vb', ...) or the enum value itself (ESTIMATOR_NAMES)."""
+    values = {name: value for value, name in ESTIMATOR_NAMES.items()}
+    listed = ", ".join(f"'{name}'" for name in values)
     if isinstance(estimator, str):
-        if estimator.upper() not in names:
-            raise ValueError(f"estimator must be 'VA', 'VB' or 'VC', not '{estimator}'")
-        return names[estimator.upper()]
-    if estimator not in names.values():
-        raise ValueError(f"estimator must be GenDPDEForce.VA, VB or VC, not {estimator}")
+        if estimator.upper() not in values:
+            raise ValueError(f"estimator must be one of {listed}, not '{estimator}'")
+        return values[estimator.upper()]
+    if estimator not in ESTIMATOR_NAMES:
+        raise ValueError(f"estimator must be GenDPDEForce.{', '.join(values)}, not {estimator}")
     return estimator
 
 
@@ -113,9 +117,7 @@ def fcc_lattice(num_particles, edge):
     if 4 * cells**3 != num_particles:
         raise ValueError(f"an FCC lattice in a cubic box holds 4 m^3 particles (500, 864, 2048, 4000, 32000, ...), "
                          f"not {num_particles}")
-    basis = np.array([[0, 0, 0], [0.5, 0.5, 0], [0.5, 0, 0.5], [0, 0.5, 0.5]]) + 0.25
-    grid = np.array([(x, y, z) for x in range(cells) for y in range(cells) for z in range(cells)], dtype=float)
-    return ((grid[:, None, :] + basis[None, :, :]).reshape(-1, 3)) * (edge / cells)
+    return fcc_positions((cells, cells, cells), edge / cells)
 
 
 @dataclasses.dataclass
@@ -185,30 +187,16 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
                          f"R_cut* = {parameters.cutoff}; use more particles")
     box = [openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge)]
     positions = fcc_lattice(num_particles, edge)   # (checks that num_particles is 4 m^3)
-    system = openmm.System()
-    system.setDefaultPeriodicBoxVectors(*box)
-    mass = units.unit("mass")
-    for _ in range(num_particles):
-        system.addParticle(mass)
-    force = GenDPDEForce(units.to_openmm(parameters.cutoff, "length"))
-    force.setDensityEstimator(estimator_value(estimator))
-    force.setCutoffScaling(default_cutoff_scaling(cutoff, estimator) if cutoff_scaling is None else cutoff_scaling)
-    force.setTaitParameters(units.to_openmm(state.density, "number_density"),
-                            units.to_openmm(state.reference_pressure, "pressure"),
-                            units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent)
-    system.addForce(force)
-    integrator = GenDPDEIntegrator(step_size,
-                                   units.to_openmm(parameters.friction, "friction"),
-                                   units.to_openmm(parameters.heat_conduction, "heat_conduction"),
-                                   units.to_openmm(state.heat_capacity, "heat_capacity"))
-    integrator.setTemperature(units.to_openmm(state.temperature, "temperature"))
-    integrator.setRandomNumberSeed(seed)
-    integrator.setMode(mode)
-    topology = app.Topology()
-    chain = topology.addChain()
-    for _ in range(num_particles):
-        topology.addAtom("AR", app.element.argon, topology.addResidue("AR5", chain))
-    topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))   # as PDBFile and PDBReporter expect
+    system, force, integrator, topology = build_liquid(
+        box, num_particles, units.unit("mass"), units.to_openmm(parameters.cutoff, "length"),
+        estimator_value(estimator),
+        default_cutoff_scaling(cutoff, estimator) if cutoff_scaling is None else cutoff_scaling,
+        (units.to_openmm(state.density, "number_density"), units.to_openmm(state.reference_pressure, "pressure"),
+         units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent),
+        step_size, units.to_openmm(parameters.friction, "friction"),
+        units.to_openmm(parameters.heat_conduction, "heat_conduction"),
+        units.to_openmm(state.heat_capacity, "heat_capacity"), units.to_openmm(state.temperature, "temperature"),
+        seed, mode, atom_name="AR", element=app.element.argon, residue_name="AR5")
     return LiquidArgon(system, force, integrator, topology, positions, parameters)
 
 

@@ -11,7 +11,7 @@ without a GenDPDEIntegrator); the kinetic temperature is m |v - v_bin|^2 summed 
 3 (n_bin - 1) k_B (the slice's mean velocity removed, its 3 degrees of freedom with it; NaN for fewer than 2
 particles); v is the slice's mean velocity. The pressure tensor of a slice is (sum over its particles of
 m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half of its pairs' virial tensors
-(openmmgendpde.pressure, rectangular boxes; the slices' pressures average to the system's).
+(GenDPDEForce.getParticleVirials, from the platform's kernels; the slices' pressures average to the system's).
 """
 
 
@@ -79,7 +79,7 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
 class ProfileReporter:
     """Writes profiles along ``axis`` every ``reportInterval`` steps to ``file`` (a path or an open file), as CSV.
     Works with any integrator; mean theta needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
-    (rectangular periodic box)."""
+    (periodic box)."""
 
     def __init__(self, file, reportInterval, axis=2, bins=20, force=None, types=None):
         if reportInterval < 1:

@@ -15,6 +15,7 @@ import pathlib
 
 import numpy as np
 
+from . import ESTIMATOR_NAMES
 from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs, platform_description
 from .presets import ARGON_STATE, PUBLISHED_TABLE3
 from .progress import Progress
@@ -144,6 +145,6 @@ def add_arguments(parser):
     add_cutoffs(parser)
     add_frames(parser, "to keep for the RDF", default_text="50, quick 10")
     add_output(parser, "table3.csv and the frames")
-    parser.add_argument("--estimators", nargs="+", choices=("VA", "VB", "VC"), default=["VA", "VB"],
+    parser.add_argument("--estimators", nargs="+", choices=list(ESTIMATOR_NAMES.values()), default=["VA", "VB"],
                         help="estimators to run (default VA VB; VC is compared with the published VB values)")
     parser.set_defaults(run=run)

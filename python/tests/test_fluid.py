@@ -8,8 +8,9 @@ import pytest
 from openmm import unit
 
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import (ARGON, WATER, Fluid, coarse_grain, fcc_box, heat_capacity_per_molecule,
+from openmmgendpde.fluid import (ARGON, WATER, Fluid, coarse_grain, heat_capacity_per_molecule,
                                  set_temperature_field)
+from openmmgendpde.model import fcc_box
 from openmmgendpde.presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
 
 N_A = 6.02214076e23

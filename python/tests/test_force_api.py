@@ -35,7 +35,10 @@ def test_is_an_openmm_force_with_quantity_getters():
     assert bulk.value_in_unit(PRESSURE) == pytest.approx(pressure_unit / 6, rel=1e-14)
     assert gamma == 6.0
     assert force.getReferenceDensity() == n0 and force.getBulkModulus() == bulk
-    assert "GenDPDEForce" in repr(force) and "VB" in repr(force)
+    assert "GenDPDEForce" in repr(force) and "estimator=VB" in repr(force)
+    for estimator, name in ((GenDPDEForce.VA, "VA"), (GenDPDEForce.VC, "VC")):
+        force.setDensityEstimator(estimator)
+        assert f"estimator={name}" in repr(force)
 
 
 def test_arguments_accept_quantities_in_any_compatible_unit():

@@ -109,8 +109,9 @@ def test_profile_by_type_against_direct_counts():
 
 
 def test_profile_reporter_writes_the_type_columns():
-    """The reporter with types: one density and one theta column per type, in ascending type order, matching
-    profile() on the same State (NaN theta without a GenDPDEIntegrator)."""
+    """The reporter with types: one density and one theta column per type, in ascending type order, each density
+    the type's count in the slice (counted here particle by particle) over the slice volume (NaN theta without a
+    GenDPDEIntegrator)."""
     system = openmm.System()
     system.setDefaultPeriodicBoxVectors(openmm.Vec3(2, 0, 0), openmm.Vec3(0, 2, 0), openmm.Vec3(0, 0, 2))
     positions = np.random.default_rng(5).uniform(0, 2.0, (50, 3))
@@ -130,9 +131,12 @@ def test_profile_reporter_writes_the_type_columns():
     header, *rows = [line.split(",") for line in out.getvalue().strip().splitlines()]
     assert header[-4:] == ["density_type1_nm-3", "theta_harmonic_type1_K", "density_type3_nm-3", "theta_harmonic_type3_K"]
     state = simulation.context.getState(getPositions=True)
-    values = profile(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), np.zeros((50, 3)), np.ones(50),
-                     np.diag([2.0, 2.0, 2.0]), 2, 2, types=types)
+    counts = {(b, t): 0 for b in range(2) for t in (1, 3)}
+    for r, t in zip(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), types):
+        counts[(min(int((r[2] % 2.0) / 2.0 * 2), 1), t)] += 1
+    slice_volume = 8.0 / 2
     for b, row in enumerate(rows):
-        assert float(row[-4]) == pytest.approx(values["type_density"][b, 0], rel=1e-5)
-        assert float(row[-2]) == pytest.approx(values["type_density"][b, 1], rel=1e-5)
+        assert float(row[-4]) == pytest.approx(counts[(b, 1)] / slice_volume, rel=1e-5)
+        assert float(row[-2]) == pytest.approx(counts[(b, 3)] / slice_volume, rel=1e-5)
         assert row[-3] == "nan" and row[-1] == "nan"
+    assert sum(counts.values()) == 50 and min(counts.values()) > 0

@@ -22,7 +22,7 @@ for precision in single mixed double; do
     {
         echo "$flag"
         printf '#define %s %s\n' NUM_ATOMS 1000 PADDED_NUM_ATOMS 1024 SCAN_GROUP_SIZE 256 BOUNDS_GROUP_SIZE 128 \
-            USE_PERIODIC 1 VB_FIRST_OCTAVE -4 VB_LAST_OCTAVE 3 VB_QUADRATURE_PAIRS 12 GENDPDE_DOUBLE_RANDOM 1
+            USE_PERIODIC 1 GENDPDE_DOUBLE_RANDOM 1
         for n in 2 3 4; do
             echo "#define make_real$n make_$real$n"
             echo "#define make_mixed$n make_$mixed$n"
@@ -34,8 +34,14 @@ for precision in single mixed double; do
         echo "typedef unsigned int tileflags;"
         cat $prelude
     } > "$work/prelude.cu"
-    # As CommonGenDPDEKernelSources::physicsCore: the shared core in real (force) or mixed (integrator) precision.
-    core_in() { printf '#define GENDPDE_REAL %s\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"; cat "$core"; }
+    # As CommonGenDPDEKernelSources::physicsCore: the shared core in real (force) or mixed (integrator) precision,
+    # with the V-B table sizes of openmmapi/include/internal/VolumeVBTables.h.
+    core_in() {
+        printf '#define GENDPDE_REAL %s\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"
+        printf '#define GENDPDE_ISFINITE(x) isfinite(x)\n#define GENDPDE_VB_FIRST_OCTAVE -4\n'
+        printf '#define GENDPDE_VB_LAST_OCTAVE 3\n#define GENDPDE_VB_QUADRATURE_PAIRS 12\n'
+        cat "$core"
+    }
     { cat "$work/prelude.cu"; core_in real; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeForce.cc"; } > "$work/force.cu"
     { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
         "$kernels/gendpdeIntegrator.cc"; } > "$work/integrator.cu"

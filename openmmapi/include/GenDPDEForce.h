@@ -34,8 +34,9 @@ struct GenDPDEObservables;
  * Each particle has the Tait pressure pi(n) = pi0 + B_T [(n/n0)^gamma_T - 1] and free energy
  * f(n) = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1), and the potential energy is
  * U = sum_i f(n_i). The force is its exact gradient,
- * F_i = sum_j [pi_i dV_i/dn0_i + pi_j dV_j/dn0_j] w'(r_ij) e_ij, which is pairwise antisymmetric and conserves
- * momentum. Coincident particles count in the density but exert no force on each other.
+ * F_i = sum_j [pi_i dV_i/dn0_i + pi_j dV_j/dn0_j] w'(r_ij) e_ij (with VC also a term from the moments,
+ * H(r_ij)(q_i - q_j), docs/theory.md section 4), which is pairwise antisymmetric and conserves momentum. Coincident
+ * particles count in the density but exert no force on each other.
  *
  * Particle types (docs/types.md). Every particle has a type, an integer (0 unless setParticleType() says otherwise),
  * and each type may have its own Tait parameters (addTypeParameters()); a type without them uses
@@ -45,8 +46,8 @@ struct GenDPDEObservables;
  *
  * All parameters can be set before the Context is created. The estimator, the cutoff scaling and the Tait
  * parameters (per type too) can also be changed afterwards with updateParametersInContext(); the cutoff distance,
- * the nonbonded method and the particle types cannot. The per-particle observables (densities, volumes, pressures) and the virial are
- * computed from the Context's current positions on request.
+ * the nonbonded method and the particle types cannot. The per-particle observables (densities, volumes, pressures, virial tensors) and
+ * the virial are computed from the Context's current positions on request, by the platform's kernels.
  *
  * The defaults are the liquid-argon model of Colella et al. (J. Chem. Theory Comput. 2025) in OpenMM units
  * (one particle = 5 argon atoms): n0 = 1/L^3 = 4.27484 nm^-3, pi0 = 0.116056 u/L^3, B_T = u/(6 L^3) with

@@ -12,7 +12,8 @@
  * inside namespace GenDPDEPlugin::Physics); the GPU platforms embed this     *
  * file in their device programs (CommonGenDPDEKernelSources::physicsCore:    *
  * GENDPDE_REAL real for the force, mixed for the integrator). The includer   *
- * defines GENDPDE_REAL, GENDPDE_ISFINITE(x), the V-B table sizes             *
+ * defines GENDPDE_REAL, GENDPDE_ISFINITE(x), GENDPDE_FREXP(x, e), the V-B     *
+ * table sizes                                                                *
  * GENDPDE_VB_FIRST_OCTAVE, GENDPDE_VB_LAST_OCTAVE, GENDPDE_VB_QUADRATURE_PAIRS *
  * (VolumeVBTables.h), and on the device GENDPDE_CORE (inline DEVICE) and     *
  * GENDPDE_GLOBAL (GLOBAL).                                                   *
@@ -139,16 +140,27 @@ GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBA
 }
 
 /**
- * One polynomial of degree 13 at t by Estrin's scheme (pairs with t, then t^2, t^4, t^8: a dependency chain 4 steps
- * deep instead of 13), its coefficients c_p at c[p*stride].
+ * The two polynomials of degree 13 of one V-B piece at t, I's and J's, by Estrin's scheme (pairs with t, then t^2,
+ * t^4, t^8: a dependency chain 4 steps deep instead of 13), in lockstep so that a compiler can run the two as the
+ * lanes of one vector; c holds {c_p of I, c_p of J} for p = 0 ... 13.
  */
-GENDPDE_CORE GENDPDE_REAL gendpdeEstrin13(GENDPDE_GLOBAL const GENDPDE_REAL* c, int stride, GENDPDE_REAL t) {
+GENDPDE_CORE void gendpdeEstrin13Pair(GENDPDE_GLOBAL const GENDPDE_REAL* c, GENDPDE_REAL t, GENDPDE_REAL* I,
+                                      GENDPDE_REAL* J) {
     const GENDPDE_REAL t2 = t*t, t4 = t2*t2, t8 = t4*t4;
-    GENDPDE_REAL a[7];
-    for (int q = 0; q < 7; q++)
-        a[q] = c[(2*q)*stride] + c[(2*q + 1)*stride]*t;
-    const GENDPDE_REAL b0 = a[0] + a[1]*t2, b1 = a[2] + a[3]*t2, b2 = a[4] + a[5]*t2;
-    return (b0 + b1*t4) + (b2 + a[6]*t4)*t8;
+    // Written out, I's and J's operations side by side: the pairs of adjacent coefficients are the two lanes.
+    const GENDPDE_REAL aI0 = c[0] + c[2]*t, aJ0 = c[1] + c[3]*t;
+    const GENDPDE_REAL aI1 = c[4] + c[6]*t, aJ1 = c[5] + c[7]*t;
+    const GENDPDE_REAL aI2 = c[8] + c[10]*t, aJ2 = c[9] + c[11]*t;
+    const GENDPDE_REAL aI3 = c[12] + c[14]*t, aJ3 = c[13] + c[15]*t;
+    const GENDPDE_REAL aI4 = c[16] + c[18]*t, aJ4 = c[17] + c[19]*t;
+    const GENDPDE_REAL aI5 = c[20] + c[22]*t, aJ5 = c[21] + c[23]*t;
+    const GENDPDE_REAL aI6 = c[24] + c[26]*t, aJ6 = c[25] + c[27]*t;
+    const GENDPDE_REAL bI0 = aI0 + aI1*t2, bJ0 = aJ0 + aJ1*t2;
+    const GENDPDE_REAL bI1 = aI2 + aI3*t2, bJ1 = aJ2 + aJ3*t2;
+    const GENDPDE_REAL bI2 = aI4 + aI5*t2, bJ2 = aJ4 + aJ5*t2;
+    const GENDPDE_REAL dI = bI2 + aI6*t4, dJ = bJ2 + aJ6*t4;
+    *I = (bI0 + bI1*t4) + dI*t8;
+    *J = (bJ0 + bJ1*t4) + dJ*t8;
 }
 
 /**
@@ -166,15 +178,13 @@ GENDPDE_CORE void gendpdeVolumeIntegralsVB(GENDPDE_REAL k, GENDPDE_GLOBAL const 
         GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
         GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* I, GENDPDE_REAL* J) {
     int exponent;
-    const GENDPDE_REAL fraction = frexp(k, &exponent);   // k = fraction 2^exponent, fraction in [1/2, 1)
+    const GENDPDE_REAL fraction = GENDPDE_FREXP(k, &exponent);   // k = fraction 2^exponent, fraction in [1/2, 1)
     const int octave = exponent - 1;
     if (octave >= GENDPDE_VB_FIRST_OCTAVE && octave <= GENDPDE_VB_LAST_OCTAVE) {
         const GENDPDE_REAL m = 2*fraction;
         const int piece = (int) ((m - 1)*4);
         const GENDPDE_REAL t = 8*(m - 1) - (2*piece + 1);
-        GENDPDE_GLOBAL const GENDPDE_REAL* c = polynomials + ((octave - GENDPDE_VB_FIRST_OCTAVE)*4 + piece)*28;
-        *I = gendpdeEstrin13(c, 2, t);
-        *J = gendpdeEstrin13(c + 1, 2, t);
+        gendpdeEstrin13Pair(polynomials + ((octave - GENDPDE_VB_FIRST_OCTAVE)*4 + piece)*28, t, I, J);
     }
     else if (k < 1)
         gendpdeVolumeIntegralsClosedForm(k, I, J);

@@ -220,7 +220,8 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     const Vec3* momentForce = rowMomentForce.data();
     rowForce.resize(numRows);
     rowVirial.resize(numRows);
-    rowVirialTensor.resize(particleVirials != nullptr ? numRows : 0);
+    if (particleVirials != nullptr)
+        rowVirialTensor.resize(numRows);
     Vec3* rowF = rowForce.data();
     double* rowW = rowVirial.data();
     Physics::Tensor* rowTensor = particleVirials != nullptr ? rowVirialTensor.data() : nullptr;
@@ -273,20 +274,21 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     const int* rowOf = layout.getRow().data();
     double* virial = particleVirial.data();
     Vec3* force = forces != nullptr ? forces->data() : nullptr;
-    double* tensorOut = nullptr;
-    if (particleVirials != nullptr) {
-        particleVirials->resize(9*numRows);
-        tensorOut = particleVirials->data();
-    }
     parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++) {
             virial[i] = rowW[rowOf[i]];
             if (force != nullptr)
                 force[i] = rowF[rowOf[i]];
-            if (tensorOut != nullptr)
-                std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9*i);
         }
     });
+    if (particleVirials != nullptr) {
+        particleVirials->resize(9*numRows);
+        double* tensorOut = particleVirials->data();
+        parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
+            for (int i = begin; i < end; i++)
+                std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9*i);
+        });
+    }
     return FixedOrderSum::parallelSum(threads, numRows, [virial](int i) { return virial[i]; }, chunkSums);
 }
 

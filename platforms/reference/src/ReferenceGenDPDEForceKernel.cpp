@@ -108,23 +108,16 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
                                                           std::vector<double>* particleVirials) {
     // docs/theory.md section 4: F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij (+ V-C's moment term);
     // W = sum_{i<j} r_ij . F_ij, summed per first particle, then over particles in the fixed order (as the CPU platform
-    // does); the particles' virial tensors get half of each of their pairs' F r^T.
+    // does); the particles' virial tensors, when asked for, get half of each of their pairs' F r^T in a pass of their
+    // own (a step does not pay for them).
     const Physics::DensityWeight weight(cutoff);
     const bool moments = usesMoments();
-    std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
-    Physics::Tensor* tensor = nullptr;
-    std::vector<Physics::Tensor> tensors;
-    if (particleVirials != nullptr) {
-        tensors.resize(particleVirial.size());
-        tensor = tensors.data();
-    }
-    for (const ParticlePair& pair : neighborList->getPairs()) {
-        if (pair.r == 0.0)
-            continue;   // coincident particles: counted in the density, no direction, no force
+    // The force on pair.i from pair.j (pair.r > 0); virial receives pair.delta . F.
+    auto pairForce = [&](const ParticlePair& pair, double& virial) {
         const double scale = Physics::gendpdePairForceScale(forceCoefficient[pair.i] + forceCoefficient[pair.j],
-                                                   weight.derivative(pair.r), pair.r);
+                                                            weight.derivative(pair.r), pair.r);
         Vec3 force = pair.delta*scale;
-        double virial = scale*pair.r*pair.r;
+        virial = scale*pair.r*pair.r;
         // (q vanishes for the particles below V-C's threshold, nearly all of a bulk liquid: their pairs add nothing.)
         if (moments && pair.r < cutoff && !(momentForce[pair.i] == Vec3() && momentForce[pair.j] == Vec3())) {
             double momentVirial;
@@ -132,17 +125,30 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
                                               momentForce[pair.i] - momentForce[pair.j], momentVirial);
             virial += momentVirial;
         }
+        return force;
+    };
+    std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
+    for (const ParticlePair& pair : neighborList->getPairs()) {
+        if (pair.r == 0.0)
+            continue;   // coincident particles: counted in the density, no direction, no force
+        double virial;
+        const Vec3 force = pairForce(pair, virial);
         if (forces != nullptr) {
             (*forces)[pair.i] += force;
             (*forces)[pair.j] -= force;
         }
         particleVirial[pair.i] += virial;
-        if (tensor != nullptr) {
-            Physics::addHalfPairVirial(force, pair.delta, tensor[pair.i]);
-            Physics::addHalfPairVirial(force, pair.delta, tensor[pair.j]);
-        }
     }
     if (particleVirials != nullptr) {
+        std::vector<Physics::Tensor> tensors(particleVirial.size());
+        for (const ParticlePair& pair : neighborList->getPairs()) {
+            if (pair.r == 0.0)
+                continue;
+            double virial;
+            const Vec3 force = pairForce(pair, virial);
+            Physics::addHalfPairVirial(force, pair.delta, tensors[pair.i]);
+            Physics::addHalfPairVirial(force, pair.delta, tensors[pair.j]);
+        }
         particleVirials->resize(9*tensors.size());
         for (size_t i = 0; i < tensors.size(); i++)
             std::copy(tensors[i].element, tensors[i].element + 9, particleVirials->data() + 9*i);

@@ -290,10 +290,14 @@ def run(arguments):
             print(f"{s.time:6.1f}   {s.core_density:12.3f}   {s.core_estimate:14.3f}   {s.width:13.2f}   "
                   f"{s.tension:16.4f}")
         late = [s for s in samples if s.time > duration / 2]
-        tension = block_average([s.tension for s in late], 5, name=f"{estimator} surface tension")
+        tensions = [s.tension for s in late]
+        if len(late) >= 10:   # enough samples for 5 blocks of 2
+            tension = block_average(tensions, 5, name=f"{estimator} surface tension")
+            error = f"+- {tension.standard_error:.4f} (block average, 5 blocks; sd {np.std(tensions):.4f})"
+        else:
+            tension, error = block_average(tensions, 1), f"(sd {np.std(tensions):.4f}; too few samples for an error)"
         print(f"{estimator}: over the second half ({len(late)} samples), core true n* "
-              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {tension.mean:.4f} +- "
-              f"{tension.standard_error:.4f} (block average, 5 blocks; sd {np.std([s.tension for s in late]):.4f})")
+              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {tension.mean:.4f} {error}")
         if not arguments.no_oracle:
             profiles[estimator] = depth_profile(model, thickness)
             print(f"{estimator} at t* = {samples[-1].time:g}: density by depth (units of the initial half "

@@ -2,6 +2,7 @@
 
 import csv
 import json
+import math
 
 import openmm
 import pytest
@@ -76,6 +77,18 @@ def test_speed_vs_error_quick(tmp_path, capsys):
     rows = list(csv.DictReader(open(tmp_path / "speed-vs-error.csv")))
     assert len(rows) == 4 and (tmp_path / "speed-vs-error.png").exists()
     assert all(float(row["wall s per time unit"]) > 0 for row in rows)
+
+
+def test_slab_quick(tmp_path, capsys):
+    """`slab --quick` for one estimator without the oracle (3 s): every sample and the second-half summary printed,
+    and the CSV holds the run's rows with finite densities and surface tensions (the pressure tensor of the force's
+    own virial tensors)."""
+    main(["slab", "--quick", "--estimators", "VC", "--no-oracle", "--output", str(tmp_path)])
+    out = capsys.readouterr().out
+    assert "VC: slab of 600 particles, 10 time units" in out and "VC: over the second half (2 samples)" in out
+    rows = [line.split(",") for line in (tmp_path / "slab.csv").read_text().splitlines()[1:]]
+    assert [row[0] for row in rows] == ["VC"] * 3
+    assert all(math.isfinite(float(row[2])) and math.isfinite(float(row[5])) for row in rows)
 
 
 def test_benchmarks_quick(capsys):

@@ -90,7 +90,8 @@ void checkVirialTensor(Scene& scene, const std::string& label) {
     assertClose(scene.force->getVirial(context), W[0][0] + W[1][1] + W[2][2], sumTolerance, label + ": trace W");
     for (int a = 0; a < 3; a++)
         for (int b = a + 1; b < 3; b++)
-            assertClose(W[a][b], W[b][a], sumTolerance, label + ": W symmetric, " + std::to_string(a) + std::to_string(b));
+            assertClose(W[a][b], W[b][a], sumTolerance,
+                        label + ": W symmetric, " + std::to_string(a) + std::to_string(b));
     if (floatForces())
         return;
     const double epsilon = 1e-6;

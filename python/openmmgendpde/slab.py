@@ -293,11 +293,12 @@ def run(arguments):
         tensions = [s.tension for s in late]
         if len(late) >= 10:   # enough samples for 5 blocks of 2
             tension = block_average(tensions, 5, name=f"{estimator} surface tension")
+            mean = tension.mean
             error = f"+- {tension.standard_error:.4f} (block average, 5 blocks; sd {np.std(tensions):.4f})"
         else:
-            tension, error = block_average(tensions, 1), f"(sd {np.std(tensions):.4f}; too few samples for an error)"
+            mean, error = float(np.mean(tensions)), f"(sd {np.std(tensions):.4f}; too few samples for an error)"
         print(f"{estimator}: over the second half ({len(late)} samples), core true n* "
-              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {tension.mean:.4f} {error}")
+              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {mean:.4f} {error}")
         if not arguments.no_oracle:
             profiles[estimator] = depth_profile(model, thickness)
             print(f"{estimator} at t* = {samples[-1].time:g}: density by depth (units of the initial half "

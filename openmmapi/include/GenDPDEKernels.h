@@ -44,6 +44,10 @@ public:
     long long getStepCount() const {
         return foundStep;
     }
+    /** Whether the source holds the pairs within this range (nm) found at this step, which a sweep may then reuse. */
+    bool holdsPairsFor(double cutoff, long long step) const {
+        return foundCutoff == cutoff && foundStep == step;
+    }
     /** The pairs as a list on the host (Reference, CPU), or null. */
     virtual GenDPDEHostPairList* getHostPairList() {
         return nullptr;

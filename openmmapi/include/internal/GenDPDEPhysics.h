@@ -57,7 +57,6 @@ inline double frexpOfPositive(double x, int* exponent) {
 static_assert(VolumeVBPolynomials::subintervals == 4 && VolumeVBPolynomials::degree == 13,
               "gendpdeVolumeIntegralsVB reads 4 pieces per octave of 14 coefficients each");
 
-constexpr double Pi = 3.14159265358979323846;
 /** Boltzmann's constant in OpenMM units, kJ/(mol K): k_B N_A (exact SI values), as OpenMM defines it. */
 constexpr double Boltzmann = 1.380649e-23*6.02214076e23/1000.0;
 

@@ -198,8 +198,7 @@ void CommonIntegrateGenDPDEStepKernel::preparePairs(ContextImpl& context, const 
         // The cells of the force just evaluated at these positions with this range, if its source lends them (the
         // same grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
         CommonGenDPDECellGrid* cellGrid = pairSource != nullptr ? pairSource->getDeviceCellGrid() : nullptr;
-        if (cellGrid == nullptr || pairSource->getCutoff() != cutoff
-                || pairSource->getStepCount() != cc.getStepCount()) {
+        if (cellGrid == nullptr || !pairSource->holdsPairsFor(cutoff, cc.getStepCount())) {
             cellGrid = grid.get();
             profiler.time("cell grid (own)", [&]() { grid->build(); });
         }

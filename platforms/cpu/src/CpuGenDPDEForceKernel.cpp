@@ -5,6 +5,7 @@
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <climits>
+#include <type_traits>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -227,47 +228,54 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     Physics::Tensor* rowTensor = particleVirials != nullptr ? rowVirialTensor.data() : nullptr;
     const Vec3* initialForce = forces != nullptr ? forces->data() : nullptr;
     const RowGatherAvx2::Rows* vectorRows = particleVirials == nullptr ? vectorRowsOrNull() : nullptr;
+    // The scalar gathers, with the tensors (withTensors true: the observables' pass) or without them (a step's, which
+    // must not pay for them): chosen at compile time.
+    auto gatherRows = [&](auto gather, auto withTensors, int begin, int end) {
+        for (int s = begin; s < end; s++) {
+            Vec3 f = rowF[s];
+            double sum = 0.0;
+            Physics::Tensor tensor;
+            // The pairs (j, i), then (i, j): the virial counts the second kind only. VC adds H(d) (q_s - q_t) to
+            // each pair's force before it is added, as Reference does.
+            for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
+                const int t = gather.neighbors[m];
+                double r2;
+                const Vec3 d = gather.displacement(s, t, r2);
+                const double r = std::sqrt(r2);
+                const double in = gather.mask(r2, r);
+                const double scale = gather.forceScale(r, in, coefficient[s] + coefficient[t]);
+                Vec3 term = d*scale;
+                double virial = scale*r*r;
+                // (q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.)
+                if (moments && !(momentForce[s] == Vec3() && momentForce[t] == Vec3())) {
+                    double momentVirial;
+                    term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], momentVirial);
+                    virial += momentVirial;
+                }
+                f += term;
+                if (m >= gather.upperStart[s])
+                    sum += virial;
+                if constexpr (decltype(withTensors)::value)
+                    if (in*(double) (r > 0.0) != 0.0)   // the pairs Reference visits
+                        Physics::addHalfPairVirial(term, d, tensor);
+            }
+            rowF[s] = f;
+            rowW[s] = sum;
+            if constexpr (decltype(withTensors)::value)
+                rowTensor[s] = tensor;
+        }
+    };
     withRowGather([&](auto gather) {
         parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
             // Added to the force already there, term by term, as Reference adds them.
             for (int s = begin; s < end; s++)
                 rowF[s] = initialForce != nullptr ? initialForce[particleOf[s]] : Vec3();
-            if (vectorRows != nullptr) {
+            if (vectorRows != nullptr)
                 RowGatherAvx2::forces(*vectorRows, coefficient, begin, end, rowF, rowW);
-                return;
-            }
-            for (int s = begin; s < end; s++) {
-                Vec3 f = rowF[s];
-                double sum = 0.0;
-                Physics::Tensor tensor;
-                // The pairs (j, i), then (i, j): the virial counts the second kind only. VC adds H(d) (q_s - q_t)
-                // to each pair's force before it is added, as Reference does.
-                for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
-                    const int t = gather.neighbors[m];
-                    double r2;
-                    const Vec3 d = gather.displacement(s, t, r2);
-                    const double r = std::sqrt(r2);
-                    const double in = gather.mask(r2, r);
-                    const double scale = gather.forceScale(r, in, coefficient[s] + coefficient[t]);
-                    Vec3 term = d*scale;
-                    double virial = scale*r*r;
-                    // (q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.)
-                    if (moments && !(momentForce[s] == Vec3() && momentForce[t] == Vec3())) {
-                        double momentVirial;
-                        term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], momentVirial);
-                        virial += momentVirial;
-                    }
-                    f += term;
-                    if (m >= gather.upperStart[s])
-                        sum += virial;
-                    if (rowTensor != nullptr && in*(double) (r > 0.0) != 0.0)   // the pairs Reference visits
-                        Physics::addHalfPairVirial(term, d, tensor);
-                }
-                rowF[s] = f;
-                rowW[s] = sum;
-                if (rowTensor != nullptr)
-                    rowTensor[s] = tensor;
-            }
+            else if (rowTensor != nullptr)
+                gatherRows(gather, std::true_type(), begin, end);
+            else
+                gatherRows(gather, std::false_type(), begin, end);
         });
     });
     // Back to particle order, each thread writing its own range.

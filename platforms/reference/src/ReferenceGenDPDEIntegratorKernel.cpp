@@ -35,7 +35,7 @@ PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context,
                                                            int numThreads) {
     // The source, if any, was evaluated at the current positions just before this step (see execute()).
     GenDPDEHostPairList* list = pairSource != nullptr ? pairSource->getHostPairList() : nullptr;
-    if (list != nullptr && pairSource->getCutoff() == cutoff && pairSource->getStepCount() == context.getStepCount())
+    if (list != nullptr && pairSource->holdsPairsFor(cutoff, context.getStepCount()))
         return list->getPairs(numThreads);
     const Vec3* box = extractBoxVectors(context);
     if (context.getSystem().usesPeriodicBoundaryConditions())

@@ -410,6 +410,28 @@ struct Trajectory {
 };
 
 /**
+ * Two runs end in the same state: positions within positionTolerance (nm), velocities within relativeTolerance of
+ * the rms speed, internal energies (and the kinetic energy) within relativeTolerance of their values.
+ */
+inline void assertTrajectoriesClose(const Trajectory& expected, const Trajectory& found, double positionTolerance,
+                                    double relativeTolerance, const std::string& label) {
+    double speed2 = 0.0;
+    for (const Vec3& v : expected.velocities)
+        speed2 += v.dot(v);
+    const double speedScale = std::sqrt(speed2/expected.velocities.size());
+    for (size_t i = 0; i < expected.positions.size(); i++) {
+        const std::string particle = " of particle " + std::to_string(i);
+        assertVectorClose(expected.positions[i], found.positions[i], positionTolerance,
+                          label + ": position" + particle);
+        assertVectorClose(expected.velocities[i], found.velocities[i], relativeTolerance*speedScale,
+                          label + ": velocity" + particle);
+        assertRelative(expected.energies[i], found.energies[i], relativeTolerance,
+                       label + ": internal energy" + particle);
+    }
+    assertRelative(expected.kinetic, found.kinetic, relativeTolerance, label + ": kinetic energy");
+}
+
+/**
  * A lattice liquid of cellsPerSide^3 particles (V-B, seed 61) after `steps` steps in `mode` (seed 77, velocities and
  * internal energies drawn at T0 with seeds 5 and 6), in the Context that makeContext creates. ownPairs: the pair
  * range is 0.9 R, so the integrator cannot reuse the force's pairs and finds its own. mixture: the particles have

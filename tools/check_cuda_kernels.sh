@@ -13,6 +13,17 @@ nvcc=${NVCC:-/usr/local/cuda/bin/nvcc}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 prelude="$openmm/platforms/cuda/src/kernels/common.cu $openmm/platforms/cuda/src/kernels/vectorOps.cu"
+# The status words' layout as the integrator kernel defines it (CommonGenDPDEStatus.h, one source).
+cat > "$work/status.cpp" <<'SOURCE'
+#include "CommonGenDPDEStatus.h"
+#include <cstdio>
+int main() {
+    for (const auto& define : GenDPDEPlugin::DeviceStatus::defines())
+        std::printf("#define %s %s\n", define.first.c_str(), define.second.c_str());
+}
+SOURCE
+g++ -std=c++17 -I"$root/platforms/common/src" -o "$work/status" "$work/status.cpp"
+"$work/status" > "$work/status.h"
 for precision in single mixed double; do
     case $precision in
         single) real=float; mixed=float; flag="";;
@@ -22,7 +33,9 @@ for precision in single mixed double; do
     {
         echo "$flag"
         printf '#define %s %s\n' NUM_ATOMS 1000 PADDED_NUM_ATOMS 1024 SCAN_GROUP_SIZE 256 BOUNDS_GROUP_SIZE 128 \
-            USE_PERIODIC 1 GENDPDE_DOUBLE_RANDOM 1
+            USE_PERIODIC 1 GENDPDE_DOUBLE_RANDOM 1 SWEEP_MAX_PARTICLES 192 SWEEP_BLOCKS_PER_GROUP 4 \
+            SWEEP_BLOCK_THREADS 32
+        cat "$work/status.h"
         for n in 2 3 4; do
             echo "#define make_real$n make_$real$n"
             echo "#define make_mixed$n make_$mixed$n"
@@ -45,9 +58,15 @@ for precision in single mixed double; do
     }
     { cat "$work/prelude.cu"; core_in real; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeForce.cc"; } > "$work/force.cu"
     { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
-        "$kernels/gendpdeIntegrator.cc"; } > "$work/integrator.cu"
-    for program in force integrator; do
+        "$kernels/gendpdeStatus.cc" "$kernels/gendpdeIntegrator.cc"; } > "$work/integrator.cu"
+    { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
+        "$kernels/gendpdeStatus.cc" "$kernels/gendpdeSweep.cc"; } > "$work/sweep.cu"
+    for program in force integrator sweep; do
         "$nvcc" --ptx -arch=sm_90 -o "$work/$program.ptx" "$work/$program.cu"
         echo "$precision $program: $(grep -c '\.entry' "$work/$program.ptx") kernels"
+        # Registers, shared memory, stack and spills of each kernel (ptxas, as the driver would assemble them).
+        "$(dirname "$nvcc")/ptxas" -arch=sm_90 -v -o "$work/$program.cubin" "$work/$program.ptx" 2>&1 \
+            | sed -n "s/.*Compiling entry function '\([A-Za-z]*\)'.*/    \1:/p; s/.*\(Used .*\)/      \1/p; s/^[^0-9]*\([0-9][0-9]* bytes stack frame.*\)/      \1/p" \
+            | paste - - - 2>/dev/null || true
     done
 done

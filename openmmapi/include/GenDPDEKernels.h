@@ -13,8 +13,9 @@
 
 namespace GenDPDEPlugin {
 
-class GenDPDEHostPairList;     // platforms/reference/src/NeighborList.h
-class CommonGenDPDECellGrid;   // platforms/common/src/CommonGenDPDECellGrid.h
+class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
+class CommonGenDPDECellGrid;      // platforms/common/src/CommonGenDPDECellGrid.h
+class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
 
 /** Per-particle observables of a GenDPDEForce at one configuration (OpenMM units). */
 struct GenDPDEObservables {
@@ -54,6 +55,10 @@ public:
     }
     /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
     virtual CommonGenDPDECellGrid* getDeviceCellGrid() {
+        return nullptr;
+    }
+    /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */
+    virtual CommonGenDPDEForceChecks* getDeviceChecks() {
         return nullptr;
     }
 protected:
@@ -124,6 +129,24 @@ public:
      */
     virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
                          const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) = 0;
+    /**
+     * Before a run of steps (GenDPDEIntegrator::step(n)) with these terms and pair source (see execute()): a kernel
+     * may then defer its checks to finishSteps(), so that a step need not wait for the device.
+     */
+    virtual void beginSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                            const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
+    }
+    /**
+     * After a run of steps, or when it was interrupted: throws the first failure of the run (naming the particle and
+     * the step; the Context is left at that step, in the state of before it), if any.
+     */
+    virtual void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) {
+    }
+    /** Whether the internal energies were ever set (all zero means never: docs/integrator.md). */
+    virtual bool hasInternalEnergies() const {
+        const std::vector<double>& energies = getInternalEnergies();
+        return !energies.empty() && energies[0] != 0.0;
+    }
     /** The kinetic energy with on-step velocities v + (dt/2) F/m (kJ/mol). */
     virtual double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
     virtual const std::vector<double>& getInternalEnergies() const = 0;

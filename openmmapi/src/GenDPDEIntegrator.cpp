@@ -345,8 +345,7 @@ std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
 }
 
 void GenDPDEIntegrator::requireTemperatures() const {
-    const std::vector<double>& energies = boundKernel().getInternalEnergies();
-    if (mode == Isoenergetic && !energies.empty() && energies[0] == 0.0)   // all zero: never set (see the header)
+    if (mode == Isoenergetic && !boundKernel().hasInternalEnergies())   // all zero: never set (see the header)
         throw OpenMMException("GenDPDEIntegrator: the particle temperatures are not set; call setTemperature() "
                               "before creating the Context, or setParticleTemperatures() or "
                               "setInternalEnergiesToTemperature(), before stepping in Isoenergetic mode");
@@ -362,14 +361,24 @@ void GenDPDEIntegrator::step(int steps) {
     if (terms.pairSweep && pairRange == 0.0)
         throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
                               "GenDPDEForce; call setCutoffDistance()");
-    for (int i = 0; i < steps; i++) {
-        context->updateContextState();
-        context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
-        // The forces of the integration groups were evaluated just now: a GenDPDEForce among them has its pairs.
-        GenDPDEPairSource* pairSource = terms.pairSweep
-                ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
-        boundKernel().execute(*context, *this, terms, pairSource);
+    // The forces of the integration groups are evaluated right before each step: a GenDPDEForce among them has
+    // the pairs of that step.
+    GenDPDEPairSource* pairSource = terms.pairSweep
+            ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
+    IntegrateGenDPDEStepKernel& stepKernel = boundKernel();
+    stepKernel.beginSteps(*context, *this, terms, pairSource);
+    try {
+        for (int i = 0; i < steps; i++) {
+            context->updateContextState();
+            context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
+            stepKernel.execute(*context, *this, terms, pairSource);
+        }
     }
+    catch (...) {
+        stepKernel.finishSteps(*context, *this);   // a failure the device found earlier is the one to report
+        throw;
+    }
+    stepKernel.finishSteps(*context, *this);
 }
 
 double GenDPDEIntegrator::computeKineticEnergy() {

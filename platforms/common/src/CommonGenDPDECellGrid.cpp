@@ -21,13 +21,14 @@ namespace ScanArgument {
 enum {Counts, Starts, Size, TotalOut, TotalIndex, Count};
 }
 namespace SortArgument {
-enum {Cells, CellStart, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count};
+enum {Cells, CellStart, CellFill, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count};
 }
 
 } // namespace
 
-CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, bool periodic, double range) :
-        cc(cc), periodic(periodic), range(range), numCells({1, 1, 1}) {
+CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, CommonGenDPDEProfiler& profiler, bool periodic,
+                                             double range) :
+        cc(cc), profiler(profiler), periodic(periodic), range(range), numCells({1, 1, 1}) {
     const int numAtoms = cc.getNumAtoms();
     cellCount.initialize<int>(cc, 1, "gendpdeCellCount");
     cellFill.initialize<int>(cc, 1, "gendpdeCellFill");
@@ -78,7 +79,7 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     sortKernel = program->createKernel("sortCells");
     {
         using namespace SortArgument;
-        KernelArguments(sortKernel, "sortCells").later(Cells).array(CellStart, cellStart)
+        KernelArguments(sortKernel, "sortCells").later(Cells).array(CellStart, cellStart).array(CellFill, cellFill)
                 .array(SortedSlot, sortedSlot).array(AtomIndex, cc.getAtomIndexArray())
                 .array(SortedAtom, sortedAtom).array(SortedCell, sortedCell).array(Posq, cc.getPosq())
                 .array(SortedPos, sortedPos).done(Count);
@@ -93,16 +94,6 @@ void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bo
         setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 0.0);
 }
 
-void CommonGenDPDECellGrid::exclusiveScan(ArrayInterface& counts, ArrayInterface& starts, int n,
-                                          ArrayInterface& totalOut, int totalIndex) {
-    scanKernel->setArg(ScanArgument::Counts, counts);
-    scanKernel->setArg(ScanArgument::Starts, starts);
-    scanKernel->setArg(ScanArgument::Size, n);
-    scanKernel->setArg(ScanArgument::TotalOut, totalOut);
-    scanKernel->setArg(ScanArgument::TotalIndex, totalIndex);
-    scanKernel->execute(scanGroupSize, scanGroupSize);
-}
-
 void CommonGenDPDECellGrid::build() {
     // The region the cells divide, as GenDPDESweepOrder::computeCells chooses it (the same cells, so the same order).
     Vec3 low, extent;
@@ -112,8 +103,9 @@ void CommonGenDPDECellGrid::build() {
         extent = BoxGeometry::perpendicularWidths(box);
     }
     else {
-        findBoundsKernel->execute(boundsGroupSize, boundsGroupSize);
+        profiler.launch(findBoundsKernel, boundsGroupSize, boundsGroupSize);
         std::vector<double> corners;
+        profiler.transfer();   // the cells depend on the bounds: the one wait of open boundaries
         bounds.download(corners, true);
         low = Vec3(corners[0], corners[1], corners[2]);
         extent = Vec3(corners[3], corners[4], corners[5]) - low;
@@ -123,22 +115,33 @@ void CommonGenDPDECellGrid::build() {
     if (total > 100000000)
         throw OpenMMException("GenDPDE: the particles span " + std::to_string(total) + " cells of the pair range; "
                               "more than 1e8 cells are not supported on this platform (is the system blowing apart?)");
-    if ((long long) cellCount.getSize() < total) {
-        cellCount.resize(total);
-        cellFill.resize(total);
-        cellStart.resize(total + 1);
+    if ((long long) cellCount.getSize() < total || !cleared) {
+        // The counters start at zero; afterwards the scan and the sort leave them zero (no clearing launches).
+        if ((long long) cellCount.getSize() < total) {
+            cellCount.resize(total);
+            cellFill.resize(total);
+            cellStart.resize(total + 1);
+        }
+        cc.clearBuffer(cellCount);
+        cc.clearBuffer(cellFill);
+        profiler.launched();
+        profiler.launched();
+        cleared = true;
     }
-    cc.clearBuffer(cellCount);
-    cc.clearBuffer(cellFill);
     const mm_int4 cells = getCellsArgument();
     setBoxArguments(assignKernel, AssignArgument::BoxA, true);
     setMixed4(cc, assignKernel, AssignArgument::Low, low[0], low[1], low[2], 0.0);
     setMixed4(cc, assignKernel, AssignArgument::Extent, extent[0], extent[1], extent[2], 0.0);
     assignKernel->setArg(AssignArgument::Cells, cells);
     const int numAtoms = cc.getNumAtoms();
-    assignKernel->execute(numAtoms);
-    exclusiveScan(cellCount, cellStart, (int) total, scanTotal, 0);
-    fillKernel->execute(numAtoms);
+    profiler.launch(assignKernel, numAtoms);
+    scanKernel->setArg(ScanArgument::Counts, cellCount);
+    scanKernel->setArg(ScanArgument::Starts, cellStart);
+    scanKernel->setArg(ScanArgument::Size, (int) total);
+    scanKernel->setArg(ScanArgument::TotalOut, scanTotal);
+    scanKernel->setArg(ScanArgument::TotalIndex, 0);
+    profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
+    profiler.launch(fillKernel, numAtoms);
     sortKernel->setArg(SortArgument::Cells, cells);
-    sortKernel->execute((int) total);
+    profiler.launch(sortKernel, (int) total);
 }

@@ -1,6 +1,7 @@
 #ifndef COMMON_GENDPDE_CELL_GRID_H_
 #define COMMON_GENDPDE_CELL_GRID_H_
 
+#include "CommonGenDPDEProfiler.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
 #include "openmm/common/ComputeKernel.h"
@@ -20,8 +21,8 @@ namespace GenDPDEPlugin {
  */
 class CommonGenDPDECellGrid {
 public:
-    /** range: the pair range R (nm). */
-    CommonGenDPDECellGrid(OpenMM::ComputeContext& cc, bool periodic, double range);
+    /** range: the pair range R (nm); the profiler counts the grid's launches and transfers with its owner's. */
+    CommonGenDPDECellGrid(OpenMM::ComputeContext& cc, CommonGenDPDEProfiler& profiler, bool periodic, double range);
     /** The defines the grid's kernels need (add the program's own, then compile cells + the program's source). */
     std::map<std::string, std::string> defines() const;
     /** Create the grid's kernels from a program compiled from kernels/gendpdeCells.cc (and more). */
@@ -37,9 +38,6 @@ public:
     }
     /** Set three consecutive kernel arguments to the box vectors a, b, c (mixed precision when asMixed, else real). */
     void setBoxArguments(OpenMM::ComputeKernel& kernel, int index, bool asMixed) const;
-    /** Exclusive prefix sums of counts[0..n) into starts[0..n], the total also into totalOut[totalIndex]. */
-    void exclusiveScan(OpenMM::ArrayInterface& counts, OpenMM::ArrayInterface& starts, int n,
-                       OpenMM::ArrayInterface& totalOut, int totalIndex);
     OpenMM::ComputeArray cellStart;    // int, n_cells + 1: the first sorted index of each cell
     OpenMM::ComputeArray sortedSlot;   // int: the slot (position in posq) of each particle in cell order
     OpenMM::ComputeArray sortedAtom;   // int: its original index
@@ -47,9 +45,11 @@ public:
     OpenMM::ComputeArray sortedPos;    // real4: its position (posq)
 private:
     OpenMM::ComputeContext& cc;
+    CommonGenDPDEProfiler& profiler;
     bool periodic;
     double range;
     std::array<int, 3> numCells;
+    bool cleared = false;   // cellCount and cellFill hold zeros (kept so by the kernels that use them)
     OpenMM::ComputeArray cellCount, cellFill, slotCell, bounds, scanTotal;
     OpenMM::ComputeKernel findBoundsKernel, assignKernel, scanKernel, fillKernel, sortKernel;
 };

@@ -66,6 +66,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     particleVirialTensor.initialize(cc, 9*numAtoms, realSize, "gendpdeParticleVirialTensor");
     momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // (used only by V-C)
     errors.initialize<int>(cc, 2, "gendpdeForceErrors");
+    errors.upload(std::vector<int>(2, noValue));
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
     const int numTypes = types->getNumTypes();
     std::vector<int> typeIndex = types->getParticleTypeIndices();
@@ -92,7 +93,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     uploadValues(quadratureTable, quadrature, useDouble);
 
     uploadTypeTables();
-    grid.reset(new CommonGenDPDECellGrid(cc, periodic, cutoff));
+    grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff));
     ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
             + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, grid->defines());
     grid->createKernels(program);
@@ -188,26 +189,40 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
     }
+    profiler.countStep();
     profiler.time("cell grid", [&]() { grid->build(); });
     setModelArguments();
     profiler.time("densities, particle state", [&]() {
-        resetErrorsKernel->execute(1);
-        densityKernel->execute(cc.getNumAtoms());
+        profiler.launch(resetErrorsKernel, 1);
+        profiler.launch(densityKernel, cc.getNumAtoms());
     });
     pairsFound(cutoff, cc.getStepCount());
+    if (deferred)
+        return;   // the integrator's run checks the flags on the device
     std::vector<int> found;
+    profiler.transfer();
     errors.download(found);
-    if (found[0] == noValue && found[1] == noValue)
-        return;
+    if (found[0] != noValue || found[1] != noValue)
+        throwErrors(context, found[0], found[1], cc.getStepCount());
+}
+
+void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFinite, int invalid, long long step) {
     // The first particle in index order whose position, then whose state, is bad (as the Reference platform checks).
     std::vector<Vec3> positions;
     context.getPositions(positions);
     for (int i = 0; i < (int) positions.size(); i++)
         if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
-            throw OpenMMException(GenDPDEForceErrors::nonFinitePosition(i, positions[i], cc.getStepCount()));
-    const int particle = found[1]/4, status = found[1]%4;
+            throw OpenMMException(GenDPDEForceErrors::nonFinitePosition(i, positions[i], step));
+    if (invalid == noValue)
+        throw OpenMMException("GenDPDEForce: a particle's position is not finite at step " + std::to_string(step)
+                              + " (particle " + std::to_string(nonFinite) + ")");
+    const int particle = invalid/4, status = invalid%4;
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
-        throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, cc.getStepCount()));
+        throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
+    // The density of the particle at these positions (the flags came from an evaluation at them).
+    if (deferred)
+        throw OpenMMException("GenDPDEForce: internal error: throwErrors() while the checks are deferred");
+    computeDensitiesQuietly();
     std::vector<int> atoms;
     std::vector<double> volumes;
     grid->sortedAtom.download(atoms);
@@ -217,14 +232,21 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         if (atoms[k] == particle)
             density = 1.0/volumes[k];
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
-            taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, cc.getStepCount()));
+            taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, step));
+}
+
+void CommonCalcGenDPDEForceKernel::computeDensitiesQuietly() {
+    grid->build();
+    setModelArguments();
+    profiler.launch(resetErrorsKernel, 1);
+    profiler.launch(densityKernel, cc.getNumAtoms());
 }
 
 double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {
     ContextSelector selector(cc);
     computeDensities(context);
     if (includeForces)
-        profiler.time("forces", [&]() { forceKernel->execute(cc.getNumAtoms()); });
+        profiler.time("forces", [&]() { profiler.launch(forceKernel, cc.getNumAtoms()); });
     return 0.0;   // the energy is in the context's energy buffer
 }
 
@@ -232,7 +254,7 @@ const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextIm
     ContextSelector selector(cc);
     computeDensities(context);
     virialKernel->setArg(VirialArgument::Tensors, particleVirials ? 1 : 0);
-    profiler.time("virials", [&]() { virialKernel->execute(cc.getNumAtoms()); });
+    profiler.time("virials", [&]() { profiler.launch(virialKernel, cc.getNumAtoms()); });
     std::vector<int> atoms;
     std::vector<double> n0, v, pi, w, tensors;
     grid->sortedAtom.download(atoms);

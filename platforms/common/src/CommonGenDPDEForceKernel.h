@@ -2,6 +2,7 @@
 #define COMMON_GENDPDE_FORCE_KERNEL_H_
 
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEForceChecks.h"
 #include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDETypes.h"
@@ -15,10 +16,12 @@ namespace GenDPDEPlugin {
  * GenDPDEForce on OpenMM's Common compute platforms (OpenCL, CUDA): the passes of kernels/gendpdeForce.cc over
  * the device cell grid, forces in fixed point, energy in the context's energy buffer, in the context's precision.
  * A particle whose state is invalid (no neighbour under V-A, an overflowing equation of state, a non-finite position)
- * stops the evaluation with the Reference platform's error, naming the particle and the step. It lends its cell grid
- * to the integrator kernel (GenDPDEPairSource, as a device cell grid).
+ * stops the evaluation with the Reference platform's error, naming the particle and the step, or, while a
+ * GenDPDEIntegrator's run of steps defers these checks (CommonGenDPDEForceChecks), stops that run on the device. It
+ * lends its cell grid and its checks to the integrator kernel (GenDPDEPairSource).
  */
-class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource {
+class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource,
+                                     public CommonGenDPDEForceChecks {
 public:
     CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
             CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {
@@ -34,11 +37,27 @@ public:
     CommonGenDPDECellGrid* getDeviceCellGrid() override {
         return grid.get();
     }
+    CommonGenDPDEForceChecks* getDeviceChecks() override {
+        return this;
+    }
+    // CommonGenDPDEForceChecks
+    void setDeferred(bool deferred) override {
+        this->deferred = deferred;
+    }
+    OpenMM::ArrayInterface& getErrorFlags() override {
+        return errors;
+    }
+    void throwErrors(OpenMM::ContextImpl& context, int nonFinite, int invalid, long long step) override;
 private:
     class ForceInfo;
     void readParameters(const GenDPDEForce& force);
-    /** Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid. */
+    /**
+     * Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid, unless the
+     * checks are deferred.
+     */
     void computeDensities(OpenMM::ContextImpl& context);
+    /** The grid and the density pass at the current positions, checking nothing (for an error's message). */
+    void computeDensitiesQuietly();
     void setModelArguments();
     /** The per-type Tait tables from the parameters read last. */
     void uploadTypeTables();
@@ -48,6 +67,7 @@ private:
     std::vector<TaitParameters> taitByType;    // by type index
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
+    bool deferred = false;   // the checks are made by an integrator's run of steps (CommonGenDPDEForceChecks)
     std::unique_ptr<CommonGenDPDECellGrid> grid;
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
     OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)

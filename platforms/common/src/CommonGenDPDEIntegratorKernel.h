@@ -1,7 +1,9 @@
 #ifndef COMMON_GENDPDE_INTEGRATOR_KERNEL_H_
 #define COMMON_GENDPDE_INTEGRATOR_KERNEL_H_
 
+#include "CommonGenDPDEBlockSweep.h"
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEForceChecks.h"
 #include "CommonGenDPDEProfiler.h"
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDETypes.h"
@@ -13,21 +15,36 @@
 namespace GenDPDEPlugin {
 
 /**
- * GenDPDEIntegrator on OpenMM's Common compute platforms (kernels/gendpdeIntegrator.cc): half kick, the coloured
- * Shardlow sweep in GenDPDESweepOrder's sequence (the pairs found and ordered on the device, one launch per colour,
- * one thread per block), half kick, drift. Internal energies live on the device in `mixed` precision, indexed by
- * original particle index. A step that would be unstable is refused before anything changes; a sweep after which an
- * internal energy is <= 0 is rolled back (velocities and internal energies) and reported, naming particle and step.
+ * GenDPDEIntegrator on OpenMM's Common compute platforms: a step is startStep (the checks, a copy of the state, the
+ * first kick; kernels/gendpdeIntegrator.cc), the coloured Shardlow sweep in GenDPDESweepOrder's sequence
+ * (CommonGenDPDEBlockSweep), and finishStep (second kick and drift). Internal energies live on the device in `mixed`
+ * precision, indexed by original particle index.
+ *
+ * A run of steps (GenDPDEIntegrator::step(n), between beginSteps() and finishSteps()) never waits for the device: a
+ * step that would be unstable, an internal energy that would become <= 0, or an invalid particle found by the
+ * GenDPDEForce whose checks it defers stops the run on the device, every later kernel of the run does nothing, and
+ * the host reads the status words after the run (and every pollInterval steps, to stop a long run early), resets
+ * the step count and time to the failing step (whose state the device kept, rolling back the step's changes), and
+ * throws the Reference platform's error, naming the particle and the step.
  */
 class CommonIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
-    CommonIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
-            IntegrateGenDPDEStepKernel(name, platform), cc(cc), profiler(cc, "GenDPDEIntegrator") {
+    /** @param localMemory  the local memory a work group may use on this device (bytes) */
+    CommonIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc,
+                                     int localMemory) :
+            IntegrateGenDPDEStepKernel(name, platform), cc(cc), localMemory(localMemory),
+            profiler(cc, "GenDPDEIntegrator") {
     }
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                     const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) override;
+    void beginSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
+                    GenDPDEPairSource* pairSource) override;
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
                  GenDPDEPairSource* pairSource) override;
+    void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
+    bool hasInternalEnergies() const override {
+        return energiesSet;
+    }
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override;
     void setInternalEnergies(const std::vector<double>& internalEnergies) override;
@@ -37,29 +54,36 @@ public:
     void setSeed(int seed) override {
         this->seed = seed;
     }
+    /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
+    static const int pollInterval = 256;
 private:
-    /** Find and order the pairs (after the step check); throws, changing nothing, if the step is unstable. */
-    void preparePairs(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                      const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource);
-    /** The sweep, colour by colour; rolls back and throws if an internal energy became <= 0. */
-    void sweep(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
-    void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, double maxDisplacement);
+    /** The sweep's tables by type, uploaded when the integrator's parameters changed. */
+    void uploadTypeTables(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
+    /** Read the status words: adjust the sweep's capacities, and throw the run's failure if it stopped. */
+    void readStatus(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
+    void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, long long step);
     OpenMM::ComputeContext& cc;
+    int localMemory;
     double cutoff = 0.0;
     int seed = 0;
-    bool periodic = false;
+    bool periodic = false, energiesSet = false;
+    // The run of steps: where it started, whether the force's checks are deferred to it, and what it stepped.
+    bool inRun = false;
+    long long runStartStep = 0;
+    double runStartTime = 0.0;
+    int stepsSincePoll = 0;
+    CommonGenDPDEForceChecks* deferredChecks = nullptr;
+    GenDPDEStepTerms runTerms;
+    double runStepSize = 0.0;
     std::unique_ptr<CommonGenDPDECellGrid> grid;   // own cells, when no force's can be reused
-    CommonGenDPDECellGrid* boundGrid = nullptr;     // the grid whose arrays findPairsKernel reads
-    std::vector<int> rankOfBlock, groupStart;   // each block's rank in the sweep; each colour's first rank
-    std::array<int, 3> blockGridCells = {0, 0, 0};
-    OpenMM::ComputeArray energies, savedEnergies, savedVelm, slotOfAtom, status, kinetic;
-    OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
+    std::unique_ptr<CommonGenDPDEBlockSweep> sweep;
+    std::vector<int> levelCounters;                // per colour, the most levels of a block seen (counters)
+    int streamedBlocks = 0;
+    OpenMM::ComputeArray energies, savedEnergies, savedVelm, status, noForceErrors, kinetic;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()
     OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // type by original index; per-type parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
-    OpenMM::ComputeArray rankOfBlockArray, blockCount, blockStart, blockPairs, orderedPairs;
-    OpenMM::ComputeKernel resetKernel, checkKernel, kickKernel, driftKernel, kineticKernel, invertKernel;
-    OpenMM::ComputeKernel findPairsKernel, orderKernel, sweepKernel;
+    OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel;
     mutable std::vector<double> hostEnergies;
     CommonGenDPDEProfiler profiler;
 };

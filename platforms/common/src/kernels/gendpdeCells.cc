@@ -1,7 +1,11 @@
 #ifdef __OPENCL_VERSION__
 #define ATOMIC_MIN(p, v) atomic_min(p, v)
+#define ATOMIC_MAX(p, v) atomic_max(p, v)
+#define ATOMIC_CAS(p, compare, v) atomic_cmpxchg(p, compare, v)
 #else
 #define ATOMIC_MIN(p, v) atomicMin(p, v)
+#define ATOMIC_MAX(p, v) atomicMax(p, v)
+#define ATOMIC_CAS(p, compare, v) atomicCAS(p, compare, v)
 #endif
 
 /* The cell grid of GenDPDE's device kernels (CommonGenDPDECellGrid): the cells of GenDPDESweepOrder (docs/theory.md
@@ -101,10 +105,11 @@ KERNEL void assignCells(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* R
 }
 
 /**
- * Exclusive prefix sums of counts[0..n) into starts[0..n] (the total also into totalOut[totalIndex]), in one work group of SCAN_GROUP_SIZE threads: each thread
- * sums a contiguous range, the range totals are scanned, then each range is written.
+ * Exclusive prefix sums of counts[0..n) into starts[0..n] (the total also into totalOut[totalIndex]), in one work
+ * group of SCAN_GROUP_SIZE threads: each thread sums a contiguous range, the range totals are scanned, then each range
+ * is written. The counts are left zero, ready for the next count.
  */
-KERNEL void exclusiveScan(GLOBAL const int* RESTRICT counts, GLOBAL int* RESTRICT starts, int n,
+KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts, int n,
                           GLOBAL int* RESTRICT totalOut, int totalIndex) {
     LOCAL int partial[SCAN_GROUP_SIZE];
     const int perThread = (n + SCAN_GROUP_SIZE - 1)/SCAN_GROUP_SIZE;
@@ -129,10 +134,11 @@ KERNEL void exclusiveScan(GLOBAL const int* RESTRICT counts, GLOBAL int* RESTRIC
     for (int i = begin; i < end; i++) {
         starts[i] = running;
         running += counts[i];
+        counts[i] = 0;
     }
 }
 
-/** List each slot in its cell (in any order; sortCells orders them). cellFill cleared before. */
+/** List each slot in its cell (in any order; sortCells orders them and clears cellFill again). cellFill zero before. */
 KERNEL void fillCells(GLOBAL const int* RESTRICT slotCell, GLOBAL const int* RESTRICT cellStart,
                       GLOBAL int* RESTRICT cellFill, GLOBAL int* RESTRICT sortedSlot) {
     for (int slot = GLOBAL_ID; slot < NUM_ATOMS; slot += GLOBAL_SIZE) {
@@ -143,14 +149,16 @@ KERNEL void fillCells(GLOBAL const int* RESTRICT slotCell, GLOBAL const int* RES
 
 /**
  * Order each cell's particles by original index (insertion sort: a cell holds a few particles), and copy their
- * original indices and positions (real precision, for the force loops) into cell order.
+ * original indices and positions (real precision, for the force loops) into cell order; cellFill zero again.
  */
-KERNEL void sortCells(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT sortedSlot,
+KERNEL void sortCells(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
+                      GLOBAL int* RESTRICT sortedSlot,
                       GLOBAL const int* RESTRICT atomIndex, GLOBAL int* RESTRICT sortedAtom,
                       GLOBAL int* RESTRICT sortedCell, GLOBAL const real4* RESTRICT posq,
                       GLOBAL real4* RESTRICT sortedPos) {
     for (int cell = GLOBAL_ID; cell < cells.w; cell += GLOBAL_SIZE) {
         const int begin = cellStart[cell], end = cellStart[cell + 1];
+        cellFill[cell] = 0;
         for (int k = begin + 1; k < end; k++) {
             const int slot = sortedSlot[k], atom = atomIndex[slot];
             int m = k - 1;

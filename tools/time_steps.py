@@ -5,7 +5,8 @@ version of openmmgendpde the running Python has installed: the tool that compare
     python tools/time_steps.py --state mixed.npz --platform CPU --threads 2 --what step --count 100
 
 The state (positions and velocities, nm and nm/ps) is read from --state; if the file does not exist it is made
-first: the lattice melted by 300 Isothermal steps on the CPU platform, the particles renumbered at random (the
+first: the lattice melted by 300 Isothermal steps on the CPU platform (--melt-platform: another, e.g. the GPU being
+timed, with the same Precision), the particles renumbered at random (the
 state a long run lives in; openmmgendpde.benchmark_cpu does the same). Prints the milliseconds per call.
 It uses only liquid_argon and the public API, so that older versions run it too.
 """
@@ -24,9 +25,10 @@ from openmmgendpde.presets import liquid_argon
 CUTOFF = 1.6839
 
 
-def make_state(path, num_particles):
+def make_state(path, num_particles, platform="CPU", properties=None):
     model = liquid_argon(num_particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isothermal)
-    context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName("CPU"))
+    context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(platform),
+                             properties or {})
     context.setPositions(model.positions)
     context.setVelocitiesToTemperature(model.temperature, 1)
     model.integrator.step(300)
@@ -53,6 +55,7 @@ def main():
     parser.add_argument("--state", required=True, help=".npz file of the state (made if absent)")
     parser.add_argument("--particles", type=int, default=32000, help="for a new state (default 32000)")
     parser.add_argument("--platform", default="CPU")
+    parser.add_argument("--melt-platform", default="CPU", help="the platform that makes a new state (default CPU)")
     parser.add_argument("--threads", type=int, help="the CPU platform's Threads")
     parser.add_argument("--precision", choices=("single", "mixed", "double"),
                         help="a GPU platform's Precision (OpenCL, CUDA)")
@@ -65,7 +68,9 @@ def main():
                              "its own entries, so that the physics is the same and only the type tables differ")
     arguments = parser.parse_args()
     if not os.path.exists(arguments.state):
-        make_state(arguments.state, arguments.particles)
+        melt_properties = {"Precision": arguments.precision} if arguments.precision and arguments.melt_platform in (
+            "OpenCL", "CUDA") else {}
+        make_state(arguments.state, arguments.particles, arguments.melt_platform, melt_properties)
     saved = np.load(arguments.state)
     num_particles = len(saved["positions"])
     model = liquid_argon(num_particles, CUTOFF, arguments.estimator, seed=1, mode=GenDPDEIntegrator.Isoenergetic)

@@ -8,6 +8,7 @@
 #include "openmm/internal/AssertionUtilities.h"
 #include "openmm/Vec3.h"
 #include <cmath>
+#include <cstdlib>
 #include <functional>
 #include <iostream>
 #include <sstream>
@@ -71,6 +72,30 @@ inline void assertThrowsMentioning(const std::function<void()>& call, const std:
     }
     throw std::runtime_error("expected an OpenMMException mentioning '" + fragments[0] + "', none was thrown");
 }
+
+/** Environment variables set for a block of code (developer settings read when a Context is created), then unset. */
+class ScopedEnvironment {
+public:
+    explicit ScopedEnvironment(const std::vector<std::pair<std::string, std::string>>& values) : values(values) {
+        for (const auto& value : values)
+            setenv(value.first.c_str(), value.second.c_str(), 1);
+    }
+    ~ScopedEnvironment() {
+        for (const auto& value : values)
+            unsetenv(value.first.c_str());
+    }
+    std::string label() const {
+        return describe(values);
+    }
+    static std::string describe(const std::vector<std::pair<std::string, std::string>>& values) {
+        std::string text;
+        for (const auto& value : values)
+            text += " " + value.first + "=" + value.second;
+        return text.empty() ? " (defaults)" : text;
+    }
+private:
+    std::vector<std::pair<std::string, std::string>> values;
+};
 
 /** main() of a test program: run the tests, print "Done" or the failure, return the exit status. */
 inline int runTestProgram(const std::function<void()>& tests) {

@@ -82,6 +82,13 @@ inline void setMixed4(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel,
     setVector4(kernel, index, mixedIsDouble(cc), x, y, z, w);
 }
 
+inline void setReal(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double value) {
+    if (cc.getUseDoublePrecision())
+        kernel->setArg(index, value);
+    else
+        kernel->setArg(index, (float) value);
+}
+
 inline void setMixed(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double value) {
     if (mixedIsDouble(cc))
         kernel->setArg(index, value);

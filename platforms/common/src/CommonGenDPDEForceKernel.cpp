@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdlib>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -28,23 +29,53 @@ private:
     std::vector<int> typeIndex;
 };
 
+/** Marks the neighbour list for a rebuild when OpenMM reorders the atoms (the list holds slots). */
+class CommonCalcGenDPDEForceKernel::ReorderListener : public ComputeContext::ReorderListener {
+public:
+    explicit ReorderListener(std::shared_ptr<bool> needsRebuild) : needsRebuild(needsRebuild) {
+    }
+    void execute() override {
+        *needsRebuild = true;
+    }
+private:
+    std::shared_ptr<bool> needsRebuild;
+};
+
 namespace {
 
 const int noValue = INT_MAX;
 
 /** The arguments of kernels/gendpdeForce.cc's kernels, in the order of their parameters. */
+namespace CheckArgument {
+enum {Posq, BuildPosition, MaxDrift, ForceRebuild, Rebuild, Errors, Count};
+}
+namespace BuildArgument {
+enum {Cells, CellStart, SortedCell, SortedSlot, SortedPos, AtomIndex, BoxA, BoxB, BoxC, Cutoff, ListRange, Capacity,
+      Rebuild, BuildPosition, ListCount, Neighbours, Errors, Count};
+}
+/** The leading arguments of every pass (NEIGHBOUR_ARGUMENTS). */
+namespace NeighbourArgument {
+enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom, SortedSlot, SortedPos, Posq, BoxA,
+      BoxB, BoxC, Count};
+}
 namespace DensityArgument {
-enum {Cells, CellStart, SortedCell, SortedAtom, SortedPos, BoxA, BoxB, BoxC, Model, AtomType, TaitTable, TaitPower,
-      VolumeConstants, MomentConstants, Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure,
-      ForceCoefficient, MomentForce, Energy, Errors, Count};
+enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, TaitTable, TaitPower, VolumeConstants, MomentConstants,
+      Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
+      Rebuild, Errors, Count};
 }
 namespace ForceArgument {
-enum {Cells, CellStart, SortedCell, SortedSlot, SortedPos, BoxA, BoxB, BoxC, Model, ForceCoefficient, Moments,
-      MomentForce, ForceBuffers, Count};
+enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count};
 }
 namespace VirialArgument {
-enum {Cells, CellStart, SortedCell, SortedPos, BoxA, BoxB, BoxC, Model, ForceCoefficient, Moments, MomentForce,
-      Tensors, ParticleVirial, ParticleVirialTensor, Count};
+enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, Tensors, ParticleVirial,
+      ParticleVirialTensor, Count};
+}
+
+/** The list's skin, as a fraction of the cutoff (the Reference platform's neighbour list uses the same). */
+const double listSkin = 0.1;
+
+int roundUp(double value, int multiple) {
+    return multiple*(int) std::ceil(value/multiple);
 }
 
 } // namespace
@@ -65,8 +96,30 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
     particleVirialTensor.initialize(cc, 9*numAtoms, realSize, "gendpdeParticleVirialTensor");
     momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // (used only by V-C)
-    errors.initialize<int>(cc, 2, "gendpdeForceErrors");
-    errors.upload(std::vector<int>(2, noValue));
+    errors.initialize<int>(cc, 6, "gendpdeForceErrors");   // two flags, then the list's counters
+    errors.upload(std::vector<int>({noValue, noValue, 0, 0, 0, 0}));
+    // The neighbour list (rows by slot), marked for a rebuild at the first evaluation.
+    listCount.initialize<int>(cc, numAtoms, "gendpdeListCount");
+    buildPosition.initialize(cc, numAtoms, cc.getPosq().getElementSize(), "gendpdeListBuildPosition");
+    rebuild.initialize<int>(cc, 1, "gendpdeListRebuild");
+    rebuild.upload(std::vector<int>(1, 1));
+    if (periodic) {
+        Vec3 box[3];
+        system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
+        const double density = system.getNumParticles()/(box[0][0]*box[1][1]*box[2][2]);
+        const double range = (1 + listSkin)*cutoff;
+        listCapacity = roundUp(1.4*(4*M_PI/3)*range*range*range*density + 16, 8);
+    }
+    else
+        listCapacity = 64;   // grows when exceeded (particles beyond it meanwhile use the cells)
+    // A developer's setting (the tests force the cells' path with it): a fixed capacity.
+    const char* fixedCapacity = std::getenv("GENDPDE_LIST_CAPACITY");
+    if (fixedCapacity != nullptr && *fixedCapacity != '\0') {
+        listCapacity = std::max(1, std::atoi(fixedCapacity));
+        wantedCapacity = INT_MIN;   // never grows
+    }
+    neighbours.initialize<int>(cc, (size_t) numAtoms*listCapacity, "gendpdeListNeighbours");
+    needsRebuild = std::make_shared<bool>(true);
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
     const int numTypes = types->getNumTypes();
     std::vector<int> typeIndex = types->getParticleTypeIndices();
@@ -97,39 +150,63 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
             + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, grid->defines());
     grid->createKernels(program);
-    resetErrorsKernel = program->createKernel("resetErrors");
-    resetErrorsKernel->addArg(errors);
+    checkKernel = program->createKernel("checkList");
+    {
+        using namespace CheckArgument;
+        KernelArguments(checkKernel, "checkList").array(Posq, cc.getPosq()).array(BuildPosition, buildPosition).later(MaxDrift).later(ForceRebuild).array(Rebuild, rebuild)
+                .array(Errors, errors).done(Count);
+    }
+    buildKernel = program->createKernel("buildList");
+    {
+        using namespace BuildArgument;
+        KernelArguments(buildKernel, "buildList").later(Cells).array(CellStart, grid->cellStart)
+                .array(SortedCell, grid->sortedCell).array(SortedSlot, grid->sortedSlot)
+                .array(SortedPos, grid->sortedPos).array(AtomIndex, cc.getAtomIndexArray()).later(BoxA).later(BoxB)
+                .later(BoxC).later(Cutoff).later(ListRange).later(Capacity)
+                .array(Rebuild, rebuild).array(BuildPosition, buildPosition).array(ListCount, listCount).later(Neighbours).array(Errors, errors).done(Count);
+    }
     densityKernel = program->createKernel("computeDensities");
     {
         using namespace DensityArgument;
-        KernelArguments(densityKernel, "computeDensities").later(Cells).array(CellStart, grid->cellStart)
-                .array(SortedCell, grid->sortedCell).array(SortedAtom, grid->sortedAtom)
-                .array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB).later(BoxC).later(Model)
+        addNeighbourArguments(densityKernel, "computeDensities").array(AtomIndex, cc.getAtomIndexArray()).later(Model)
                 .array(AtomType, atomType).array(TaitTable, taitTable).array(TaitPower, taitPowerTable)
                 .later(VolumeConstants).later(MomentConstants).later(Estimator).array(Polynomials, polynomialTable)
                 .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
                 .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
-                .array(Energy, cc.getEnergyBuffer()).array(Errors, errors).done(Count);
+                .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).done(Count);
     }
     forceKernel = program->createKernel("computeForces");
     {
         using namespace ForceArgument;
-        KernelArguments(forceKernel, "computeForces").later(Cells).array(CellStart, grid->cellStart)
-                .array(SortedCell, grid->sortedCell).array(SortedSlot, grid->sortedSlot)
-                .array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB).later(BoxC).later(Model)
-                .array(ForceCoefficient, forceCoefficient).later(Moments).array(MomentForce, momentForce)
-                .array(ForceBuffers, cc.getLongForceBuffer()).done(Count);
+        addNeighbourArguments(forceKernel, "computeForces").later(Model).array(ForceCoefficient, forceCoefficient)
+                .later(Moments).array(MomentForce, momentForce).array(ForceBuffers, cc.getLongForceBuffer())
+                .done(Count);
     }
     virialKernel = program->createKernel("computeVirials");
     {
         using namespace VirialArgument;
-        KernelArguments(virialKernel, "computeVirials").later(Cells).array(CellStart, grid->cellStart)
-                .array(SortedCell, grid->sortedCell).array(SortedPos, grid->sortedPos).later(BoxA).later(BoxB)
-                .later(BoxC).later(Model).array(ForceCoefficient, forceCoefficient).later(Moments)
-                .array(MomentForce, momentForce).later(Tensors).array(ParticleVirial, particleVirial)
+        addNeighbourArguments(virialKernel, "computeVirials").later(Model).array(ForceCoefficient, forceCoefficient)
+                .later(Moments).array(MomentForce, momentForce).later(Tensors).array(ParticleVirial, particleVirial)
                 .array(ParticleVirialTensor, particleVirialTensor).done(Count);
     }
+    // Atom reordering moves particles between slots, which the list holds: it is rebuilt after.
+    cc.addReorderListener(new ReorderListener(needsRebuild));
     cc.addForce(new ForceInfo(types->getParticleTypeIndices()));
+}
+
+CommonCalcGenDPDEForceKernel::~CommonCalcGenDPDEForceKernel() {
+    // The list's counters for the profile (GENDPDE_PROFILE): entries and pairs in range at the last build.
+    if (!profiler.isEnabled() || !errors.isInitialized())
+        return;
+    ContextSelector selector(cc);
+    std::vector<int> found;
+    errors.download(found);
+    const double particles = cc.getNumAtoms();
+    profiler.note("neighbour list: " + std::to_string(found[5]) + " builds, skin " + std::to_string(listSkin)
+                  + " R, capacity " + std::to_string(listCapacity) + "; at the last build "
+                  + std::to_string(found[3]/particles) + " entries and " + std::to_string(found[4]/particles)
+                  + " neighbours closer than R per particle: " + std::to_string(found[4] > 0 ? 2.0*found[3]/found[4]
+                  : 0.0) + " distances per pair in range and pass");
 }
 
 void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
@@ -158,17 +235,35 @@ void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
     taitPowerTable.upload(power);
 }
 
+KernelArguments CommonCalcGenDPDEForceKernel::addNeighbourArguments(ComputeKernel& kernel, const std::string& name) {
+    using namespace NeighbourArgument;
+    KernelArguments arguments(kernel, name);
+    arguments.array(ListCount, listCount).later(Neighbours).later(Capacity).later(Cells)
+            .array(CellStart, grid->cellStart).array(SortedCell, grid->sortedCell).array(SortedAtom, grid->sortedAtom)
+            .array(SortedSlot, grid->sortedSlot).array(SortedPos, grid->sortedPos).array(Posq, cc.getPosq())
+            .later(BoxA).later(BoxB).later(BoxC);
+    return arguments;
+}
+
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
     // The constants of the physics core (gendpdeDensityWeightScales, gendpdeEstimatorConstants), computed on the host.
     const Physics::DensityWeight weight(cutoff);
     const Physics::VolumeEstimator constants(estimator, cutoff, cutoff/cutoffScaling);
     const mm_int4 cells = grid->getCellsArgument();
-    densityKernel->setArg(DensityArgument::Cells, cells);
-    forceKernel->setArg(ForceArgument::Cells, cells);
-    virialKernel->setArg(VirialArgument::Cells, cells);
-    grid->setBoxArguments(densityKernel, DensityArgument::BoxA, false);
-    grid->setBoxArguments(forceKernel, ForceArgument::BoxA, false);
-    grid->setBoxArguments(virialKernel, VirialArgument::BoxA, false);
+    for (ComputeKernel* kernel : {&densityKernel, &forceKernel, &virialKernel}) {
+        using namespace NeighbourArgument;
+        (*kernel)->setArg(Neighbours, neighbours);
+        (*kernel)->setArg(Capacity, listCapacity);
+        (*kernel)->setArg(Cells, cells);
+        grid->setBoxArguments(*kernel, BoxA, false);
+    }
+    buildKernel->setArg(BuildArgument::Cells, cells);
+    grid->setBoxArguments(buildKernel, BuildArgument::BoxA, false);
+    setReal(cc, buildKernel, BuildArgument::Cutoff, cutoff);
+    setReal(cc, buildKernel, BuildArgument::ListRange, (1 + listSkin)*cutoff);
+    buildKernel->setArg(BuildArgument::Capacity, listCapacity);
+    buildKernel->setArg(BuildArgument::Neighbours, neighbours);
+    setReal(cc, checkKernel, CheckArgument::MaxDrift, 0.5*listSkin*cutoff);
     for (auto kernelAndIndex : {std::make_pair(&densityKernel, (int) DensityArgument::Model),
                                 std::make_pair(&forceKernel, (int) ForceArgument::Model),
                                 std::make_pair(&virialKernel, (int) VirialArgument::Model)})
@@ -184,26 +279,58 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
+    Vec3 box[3];
+    cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
     if (periodic) {
-        Vec3 box[3];
-        cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
+        if (box[0] != listBox[0] || box[1] != listBox[1] || box[2] != listBox[2])
+            *needsRebuild = true;   // (a barostat) the list's positions and images belong to another box
+    }
+    if (wantedCapacity > listCapacity) {
+        listCapacity = wantedCapacity;
+        neighbours.resize((size_t) cc.getNumAtoms()*listCapacity);
+        *needsRebuild = true;
     }
     profiler.countStep();
     profiler.time("cell grid", [&]() { grid->build(); });
     setModelArguments();
-    profiler.time("densities, particle state", [&]() {
-        profiler.launch(resetErrorsKernel, 1);
-        profiler.launch(densityKernel, cc.getNumAtoms());
+    profiler.time("neighbour list", [&]() {
+        checkKernel->setArg(CheckArgument::ForceRebuild, *needsRebuild ? 1 : 0);
+        profiler.launch(checkKernel, cc.getNumAtoms());
+        profiler.launch(buildKernel, cc.getNumAtoms());
     });
+    *needsRebuild = false;
+    for (int k = 0; k < 3; k++)
+        listBox[k] = box[k];
+    profiler.time("densities, particle state", [&]() { profiler.launch(densityKernel, cc.getNumAtoms()); });
     pairsFound(cutoff, cc.getStepCount());
     if (deferred)
         return;   // the integrator's run checks the flags on the device
     std::vector<int> found;
     profiler.transfer();
     errors.download(found);
+    growList(found[2]);
     if (found[0] != noValue || found[1] != noValue)
         throwErrors(context, found[0], found[1], cc.getStepCount());
+}
+
+void CommonCalcGenDPDEForceKernel::setDeferred(bool deferred) {
+    if (this->deferred && !deferred) {
+        // The end of an integrator's run of steps: the list's largest count, read once per run.
+        ContextSelector selector(cc);
+        std::vector<int> found;
+        profiler.transfer();
+        errors.download(found);
+        growList(found[2]);
+    }
+    this->deferred = deferred;
+}
+
+void CommonCalcGenDPDEForceKernel::growList(int mostNeighbours) {
+    // Some particles had more neighbours than the list holds (they used the cells): room for them at the start of
+    // the next evaluation (this one's passes may still read the list).
+    if (mostNeighbours > listCapacity && wantedCapacity != INT_MIN)
+        wantedCapacity = std::max(wantedCapacity, roundUp(1.25*mostNeighbours, 8));
 }
 
 void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFinite, int invalid, long long step) {
@@ -223,22 +350,24 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     if (deferred)
         throw OpenMMException("GenDPDEForce: internal error: throwErrors() while the checks are deferred");
     computeDensitiesQuietly();
-    std::vector<int> atoms;
     std::vector<double> volumes;
-    grid->sortedAtom.download(atoms);
     volume.download(volumes, true);
-    double density = 0.0;
-    for (int k = 0; k < (int) atoms.size(); k++)
-        if (atoms[k] == particle)
-            density = 1.0/volumes[k];
+    const double density = 1.0/volumes[slotOf(particle)];
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
             taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, step));
+}
+
+int CommonCalcGenDPDEForceKernel::slotOf(int particle) const {
+    const std::vector<int>& atomIndex = cc.getAtomIndex();
+    return (int) (std::find(atomIndex.begin(), atomIndex.end(), particle) - atomIndex.begin());
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensitiesQuietly() {
     grid->build();
     setModelArguments();
-    profiler.launch(resetErrorsKernel, 1);
+    checkKernel->setArg(CheckArgument::ForceRebuild, 1);
+    profiler.launch(checkKernel, cc.getNumAtoms());
+    profiler.launch(buildKernel, cc.getNumAtoms());
     profiler.launch(densityKernel, cc.getNumAtoms());
 }
 
@@ -255,9 +384,7 @@ const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextIm
     computeDensities(context);
     virialKernel->setArg(VirialArgument::Tensors, particleVirials ? 1 : 0);
     profiler.time("virials", [&]() { profiler.launch(virialKernel, cc.getNumAtoms()); });
-    std::vector<int> atoms;
     std::vector<double> n0, v, pi, w, tensors;
-    grid->sortedAtom.download(atoms);
     primitiveDensity.download(n0, true);
     volume.download(v, true);
     pressure.download(pi, true);
@@ -271,15 +398,16 @@ const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextIm
     observables.pressures.resize(numAtoms);
     observables.particleVirials.assign(particleVirials ? 9*numAtoms : 0, 0.0);
     std::vector<double> virial(numAtoms);
-    for (int k = 0; k < numAtoms; k++) {
-        const int i = atoms[k];
-        observables.primitiveDensities[i] = n0[k];
-        observables.volumes[i] = v[k];
-        observables.densities[i] = 1.0/v[k];
-        observables.pressures[i] = pi[k];
-        virial[i] = w[k];
+    const std::vector<int>& atomIndex = cc.getAtomIndex();   // the values are by slot
+    for (int slot = 0; slot < numAtoms; slot++) {
+        const int i = atomIndex[slot];
+        observables.primitiveDensities[i] = n0[slot];
+        observables.volumes[i] = v[slot];
+        observables.densities[i] = 1.0/v[slot];
+        observables.pressures[i] = pi[slot];
+        virial[i] = w[slot];
         if (particleVirials)
-            std::copy(&tensors[9*k], &tensors[9*k] + 9, &observables.particleVirials[9*i]);
+            std::copy(&tensors[9*slot], &tensors[9*slot] + 9, &observables.particleVirials[9*i]);
     }
     FixedOrderSum::Accumulator sum;
     for (double value : virial)

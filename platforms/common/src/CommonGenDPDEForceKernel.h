@@ -1,6 +1,7 @@
 #ifndef COMMON_GENDPDE_FORCE_KERNEL_H_
 #define COMMON_GENDPDE_FORCE_KERNEL_H_
 
+#include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDECellGrid.h"
 #include "CommonGenDPDEForceChecks.h"
 #include "CommonGenDPDEProfiler.h"
@@ -26,6 +27,7 @@ public:
     CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
             CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {
     }
+    ~CommonCalcGenDPDEForceKernel();
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
@@ -41,15 +43,20 @@ public:
         return this;
     }
     // CommonGenDPDEForceChecks
-    void setDeferred(bool deferred) override {
-        this->deferred = deferred;
-    }
+    void setDeferred(bool deferred) override;
     OpenMM::ArrayInterface& getErrorFlags() override {
         return errors;
     }
     void throwErrors(OpenMM::ContextImpl& context, int nonFinite, int invalid, long long step) override;
 private:
     class ForceInfo;
+    class ReorderListener;
+    /** Add the arguments every pass begins with (NEIGHBOUR_ARGUMENTS in kernels/gendpdeForce.cc). */
+    KernelArguments addNeighbourArguments(OpenMM::ComputeKernel& kernel, const std::string& name);
+    /** Make room in the list for this many neighbours per particle, if it has less, at the next evaluation. */
+    void growList(int mostNeighbours);
+    /** The slot (position in OpenMM's per-atom arrays) of a particle. */
+    int slotOf(int particle) const;
     void readParameters(const GenDPDEForce& force);
     /**
      * Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid, unless the
@@ -69,12 +76,18 @@ private:
     bool periodic;
     bool deferred = false;   // the checks are made by an integrator's run of steps (CommonGenDPDEForceChecks)
     std::unique_ptr<CommonGenDPDECellGrid> grid;
+    // The neighbour list: each particle's neighbours (slots) within (1 + listSkin) R at its last build, by original
+    // index, kept while no particle has moved half the skin; rows by slot.
+    OpenMM::ComputeArray listCount, buildPosition, neighbours, rebuild;
+    int listCapacity = 0, wantedCapacity = 0;   // neighbours held per particle; what the next evaluation makes room for
+    std::shared_ptr<bool> needsRebuild;     // set by the host: first evaluation, atom reordering, new box or capacity
+    OpenMM::Vec3 listBox[3];
     OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
     OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)
     OpenMM::ComputeArray momentForce;   // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
     OpenMM::ComputeArray polynomialTable, quadratureTable, errors;   // the V-B tables (real); error flags
     OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
-    OpenMM::ComputeKernel resetErrorsKernel, densityKernel, forceKernel, virialKernel;
+    OpenMM::ComputeKernel checkKernel, buildKernel, densityKernel, forceKernel, virialKernel;
     GenDPDEObservables observables;
     CommonGenDPDEProfiler profiler;
 };

@@ -30,7 +30,7 @@ public:
         enabled = (setting != nullptr && std::string(setting) != "0" && std::string(setting) != "");
     }
     ~CommonGenDPDEProfiler() {
-        if (!enabled || (parts.empty() && steps == 0))
+        if (!enabled || (parts.empty() && steps == 0 && notes.empty()))
             return;
         std::fprintf(stderr, "GenDPDE %s, device time per part (GENDPDE_PROFILE): part, calls, total ms, us per call\n",
                      owner.c_str());
@@ -52,6 +52,15 @@ public:
             }
             std::fprintf(stderr, " (critical path %d levels)\n", total);
         }
+        for (const std::string& line : notes)
+            std::fprintf(stderr, "GenDPDE %s, %s\n", owner.c_str(), line.c_str());
+    }
+    bool isEnabled() const {
+        return enabled;
+    }
+    /** A line for the profile (printed with the totals). */
+    void note(const std::string& line) {
+        notes.push_back(line);
     }
     /** Run body (which launches kernels) and, when profiling, add its device time to the part's total. */
     template <class Body>
@@ -110,6 +119,7 @@ private:
     long steps = 0, launches = 0, transfers = 0;
     int mostParticles = 0, mostPairs = 0, streamed = 0, blocks = 0;
     std::vector<int> levels;
+    std::vector<std::string> notes;
 };
 
 } // namespace GenDPDEPlugin

@@ -153,6 +153,39 @@ void testSameFailure() {
                                      GENDPDE_TEST_PLATFORM " '" + messages[k] + "'");
 }
 
+/**
+ * A particle with more neighbours than the device's list holds is gathered from the cells around it, by original
+ * index as the list is, with forces summed in fixed point: the results equal the list's to the last bit (a list of 3
+ * neighbours, GENDPDE_LIST_CAPACITY, sends every particle that way), in double and in single precision.
+ */
+void testListOverflowIsExact() {
+    for (const std::string precision : {"double", "single"})
+        for (GenDPDEForce::DensityEstimator estimator : testEstimators())
+            for (bool periodic : {true, false}) {
+                Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, periodic, 63);
+                const std::string label = estimatorLabel(estimator) + (periodic ? " periodic" : " open") + " ("
+                                          + precision + ")";
+                std::vector<State> states;
+                std::vector<std::vector<double>> densities;
+                for (const std::string capacity : {"", "3"}) {
+                    ScopedEnvironment settings(capacity.empty() ? std::vector<std::pair<std::string, std::string>>()
+                            : std::vector<std::pair<std::string, std::string>>{{"GENDPDE_LIST_CAPACITY", capacity}});
+                    VerletIntegrator integrator(0.001);
+                    std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
+                    context->setPositions(scene.positions);
+                    states.push_back(context->getState(State::Energy | State::Forces));
+                    densities.push_back(scene.force->getParticleDensities(*context));
+                }
+                ASSERT_EQUAL(states[0].getPotentialEnergy(), states[1].getPotentialEnergy());
+                for (size_t i = 0; i < scene.positions.size(); i++) {
+                    if (!(states[0].getForces()[i] == states[1].getForces()[i]))
+                        throw std::runtime_error(label + ": the cells' force on particle " + std::to_string(i)
+                                                 + " differs from the list's");
+                    ASSERT_EQUAL(densities[0][i], densities[1][i]);
+                }
+            }
+}
+
 int main() {
     return runTestProgram([]() {
         loadComputePlugins(GENDPDE_TEST_PLATFORM);
@@ -167,5 +200,6 @@ int main() {
         compareTrajectories(GenDPDEIntegrator::Isoenergetic, true, false, "Isoenergetic, a three-type mixture", true);
         compareTrajectories(GenDPDEIntegrator::Isothermal, true, false, "Isothermal, a three-type mixture", true);
         testSameFailure();
+        testListOverflowIsExact();
     });
 }

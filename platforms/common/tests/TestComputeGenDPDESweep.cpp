@@ -10,7 +10,7 @@
  * is 1e-13 relative; an update out of sequence, a pair missed or repeated, or a wrong variate gives 1e-3 or more
  * (a pair update changes a velocity by ~1% of the thermal speed). The same run in every layout a device may use
  * (several blocks per work group, odd thread counts, blocks beyond the local-memory or slab capacities, which are
- * streamed), which the GENDPDE_SWEEP_* settings force here.
+ * streamed), which the GENDPDE_SWEEP_* settings force here (ScopedEnvironment).
  *
  * Runs that stop: a failure at any step of a run (an internal energy that would become <= 0, a step that would move
  * a particle too far, an invalid particle found by the force) is found on the device and reported after the run with
@@ -24,27 +24,6 @@
 OpenMM::Platform* platform;
 
 using namespace IntegratorTests;
-
-/** The device's sweep settings for one block of code (environment variables read when a Context is created). */
-class SweepSettings {
-public:
-    explicit SweepSettings(const std::map<std::string, std::string>& values) : values(values) {
-        for (const auto& value : values)
-            setenv(value.first.c_str(), value.second.c_str(), 1);
-    }
-    ~SweepSettings() {
-        for (const auto& value : values)
-            unsetenv(value.first.c_str());
-    }
-    std::string label() const {
-        std::string text;
-        for (const auto& value : values)
-            text += " " + value.first + "=" + value.second;
-        return text.empty() ? " (default layout)" : text;
-    }
-private:
-    std::map<std::string, std::string> values;
-};
 
 /** A jittered lattice of side^3 particles at argon's density without conservative forces; periodic or open. */
 Scene forceFreeLiquid(int side, bool periodic, unsigned seed) {
@@ -89,7 +68,7 @@ void compare(const Trajectory& expected, const Trajectory& found, const std::str
 void testSweepIsTheHostSequence() {
     Scene scene = forceFreeLiquid(20, true, 81);
     const Trajectory expected = runSweeps(scene, GenDPDEIntegrator::Isoenergetic, 3, "");
-    const std::vector<std::map<std::string, std::string>> layouts = {
+    const std::vector<std::vector<std::pair<std::string, std::string>>> layouts = {
         {},
         {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "3"}, {"GENDPDE_SWEEP_BLOCK_THREADS", "5"}},
         {{"GENDPDE_SWEEP_MAX_PARTICLES", "160"}},    // about half the regions are streamed
@@ -97,7 +76,7 @@ void testSweepIsTheHostSequence() {
         {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "2"}, {"GENDPDE_SWEEP_BLOCK_THREADS", "2"},
          {"GENDPDE_SWEEP_PAIR_CAPACITY", "420"}}};
     for (const auto& values : layouts) {
-        SweepSettings settings(values);
+        ScopedEnvironment settings(values);
         compare(expected, runSweeps(scene, GenDPDEIntegrator::Isoenergetic, 3, "double"),
                 "Isoenergetic sweep" + settings.label());
     }
@@ -156,11 +135,11 @@ void compareStops(const Stop& expected, const Stop& found, double tolerance, con
  */
 void testSweepFailure() {
     for (const std::string precision : {"double", "mixed"})
-        for (const std::map<std::string, std::string>& values : std::vector<std::map<std::string, std::string>>{
-                 {}, {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
+        for (const std::vector<std::pair<std::string, std::string>>& values :
+                 std::vector<std::vector<std::pair<std::string, std::string>>>{{}, {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
             std::vector<Stop> stops;
             for (const std::string& on : {std::string(), precision}) {
-                SweepSettings settings(values);
+                ScopedEnvironment settings(values);
                 Scene scene = forceFreeLiquid(20, true, 83);
                 GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
                 integrator.setCutoffDistance(cutoff);
@@ -178,7 +157,7 @@ void testSweepFailure() {
             }
             ASSERT(stops[0].message.find("step 0") != std::string::npos);
             compareStops(stops[0], stops[1], precision == "double" ? 1e-13 : 1e-6,
-                         "a cold particle (" + precision + ")" + SweepSettings(values).label());
+                         "a cold particle (" + precision + ")" + ScopedEnvironment::describe(values));
         }
 }
 

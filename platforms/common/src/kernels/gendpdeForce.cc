@@ -1,88 +1,122 @@
-/* GenDPDEForce on the device (docs/theory.md sections 2-4), in passes over the cell grid of gendpdeCells.cc, one
- * thread per particle in cell order, each gathering over its neighbours (every pair is computed by both particles, so
- * no thread writes another particle's sums: no atomics, and a fixed summation order):
+/* GenDPDEForce on the device (docs/theory.md sections 2-4), over a neighbour list with a skin:
+ *   checkList         the error flags cleared; the list marked for a rebuild if any particle has moved more than
+ *                     half the skin since it was built (or the host asks);
+ *   buildList         (only when marked) each particle's neighbours closer than R + skin, from the cell grid of
+ *                     gendpdeCells.cc, by original index;
  *   computeDensities  n0_i = sum_j w(r_ij) (and the first moments g_i for estimators that read them), then the
  *                     particle's state: V_i, pi_i, f(n_i) (energy), pi_i dV_i/dn0_i and q_i = 2 pi_i dV_i/dG_i g_i,
- *   computeForces     F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij + H(d_ij)(q_i - q_j) (fixed point),
+ *   computeForces     F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij + H(d_ij)(q_i - q_j),
  *   computeVirials    (observables only) each particle's half of sum_j r_ij . F_ij and of sum_j F_ij r_ij^T.
- * Everything in `real` precision; every formula from the physics core (GenDPDEPhysicsCore.h, GENDPDE_REAL = real),
- * the V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays, converted to `real`.
- * The argument order of each kernel is the enum of the same name in CommonGenDPDEForceKernel.cpp. */
+ * One thread per particle in the cell grid's order (a function of the positions alone), each gathering over its
+ * listed neighbours (or, for a particle with more neighbours than the list holds, over the particles of the 27
+ * cells around it, visited by original index too);
+ * every pair is computed by both its particles, so no thread writes another particle's sums. A particle's sums run
+ * over its neighbours closer than R by original index whichever way they are found, and forces are summed as
+ * 64-bit fixed point (exact in any order): the results do not depend on the list's history (when it was rebuilt),
+ * so a run continued from a checkpoint repeats the uninterrupted one bit for bit. Per-particle values and list rows
+ * are stored by slot (posq's index). Everything in `real` precision; every formula from the physics core (GenDPDEPhysicsCore.h,
+ * GENDPDE_REAL = real), the V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays,
+ * converted to `real`. The argument order of each kernel is the enum of the same name in
+ * CommonGenDPDEForceKernel.cpp. */
 
-/** errors[0] = errors[1] = none (INT_MAX), on the device, before each density pass. */
-KERNEL void resetErrors(GLOBAL int* RESTRICT errors) {
-    if (GLOBAL_ID == 0)
+/**
+ * errors[0] = errors[1] = none (INT_MAX) before each density pass; rebuild[0] = 1 if forceRebuild or if some
+ * particle has moved more than maxDrift since the list was built (buildPosition, by slot).
+ */
+KERNEL void checkList(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT buildPosition, real maxDrift,
+                      int forceRebuild, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors) {
+    if (GLOBAL_ID == 0) {
         errors[0] = errors[1] = 0x7FFFFFFF;
+        if (forceRebuild)
+            rebuild[0] = 1;
+    }
+    if (forceRebuild)
+        return;
+    for (int s = GLOBAL_ID; s < NUM_ATOMS; s += GLOBAL_SIZE) {
+        const real3 d = trimTo3(posq[s]) - trimTo3(buildPosition[s]);
+        if (!(dot(d, d) <= maxDrift*maxDrift))
+            rebuild[0] = 1;
+    }
 }
 
 /**
- * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
- * taitTable[t] = (reference density, reference pressure, bulk modulus, exponent) and taitPower[t] (gamma - 1 if
- * an integer, else -1) for particle type t = atomType[original index], volumeConstants = (k per density, volume
- * scale, derivative scale, 0) and momentConstants = (c^2, eps^2, 0, 0) of gendpdeEstimatorConstants, estimator one of
- * GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
- * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). momentForce[k] receives q (estimators that read moments).
- * errors[0] gets the smallest original index of a particle whose position is not finite, errors[1] the smallest
- * 4 i + status over the particles whose state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, GENDPDE_PARTICLE_OVERFLOW).
+ * The list, when marked for a rebuild: the neighbours (slots) of the particle in slot s closer than listRange, by
+ * original index, are neighbours[s capacity + n], n < min(listCount[s], capacity); buildPosition[s] its position.
+ * listCount[s] counts them all (more than capacity: the passes use the cells for that particle), and errors[2] keeps
+ * the largest count seen, so that the host can make room. Counters: errors[3] the entries of the list, errors[4] the
+ * neighbours closer than R among them (each pair twice), errors[5] the number of builds.
  */
-KERNEL void computeDensities(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
-        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const real4* RESTRICT sortedPos,
-        real4 boxA, real4 boxB, real4 boxC, real4 model, GLOBAL const int* RESTRICT atomType,
-        GLOBAL const real4* RESTRICT taitTable, GLOBAL const int* RESTRICT taitPowerTable, real4 volumeConstants,
-        real4 momentConstants, int estimator, GLOBAL const real* RESTRICT polynomials,
-        GLOBAL const real* RESTRICT quadrature, GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume,
-        GLOBAL real* RESTRICT pressure, GLOBAL real* RESTRICT forceCoefficient, GLOBAL real4* RESTRICT momentForce,
-        GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT errors) {
-    const real cutoff2 = model.x*model.x;
-    const int moments = gendpdeEstimatorNeedsMoments(estimator);
-    mixed energy = 0;
+KERNEL void buildList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
+        GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
+        GLOBAL const int* RESTRICT atomIndex, real4 boxA, real4 boxB, real4 boxC, real cutoff, real listRange,
+        int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL real4* RESTRICT buildPosition, GLOBAL int* RESTRICT listCount,
+        GLOBAL int* RESTRICT neighbours, GLOBAL int* RESTRICT errors) {
+    if (rebuild[0] == 0)
+        return;
+    if (GLOBAL_ID == 0) {
+        errors[3] = errors[4] = 0;
+        errors[5]++;
+    }
+    const real range2 = listRange*listRange, cutoff2 = cutoff*cutoff;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
-        const real3 ri = trimTo3(sortedPos[k]);
-        if (!(isfinite(ri.x) && isfinite(ri.y) && isfinite(ri.z)))
-            ATOMIC_MIN(&errors[0], sortedAtom[k]);
+        const real4 position = sortedPos[k];
+        const real3 ri = trimTo3(position);
         const int3 home = cellCoordinates(sortedCell[k], cells);
-        real n0 = 0;
-        real3 g = make_real3(0, 0, 0);
+        const int s = sortedSlot[k];
+        int count = 0, inRange = 0;
+        GLOBAL int* list = neighbours + (size_t) s*capacity;
         FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
             for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
                 const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
-                const real r2 = dot(d, d);
-                if (m != k && r2 < cutoff2) {
-                    const real r = sqrt(r2);
-                    n0 += gendpdeDensityWeight(r, model.y, model.z);
-                    if (moments && r > 0)
-                        g += d*gendpdeMomentWeightOverDistance(r, model.y);
+                if (m != k && dot(d, d) < range2) {
+                    if (count < capacity)
+                        list[count] = sortedSlot[m];
+                    count++;
+                    inRange += (dot(d, d) < cutoff2 ? 1 : 0);
                 }
             }
         }
-        const int type = atomType[sortedAtom[k]];
-        const real4 tait = taitTable[type];
-        real v, pi, f, coefficient, momentForceScale;
-        const int status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
-                volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
-                quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, tait.x, tait.y,
-                tait.z, tait.w, taitPowerTable[type], &v, &pi, &f, &coefficient, &momentForceScale);
-        if (moments) {
-            const real3 q = g*momentForceScale;
-            momentForce[k] = make_real4(q.x, q.y, q.z, 0);
+        // By original index (insertion sort: a few dozen neighbours).
+        const int listed = min(count, capacity);
+        for (int n = 1; n < listed; n++) {
+            const int slot = list[n], atom = atomIndex[slot];
+            int m = n - 1;
+            while (m >= 0 && atomIndex[list[m]] > atom) {
+                list[m + 1] = list[m];
+                m--;
+            }
+            list[m + 1] = slot;
         }
-        if (status != GENDPDE_PARTICLE_VALID)
-            ATOMIC_MIN(&errors[1], 4*sortedAtom[k] + status);
-        primitiveDensity[k] = n0;
-        volume[k] = v;
-        pressure[k] = pi;
-        forceCoefficient[k] = coefficient;
-        energy += f;
+        buildPosition[s] = position;
+        listCount[s] = count;
+        ATOMIC_MAX(&errors[2], count);
+        ATOMIC_ADD(&errors[3], count);
+        ATOMIC_ADD(&errors[4], inRange);
     }
-    energyBuffer[GLOBAL_ID] += energy;
+}
+
+/** The density pass's terms of one pair (d = r_i - r_j) closer than the cutoff: w(r) and, with moments, d phi(r)/r. */
+inline DEVICE void addDensityTerms(real3 d, real4 model, int moments, real* n0, real3* g) {
+    const real r2 = dot(d, d);
+    if (!(r2 < model.x*model.x))
+        return;
+    const real r = sqrt(r2);
+    *n0 += gendpdeDensityWeight(r, model.y, model.z);
+    if (moments && r > 0)
+        *g += d*gendpdeMomentWeightOverDistance(r, model.y);
 }
 
 /**
- * The force on the particle at sorted index k from its neighbour at m, d = r_k - r_m of length 0 < r < R, with their
- * force coefficients ci, cj and moment forces qi, qj (zero unless the estimator reads moments): the central force
- * gendpdePairForceScale d plus V-C's gendpdeMomentPairForce; *virial receives d . F.
+ * The force on particle i from its neighbour j, d = r_i - r_j, with their force coefficients ci, cj and moment
+ * forces qi, qj (zero unless the estimator reads moments): the central force gendpdePairForceScale d plus V-C's
+ * gendpdeMomentPairForce, for 0 < r < R (else zero: beyond the cutoff, or coincident); *virial receives d . F.
  */
-inline DEVICE real3 pairForce(real3 d, real r, real ci, real cj, real3 qi, real3 qj, real4 model, real* virial) {
+inline DEVICE real3 pairForce(real3 d, real ci, real cj, real3 qi, real3 qj, real4 model, real* virial) {
+    const real r2 = dot(d, d);
+    *virial = 0;
+    if (!(r2 < model.x*model.x && r2 > 0))
+        return make_real3(0, 0, 0);
+    const real r = sqrt(r2);
     const real scale = gendpdePairForceScale(ci + cj, gendpdeDensityWeightDerivative(r, model.y, model.w), r);
     real3 force = d*scale;
     *virial = scale*r*r;
@@ -97,94 +131,180 @@ inline DEVICE real3 pairForce(real3 d, real r, real ci, real cj, real3 qi, real3
 }
 
 /**
- * Pass 2: F_i, added to the fixed-point force buffer in slot order. Every pair is computed by both its particles, from
- * exactly opposite displacements (pairDelta), so both get exactly opposite pair forces. In double precision a particle
- * sums them in double and converts once to fixed point (the total force vanishes to double rounding). With float
- * forces each pair force is converted to fixed point (truncation toward zero is odd) and summed as integers: the total
- * force vanishes exactly, where float sums would leave ~1e-7 of every particle's force in it (momentum is what DPD
- * conserves), at the price of 2^-32 kJ/mol/nm of quantisation per pair, far below float rounding.
+ * The neighbours of one particle (at k in the cell grid's order, slot s) in turn, by original index: its listed ones,
+ * or, when its list overflowed, the particles of the 27 cells around its cell (each time the one of smallest index
+ * after the last: slow, for a rare particle).
  */
-KERNEL void computeForces(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
-        GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
-        real4 boxA, real4 boxB, real4 boxC, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
-        int moments, GLOBAL const real4* RESTRICT momentForce, GLOBAL mm_long* RESTRICT forceBuffers) {
-    const real cutoff2 = model.x*model.x;
-    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
-        const real3 ri = trimTo3(sortedPos[k]);
-        const real ci = forceCoefficient[k];
-        const real3 qi = (moments ? trimTo3(momentForce[k]) : make_real3(0, 0, 0));
-        const int3 home = cellCoordinates(sortedCell[k], cells);
-#ifdef USE_DOUBLE_PRECISION
-        real3 force = make_real3(0, 0, 0);
-#else
-        mm_long forceX = 0, forceY = 0, forceZ = 0;
-#endif
-        FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
-            for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
-                const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
-                const real r2 = dot(d, d);
-                if (r2 < cutoff2 && r2 > 0) {   // coincident particles (and the particle itself): no force
-                    real virial;
-                    const real3 f = pairForce(d, sqrt(r2), ci, forceCoefficient[m], qi,
-                                              (moments ? trimTo3(momentForce[m]) : make_real3(0, 0, 0)), model,
-                                              &virial);
-#ifdef USE_DOUBLE_PRECISION
-                    force += f;
-#else
-                    forceX += realToFixedPoint(f.x);
-                    forceY += realToFixedPoint(f.y);
-                    forceZ += realToFixedPoint(f.z);
-#endif
-                }
+typedef struct {
+    int s, n, end, lastAtom, walkCells;
+    int3 home;
+} NeighbourCursor;
+
+inline DEVICE NeighbourCursor firstNeighbour(int k, int s, GLOBAL const int* RESTRICT listCount, int capacity,
+                                             GLOBAL const int* RESTRICT sortedCell, int4 cells) {
+    NeighbourCursor c;
+    c.s = s;
+    c.n = 0;
+    const int count = listCount[s];
+    c.walkCells = (count > capacity);
+    c.end = (c.walkCells ? 0 : count);
+    c.lastAtom = -1;
+    c.home = (c.walkCells ? cellCoordinates(sortedCell[k], cells) : make_int3(0, 0, 0));
+    return c;
+}
+
+/** The next neighbour's slot, with *d = ri - r_t; -1 when there is none left. */
+inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL const int* RESTRICT neighbours,
+        int capacity, GLOBAL const real4* RESTRICT posq, int4 cells, GLOBAL const int* RESTRICT cellStart,
+        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const int* RESTRICT sortedSlot,
+        GLOBAL const real4* RESTRICT sortedPos, real4 boxA, real4 boxB, real4 boxC) {
+    if (!c->walkCells) {
+        if (c->n == c->end)
+            return -1;
+        const int t = neighbours[(size_t) c->s*capacity + c->n++];
+        *d = pairDelta(ri, trimTo3(posq[t]), boxA, boxB, boxC);
+        return t;
+    }
+    int best = -1, bestAtom = 0x7FFFFFFF;
+    FOR_EACH_NEIGHBOUR_CELL(c->home, cells, cx, cy, cz, cell) {
+        for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
+            const int atom = sortedAtom[m];
+            if (atom > c->lastAtom && atom < bestAtom && sortedSlot[m] != c->s) {
+                best = m;
+                bestAtom = atom;
             }
         }
-        const int slot = sortedSlot[k];
-#ifdef USE_DOUBLE_PRECISION
-        forceBuffers[slot] += realToFixedPoint(force.x);
-        forceBuffers[slot + PADDED_NUM_ATOMS] += realToFixedPoint(force.y);
-        forceBuffers[slot + 2*PADDED_NUM_ATOMS] += realToFixedPoint(force.z);
-#else
-        forceBuffers[slot] += forceX;
-        forceBuffers[slot + PADDED_NUM_ATOMS] += forceY;
-        forceBuffers[slot + 2*PADDED_NUM_ATOMS] += forceZ;
-#endif
+    }
+    if (best < 0)
+        return -1;
+    c->lastAtom = bestAtom;
+    *d = pairDelta(ri, trimTo3(sortedPos[best]), boxA, boxB, boxC);
+    return sortedSlot[best];
+}
+
+/* The arguments every pass takes to walk the neighbours (the list, and the cell grid for overflowed particles). */
+#define NEIGHBOUR_ARGUMENTS GLOBAL const int* RESTRICT listCount, GLOBAL const int* RESTRICT neighbours, int capacity, \
+        int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell, \
+        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const int* RESTRICT sortedSlot, \
+        GLOBAL const real4* RESTRICT sortedPos, GLOBAL const real4* RESTRICT posq, real4 boxA, real4 boxB, real4 boxC
+#define NEXT_NEIGHBOUR(cursor, ri, d) nextNeighbour(&cursor, ri, &d, neighbours, capacity, posq, cells, cellStart, \
+        sortedAtom, sortedSlot, sortedPos, boxA, boxB, boxC)
+
+/**
+ * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
+ * taitTable[t] = (reference density, reference pressure, bulk modulus, exponent) and taitPower[t] (gamma - 1 if
+ * an integer, else -1) for particle type t = atomType[original index], volumeConstants = (k per density, volume
+ * scale, derivative scale, 0) and momentConstants = (c^2, eps^2, 0, 0) of gendpdeEstimatorConstants, estimator one of
+ * GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
+ * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). Results by slot; momentForce[s] receives q (estimators that read
+ * moments). errors[0] gets the smallest original index of a particle whose position is not finite, errors[1] the
+ * smallest 4 i + status over the particles whose state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR,
+ * GENDPDE_PARTICLE_OVERFLOW). The list's rebuild mark is cleared.
+ */
+KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT atomIndex, real4 model,
+        GLOBAL const int* RESTRICT atomType, GLOBAL const real4* RESTRICT taitTable,
+        GLOBAL const int* RESTRICT taitPowerTable, real4 volumeConstants, real4 momentConstants, int estimator,
+        GLOBAL const real* RESTRICT polynomials, GLOBAL const real* RESTRICT quadrature,
+        GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
+        GLOBAL real* RESTRICT forceCoefficient, GLOBAL real4* RESTRICT momentForce,
+        GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors) {
+    if (GLOBAL_ID == 0)
+        rebuild[0] = 0;
+    const int moments = gendpdeEstimatorNeedsMoments(estimator);
+    mixed energy = 0;
+    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const int s = sortedSlot[k], atom = atomIndex[s];
+        const real3 ri = trimTo3(sortedPos[k]);
+        if (!(isfinite(ri.x) && isfinite(ri.y) && isfinite(ri.z)))
+            ATOMIC_MIN(&errors[0], atom);
+        real n0 = 0;
+        real3 g = make_real3(0, 0, 0);
+        NeighbourCursor cursor = firstNeighbour(k, s, listCount, capacity, sortedCell, cells);
+        real3 d;
+        while (NEXT_NEIGHBOUR(cursor, ri, d) >= 0)
+            addDensityTerms(d, model, moments, &n0, &g);
+        const int type = atomType[atom];
+        const real4 tait = taitTable[type];
+        real v, pi, f, coefficient, momentForceScale;
+        const int status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
+                volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
+                quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, tait.x, tait.y,
+                tait.z, tait.w, taitPowerTable[type], &v, &pi, &f, &coefficient, &momentForceScale);
+        if (moments) {
+            const real3 q = g*momentForceScale;
+            momentForce[s] = make_real4(q.x, q.y, q.z, 0);
+        }
+        if (status != GENDPDE_PARTICLE_VALID)
+            ATOMIC_MIN(&errors[1], 4*atom + status);
+        primitiveDensity[s] = n0;
+        volume[s] = v;
+        pressure[s] = pi;
+        forceCoefficient[s] = coefficient;
+        energy += f;
+    }
+    energyBuffer[GLOBAL_ID] += energy;
+}
+
+/**
+ * Pass 2: F_i, added to the fixed-point force buffer by slot. Every pair is computed by both its particles, from
+ * exactly opposite displacements (pairDelta), so both get exactly opposite pair forces; each pair force is converted
+ * to fixed point (truncation toward zero is odd) and summed as integers: the total force vanishes exactly and the sum
+ * does not depend on the order, at the price of 2^-32 kJ/mol/nm of quantisation per pair.
+ */
+KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
+        int moments, GLOBAL const real4* RESTRICT momentForce, GLOBAL mm_long* RESTRICT forceBuffers) {
+    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const int s = sortedSlot[k];
+        const real3 ri = trimTo3(sortedPos[k]);
+        const real ci = forceCoefficient[s];
+        const real3 qi = (moments ? trimTo3(momentForce[s]) : make_real3(0, 0, 0));
+        mm_long forceX = 0, forceY = 0, forceZ = 0;
+        NeighbourCursor cursor = firstNeighbour(k, s, listCount, capacity, sortedCell, cells);
+        real3 d;
+        int t;
+        while ((t = NEXT_NEIGHBOUR(cursor, ri, d)) >= 0) {
+            real virial;
+            const real3 f = pairForce(d, ci, forceCoefficient[t], qi,
+                                      (moments ? trimTo3(momentForce[t]) : make_real3(0, 0, 0)), model, &virial);
+            forceX += realToFixedPoint(f.x);
+            forceY += realToFixedPoint(f.y);
+            forceZ += realToFixedPoint(f.z);
+        }
+        forceBuffers[s] += forceX;
+        forceBuffers[s + PADDED_NUM_ATOMS] += forceY;
+        forceBuffers[s + 2*PADDED_NUM_ATOMS] += forceZ;
     }
 }
 
 /**
- * The observables' pass (never run by a step): each particle's half of sum_j d_ij . F_ij into particleVirial[k] and,
- * if tensors, of sum_j F_ij d_ij^T into particleVirialTensor[9 k ... 9 k + 8] (row-major, gendpdeAddHalfPairVirial).
+ * The observables' pass (never run by a step): each particle's half of sum_j d_ij . F_ij into particleVirial[s] and,
+ * if tensors, of sum_j F_ij d_ij^T into particleVirialTensor[9 s ... 9 s + 8] (row-major, gendpdeAddHalfPairVirial).
  */
-KERNEL void computeVirials(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
-        GLOBAL const real4* RESTRICT sortedPos, real4 boxA, real4 boxB, real4 boxC, real4 model,
-        GLOBAL const real* RESTRICT forceCoefficient, int moments, GLOBAL const real4* RESTRICT momentForce,
-        int tensors, GLOBAL real* RESTRICT particleVirial, GLOBAL real* RESTRICT particleVirialTensor) {
-    const real cutoff2 = model.x*model.x;
+KERNEL void computeVirials(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
+        int moments, GLOBAL const real4* RESTRICT momentForce, int tensors, GLOBAL real* RESTRICT particleVirial,
+        GLOBAL real* RESTRICT particleVirialTensor) {
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const int s = sortedSlot[k];
         const real3 ri = trimTo3(sortedPos[k]);
-        const real ci = forceCoefficient[k];
-        const real3 qi = (moments ? trimTo3(momentForce[k]) : make_real3(0, 0, 0));
-        const int3 home = cellCoordinates(sortedCell[k], cells);
+        const real ci = forceCoefficient[s];
+        const real3 qi = (moments ? trimTo3(momentForce[s]) : make_real3(0, 0, 0));
         real sum = 0;
         real tensor[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
-            for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
-                const real3 d = pairDelta(ri, trimTo3(sortedPos[m]), boxA, boxB, boxC);
-                const real r2 = dot(d, d);
-                if (r2 < cutoff2 && r2 > 0) {
-                    real virial;
-                    const real3 f = pairForce(d, sqrt(r2), ci, forceCoefficient[m], qi,
-                                              (moments ? trimTo3(momentForce[m]) : make_real3(0, 0, 0)), model,
-                                              &virial);
-                    sum += virial;
-                    if (tensors)
-                        gendpdeAddHalfPairVirial(f.x, f.y, f.z, d.x, d.y, d.z, tensor);
-                }
-            }
+        NeighbourCursor cursor = firstNeighbour(k, s, listCount, capacity, sortedCell, cells);
+        real3 d;
+        int t;
+        while ((t = NEXT_NEIGHBOUR(cursor, ri, d)) >= 0) {
+            real virial;
+            const real3 f = pairForce(d, ci, forceCoefficient[t], qi,
+                                      (moments ? trimTo3(momentForce[t]) : make_real3(0, 0, 0)), model, &virial);
+            sum += virial;
+            const real r2 = dot(d, d);
+            if (tensors && r2 < model.x*model.x && r2 > 0)
+                gendpdeAddHalfPairVirial(f.x, f.y, f.z, d.x, d.y, d.z, tensor);
         }
-        particleVirial[k] = sum/2;
+        particleVirial[s] = sum/2;
         if (tensors)
             for (int c = 0; c < 9; c++)
-                particleVirialTensor[9*k + c] = tensor[c];
+                particleVirialTensor[9*s + c] = tensor[c];
     }
 }

@@ -90,8 +90,8 @@ void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bo
     Vec3 box[3];
     cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
     const bool asDouble = asMixed ? mixedIsDouble(cc) : cc.getUseDoublePrecision();
-    for (int k = 0; k < 3; k++)
-        setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 0.0);
+    for (int k = 0; k < 3; k++)   // w: the inverse of the diagonal element, for the nearest image
+        setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 1.0/box[k][k]);
 }
 
 void CommonGenDPDECellGrid::build() {

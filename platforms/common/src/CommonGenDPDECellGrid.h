@@ -36,7 +36,10 @@ public:
     const std::array<int, 3>& getNumCells() const {
         return numCells;
     }
-    /** Set three consecutive kernel arguments to the box vectors a, b, c (mixed precision when asMixed, else real). */
+    /**
+     * Set three consecutive kernel arguments to the box vectors a, b, c (mixed precision when asMixed, else real),
+     * each with w = the inverse of its diagonal element (1/a_x, 1/b_y, 1/c_z).
+     */
     void setBoxArguments(OpenMM::ComputeKernel& kernel, int index, bool asMixed) const;
     OpenMM::ComputeArray cellStart;    // int, n_cells + 1: the first sorted index of each cell
     OpenMM::ComputeArray sortedSlot;   // int: the slot (position in posq) of each particle in cell order

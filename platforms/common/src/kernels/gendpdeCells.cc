@@ -216,21 +216,23 @@ inline DEVICE int shiftCell(int c, int d, int n) {
 
 /**
  * name(r_i, r_j, box) = r_i - r_j for the nearest image (periodic: OpenMM's reduced box, valid for r < half the
- * smallest width), in one precision. Image shifts round to nearest even (rint), which is odd-symmetric: r_j - r_i
- * gets exactly the opposite vector, so both particles of a pair see the same pair.
+ * smallest width), in one precision. The box vectors' w components hold 1/a_x, 1/b_y, 1/c_z
+ * (CommonGenDPDECellGrid::setBoxArguments): a multiplication where the host divides, which picks the same image for
+ * every pair closer than half the box, the only ones whose image matters. Image shifts round to nearest even (rint),
+ * which is odd-symmetric: r_j - r_i gets exactly the opposite vector, so both particles of a pair see the same pair.
  */
 #define GENDPDE_NEAREST_IMAGE(name, scalar, vector3, vector4) \
 inline DEVICE vector3 name(vector3 ri, vector3 rj, vector4 boxA, vector4 boxB, vector4 boxC) { \
     vector3 d = ri - rj; \
     if (GENDPDE_PERIODIC) { \
-        scalar scale = rint(d.z/boxC.z); \
+        scalar scale = rint(d.z*boxC.w); \
         d.x -= boxC.x*scale; \
         d.y -= boxC.y*scale; \
         d.z -= boxC.z*scale; \
-        scale = rint(d.y/boxB.y); \
+        scale = rint(d.y*boxB.w); \
         d.x -= boxB.x*scale; \
         d.y -= boxB.y*scale; \
-        scale = rint(d.x/boxA.x); \
+        scale = rint(d.x*boxA.w); \
         d.x -= boxA.x*scale; \
     } \
     return d; \

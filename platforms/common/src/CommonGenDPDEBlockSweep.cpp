@@ -65,9 +65,9 @@ CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDP
 }
 
 int CommonGenDPDEBlockSweep::bytesPerParticle() const {
-    // orderBlocks: seven ints and a mixed4 per particle; sweepBlocks: a mixed4, a mixed and three ints.
+    // orderBlocks: six ints and a mixed4 per particle; sweepBlocks: a mixed4, a mixed and three ints.
     const int mixedSize = mixedIsDouble(cc) ? 8 : 4;
-    return std::max(7*4 + 4*mixedSize, 3*4 + 5*mixedSize);
+    return std::max(6*4 + 4*mixedSize, 3*4 + 5*mixedSize);
 }
 
 int CommonGenDPDEBlockSweep::particleLimit() const {

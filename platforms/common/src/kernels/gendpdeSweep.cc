@@ -102,11 +102,10 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         GLOBAL int* RESTRICT levelStart) {
     LOCAL int regionCells[27*SWEEP_BLOCKS_PER_GROUP], regionCodes[27*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int regionStarts[28*SWEEP_BLOCKS_PER_GROUP], sharedValues[4*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int atoms[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], slots[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int codes[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    LOCAL int firstPairs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], codes[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL mixed4 positions[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    // Staging (tempA..C: atom, slot, code before ranking), then per particle its pair count (tempA), first pair
-    // (tempB), run (tempC), the particle of each run (runs) and the level of its latest pair (codes).
+    // Per particle (by rank): its pair count (tempA), run (tempC), first pair and the level of its latest pair (codes,
+    // at the end); the rank of each particle in region order (tempB); the particle of each run.
     LOCAL int tempsA[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], tempsB[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int tempsC[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     if (status[STATUS_HALTED] != 0)
@@ -116,8 +115,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
     LOCAL_ARG int* regionCode = regionCodes + 27*sub;
     LOCAL_ARG int* regionStart = regionStarts + 28*sub;
     LOCAL_ARG int* shared = sharedValues + 4*sub;   // particles, pairs, runs
-    LOCAL_ARG int* atomOf = atoms + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* slotOf = slots + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG int* firstPair = firstPairs + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG int* codeOf = codes + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG mixed4* positionOf = positions + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG int* tempA = tempsA + SWEEP_MAX_PARTICLES*sub;
@@ -157,41 +155,53 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         }
         SYNC_THREADS;
         const int numParticles = (active && shared[0] <= SWEEP_MAX_PARTICLES ? shared[0] : 0);
-        // Stage the region's particles, then place each at its rank by original index.
+        // Stage the region's particles, each at its rank by original index: its place in its own cell (cells list
+        // their particles by index) plus, in every other cell of the region, the particles of smaller index.
         for (int k = lane; k < numParticles; k += SWEEP_BLOCK_THREADS) {
             int r = 0;
             while (regionStart[r + 1] <= k)
                 r++;
-            const int m = cellStart[regionCell[r]] + k - regionStart[r];
-            tempA[k] = sortedAtom[m];
-            tempB[k] = sortedSlot[m];
-            tempC[k] = regionCode[r];
-        }
-        SYNC_THREADS;
-        for (int k = lane; k < numParticles; k += SWEEP_BLOCK_THREADS) {
-            const int atom = tempA[k];
-            int position = 0;
-            for (int m = 0; m < numParticles; m++)
-                position += (tempA[m] < atom ? 1 : 0);
-            atomOf[position] = atom;
-            slotOf[position] = tempB[k];
-            codeOf[position] = tempC[k];
-            const mixed3 r = loadMixedPosition(posq, posqCorrection, tempB[k]);
-            positionOf[position] = make_mixed4(r.x, r.y, r.z, 0);
+            const int m = cellStart[regionCell[r]] + k - regionStart[r], atom = sortedAtom[m], slot = sortedSlot[m];
+            int position = k - regionStart[r];
+            for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
+                if (c == r)
+                    continue;
+                int low = cellStart[regionCell[c]], high = low + regionStart[c + 1] - regionStart[c];
+                const int first = low;
+                while (low < high) {   // the first particle of cell c with a larger index
+                    const int middle = (low + high)/2;
+                    if (sortedAtom[middle] < atom)
+                        low = middle + 1;
+                    else
+                        high = middle;
+                }
+                position += low - first;
+            }
+            codeOf[position] = regionCode[r];
+            const mixed3 position3 = loadMixedPosition(posq, posqCorrection, slot);
+            positionOf[position] = make_mixed4(position3.x, position3.y, position3.z, 0);
             blockAtoms[(size_t) rank*SWEEP_MAX_PARTICLES + position] = atom;
-            blockSlots[(size_t) rank*SWEEP_MAX_PARTICLES + position] = tempB[k];
+            blockSlots[(size_t) rank*SWEEP_MAX_PARTICLES + position] = slot;
+            tempB[k] = position;   // the rank of the k-th particle in region order
         }
         SYNC_THREADS;
-        // Each particle's pairs with later particles of the region (pairs of this block, closer than the cutoff).
+        // Each particle's pairs with later particles of the block (closer than the cutoff, in region cells that can
+        // hold a pair of the block with its own), counted (tempA, by rank).
         for (int i = lane; i < numParticles; i += SWEEP_BLOCK_THREADS) {
             const mixed3 ri = trimTo3(positionOf[i]);
             const int codeI = codeOf[i];
             int count = 0;
-            for (int j = i + 1; j < numParticles; j++)
-                if (pairOfBlock(codeI, codeOf[j])) {
-                    const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
-                    count += (dot(d, d) < cutoff2 ? 1 : 0);
+            for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
+                if (!pairOfBlock(codeI, regionCode[c]))
+                    continue;
+                for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
+                    const int j = tempB[k];
+                    if (j > i) {
+                        const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
+                        count += (dot(d, d) < cutoff2 ? 1 : 0);
+                    }
                 }
+            }
             tempA[i] = count;
         }
         SYNC_THREADS;
@@ -199,7 +209,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         if (numParticles > 0 && lane == 0) {
             int total = 0, numRuns = 0;
             for (int i = 0; i < numParticles; i++) {
-                tempB[i] = total;
+                firstPair[i] = total;
                 total += tempA[i];
                 if (tempA[i] > 0) {
                     tempC[i] = numRuns;
@@ -218,29 +228,51 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         const bool ordered = (numParticles > 0 && shared[1] <= pairCapacity);
         const int numPairs = (ordered ? shared[1] : 0), numRuns = (ordered ? shared[2] : 0);
         const int listed = (ordered ? numParticles : 0);
+        // Each particle's partners in (i, j) order, in pairs[] (free until the levels): listed, then sorted by j.
+        for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
+            if (tempA[i] == 0)
+                continue;
+            GLOBAL int2* partners = pairs + firstPair[i];
+            const mixed3 ri = trimTo3(positionOf[i]);
+            const int codeI = codeOf[i];
+            int n = 0;
+            for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
+                if (!pairOfBlock(codeI, regionCode[c]))
+                    continue;
+                for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
+                    const int j = tempB[k];
+                    if (j > i) {
+                        const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
+                        if (dot(d, d) < cutoff2)
+                            partners[n++].x = j;
+                    }
+                }
+            }
+            for (int m = 1; m < n; m++) {   // insertion sort: a few dozen partners
+                const int j = partners[m].x;
+                int q = m - 1;
+                while (q >= 0 && partners[q].x > j) {
+                    partners[q + 1].x = partners[q].x;
+                    q--;
+                }
+                partners[q + 1].x = j;
+            }
+        }
+        SYNC_THREADS;
         // The sequence: pair k of run r in group g (runs 4g .. 4g + 3) comes after the pairs of rank < k of the
         // group's runs and the pairs of rank k of the group's earlier runs (GenDPDESweepOrder's interleaveRuns).
         for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
             if (tempA[i] == 0)
                 continue;
             const int run = tempC[i], firstRun = run - (run & 3), endRun = min(firstRun + 4, numRuns);
-            const int groupStart = tempB[runParticle[firstRun]];
-            const mixed3 ri = trimTo3(positionOf[i]);
-            const int codeI = codeOf[i];
-            int k = 0;
-            for (int j = i + 1; j < numParticles; j++) {
-                if (!pairOfBlock(codeI, codeOf[j]))
-                    continue;
-                const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
-                if (!(dot(d, d) < cutoff2))
-                    continue;
+            const int groupStart = firstPair[runParticle[firstRun]];
+            for (int k = 0; k < tempA[i]; k++) {
                 int position = groupStart;
                 for (int q = firstRun; q < endRun; q++) {
                     const int length = tempA[runParticle[q]];
                     position += min(length, k) + (q < run && length > k ? 1 : 0);
                 }
-                scratch[position] = make_int2((i << 16) | j, 0);
-                k++;
+                scratch[position] = make_int2((i << 16) | pairs[firstPair[i] + k].x, 0);
             }
         }
         SYNC_THREADS;

@@ -11,9 +11,9 @@
  * listed neighbours (or, for a particle with more neighbours than the list holds, over the particles of the 27
  * cells around it, visited by original index too);
  * every pair is computed by both its particles, so no thread writes another particle's sums. A particle's sums run
- * over its neighbours closer than R by original index whichever way they are found, and forces are summed as
- * 64-bit fixed point (exact in any order): the results do not depend on the list's history (when it was rebuilt),
- * so a run continued from a checkpoint repeats the uninterrupted one bit for bit. Per-particle values and list rows
+ * over its neighbours closer than R by original index whichever way they are found: the results do not depend on the
+ * list's history (when it was rebuilt), so a run continued from a checkpoint repeats the uninterrupted one bit for
+ * bit. Per-particle values and list rows
  * are stored by slot (posq's index). Everything in `real` precision; every formula from the physics core (GenDPDEPhysicsCore.h,
  * GENDPDE_REAL = real), the V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays,
  * converted to `real`. The argument order of each kernel is the enum of the same name in
@@ -246,10 +246,12 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
 }
 
 /**
- * Pass 2: F_i, added to the fixed-point force buffer by slot. Every pair is computed by both its particles, from
- * exactly opposite displacements (pairDelta), so both get exactly opposite pair forces; each pair force is converted
- * to fixed point (truncation toward zero is odd) and summed as integers: the total force vanishes exactly and the sum
- * does not depend on the order, at the price of 2^-32 kJ/mol/nm of quantisation per pair.
+ * Pass 2: F_i, added to the fixed-point force buffer by slot, summed over the neighbours in index order. Every pair
+ * is computed by both its particles, from exactly opposite displacements (pairDelta), so both get exactly opposite
+ * pair forces. In double precision a particle sums them in double and converts once to fixed point (the total force
+ * vanishes to double rounding). With float forces each pair force is converted to fixed point (truncation toward zero
+ * is odd) and summed as integers: the total force vanishes exactly, where float sums would leave ~1e-7 of every
+ * particle's force in it (momentum is what DPD conserves), at the price of 2^-32 kJ/mol/nm per pair.
  */
 KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* RESTRICT forceCoefficient,
         int moments, GLOBAL const real4* RESTRICT momentForce, GLOBAL mm_long* RESTRICT forceBuffers) {
@@ -258,7 +260,11 @@ KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* R
         const real3 ri = trimTo3(sortedPos[k]);
         const real ci = forceCoefficient[s];
         const real3 qi = (moments ? trimTo3(momentForce[s]) : make_real3(0, 0, 0));
+#ifdef USE_DOUBLE_PRECISION
+        real3 force = make_real3(0, 0, 0);
+#else
         mm_long forceX = 0, forceY = 0, forceZ = 0;
+#endif
         NeighbourCursor cursor = firstNeighbour(k, s, listCount, capacity, sortedCell, cells);
         real3 d;
         int t;
@@ -266,13 +272,23 @@ KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* R
             real virial;
             const real3 f = pairForce(d, ci, forceCoefficient[t], qi,
                                       (moments ? trimTo3(momentForce[t]) : make_real3(0, 0, 0)), model, &virial);
+#ifdef USE_DOUBLE_PRECISION
+            force += f;
+#else
             forceX += realToFixedPoint(f.x);
             forceY += realToFixedPoint(f.y);
             forceZ += realToFixedPoint(f.z);
+#endif
         }
+#ifdef USE_DOUBLE_PRECISION
+        forceBuffers[s] += realToFixedPoint(force.x);
+        forceBuffers[s + PADDED_NUM_ATOMS] += realToFixedPoint(force.y);
+        forceBuffers[s + 2*PADDED_NUM_ATOMS] += realToFixedPoint(force.z);
+#else
         forceBuffers[s] += forceX;
         forceBuffers[s + PADDED_NUM_ATOMS] += forceY;
         forceBuffers[s + 2*PADDED_NUM_ATOMS] += forceZ;
+#endif
     }
 }
 

@@ -65,8 +65,10 @@ for precision in single mixed double; do
         "$nvcc" --ptx -arch=sm_90 -o "$work/$program.ptx" "$work/$program.cu"
         echo "$precision $program: $(grep -c '\.entry' "$work/$program.ptx") kernels"
         # Registers, shared memory, stack and spills of each kernel (ptxas, as the driver would assemble them).
-        "$(dirname "$nvcc")/ptxas" -arch=sm_90 -v -o "$work/$program.cubin" "$work/$program.ptx" 2>&1 \
-            | sed -n "s/.*Compiling entry function '\([A-Za-z]*\)'.*/    \1:/p; s/.*\(Used .*\)/      \1/p; s/^[^0-9]*\([0-9][0-9]* bytes stack frame.*\)/      \1/p" \
-            | paste - - - 2>/dev/null || true
+        "$(dirname "$nvcc")/ptxas" -arch=sm_90 -v -o "$work/$program.cubin" "$work/$program.ptx" 2>&1 | awk '
+            /Compiling entry function/ { match($0, /\x27[A-Za-z]*\x27/); name = substr($0, RSTART + 1, RLENGTH - 2) }
+            /Function properties for/ { entry = index($0, "for " name) > 0 }
+            /bytes stack frame/ && entry { sub(/^ *ptxas info *: */, ""); frame = $0 }
+            /Used [0-9]* registers/ && name != "" { sub(/^.*Used/, "Used"); printf "    %s: %s; %s\n", name, $0, frame; name = "" }'
     done
 done

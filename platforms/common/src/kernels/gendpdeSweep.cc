@@ -1,13 +1,15 @@
 /* The Shardlow sweep of GenDPDEIntegrator on the device, in the sequence of GenDPDESweepOrder (docs/theory.md
  * section 6), with parallel work inside each block:
  *
- *   orderBlocks   one work group per block, every block in one launch: the particles of the block's region (the
- *                 up to 3x3x3 cells its pairs can touch) staged in local memory by original index; the block's pairs
- *                 listed in (i, j) order, the lists of each four consecutive first particles interleaved (the host's
- *                 sequence); then each pair's level, one more than the levels of the latest earlier pairs of its two
- *                 particles, and the pairs grouped by level into the block's slab (sequence position kept).
- *   sweepBlocks   one launch per colour, one work group per block: the region's velocities and internal energies
- *                 staged in local memory, the levels one after another, the pairs of a level at the same time.
+ *   orderBlocks   every block in one launch: the particles of the block's region (the up to 3x3x3 cells its
+ *                 pairs can touch) staged in local memory by original index (each one's rank found by binary search
+ *                 in the other cells, whose particles are listed by index); each particle's partners in the block,
+ *                 sought only in the region cells that can pair with it, in (i, j) order, the lists of each four
+ *                 consecutive first particles interleaved (the host's sequence); then each pair's level, one more
+ *                 than the levels of the latest earlier pairs of its two particles, and the pairs grouped by level
+ *                 into the block's slab (sequence position kept).
+ *   sweepBlocks   one launch per colour: the region's velocities and internal energies staged in local memory, the
+ *                 levels one after another, the pairs of a level at the same time.
  *
  * The pairs of a level share no particle, and every pair comes after all the earlier pairs of its particles, so each
  * particle sees its updates in the order of the sequence with the same inputs: the result is the sequential sweep's
@@ -104,10 +106,10 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
     LOCAL int regionStarts[28*SWEEP_BLOCKS_PER_GROUP], sharedValues[4*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int firstPairs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], codes[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL mixed4 positions[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    // Per particle (by rank): its pair count (tempA), run (tempC), first pair and the level of its latest pair (codes,
-    // at the end); the rank of each particle in region order (tempB); the particle of each run.
-    LOCAL int tempsA[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], tempsB[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int tempsC[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    // Per particle (by rank): its pair count, run, first pair and code (the level of its latest pair at the end); the
+    // rank of each particle in region order; the particle of each run.
+    LOCAL int pairCounts[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], ranks[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    LOCAL int runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], runParticles[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     if (status[STATUS_HALTED] != 0)
         return;
     const int sub = LOCAL_ID/SWEEP_BLOCK_THREADS, lane = LOCAL_ID%SWEEP_BLOCK_THREADS;
@@ -118,10 +120,10 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
     LOCAL_ARG int* firstPair = firstPairs + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG int* codeOf = codes + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG mixed4* positionOf = positions + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* tempA = tempsA + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* tempB = tempsB + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* tempC = tempsC + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* runParticle = runs + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG int* pairCount = pairCounts + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG int* rankInRegion = ranks + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG int* runOf = runs + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG int* runParticle = runParticles + SWEEP_MAX_PARTICLES*sub;
     const mixed cutoff2 = cutoff*cutoff;
     for (int base = GROUP_ID*SWEEP_BLOCKS_PER_GROUP; base < blocks.w; base += NUM_GROUPS*SWEEP_BLOCKS_PER_GROUP) {
         // Every thread passes every barrier; a block with nothing (left) to do runs its loops zero times.
@@ -182,11 +184,11 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             positionOf[position] = make_mixed4(position3.x, position3.y, position3.z, 0);
             blockAtoms[(size_t) rank*SWEEP_MAX_PARTICLES + position] = atom;
             blockSlots[(size_t) rank*SWEEP_MAX_PARTICLES + position] = slot;
-            tempB[k] = position;   // the rank of the k-th particle in region order
+            rankInRegion[k] = position;
         }
         SYNC_THREADS;
         // Each particle's pairs with later particles of the block (closer than the cutoff, in region cells that can
-        // hold a pair of the block with its own), counted (tempA, by rank).
+        // hold a pair of the block with its own), counted.
         for (int i = lane; i < numParticles; i += SWEEP_BLOCK_THREADS) {
             const mixed3 ri = trimTo3(positionOf[i]);
             const int codeI = codeOf[i];
@@ -195,14 +197,14 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
                 if (!pairOfBlock(codeI, regionCode[c]))
                     continue;
                 for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
-                    const int j = tempB[k];
+                    const int j = rankInRegion[k];
                     if (j > i) {
                         const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
                         count += (dot(d, d) < cutoff2 ? 1 : 0);
                     }
                 }
             }
-            tempA[i] = count;
+            pairCount[i] = count;
         }
         SYNC_THREADS;
         // First pair of each particle's list; runs (particles with pairs) in order.
@@ -210,9 +212,9 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             int total = 0, numRuns = 0;
             for (int i = 0; i < numParticles; i++) {
                 firstPair[i] = total;
-                total += tempA[i];
-                if (tempA[i] > 0) {
-                    tempC[i] = numRuns;
+                total += pairCount[i];
+                if (pairCount[i] > 0) {
+                    runOf[i] = numRuns;
                     runParticle[numRuns++] = i;
                 }
             }
@@ -230,7 +232,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         const int listed = (ordered ? numParticles : 0);
         // Each particle's partners in (i, j) order, in pairs[] (free until the levels): listed, then sorted by j.
         for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
-            if (tempA[i] == 0)
+            if (pairCount[i] == 0)
                 continue;
             GLOBAL int2* partners = pairs + firstPair[i];
             const mixed3 ri = trimTo3(positionOf[i]);
@@ -240,7 +242,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
                 if (!pairOfBlock(codeI, regionCode[c]))
                     continue;
                 for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
-                    const int j = tempB[k];
+                    const int j = rankInRegion[k];
                     if (j > i) {
                         const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
                         if (dot(d, d) < cutoff2)
@@ -262,14 +264,14 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         // The sequence: pair k of run r in group g (runs 4g .. 4g + 3) comes after the pairs of rank < k of the
         // group's runs and the pairs of rank k of the group's earlier runs (GenDPDESweepOrder's interleaveRuns).
         for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
-            if (tempA[i] == 0)
+            if (pairCount[i] == 0)
                 continue;
-            const int run = tempC[i], firstRun = run - (run & 3), endRun = min(firstRun + 4, numRuns);
+            const int run = runOf[i], firstRun = run - (run & 3), endRun = min(firstRun + 4, numRuns);
             const int groupStart = firstPair[runParticle[firstRun]];
-            for (int k = 0; k < tempA[i]; k++) {
+            for (int k = 0; k < pairCount[i]; k++) {
                 int position = groupStart;
                 for (int q = firstRun; q < endRun; q++) {
-                    const int length = tempA[runParticle[q]];
+                    const int length = pairCount[runParticle[q]];
                     position += min(length, k) + (q < run && length > k ? 1 : 0);
                 }
                 scratch[position] = make_int2((i << 16) | pairs[firstPair[i] + k].x, 0);

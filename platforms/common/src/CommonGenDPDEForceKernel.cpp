@@ -279,6 +279,18 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
 }
 
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
+    densityPass();
+    if (deferred)
+        return;   // the integrator's run checks the flags on the device
+    std::vector<int> found;
+    profiler.transfer();
+    errors.download(found);
+    growList(found[2]);
+    if (found[0] != noValue || found[1] != noValue)
+        throwErrors(context, found[0], found[1], cc.getStepCount());
+}
+
+void CommonCalcGenDPDEForceKernel::densityPass() {
     Vec3 box[3];
     cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
     if (periodic) {
@@ -304,14 +316,6 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         listBox[k] = box[k];
     profiler.time("densities, particle state", [&]() { profiler.launch(densityKernel, cc.getNumAtoms()); });
     pairsFound(cutoff, cc.getStepCount());
-    if (deferred)
-        return;   // the integrator's run checks the flags on the device
-    std::vector<int> found;
-    profiler.transfer();
-    errors.download(found);
-    growList(found[2]);
-    if (found[0] != noValue || found[1] != noValue)
-        throwErrors(context, found[0], found[1], cc.getStepCount());
 }
 
 void CommonCalcGenDPDEForceKernel::setDeferred(bool deferred) {
@@ -346,10 +350,9 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     const int particle = invalid/4, status = invalid%4;
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
-    // The density of the particle at these positions (the flags came from an evaluation at them).
-    if (deferred)
-        throw OpenMMException("GenDPDEForce: internal error: throwErrors() while the checks are deferred");
-    computeDensitiesQuietly();
+    // The density of the particle at these positions (the flags came from an evaluation at them; the atoms may have
+    // been reordered since, so the pass runs again).
+    densityPass();
     std::vector<double> volumes;
     volume.download(volumes, true);
     const double density = 1.0/volumes[slotOf(particle)];
@@ -360,15 +363,6 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
 int CommonCalcGenDPDEForceKernel::slotOf(int particle) const {
     const std::vector<int>& atomIndex = cc.getAtomIndex();
     return (int) (std::find(atomIndex.begin(), atomIndex.end(), particle) - atomIndex.begin());
-}
-
-void CommonCalcGenDPDEForceKernel::computeDensitiesQuietly() {
-    grid->build();
-    setModelArguments();
-    checkKernel->setArg(CheckArgument::ForceRebuild, 1);
-    profiler.launch(checkKernel, cc.getNumAtoms());
-    profiler.launch(buildKernel, cc.getNumAtoms());
-    profiler.launch(densityKernel, cc.getNumAtoms());
 }
 
 double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeForces, bool includeEnergy) {

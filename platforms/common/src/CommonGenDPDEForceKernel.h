@@ -63,8 +63,8 @@ private:
      * checks are deferred.
      */
     void computeDensities(OpenMM::ContextImpl& context);
-    /** The grid and the density pass at the current positions, checking nothing (for an error's message). */
-    void computeDensitiesQuietly();
+    /** The cell grid, the neighbour list (rebuilt if needed) and the density pass, without waiting for the device. */
+    void densityPass();
     void setModelArguments();
     /** The per-type Tait tables from the parameters read last. */
     void uploadTypeTables();

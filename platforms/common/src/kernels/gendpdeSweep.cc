@@ -90,6 +90,36 @@ inline DEVICE int3 blockOfRank(int rank, int4 blocks) {
 }
 
 /**
+ * The partners of particle i (region rank) in its block: the later particles of the region cells that can hold a pair
+ * of the block with it, closer than the cutoff. Returns their number; their ranks go to partners[n].x, in the order
+ * found, unless partners is null.
+ */
+inline DEVICE int blockPartners(int i, int numParticles, LOCAL_ARG const int* regionStart,
+        LOCAL_ARG const int* regionCode, LOCAL_ARG const int* rankInRegion, LOCAL_ARG const int* codeOf,
+        LOCAL_ARG const mixed4* positionOf, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed cutoff2,
+        GLOBAL int2* partners) {
+    const mixed3 ri = trimTo3(positionOf[i]);
+    const int codeI = codeOf[i];
+    int count = 0;
+    for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
+        if (!pairOfBlock(codeI, regionCode[c]))
+            continue;
+        for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
+            const int j = rankInRegion[k];
+            if (j > i) {
+                const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
+                if (dot(d, d) < cutoff2) {
+                    if (partners != 0)
+                        partners[count].x = j;
+                    count++;
+                }
+            }
+        }
+    }
+    return count;
+}
+
+/**
  * Each block's sweep order, SWEEP_BLOCKS_PER_GROUP blocks per work group: header[rank] = (particles in the region,
  * pairs, levels, 1 if the block must be streamed), blockAtoms/blockSlots[rank SWEEP_MAX_PARTICLES + k] the region's
  * particles by original index, levelStart[rank (pairCapacity + 1) + l] the first entry of level l in
@@ -187,25 +217,10 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             rankInRegion[k] = position;
         }
         SYNC_THREADS;
-        // Each particle's pairs with later particles of the block (closer than the cutoff, in region cells that can
-        // hold a pair of the block with its own), counted.
-        for (int i = lane; i < numParticles; i += SWEEP_BLOCK_THREADS) {
-            const mixed3 ri = trimTo3(positionOf[i]);
-            const int codeI = codeOf[i];
-            int count = 0;
-            for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
-                if (!pairOfBlock(codeI, regionCode[c]))
-                    continue;
-                for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
-                    const int j = rankInRegion[k];
-                    if (j > i) {
-                        const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
-                        count += (dot(d, d) < cutoff2 ? 1 : 0);
-                    }
-                }
-            }
-            pairCount[i] = count;
-        }
+        // Each particle's pairs with later particles of the block, counted.
+        for (int i = lane; i < numParticles; i += SWEEP_BLOCK_THREADS)
+            pairCount[i] = blockPartners(i, numParticles, regionStart, regionCode, rankInRegion, codeOf, positionOf,
+                                         boxA, boxB, boxC, cutoff2, 0);
         SYNC_THREADS;
         // First pair of each particle's list; runs (particles with pairs) in order.
         if (numParticles > 0 && lane == 0) {
@@ -235,21 +250,8 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             if (pairCount[i] == 0)
                 continue;
             GLOBAL int2* partners = pairs + firstPair[i];
-            const mixed3 ri = trimTo3(positionOf[i]);
-            const int codeI = codeOf[i];
-            int n = 0;
-            for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
-                if (!pairOfBlock(codeI, regionCode[c]))
-                    continue;
-                for (int k = regionStart[c]; k < regionStart[c + 1]; k++) {
-                    const int j = rankInRegion[k];
-                    if (j > i) {
-                        const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
-                        if (dot(d, d) < cutoff2)
-                            partners[n++].x = j;
-                    }
-                }
-            }
+            const int n = blockPartners(i, numParticles, regionStart, regionCode, rankInRegion, codeOf, positionOf,
+                                        boxA, boxB, boxC, cutoff2, partners);
             for (int m = 1; m < n; m++) {   // insertion sort: a few dozen partners
                 const int j = partners[m].x;
                 int q = m - 1;

@@ -153,7 +153,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     checkKernel = program->createKernel("checkList");
     {
         using namespace CheckArgument;
-        KernelArguments(checkKernel, "checkList").array(Posq, cc.getPosq()).array(BuildPosition, buildPosition).later(MaxDrift).later(ForceRebuild).array(Rebuild, rebuild)
+        KernelArguments(checkKernel, "checkList").array(Posq, cc.getPosq()).array(BuildPosition, buildPosition)
+                .later(MaxDrift).later(ForceRebuild).array(Rebuild, rebuild)
                 .array(Errors, errors).done(Count);
     }
     buildKernel = program->createKernel("buildList");
@@ -163,7 +164,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                 .array(SortedCell, grid->sortedCell).array(SortedSlot, grid->sortedSlot)
                 .array(SortedPos, grid->sortedPos).array(AtomIndex, cc.getAtomIndexArray()).later(BoxA).later(BoxB)
                 .later(BoxC).later(Cutoff).later(ListRange).later(Capacity)
-                .array(Rebuild, rebuild).array(BuildPosition, buildPosition).array(ListCount, listCount).later(Neighbours).array(Errors, errors).done(Count);
+                .array(Rebuild, rebuild).array(BuildPosition, buildPosition).array(ListCount, listCount)
+                .later(Neighbours).array(Errors, errors).done(Count);
     }
     densityKernel = program->createKernel("computeDensities");
     {

@@ -114,7 +114,6 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
         context.getSystem().getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
         sweep->estimateCapacities(context.getSystem().getNumParticles(), periodic ? box : nullptr, cutoff);
     }
-    levelCounters.assign(8, 0);
 }
 
 const std::vector<double>& CommonIntegrateGenDPDEStepKernel::getInternalEnergies() const {
@@ -254,10 +253,14 @@ void CommonIntegrateGenDPDEStepKernel::finishSteps(ContextImpl& context, const G
     if (!inRun)
         return;
     ContextSelector selector(cc);
+    endRun();
+    readStatus(context, integrator);
+}
+
+void CommonIntegrateGenDPDEStepKernel::endRun() {
     inRun = false;
     if (deferredChecks != nullptr)
         deferredChecks->setDeferred(false);
-    readStatus(context, integrator);
 }
 
 void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const GenDPDEIntegrator& integrator) {
@@ -265,9 +268,8 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     std::vector<int> words;
     profiler.transfer();
     status.download(words);
-    for (int colour = 0; colour < 8; colour++)
-        levelCounters[colour] = words[Levels + colour];
-    profiler.setCounters(words[MostParticles], words[MostPairs], words[Streamed], levelCounters,
+    profiler.setCounters(words[MostParticles], words[MostPairs], words[Streamed],
+                         std::vector<int>(&words[Levels], &words[Levels] + 8),
                          sweep != nullptr ? sweep->getNumRanks() : 0);
     if (sweep != nullptr && words[Streamed] > streamedBlocks) {
         // Blocks beyond the capacities were streamed (correct, slower): make room for what was seen.
@@ -286,9 +288,7 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
         time += runStepSize;   // as the steps added it
     cc.setStepCount(step);
     cc.setTime(time);
-    inRun = false;
-    if (deferredChecks != nullptr)
-        deferredChecks->setDeferred(false);
+    endRun();   // (a no-op when the run has ended already)
     if (found[Halted] == HaltForce)
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)

@@ -61,6 +61,8 @@ private:
     void uploadTypeTables(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     /** Read the status words: adjust the sweep's capacities, and throw the run's failure if it stopped. */
     void readStatus(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
+    /** The run of steps is over: the force's checks are its own again. */
+    void endRun();
     void throwUnstable(OpenMM::ContextImpl& context, int particle, double stepSize, long long step);
     OpenMM::ComputeContext& cc;
     int localMemory;
@@ -77,7 +79,6 @@ private:
     double runStepSize = 0.0;
     std::unique_ptr<CommonGenDPDECellGrid> grid;   // own cells, when no force's can be reused
     std::unique_ptr<CommonGenDPDEBlockSweep> sweep;
-    std::vector<int> levelCounters;                // per colour, the most levels of a block seen (counters)
     int streamedBlocks = 0;
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, status, noForceErrors, kinetic;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()

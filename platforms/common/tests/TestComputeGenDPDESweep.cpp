@@ -136,7 +136,8 @@ void compareStops(const Stop& expected, const Stop& found, double tolerance, con
 void testSweepFailure() {
     for (const std::string precision : {"double", "mixed"})
         for (const std::vector<std::pair<std::string, std::string>>& values :
-                 std::vector<std::vector<std::pair<std::string, std::string>>>{{}, {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
+                 std::vector<std::vector<std::pair<std::string, std::string>>>{
+                         {}, {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
             std::vector<Stop> stops;
             for (const std::string& on : {std::string(), precision}) {
                 ScopedEnvironment settings(values);

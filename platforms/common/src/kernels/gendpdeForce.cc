@@ -13,11 +13,10 @@
  * every pair is computed by both its particles, so no thread writes another particle's sums. A particle's sums run
  * over its neighbours closer than R by original index whichever way they are found: the results do not depend on the
  * list's history (when it was rebuilt), so a run continued from a checkpoint repeats the uninterrupted one bit for
- * bit. Per-particle values and list rows
- * are stored by slot (posq's index). Everything in `real` precision; every formula from the physics core (GenDPDEPhysicsCore.h,
- * GENDPDE_REAL = real), the V-B tables (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays,
- * converted to `real`. The argument order of each kernel is the enum of the same name in
- * CommonGenDPDEForceKernel.cpp. */
+ * bit. Per-particle values and list rows are stored by slot (posq's index). Everything in `real` precision; every
+ * formula from the physics core (GenDPDEPhysicsCore.h, GENDPDE_REAL = real), the V-B tables
+ * (Physics::VolumeVBPolynomials, VolumeVBQuadrature) from the host's arrays, converted to `real`. The argument order
+ * of each kernel is the enum of the same name in CommonGenDPDEForceKernel.cpp. */
 
 /**
  * errors[0] = errors[1] = none (INT_MAX) before each density pass; rebuild[0] = 1 if forceRebuild or if some
@@ -49,7 +48,8 @@ KERNEL void checkList(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RES
 KERNEL void buildList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedCell,
         GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT sortedPos,
         GLOBAL const int* RESTRICT atomIndex, real4 boxA, real4 boxB, real4 boxC, real cutoff, real listRange,
-        int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL real4* RESTRICT buildPosition, GLOBAL int* RESTRICT listCount,
+        int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL real4* RESTRICT buildPosition,
+        GLOBAL int* RESTRICT listCount,
         GLOBAL int* RESTRICT neighbours, GLOBAL int* RESTRICT errors) {
     if (rebuild[0] == 0)
         return;

@@ -139,7 +139,8 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
     // Per particle (by rank): its pair count, run, first pair and code (the level of its latest pair at the end); the
     // rank of each particle in region order; the particle of each run.
     LOCAL int pairCounts[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], ranks[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], runParticles[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    LOCAL int runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    LOCAL int runParticles[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     if (status[STATUS_HALTED] != 0)
         return;
     const int sub = LOCAL_ID/SWEEP_BLOCK_THREADS, lane = LOCAL_ID%SWEEP_BLOCK_THREADS;

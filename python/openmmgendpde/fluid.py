@@ -22,6 +22,7 @@ lambda_q = (kappa n0^2/(6 T^2)) int d^3r r^2 omega_q = 2 pi kappa n0^2 R^5/(315 
 
 import dataclasses
 import math
+import numbers
 
 import numpy as np
 import openmm
@@ -41,31 +42,52 @@ CONDUCTIVITY = unit.kilojoule_per_mole / (unit.picosecond * unit.nanometer * uni
 HEAT_CAPACITY = unit.kilojoule_per_mole / unit.kelvin
 
 
+MASS_DENSITY = unit.amu / unit.nanometer**3
+MOLAR_MASS = unit.gram / unit.mole
+COMPRESSIBILITY = PRESSURE**-1
+
+
 def _in_openmm(quantity, target, name):
-    """A Quantity in ``target`` (an OpenMM unit, energies per mole): directly if compatible, else per particle
-    (SI: J, Pa, W ...) times Avogadro's number. Raises ValueError naming the property if neither works."""
+    """A Quantity in ``target`` (an OpenMM unit, energies per mole): directly if compatible, else as a quantity per
+    molecule (SI: J, Pa, W, kg, 1/Pa ...) made per mole (times Avogadro's number, or divided by it for the inverse of
+    an energy, such as a compressibility). Raises ValueError naming the property if none works."""
     if not unit.is_quantity(quantity):
         raise ValueError(f"{name} = {quantity!r} needs a unit (an openmm.unit Quantity compatible with {target})")
-    if quantity.unit.is_compatible(target):
-        return quantity.value_in_unit(target)
-    per_mole = quantity * unit.AVOGADRO_CONSTANT_NA
-    if per_mole.unit.is_compatible(target):
-        return per_mole.value_in_unit(target)
+    for candidate in (quantity, quantity * unit.AVOGADRO_CONSTANT_NA, quantity / unit.AVOGADRO_CONSTANT_NA):
+        if candidate.unit.is_compatible(target):
+            return candidate.value_in_unit(target)
     raise ValueError(f"{name} = {quantity} is not compatible with {target}")
+
+
+def _positive(name, value, given=None):
+    """``value`` if it is a finite number > 0, else ValueError naming ``name`` and the value as ``given``."""
+    if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
+        raise ValueError(f"{name} = {value if given is None else given} is not allowed; it must be finite and > 0")
+    return value
 
 
 def heat_capacity_per_molecule(value):
     """c_v per molecule in kJ/mol/K from a Quantity per molecule (J/K), per mole of molecules (J/(mol K),
-    kJ/mol/K), or a plain number in units of k_B."""
+    kJ/mol/K), or a plain number in units of k_B; ValueError unless it is finite and > 0."""
     if unit.is_quantity(value):
-        return _in_openmm(value, HEAT_CAPACITY, "heat_capacity")
-    return float(value) * BOLTZMANN.value_in_unit(HEAT_CAPACITY)
+        per_molecule = _in_openmm(value, HEAT_CAPACITY, "heat_capacity")
+    else:
+        per_molecule = value * BOLTZMANN.value_in_unit(HEAT_CAPACITY) if isinstance(value, numbers.Real) else None
+    return _positive("heat_capacity", per_molecule, value)
+
+
+#: The OpenMM units of a Fluid's properties (heat_capacity and tait_exponent aside).
+_PROPERTY_UNITS = {"temperature": unit.kelvin, "pressure": PRESSURE, "mass_density": MASS_DENSITY,
+                   "compressibility": COMPRESSIBILITY, "shear_viscosity": VISCOSITY,
+                   "thermal_conductivity": CONDUCTIVITY, "molar_mass": MOLAR_MASS}
 
 
 @dataclasses.dataclass(frozen=True)
 class Fluid:
     """A fluid at one state point; every property an openmm.unit Quantity in any compatible unit (SI per molecule,
-    or per mole), except heat_capacity, which may also be a number in k_B per molecule."""
+    or per mole), except heat_capacity, which may also be a number in k_B per molecule. Every property must be
+    finite and > 0 but the pressure (finite, of either sign), and tait_exponent > 1: a Fluid that is not raises
+    ValueError naming the property, its value and what is allowed."""
     name: str
     temperature: unit.Quantity            # T0
     pressure: unit.Quantity               # P0
@@ -76,6 +98,27 @@ class Fluid:
     thermal_conductivity: unit.Quantity   # lambda
     molar_mass: unit.Quantity             # M
     tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
+
+    def __post_init__(self):
+        self.in_openmm()
+
+    def in_openmm(self):
+        """The properties as plain floats in OpenMM units (temperature K, pressure kJ/mol/nm^3, mass_density
+        amu/nm^3, compressibility nm^3 mol/kJ, shear_viscosity amu/(nm ps), thermal_conductivity kJ/(mol ps nm K),
+        molar_mass g/mol, heat_capacity kJ/mol/K per molecule, tait_exponent), checked as the class says."""
+        values = {}
+        for name, target in _PROPERTY_UNITS.items():
+            given = getattr(self, name)
+            values[name] = _in_openmm(given, target, name)
+            if name != "pressure":
+                _positive(name, values[name], given)
+            elif not math.isfinite(values[name]):
+                raise ValueError(f"pressure = {given} is not allowed; it must be finite")
+        values["heat_capacity"] = heat_capacity_per_molecule(self.heat_capacity)
+        if not (isinstance(self.tait_exponent, numbers.Real) and 1 < self.tait_exponent < math.inf):
+            raise ValueError(f"tait_exponent = {self.tait_exponent} is not allowed; it must be finite and > 1")
+        values["tait_exponent"] = self.tait_exponent
+        return values
 
 
 @dataclasses.dataclass(frozen=True)
@@ -124,15 +167,10 @@ class GenDPDEParameters:
     def targets(self):
         """The fluid's properties that the model should reproduce, in OpenMM units: pressure, bulk modulus
         1/kappa_T, temperature, viscosity, conductivity, and the density n0."""
-        f = self.fluid
-        return {
-            "density": self.density,
-            "pressure": _in_openmm(f.pressure, PRESSURE, "pressure"),
-            "bulk_modulus": _in_openmm(1 / f.compressibility, PRESSURE, "1/compressibility"),
-            "temperature": f.temperature.value_in_unit(unit.kelvin),
-            "shear_viscosity": _in_openmm(f.shear_viscosity, VISCOSITY, "shear_viscosity"),
-            "thermal_conductivity": _in_openmm(f.thermal_conductivity, CONDUCTIVITY, "thermal_conductivity"),
-        }
+        f = self.fluid.in_openmm()
+        return {"density": self.density, "pressure": f["pressure"], "bulk_modulus": 1 / f["compressibility"],
+                "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
+                "thermal_conductivity": f["thermal_conductivity"]}
 
     def with_cutoff_scaling(self, cutoff_scaling):
         return dataclasses.replace(self, cutoff_scaling=cutoff_scaling)
@@ -150,8 +188,9 @@ class GenDPDEParameters:
         if cells is None:
             if num_particles is None:
                 raise ValueError("give num_particles (4 m^3, a cube) or cells = (n_x, n_y, n_z)")
-            m = round((num_particles / 4) ** (1 / 3))
-            if 4 * m**3 != num_particles:
+            integral = isinstance(num_particles, numbers.Integral) and num_particles > 0
+            m = round((num_particles / 4) ** (1 / 3)) if integral else 0
+            if m < 1 or 4 * m**3 != num_particles:
                 raise ValueError(f"num_particles = {num_particles} is not allowed; a cube holds 4 m^3 "
                                  f"(500, 864, 2048, 4000, ...); give cells for other boxes")
             cells = (m, m, m)
@@ -216,40 +255,32 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
     """Every GenDPDE parameter for ``fluid`` with ``molecules_per_particle`` molecules per particle and either
     ``neighbors`` particles within the cutoff at n0 or the ``cutoff`` itself (a length Quantity or nm); the formulas
     are the module's. Raises ValueError naming a bad argument."""
-    if not (molecules_per_particle > 0):
-        raise ValueError(f"molecules_per_particle = {molecules_per_particle} is not allowed; it must be > 0")
+    _positive("molecules_per_particle", molecules_per_particle)
     if (neighbors is None) == (cutoff is None):
         raise ValueError("give exactly one of neighbors (particles within the cutoff) and cutoff")
-    if not fluid.tait_exponent > 1:
-        raise ValueError(f"tait_exponent = {fluid.tait_exponent} is not allowed; it must be > 1")
-    temperature = fluid.temperature.value_in_unit(unit.kelvin)
-    molar_mass = fluid.molar_mass.value_in_unit(unit.gram / unit.mole)
-    mass = molecules_per_particle * molar_mass                                    # amu (g/mol per particle)
-    mass_density = _in_openmm(fluid.mass_density, unit.amu / unit.nanometer**3, "mass_density")
-    density = mass_density / mass
+    f = fluid.in_openmm()
+    temperature = f["temperature"]
+    mass = molecules_per_particle * f["molar_mass"]                               # amu (g/mol per particle)
+    density = f["mass_density"] / mass
     kt = BOLTZMANN.value_in_unit(HEAT_CAPACITY) * temperature
-    bulk_modulus = _in_openmm(1 / fluid.compressibility, PRESSURE, "1/compressibility") / fluid.tait_exponent
-    reference_pressure = _in_openmm(fluid.pressure, PRESSURE, "pressure") - density * kt
+    bulk_modulus = 1 / (f["compressibility"] * f["tait_exponent"])
+    reference_pressure = f["pressure"] - density * kt
     if cutoff is None:
-        if not neighbors > 0:
-            raise ValueError(f"neighbors = {neighbors} is not allowed; it must be > 0")
-        cutoff = (3 * neighbors / (4 * math.pi * density)) ** (1 / 3)
+        cutoff = (3 * _positive("neighbors", neighbors) / (4 * math.pi * density)) ** (1 / 3)
     else:
-        cutoff = cutoff.value_in_unit(unit.nanometer) if unit.is_quantity(cutoff) else float(cutoff)
-        if not cutoff > 0:
-            raise ValueError(f"cutoff = {cutoff} nm is not allowed; it must be > 0")
+        cutoff = _positive("cutoff", _in_openmm(cutoff, unit.nanometer, "cutoff") if unit.is_quantity(cutoff)
+                           else cutoff, cutoff)
         neighbors = 4 * math.pi / 3 * density * cutoff**3
     r5 = density**2 * cutoff**5
-    friction = 1575 * _in_openmm(fluid.shear_viscosity, VISCOSITY, "shear_viscosity") / (2 * math.pi * r5)
-    heat_conduction = (315 * _in_openmm(fluid.thermal_conductivity, CONDUCTIVITY, "thermal_conductivity")
-                       * temperature**2 / (2 * math.pi * r5))
+    friction = 1575 * f["shear_viscosity"] / (2 * math.pi * r5)
+    heat_conduction = 315 * f["thermal_conductivity"] * temperature**2 / (2 * math.pi * r5)
     return GenDPDEParameters(
         fluid=fluid, molecules_per_particle=molecules_per_particle, mass=mass, temperature=temperature,
         density=density, reference_pressure=reference_pressure, bulk_modulus=bulk_modulus,
-        tait_exponent=fluid.tait_exponent, cutoff=cutoff, neighbors=neighbors,
+        tait_exponent=f["tait_exponent"], cutoff=cutoff, neighbors=neighbors,
         cutoff_scaling=cutoff_scaling_guess(neighbors) if cutoff_scaling is None else cutoff_scaling,
         friction=friction, heat_conduction=heat_conduction,
-        heat_capacity=molecules_per_particle * heat_capacity_per_molecule(fluid.heat_capacity))
+        heat_capacity=molecules_per_particle * f["heat_capacity"])
 
 
 def _argon_fluid():

@@ -1,7 +1,10 @@
 """The mapping from a fluid's physical properties to GenDPDE parameters (openmmgendpde.fluid) and `calibrate`."""
 
+import dataclasses
 import json
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -91,6 +94,139 @@ def test_bad_input_names_the_argument(call, message):
         call()
 
 
+@pytest.mark.parametrize("change, message", [
+    ({"compressibility": 0 / unit.pascal}, "compressibility = 0 /Pa is not allowed; it must be finite and > 0"),
+    ({"compressibility": -0.45e-9 / unit.pascal}, "compressibility = -4.5e-10 /Pa is not allowed"),
+    ({"temperature": 298.15}, "temperature = 298.15 needs a unit"),
+    ({"temperature": -10 * unit.kelvin}, "temperature = -10 K is not allowed; it must be finite and > 0"),
+    ({"temperature": 300 * unit.nanometer}, "temperature = 300 nm is not compatible with kelvin"),
+    ({"molar_mass": 18.0}, "molar_mass = 18.0 needs a unit"),
+    ({"molar_mass": -18 * unit.gram / unit.mole}, "molar_mass = -18 g/mol is not allowed"),
+    ({"mass_density": 0 * unit.kilogram / unit.meter**3}, "mass_density = 0 kg/\\(m\\*\\*3\\) is not allowed"),
+    ({"shear_viscosity": -0.89e-3 * unit.pascal * unit.second}, "shear_viscosity = -0.00089 s Pa is not allowed"),
+    ({"thermal_conductivity": -0.6 * unit.watt / (unit.meter * unit.kelvin)}, "thermal_conductivity = -0.6"),
+    ({"heat_capacity": -3.0}, "heat_capacity = -3.0 is not allowed"),
+    ({"heat_capacity": "3"}, "heat_capacity = 3 is not allowed"),
+    ({"pressure": math.nan * unit.pascal}, "pressure = nan Pa is not allowed; it must be finite"),
+    ({"tait_exponent": 1.0}, "tait_exponent = 1.0 is not allowed; it must be finite and > 1"),
+], ids=lambda value: str(value)[:40])
+def test_bad_fluid_properties_are_refused_naming_the_property(change, message):
+    """A Fluid with a property out of range or without its unit: ValueError naming the property, its value and
+    what is allowed, when the Fluid is made (so before coarse_grain computes anything from it)."""
+    with pytest.raises(ValueError, match=message):
+        coarse_grain(dataclasses.replace(WATER, **change), 4, neighbors=20)
+
+
+#: calibrate's results from two runs (`calibrate --quick --fluid water --platform CPU`, with `--neighbors 2` for
+#: the second): the first reaches every target it is judged on, the second misses the pressure after the shift of
+#: pi0 (55.67 MPa, 0.0251/kappa_T from P0: the shift did not move it) and the viscosity (0.039 of its target).
+WATER_QUICK = {"density n-bar (nm^-3)": (8.3325, 8.2745, 0.036),
+               "pressure, pi0 shifted (MPa)": (0.1, -6.171, 10.13),
+               "bulk modulus n dP/dn (MPa)": (2209.9, 1828.2, 187.3),
+               "kinetic temperature (K)": (298.15, 297.59, 0.947),
+               "harmonic mean of theta_i (K)": (298.15, 296.57, 0.0576),
+               "shear viscosity (mPa s)": (0.89, 0.7837, 0.0433),
+               "thermal conductivity (W/(m K))": (0.6065, 0.8275, 0.0928)}
+WATER_TWO_NEIGHBOURS = {"density n-bar (nm^-3)": (8.3325, 8.4432, 0.0107),
+                        "pressure, pi0 shifted (MPa)": (0.1, 55.67, 2.362),
+                        "bulk modulus n dP/dn (MPa)": (2209.9, 156.55, 31.97),
+                        "kinetic temperature (K)": (298.15, 290.66, 4.879),
+                        "harmonic mean of theta_i (K)": (298.15, 296.86, 0.459),
+                        "shear viscosity (mPa s)": (0.89, 0.034413, 0.00717),
+                        "thermal conductivity (W/(m K))": (0.6065, 0.14393, 0.137)}
+
+
+def _results(rows):
+    return {name: {"target": t, "model": m, "error": e} for name, (t, m, e) in rows.items()}
+
+
+def test_misses_judges_a_calibration():
+    """calibrate's criteria (docs/fluids.md) on the two runs above: nothing missed in the first; in the second the
+    pressure (allowed P0 +- 0.01 x 2209.9 MPa = -22.0 to 22.2 MPa, widened by 2 x 2.362) and the viscosity (allowed
+    0.445 to 1.78 mPa s, widened by 2 x 0.00717), each line with the model's comparison with its target; the
+    conductivity (0.237 of its target) is within 2 of its (large) standard errors of the allowed range."""
+    from openmmgendpde.calibrate import misses
+    assert misses(_results(WATER_QUICK)) == []
+    missed = misses(_results(WATER_TWO_NEIGHBOURS))
+    assert len(missed) == 2
+    assert missed[0].startswith("pressure, pi0 shifted (MPa): 55.67 +- 2.4 against the target 0.1 "
+                                "((P - P0) kappa_T = 0.0251); allowed -21.999 to 22.199")
+    assert missed[1].startswith("shear viscosity (mPa s): 0.034413 +- 0.0072 against the target 0.89 "
+                                "(model/target = 0.039); allowed 0.445 to 1.78")
+    # Each kind of criterion at its edge, 2 standard errors included.
+    edge = dict(WATER_QUICK)
+    edge["density n-bar (nm^-3)"] = (10.0, 10.0 * 1.02 + 2 * 0.01, 0.01)
+    edge["thermal conductivity (W/(m K))"] = (1.0, 0.5 - 2 * 0.01, 0.01)
+    assert misses(_results(edge)) == []
+    edge["density n-bar (nm^-3)"] = (10.0, 10.0 * 1.02 + 2 * 0.01 + 1e-9, 0.01)
+    edge["thermal conductivity (W/(m K))"] = (1.0, 0.5 - 2 * 0.01 - 1e-9, 0.01)
+    assert [line.split(":")[0] for line in misses(_results(edge))] == ["density n-bar (nm^-3)",
+                                                                      "thermal conductivity (W/(m K))"]
+
+
+@pytest.mark.parametrize("pressure_offset, viscosity_ratio, expected", [
+    (0.0, 0.8, []),
+    (0.025, 0.039, ["pressure, pi0 shifted (MPa)", "shear viscosity (mPa s)"]),
+])
+def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offset, viscosity_ratio, expected,
+                                                                   monkeypatch, tmp_path, capsys):
+    """calibrate's judgement end to end, with the simulations replaced by made-up measurements at the targets (small
+    errors) but for the pressure (P0 + pressure_offset/kappa_T after the shift of pi0) and the viscosity
+    (viscosity_ratio x its target): a calibration that misses prints which results missed on stderr, writes them to
+    the JSON file and exits with status 1; one that does not says so and returns its results."""
+    from openmmgendpde.calibrate import Calibration, Measured
+
+    def thermodynamics(self, density=None):
+        t = self.parameters.targets()
+        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
+                "harmonic_temperature": Measured(t["temperature"], 0.1),
+                "pressure": Measured(t["pressure"] + pressure_offset * t["bulk_modulus"], 1e-3)}
+
+    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", lambda self: self.parameters.cutoff_scaling)
+    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
+    monkeypatch.setattr(Calibration, "bulk_modulus",
+                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
+    monkeypatch.setattr(Calibration, "shear_viscosity", lambda self: Measured(
+        viscosity_ratio * self.parameters.targets()["shear_viscosity"], 1e-6))
+    monkeypatch.setattr(Calibration, "thermal_conductivity", lambda self: Measured(
+        self.parameters.targets()["thermal_conductivity"], 1e-6))
+    path = tmp_path / "calibration.json"
+    arguments = ["calibrate", "--quick", "--json", str(path)]
+    if expected:
+        with pytest.raises(SystemExit) as exit_:
+            main(arguments)
+        assert exit_.value.code == 1
+    else:
+        main(arguments)
+    captured = capsys.readouterr()
+    missed = json.loads(path.read_text())["missed"]
+    assert [line.split(":")[0] for line in missed] == expected
+    if expected:
+        assert "the calibration failed, 2 of the judged results missed" in captured.err
+        assert all(line in captured.err for line in missed)
+        assert "(P - P0) kappa_T = 0.0250" in captured.err and "(model/target = 0.039)" in captured.err
+    else:
+        assert "Every judged result within its tolerance" in captured.out and captured.err == ""
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--particles", "1000"], "num_particles = 1000 is not allowed; a cube holds 4 m^3"),
+    (["--particles", "0"], "num_particles = 0 is not allowed"),
+    (["--molecules-per-particle", "-1"], "molecules_per_particle = -1.0 is not allowed; it must be finite and > 0"),
+    (["--neighbors", "1e6"], "is less than twice the cutoff 30.599 nm across"),
+    (["--cutoff", "100"], "is less than twice the cutoff 100.000 nm across"),
+    (["--platform", "Nope"], "argument --platform: invalid choice: 'Nope'"),
+])
+def test_calibrate_refuses_bad_arguments_in_one_line(arguments, message):
+    """Bad arguments: a one-line error naming the value on stderr (after argparse's usage for an option it checks
+    itself), exit status non-zero, no traceback, nothing run."""
+    result = subprocess.run([sys.executable, "-m", "openmmgendpde", "calibrate", "--quick"] + arguments,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode != 0 and result.stdout == ""
+    assert "Traceback" not in result.stderr
+    assert message in result.stderr.splitlines()[-1]
+
+
 def test_calibrate_quick_on_water(tmp_path):
     """`calibrate --quick` sets water up and measures it back (a functional check: 500 particles, short runs).
     What is asserted is what the run controls: f_cut tuned so that n-bar is within 2% of n0 (two secant steps on
@@ -98,7 +234,9 @@ def test_calibrate_quick_on_water(tmp_path):
     1%), every measured property finite with a finite error."""
     path = tmp_path / "water.json"
     results = main(["calibrate", "--quick", "--fluid", "water", "--platform", "CPU", "--json", str(path)])
-    saved = json.loads(path.read_text())["results"]
+    saved = json.loads(path.read_text())
+    assert saved["missed"] == []
+    saved = saved["results"]
     assert saved.keys() == results.keys()
     for name, entry in results.items():
         assert saved[name] == pytest.approx(entry), name

@@ -15,6 +15,8 @@ m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half 
 """
 
 
+import reprlib
+
 import numpy as np
 from openmm import unit
 
@@ -76,27 +78,60 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
     return result
 
 
+def _checked_types(types):
+    """ProfileReporter's ``types``, checked: None, one integer per particle (as an array), or a dict {particle: type}
+    (GenDPDEForce.getParticleTypes: particles it leaves out have type 0)."""
+    if types is None:
+        return None
+    if isinstance(types, dict):
+        particles, values = np.asarray(list(types)), np.asarray(list(types.values()))
+    else:
+        particles, values = np.zeros(0, int), np.asarray(types)
+    if not all(a.ndim == 1 and (a.size == 0 or np.issubdtype(a.dtype, np.integer)) for a in (particles, values)) \
+            or np.any(particles < 0):
+        raise ValueError(f"ProfileReporter: types = {reprlib.repr(types)} is not allowed; it must be one integer per "
+                         f"particle (a list or 1-D array) or a dict {{particle index >= 0: type}} (as "
+                         f"GenDPDEForce.getParticleTypes returns)")
+    return types if isinstance(types, dict) else values
+
+
+def _per_particle_types(types, num_particles):
+    """Checked ``types`` (_checked_types) as an array of one type per particle of a System of ``num_particles``."""
+    if isinstance(types, dict):
+        if types and max(types) >= num_particles:
+            raise ValueError(f"ProfileReporter: types names particle {max(types)}, but the System has "
+                             f"{num_particles} particles")
+        array = np.zeros(num_particles, int)
+        array[list(types)] = list(types.values())
+        return array
+    if len(types) != num_particles:
+        raise ValueError(f"ProfileReporter: types has {len(types)} entries, but the System has {num_particles} "
+                         f"particles; give one type per particle")
+    return types
+
+
 class ProfileReporter:
     """Writes profiles along ``axis`` every ``reportInterval`` steps to ``file`` (a path or an open file), as CSV.
     Works with any integrator; mean theta needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
-    (periodic box)."""
+    (periodic box). ``types``, one integer per particle or a dict {particle: type} (the form of
+    GenDPDEForce.getParticleTypes, unnamed particles type 0), adds the columns of each type; by default the types
+    set on ``force``, if any. Bad arguments raise ValueError when the reporter is made; types that do not fit the
+    System (a length other than its particle count, a particle beyond it) at the first report, before it writes
+    anything (the header goes with the first report)."""
 
     def __init__(self, file, reportInterval, axis=2, bins=20, force=None, types=None):
         if reportInterval < 1:
             raise ValueError(f"reportInterval = {reportInterval} is not allowed; it must be >= 1")
         if not (0 <= axis <= 2) or bins < 1:
             raise ValueError(f"axis = {axis}, bins = {bins}: the axis must be 0, 1 or 2 and bins >= 1")
+        if types is None and force is not None:
+            types = force.getParticleTypes() or None
+        self._types = _checked_types(types)
         self._own = isinstance(file, str)
         self._out = open(file, "w") if self._own else file
         self._interval, self._axis, self._bins = reportInterval, axis, bins
         self._masses = None
         self._force = force
-        self._types = None if types is None else np.asarray(types)
-        pressure = ",Pxx,Pyy,Pzz,Pxy,Pxz,Pyz" if force is not None else ""
-        by_type = "".join(f",density_type{t}_nm-3,theta_harmonic_type{t}_K"
-                          for t in ([] if types is None else np.unique(self._types)))
-        self._out.write("step,time_ps,bin,centre_nm,particles,density_nm-3,theta_K,kinetic_temperature_K,"
-                        f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}{by_type}\n")
 
     def describeNextReport(self, simulation):
         steps = self._interval - simulation.currentStep % self._interval
@@ -105,8 +140,15 @@ class ProfileReporter:
     def report(self, simulation, state):
         system = simulation.system
         if self._masses is None:
+            if self._types is not None:
+                self._types = _per_particle_types(self._types, system.getNumParticles())
             self._masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu)
                                      for i in range(system.getNumParticles())])
+            pressure = ",Pxx,Pyy,Pzz,Pxy,Pxz,Pyz" if self._force is not None else ""
+            by_type = "".join(f",density_type{t}_nm-3,theta_harmonic_type{t}_K"
+                              for t in ([] if self._types is None else np.unique(self._types)))
+            self._out.write("step,time_ps,bin,centre_nm,particles,density_nm-3,theta_K,kinetic_temperature_K,"
+                            f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}{by_type}\n")
         integrator = simulation.integrator
         temperatures = None
         if isinstance(integrator, GenDPDEIntegrator) or GenDPDEIntegrator.isinstance(integrator):

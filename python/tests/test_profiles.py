@@ -7,6 +7,7 @@ import openmm
 import pytest
 from openmm import app, unit
 
+from openmmgendpde import GenDPDEForce
 from openmmgendpde.fluid import WATER, coarse_grain, set_temperature_field
 from openmmgendpde.profiles import ProfileReporter, profile
 from openmmgendpde.units import BOLTZMANN
@@ -108,15 +109,16 @@ def test_profile_by_type_against_direct_counts():
         assert values["type_density"][b].sum() == pytest.approx(values["density"][b])
 
 
-def test_profile_reporter_writes_the_type_columns():
-    """The reporter with types: one density and one theta column per type, in ascending type order, each density
-    the type's count in the slice (counted here particle by particle) over the slice volume (NaN theta without a
-    GenDPDEIntegrator)."""
+def particles_in_a_box(force=None):
+    """A Simulation of 50 particles at random positions in a periodic 2 nm cube (VerletIntegrator), with ``force``
+    in its System if given."""
     system = openmm.System()
     system.setDefaultPeriodicBoxVectors(openmm.Vec3(2, 0, 0), openmm.Vec3(0, 2, 0), openmm.Vec3(0, 0, 2))
     positions = np.random.default_rng(5).uniform(0, 2.0, (50, 3))
     for _ in range(50):
         system.addParticle(1.0)
+    if force is not None:
+        system.addForce(force)
     topology = app.Topology()
     chain = topology.addChain()
     for _ in range(50):
@@ -124,19 +126,74 @@ def test_profile_reporter_writes_the_type_columns():
     simulation = app.Simulation(topology, system, openmm.VerletIntegrator(0.001),
                                 openmm.Platform.getPlatformByName("Reference"))
     simulation.context.setPositions(positions)
+    return simulation
+
+
+def assert_type_columns(simulation, text, types):
+    """The last four columns of the reporter's CSV ``text`` against the two types of ``types`` (one per particle):
+    one density and one theta column per type, in ascending type order, each density the type's count in the
+    slice (counted here particle by particle) over the slice volume (NaN theta without a GenDPDEIntegrator)."""
+    low, high = sorted(set(types))
+    header, *rows = [line.split(",") for line in text.strip().splitlines()]
+    assert header[-4:] == [f"density_type{low}_nm-3", f"theta_harmonic_type{low}_K", f"density_type{high}_nm-3",
+                           f"theta_harmonic_type{high}_K"]
+    state = simulation.context.getState(getPositions=True)
+    counts = {(b, t): 0 for b in range(2) for t in (low, high)}
+    for r, t in zip(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), types):
+        counts[(min(int((r[2] % 2.0) / 2.0 * 2), 1), t)] += 1
+    slice_volume = 8.0 / 2
+    assert len(rows) == 2
+    for b, row in enumerate(rows):
+        assert float(row[-4]) == pytest.approx(counts[(b, low)] / slice_volume, rel=1e-5)
+        assert float(row[-2]) == pytest.approx(counts[(b, high)] / slice_volume, rel=1e-5)
+        assert row[-3] == "nan" and row[-1] == "nan"
+    assert sum(counts.values()) == 50 and min(counts.values()) > 0
+
+
+def test_profile_reporter_writes_the_type_columns():
+    """The reporter with types, one integer per particle."""
+    simulation = particles_in_a_box()
     types = [3 if i < 20 else 1 for i in range(50)]
     out = io.StringIO()
     simulation.reporters.append(ProfileReporter(out, 1, axis=2, bins=2, types=types))
     simulation.step(1)
-    header, *rows = [line.split(",") for line in out.getvalue().strip().splitlines()]
-    assert header[-4:] == ["density_type1_nm-3", "theta_harmonic_type1_K", "density_type3_nm-3", "theta_harmonic_type3_K"]
-    state = simulation.context.getState(getPositions=True)
-    counts = {(b, t): 0 for b in range(2) for t in (1, 3)}
-    for r, t in zip(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), types):
-        counts[(min(int((r[2] % 2.0) / 2.0 * 2), 1), t)] += 1
-    slice_volume = 8.0 / 2
-    for b, row in enumerate(rows):
-        assert float(row[-4]) == pytest.approx(counts[(b, 1)] / slice_volume, rel=1e-5)
-        assert float(row[-2]) == pytest.approx(counts[(b, 3)] / slice_volume, rel=1e-5)
-        assert row[-3] == "nan" and row[-1] == "nan"
-    assert sum(counts.values()) == 50 and min(counts.values()) > 0
+    assert_type_columns(simulation, out.getvalue(), types)
+
+
+def test_profile_reporter_takes_the_types_of_the_force():
+    """The types set on a GenDPDEForce (particles 0-19 type -3, the rest left at type 0): the reporter's default
+    with ``force``, and the dict of force.getParticleTypes() as ``types``, both give the columns of types -3 and 0."""
+    force = GenDPDEForce(0.6)
+    for i in range(20):
+        force.setParticleType(i, -3)
+    simulation = particles_in_a_box(force)
+    by_default, by_dict = io.StringIO(), io.StringIO()
+    simulation.reporters.append(ProfileReporter(by_default, 1, axis=2, bins=2, force=force))
+    simulation.reporters.append(ProfileReporter(by_dict, 1, axis=2, bins=2, types=force.getParticleTypes()))
+    simulation.step(1)
+    types = [-3 if i < 20 else 0 for i in range(50)]
+    assert_type_columns(simulation, by_default.getvalue(), types)
+    assert_type_columns(simulation, by_dict.getvalue(), types)
+
+
+@pytest.mark.parametrize("types", [{0: 1.5}, {-1: 2}, {"a": 1}, [1.0, 2.0], [[1, 2]], ["a", "b"], 3],
+                         ids=str)
+def test_profile_reporter_refuses_bad_types_when_made(types):
+    out = io.StringIO()
+    with pytest.raises(ValueError, match="types = .* is not allowed; it must be one integer per particle"):
+        ProfileReporter(out, 1, types=types)
+    assert out.getvalue() == ""
+
+
+@pytest.mark.parametrize("types, message", [
+    ([1] * 49, "types has 49 entries, but the System has 50 particles"),
+    ({50: 1}, "types names particle 50, but the System has 50 particles"),
+])
+def test_profile_reporter_refuses_types_that_do_not_fit_the_system(types, message):
+    """A length or a particle that only the System can check: refused at the first report, before it writes."""
+    simulation = particles_in_a_box()
+    out = io.StringIO()
+    simulation.reporters.append(ProfileReporter(out, 1, types=types))
+    with pytest.raises(ValueError, match=message):
+        simulation.step(1)
+    assert out.getvalue() == ""

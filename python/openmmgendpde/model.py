@@ -35,7 +35,8 @@ def build_liquid(box, num_particles, mass, cutoff, estimator, cutoff_scaling, ta
     Vec3, nm): a GenDPDEForce of ``cutoff`` (nm), ``estimator`` (an enum value), f_cut ``cutoff_scaling`` and the
     Tait parameters ``tait`` = (n0, pi0, B_T, gamma_T), and a GenDPDEIntegrator of step ``step_size`` (ps),
     ``friction``, ``heat_conduction`` and ``heat_capacity``, bath temperature ``temperature`` (K), random seed
-    ``seed`` and ``mode``; every value in OpenMM units. The topology's atoms are named for PDB files and viewers."""
+    ``seed`` and ``mode``; every value in OpenMM units. The topology's atoms are named for PDB files and viewers.
+    The force holds a reference to the System, which owns it, so that it stays valid as long as it is used."""
     from . import GenDPDEForce, GenDPDEIntegrator
     system = openmm.System()
     system.setDefaultPeriodicBoxVectors(*box)
@@ -46,6 +47,7 @@ def build_liquid(box, num_particles, mass, cutoff, estimator, cutoff_scaling, ta
     force.setCutoffScaling(cutoff_scaling)
     force.setTaitParameters(*tait)
     system.addForce(force)
+    force._system = system   # the System owns the C++ force (addForce): the force, once returned, keeps it alive
     integrator = GenDPDEIntegrator(step_size, friction, heat_conduction, heat_capacity)
     integrator.setTemperature(temperature)
     integrator.setRandomNumberSeed(seed)

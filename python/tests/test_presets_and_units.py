@@ -1,6 +1,9 @@
 """Reduced units and the liquid-argon preset (docs/theory.md section 9)."""
 
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import openmm
@@ -120,3 +123,23 @@ def test_a_second_simulation_of_one_preset_is_refused():
         argon.simulation()
     first.step(2)
     assert first.currentStep == 2
+
+
+def test_a_presets_force_keeps_its_system_alive():
+    """The force of a preset that is gone (`liquid_argon(500).force`) stays usable: the System, which owns the C++
+    force, lives as long as the force (in plain OpenMM it would be freed with the System). In a subprocess, since
+    a use after free can crash the interpreter, with glibc's MALLOC_PERTURB_ filling freed memory so that such a use
+    fails reliably; the force, read after garbage collection and other allocations by a ProfileReporter and by
+    XmlSerializer, against a fresh preset's."""
+    script = ("import gc, io, openmm\n"
+              "from openmmgendpde.presets import liquid_argon\n"
+              "from openmmgendpde.profiles import ProfileReporter\n"
+              "force = liquid_argon(500, estimator='VC').force\n"
+              "gc.collect()\n"
+              "others = [liquid_argon(500) for _ in range(3)]\n"
+              "reporter = ProfileReporter(io.StringIO(), 1, force=force)\n"
+              "print(openmm.XmlSerializer.serialize(force))\n")
+    result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True,
+                            env={**os.environ, "MALLOC_PERTURB_": "165"})
+    assert result.returncode == 0, result.stderr[-2000:]
+    assert result.stdout == openmm.XmlSerializer.serialize(liquid_argon(500, estimator="VC").force) + "\n"

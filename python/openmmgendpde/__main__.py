@@ -12,9 +12,10 @@ SUBCOMMANDS = (
     ("table3", table3, "reproduce Table III: T*, n-bar*, P* for 3 cutoffs x VA/VB beside the published values"),
     ("rdf", rdf, "radial distribution functions of the six cases, plotted like Fig. 1 (PNG and PDF)"),
     ("timing", timing, "Table IV analogue: wall time per step with VA and VB, and their ratio, per cutoff"),
-    ("tune-fcut", tune_fcut, "find f_cut of VB so that the mean density is n0, with its uncertainty"),
+    ("tune-fcut", tune_fcut, "find f_cut of VB or VC so that the mean density is n0, with its uncertainty"),
     ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties measured back"),
-    ("slab", slab, "a liquid slab in vacuum with VA and VB, and the estimators against the exact partition-of-unity volume"),
+    ("slab", slab, "a liquid slab in vacuum with VA, VB and VC, and the estimators against the exact "
+                   "partition-of-unity volume"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
     ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),
     ("benchmark-integrator", benchmark_integrator, "GenDPDEIntegrator: ms per step against a force evaluation"),

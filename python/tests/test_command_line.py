@@ -3,6 +3,7 @@
 import csv
 import json
 import math
+import re
 
 import openmm
 import pytest
@@ -163,3 +164,16 @@ def test_help_lists_every_subcommand(capsys):
     for name in ("table3", "rdf", "timing", "tune-fcut", "speed-vs-error", "benchmark-force", "benchmark-integrator",
                  "benchmark-cpu"):
         assert name in out
+
+
+@pytest.mark.parametrize("name", ["slab", "tune-fcut"])
+def test_help_names_the_estimators_a_subcommand_runs(name, capsys):
+    """The top-level help's line for a subcommand that names estimators names every choice of its --estimator(s)
+    option (as that subcommand's own help lists them)."""
+    with pytest.raises(SystemExit):
+        main([name, "--help"])
+    choices = re.search(r"--estimators? \{([A-Z,]+)\}", capsys.readouterr().out).group(1).split(",")
+    with pytest.raises(SystemExit):
+        main(["--help"])
+    summary = re.search(rf"\n    {name} +(.*?)\n    \S", capsys.readouterr().out, re.S).group(1)
+    assert len(choices) >= 2 and all(re.search(rf"\b{choice}\b", summary) for choice in choices), (choices, summary)

@@ -6,6 +6,7 @@
 #include "TestScenes.h"
 #include "TestUtilities.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "OpenMM.h"
 #include <cmath>
 #include <functional>
@@ -396,6 +397,8 @@ void runIntegratorTests() {
     testSwitchedOffFriction();
     testHeatConduction();
     testTypesBadInput();
+    testTablesByClass();
+    testTypeChangesAfterTheContext();
     testIdenticalTypesAreBitwiseNoTypes();
     testMixtureConservation();
     testTwoMaterialConduction();

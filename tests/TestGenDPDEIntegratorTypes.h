@@ -196,11 +196,85 @@ void testTypesBadInput() {
     Run far(4, 14);
     far.integrator.setParticleType(64, 1);
     assertThrowsMentioning([&]() { far.start(); }, {"particle 64", "64 particles"});
-    // An entry added after the Context was created is checked at the next step.
+}
+
+/**
+ * The integrator's tables are by class (GenDPDETypes.h): 4000 types without entries are one class, the size of the
+ * tables of one type; entries give their types classes of their own, and every lookup of a pair of types returns the
+ * entry's value or the integrator's.
+ */
+void testTablesByClass() {
+    const int numParticles = 4000;
+    std::map<int, int> typeOfParticle;
+    for (int i = 0; i < numParticles; i++)
+        typeOfParticle[i] = 10*i - 3;   // 4000 distinct types
+    const ParticleTypeIndex types(typeOfParticle, numParticles, "GenDPDEIntegrator");
+    GenDPDEIntegrator integrator(0.001, 2.0, 3.0, 4.0);
+    TypePairTable table = typePairTable(integrator, types);
+    ASSERT_EQUAL(1, table.numClasses);
+    ASSERT_EQUAL(1, (int) table.friction.size());
+    ASSERT_EQUAL(1, (int) table.heatCapacity.size());
+    integrator.addTypeHeatCapacity(47, 5.0);          // particle 5
+    integrator.addTypePair(97, 47, 6.0, 7.0);         // particles 10 and 5
+    table = typePairTable(integrator, types);
+    ASSERT_EQUAL(3, table.numClasses);
+    ASSERT_EQUAL(9, (int) table.friction.size());
+    const std::vector<int>& index = types.getParticleTypeIndices();
+    auto pairValue = [&](const std::vector<double>& values, int i, int j) {
+        return values[table.classOf(index[i])*table.numClasses + table.classOf(index[j])];
+    };
+    for (int i : {0, 5, 10, 3999})
+        for (int j : {0, 5, 10, 3999}) {
+            const bool entry = (i == 5 && j == 10) || (i == 10 && j == 5);
+            ASSERT_EQUAL(entry ? 6.0 : 2.0, pairValue(table.friction, i, j));
+            ASSERT_EQUAL(entry ? 7.0 : 3.0, pairValue(table.heatConduction, i, j));
+        }
+    const std::vector<double> capacity = particleHeatCapacities(table, types);
+    ASSERT(capacity[5] == 5.0 && capacity[10] == 4.0 && capacity[0] == 4.0 && capacity[3999] == 4.0);
+}
+
+/**
+ * Types after the Context exists (docs/types.md, "Changing types"): they are read when the Context is created, so an
+ * entry naming a type no particle of the Context has is refused when added (nothing changes), and a step is refused
+ * while a particle's type differs from the Context's (nothing moves), until it is set back or the Context is
+ * reinitialized; an entry for a type the Context has takes effect at the next step, as if it had been there from the
+ * start (bit for bit: same seed, same pairs; the tables by class grow from one class to three).
+ */
+void testTypeChangesAfterTheContext() {
     Run later(4, 15);
     later.start();
-    later.integrator.addTypeHeatCapacity(9, 1.0);
-    assertThrowsMentioning([&]() { later.integrator.step(1); }, {"type heat capacity 0", "type 9"});
+    assertThrowsMentioning([&]() { later.integrator.addTypeHeatCapacity(9, 1.0); },
+                           {"type heat capacity 0", "type 9", "no particle of the Context", "its types are 0"});
+    assertThrowsMentioning([&]() { later.integrator.addTypePair(0, 9, 1.0, 1.0); }, {"type pair 0", "type 9"});
+    ASSERT_EQUAL(0, later.integrator.getNumTypeHeatCapacities());
+    ASSERT_EQUAL(0, later.integrator.getNumTypePairs());
+    later.integrator.step(1);   // nothing was added: the run goes on
+
+    const std::vector<Vec3> before = later.context->getState(State::Positions).getPositions();
+    later.integrator.setParticleType(5, 3);
+    assertThrowsMentioning([&]() { later.integrator.step(1); },
+                           {"particle 5", "changed to 3", "runs with type 0", "reinitialize"});
+    const std::vector<Vec3> after = later.context->getState(State::Positions).getPositions();
+    ASSERT(before == after);
+    later.integrator.setParticleType(5, 0);   // set back: the run goes on
+    later.integrator.step(1);
+    later.integrator.setParticleType(5, 3);
+    later.context->reinitialize(true);        // applied: the entry for type 3 is now one the Context has
+    later.integrator.addTypeHeatCapacity(3, 2*heatCapacity);
+    later.integrator.step(1);
+
+    // An entry for types the Context has, added after it was created, against the same entry from the start.
+    Run first(4, 16), added(4, 16);
+    for (Run* run : {&first, &added})
+        setMixtureTypes(run->scene, false);   // types 7, -3, 0 on the force, which the integrator takes
+    first.integrator.addTypePair(7, -3, 3*friction, 0.25*heatConduction);
+    first.start();
+    added.start();
+    added.integrator.addTypePair(7, -3, 3*friction, 0.25*heatConduction);
+    first.integrator.step(30);
+    added.integrator.step(30);
+    assertStatesIdentical(*first.context, *added.context, first.integrator, added.integrator,
+                          "a type pair added after the Context was created");
 }
 
 /**

@@ -38,11 +38,13 @@ def make_state(path, num_particles, platform="CPU", properties=None):
              velocities=state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)[order])
 
 
-def give_types(model, count):
+def give_types(model, count, entries=True):
     force, integrator = model.force, model.integrator
     for i in range(model.num_particles):
         force.setParticleType(i, i % count)
         integrator.setParticleType(i, i % count)
+    if not entries:
+        return
     for a in range(count):
         force.addTypeParameters(a, *force.getTaitParameters())
         integrator.addTypeHeatCapacity(a, integrator.getHeatCapacity())
@@ -66,6 +68,9 @@ def main():
     parser.add_argument("--types", type=int, default=0,
                         help="give the particles this many types in turn (needs particle types), each with argon's parameters in "
                              "its own entries, so that the physics is the same and only the type tables differ")
+    parser.add_argument("--no-type-entries", action="store_true",
+                        help="give the --types no entries: every type uses the force's and integrator's parameters")
+    parser.add_argument("--memory", action="store_true", help="also print the peak resident memory (MB)")
     arguments = parser.parse_args()
     if not os.path.exists(arguments.state):
         melt_properties = {"Precision": arguments.precision} if arguments.precision and arguments.melt_platform in (
@@ -75,7 +80,7 @@ def main():
     num_particles = len(saved["positions"])
     model = liquid_argon(num_particles, CUTOFF, arguments.estimator, seed=1, mode=GenDPDEIntegrator.Isoenergetic)
     if arguments.types > 0:
-        give_types(model, arguments.types)
+        give_types(model, arguments.types, not arguments.no_type_entries)
     properties = {"Threads": str(arguments.threads)} if arguments.threads else {}
     if arguments.precision:
         properties["Precision"] = arguments.precision
@@ -90,7 +95,12 @@ def main():
     else:
         for _ in range(arguments.count):
             context.getState(getEnergy=True, getForces=True)
-    print(f"{(time.perf_counter() - start) / arguments.count * 1e3:.3f}")
+    milliseconds = (time.perf_counter() - start) / arguments.count * 1e3
+    if arguments.memory:
+        import resource
+        print(f"{milliseconds:.3f} ms, peak {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
+    else:
+        print(f"{milliseconds:.3f}")
 
 
 if __name__ == "__main__":

@@ -84,7 +84,9 @@ class IntegrateGenDPDEStepKernel;
  * its own C_V (docs/types.md lists the identities).
  *
  * Parameters can be changed at any time and take effect at the next step, except the cutoff and the particle types,
- * which are read when the Context is created. Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
+ * which are read when the Context is created (or reinitialized): after that, a step is refused while a particle's
+ * type differs from the Context's, and an entry naming a type no particle of the Context has is refused when added
+ * (docs/types.md, "Changing types"). Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
  * moved. Constraints and virtual sites are not supported (refused when the Context is created).
  */
 class GenDPDEIntegrator : public OpenMM::Integrator {
@@ -253,6 +255,13 @@ private:
     std::vector<double> initialTemperatures;
     std::map<int, int> particleTypes;
     std::map<int, int> contextParticleTypes;   // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)
+    std::map<int, int> boundParticleTypes;     // particleTypes when the Context was created
+    std::vector<int> contextTypes;             // the distinct types of the bound Context, ascending
+    bool typesChangedWhileBound = false;       // setParticleType() was called since then
+    /** Refuse an entry naming a type that no particle of the bound Context has (it could never take effect). */
+    void requireContextType(const std::string& entry, int type) const;
+    /** Refuse a step if setParticleType() changed a type since the Context was created (docs/types.md). */
+    void requireBoundTypes();
     struct TypeHeatCapacity {
         int type;
         double heatCapacity;

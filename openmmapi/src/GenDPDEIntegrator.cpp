@@ -80,6 +80,42 @@ void GenDPDEIntegrator::setCutoffDistance(double distance) {
 
 void GenDPDEIntegrator::setParticleType(int index, int type) {
     setParticleTypeIn(particleTypes, integratorName, index, type);
+    typesChangedWhileBound = (context != nullptr);
+}
+
+void GenDPDEIntegrator::requireBoundTypes() {
+    if (!typesChangedWhileBound)
+        return;
+    // The first particle whose type differs from the Context's (a particle absent from a map has type 0).
+    auto differs = [&](const std::map<int, int>& types, const std::map<int, int>& other) {
+        for (const auto& entry : types)
+            if (particleTypeIn(other, entry.first) != entry.second)
+                return entry.first;
+        return -1;
+    };
+    int particle = differs(particleTypes, boundParticleTypes);
+    if (particle < 0)
+        particle = differs(boundParticleTypes, particleTypes);
+    if (particle < 0) {
+        typesChangedWhileBound = false;   // changed and changed back
+        return;
+    }
+    throw OpenMMException("GenDPDEIntegrator: the type of particle " + std::to_string(particle) + " was changed to "
+            + std::to_string(getParticleType(particle)) + " after the Context was created (it runs with type "
+            + std::to_string(particleTypeIn(boundParticleTypes, particle)) + "); particle types are read when the "
+            "Context is created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
+}
+
+void GenDPDEIntegrator::requireContextType(const std::string& entry, int type) const {
+    if (context == nullptr || std::binary_search(contextTypes.begin(), contextTypes.end(), type))
+        return;
+    std::string known;
+    for (int t : contextTypes)
+        known += (known.empty() ? "" : ", ") + std::to_string(t);
+    throw OpenMMException(entry + ": no particle of the Context has type " + std::to_string(type) + " (its types are "
+                          + known + "), so the entry could never take effect; particle types are read when the "
+                          "Context is created: set them, call Context.reinitialize(preserveState=True), then add "
+                          "the entry");
 }
 
 int GenDPDEIntegrator::getParticleType(int index) const {
@@ -94,6 +130,7 @@ void GenDPDEIntegrator::checkTypeHeatCapacity(int index, int type, double heatCa
     const std::string entry = std::string(integratorName) + " type heat capacity " + std::to_string(index) + " (type "
                               + std::to_string(type) + ")";
     requireInRange(entry, "heat capacity", heatCapacity, Ranges::heatCapacity);
+    requireContextType(entry, type);
     for (int other = 0; other < (int) typeHeatCapacities.size(); other++)
         if (other != index && typeHeatCapacities[other].type == type)
             throw OpenMMException(entry + ": type " + std::to_string(type) + " already has a heat capacity (entry "
@@ -127,6 +164,8 @@ void GenDPDEIntegrator::checkTypePair(int index, int type1, int type2, double fr
                               + std::to_string(type1) + ", " + std::to_string(type2) + ")";
     requireInRange(entry, "friction", friction, Ranges::friction);
     requireInRange(entry, "heat conduction", heatConduction, Ranges::heatConduction);
+    requireContextType(entry, type1);
+    requireContextType(entry, type2);
     for (int other = 0; other < (int) typePairs.size(); other++) {
         const TypePair& p = typePairs[other];
         if (other != index && ((p.type1 == type1 && p.type2 == type2) || (p.type1 == type2 && p.type2 == type1)))
@@ -320,7 +359,8 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     // The types (the integrator's or the GenDPDEForce's), and every type named by an entry, are checked here, before
     // anything is bound.
     const std::map<int, int> types = GenDPDEIntegratorUtilities::particleTypes(system, *this);
-    typePairTable(*this, ParticleTypeIndex(types, system.getNumParticles(), integratorName));
+    const ParticleTypeIndex typeIndex(types, system.getNumParticles(), integratorName);
+    typePairTable(*this, typeIndex);
     const std::vector<double> energies = initialInternalEnergies(system, types);
     int seed = randomSeed;
     if (seed == 0) {
@@ -332,6 +372,9 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies, types);
     pairRange = range;
     contextParticleTypes = types;
+    boundParticleTypes = particleTypes;
+    typesChangedWhileBound = false;
+    contextTypes = typeIndex.getTypes();
     context = &contextRef;
     owner = &contextRef.getOwner();
 }
@@ -357,6 +400,7 @@ void GenDPDEIntegrator::step(int steps) {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
     requireTemperatures();
+    requireBoundTypes();
     const GenDPDEStepTerms terms = GenDPDEIntegratorUtilities::stepTerms(*this, pairRange);
     if (terms.pairSweep && pairRange == 0.0)
         throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "

@@ -69,8 +69,33 @@ std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEFor
 }
 
 TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, const ParticleTypeIndex& types) {
+    // The classes: 0 for every type without an entry, then one per type named by an entry, in the order named.
     TypePairTable table;
-    const int n = table.numTypes = types.getNumTypes();
+    table.classOfType.assign(types.getNumTypes(), 0);
+    std::vector<int> typeOfClass = {-1};
+    auto classOf = [&](int type, const std::string& entry) {
+        int& assigned = table.classOfType[types.requireIndexOf(type, entry)];
+        if (assigned == 0) {
+            assigned = typeOfClass.size();
+            typeOfClass.push_back(type);
+        }
+        return assigned;
+    };
+    for (int entry = 0; entry < integrator.getNumTypeHeatCapacities(); entry++) {
+        int type;
+        double heatCapacity;
+        integrator.getTypeHeatCapacity(entry, type, heatCapacity);
+        classOf(type, "type heat capacity " + std::to_string(entry));
+    }
+    for (int entry = 0; entry < integrator.getNumTypePairs(); entry++) {
+        int type1, type2;
+        double friction, heatConduction;
+        integrator.getTypePairParameters(entry, type1, type2, friction, heatConduction);
+        classOf(type1, "type pair " + std::to_string(entry));
+        classOf(type2, "type pair " + std::to_string(entry));
+    }
+    // The values: the integrator's everywhere, then the entries'.
+    const int n = table.numClasses = typeOfClass.size();
     table.heatCapacity.assign(n, integrator.getHeatCapacity());
     table.friction.assign(n*n, integrator.getFriction());
     table.heatConduction.assign(n*n, integrator.getHeatConduction());
@@ -78,14 +103,13 @@ TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, 
         int type;
         double heatCapacity;
         integrator.getTypeHeatCapacity(entry, type, heatCapacity);
-        table.heatCapacity[types.requireIndexOf(type, "type heat capacity " + std::to_string(entry))] = heatCapacity;
+        table.heatCapacity[table.classOf(types.indexOf(type))] = heatCapacity;
     }
     for (int entry = 0; entry < integrator.getNumTypePairs(); entry++) {
         int type1, type2;
         double friction, heatConduction;
         integrator.getTypePairParameters(entry, type1, type2, friction, heatConduction);
-        const int a = types.requireIndexOf(type1, "type pair " + std::to_string(entry));
-        const int b = types.requireIndexOf(type2, "type pair " + std::to_string(entry));
+        const int a = table.classOf(types.indexOf(type1)), b = table.classOf(types.indexOf(type2));
         table.friction[a*n + b] = table.friction[b*n + a] = friction;
         table.heatConduction[a*n + b] = table.heatConduction[b*n + a] = heatConduction;
     }
@@ -96,6 +120,19 @@ std::vector<double> GenDPDEPlugin::particleHeatCapacities(const TypePairTable& t
     std::vector<double> result;
     result.reserve(types.getParticleTypeIndices().size());
     for (int t : types.getParticleTypeIndices())
-        result.push_back(table.heatCapacity[t]);
+        result.push_back(table.heatCapacity[table.classOf(t)]);
     return result;
+}
+
+bool IntegratorTypeTables::update(const GenDPDEIntegrator& integrator) {
+    TypePairTable next = typePairTable(integrator, types);
+    const bool classesChanged = particleClass.empty() || next.classOfType != table.classOfType;
+    table = std::move(next);
+    if (classesChanged) {
+        particleClass.clear();
+        particleClass.reserve(types.getParticleTypeIndices().size());
+        for (int t : types.getParticleTypeIndices())
+            particleClass.push_back(table.classOf(t));
+    }
+    return classesChanged;
 }

@@ -18,33 +18,34 @@
 namespace GenDPDEPlugin {
 
 /**
- * What every pair update of one step needs, read once per step from the integrator: the step, and the per-type
- * tables (GenDPDETypes.h) with the noise amplitudes derived from them. types holds the particle types of the Context
- * and must outlive the parameters.
+ * What every pair update of one step needs, read once per step: the step, and the integrator's tables by class
+ * (GenDPDETypes.h, already updated for this step) with the noise amplitudes derived from them. tables must outlive
+ * the parameters, which are cheap to copy (one per thread): they point to the tables and hold only their own small
+ * per-class-pair amplitudes.
  */
 struct PairSweepParameters {
     PairSweepParameters(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, double cutoff, int seed,
-                        long long step, const ParticleTypeIndex& types) :
+                        long long step, const IntegratorTypeTables& tables) :
             terms(terms), cutoff(cutoff), stepSize(integrator.getStepSize()), sqrtStepSize(std::sqrt(stepSize)),
-            table(typePairTable(integrator, types)), numTypes(table.numTypes),
-            particleType(types.getParticleTypeIndices().data()), seed((std::uint32_t) seed),
+            table(&tables.getTable()), numClasses(table->numClasses),
+            particleClass(tables.getParticleClasses().data()), seed((std::uint32_t) seed),
             step((std::uint64_t) step) {
-        for (int ab = 0; ab < numTypes*numTypes; ab++) {
-            heatNoise.push_back(std::sqrt(2.0*Physics::Boltzmann*table.heatConduction[ab]));
-            bathNoise.push_back(std::sqrt(2.0*table.friction[ab]*Physics::Boltzmann*integrator.getTemperature()));
+        for (int ab = 0; ab < numClasses*numClasses; ab++) {
+            heatNoise.push_back(std::sqrt(2.0*Physics::Boltzmann*table->heatConduction[ab]));
+            bathNoise.push_back(std::sqrt(2.0*table->friction[ab]*Physics::Boltzmann*integrator.getTemperature()));
         }
     }
-    /** The type index of particle i. */
-    int typeOf(int i) const {
-        return numTypes == 1 ? 0 : particleType[i];
+    /** The class of particle i. */
+    int classOf(int i) const {
+        return numClasses == 1 ? 0 : particleClass[i];
     }
     GenDPDEStepTerms terms;
     double cutoff, stepSize, sqrtStepSize;
-    TypePairTable table;             // C_V per type, gamma and kappa per pair of types (index a*numTypes + b)
-    std::vector<double> heatNoise;   // alpha = sqrt(2 k_B kappa) per pair of types
-    std::vector<double> bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode per pair of types
-    int numTypes;
-    const int* particleType;
+    const TypePairTable* table;      // C_V per class, gamma and kappa per pair of classes (index a*numClasses + b)
+    std::vector<double> heatNoise;   // alpha = sqrt(2 k_B kappa) per pair of classes
+    std::vector<double> bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode per pair of classes
+    int numClasses;
+    const int* particleClass;
     std::uint32_t seed;
     std::uint64_t step;
 };
@@ -89,11 +90,11 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
             continue;
         const double omegaR = Physics::gendpdeRandomWeight(pair.r, p.cutoff);
         CounterRandom::PairStream random(p.seed, p.step, i, j);
-        const int a = p.typeOf(i), b = p.typeOf(j), ab = a*p.numTypes + b;
+        const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
-                p.table.heatCapacity[a], p.table.heatCapacity[b], Physics::Boltzmann);
+                p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
         if (p.terms.dissipation) {
-            const double friction = p.table.friction[ab];
+            const double friction = p.table->friction[ab];
             const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
                     friction*(1.0 + temperatures.frictionFactor),
                     std::sqrt(2.0*friction*temperatures.pairThermalEnergy), p.stepSize, p.sqrtStepSize,
@@ -102,7 +103,7 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
             energies[j] -= 0.5*kineticChange;
         }
         if (p.terms.conduction) {
-            const double heat = Physics::gendpdeConductiveHeat(omegaR, p.table.heatConduction[ab], p.heatNoise[ab],
+            const double heat = Physics::gendpdeConductiveHeat(omegaR, p.table->heatConduction[ab], p.heatNoise[ab],
                     temperatures.inverseTemperatureDifference, p.stepSize, p.sqrtStepSize, random.normal());
             energies[i] += heat;
             energies[j] -= heat;
@@ -124,9 +125,9 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(p.seed, p.step, i, j);
-        const int ab = p.typeOf(i)*p.numTypes + p.typeOf(j);
+        const int ab = p.classOf(i)*p.numClasses + p.classOf(j);
         Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
-                                       p.table.friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
+                                       p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
                                        velocities[i], velocities[j], random.normal());
     }
 }

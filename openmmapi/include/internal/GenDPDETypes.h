@@ -60,19 +60,60 @@ struct TaitParameters {
 /** Per type index: the type's own Tait parameters (addTypeParameters), else the force's. */
 std::vector<TaitParameters> taitParametersByType(const GenDPDEForce& force, const ParticleTypeIndex& types);
 
-/** The integrator's per-type and per-type-pair parameters, by type index (OpenMM units). */
+/**
+ * The integrator's per-type and per-type-pair parameters (OpenMM units), by class: each type named by an entry
+ * (addTypeHeatCapacity, addTypePair) is a class of its own, and every other type shares class 0, which has the
+ * integrator's own parameters. The tables therefore grow with the entries, not with the number of types: 4000
+ * types without entries cost what one type costs (docs/types.md), and only types that have entries are paired.
+ */
 struct TypePairTable {
-    int numTypes = 1;
-    std::vector<double> heatCapacity;     // C_V of type t (kJ/(mol K)), T entries
-    std::vector<double> friction;         // gamma of the pair (t, u) at t*T + u (amu/ps), T*T entries, symmetric
-    std::vector<double> heatConduction;   // kappa of the pair (t, u) at t*T + u (kJ K/(mol ps)), symmetric
+    int numClasses = 1;
+    std::vector<int> classOfType;         // the class of type index t, T entries
+    std::vector<double> heatCapacity;     // C_V of class c (kJ/(mol K)), numClasses entries
+    std::vector<double> friction;         // gamma of the classes (c, d) at c*numClasses + d (amu/ps), symmetric
+    std::vector<double> heatConduction;   // kappa of the classes (c, d) at c*numClasses + d (kJ K/(mol ps)), symmetric
+    /** The class of type index typeIndex. */
+    int classOf(int typeIndex) const {
+        return classOfType[typeIndex];
+    }
 };
 
-/** The tables of an integrator: addTypeHeatCapacity and addTypePair entries, the integrator's defaults elsewhere. */
+/**
+ * The tables of an integrator: addTypeHeatCapacity and addTypePair entries, the integrator's defaults elsewhere.
+ * An entry naming a type that no particle has is refused (ParticleTypeIndex::requireIndexOf).
+ */
 TypePairTable typePairTable(const GenDPDEIntegrator& integrator, const ParticleTypeIndex& types);
 
 /** C_V of every particle (kJ/(mol K)). */
 std::vector<double> particleHeatCapacities(const TypePairTable& table, const ParticleTypeIndex& types);
+
+/**
+ * The integrator's tables in one Context, as its kernels read them: the types of the Context (fixed), the tables
+ * by class (re-read at each update(), since entries and parameters may change between steps) and the class of
+ * every particle (rebuilt only when the entries change which types have a class of their own).
+ */
+class IntegratorTypeTables {
+public:
+    explicit IntegratorTypeTables(const ParticleTypeIndex& types) : types(types) {
+    }
+    /** Re-read the integrator's entries and parameters. Returns true if some particle's class changed. */
+    bool update(const GenDPDEIntegrator& integrator);
+    const ParticleTypeIndex& getTypes() const {
+        return types;
+    }
+    /** The tables as of the last update(). */
+    const TypePairTable& getTable() const {
+        return table;
+    }
+    /** The class of every particle as of the last update() (empty before the first). */
+    const std::vector<int>& getParticleClasses() const {
+        return particleClass;
+    }
+private:
+    ParticleTypeIndex types;
+    TypePairTable table;
+    std::vector<int> particleClass;
+};
 
 } // namespace GenDPDEPlugin
 

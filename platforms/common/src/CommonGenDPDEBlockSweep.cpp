@@ -22,7 +22,7 @@ enum {Cells, Blocks, CellStart, SortedAtom, SortedSlot, Posq, PosqCorrection, Bo
 namespace SweepArgument {
 enum {FirstRank, NumRanks, Cells, Blocks, Header, BlockAtoms, BlockSlots, LevelStart, BlockPairs, PairCapacity,
       CellStart, SortedAtom, SortedSlot, Posq, PosqCorrection, Velm, Energies, BoxA, BoxB, BoxC, Parameters, AtomType,
-      PairTable, HeatCapacityTable, NumTypes, Terms, Seed, StepLow, StepHigh, StepIndex, ZigguratX, ZigguratF,
+      PairTable, HeatCapacityTable, NumClasses, Terms, Seed, StepLow, StepHigh, StepIndex, ZigguratX, ZigguratF,
       ZigguratRatio, Status, Failure, FailureEnergy, Count};
 }
 
@@ -142,7 +142,7 @@ void CommonGenDPDEBlockSweep::compile() {
                 .later(PairCapacity).later(CellStart).later(SortedAtom).later(SortedSlot).array(Posq, cc.getPosq())
                 .array(PosqCorrection, cc.getPosqCorrection()).array(Velm, cc.getVelm()).later(Energies).later(BoxA)
                 .later(BoxB).later(BoxC).later(Parameters).later(AtomType).later(PairTable).later(HeatCapacityTable)
-                .later(NumTypes).later(Terms).later(Seed).later(StepLow).later(StepHigh).later(StepIndex)
+                .later(NumClasses).later(Terms).later(Seed).later(StepLow).later(StepHigh).later(StepIndex)
                 .array(ZigguratX, zigguratX).array(ZigguratF, zigguratF).array(ZigguratRatio, zigguratRatio)
                 .later(Status).later(Failure).later(FailureEnergy).done(Count);
     }
@@ -165,7 +165,7 @@ void CommonGenDPDEBlockSweep::allocate() {
 
 void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepStep& step, ArrayInterface& energies,
                                   ArrayInterface& atomType, ArrayInterface& pairTable,
-                                  ArrayInterface& heatCapacityTable, int numTypes, ArrayInterface& status) {
+                                  ArrayInterface& heatCapacityTable, int numClasses, ArrayInterface& status) {
     const std::array<int, 3>& cells = grid.getNumCells();
     if (cells != gridCells) {
         gridCells = cells;
@@ -213,7 +213,7 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
         sweepKernel->setArg(AtomType, atomType);
         sweepKernel->setArg(PairTable, pairTable);
         sweepKernel->setArg(HeatCapacityTable, heatCapacityTable);
-        sweepKernel->setArg(NumTypes, numTypes);
+        sweepKernel->setArg(NumClasses, numClasses);
         sweepKernel->setArg(Terms, step.terms);
         sweepKernel->setArg(Seed, step.seed);
         sweepKernel->setArg(StepLow, (unsigned int) step.step);

@@ -54,10 +54,13 @@ public:
      * the status words. Returns whether anything changed.
      */
     bool adjustCapacities(int mostParticles, int mostPairs);
-    /** Order the pairs of every block and sweep them, colour by colour, on this grid (built at these positions). */
+    /**
+     * Order the pairs of every block and sweep them, colour by colour, on this grid (built at these positions).
+     * atomType: each particle's class by original index (GenDPDETypes.h), the index into the tables by class.
+     */
     void run(CommonGenDPDECellGrid& grid, const BlockSweepStep& step, OpenMM::ArrayInterface& energies,
              OpenMM::ArrayInterface& atomType, OpenMM::ArrayInterface& pairTable,
-             OpenMM::ArrayInterface& heatCapacityTable, int numTypes, OpenMM::ArrayInterface& status);
+             OpenMM::ArrayInterface& heatCapacityTable, int numClasses, OpenMM::ArrayInterface& status);
     /** The particle and internal energy reported by the failed block of this rank. */
     void failure(int rank, int& particle, double& energy);
     int getMaxParticles() const {

@@ -65,15 +65,13 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     noForceErrors.upload(std::vector<int>(2, DeviceStatus::NoValue));
     setInternalEnergies(internalEnergies);
 
-    // Per-type parameters (GenDPDETypes.h): each particle's type index by original index; the tables by type.
-    types.reset(new ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(), "GenDPDEIntegrator"));
-    const int numTypes = types->getNumTypes();
-    std::vector<int> typeIndex = types->getParticleTypeIndices();
-    typeIndex.resize(numAtoms, 0);   // padding atoms
+    // Per-type parameters (GenDPDETypes.h): each particle's class by original index, the tables by class, all
+    // uploaded by uploadTypeTables() (their sizes follow the integrator's entries).
+    typeTables.reset(new IntegratorTypeTables(ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(),
+                                                                "GenDPDEIntegrator")));
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
-    atomType.upload(typeIndex);
-    pairTable.initialize(cc, numTypes*numTypes, 4*mixedSize, "gendpdePairTable");
-    heatCapacityTable.initialize(cc, numTypes, mixedSize, "gendpdeHeatCapacityTable");
+    pairTable.initialize(cc, 1, 4*mixedSize, "gendpdePairTable");
+    heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
 
     grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff > 0.0 ? cutoff : 1.0));
     std::map<std::string, std::string> defines = grid->defines();
@@ -144,13 +142,20 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
 void CommonIntegrateGenDPDEStepKernel::uploadTypeTables(const GenDPDEIntegrator& integrator,
                                                         const GenDPDEStepTerms& terms) {
     // The integrator's parameters may change between runs of steps; the tables are uploaded when they do.
-    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *types);   // as the host platforms' sweep
+    if (typeTables->update(integrator)) {
+        std::vector<int> particleClass = typeTables->getParticleClasses();
+        particleClass.resize(cc.getNumAtoms(), 0);   // padding atoms
+        atomType.upload(particleClass);
+    }
+    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *typeTables);   // as the host platforms' sweep
     std::vector<double> pairParameters;
-    for (int ab = 0; ab < p.numTypes*p.numTypes; ab++)
-        pairParameters.insert(pairParameters.end(), {p.table.friction[ab], p.table.heatConduction[ab],
+    for (int ab = 0; ab < p.numClasses*p.numClasses; ab++)
+        pairParameters.insert(pairParameters.end(), {p.table->friction[ab], p.table->heatConduction[ab],
                                                      p.heatNoise[ab], p.bathNoise[ab]});
-    const std::vector<double>& capacity = p.table.heatCapacity;
+    const std::vector<double>& capacity = p.table->heatCapacity;
     if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
+        pairTable.resize(p.numClasses*p.numClasses);
+        heatCapacityTable.resize(p.numClasses);
         uploadValues(pairTable, pairParameters, mixedIsDouble(cc));
         uploadValues(heatCapacityTable, capacity, mixedIsDouble(cc));
         uploadedPairTable = pairParameters;
@@ -230,7 +235,8 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         step.seed = (unsigned int) seed;
         step.step = cc.getStepCount();
         step.stepIndex = stepIndex;
-        sweep->run(*cellGrid, step, energies, atomType, pairTable, heatCapacityTable, types->getNumTypes(), status);
+        sweep->run(*cellGrid, step, energies, atomType, pairTable, heatCapacityTable,
+                   typeTables->getTable().numClasses, status);
     }
     {
         using namespace FinishArgument;

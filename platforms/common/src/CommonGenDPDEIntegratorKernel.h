@@ -57,7 +57,7 @@ public:
     /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
     static const int pollInterval = 256;
 private:
-    /** The sweep's tables by type, uploaded when the integrator's parameters changed. */
+    /** The sweep's tables by class (and each particle's class), uploaded when the integrator's entries changed. */
     void uploadTypeTables(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     /** Read the status words: adjust the sweep's capacities, and throw the run's failure if it stopped. */
     void readStatus(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
@@ -81,8 +81,8 @@ private:
     std::unique_ptr<CommonGenDPDEBlockSweep> sweep;
     int streamedBlocks = 0;
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, status, noForceErrors, kinetic;
-    std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()
-    OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // type by original index; per-type parameters
+    std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
+    OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // class by original index; per-class parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
     OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel;
     mutable std::vector<double> hostEnergies;

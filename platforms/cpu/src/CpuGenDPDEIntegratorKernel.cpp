@@ -66,7 +66,8 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
     const int* order = sweepOrder.getOrder().data();
     const std::vector<int>& groupStart = sweepOrder.getGroupStart();
     const int* blockStart = sweepOrder.getBlockStart().data();
-    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *types);
+    typeTables->update(integrator);
+    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
     const ParticlePair* pair = pairs.begin();
     const double* inverseMass = inverseMasses.data();
     Vec3* v = velocities.data();

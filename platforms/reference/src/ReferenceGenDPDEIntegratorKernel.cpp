@@ -21,7 +21,8 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
     this->cutoff = cutoff;
     this->seed = seed;
     internalEnergies = energies;
-    types.reset(new ParticleTypeIndex(particleTypes, system.getNumParticles(), "GenDPDEIntegrator"));
+    typeTables.reset(new IntegratorTypeTables(ParticleTypeIndex(particleTypes, system.getNumParticles(),
+                                                                "GenDPDEIntegrator")));
     inverseMasses.resize(system.getNumParticles());
     for (int i = 0; i < system.getNumParticles(); i++) {
         double mass = system.getParticleMass(i);
@@ -92,7 +93,8 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
                      anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride);
     const std::vector<int>& order = sweepOrder.getOrder();
-    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *types);
+    typeTables->update(integrator);
+    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
     if (!terms.internalEnergies) {
         sweepIsothermal(pairs.begin(), order.data(), order.size(), parameters, inverseMasses.data(), velocities.data());
         return;

@@ -80,7 +80,7 @@ protected:
                                 std::vector<OpenMM::Vec3>& velocities, long long step);
     double cutoff = 0.0;
     int seed = 0;
-    std::unique_ptr<ParticleTypeIndex> types;   // the particle types given to initialize()
+    std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
     GenDPDESweepOrder sweepOrder;

@@ -316,7 +316,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
 /** What every pair update of a step shares (GenDPDEPairSweep.h's PairSweepParameters, on the device). */
 typedef struct {
     mixed cutoff, stepSize, sqrtStepSize, boltzmann;
-    int dissipation, conduction, internalEnergies, numTypes;
+    int dissipation, conduction, internalEnergies, numClasses;
     unsigned int seed, stepLow, stepHigh;
 } SweepConstants;
 
@@ -340,8 +340,8 @@ inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction
 /**
  * One pair update of the sweep (GenDPDEPairSweep.h) on copies of the two particles' velocities and internal energies:
  * i < j original indices, d = r_i - r_j. Returns whether an internal energy is now <= 0 (Isoenergetic mode).
- * pairTable[t_i numTypes + t_j] = (friction, heat conduction, alpha = sqrt(2 k_B kappa), sigma of the Isothermal
- * bath), heatCapacityTable[t] = C_V of type t.
+ * typeI, typeJ: the particles' classes (GenDPDETypes.h); pairTable[c_i numClasses + c_j] = (friction, heat conduction,
+ * alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath), heatCapacityTable[c] = C_V of class c.
  */
 inline DEVICE bool pairUpdate(int i, int j, mixed3 d, int typeI, int typeJ, mixed4* vi, mixed4* vj, mixed* ei,
         mixed* ej, SweepConstants c, GLOBAL const mixed4* RESTRICT pairTable,
@@ -352,7 +352,7 @@ inline DEVICE bool pairUpdate(int i, int j, mixed3 d, int typeI, int typeJ, mixe
         return false;
     const mixed omegaR = gendpdeRandomWeight(r, c.cutoff);
     const mixed3 e = d*(1/r);
-    const mixed4 pairParameters = pairTable[typeI*c.numTypes + typeJ];
+    const mixed4 pairParameters = pairTable[typeI*c.numClasses + typeJ];
     const mixed friction = pairParameters.x;
     GenDPDEStream random;
     initPairStream(&random, c.seed, c.stepLow, c.stepHigh, (unsigned int) i, (unsigned int) j);
@@ -538,7 +538,7 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
         GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
         GLOBAL const real4* RESTRICT posqCorrection, GLOBAL mixed4* RESTRICT velm, GLOBAL mixed* RESTRICT energies,
         mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed4 parameters, GLOBAL const int* RESTRICT atomType,
-        GLOBAL const mixed4* RESTRICT pairTable, GLOBAL const mixed* RESTRICT heatCapacityTable, int numTypes,
+        GLOBAL const mixed4* RESTRICT pairTable, GLOBAL const mixed* RESTRICT heatCapacityTable, int numClasses,
         int terms, unsigned int seed, unsigned int stepLow, unsigned int stepHigh, int stepIndex,
         GLOBAL const randomReal* RESTRICT zigguratX, GLOBAL const randomReal* RESTRICT zigguratF,
         GLOBAL const randomReal* RESTRICT zigguratRatio, GLOBAL int* RESTRICT status, GLOBAL int* RESTRICT failure,
@@ -564,7 +564,7 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
     c.dissipation = (terms & 1) != 0;
     c.conduction = (terms & 2) != 0;
     c.internalEnergies = (terms & 4) != 0;
-    c.numTypes = numTypes;
+    c.numClasses = numClasses;
     c.seed = seed;
     c.stepLow = stepLow;
     c.stepHigh = stepHigh;

@@ -3,13 +3,10 @@
 
 /* Loops over index ranges on several threads (the CPU platform's "Threads"), for code whose result must not depend on
  * how the work is shared: the body writes only what its own range owns, so any assignment of ranges to threads gives
- * the same result. One thread runs the loop sequentially.
- *
- * The threads are an OpenMP team. Its threads wait for the next loop spinning for a while before they sleep, so the
- * short loops of a step (a sweep runs eight in a row) start in microseconds; OpenMM's ThreadPool wakes its threads
- * through a condition variable, measured at 35-45 us per loop on the 2-core development machine
- * (docs/performance.md). */
+ * the same result. One thread runs the loop sequentially. The threads are the caller's ThreadTeam (ThreadTeam.h:
+ * kept between loops; waiting threads spin briefly, then sleep). */
 
+#include "internal/ThreadTeam.h"
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -29,30 +26,38 @@ namespace GenDPDEPlugin {
  */
 template <class Body>
 void parallelFor(int numThreads, int count, int chunk, Body body) {
-    if (numThreads < 2 || count <= chunk) {
+    ThreadTeam* team = (numThreads < 2 || count <= chunk) ? nullptr : ThreadTeam::forCaller(numThreads);
+    if (team == nullptr) {
         body(0, count);
         return;
     }
-    struct alignas(64) Counter {   // a cache line of its own: every thread writes it
-        std::atomic<int> next{0};
-    } counter;
-    std::exception_ptr failure;
-    std::mutex failureLock;
-    #pragma omp parallel num_threads(numThreads)
-    {
+    struct Shared {
+        Shared(const Body& body, int count, int chunk) : body(body), count(count), chunk(chunk) {
+        }
+        const Body& body;
+        const int count, chunk;
+        alignas(64) std::atomic<int> next{0};   // a cache line of its own: every thread writes it
+        alignas(64) std::exception_ptr failure;
+        std::mutex failureLock;
+    } shared(body, count, chunk);
+    ThreadTeam::Job job;
+    job.data = &shared;
+    job.work = [](void* data, int) {
+        Shared& s = *static_cast<Shared*>(data);
         try {
-            Body local = body;
-            for (int begin = counter.next.fetch_add(chunk); begin < count; begin = counter.next.fetch_add(chunk))
-                local(begin, std::min(count, begin + chunk));
+            Body local = s.body;
+            for (int begin = s.next.fetch_add(s.chunk); begin < s.count; begin = s.next.fetch_add(s.chunk))
+                local(begin, std::min(s.count, begin + s.chunk));
         }
         catch (...) {
-            std::lock_guard<std::mutex> guard(failureLock);
-            if (!failure)
-                failure = std::current_exception();
+            std::lock_guard<std::mutex> guard(s.failureLock);
+            if (!s.failure)
+                s.failure = std::current_exception();
         }
-    }
-    if (failure)
-        std::rethrow_exception(failure);
+    };
+    team->run(job);
+    if (shared.failure)
+        std::rethrow_exception(shared.failure);
 }
 
 /** The number of ranges of `chunk` indices that cover [0, count). */

@@ -237,8 +237,8 @@ void testTablesByClass() {
  * Types after the Context exists (docs/types.md, "Changing types"): they are read when the Context is created, so an
  * entry naming a type no particle of the Context has is refused when added (nothing changes), and a step is refused
  * while a particle's type differs from the Context's (nothing moves), until it is set back or the Context is
- * reinitialized; an entry for a type the Context has takes effect at the next step, as if it had been there from the
- * start (bit for bit: same seed, same pairs; the tables by class grow from one class to three).
+ * reinitialized (setting the type a particle runs with, here the force's, is no change); an entry for a type the
+ * Context has takes effect at the next step, as if it had been there from the start (bit for bit: same seed, same pairs; the tables by class grow from one class to three).
  */
 void testTypeChangesAfterTheContext() {
     Run later(4, 15);
@@ -271,6 +271,7 @@ void testTypeChangesAfterTheContext() {
     first.start();
     added.start();
     added.integrator.addTypePair(7, -3, 3*friction, 0.25*heatConduction);
+    added.integrator.setParticleType(0, 7);   // the type particle 0 runs with (the force's): not a change
     first.integrator.step(30);
     added.integrator.step(30);
     assertStatesIdentical(*first.context, *added.context, first.integrator, added.integrator,

@@ -255,7 +255,6 @@ private:
     std::vector<double> initialTemperatures;
     std::map<int, int> particleTypes;
     std::map<int, int> contextParticleTypes;   // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)
-    std::map<int, int> boundParticleTypes;     // particleTypes when the Context was created
     std::vector<int> contextTypes;             // the distinct types of the bound Context, ascending
     bool typesChangedWhileBound = false;       // setParticleType() was called since then
     /** Refuse an entry naming a type that no particle of the bound Context has (it could never take effect). */

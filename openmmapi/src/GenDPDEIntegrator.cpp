@@ -86,24 +86,16 @@ void GenDPDEIntegrator::setParticleType(int index, int type) {
 void GenDPDEIntegrator::requireBoundTypes() {
     if (!typesChangedWhileBound)
         return;
-    // The first particle whose type differs from the Context's (a particle absent from a map has type 0).
-    auto differs = [&](const std::map<int, int>& types, const std::map<int, int>& other) {
-        for (const auto& entry : types)
-            if (particleTypeIn(other, entry.first) != entry.second)
-                return entry.first;
-        return -1;
-    };
-    int particle = differs(particleTypes, boundParticleTypes);
-    if (particle < 0)
-        particle = differs(boundParticleTypes, particleTypes);
-    if (particle < 0) {
-        typesChangedWhileBound = false;   // changed and changed back
-        return;
+    // The first particle whose type now differs from the one it runs with (the integrator's or the force's).
+    for (const auto& entry : particleTypes) {
+        const int running = particleTypeIn(contextParticleTypes, entry.first);
+        if (entry.second != running)
+            throw OpenMMException("GenDPDEIntegrator: the type of particle " + std::to_string(entry.first)
+                    + " was changed to " + std::to_string(entry.second) + " after the Context was created (it runs "
+                    "with type " + std::to_string(running) + "); particle types are read when the Context is "
+                    "created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
     }
-    throw OpenMMException("GenDPDEIntegrator: the type of particle " + std::to_string(particle) + " was changed to "
-            + std::to_string(getParticleType(particle)) + " after the Context was created (it runs with type "
-            + std::to_string(particleTypeIn(boundParticleTypes, particle)) + "); particle types are read when the "
-            "Context is created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
+    typesChangedWhileBound = false;   // every change gave a particle the type it runs with
 }
 
 void GenDPDEIntegrator::requireContextType(const std::string& entry, int type) const {
@@ -372,7 +364,6 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies, types);
     pairRange = range;
     contextParticleTypes = types;
-    boundParticleTypes = particleTypes;
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
     context = &contextRef;

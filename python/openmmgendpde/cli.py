@@ -13,13 +13,13 @@ from .presets import ARGON_CUTOFFS
 DEFAULT_CUTOFF = ARGON_CUTOFFS[1].cutoff
 
 
-def add_platform(parser):
+def add_platform(parser, default="Reference"):
     import openmm
     from . import KERNEL_NAMES
     platforms = [openmm.Platform.getPlatform(i) for i in range(openmm.Platform.getNumPlatforms())]
-    parser.add_argument("--platform", default="Reference",
+    parser.add_argument("--platform", default=default,
                         choices=[p.getName() for p in platforms if p.supportsKernels(KERNEL_NAMES)],
-                        help="OpenMM platform, one that runs this plugin here (default Reference)")
+                        help=f"OpenMM platform, one that runs this plugin here (default {default})")
     parser.add_argument("--threads", type=int,
                         help="threads of the CPU platform (its Threads property; default: OpenMM's, one per core)")
     parser.add_argument("--precision", choices=("single", "mixed", "double"),

@@ -333,8 +333,7 @@ def run(arguments):
 
 
 def add_arguments(parser):
-    add_platform(parser)
-    parser.set_defaults(platform="CPU")
+    add_platform(parser, default="CPU")
     add_output(parser, "slab.csv and the plots")
     parser.add_argument("--duration", type=float, default=100.0, help="time units per run (default 100)")
     parser.add_argument("--every", type=float, default=10.0, help="time units between samples (default 10)")

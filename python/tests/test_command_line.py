@@ -177,3 +177,19 @@ def test_help_names_the_estimators_a_subcommand_runs(name, capsys):
         main(["--help"])
     summary = re.search(rf"\n    {name} +(.*?)\n    \S", capsys.readouterr().out, re.S).group(1)
     assert len(choices) >= 2 and all(re.search(rf"\b{choice}\b", summary) for choice in choices), (choices, summary)
+
+
+def test_platform_help_states_the_default_in_use():
+    """Each subcommand's --platform help names the default its parser really uses (slab's is CPU, not Reference)."""
+    import argparse
+    from openmmgendpde.__main__ import SUBCOMMANDS
+    checked = 0
+    for name, module, _ in SUBCOMMANDS:
+        parser = argparse.ArgumentParser()
+        module.add_arguments(parser)
+        for action in parser._actions:
+            if "--platform" in action.option_strings:
+                default = parser.get_default("platform")
+                assert f"(default {default})" in action.help, (name, default, action.help)
+                checked += 1
+    assert checked == len(SUBCOMMANDS) - 1   # all but benchmark-cpu, which runs CPU and Reference side by side

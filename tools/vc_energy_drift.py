@@ -7,7 +7,9 @@ number of steps at each step size; printed: the change of K + U + sum eps per N 
 
 With --crossings (V-C runs only), the particles whose one-sidedness a^2 = c^2 |g|^2/(n0^2 + eps^2) crosses V-C's
 threshold t = 0.4 are counted step by step, from the positions (numpy and scipy's k-d tree; the same formulas as
-the physics core, openmmapi/include/internal/GenDPDEPhysicsCore.h), over the first --crossing-steps steps.
+the physics core, openmmapi/include/internal/GenDPDEPhysicsCore.h), over the first --crossing-steps steps, with the
+fraction of the particles above t at the end of them and the median change of a^2 in one step for the particles
+within 0.1 of t (how many steps a crossing of the threshold's bend takes).
 --mode Conservative runs velocity Verlet alone (no pair dynamics) instead of the isoenergetic mode.
 """
 
@@ -68,14 +70,15 @@ def run(system, estimator, step_size, steps, checkpoints, seed, platform, mode, 
     done = 0
     if crossing_steps:
         cutoff = model.force.getCutoffDistance().value_in_unit(NM)
-        above = one_sidedness(model.positions(), model.box, cutoff) > THRESHOLD
-        count = 0
+        a2 = one_sidedness(model.positions(), model.box, cutoff)
+        count, changes = 0, []
         for _ in range(crossing_steps):
             model.integrator.step(1)
-            now = one_sidedness(model.positions(), model.box, cutoff) > THRESHOLD
-            count += int((now != above).sum())
-            above = now
-        crossings = (count / crossing_steps, above.mean())
+            now = one_sidedness(model.positions(), model.box, cutoff)
+            count += int(((now > THRESHOLD) != (a2 > THRESHOLD)).sum())
+            changes.append(np.abs(now - a2)[np.abs(a2 - THRESHOLD) < 0.1])
+            a2 = now
+        crossings = (count / crossing_steps, (a2 > THRESHOLD).mean(), np.median(np.concatenate(changes)))
         done = crossing_steps
     errors = []
     for checkpoint in checkpoints:
@@ -104,7 +107,7 @@ def main():
     parser.add_argument("--crossing-steps", type=int, default=500, help="steps over which to count them (500)")
     arguments = parser.parse_args()
     print("system   estimator   dt*   seed   steps: error / (N k_B T0) at each checkpoint   [crossings per step, "
-          "fraction above t]   seconds")
+          "fraction above t at the end, median |change of a^2| per step within 0.1 of t]   seconds")
     for system in arguments.systems:
         for estimator in arguments.estimators:
             for step_size in arguments.step_sizes:
@@ -115,7 +118,7 @@ def main():
                     errors, crossings, seconds = run(system, estimator, step_size, steps, checkpoints, seed,
                                                      arguments.platform, arguments.mode, counting,
                                                      arguments.equilibrate)
-                    extra = f"   [{crossings[0]:.2f}, {crossings[1]:.3f}]" if crossings else ""
+                    extra = f"   [{crossings[0]:.2f}, {crossings[1]:.3f}, {crossings[2]:.4f}]" if crossings else ""
                     print(f"{system:8s} {estimator:3s} {step_size:7.4f} {seed:3d}   "
                           + "  ".join(f"{c}: {e:+.2e}" for c, e in zip(checkpoints, errors))
                           + f"{extra}   {seconds:.0f} s", flush=True)

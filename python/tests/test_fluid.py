@@ -289,6 +289,33 @@ def test_stability_criterion_separates_a_good_step_from_a_blow_up():
     assert not _passes(parameters, "VB", "Isoenergetic", 1.0, 1000, 500, "CPU", 1)
 
 
+def test_suggested_vc_step_drifts_at_a_free_surface_as_little_as_vb_at_its_own(monkeypatch):
+    """suggest_time_step for V-C against the measured energy drift at a free surface (docs/interfaces.md, "V-C's
+    energy error"). The stability limits (measured on a bulk liquid, where V-C is V-B) are set to V-B's measured
+    Isoenergetic limit 0.134 (docs/fluids.md) so that only the estimator's own rule differs. Then a 1000-particle
+    argon droplet in vacuum runs 10 time units from the lattice with each estimator at its suggested step, and the
+    change of K + U + sum eps per N k_B T0 is compared: measured -2.1e-4 (V-B at 0.067) and -2.1e-4 (V-C at 0.0067);
+    at V-B's step V-C's is -2.1e-2, a hundred times more, as it was before V-C had its own step. Tolerance: V-C's
+    error within a factor 2 of V-B's either way (over seeds 5-7 the ratio was 1.0-1.25)."""
+    import openmm
+    from openmmgendpde import stability
+    from openmmgendpde.slab import argon_model, droplet_positions
+    monkeypatch.setattr(stability, "largest_stable_step", lambda *arguments, **options: 0.134)
+    parameters = coarse_grain(ARGON, 5, neighbors=20)
+    errors, steps = {}, {}
+    for estimator in ("VB", "VC"):
+        steps[estimator], step = stability.suggest_time_step(parameters, estimator)
+        positions, box, _ = droplet_positions()
+        model = argon_model(positions, box, estimator, platform="CPU", seed=5)
+        model.integrator.setStepSize(step)
+        kt = (unit.MOLAR_GAS_CONSTANT_R * model.temperature).value_in_unit(unit.kilojoule_per_mole) * len(positions)
+        start = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+        model.integrator.step(int(round(10.0 / steps[estimator])))
+        errors[estimator] = (model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole) - start) / kt
+    assert steps["VB"] == pytest.approx(0.067)
+    assert 0.5 < errors["VC"] / errors["VB"] < 2, (steps, errors)
+
+
 def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
     """A case with a known answer for the wave-decay measurement that calibrate uses for the conductivity: particles
     on an FCC lattice too heavy to move (1e9 amu: they drift 1e-5 of a spacing), no conservative force, no friction,

@@ -106,8 +106,8 @@ double processCpuSeconds() {
 }
 
 /**
- * Between loops the workers spin for ThreadTeam::spinMicroseconds() (50 us), then sleep: over 300 ms without loops a
- * team of 3 workers uses about 3 x 50 us of processor time. The bound, 30 ms, allows for the processor time of
+ * Between loops the workers spin for ThreadTeam::spinMicroseconds() (20 us), then sleep: over 300 ms without loops a
+ * team of 3 workers uses about 3 x 20 us of processor time. The bound, 30 ms, allows for the processor time of
  * waking and of scheduling noise; workers that kept spinning would use up to 3 x 300 ms.
  */
 void testIdleWorkersSleep() {

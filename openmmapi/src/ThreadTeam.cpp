@@ -37,7 +37,7 @@ thread_local CallerTeams callerTeams;
 int ThreadTeam::spinMicroseconds() {
     static const int spin = []() {
         const char* setting = std::getenv("GENDPDE_THREAD_SPIN_US");
-        return setting != nullptr ? std::max(0, std::atoi(setting)) : 50;
+        return setting != nullptr ? std::max(0, std::atoi(setting)) : 20;
     }();
     return spin;
 }

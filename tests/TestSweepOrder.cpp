@@ -8,6 +8,8 @@
 #include "internal/BoxGeometry.h"
 #include "internal/GenDPDESweepOrder.h"
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -159,10 +161,119 @@ void testSmallBoxIsTheSequentialOrder() {
     ASSERT(expected == order.getOrder());
 }
 
+/** The cell of each particle as the definition states it (docs/theory.md section 6), written out here. */
+std::vector<std::array<int, 3>> definedCells(const std::vector<Vec3>& positions, const Vec3 box[3], bool periodic,
+                                             double range, std::array<int, 3>& numCells) {
+    Vec3 low = positions[0], high = positions[0];
+    for (const Vec3& r : positions)
+        for (int k = 0; k < 3; k++) {
+            low[k] = std::min(low[k], r[k]);
+            high[k] = std::max(high[k], r[k]);
+        }
+    const Vec3 extent = periodic ? BoxGeometry::perpendicularWidths(box) : high - low;
+    numCells = GenDPDESweepOrder::cellCounts(extent, range, periodic);
+    std::vector<std::array<int, 3>> cells;
+    for (const Vec3& r : positions) {
+        const Vec3 s = BoxGeometry::fractionalCoordinates(r, box);
+        std::array<int, 3> c;
+        for (int k = 0; k < 3; k++) {
+            const double unit = periodic ? s[k] - std::floor(s[k]) : (r[k] - low[k])/extent[k];
+            c[k] = std::max(0, std::min(numCells[k] - 1, (int) (unit*numCells[k])));
+        }
+        cells.push_back(c);
+    }
+    return cells;
+}
+
+/**
+ * The order by its definition, with none of build()'s machinery: each pair's key (colour, block index) from its home
+ * cell, a stable sort of the (i, j)-sorted pairs by key, then the lists of four consecutive first particles of each
+ * block interleaved.
+ */
+std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box[3], bool periodic, double range,
+                              const Pairs& pairs) {
+    std::array<int, 3> n;
+    const std::vector<std::array<int, 3>> cells = definedCells(positions, box, periodic, range, n);
+    const int numBlocks[3] = {(n[0] + 1)/2, (n[1] + 1)/2, (n[2] + 1)/2};
+    std::vector<long long> key(pairs.size());
+    for (int k = 0; k < pairs.size(); k++) {
+        const std::array<int, 3>& ci = cells[pairs.ij[2*k]];
+        const std::array<int, 3>& cj = cells[pairs.ij[2*k + 1]];
+        int block[3];
+        bool adjacent = true;
+        for (int dim = 0; dim < 3; dim++) {
+            int d = cj[dim] - ci[dim];
+            if (periodic && d > 1)
+                d -= n[dim];
+            if (periodic && d < -1)
+                d += n[dim];
+            adjacent = adjacent && std::abs(d) <= 1;
+            if (d == -1)
+                block[dim] = cj[dim]/2;   // the home cell is the one the other follows, across the boundary too
+            else
+                block[dim] = ci[dim]/2;
+        }
+        const long long colour = (block[0] % 2) + 2*(block[1] % 2) + 4*(block[2] % 2);
+        const long long index = ((long long) block[2]*numBlocks[1] + block[1])*numBlocks[0] + block[0];
+        key[k] = adjacent ? colour*(1LL << 40) + index : 8LL*(1LL << 40);
+    }
+    std::vector<int> sorted(pairs.size());
+    for (int k = 0; k < pairs.size(); k++)
+        sorted[k] = k;
+    std::stable_sort(sorted.begin(), sorted.end(), [&](int a, int b) { return key[a] < key[b]; });
+    std::vector<int> order;
+    for (size_t start = 0; start < sorted.size(); ) {
+        size_t end = start;
+        while (end < sorted.size() && key[sorted[end]] == key[sorted[start]])
+            end++;
+        // One block: its first particles' lists, four at a time, rank by rank.
+        std::vector<std::vector<int>> lists;
+        for (size_t m = start; m < end; m++) {
+            if (m == start || pairs.ij[2*sorted[m]] != pairs.ij[2*sorted[m - 1]])
+                lists.emplace_back();
+            lists.back().push_back(sorted[m]);
+        }
+        for (size_t g = 0; g < lists.size(); g += 4)
+            for (size_t rank = 0; ; rank++) {
+                bool any = false;
+                for (size_t f = g; f < std::min(lists.size(), g + 4); f++)
+                    if (rank < lists[f].size()) {
+                        order.push_back(lists[f][rank]);
+                        any = true;
+                    }
+                if (!any)
+                    break;
+            }
+        start = end;
+    }
+    return order;
+}
+
+/** build() gives the order of the definition, element by element, for any number of threads. */
+void testOrderIsTheDefinition() {
+    auto check = [](const Scene& scene) {
+        const bool periodic = scene.force->usesPeriodicBoundaryConditions();
+        const Pairs pairs = findPairs(scene.positions, scene.box, periodic, cutoff);
+        const std::vector<int> expected = definedOrder(scene.positions, scene.box, periodic, cutoff, pairs);
+        ASSERT_EQUAL((int) expected.size(), pairs.size());
+        for (int numThreads : {1, 2})
+            ASSERT(expected == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
+    };
+    for (bool periodic : {true, false}) {
+        check(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 7));
+        check(makeRandomGas(2000, 0.3*referenceDensity, GenDPDEForce::VB, periodic, 8));
+    }
+    Scene triclinic = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 9);
+    const double edge = triclinic.box[0][0];
+    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+    check(triclinic);
+}
+
 int main() {
     return runTestProgram([]() {
         testProperties();
         testPureFunction();
         testSmallBoxIsTheSequentialOrder();
+        testOrderIsTheDefinition();
     });
 }

@@ -72,16 +72,18 @@ def write_setfl(path, model, max_density):
         np.savetxt(stream, np.zeros(TABLE_POINTS), fmt="%.1f")
 
 
-def write_data(path, positions, velocities, edge, mass):
-    """A LAMMPS data file (atomic style, A and A/ps)."""
+def write_data(path, positions, velocities, edge, mass, temperature=None):
+    """A LAMMPS data file (A and A/ps): atomic style, or dpd style (id type theta x y z) given the particles'
+    temperature (K; tools/compare_lammps_dpde.py)."""
+    style, theta = ("atomic", "") if temperature is None else ("dpd", f" {temperature:.17g}")
     with open(path, "w") as stream:
         stream.write(f"GenDPDE liquid argon\n\n{len(positions)} atoms\n1 atom types\n\n")
         for axis in "xyz":
             stream.write(f"0.0 {edge * 10.0:.17g} {axis}lo {axis}hi\n")
-        stream.write(f"\nMasses\n\n1 {mass:.17g}\n\nAtoms # atomic\n\n")
+        stream.write(f"\nMasses\n\n1 {mass:.17g}\n\nAtoms # {style}\n\n")
         wrapped = np.mod(positions, edge) * 10.0
         for index, (x, y, z) in enumerate(wrapped):
-            stream.write(f"{index + 1} 1 {x:.17g} {y:.17g} {z:.17g}\n")
+            stream.write(f"{index + 1} 1{theta} {x:.17g} {y:.17g} {z:.17g}\n")
         stream.write("\nVelocities\n\n")
         for index, (x, y, z) in enumerate(velocities * 10.0):
             stream.write(f"{index + 1} {x:.17g} {y:.17g} {z:.17g}\n")

@@ -118,6 +118,9 @@ const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
 
 double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
     const int threads = extractNumThreads(context);
+    sequential = (threads == 1);
+    if (sequential)
+        return ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(context);
     const std::vector<Vec3>& positions = extractPositions(context);
     const int numParticles = positions.size();
     std::vector<int> firstBad(numRanges(numParticles, rowChunk), -1);
@@ -210,6 +213,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
 
 double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,
                                                     std::vector<double>* particleVirials) {
+    if (sequential)
+        return ReferenceCalcGenDPDEForceKernel::computePairForces(context, forces, particleVirials);
     // docs/theory.md section 4, as Reference: each particle gathers its force along its row, its share of the virial
     // from the pairs in which it is first (the upper part of the row) and, if asked, half of each pair's virial
     // tensor (the scalar gathers then, which the observables alone ask for).

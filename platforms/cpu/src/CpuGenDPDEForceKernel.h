@@ -23,15 +23,22 @@ namespace GenDPDEPlugin {
  * - the energy and the virial are summed in fixed chunks (FixedOrderSum).
  *
  * It lends the integrator its pairs (collectPairs()), collected on the platform's threads.
+ *
+ * On one thread it runs Reference's passes instead (the same results by construction): the gathers evaluate each
+ * pair from both of its particles and the integrator then needs the pairs collected from the rows, which pays only
+ * when threads share the work (docs/performance.md, "One thread").
  */
 class CpuCalcGenDPDEForceKernel : public ReferenceCalcGenDPDEForceKernel {
 public:
     CpuCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             ReferenceCalcGenDPDEForceKernel(name, platform) {
     }
-    /** GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()). */
+    /**
+     * GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()); on one
+     * thread, Reference's list.
+     */
     PairView getPairs(int numThreads) override {
-        return collectPairs(numThreads);
+        return sequential ? neighborList->getPairs() : collectPairs(numThreads);
     }
     /**
      * The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order (the pair list the
@@ -49,6 +56,7 @@ private:
     /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box, VC). */
     const RowGatherAvx2::Rows* vectorRowsOrNull();
     std::unique_ptr<RowGatherAvx2::Rows> vectorRows{new RowGatherAvx2::Rows()};
+    bool sequential = false;                    // whether the last evaluation ran Reference's passes (one thread)
     CellOrderedCandidates layout;               // the neighbor list's candidates as full rows in cell order
     // Per row: what the passes find, before it is copied to the particle arrays.
     std::vector<double> rowDensity, rowCoefficient, rowVirial;

@@ -1,7 +1,8 @@
 /* The CPU platform computes exactly what Reference computes, with any number of threads: energies, forces,
  * observables, virials and virial tensors of the force tests' scenes (every estimator), and trajectories (positions, velocities, internal energies)
  * after 1000 isoenergetic steps of a liquid large enough for the sweep to run many blocks of a colour at once
- * (14^3 particles: 8 cells and 4 blocks per direction, 8 blocks per colour). Compared bit for bit. */
+ * (14^3 particles: 8 cells and 4 blocks per direction, 8 blocks per colour). Compared bit for bit. With one thread
+ * the CPU platform runs Reference's force passes (CpuGenDPDEForceKernel.h), so 2 and 3 threads test its gathers. */
 
 #include "TestGenDPDEIntegrator.h"
 #include "TestPlugins.h"

@@ -215,22 +215,23 @@ template <class Displacement>
 void NeighborList::collectPairs(int numParticles, Displacement displacement, int numThreads) {
     if (numThreads < 2) {
         // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
-        // store-to-load forwarding). The buffer only grows, so it is never re-initialised.
-        if (pairs.size() < candidates.size())
-            pairs.resize(candidates.size());
-        numPairs = 0;
+        // store-to-load forwarding), every candidate written and kept only if in range (no branch: a quarter of
+        // the candidates are not, at random). The buffer only grows, so it is never re-initialised.
+        if (pairs.size() < candidates.size() + 1)
+            pairs.resize(candidates.size() + 1);
+        size_t found = 0;
+        ParticlePair* pair = pairs.data();
         const double cutoff2 = cutoff*cutoff;
         for (int i = 0; i < numParticles; i++)
             for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
                 const int j = candidates[m];
                 const Vec3 d = displacement(i, j);
-                if (d.dot(d) < cutoff2) {
-                    ParticlePair& pair = pairs[numPairs++];
-                    pair.i = i;
-                    pair.j = j;
-                    pair.delta = d;
-                }
+                pair[found].i = i;
+                pair[found].j = j;
+                pair[found].delta = d;
+                found += (d.dot(d) < cutoff2);
             }
+        numPairs = found;
     }
     else {
         // Each range of particles finds its pairs, then the ranges are copied in order: the same list.

@@ -142,28 +142,33 @@ std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimen
 void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end,
                                   const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
                                   std::vector<int>& found) {
-    // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted.
+    // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted. Every particle of
+    // the surrounding cells is written and kept only if it is one (no branch: which are is close to random).
     const double listCutoff = cutoff + skin, listCutoff2 = listCutoff*listCutoff;
+    size_t size = found.size();
     for (int i = begin; i < end; i++) {
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
-        size_t first = found.size();
+        const size_t first = size;
         for (int nx : neighborCells[0][cx])
             for (int ny : neighborCells[1][cy])
                 for (int nz : neighborCells[2][cz]) {
-                    int neighborCell = (nx*numCells[1] + ny)*numCells[2] + nz;
-                    for (int m = cellStart[neighborCell]; m < cellStart[neighborCell + 1]; m++) {
-                        int j = cellParticles[m];
-                        if (j <= i)
-                            continue;
-                        Vec3 d = periodic ? box.nearestImage(r[i] - cellPositions[m]) : r[i] - cellPositions[m];
-                        if (d.dot(d) < listCutoff2)
-                            found.push_back(j);
+                    const int neighborCell = (nx*numCells[1] + ny)*numCells[2] + nz;
+                    const int cellBegin = cellStart[neighborCell], cellEnd = cellStart[neighborCell + 1];
+                    if (found.size() < size + (cellEnd - cellBegin))
+                        found.resize(2*(size + (cellEnd - cellBegin)));
+                    int* out = found.data();
+                    for (int m = cellBegin; m < cellEnd; m++) {
+                        const int j = cellParticles[m];
+                        const Vec3 d = periodic ? box.nearestImage(r[i] - cellPositions[m]) : r[i] - cellPositions[m];
+                        out[size] = j;
+                        size += (j > i) & (d.dot(d) < listCutoff2);
                     }
                 }
-        std::sort(found.begin() + first, found.end());
-        candidateStart[i + 1] = found.size() - first;
+        std::sort(found.begin() + first, found.begin() + size);
+        candidateStart[i + 1] = size - first;
     }
+    found.resize(size);
 }
 
 void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {

@@ -55,8 +55,13 @@ void CpuIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vector<Vec3
 
 void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
                                           const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
-    // docs/theory.md section 6: the colours one after another, the blocks of a colour in parallel.
+    // docs/theory.md section 6: the colours one after another, the blocks of a colour in parallel; on one thread,
+    // Reference's sweep (the same sequence in one loop, whose prefetches run on across the blocks).
     const int threads = extractNumThreads(context);
+    if (threads == 1) {
+        ReferenceIntegrateGenDPDEStepKernel::sweep(context, pairs, velocities, integrator, terms);
+        return;
+    }
     const long long step = context.getStepCount();
     const int stride = sizeof(ParticlePair)/sizeof(int);
     const bool anyPairs = pairs.size() > 0;

@@ -1,5 +1,5 @@
 """GenDPDEIntegrator's Isoenergetic step against LAMMPS's DPD-E (DPD-REACT package), side by side
-(docs/performance.md, "Against LAMMPS DPD-E").
+(docs/performance.md, "Against LAMMPS (DPD-E and EAM)").
 
 LAMMPS's energy-conserving DPD is the closest published code to this plugin's integrator: `pair_style
 dpd/fdt/energy` (here with no conservative force, a0 = 0), `fix shardlow` (the same Shardlow splitting of the pair
@@ -17,7 +17,7 @@ LAMMPS), then the plugin's Isoenergetic step on Reference, on the CPU platform w
 threads. Prints the medians (and the spread) of the per-round ms/step and the median per-round ratios.
 
 LAMMPS with DPD-REACT is not in Debian's binary package: build it from Debian's source package with
-tools/build_lammps_dpd_react.sh (about 6 minutes on 2 cores), which prints the path of `lmp`. Usage:
+tools/build_lammps_dpd_react.sh (about 4 minutes on 2 cores), which prints the path of `lmp`. Usage:
 
     .venv/bin/python tools/compare_lammps_dpde.py --lmp /work/lammps-build/lmp --particles 32000 --steps 100 --rounds 5
 """

@@ -108,7 +108,10 @@ def main():
     arguments = parser.parse_args()
     if arguments.threads < 1 or arguments.steps < 1 or arguments.rounds < 1:
         parser.error("--threads, --steps and --rounds must be >= 1")
-    help_text = subprocess.run([arguments.lmp, "-h"], capture_output=True, text=True).stdout
+    try:
+        help_text = subprocess.run([arguments.lmp, "-h"], capture_output=True, text=True).stdout
+    except OSError as error:
+        parser.error(f"--lmp {arguments.lmp}: {error.strerror} (build it: tools/build_lammps_dpd_react.sh)")
     if "DPD-REACT" not in help_text:
         parser.error(f"{arguments.lmp} has no DPD-REACT package (build it: tools/build_lammps_dpd_react.sh)")
 

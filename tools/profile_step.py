@@ -56,7 +56,8 @@ def short_name(name):
         parts = [part for part in parts if part != "GenDPDEPlugin"]
         if parts:
             return "::".join(parts) + " (parallel loop)"
-    return re.sub(r"\(.*", "", name)
+    # (the arguments go; "(anonymous namespace)::" is not an argument list)
+    return re.sub(r"\(.*", "", name.replace("(anonymous namespace)::", ""))
 
 
 def main():
@@ -86,7 +87,8 @@ def main():
         match = re.match(r"\s*[\d.]+%\s+(\d+)\s+(\S+)\s+\[.\]\s+(.*?)\s*$", line)
         if not match:
             continue
-        samples, library, name = int(match.group(1)), match.group(2), match.group(3)
+        samples, library = int(match.group(1)), match.group(2)
+        name = re.sub(r"(\s+-)+$", "", match.group(3))   # perf's empty columns after a named symbol
         total += samples
         if library in tables and name.startswith("0x"):
             table = tables[library]

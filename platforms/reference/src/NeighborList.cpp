@@ -222,8 +222,8 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
         // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
         // store-to-load forwarding), every candidate written and kept only if in range (no branch: a quarter of
         // the candidates are not, at random). The buffer only grows, so it is never re-initialised.
-        if (pairs.size() < candidates.size() + 1)
-            pairs.resize(candidates.size() + 1);
+        if (pairs.size() < candidates.size())
+            pairs.resize(candidates.size());
         size_t found = 0;
         ParticlePair* pair = pairs.data();
         const double cutoff2 = cutoff*cutoff;

@@ -98,3 +98,25 @@ def warn_unless_plateau(values, blocks, name="block average"):
                   f"are needed); standard error {found}; the error bar is too small, sample longer",
                   BlockAverageWarning, stacklevel=3)
     return False
+
+
+class CorrelatedMean(NamedTuple):
+    """The mean of a correlated time series, its standard error, the statistical inefficiency g (samples per
+    independent one) and the number of independent samples N/g."""
+    mean: float
+    standard_error: float
+    inefficiency: float
+    independent_samples: float
+
+
+def correlated_mean(values):
+    """The mean of a time series with the standard error sqrt(g s^2/N) that accounts for its correlation (g the
+    statistical inefficiency, s^2 the sample variance; Chodera et al. 2007, as pymbar's timeseries module computes
+    it): no blocks, so no plateau to reach. The error is itself uncertain when N/g is small (its relative error is
+    ~ 1/sqrt(2 N/g)): a caller reports independent_samples beside it."""
+    values = np.asarray(values, dtype=float)
+    if len(values) < 2:
+        raise ValueError(f"correlated_mean: {len(values)} samples; at least 2 are needed")
+    g = statistical_inefficiency(values)
+    return CorrelatedMean(float(values.mean()), float(math.sqrt(g * values.var(ddof=1) / len(values))), g,
+                          len(values) / g)

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from openmmgendpde.statistics import (BlockAverage, BlockAverageWarning, block_average, block_standard_error,
-                                      statistical_inefficiency)
+                                      correlated_mean, statistical_inefficiency)
 
 
 def correlated_series(length, correlation_time, seed):
@@ -58,3 +58,26 @@ def test_blocks_shorter_than_the_correlation_warn_without_changing_the_result():
         silent = block_average(values, name="density")
     assert warned == silent
     assert warned.standard_error == block_standard_error(values, 10)
+
+
+def test_correlated_mean_error_is_the_true_error_of_a_correlated_mean():
+    """400 AR(1) series of 400 samples, correlation time 4.5 samples (g = 9.04, ~44 independent samples each): the
+    true standard error of their mean is sqrt(var_x/N (1 + 2 sum_k (1 - k/N) phi^k)) = 0.2495. The root mean square
+    of correlated_mean's standard errors must be within 10% of it (measured 1.4% off; the scatter of that RMS over
+    400 series is ~0.5%, the estimator's known small-sample bias a few %), and |mean| < 1.96 standard errors in 90%
+    to 98% of the series (94.4% expected with ~44 degrees of freedom; binomial scatter 1.1%). The plain s/sqrt(N),
+    which ignores the correlation, gives a third of the true error and fails both."""
+    n, tau = 400, 4.5
+    phi = math.exp(-1 / tau)
+    lags = np.arange(1, n)
+    true_error = math.sqrt(1 / (1 - phi**2) / n * (1 + 2 * np.sum((1 - lags / n) * phi**lags)))
+    errors, covered = [], 0
+    for seed in range(400):
+        result = correlated_mean(correlated_series(n, tau, 1000 + seed))
+        assert result.inefficiency * result.independent_samples == pytest.approx(n)
+        errors.append(result.standard_error)
+        covered += abs(result.mean) < 1.96 * result.standard_error
+    assert math.sqrt(np.mean(np.square(errors))) == pytest.approx(true_error, rel=0.10)
+    assert 0.90 <= covered / 400 <= 0.98
+    with pytest.raises(ValueError, match="at least 2 are needed"):
+        correlated_mean([1.0])

@@ -5,8 +5,9 @@
    isoenergetic run n-bar is evaluated at f_cut and at two trial values around it (f_cut (1 -+ 2%)), and every step
    follows half that slope, since the structure follows f_cut and halves its effect (a secant between runs is too
    noisy at the lengths of --quick; V-A has no f_cut).
-3. With the tuned model, measured side by side with the targets, each with its standard error (block averages, or
-   the scatter of independent replicas):
+   Every run melts until n-bar is stationary (Calibration.melt), each after the first from the last melted liquid.
+3. With the tuned model, measured side by side with the targets, each with its standard error (correlated_mean:
+   sqrt(g s^2/N), with the independent samples N/g in the table; or the scatter of independent replicas):
    - n-bar, the virial pressure P (kinetic term included), the kinetic temperature and the harmonic mean of theta_i;
      then pi0 is shifted by P0 - P (the particles' density fluctuations raise the mean Tait pressure) and all of
      these measured again;
@@ -24,22 +25,27 @@
    2 standard errors of the measurement as well. A calibration that misses one of them says which, by how much,
    and exits with status 1 (after writing --json). The bulk modulus is reported, not judged (see above).
 
+--fluid takes a built-in name or a fluid file (fluid_files); --output writes the calibrated model as a model file.
 --quick: 500 particles and short runs (a functional check in about a minute); the default: 2048 particles.
 """
 
 import dataclasses
 import json
 import math
+import os
 import sys
+import time
 
 import numpy as np
 import openmm
 from openmm import unit
 
 from . import ESTIMATOR_NAMES, GenDPDEIntegrator
-from .cli import add_platform, platform_description
+from .cli import add_platform, add_progress, platform_description
 from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
-from .statistics import block_average
+from .fluid_files import load_fluid, save_parameters
+from .progress import Progress
+from .statistics import correlated_mean
 from .thermodynamics import ThermodynamicProbe
 from .tune_fcut import mean_density_on_frames
 from .units import BOLTZMANN
@@ -56,7 +62,9 @@ class Plan:
     """Run lengths (steps of dt* = time_step in the model's reduced time)."""
     particles: int = 2048
     time_step: float = 0.01
-    melt: int = 1000              # Isothermal steps before each measurement run
+    melt: int = 1000              # Isothermal steps before each measurement run, at least (Calibration.melt)
+    melt_block: int = 500         # then blocks of this many steps until n-bar is stationary
+    melt_limit: int = 8000        # ... or this many steps in all
     frames: int = 200             # frames (every `interval` steps) per f_cut iteration and per thermodynamic run
     interval: int = 50
     tuning_iterations: int = 4
@@ -66,13 +74,22 @@ class Plan:
     wave_interval: int = 10
 
 
-QUICK = Plan(particles=500, melt=400, frames=60, interval=25, tuning_iterations=3, replicas=3, wave_steps=600)
+QUICK = Plan(particles=500, melt=400, melt_block=500, frames=60, interval=25, tuning_iterations=3, replicas=3,
+             wave_steps=600)
 
 
 @dataclasses.dataclass
 class Measured:
+    """A measured value and its standard error; ``samples``: the independent samples the error rests on (N/g of
+    a time series, or the replicas), None where it is derived from other measurements."""
     value: float
     error: float
+    samples: float = None
+
+
+#: Fewer independent samples than this make a standard error itself uncertain by more than ~16%
+#: (1/sqrt(2 N/g)): calibrate's table says so beside the row.
+FEW_SAMPLES = 20
 
 
 #: What a calibration must reach, by row of the results: (kind, tolerance). 'relative': |model/target - 1| <= the
@@ -88,6 +105,8 @@ CRITERIA = {
     "thermal conductivity (W/(m K))": ("factor", 2.0),
 }
 BULK_MODULUS_ROW = "bulk modulus n dP/dn (MPa)"
+#: The standard error the pressure runs go on to reach, times 1/kappa_T: a quarter of the pressure's tolerance.
+PRESSURE_ERROR = 0.0025
 
 
 def comparison(name, target, model, bulk_modulus):
@@ -120,29 +139,75 @@ def misses(results):
 class Calibration:
     """The simulations of one fluid model on one platform."""
 
-    def __init__(self, parameters, estimator, plan, platform, seed=1, report=print):
+    def __init__(self, parameters, estimator, plan, platform, seed=1, report=print, progress=None):
         self.parameters = parameters
         self.estimator = estimator
         self.plan = plan
         self.platform = openmm.Platform.getPlatformByName(platform)
         self.seed = seed
         self.report = report
+        self.progress = progress
+        self.melt_steps = []   # the Isothermal steps each melt took to reach its criterion (melt())
+        self._melted = None    # (positions in nm, density in nm^-3) of the last melted liquid
+        self.runs = 0          # simulations run (Contexts made)
+
+    def _step(self, integrator, steps):
+        integrator.step(steps)
+        if self.progress is not None:
+            self.progress.advance(steps)
+
+    def melt(self, model, context):
+        """Isothermal steps until the structure is stationary: plan.melt steps, then blocks of plan.melt_block
+        steps (n-bar, the mean particle density, sampled 10 times per block) until the last two block means differ
+        by less than 2 standard errors of their difference (each from correlated_mean), at most plan.melt_limit
+        steps in all. n-bar is the slow variable: water (4 molecules per particle, 500 particles) melted from the
+        lattice takes ~2500 steps of dt* = 0.01 (25 time units) for n-bar to rise from 7.97 to its plateau 8.5
+        nm^-3, while the potential energy settles within its noise in a few hundred; a fixed melt of 10 time units
+        tuned f_cut on a structure still forming. Returns the steps taken and whether the criterion held."""
+        block = max(10, self.plan.melt_block) // 10 * 10
+        self._step(model.integrator, self.plan.melt)
+        steps, means = self.plan.melt, []
+        while True:
+            densities = []
+            for _ in range(10):
+                self._step(model.integrator, block // 10)
+                densities.append(float(np.mean(model.force.getParticleDensities(context).value_in_unit(
+                    unit.nanometer**-3))))
+            steps += block
+            means.append(correlated_mean(densities))
+            if len(means) >= 2:
+                difference = abs(means[-1].mean - means[-2].mean)
+                if difference < 2 * math.hypot(means[-1].standard_error, means[-2].standard_error):
+                    return steps, True
+            if steps + block > self.plan.melt_limit:
+                return steps, False
 
     def _model(self, density=None):
         self.seed += 1
         return self.parameters.liquid(self.plan.particles, self.estimator, mode=GenDPDEIntegrator.Isothermal,
                                       time_step=self.plan.time_step, seed=self.seed, density=density)
 
+    def _start(self, model, density):
+        """Where a run starts: the last melted liquid scaled to this density (its box is the model's, scaled
+        alike), or the model's lattice for the first run."""
+        if self._melted is None or len(self._melted[0]) != model.num_particles:
+            return model.positions
+        positions, melted_density = self._melted
+        return positions * (melted_density / (density or self.parameters.density)) ** (1 / 3)
+
     def _equilibrated(self, density=None):
         """A Context melted with the DPD thermostat at T0, then isoenergetic with theta_i drawn at T0."""
         model = self._model(density)
         context = openmm.Context(model.system, model.integrator, self.platform)
-        context.setPositions(model.positions)
+        self.runs += 1
+        context.setPositions(self._start(model, density))
         context.setVelocitiesToTemperature(self.parameters.temperature, self.seed)
-        model.integrator.step(self.plan.melt)
+        steps, stationary = self.melt(model, context)
+        self.melt_steps.append((steps, stationary))
+        self._melted = (model_positions(context), density or self.parameters.density)
         model.integrator.setMode(GenDPDEIntegrator.Isoenergetic)
         model.integrator.setInternalEnergiesToTemperature(self.parameters.temperature, self.seed)
-        model.integrator.step(self.plan.melt // 2)
+        self._step(model.integrator, self.plan.melt // 2)
         return model, context
 
     def tune_cutoff_scaling(self):
@@ -159,7 +224,7 @@ class Calibration:
             model, context = self._equilibrated()
             frames = []
             for _ in range(self.plan.frames):
-                model.integrator.step(self.plan.interval)
+                self._step(model.integrator, self.plan.interval)
                 frames.append(model_positions(context))
             trial = [scaling * 0.98, scaling * 1.02]
             densities = [mean_density_on_frames(model.force, context, frames, f, units=None) for f in trial]
@@ -173,19 +238,29 @@ class Calibration:
         self.parameters = self.parameters.with_cutoff_scaling(scaling)
         return scaling
 
-    def thermodynamics(self, density=None):
-        """Block averages of n-bar, P, T_kin and T_harm of an isoenergetic run."""
+    def thermodynamics(self, density=None, pressure_error=None):
+        """The means of n-bar, P, T_kin and T_harm of an isoenergetic run, each with its standard error from
+        correlated_mean (plan.frames frames). With ``pressure_error`` (kJ/mol/nm^3) the run goes on, plan.frames/2
+        frames at a time, until the pressure's standard error is at most that, or 4 plan.frames frames."""
         model, context = self._equilibrated(density)
         probe = ThermodynamicProbe(model.system)
         samples = []
-        for _ in range(self.plan.frames):
-            model.integrator.step(self.plan.interval)
-            state = context.getState(getEnergy=True, getVelocities=True)
-            samples.append(probe.sample(state, context, model.integrator))
+
+        def sample(frames):
+            for _ in range(frames):
+                self._step(model.integrator, self.plan.interval)
+                state = context.getState(getEnergy=True, getVelocities=True)
+                samples.append(probe.sample(state, context, model.integrator))
+
         def average(name, unit_):
-            values = [getattr(s, name).value_in_unit(unit_) for s in samples]
-            result = block_average(values, 5, name=f"{name} at n = {density or self.parameters.density:.4g} nm^-3")
-            return Measured(result.mean, result.standard_error)
+            result = correlated_mean([getattr(s, name).value_in_unit(unit_) for s in samples])
+            return Measured(result.mean, result.standard_error, result.independent_samples)
+
+        sample(self.plan.frames)
+        pressure_unit = unit.kilojoule_per_mole / unit.nanometer**3
+        while (pressure_error is not None and average("pressure", pressure_unit).error > pressure_error
+               and len(samples) < 4 * self.plan.frames):
+            sample(self.plan.frames // 2)
         return {
             "density": average("density", unit.nanometer**-3),
             "pressure": average("pressure", unit.kilojoule_per_mole / unit.nanometer**3),
@@ -195,7 +270,9 @@ class Calibration:
 
     def correct_reference_pressure(self, measured_pressure, target_pressure):
         """pi0 shifted by P0 - P: with n-bar = n0 the particles' density fluctuations raise <pi(n_i)> above pi(n0)
-        (pi is convex: by ~gamma_T (gamma_T - 1) B_T Var(n_i)/(2 n0^2)), which a constant shift of pi0 removes."""
+        (pi is convex: by ~gamma_T (gamma_T - 1) B_T Var(n_i)/(2 n0^2)). The shift moves the pressure of a fixed
+        configuration one to one, but in equilibrium the structure follows pi0 and restores most of it
+        (docs/fluids.md, "pi0 is a weak handle"): one shift does not reach P0."""
         shift = target_pressure - measured_pressure
         self.parameters = dataclasses.replace(self.parameters,
                                               reference_pressure=self.parameters.reference_pressure + shift)
@@ -228,7 +305,7 @@ class Calibration:
             times, amplitudes = [], []
             for n in range(self.plan.wave_steps // self.plan.wave_interval + 1):
                 if n:
-                    model.integrator.step(self.plan.wave_interval)
+                    self._step(model.integrator, self.plan.wave_interval)
                 state = context.getState(getPositions=True, getVelocities=True, getEnergy=True)
                 times.append(state.getTime().value_in_unit(unit.picosecond))
                 amplitudes.append(amplitude_of(model, context, state, k))
@@ -236,7 +313,7 @@ class Calibration:
             curves.append(amplitudes)
             rates.append(_decay_rate(times, amplitudes))
         mean_rate = _decay_rate(times, np.mean(curves, axis=0))
-        return mean_rate, float(np.std(rates, ddof=1) / math.sqrt(len(rates))), k
+        return mean_rate, float(np.std(rates, ddof=1) / math.sqrt(len(rates))), k, len(rates)
 
     def shear_viscosity(self):
         """eta from the decay of v_x = V0 sin(k z), V0 = the thermal velocity sqrt(k_B T0/m)."""
@@ -255,9 +332,9 @@ class Calibration:
             vx = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)[:, 0]
             return 2 * np.mean(vx * np.sin(k * z))
 
-        rate, error, k = self._wave_rate(amplitude, perturb)
+        rate, error, k, replicas = self._wave_rate(amplitude, perturb)
         mass_density = p.density * p.mass
-        return Measured(rate * mass_density / k**2, error * mass_density / k**2)
+        return Measured(rate * mass_density / k**2, error * mass_density / k**2, replicas)
 
     def thermal_conductivity(self):
         """lambda from the decay of theta_i = T0 (1 + 0.2 sin(k z_i)), read from the energy wave sum (eps_i + K_i)."""
@@ -275,9 +352,9 @@ class Calibration:
             energies = np.asarray(model.integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole))
             return 2 * np.mean((energies + kinetic) * np.sin(k * z))
 
-        rate, error, k = self._wave_rate(amplitude, perturb)
+        rate, error, k, replicas = self._wave_rate(amplitude, perturb)
         factor = p.density * heat_capacity / k**2
-        return Measured(rate * factor, error * factor)
+        return Measured(rate * factor, error * factor, replicas)
 
 
 def model_positions(context):
@@ -295,13 +372,40 @@ def _decay_rate(times, amplitudes):
     return -slope
 
 
+def estimated_steps(plan, estimator):
+    """The steps a calibration takes if every melt reaches its criterion at plan.melt steps (the progress bar's
+    total)."""
+    equilibration = plan.melt + 2 * plan.melt_block + plan.melt // 2
+    runs = plan.frames * plan.interval
+    tuning = 0 if estimator == "VA" else plan.tuning_iterations * (equilibration + runs)
+    return tuning + 4 * (equilibration + runs) + 2 * plan.replicas * (equilibration + plan.wave_steps)
+
+
+def fluid_named(name):
+    """A built-in fluid by name, or the Fluid of a fluid or model file (.toml, .json; fluid_files); ValueError
+    saying what is allowed."""
+    if name in FLUIDS:
+        return FLUIDS[name]
+    if os.path.splitext(name)[1].lower() in (".toml", ".json"):
+        if not os.path.isfile(name):
+            raise ValueError(f"--fluid {name}: no such file")
+        return load_fluid(name)
+    raise ValueError(f"--fluid {name} is not allowed; give one of {', '.join(sorted(FLUIDS))} or a fluid file "
+                     f"(.toml or .json, docs/fluids.md)")
+
+
 def run(arguments):
-    fluid = FLUIDS[arguments.fluid]
+    try:
+        fluid = fluid_named(arguments.fluid)
+    except ValueError as error:
+        raise SystemExit(f"error: calibrate: {error}")
     neighbors = arguments.neighbors if arguments.cutoff is None else None
     cutoff = None if arguments.cutoff is None else arguments.cutoff * unit.nanometer
     plan = QUICK if arguments.quick else Plan()
     if arguments.particles is not None:
         plan = dataclasses.replace(plan, particles=arguments.particles)
+    if arguments.output and os.path.splitext(arguments.output)[1].lower() not in (".toml", ".json"):
+        raise SystemExit(f"error: calibrate: --output {arguments.output} is not allowed; it must end in .toml or .json")
     try:   # every argument checked before the runs: a model built once checks the particles against the cutoff
         parameters = coarse_grain(fluid, arguments.molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
         parameters.liquid(plan.particles, arguments.estimator)
@@ -320,19 +424,42 @@ def run(arguments):
     print("| parameter | value | reduced |\n|---|---|---|")
     for name, value, key in rows:
         print(f"| {name} | {value:.6g} | {reduced[key]:.6g} |" if key else f"| {name} | {value:.6g} | 1 |")
-    calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed)
-    print(f"Tuning f_cut ({arguments.estimator}) so that n-bar = n0:")
+    progress = Progress(estimated_steps(plan, arguments.estimator), "calibrate", always=arguments.progress)
+    calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed,
+                              progress=progress)
+    started = time.monotonic()
+
+    def stage(text):
+        print(f"[{time.monotonic() - started:6.0f} s] {text}", flush=True)
+        progress.label = f"calibrate: {text.split(' (')[0]}"
+
+    stage(f"Tuning f_cut ({arguments.estimator}) so that n-bar = n0:")
     scaling = calibration.tune_cutoff_scaling()
     print(f"f_cut = {scaling:.4f} (first estimate {parameters.cutoff_scaling:.4f})")
     targets = calibration.parameters.targets()
-    mapped = calibration.thermodynamics()
+    # The pressure's error matters (pi0 is shifted by it and it is judged to 0.01/kappa_T): its runs go on until
+    # the standard error is a quarter of that.
+    pressure_error = PRESSURE_ERROR * targets["bulk_modulus"]
+    stage("Pressure with pi0 as mapped")
+    mapped = calibration.thermodynamics(pressure_error=pressure_error)
     shift = calibration.correct_reference_pressure(mapped["pressure"].value, targets["pressure"])
     print(f"pi0 shifted by {shift:.4g} kJ/mol/nm^3 ({_mpa(shift):.4g} MPa) so that P = P0: pi0 = "
           f"{calibration.parameters.reference_pressure:.6g} kJ/mol/nm^3")
-    thermo = calibration.thermodynamics()
+    stage("Thermodynamics with pi0 shifted")
+    thermo = calibration.thermodynamics(pressure_error=pressure_error)
+    stage(f"Bulk modulus (boxes at n0 (1 -+ {plan.density_step:g}))")
     bulk, response = calibration.bulk_modulus()
+    stage(f"Shear viscosity ({plan.replicas} decaying transverse waves)")
     viscosity = calibration.shear_viscosity()
+    stage(f"Thermal conductivity ({plan.replicas} decaying energy waves)")
     conductivity = calibration.thermal_conductivity()
+    progress.finish()
+    stage(f"Done: {calibration.runs} runs")
+    melts = [steps for steps, _ in calibration.melt_steps] or [0]
+    unsettled = sum(not stationary for _, stationary in calibration.melt_steps)
+    print(f"Melts (until n-bar is stationary, Calibration.melt): {min(melts)} to {max(melts)} steps of dt* = "
+          f"{plan.time_step:g} (the first from the lattice, the others from the last melted liquid)"
+          + (f"; {unsettled} of {len(melts)} were not stationary after {plan.melt_limit} steps" if unsettled else ""))
     target_rows = [
         ("density n-bar (nm^-3)", targets["density"], thermo["density"]),
         ("pressure, pi0 as mapped (MPa)", _mpa(targets["pressure"]), _scaled(mapped["pressure"], _mpa(1.0))),
@@ -345,14 +472,20 @@ def run(arguments):
         ("thermal conductivity (W/(m K))", _w_mk(targets["thermal_conductivity"]),
          _scaled(conductivity, _w_mk(1.0))),
     ]
-    print("Targets and what the model gives (standard errors):")
-    print("| property | target | model | model/target |\n|---|---|---|---|")
+    print("Targets and what the model gives (standard errors; independent samples: N/g of a time series, or "
+          "the replicas):")
+    print("| property | target | model | model/target | independent samples |\n|---|---|---|---|---|")
     results = {}
     bulk_target = _mpa(targets["bulk_modulus"])
     for name, target, measured in target_rows:
+        samples = "" if measured.samples is None else f"{measured.samples:.0f}"
+        if measured.samples is not None and measured.samples < FEW_SAMPLES and not name.startswith(("shear", "thermal")):
+            samples += f" (few: the error is uncertain by ~{100 / math.sqrt(2 * measured.samples):.0f}%)"
         print(f"| {name} | {target:.5g} | {measured.value:.5g} +- {measured.error:.2g} | "
-              f"{comparison(name, target, measured.value, bulk_target).removeprefix('model/target = ')} |")
-        results[name] = {"target": target, "model": measured.value, "error": measured.error}
+              f"{comparison(name, target, measured.value, bulk_target).removeprefix('model/target = ')} | "
+              f"{samples} |")
+        results[name] = {"target": target, "model": measured.value, "error": measured.error,
+                         "samples": measured.samples}
     missed = misses(results)
     print("Notes: the bulk modulus that the model reaches is set by how the particle densities n_i follow the true "
           "density (V-B's f_cut is tuned at n0 only), not by B_T alone; the transport coefficients include the "
@@ -364,6 +497,14 @@ def run(arguments):
                        "reference_pressure_shift": shift, "parameters": reduced,
                        "calibrated": calibration.parameters.reduced(), "results": results, "missed": missed},
                       stream, indent=1)
+    if arguments.output:
+        save_parameters(calibration.parameters, arguments.output, comment=(
+            f"{fluid.name}: calibrated by python -m openmmgendpde calibrate ({arguments.molecules_per_particle:g} "
+            f"molecules per particle, {arguments.estimator}, {plan.particles} particles, seed {arguments.seed}); "
+            f"{'MISSED: ' + '; '.join(missed) if missed else 'every judged result within its tolerance'}.\n"
+            f"Build it again: openmmgendpde.fluid_files.load_parameters(path).liquid(num_particles, "
+            f"'{arguments.estimator}')"))
+        print(f"The calibrated model is in {arguments.output} (fluid_files.load_parameters reads it).")
     if missed:
         print(f"error: calibrate: the calibration failed, {len(missed)} of the judged results missed (CRITERIA, "
               f"docs/fluids.md):\n  " + "\n  ".join(missed), file=sys.stderr)
@@ -389,11 +530,13 @@ def _w_mk(value):
 
 
 def _scaled(measured, factor):
-    return Measured(measured.value * factor, measured.error * factor)
+    return Measured(measured.value * factor, measured.error * factor, measured.samples)
 
 
 def add_arguments(parser):
-    parser.add_argument("--fluid", choices=sorted(FLUIDS), default="water", help="the fluid (default water)")
+    parser.add_argument("--fluid", default="water",
+                        help=f"a built-in fluid ({', '.join(sorted(FLUIDS))}; default water) or a fluid file "
+                             f"(.toml or .json: each property 'value unit', docs/fluids.md)")
     parser.add_argument("--molecules-per-particle", type=float, default=4.0,
                         help="coarse-graining level (default 4)")
     parser.add_argument("--neighbors", type=float, default=20.0,
@@ -405,5 +548,8 @@ def add_arguments(parser):
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check)")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--json", help="also write the parameters and results to this JSON file")
+    add_progress(parser)
+    parser.add_argument("--output", help="write the calibrated model to this file (.toml or .json), which "
+                                         "openmmgendpde.fluid_files.load_parameters reads back")
     add_platform(parser)
     parser.set_defaults(run=run)

@@ -176,7 +176,7 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     the JSON file and exits with status 1; one that does not says so and returns its results."""
     from openmmgendpde.calibrate import Calibration, Measured
 
-    def thermodynamics(self, density=None):
+    def thermodynamics(self, density=None, pressure_error=None):
         t = self.parameters.targets()
         return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
                 "harmonic_temperature": Measured(t["temperature"], 0.1),

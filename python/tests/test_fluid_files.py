@@ -1,0 +1,166 @@
+"""Fluids and calibrated models as files (openmmgendpde.fluid_files) and calibrate's --fluid FILE and --output."""
+
+import dataclasses
+import json
+import os
+import subprocess
+import sys
+
+import openmm
+import pytest
+
+from openmmgendpde.__main__ import main
+from openmmgendpde.fluid import ARGON, WATER, coarse_grain
+from openmmgendpde.fluid_files import (fluid_from_table, fluid_table, load_fluid, load_parameters, quantity,
+                                       save_parameters)
+
+REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+WATER_FILE = os.path.join(REPOSITORY, "examples", "fluids", "water.toml")
+WATER_TABLE = {"name": "water", "temperature": "298.15 K", "pressure": "0.1 MPa", "mass_density": "997.05 kg/m^3",
+               "compressibility": "0.4525 1/GPa", "heat_capacity": "74.44 J/(mol K)",
+               "shear_viscosity": "0.89 mPa s", "thermal_conductivity": "0.6065 W/(m K)", "molar_mass": "18.015 g/mol",
+               "tait_exponent": 7}
+
+
+def _same_properties(a, b, rel=1e-12):
+    values_a, values_b = a.in_openmm(), b.in_openmm()
+    assert values_a.keys() == values_b.keys()
+    for name in values_a:
+        assert values_a[name] == pytest.approx(values_b[name], rel=rel), name
+
+
+def test_the_example_water_file_is_fluid_water():
+    """examples/fluids/water.toml (written in other units than fluid.WATER: 1/GPa, mPa s, MPa) gives WATER's
+    properties in OpenMM units to rounding."""
+    _same_properties(load_fluid(WATER_FILE), WATER)
+
+
+@pytest.mark.parametrize("text, expected_si", [
+    ("298.15 K", 298.15), ("0.1 MPa", 1e5), ("1 bar", 1e5), ("0.4525 1/GPa", 0.4525e-9), ("0.89 mPa s", 0.89e-3),
+    ("74.44 J/(mol K)", 74.44), ("18.015 g/mol", 0.018015), ("1 g/cm^3", 1000.0), ("2 kcal/mol", 8368.0),
+])
+def test_quantities_in_pint_syntax_become_si_quantities(text, expected_si):
+    """Each string gives its value in SI base units (the factors written out here: bar = 1e5 Pa, g/cm^3 = 1000
+    kg/m^3, kcal = 4184 J)."""
+    assert quantity(text).value_in_unit_system(openmm.unit.si_unit_system) == pytest.approx(expected_si, rel=1e-12)
+
+
+@pytest.mark.parametrize("fluid", [WATER, ARGON], ids=["water", "argon"])
+@pytest.mark.parametrize("extension", [".toml", ".json"])
+def test_a_saved_model_loads_to_the_same_parameters_and_system(fluid, extension, tmp_path):
+    """save_parameters then load_parameters: every parameter equal to the last bit (with a changed f_cut and pi0, as
+    calibrate leaves them), the fluid's properties to rounding (its file is in SI units), and liquid() builds the
+    same System (serialized XML equal); load_fluid reads the fluid of a model file."""
+    parameters = dataclasses.replace(coarse_grain(fluid, 5, neighbors=20), cutoff_scaling=1.3371,
+                                     reference_pressure=-3.0e-1 / 7)
+    path = str(tmp_path / f"model{extension}")
+    save_parameters(parameters, path, comment="a test\nof two lines")
+    loaded = load_parameters(path)
+    for field in dataclasses.fields(parameters):
+        if field.name != "fluid":
+            assert getattr(loaded, field.name) == getattr(parameters, field.name), field.name
+    _same_properties(loaded.fluid, fluid)
+    _same_properties(load_fluid(path), fluid)
+    serialize = openmm.XmlSerializer.serialize
+    assert serialize(loaded.liquid(500).system) == serialize(parameters.liquid(500).system)
+
+
+def test_a_fluid_table_round_trip():
+    _same_properties(fluid_from_table(fluid_table(ARGON)), ARGON)
+    _same_properties(fluid_from_table(WATER_TABLE), WATER)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"temperature": None}, "missing ['temperature']"),
+    ({"colour": "blue"}, "unknown entries ['colour']"),
+    ({"temperature": "298 kelvinz"}, "temperature = '298 kelvinz' cannot be read as 'value unit'"),
+    ({"temperature": "25 degC"}, "temperature = '25 degC' cannot be read"),
+    ({"temperature": 298.15}, "temperature = 298.15 is not allowed; it must be a string 'value unit'"),
+    ({"mass_density": "997 K"}, "mass_density = '997 K' is not allowed; its unit must be compatible with kg/m^3"),
+    ({"shear_viscosity": "-0.89 mPa s"}, "shear_viscosity ="),
+    ({"pressure": "1 A"}, "its unit may use only mass, length, time, amount of substance and temperature"),
+    ({"tait_exponent": "7"}, "tait_exponent = '7' is not allowed; it must be a number > 1"),
+    ({"tait_exponent": 1.0}, "tait_exponent = 1.0 is not allowed; it must be finite and > 1"),
+])
+def test_bad_fluid_files_are_refused_naming_the_entry(change, message, tmp_path):
+    table = dict(WATER_TABLE)
+    for key, value in change.items():
+        if value is None:
+            del table[key]
+        else:
+            table[key] = value
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(table))
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert message in str(error.value) and str(path) in str(error.value)
+
+
+def test_bad_model_files_are_refused(tmp_path):
+    path = str(tmp_path / "model.toml")
+    save_parameters(coarse_grain(WATER, 4, neighbors=20), path)
+    text = open(path).read()
+    for old, new, message in [("openmmgendpde-model-1", "other-2", "format = 'other-2' is not a model file"),
+                              ("cutoff = ", "cut = ", "missing ['cutoff']; unknown ['cut']"),
+                              ("mass = 72.06", "mass = -72.06", "mass = -72.06 is not allowed; it must be > 0"),
+                              ("mass = 72.06", 'mass = "72.06"', "mass = '72.06' is not allowed; it must be a finite")]:
+        broken = str(tmp_path / "broken.toml")
+        with open(broken, "w") as stream:
+            stream.write(text.replace(old, new))
+        with pytest.raises(ValueError) as error:
+            load_parameters(broken)
+        assert message in str(error.value)
+    with pytest.raises(ValueError, match="must be .toml or .json"):
+        save_parameters(coarse_grain(WATER, 4, neighbors=20), str(tmp_path / "model.txt"))
+
+
+def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatch, tmp_path, capsys):
+    """calibrate --fluid FILE --output MODEL with the simulations replaced by made-up measurements: the pressure
+    reads P0 + 0.004/kappa_T, so pi0 must be shifted by -0.004/kappa_T from the mapping; f_cut is 'tuned' to 1.3.
+    The model file holds exactly those parameters (computed here from coarse_grain, independently of calibrate)."""
+    from openmmgendpde.calibrate import Calibration, Measured
+    offset = 0.004
+
+    def thermodynamics(self, density=None, pressure_error=None):
+        t = self.parameters.targets()
+        measured = t["pressure"] + offset * t["bulk_modulus"]
+        if self.parameters.reference_pressure != mapped.reference_pressure:
+            measured = t["pressure"]
+        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
+                "harmonic_temperature": Measured(t["temperature"], 0.1), "pressure": Measured(measured, 1e-4)}
+
+    def tune(self):
+        self.parameters = self.parameters.with_cutoff_scaling(1.3)
+        return 1.3
+
+    mapped = coarse_grain(load_fluid(WATER_FILE), 4, neighbors=20)
+    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", tune)
+    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
+    monkeypatch.setattr(Calibration, "bulk_modulus",
+                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
+    for name in ("shear_viscosity", "thermal_conductivity"):
+        monkeypatch.setattr(Calibration, name, lambda self, name=name: Measured(self.parameters.targets()[name], 1e-6))
+    output = str(tmp_path / "water-model.toml")
+    main(["calibrate", "--quick", "--fluid", WATER_FILE, "--output", output])
+    assert f"The calibrated model is in {output}" in capsys.readouterr().out
+    model = load_parameters(output)
+    bulk_modulus = mapped.targets()["bulk_modulus"]
+    expected = dataclasses.replace(mapped, cutoff_scaling=1.3,
+                                   reference_pressure=mapped.reference_pressure - offset * bulk_modulus)
+    assert model.reference_pressure == pytest.approx(expected.reference_pressure, rel=1e-12)
+    for field in dataclasses.fields(expected):
+        if field.name not in ("fluid", "reference_pressure"):
+            assert getattr(model, field.name) == getattr(expected, field.name), field.name
+    assert "every judged result within its tolerance" in open(output).read()
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--fluid", "nowhere.toml"], "--fluid nowhere.toml: no such file"),
+    (["--fluid", "mercury"], "--fluid mercury is not allowed; give one of argon, water or a fluid file"),
+    (["--output", "model.txt"], "--output model.txt is not allowed; it must end in .toml or .json"),
+])
+def test_calibrate_refuses_a_bad_fluid_or_output_in_one_line(arguments, message):
+    result = subprocess.run([sys.executable, "-m", "openmmgendpde", "calibrate", "--quick"] + arguments,
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and result.stdout == "" and "Traceback" not in result.stderr
+    assert message in result.stderr.splitlines()[-1]

@@ -238,6 +238,135 @@ void testInternalEnergyDrawIsReproducible() {
     ASSERT(first != run.integrator.getInternalEnergies());
 }
 
+/** C_V of particle i under setMixtureTypes (type 7: 3 C_V, type -3: C_V/2, type 0: C_V), written out here. */
+double mixtureHeatCapacity(int i) {
+    return i % 3 == 0 ? 3.0*heatCapacity : (i % 3 == 1 ? 0.5*heatCapacity : heatCapacity);
+}
+
+/**
+ * setInternalEnergies() with a Context: the values come back exactly, and they are the state that
+ * setParticleTemperatures() gives for the temperatures theta_i = eps_i/C_V(type of i) (a mixture with three heat
+ * capacities, the energies computed here from the temperatures): the same energies, and then the same trajectory,
+ * bitwise. The Context survives a checkpoint round trip with them.
+ */
+void testSetInternalEnergiesLikeTemperatures() {
+    Run byTemperature(4, 41), byEnergy(4, 41);
+    const int n = byTemperature.scene.system.getNumParticles();
+    for (Run* run : {&byTemperature, &byEnergy}) {
+        setMixtureTypes(run->scene, false);
+        setMixtureTypes(run->integrator, n, false);
+        run->start();
+        run->integrator.step(3);
+    }
+    std::vector<double> temperatures(n), energies(n);
+    for (int i = 0; i < n; i++) {
+        temperatures[i] = temperature*(0.8 + 0.4*std::sin(0.37*i)*std::sin(0.37*i));
+        energies[i] = mixtureHeatCapacity(i)*temperatures[i];
+    }
+    byTemperature.integrator.setParticleTemperatures(temperatures);
+    byEnergy.integrator.setInternalEnergies(energies);
+    ASSERT(byEnergy.integrator.getInternalEnergies() == energies);
+    ASSERT(byTemperature.integrator.getInternalEnergies() == energies);
+    const std::vector<double> theta = byEnergy.integrator.getParticleTemperatures();
+    for (int i = 0; i < n; i++)
+        assertRelative(temperatures[i], theta[i], 1e-15, "theta_i of particle " + std::to_string(i));
+    byTemperature.integrator.step(20);
+    byEnergy.integrator.step(20);
+    assertStatesIdentical(*byTemperature.context, *byEnergy.context, byTemperature.integrator, byEnergy.integrator,
+                          "after setParticleTemperatures and after setInternalEnergies");
+
+    // A checkpoint holds what setInternalEnergies() set, exactly, into a Context that started elsewhere.
+    byEnergy.integrator.setInternalEnergies(energies);
+    std::stringstream checkpoint;
+    byEnergy.context->createCheckpoint(checkpoint);
+    byEnergy.integrator.setInternalEnergiesToTemperature(temperature, 5);
+    ASSERT(byEnergy.integrator.getInternalEnergies() != energies);
+    byEnergy.context->loadCheckpoint(checkpoint);
+    ASSERT(byEnergy.integrator.getInternalEnergies() == energies);
+}
+
+/**
+ * setInternalEnergies() before a Context: the initial condition, exactly, in place of temperatures set before (and
+ * replaced by temperatures set after); the integrator's XML carries it.
+ */
+void testSetInternalEnergiesBeforeTheContext() {
+    Run run(4, 42);
+    const int n = run.scene.system.getNumParticles();
+    std::vector<double> energies(n);
+    for (int i = 0; i < n; i++)
+        energies[i] = heatCapacity*temperature*(1.0 + 0.01*i) + 1e-3/3.0;
+    run.integrator.setParticleTemperatures(std::vector<double>(n, 2.0*temperature));
+    run.integrator.setInternalEnergies(energies);
+    ASSERT(run.integrator.getInternalEnergies() == energies);
+    const std::vector<double> theta = run.integrator.getParticleTemperatures();
+    for (int i = 0; i < n; i++)
+        assertRelative(energies[i]/heatCapacity, theta[i], 1e-15, "configured theta_i");
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEIntegrator>(&run.integrator, "Integrator", buffer);
+    std::unique_ptr<GenDPDEIntegrator> copy(XmlSerializer::deserialize<GenDPDEIntegrator>(buffer));
+    ASSERT(copy->getInternalEnergies() == energies);
+    run.start();
+    ASSERT(run.integrator.getInternalEnergies() == energies);
+    Context fromCopy(run.scene.system, *copy, *platform);
+    ASSERT(copy->getInternalEnergies() == energies);
+
+    // Temperatures set last replace the energies.
+    GenDPDEIntegrator unbound(stepSize, friction, heatConduction, heatCapacity);
+    unbound.setInternalEnergies(energies);
+    unbound.setParticleTemperatures(std::vector<double>(n, 2.0*temperature));
+    Context context(run.scene.system, unbound, *platform);
+    for (double e : unbound.getInternalEnergies())
+        assertRelative(2.0*temperature*heatCapacity, e, 1e-15, "eps_i after temperatures replaced energies");
+}
+
+/**
+ * Bad input to setInternalEnergies() (an empty list, a wrong length, a value not finite or <= 0 or beyond the
+ * range, the last particle's), before and after a Context exists, is refused with a message naming the parameter,
+ * the particle, the value and the range, and changes nothing.
+ */
+void testSetInternalEnergiesRefusesBadInput() {
+    Run run(4, 43);
+    const int n = run.scene.system.getNumParticles();
+    const std::vector<double> configured(n, heatCapacity*temperature);
+    run.integrator.setInternalEnergies(configured);
+    const std::string range = "[1e-100, 1e+100] kJ/mol";
+    auto withLast = [&](double value) {
+        std::vector<double> energies(n, 2.0*heatCapacity*temperature);
+        energies[n - 1] = value;
+        return energies;
+    };
+    const std::string last = "internal energy of particle " + std::to_string(n - 1);
+    const std::vector<std::pair<std::vector<double>, std::vector<std::string>>> cases = {
+        {withLast(0.0), {last, "= 0 kJ/mol", range}},
+        {withLast(-1.5), {last, "= -1.5 kJ/mol", range}},
+        {withLast(std::nan("")), {last, "nan", range}},
+        {withLast(INFINITY), {last, "inf", range}},
+        {withLast(1e300), {last, "1e+300", range}},
+        {{}, {"number of internal energies", "= 0", "one per particle"}},
+    };
+    for (bool bound : {false, true}) {
+        if (bound) {
+            run.start();
+            run.integrator.step(2);
+        }
+        const std::vector<double> before = run.integrator.getInternalEnergies();
+        for (const auto& c : cases) {
+            assertThrowsMentioning([&]() { run.integrator.setInternalEnergies(c.first); }, c.second);
+            ASSERT(run.integrator.getInternalEnergies() == before);
+        }
+        if (bound) {
+            assertThrowsMentioning([&]() { run.integrator.setInternalEnergies(std::vector<double>(n + 1, 1.0)); },
+                                   {"number of internal energies", std::to_string(n + 1), std::to_string(n)});
+            ASSERT(run.integrator.getInternalEnergies() == before);
+        }
+    }
+    // A wrong length before a Context is refused when the Context is created.
+    GenDPDEIntegrator unbound(stepSize, friction, heatConduction, heatCapacity);
+    unbound.setInternalEnergies({1.0, 2.0});
+    assertThrowsMentioning([&]() { Context context(run.scene.system, unbound, *platform); },
+                           {"number of internal energies", "= 2", std::to_string(n)});
+}
+
 void runIntegratorStateTests() {
     testOneContextPerIntegrator();
     testBathTemperatureKeepsTheParticlesState();
@@ -248,6 +377,9 @@ void runIntegratorStateTests() {
     testUnsupportedSystemsAreRefused();
     testOwnCutoffCheckedWhenTheBoxChanges();
     testInternalEnergyDrawIsReproducible();
+    testSetInternalEnergiesLikeTemperatures();
+    testSetInternalEnergiesBeforeTheContext();
+    testSetInternalEnergiesRefusesBadInput();
 }
 
 } // namespace IntegratorStateTests

@@ -61,12 +61,14 @@ class IntegrateGenDPDEStepKernel;
  * size, or increase the heat capacity (the fluctuations of eps_i relative to its mean scale like sqrt(k_B/C_V)).
  *
  * Temperatures and internal energies. The bath temperature (setTemperature) and the particles' state eps_i are
- * separate. The particles' state belongs to the Context: it is set with setParticleTemperatures() or
- * setInternalEnergiesToTemperature() and travels with checkpoints and States (getState(getIntegratorParameters=
- * true), Simulation.saveState), never in the integrator's XML, which holds its parameters (and the initial particle
- * temperatures configured before a Context existed). When a Context is created, the particles start at the
- * temperatures given to setParticleTemperatures() before, else at the bath temperature, else they are not set and
- * an Isoenergetic step refuses to run. Like every OpenMM integrator, one GenDPDEIntegrator serves one Context.
+ * separate. The particles' state belongs to the Context: it is set with setParticleTemperatures(),
+ * setInternalEnergies() or setInternalEnergiesToTemperature() and travels with checkpoints and States
+ * (getState(getIntegratorParameters=true), Simulation.saveState), never in the integrator's XML, which holds its
+ * parameters (and the initial particle temperatures or internal energies configured before a Context existed).
+ * When a Context is created, the particles start at the temperatures or internal energies given to
+ * setParticleTemperatures() or setInternalEnergies() before (the later call wins), else at the bath temperature,
+ * else they are not set and an Isoenergetic step refuses to run. Like every OpenMM integrator, one
+ * GenDPDEIntegrator serves one Context.
  *
  * A step in which a particle would move farther than the pair range R (or by a non-finite amount), or in which a
  * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
@@ -182,10 +184,19 @@ public:
     void setTemperature(double temperature);
     /**
      * Set each particle's temperature theta_i (in K), each in [1e-50, 1e50], one per particle, i.e. eps_i = C_V
-     * theta_i with the C_V of the particle's type. Before a Context exists: the initial condition (its length is checked against the System when the
-     * Context is created). Afterwards: the internal energies of the Context, now.
+     * theta_i with the C_V of the particle's type. Before a Context exists: the initial condition, in place of any
+     * internal energies set with setInternalEnergies() (its length is checked against the System when the Context
+     * is created). Afterwards: the internal energies of the Context, now.
      */
     void setParticleTemperatures(const std::vector<double>& temperatures);
+    /**
+     * Set each particle's internal energy eps_i (in kJ/mol), each finite and in [1e-100, 1e100], one per particle:
+     * the counterpart of getInternalEnergies(), and of setParticleTemperatures() for a state given as energies
+     * (theta_i = eps_i/C_V). The values are kept exactly, whatever the heat capacities. Before a Context exists: the
+     * initial condition, in place of any temperatures set with setParticleTemperatures() (its length is checked
+     * against the System when the Context is created). Afterwards: the internal energies of the Context, now.
+     */
+    void setInternalEnergies(const std::vector<double>& energies);
     /**
      * Draw every particle's internal energy from its equilibrium distribution at temperature T (in K), > 0: the
      * Gamma law with shape C_V/k_B + 1 (C_V of the particle's type) and scale k_B T (docs/theory.md section 8), so that the harmonic mean of theta_i
@@ -199,11 +210,16 @@ public:
     void setInternalEnergiesToTemperature(double temperature, int randomSeed);
     /**
      * Each particle's temperature theta_i = eps_i/C_V (in K). Before a Context exists, those set with
-     * setParticleTemperatures(); if none were, the exception thrown says what the particles will start at (the bath
+     * setParticleTemperatures(), or the internal energies set with setInternalEnergies() over the C_V of the types
+     * set on the integrator; if none were, the exception thrown says what the particles will start at (the bath
      * temperature, or nothing yet), since the number of particles is not known.
      */
     std::vector<double> getParticleTemperatures() const;
-    /** Each particle's internal energy eps_i (in kJ/mol); before a Context exists, as getParticleTemperatures(). */
+    /**
+     * Each particle's internal energy eps_i (in kJ/mol). Before a Context exists, those set with
+     * setInternalEnergies(), or the temperatures set with setParticleTemperatures() times the C_V of the types set
+     * on the integrator; if neither was, as getParticleTemperatures().
+     */
     std::vector<double> getInternalEnergies() const;
     /**
      * The total energy K + U + sum_i eps_i (in kJ/mol) of the Context this integrator is bound to, with the on-step
@@ -230,7 +246,7 @@ protected:
     void serializeParameters(OpenMM::SerializationNode& node) const override;
     void deserializeParameters(const OpenMM::SerializationNode& node) override;
 private:
-    friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures, the configured initial condition
+    friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures and initialEnergies, the initial condition
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;
@@ -241,6 +257,11 @@ private:
     std::vector<double> initialInternalEnergies(const OpenMM::System& system, const std::map<int, int>& types) const;
     /** C_V of each particle of the System (kJ/(mol K)), from these particle types and the heat capacities now. */
     std::vector<double> particleHeatCapacities(const OpenMM::System& system, const std::map<int, int>& types) const;
+    /**
+     * Before a Context: C_V of particles 0 .. numParticles - 1 (and of every particle with a type set), from the
+     * types set on the integrator and the heat capacities now.
+     */
+    std::vector<double> configuredHeatCapacities(int numParticles) const;
     void checkTypeHeatCapacity(int index, int type, double heatCapacity) const;
     void checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const;
     /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
@@ -251,7 +272,9 @@ private:
     int randomSeed;
     Mode mode;
     // The per-particle state lives in the kernel once a Context exists (eps_i; all zero until set). Before that,
-    // the configured initial condition: these temperatures, or, if empty, every particle at `temperature`.
+    // the configured initial condition: these internal energies (kJ/mol) or these temperatures (at most one of the
+    // two is not empty), or, if both are empty, every particle at `temperature`.
+    std::vector<double> initialEnergies;
     std::vector<double> initialTemperatures;
     std::map<int, int> particleTypes;
     std::map<int, int> contextParticleTypes;   // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)

@@ -20,7 +20,29 @@ using namespace ParameterChecks;
 
 namespace {
 const char* integratorName = "GenDPDEIntegrator";
+
+/** Refuse a list of per-particle values other than one per particle of a System of numParticles. */
+void requireOnePerParticle(const std::vector<double>& values, const std::string& count, int numParticles) {
+    if ((int) values.size() != numParticles)
+        reject(integratorName, count, values.size(), "",
+               "the number of particles in the System, " + std::to_string(numParticles));
 }
+
+/**
+ * Refuse a list of per-particle values (setParticleTemperatures, setInternalEnergies) unless it is not empty, each
+ * value (named "<value> of particle i") is in range and, with a Context (numParticles >= 0), there is one per
+ * particle: before anything changes.
+ */
+void requirePerParticleValues(const std::vector<double>& values, const std::string& count, const std::string& value,
+                              const Range& range, int numParticles) {
+    if (values.empty())
+        reject(integratorName, count, 0, "", "one per particle (at least one)");
+    for (size_t i = 0; i < values.size(); i++)
+        requireInRange(integratorName, value + " of particle " + std::to_string(i), values[i], range);
+    if (numParticles >= 0)
+        requireOnePerParticle(values, count, numParticles);
+}
+} // namespace
 
 GenDPDEIntegrator::GenDPDEIntegrator(double stepSize, double friction, double heatConduction, double heatCapacity) :
         cutoff(0.0), temperature(0.0), randomSeed(0), mode(Isoenergetic) {
@@ -230,24 +252,28 @@ IntegrateGenDPDEStepKernel& GenDPDEIntegrator::boundKernel() const {
 }
 
 void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& temperatures) {
-    // Validate everything before changing anything.
-    if (temperatures.empty())
-        reject(integratorName, "number of particle temperatures", 0, "", "one per particle (at least one)");
-    for (size_t i = 0; i < temperatures.size(); i++)
-        requireInRange(integratorName, "temperature of particle " + std::to_string(i), temperatures[i],
-                       Ranges::temperature);
+    requirePerParticleValues(temperatures, "number of particle temperatures", "temperature", Ranges::temperature,
+                             context == nullptr ? -1 : context->getSystem().getNumParticles());
     if (context == nullptr) {
         initialTemperatures = temperatures;
+        initialEnergies.clear();
         return;
     }
-    const int numParticles = context->getSystem().getNumParticles();
-    if ((int) temperatures.size() != numParticles)
-        reject(integratorName, "number of particle temperatures", temperatures.size(), "",
-               "the number of particles in the System, " + std::to_string(numParticles));
     const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
-    std::vector<double> energies(numParticles);
-    for (int i = 0; i < numParticles; i++)
+    std::vector<double> energies(temperatures.size());
+    for (size_t i = 0; i < energies.size(); i++)
         energies[i] = capacity[i]*temperatures[i];
+    boundKernel().setInternalEnergies(energies);
+}
+
+void GenDPDEIntegrator::setInternalEnergies(const std::vector<double>& energies) {
+    requirePerParticleValues(energies, "number of internal energies", "internal energy", Ranges::internalEnergy,
+                             context == nullptr ? -1 : context->getSystem().getNumParticles());
+    if (context == nullptr) {
+        initialEnergies = energies;
+        initialTemperatures.clear();
+        return;
+    }
     boundKernel().setInternalEnergies(energies);
 }
 
@@ -266,15 +292,21 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
     boundKernel().setInternalEnergies(energies);
 }
 
+std::vector<double> GenDPDEIntegrator::configuredHeatCapacities(int numParticles) const {
+    // Types refer to particles not known yet: every particle with a type set is looked up.
+    const ParticleTypeIndex types(particleTypes, std::max<int>(numParticles, particleTypes.empty() ? 0
+                                  : particleTypes.rbegin()->first + 1), integratorName);
+    return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
+}
+
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {
     if (context != nullptr)
         return boundKernel().getInternalEnergies();
-    // Before a Context: the configured temperatures times C_V; types refer to particles not known yet, so only
-    // particles within initialTemperatures are looked up.
+    if (!initialEnergies.empty())
+        return initialEnergies;
+    // Before a Context: the configured temperatures times C_V.
     std::vector<double> energies = getParticleTemperatures();
-    const ParticleTypeIndex types(particleTypes, std::max<int>(energies.size(), particleTypes.empty() ? 0
-                                  : particleTypes.rbegin()->first + 1), integratorName);
-    const std::vector<double> capacity = GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
+    const std::vector<double> capacity = configuredHeatCapacities(energies.size());
     for (size_t i = 0; i < energies.size(); i++)
         energies[i] *= capacity[i];
     return energies;
@@ -284,6 +316,13 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
     if (context == nullptr) {
         if (!initialTemperatures.empty())
             return initialTemperatures;
+        if (!initialEnergies.empty()) {
+            std::vector<double> temperatures = initialEnergies;
+            const std::vector<double> capacity = configuredHeatCapacities(temperatures.size());
+            for (size_t i = 0; i < temperatures.size(); i++)
+                temperatures[i] /= capacity[i];
+            return temperatures;
+        }
         std::ostringstream message;
         message.precision(12);
         message << "GenDPDEIntegrator: the particle temperatures are not known one by one before a Context exists "
@@ -291,8 +330,8 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
         if (temperature > 0.0)
             message << "every particle will start at the bath temperature, " << temperature << " K";
         else
-            message << "none are set; call setParticleTemperatures(), or setTemperature() to start every particle "
-                    << "at the bath temperature";
+            message << "none are set; call setParticleTemperatures() or setInternalEnergies(), or setTemperature() "
+                    << "to start every particle at the bath temperature";
         throw OpenMMException(message.str());
     }
     std::vector<double> temperatures = boundKernel().getInternalEnergies();
@@ -324,12 +363,16 @@ void GenDPDEIntegrator::checkSystem(const System& system) const {
 
 std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& system,
                                                                 const std::map<int, int>& types) const {
-    // docs/integrator.md, "Temperatures and internal energies": the temperatures set before the Context, else the
-    // bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for them).
+    // docs/integrator.md, "Temperatures and internal energies": the internal energies or temperatures set before the
+    // Context, else the bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for
+    // them).
     const int numParticles = system.getNumParticles();
-    if (!initialTemperatures.empty() && (int) initialTemperatures.size() != numParticles)
-        reject(integratorName, "number of particle temperatures", initialTemperatures.size(), "",
-               "the number of particles in the System, " + std::to_string(numParticles));
+    if (!initialEnergies.empty()) {
+        requireOnePerParticle(initialEnergies, "number of internal energies", numParticles);
+        return initialEnergies;
+    }
+    if (!initialTemperatures.empty())
+        requireOnePerParticle(initialTemperatures, "number of particle temperatures", numParticles);
     const std::vector<double> capacity = particleHeatCapacities(system, types);
     std::vector<double> energies(numParticles);
     for (int i = 0; i < numParticles; i++)
@@ -381,7 +424,7 @@ std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
 void GenDPDEIntegrator::requireTemperatures() const {
     if (mode == Isoenergetic && !boundKernel().hasInternalEnergies())   // all zero: never set (see the header)
         throw OpenMMException("GenDPDEIntegrator: the particle temperatures are not set; call setTemperature() "
-                              "before creating the Context, or setParticleTemperatures() or "
+                              "before creating the Context, or setParticleTemperatures(), setInternalEnergies() or "
                               "setInternalEnergiesToTemperature(), before stepping in Isoenergetic mode");
     if (mode == Isothermal && !(temperature > 0.0))
         throw OpenMMException("GenDPDEIntegrator: the Isothermal mode needs a temperature > 0; call setTemperature()");

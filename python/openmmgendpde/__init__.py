@@ -125,6 +125,7 @@ return_units(GenDPDEIntegrator, "getCutoffDistance", _unit.nanometer)
 accept_units(GenDPDEIntegrator, "setTemperature", [("temperature", _unit.kelvin)])
 return_units(GenDPDEIntegrator, "getTemperature", _unit.kelvin)
 accept_units(GenDPDEIntegrator, "setParticleTemperatures", [("temperatures", _unit.kelvin)])
+accept_units(GenDPDEIntegrator, "setInternalEnergies", [("energies", _unit.kilojoule_per_mole)])
 accept_units(GenDPDEIntegrator, "setInternalEnergiesToTemperature", [("temperature", _unit.kelvin),
                                                                     ("randomSeed", DIMENSIONLESS)])
 return_units(GenDPDEIntegrator, "getConservedEnergy", _unit.kilojoule_per_mole)

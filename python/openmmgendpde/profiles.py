@@ -1,15 +1,22 @@
 """Profiles along one axis of a periodic box (an OpenMM reporter): what a study of a slab, a heat flow or a shear
 flow reads. Each report bins the particles by their wrapped coordinate along ``axis`` (reduced box: fractional
-coordinate) into ``bins`` equal slices and writes, per bin, one CSV row:
+coordinate) into ``bins`` equal slices and writes, per bin, one CSV row with the columns
 
-    step, time (ps), bin, centre (nm), particles, number density (nm^-3), mean theta (K), kinetic temperature (K),
-    v_x, v_y, v_z (nm/ps), and with a GenDPDEForce given, P_xx, P_yy, P_zz, P_xy, P_xz, P_yz (kJ/mol/nm^3), and
-    with particle types given, for each type t: its number density (nm^-3) and harmonic-mean theta (K)
+    step, time (ps), bin, centre (nm), particles, density (number density, nm^-3), theta_harmonic (K),
+    kinetic_temperature (K), vx, vy, vz (nm/ps), and with a GenDPDEForce given, Pxx, Pyy, Pzz, Pxy, Pxz, Pyz
+    (kJ/mol/nm^3), and with particle types given, for each type t: density_type<t> (nm^-3) and
+    theta_harmonic_type<t> (K), <t> the type's number, or minus<|t|> for a negative type (type -3: density_typeminus3)
 
-The number density is the count over the slice volume; mean theta is the mean internal temperature theta_i (NaN
-without a GenDPDEIntegrator); the kinetic temperature is m |v - v_bin|^2 summed over the slice's particles over
-3 (n_bin - 1) k_B (the slice's mean velocity removed, its 3 degrees of freedom with it; NaN for fewer than 2
-particles); v is the slice's mean velocity. The pressure tensor of a slice is (sum over its particles of
+Every column name is a plain identifier (letters, digits, underscores); the header line is followed by a comment line
+``# units: step=1, time=ps, ...`` giving each column's units, so that
+``numpy.genfromtxt(path, delimiter=",", names=True, comments="#")`` reads every column by its name.
+
+The number density is the count over the slice volume; theta_harmonic is the harmonic mean 1/<1/theta_i> of the
+slice's internal temperatures (NaN without a GenDPDEIntegrator): the thermodynamic temperature of the slice (at
+equilibrium the Gamma law of eps_i makes 1/<1/theta> the bath temperature, while the arithmetic mean of theta_i is
+biased high by the factor 1 + k_B/C_V; docs/theory.md section 8); the kinetic temperature is m |v - v_bin|^2
+summed over the slice's particles over 3 (n_bin - 1) k_B (the slice's mean velocity removed, its 3 degrees of
+freedom with it; NaN for fewer than 2 particles); v is the slice's mean velocity. The pressure tensor of a slice is (sum over its particles of
 m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half of its pairs' virial tensors
 (GenDPDEForce.getParticleVirials, from the platform's kernels; the slices' pressures average to the system's).
 """
@@ -27,8 +34,9 @@ from .units import BOLTZMANN
 
 def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=None, virials=None, types=None):
     """The profile of one configuration as a dict of arrays (one value per bin), in OpenMM units: 'centre',
-    'count', 'density', 'theta', 'kinetic_temperature', 'velocity' (bins x 3), 'pressure' (bins x 3 x 3, NaN without
-    virials). positions (nm), velocities (nm/ps) N x 3 arrays; masses (amu) N; box three rows (nm, reduced form);
+    'count', 'density', 'theta_harmonic' (the harmonic mean of theta_i, NaN without temperatures or particles),
+    'kinetic_temperature', 'velocity' (bins x 3), 'pressure' (bins x 3 x 3, NaN without virials). positions (nm),
+    velocities (nm/ps) N x 3 arrays; masses (amu) N; box three rows (nm, reduced form);
     temperatures theta_i (K) or None; virials the per-particle virial tensors (N x 3 x 3, kJ/mol) or None. With
     ``types`` (one integer per particle, docs/types.md) also 'types' (the distinct types, ascending),
     'type_density' (bins x types) and 'type_theta' (bins x types: each type's harmonic-mean theta, the temperature
@@ -44,7 +52,8 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
     kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
     width = box[axis, axis]
     result = {"centre": (np.arange(bins) + 0.5) * width / bins, "count": np.zeros(bins, int),
-              "density": np.zeros(bins), "theta": np.full(bins, np.nan), "kinetic_temperature": np.full(bins, np.nan),
+              "density": np.zeros(bins), "theta_harmonic": np.full(bins, np.nan),
+              "kinetic_temperature": np.full(bins, np.nan),
               "velocity": np.full((bins, 3), np.nan), "pressure": np.full((bins, 3, 3), np.nan)}
     if types is not None:
         types = np.asarray(types)
@@ -68,7 +77,7 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
         mean_velocity = (m[:, None] * v).sum(axis=0) / m.sum()
         result["velocity"][b] = mean_velocity
         if temperatures is not None:
-            result["theta"][b] = float(np.mean(np.asarray(temperatures, float)[members]))
+            result["theta_harmonic"][b] = float(1 / np.mean(1 / np.asarray(temperatures, float)[members]))
         relative = v - mean_velocity
         if n > 1:
             result["kinetic_temperature"][b] = float((m * (relative**2).sum(axis=1)).sum() / (3 * (n - 1) * kb))
@@ -110,9 +119,27 @@ def _per_particle_types(types, num_particles):
     return types
 
 
+def _type_label(t):
+    """A particle type as part of a column name (a plain identifier): type3, typeminus3."""
+    return f"type{t}" if t >= 0 else f"typeminus{-t}"
+
+
+def _columns(pressure, types):
+    """The reporter's columns as (name, units), in order: with the pressure tensor if ``pressure``, with the two
+    columns of each type in ``types`` (ascending)."""
+    columns = [("step", "1"), ("time", "ps"), ("bin", "1"), ("centre", "nm"), ("particles", "1"),
+               ("density", "nm^-3"), ("theta_harmonic", "K"), ("kinetic_temperature", "K"), ("vx", "nm/ps"),
+               ("vy", "nm/ps"), ("vz", "nm/ps")]
+    if pressure:
+        columns += [(f"P{a}", "kJ/mol/nm^3") for a in ("xx", "yy", "zz", "xy", "xz", "yz")]
+    for t in types:
+        columns += [(f"density_{_type_label(t)}", "nm^-3"), (f"theta_harmonic_{_type_label(t)}", "K")]
+    return columns
+
+
 class ProfileReporter:
     """Writes profiles along ``axis`` every ``reportInterval`` steps to ``file`` (a path or an open file), as CSV.
-    Works with any integrator; mean theta needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
+    Works with any integrator; theta_harmonic needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
     (periodic box). ``types``, one integer per particle or a dict {particle: type} (the form of
     GenDPDEForce.getParticleTypes, unnamed particles type 0), adds the columns of each type; by default the types
     set on ``force``, if any. Bad arguments raise ValueError when the reporter is made; types that do not fit the
@@ -144,11 +171,9 @@ class ProfileReporter:
                 self._types = _per_particle_types(self._types, system.getNumParticles())
             self._masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu)
                                      for i in range(system.getNumParticles())])
-            pressure = ",Pxx,Pyy,Pzz,Pxy,Pxz,Pyz" if self._force is not None else ""
-            by_type = "".join(f",density_type{t}_nm-3,theta_harmonic_type{t}_K"
-                              for t in ([] if self._types is None else np.unique(self._types)))
-            self._out.write("step,time_ps,bin,centre_nm,particles,density_nm-3,theta_K,kinetic_temperature_K,"
-                            f"vx_nm/ps,vy_nm/ps,vz_nm/ps{pressure}{by_type}\n")
+            columns = _columns(self._force is not None, [] if self._types is None else np.unique(self._types))
+            self._out.write(",".join(name for name, _ in columns) + "\n")
+            self._out.write("# units: " + ", ".join(f"{name}={units}" for name, units in columns) + "\n")
         integrator = simulation.integrator
         temperatures = None
         if isinstance(integrator, GenDPDEIntegrator) or GenDPDEIntegrator.isinstance(integrator):
@@ -163,7 +188,7 @@ class ProfileReporter:
         for b in range(self._bins):
             v = values["velocity"][b]
             self._out.write(f"{step},{time:.6g},{b},{values['centre'][b]:.6g},{values['count'][b]},"
-                            f"{values['density'][b]:.6g},{values['theta'][b]:.6g},"
+                            f"{values['density'][b]:.6g},{values['theta_harmonic'][b]:.6g},"
                             f"{values['kinetic_temperature'][b]:.6g},{v[0]:.6g},{v[1]:.6g},{v[2]:.6g}")
             if self._force is not None:
                 p = values["pressure"][b]

@@ -52,6 +52,10 @@ def test_is_an_openmm_integrator_with_quantity_getters():
     (lambda i: i.setParticleTemperatures([300.0, 0.0]), ["temperature of particle 1", "0"]),
     (lambda i: i.setParticleTemperatures([300.0, 1e153]), ["temperature of particle 1", "1e+153"]),
     (lambda i: i.setParticleTemperatures([]), ["number of particle temperatures", "= 0"]),
+    (lambda i: i.setInternalEnergies([30.0, 0.0]), ["internal energy of particle 1", "= 0 kJ/mol",
+                                                    "[1e-100, 1e+100] kJ/mol"]),
+    (lambda i: i.setInternalEnergies([30.0, float("nan")]), ["internal energy of particle 1", "nan"]),
+    (lambda i: i.setInternalEnergies([]), ["number of internal energies", "= 0"]),
     (lambda i: i.setCutoffDistance(-1.0), ["cutoff", "-1"]),
     (lambda i: i.setMode(7), ["mode", "7"]),
     (lambda i: i.getConservedEnergy(), ["not bound to a Context"]),
@@ -177,3 +181,86 @@ def test_internal_energies_drawn_at_a_temperature_follow_the_gamma_law():
     assert abs(1 / np.mean(1 / theta) / t - 1) < 4 / np.sqrt((c + 1 - 2) * 4000)
     assert abs(np.mean(theta) / (t * (1 + 1 / c)) - 1) < 4 / np.sqrt((c + 1) * 4000)
     assert stats.kstest(theta * c / t, stats.gamma(c + 1).cdf).pvalue > 1e-3
+
+
+def argon_with_two_heat_capacities(seed):
+    """liquid_argon(500) with the odd particles of type 1 on the integrator, C_V = 0.125 kJ/(mol K) for type 0 and
+    0.25 for type 1 (returned as an array, one per particle), in a Simulation after 3 steps."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=seed)
+    argon.integrator.setHeatCapacity(0.125)
+    argon.integrator.addTypeHeatCapacity(1, 0.25)
+    for i in range(1, 500, 2):
+        argon.integrator.setParticleType(i, 1)
+    simulation = argon.simulation()
+    argon.integrator.step(3)
+    return argon, simulation, np.where(np.arange(500) % 2 == 1, 0.25, 0.125)
+
+
+def test_set_internal_energies_is_set_particle_temperatures_in_energies():
+    """setInternalEnergies(eps), eps_i = C_V(type of i) theta_i computed here, leaves the Context in the state that
+    setParticleTemperatures(theta) leaves it in: the same energies (exactly: the same product), then the same
+    trajectory bit for bit (Reference). The energies set come back exactly, as a Quantity in kJ/mol."""
+    a, simulation_a, capacity = argon_with_two_heat_capacities(8)
+    b, simulation_b, _ = argon_with_two_heat_capacities(8)
+    theta = TEMPERATURE * (0.8 + 0.4 * np.random.default_rng(2).random(500))
+    energies = capacity * theta
+    a.integrator.setParticleTemperatures(theta)
+    b.integrator.setInternalEnergies(energies * ENERGY)
+    found = b.integrator.getInternalEnergies()
+    assert unit.is_quantity(found) and found.unit == ENERGY
+    assert np.array_equal(found.value_in_unit(ENERGY), energies)
+    assert np.array_equal(a.integrator.getInternalEnergies().value_in_unit(ENERGY), energies)
+    assert np.allclose(b.integrator.getParticleTemperatures().value_in_unit(unit.kelvin), theta, rtol=1e-15, atol=0)
+    a.integrator.step(20)
+    b.integrator.step(20)
+    state_a = simulation_a.context.getState(getPositions=True, getVelocities=True)
+    state_b = simulation_b.context.getState(getPositions=True, getVelocities=True)
+    assert np.array_equal(state_a.getPositions(asNumpy=True), state_b.getPositions(asNumpy=True))
+    assert np.array_equal(state_a.getVelocities(asNumpy=True), state_b.getVelocities(asNumpy=True))
+    assert np.array_equal(a.integrator.getInternalEnergies().value_in_unit(ENERGY),
+                          b.integrator.getInternalEnergies().value_in_unit(ENERGY))
+
+
+def test_set_internal_energies_before_the_context_in_units_and_through_checkpoints():
+    """Before a Context the energies set are the initial condition (through copy/pickle too); any energy unit is
+    converted; a checkpoint taken after setInternalEnergies restores those energies exactly."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=9)
+    energies = np.linspace(10.0, 20.0, 500) / 3   # kJ/mol
+    argon.integrator.setInternalEnergies(energies * ENERGY)
+    assert np.array_equal(argon.integrator.getInternalEnergies().value_in_unit(ENERGY), energies)
+    assert np.array_equal(pickle.loads(pickle.dumps(argon.integrator)).getInternalEnergies().value_in_unit(ENERGY),
+                          energies)
+    simulation = argon.simulation()
+    assert np.array_equal(argon.integrator.getInternalEnergies().value_in_unit(ENERGY), energies)
+    argon.integrator.step(2)
+    argon.integrator.setInternalEnergies(list(energies))   # plain numbers: kJ/mol
+    checkpoint = simulation.context.createCheckpoint()
+    argon.integrator.setInternalEnergies(energies / 4.184 * unit.kilocalorie_per_mole)
+    assert np.allclose(argon.integrator.getInternalEnergies().value_in_unit(ENERGY), energies, rtol=1e-14, atol=0)
+    argon.integrator.setInternalEnergies(2 * energies)
+    simulation.context.loadCheckpoint(checkpoint)
+    assert np.array_equal(argon.integrator.getInternalEnergies().value_in_unit(ENERGY), energies)
+    with pytest.raises(TypeError, match="setInternalEnergies"):
+        argon.integrator.setInternalEnergies(energies * unit.kelvin)
+
+
+@pytest.mark.parametrize("last, fragments", [
+    (0.0, ["internal energy of particle 499", "= 0 kJ/mol", "[1e-100, 1e+100] kJ/mol"]),
+    (-2.5, ["internal energy of particle 499", "= -2.5 kJ/mol"]),
+    (float("nan"), ["internal energy of particle 499", "nan"]),
+    (float("inf"), ["internal energy of particle 499", "inf"]),
+    (None, ["number of internal energies", "= 499", "the number of particles in the System, 500"]),
+])
+def test_set_internal_energies_refuses_bad_input_in_a_context_without_change(last, fragments):
+    """A bad value (the last particle's) or a list one short is refused naming what is wrong; the Context's
+    internal energies stay as they were."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=10)
+    simulation = argon.simulation()   # noqa: F841  (the Context must stay alive)
+    argon.integrator.step(2)
+    before = argon.integrator.getInternalEnergies().value_in_unit(ENERGY)
+    bad = list(2 * before[:-1]) + ([] if last is None else [last])
+    with pytest.raises(openmm.OpenMMException) as error:
+        argon.integrator.setInternalEnergies(bad)
+    for fragment in fragments:
+        assert fragment in str(error.value)
+    assert np.array_equal(argon.integrator.getInternalEnergies().value_in_unit(ENERGY), before)

@@ -7,8 +7,9 @@ import openmm
 import pytest
 from openmm import app, unit
 
-from openmmgendpde import GenDPDEForce
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.fluid import WATER, coarse_grain, set_temperature_field
+from openmmgendpde.presets import liquid_argon
 from openmmgendpde.profiles import ProfileReporter, profile
 from openmmgendpde.units import BOLTZMANN
 
@@ -26,7 +27,8 @@ def direct_bins(positions, velocities, masses, length, bins, theta):
         total_mass = sum(masses[i] for i in idx)
         mean_v = [sum(masses[i] * velocities[i][k] for i in idx) / total_mass for k in range(3)]
         kinetic = sum(masses[i] * sum((velocities[i][k] - mean_v[k]) ** 2 for k in range(3)) for i in idx)
-        rows.append((len(idx), kinetic / (3 * (len(idx) - 1) * kb), sum(theta[i] for i in idx) / len(idx), mean_v))
+        harmonic_theta = len(idx) / sum(1 / theta[i] for i in idx)
+        rows.append((len(idx), kinetic / (3 * (len(idx) - 1) * kb), harmonic_theta, mean_v))
     return rows
 
 
@@ -50,7 +52,7 @@ def test_profile_reporter_against_direct_bins():
     bins = 8
     simulation.reporters.append(ProfileReporter(out, 5, axis=2, bins=bins, force=model.force))
     simulation.step(5)
-    rows = [line.split(",") for line in out.getvalue().strip().splitlines()[1:]]
+    rows = [line.split(",") for line in out.getvalue().strip().splitlines()[2:]]   # (the header, the units)
     assert len(rows) == bins and all(int(row[0]) == 5 for row in rows)
     state = simulation.context.getState(getPositions=True, getVelocities=True)
     positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
@@ -59,10 +61,10 @@ def test_profile_reporter_against_direct_bins():
     theta = model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
     expected = direct_bins(positions, velocities, masses, length, bins, theta)
     volume = model.volume / bins
-    for row, (count, kinetic, mean_theta, mean_v) in zip(rows, expected):
+    for row, (count, kinetic, harmonic_theta, mean_v) in zip(rows, expected):
         assert int(row[4]) == count
         assert float(row[5]) == pytest.approx(count / volume, rel=1e-5)
-        assert float(row[6]) == pytest.approx(mean_theta, rel=1e-5)
+        assert float(row[6]) == pytest.approx(harmonic_theta, rel=1e-5)
         assert float(row[7]) == pytest.approx(kinetic, rel=1e-5)
         assert [float(x) for x in row[8:11]] == pytest.approx(mean_v, rel=1e-5, abs=1e-6)
     # The slices' pressure tensors: the traces of their virial parts add up to GenDPDEForce.getVirial (the C++ sum
@@ -70,7 +72,7 @@ def test_profile_reporter_against_direct_bins():
     # digits of P, K and the kinetic temperature.
     kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
     virial_trace = 0.0
-    for row, (count, kinetic, mean_theta, mean_v) in zip(rows, expected):
+    for row, (count, kinetic, harmonic_theta, mean_v) in zip(rows, expected):
         pxx, pyy, pzz = (float(x) for x in row[11:14])
         virial_trace += (pxx + pyy + pzz) * volume - 3 * (count - 1) * kb * kinetic
     scalar = model.force.getVirial(simulation.context).value_in_unit(unit.kilojoule_per_mole)
@@ -109,21 +111,22 @@ def test_profile_by_type_against_direct_counts():
         assert values["type_density"][b].sum() == pytest.approx(values["density"][b])
 
 
-def particles_in_a_box(force=None):
-    """A Simulation of 50 particles at random positions in a periodic 2 nm cube (VerletIntegrator), with ``force``
-    in its System if given."""
+def particles_in_a_box(force=None, integrator=None, positions=None):
+    """A Simulation of particles of 1 amu in a periodic 2 nm cube: 50 at random positions unless ``positions`` are
+    given, with ``force`` in its System if given, with ``integrator`` (by default a VerletIntegrator)."""
     system = openmm.System()
     system.setDefaultPeriodicBoxVectors(openmm.Vec3(2, 0, 0), openmm.Vec3(0, 2, 0), openmm.Vec3(0, 0, 2))
-    positions = np.random.default_rng(5).uniform(0, 2.0, (50, 3))
-    for _ in range(50):
+    if positions is None:
+        positions = np.random.default_rng(5).uniform(0, 2.0, (50, 3))
+    for _ in range(len(positions)):
         system.addParticle(1.0)
     if force is not None:
         system.addForce(force)
     topology = app.Topology()
     chain = topology.addChain()
-    for _ in range(50):
+    for _ in range(len(positions)):
         topology.addAtom("X", None, topology.addResidue("X", chain))
-    simulation = app.Simulation(topology, system, openmm.VerletIntegrator(0.001),
+    simulation = app.Simulation(topology, system, integrator or openmm.VerletIntegrator(0.001),
                                 openmm.Platform.getPlatformByName("Reference"))
     simulation.context.setPositions(positions)
     return simulation
@@ -134,9 +137,12 @@ def assert_type_columns(simulation, text, types):
     one density and one theta column per type, in ascending type order, each density the type's count in the
     slice (counted here particle by particle) over the slice volume (NaN theta without a GenDPDEIntegrator)."""
     low, high = sorted(set(types))
-    header, *rows = [line.split(",") for line in text.strip().splitlines()]
-    assert header[-4:] == [f"density_type{low}_nm-3", f"theta_harmonic_type{low}_K", f"density_type{high}_nm-3",
-                           f"theta_harmonic_type{high}_K"]
+    header, units, *rows = [line.split(",") for line in text.strip().splitlines()]
+    label = {t: f"type{t}" if t >= 0 else f"typeminus{-t}" for t in (low, high)}
+    assert header[-4:] == [f"density_{label[low]}", f"theta_harmonic_{label[low]}", f"density_{label[high]}",
+                           f"theta_harmonic_{label[high]}"]
+    assert units[-4:] == [f" density_{label[low]}=nm^-3", f" theta_harmonic_{label[low]}=K",
+                          f" density_{label[high]}=nm^-3", f" theta_harmonic_{label[high]}=K"]
     state = simulation.context.getState(getPositions=True)
     counts = {(b, t): 0 for b in range(2) for t in (low, high)}
     for r, t in zip(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer), types):
@@ -197,3 +203,77 @@ def test_profile_reporter_refuses_types_that_do_not_fit_the_system(types, messag
     with pytest.raises(ValueError, match=message):
         simulation.step(1)
     assert out.getvalue() == ""
+
+
+def test_profile_theta_is_the_harmonic_mean():
+    """A slice holding one particle at 100 K and one at 300 K has theta_harmonic 1/((1/100 + 1/300)/2) = 150 K (the
+    arithmetic mean would be 200 K), from profile() and in the reporter's CSV (a GenDPDEIntegrator in a Simulation,
+    the report made before any step, so that the temperatures are the ones set)."""
+    positions = [[0.1, 0.1, 0.1], [1.1, 1.1, 0.2]]
+    values = profile(positions, np.zeros((2, 3)), np.ones(2), np.diag([2.0, 2.0, 2.0]), axis=2, bins=1,
+                     temperatures=[100.0, 300.0])
+    assert values["theta_harmonic"][0] == pytest.approx(150.0, rel=1e-14)
+    integrator = GenDPDEIntegrator(0.001, 1.0, 1.0, 0.1)
+    integrator.setCutoffDistance(0.5)
+    integrator.setParticleTemperatures([100.0, 300.0])
+    simulation = particles_in_a_box(integrator=integrator, positions=positions)
+    out = io.StringIO()
+    reporter = ProfileReporter(out, 1, axis=2, bins=1)
+    reporter.report(simulation, simulation.context.getState(getPositions=True, getVelocities=True))
+    header, units, row = out.getvalue().strip().splitlines()
+    assert float(row.split(",")[header.split(",").index("theta_harmonic")]) == pytest.approx(150.0, rel=1e-6)
+
+
+def test_profile_reporter_csv_reads_by_name_with_genfromtxt(tmp_path):
+    """Liquid argon with types -2 and 3 on its force, with the pressure and type columns: numpy.genfromtxt(names=True,
+    comments='#') finds every column (names written out here) and reads the units line as a comment; the rows of the
+    last report are profile() of the final State, column by column (to the CSV's 6 digits), and in one slice the
+    count, density and theta_harmonic are recomputed here particle by particle."""
+    argon = liquid_argon(500, 1.6839, "VB", seed=12)
+    types = np.where(np.arange(500) % 3 == 0, -2, 3)
+    for i, t in enumerate(types):
+        argon.force.setParticleType(i, int(t))
+    simulation = argon.simulation()
+    path = tmp_path / "profile.csv"
+    bins = 4
+    reporter = ProfileReporter(str(path), 5, axis=2, bins=bins, force=argon.force)
+    simulation.reporters.append(reporter)
+    simulation.step(10)   # (the reporter flushes every report)
+    names = ["step", "time", "bin", "centre", "particles", "density", "theta_harmonic", "kinetic_temperature", "vx",
+             "vy", "vz", "Pxx", "Pyy", "Pzz", "Pxy", "Pxz", "Pyz", "density_typeminus2", "theta_harmonic_typeminus2",
+             "density_type3", "theta_harmonic_type3"]
+    lines = path.read_text().splitlines()
+    assert lines[0] == ",".join(names)
+    assert lines[1].startswith("# units: step=1, time=ps, bin=1, centre=nm, particles=1, density=nm^-3, "
+                               "theta_harmonic=K, kinetic_temperature=K, vx=nm/ps")
+    table = np.genfromtxt(path, delimiter=",", names=True, comments="#")
+    assert list(table.dtype.names) == names
+    assert len(table) == 2 * bins and list(table["step"]) == [5] * bins + [10] * bins
+
+    state = simulation.context.getState(getPositions=True, getVelocities=True, enforcePeriodicBox=False)
+    positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+    velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+    box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    masses = np.array([argon.system.getParticleMass(i).value_in_unit(unit.amu) for i in range(500)])
+    theta = argon.integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
+    virials = argon.force.getParticleVirials(simulation.context).value_in_unit(unit.kilojoule_per_mole)
+    expected = profile(positions, velocities, masses, box, 2, bins, theta, virials, types)
+    last = table[bins:]
+    columns = {"bin": np.arange(bins), "centre": expected["centre"], "particles": expected["count"],
+               "density": expected["density"], "theta_harmonic": expected["theta_harmonic"],
+               "kinetic_temperature": expected["kinetic_temperature"], "vx": expected["velocity"][:, 0],
+               "vy": expected["velocity"][:, 1], "vz": expected["velocity"][:, 2],
+               "density_typeminus2": expected["type_density"][:, 0], "theta_harmonic_typeminus2":
+               expected["type_theta"][:, 0], "density_type3": expected["type_density"][:, 1],
+               "theta_harmonic_type3": expected["type_theta"][:, 1]}
+    for k, (a, b) in enumerate([(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)]):
+        columns[names[11 + k]] = expected["pressure"][:, a, b]
+    for name, values in columns.items():
+        assert last[name] == pytest.approx(values, rel=1e-5, abs=1e-6), name
+    assert last["time"] == pytest.approx([state.getTime().value_in_unit(unit.picosecond)] * bins, rel=1e-5)
+    # Slice 1 by hand: which particles lie in it, their count, density and harmonic-mean theta.
+    edge = box[2][2]
+    members = [i for i in range(500) if min(int((positions[i][2] % edge) / edge * bins), bins - 1) == 1]
+    assert last["particles"][1] == len(members)
+    assert last["density"][1] == pytest.approx(len(members) / (edge**3 / bins), rel=1e-5)
+    assert last["theta_harmonic"][1] == pytest.approx(len(members) / sum(1 / theta[i] for i in members), rel=1e-5)

@@ -9,8 +9,9 @@ using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-// Version 2: particle types, per-type heat capacities and type pairs. Version 1 files are still read.
-const int currentVersion = 2;
+// Version 2: particle types, per-type heat capacities and type pairs. Version 3: the initial internal energies
+// (setInternalEnergies before a Context). Versions 1 and 2 are still read.
+const int currentVersion = 3;
 }
 
 GenDPDEIntegratorProxy::GenDPDEIntegratorProxy() : SerializationProxy("GenDPDEIntegrator") {
@@ -29,11 +30,15 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
     node.setIntProperty("randomSeed", integrator.getRandomNumberSeed());
     node.setIntProperty("mode", (int) integrator.getMode());
     node.setDoubleProperty("temperature", integrator.getTemperature());
-    // The initial particle temperatures configured before a Context existed: a parameter of the integrator. The
-    // live state of a bound integrator (its Context's internal energies) travels in checkpoints and States only.
+    // The initial particle temperatures or internal energies configured before a Context existed (at most one list
+    // is not empty): a parameter of the integrator. The live state of a bound integrator (its Context's internal
+    // energies) travels in checkpoints and States only.
     SerializationNode& temperatures = node.createChildNode("ParticleTemperatures");
     for (double t : integrator.initialTemperatures)
         temperatures.createChildNode("Particle").setDoubleProperty("t", t);
+    SerializationNode& energies = node.createChildNode("InternalEnergies");
+    for (double e : integrator.initialEnergies)
+        energies.createChildNode("Particle").setDoubleProperty("e", e);
     serializeParticleTypes(node, integrator.getParticleTypes());
     SerializationNode& heatCapacities = node.createChildNode("TypeHeatCapacities");
     for (int index = 0; index < integrator.getNumTypeHeatCapacities(); index++) {
@@ -75,6 +80,13 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
         temperatures.push_back(particle.getDoubleProperty("t"));
     if (!temperatures.empty())
         integrator->setParticleTemperatures(temperatures);
+    if (version >= 3) {
+        std::vector<double> energies;
+        for (const SerializationNode& particle : node.getChildNode("InternalEnergies").getChildren())
+            energies.push_back(particle.getDoubleProperty("e"));
+        if (!energies.empty())
+            integrator->setInternalEnergies(energies);
+    }
     if (version >= 2) {
         deserializeParticleTypes(node, *integrator);
         for (const SerializationNode& type : node.getChildNode("TypeHeatCapacities").getChildren())

@@ -36,6 +36,27 @@ void testSerialization() {
     delete copy;
 }
 
+/** Initial internal energies (setInternalEnergies before a Context) survive a round trip exactly, in place of
+ *  temperatures; temperatures set after them replace them in the copy too. */
+void testInternalEnergiesRoundTrip() {
+    GenDPDEIntegrator integrator(0.01, 1000.0, 2000.0, 0.1);
+    const std::vector<double> energies = {0.1/3.0, 12.5*(1.0 + 1e-15), 1e-90, 7e90};
+    integrator.setInternalEnergies(energies);
+    std::stringstream buffer;
+    XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);
+    ASSERT(buffer.str().find("version=\"3\"") != std::string::npos);
+    std::unique_ptr<Integrator> deserialized(XmlSerializer::deserialize<Integrator>(buffer));
+    GenDPDEIntegrator* copy = dynamic_cast<GenDPDEIntegrator*>(deserialized.get());
+    ASSERT(copy != nullptr);
+    ASSERT(copy->getInternalEnergies() == energies);
+    integrator.setParticleTemperatures({300.0, 310.0});
+    std::stringstream again;
+    XmlSerializer::serialize<Integrator>(&integrator, "Integrator", again);
+    std::unique_ptr<Integrator> second(XmlSerializer::deserialize<Integrator>(again));
+    const std::vector<double> temperatures = dynamic_cast<GenDPDEIntegrator*>(second.get())->getParticleTemperatures();
+    ASSERT(temperatures == std::vector<double>({300.0, 310.0}));
+}
+
 /** Particle types (non-consecutive, negative), per-type heat capacities and type pairs survive a round trip. */
 void testTypesRoundTrip() {
     GenDPDEIntegrator integrator(0.01, 1000.0, 2000.0, 0.1);
@@ -90,6 +111,7 @@ void testVersion1() {
 int main() {
     return runTestProgram([]() {
         testSerialization();
+        testInternalEnergiesRoundTrip();
         testTypesRoundTrip();
         testVersion1();
     });

@@ -45,7 +45,7 @@ constexpr Range friction{0.0, 1e12, "amu/ps"};
 constexpr Range heatConduction{0.0, 1e12, "kJ K/(mol ps)"};
 constexpr Range heatCapacity{1e-20, 1e20, "kJ/(mol K)"};
 constexpr Range temperature{1e-50, 1e50, "K"};
-constexpr Range internalEnergy{1e-100, 1e100, "kJ/mol"};   // eps_i in checkpoints and States
+constexpr Range internalEnergy{1e-100, 1e100, "kJ/mol"};   // eps_i set, or read from checkpoints and States
 constexpr Range mass{0.0, 1e12, "amu"};
 } // namespace Ranges
 

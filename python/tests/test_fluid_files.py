@@ -116,10 +116,11 @@ def test_bad_model_files_are_refused(tmp_path):
 
 def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatch, tmp_path, capsys):
     """calibrate --fluid FILE --output MODEL with the simulations replaced by made-up measurements: the pressure
-    reads P0 + 0.004/kappa_T, so pi0 must be shifted by -0.004/kappa_T from the mapping; f_cut is 'tuned' to 1.3.
+    reads P0 + 0.02/kappa_T (beyond the 0.01 allowed) with pi0 as mapped and P0 after any move, so pi0 must end -0.02/kappa_T from the
+    mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport coefficients read their targets.
     The model file holds exactly those parameters (computed here from coarse_grain, independently of calibrate)."""
     from openmmgendpde.calibrate import Calibration, Measured
-    offset = 0.004
+    offset = 0.02
 
     def thermodynamics(self, density=None, pressure_error=None):
         t = self.parameters.targets()
@@ -129,7 +130,7 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
         return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
                 "harmonic_temperature": Measured(t["temperature"], 0.1), "pressure": Measured(measured, 1e-4)}
 
-    def tune(self):
+    def tune(self, iterations=None):
         self.parameters = self.parameters.with_cutoff_scaling(1.3)
         return 1.3
 
@@ -138,8 +139,11 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
     monkeypatch.setattr(Calibration, "bulk_modulus",
                         lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
-    for name in ("shear_viscosity", "thermal_conductivity"):
-        monkeypatch.setattr(Calibration, name, lambda self, name=name: Measured(self.parameters.targets()[name], 1e-6))
+    for name, target in (("shear_viscosity", "shear_viscosity"), ("steady_viscosity", "shear_viscosity"),
+                         ("thermal_conductivity", "thermal_conductivity"),
+                         ("steady_conductivity", "thermal_conductivity")):
+        monkeypatch.setattr(Calibration, name, lambda self, target=target: Measured(
+            self.parameters.targets()[target], 1e-6, 3))
     output = str(tmp_path / "water-model.toml")
     main(["calibrate", "--quick", "--fluid", WATER_FILE, "--output", output])
     assert f"The calibrated model is in {output}" in capsys.readouterr().out

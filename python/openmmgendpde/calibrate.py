@@ -53,7 +53,7 @@ from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
 from .progress import Progress
 from .statistics import correlated_mean
-from .thermodynamics import ThermodynamicProbe
+from .thermodynamics import ThermodynamicProbe, self_diffusion
 from .transport import heat_flux_conductivity, poiseuille_viscosity
 from .tune_fcut import mean_density_on_frames
 from .units import BOLTZMANN
@@ -127,6 +127,8 @@ TRANSPORT_TOLERANCE = 0.05
 QUICK_CRITERIA = {name: ("factor", 2.0) if name.startswith(("shear", "thermal")) else criterion
                   for name, criterion in CRITERIA.items()}
 BULK_MODULUS_ROW = "bulk modulus n dP/dn (MPa)"
+#: A property the model is not fitted to, measured back (the particles' self-diffusion against the molecules').
+UNFITTED_DIFFUSION_ROW = "not fitted: self-diffusion (1e-9 m^2/s)"
 #: The standard error the pressure runs go on to reach, times 1/kappa_T: a quarter of the pressure's tolerance.
 PRESSURE_ERROR = 0.0025
 
@@ -271,13 +273,14 @@ class Calibration:
         frames at a time, until the pressure's standard error is at most that, or 4 plan.frames frames."""
         model, context = self._equilibrated(density)
         probe = ThermodynamicProbe(model.system)
-        samples = []
+        samples, positions = [], []
 
         def sample(frames):
             for _ in range(frames):
                 self._step(model.integrator, self.plan.interval)
-                state = context.getState(getEnergy=True, getVelocities=True)
+                state = context.getState(getEnergy=True, getVelocities=True, getPositions=True)
                 samples.append(probe.sample(state, context, model.integrator))
+                positions.append(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
 
         def average(name, unit_):
             result = correlated_mean([getattr(s, name).value_in_unit(unit_) for s in samples])
@@ -293,6 +296,8 @@ class Calibration:
             "pressure": average("pressure", unit.kilojoule_per_mole / unit.nanometer**3),
             "kinetic_temperature": average("kinetic_temperature", unit.kelvin),
             "harmonic_temperature": average("harmonic_temperature", unit.kelvin),
+            "self_diffusion": Measured(*self_diffusion([s.time.value_in_unit(unit.picosecond) for s in samples],
+                                                       positions)),
         }
 
     def correct_reference_pressure(self, reference_pressure):
@@ -612,6 +617,8 @@ def run(arguments):
          _scaled(conductivity, scaled["w_mk"])),
         ("thermal conductivity, heat flux (W/(m K))", _w_mk(targets["thermal_conductivity"]),
          _scaled(heat_flux, scaled["w_mk"])),
+        (UNFITTED_DIFFUSION_ROW, _m2_s(targets["self_diffusion"]) if targets.get("self_diffusion") else math.nan,
+         _scaled(thermo["self_diffusion"], _m2_s(1.0))),
     ]
     print("Targets and what the model gives (standard errors; independent samples: N/g of a time series, or "
           "the replicas):")
@@ -620,7 +627,8 @@ def run(arguments):
     bulk_target = _mpa(targets["bulk_modulus"])
     for name, target, measured in target_rows:
         samples = "" if measured.samples is None else f"{measured.samples:.0f}"
-        if measured.samples is not None and measured.samples < FEW_SAMPLES and not name.startswith(("shear", "thermal")):
+        time_series = not name.startswith(("shear", "thermal"))
+        if measured.samples is not None and measured.samples < FEW_SAMPLES and time_series:
             samples += f" (few: the error is uncertain by ~{100 / math.sqrt(2 * measured.samples):.0f}%)"
         print(f"| {name} | {target:.5g} | {measured.value:.5g} +- {measured.error:.2g} | "
               f"{comparison(name, target, measured.value, bulk_target).removeprefix('model/target = ')} | "
@@ -671,7 +679,8 @@ def plot(record, path_stem):
     from .plotting import panels, save
     figure, (table, transport, pressure) = panels(3, width=4.6)
     results = record["results"]
-    names = [name for name in results if not name.startswith(("particle-density", "pressure"))]
+    names = [name for name in results if not name.startswith(("particle-density", "pressure"))
+             and math.isfinite(results[name]["target"])]
     ratios = [results[name]["model"] / results[name]["target"] for name in names]
     bars = [2 * results[name]["error"] / results[name]["target"] for name in names]
     table.errorbar(ratios, range(len(names)), xerr=bars, fmt="o", color="k")
@@ -707,6 +716,11 @@ def _mpa(value):
     """kJ/mol/nm^3 -> MPa."""
     return (value * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA).value_in_unit(
         unit.megapascal)
+
+
+def _m2_s(value):
+    """nm^2/ps -> 1e-9 m^2/s."""
+    return value * 1e-18 / 1e-12 / 1e-9
 
 
 def _mpa_s(value):

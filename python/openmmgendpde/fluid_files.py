@@ -4,7 +4,8 @@ calibrated model can be built again (docs/fluids.md, "Fluid files").
 A fluid file holds the properties of a Fluid, each a string "value unit" in the syntax of pint (the units library
 of the scientific Python stack: "997.05 kg/m^3", "0.4525e-9 1/Pa", "74.44 J/(mol K)", "0.89 mPa s",
 "0.6065 W/(m K)", "18.015 g/mol"; per molecule or per mole, as a Fluid takes them), except heat_capacity, which may
-also be a plain number in k_B per molecule, and tait_exponent, a plain number:
+also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s) is optional,
+a property the model is not fitted to that calibrate measures back:
 
     name = "liquid methanol, 298.15 K, 0.1 MPa"
     temperature = "298.15 K"
@@ -40,6 +41,8 @@ _SI_UNITS = {
     "thermal_conductivity": ("W/(m K)", unit.watt / (unit.meter * unit.kelvin)),
     "molar_mass": ("g/mol", unit.gram / unit.mole),
 }
+#: Optional properties (not fitted; measured back beside the targets) and their SI units.
+_OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second)}
 #: pint's base units and openmm.unit's.
 _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.second, "mole": unit.mole,
                "kelvin": unit.kelvin}
@@ -99,7 +102,7 @@ def fluid_from_table(table, source="fluid"):
     """A Fluid from a table (dict) of a fluid file; ValueError naming ``source`` and the bad entry."""
     if not isinstance(table, dict):
         raise ValueError(f"{source}: expected a table of properties, got {type(table).__name__}")
-    known = set(_SI_UNITS) | {"name", "tait_exponent"}
+    known = set(_SI_UNITS) | set(_OPTIONAL_UNITS) | {"name", "tait_exponent"}
     unknown = sorted(set(table) - known)
     if unknown:
         raise ValueError(f"{source}: unknown entries {unknown}; a fluid has {sorted(known)}")
@@ -107,18 +110,19 @@ def fluid_from_table(table, source="fluid"):
     if missing:
         raise ValueError(f"{source}: missing {missing}")
     values = {"name": str(table["name"])}
+    units = dict(_SI_UNITS, **_OPTIONAL_UNITS)
     try:
-        for name in _SI_UNITS:
+        for name in [name for name in units if name in table]:
             given = table[name]
             if name == "heat_capacity" and isinstance(given, numbers.Real) and not isinstance(given, bool):
                 values[name] = float(given)   # in k_B per molecule
             else:
                 values[name] = quantity(given, name)
                 try:
-                    _in_openmm(values[name], _SI_UNITS[name][1], name)
+                    _in_openmm(values[name], units[name][1], name)
                 except ValueError:
                     raise ValueError(f"{name} = {given!r} is not allowed; its unit must be compatible with "
-                                     f"{_SI_UNITS[name][0]} (per molecule or per mole)") from None
+                                     f"{units[name][0]} (per molecule or per mole)") from None
         if "tait_exponent" in table:
             exponent = table["tait_exponent"]
             if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
@@ -141,8 +145,10 @@ def load_fluid(path):
 def fluid_table(fluid):
     """A Fluid as the table of a fluid file: each property as 'value unit' in SI (per mole where molar)."""
     table = {"name": fluid.name}
-    for name, (text, target) in _SI_UNITS.items():
+    for name, (text, target) in dict(_SI_UNITS, **_OPTIONAL_UNITS).items():
         given = getattr(fluid, name)
+        if given is None:
+            continue
         if name == "heat_capacity" and not unit.is_quantity(given):
             table[name] = float(given)
         else:

@@ -136,3 +136,24 @@ def _as_gendpde_integrator(integrator):
 
 def is_nan(quantity):
     return math.isnan(quantity.value_in_unit(quantity.unit))
+
+
+def self_diffusion(times, positions, groups=10, lags=10):
+    """The self-diffusion coefficient D (nm^2/ps) and its standard error from unwrapped positions (frames x N x 3,
+    nm; a State's positions are unwrapped unless enforcePeriodicBox) at ``times`` (ps, evenly spaced): the slope of
+    the mean square displacement, 6 D, fitted over ``lags`` lags from a quarter to half of the run (the diffusive
+    regime, every time origin used), the system's centre of mass removed (equal masses). The error is the scatter
+    of D over ``groups`` groups of particles (each particle's displacement is nearly independent of the others')."""
+    times = np.asarray(times, dtype=float)
+    x = np.asarray(positions, dtype=float)
+    x = x - x.mean(axis=1, keepdims=True)
+    frames = len(times)
+    if frames < 8:
+        raise ValueError(f"self_diffusion: {frames} frames; at least 8 are needed")
+    steps = np.unique(np.linspace(frames // 4, frames // 2, lags).astype(int))
+    members = np.array_split(np.arange(x.shape[1]), groups)
+    msd = np.array([[np.mean(np.sum((x[lag:, m] - x[:-lag, m]) ** 2, axis=2)) for m in members] for lag in steps])
+    lag_times = times[steps] - times[0]
+    slopes = np.polyfit(lag_times, msd, 1)[0]
+    values = slopes / 6
+    return float(values.mean()), float(values.std(ddof=1) / np.sqrt(groups))

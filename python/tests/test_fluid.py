@@ -246,10 +246,11 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     def thermodynamics(self, density=None, pressure_error=None):
         t = self.parameters.targets()
         return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
-                "harmonic_temperature": Measured(t["temperature"], 0.1),
+                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
                 "pressure": Measured(t["pressure"] + pressure_offset * t["bulk_modulus"], 1e-3)}
 
-    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", lambda self, iterations=None: self.parameters.cutoff_scaling)
+    monkeypatch.setattr(Calibration, "tune_cutoff_scaling",
+                        lambda self, iterations=None: self.parameters.cutoff_scaling)
     monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
     monkeypatch.setattr(Calibration, "bulk_modulus",
                         lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))

@@ -19,7 +19,7 @@ WATER_FILE = os.path.join(REPOSITORY, "examples", "fluids", "water.toml")
 WATER_TABLE = {"name": "water", "temperature": "298.15 K", "pressure": "0.1 MPa", "mass_density": "997.05 kg/m^3",
                "compressibility": "0.4525 1/GPa", "heat_capacity": "74.44 J/(mol K)",
                "shear_viscosity": "0.89 mPa s", "thermal_conductivity": "0.6065 W/(m K)", "molar_mass": "18.015 g/mol",
-               "tait_exponent": 7}
+               "tait_exponent": 7, "self_diffusion": "2.299e-9 m^2/s"}
 
 
 def _same_properties(a, b, rel=1e-12):
@@ -116,9 +116,10 @@ def test_bad_model_files_are_refused(tmp_path):
 
 def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatch, tmp_path, capsys):
     """calibrate --fluid FILE --output MODEL with the simulations replaced by made-up measurements: the pressure
-    reads P0 + 0.02/kappa_T (beyond the 0.01 allowed) with pi0 as mapped and P0 after any move, so pi0 must end -0.02/kappa_T from the
-    mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport coefficients read their targets.
-    The model file holds exactly those parameters (computed here from coarse_grain, independently of calibrate)."""
+    reads P0 + 0.02/kappa_T (beyond the 0.01 allowed) with pi0 as mapped and P0 after any move, so pi0 must end
+    -0.02/kappa_T from the mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport
+    coefficients read their targets. The model file holds exactly those parameters (computed here from coarse_grain,
+    independently of calibrate)."""
     from openmmgendpde.calibrate import Calibration, Measured
     offset = 0.02
 
@@ -128,7 +129,8 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
         if self.parameters.reference_pressure != mapped.reference_pressure:
             measured = t["pressure"]
         return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
-                "harmonic_temperature": Measured(t["temperature"], 0.1), "pressure": Measured(measured, 1e-4)}
+                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
+                "pressure": Measured(measured, 1e-4)}
 
     def tune(self, iterations=None):
         self.parameters = self.parameters.with_cutoff_scaling(1.3)

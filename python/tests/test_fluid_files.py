@@ -2,6 +2,7 @@
 
 import dataclasses
 import json
+import math
 import os
 import subprocess
 import sys
@@ -170,3 +171,18 @@ def test_calibrate_refuses_a_bad_fluid_or_output_in_one_line(arguments, message)
                             capture_output=True, text=True, timeout=120)
     assert result.returncode == 1 and result.stdout == "" and "Traceback" not in result.stderr
     assert message in result.stderr.splitlines()[-1]
+
+
+def test_the_example_nitrogen_file_holds_the_tabulated_state():
+    """examples/fluids/nitrogen.toml against the table it cites, recomputed here: mass density 30.017 mol/L x
+    28.0134 g/mol, kappa_T = T v alpha^2/(C_p - C_v) with alpha = ln(30.017/28.881)/7.25 K (to the 3 digits
+    written), C_v 28.5 J/(mol K) per molecule."""
+    values = load_fluid(os.path.join(REPOSITORY, "examples", "fluids", "nitrogen.toml")).in_openmm()
+    n_a = 6.02214076e23
+    assert values["mass_density"] == pytest.approx(30.017e3 * 28.0134e-3 / 1.66053906660e-27 * 1e-27,
+                                                   rel=1e-5)   # kg/m^3 -> amu/nm^3
+    alpha = math.log(30.017 / 28.881) / 7.25
+    kappa_t = 70 * (1e-3 / 30.017) * alpha**2 / (57.2 - 28.5)   # 1/Pa
+    assert values["compressibility"] == pytest.approx(kappa_t * 1e3 / n_a * 1e27, rel=2e-3)   # nm^3 mol/kJ
+    assert values["heat_capacity"] == pytest.approx(28.5e-3, rel=1e-12)
+    assert values["temperature"] == 70.0

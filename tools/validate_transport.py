@@ -18,21 +18,6 @@ import openmm
 from openmmgendpde import transport
 from openmmgendpde.calibrate import FLUIDS, Calibration, Plan, _mpa_s, _w_mk
 from openmmgendpde.fluid import coarse_grain
-from openmmgendpde import GenDPDEIntegrator
-
-
-class BoxCalibration(Calibration):
-    """Calibration in a box of ``cells`` FCC cells instead of a cube of plan.particles."""
-
-    def __init__(self, *arguments, cells, **keywords):
-        super().__init__(*arguments, **keywords)
-        self.cells = cells
-
-    def _model(self, density=None):
-        self.seed += 1
-        return self.parameters.liquid(estimator=self.estimator, mode=GenDPDEIntegrator.Isothermal,
-                                      time_step=self.plan.time_step, seed=self.seed, density=density,
-                                      cells=self.cells)
 
 
 def main():
@@ -43,7 +28,7 @@ def main():
     parser.add_argument("--what", choices=("viscosity", "conductivity"), required=True)
     parser.add_argument("--methods", choices=("both", "wave", "steady"), default="both")
     parser.add_argument("--replicas", type=int, default=4)
-    parser.add_argument("--wave-steps", type=int, default=1500, help="steps of a decaying wave (calibrate: 1500)")
+    parser.add_argument("--wave-steps", type=int, default=1500, help="steps of a decaying wave at least (calibrate: 1500; and 2 decay times)")
     parser.add_argument("--peak-fraction", type=float, default=0.2, help="Poiseuille peak velocity / v_th")
     parser.add_argument("--excess", type=float, default=0.1, help="heat flux: slabs at T0 (1 +- excess)")
     parser.add_argument("--bins", type=int, default=40)
@@ -55,8 +40,10 @@ def main():
     molecules = arguments.molecules_per_particle or {"argon": 5, "water": 4}[arguments.fluid]
     parameters = coarse_grain(FLUIDS[arguments.fluid], molecules, neighbors=20)
     openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", arguments.threads)
-    plan = dataclasses.replace(Plan(), replicas=arguments.replicas, wave_steps=arguments.wave_steps)
-    calibration = BoxCalibration(parameters, "VB", plan, "CPU", seed=arguments.seed, cells=tuple(arguments.cells))
+    plan = dataclasses.replace(Plan(), replicas=arguments.replicas, wave_steps=arguments.wave_steps,
+                               steady_cells=tuple(arguments.cells))
+    calibration = Calibration(parameters, "VB", plan, "CPU", seed=arguments.seed)
+    equilibrated = lambda: calibration._equilibrated(cells=plan.steady_cells)   # noqa: E731
     viscosity = arguments.what == "viscosity"
     convert = _mpa_s if viscosity else _w_mk
     target = convert(parameters.targets()["shear_viscosity" if viscosity else "thermal_conductivity"])
@@ -70,11 +57,11 @@ def main():
         start = time.time()
         if viscosity:
             result = transport.poiseuille_viscosity(calibration.parameters, calibration.plan,
-                                                    calibration._equilibrated, bins=arguments.bins,
+                                                    equilibrated, bins=arguments.bins,
                                                     peak_fraction=arguments.peak_fraction, **lengths)
         else:
             result = transport.heat_flux_conductivity(calibration.parameters, calibration.plan,
-                                                      calibration._equilibrated, bins=arguments.bins,
+                                                      equilibrated, bins=arguments.bins,
                                                       excess=arguments.excess, **lengths)
         rows.append(("Poiseuille flow" if viscosity else "heat flux", result.value, result.error, time.time() - start))
     unit_name = "mPa s" if viscosity else "W/(m K)"

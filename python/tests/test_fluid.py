@@ -195,7 +195,7 @@ def test_transport_iteration_reaches_a_linear_response_by_secant_steps():
     def measure():
         return Measured(target * (0.1 + 0.3 * calibration.parameters.friction / gamma0), 1e-6)
 
-    measured, history, failure = calibration.iterate_transport("friction", measure, target, "shear viscosity")
+    measured, history, failure = calibration.iterate("friction", measure, target, "shear viscosity", 4)
     assert failure is None and len(history) == 3
     assert history[1][0] == pytest.approx(gamma0 / 0.4, rel=1e-12)
     assert calibration.parameters.friction == pytest.approx(3 * gamma0, rel=1e-12)
@@ -212,10 +212,48 @@ def test_transport_iteration_stops_at_the_floor_of_the_model():
     def measure():
         return Measured(1.3 + 0.5 * calibration.parameters.friction / gamma0, 1e-6)
 
-    _, history, failure = calibration.iterate_transport("friction", measure, 1.0, "shear viscosity")
+    _, history, failure = calibration.iterate("friction", measure, 1.0, "shear viscosity", 4)
     assert len(history) == 2
-    assert failure.startswith("shear viscosity: the model's shear viscosity without its pair term is 1.3 (the "
-                              "secant's intercept), above the target 1: no friction reaches it")
+    assert failure.startswith("shear viscosity: the model's shear viscosity without its friction is 1.3 (the "
+                              "secant's intercept), above the target 1: no friction reaches it; coarse-grain")
+
+
+def test_bulk_modulus_iteration_stops_when_b_t_does_not_raise_it():
+    """What water does with 20 neighbours (docs/fluids.md): n dP/dn = 531 MPa at B_T as mapped and 425 at 5 B_T.
+    A made-up response K(B_T) = 0.24 target - 0.024 target (B_T/B_T0 - 1) (falls as B_T rises): after the
+    proportional step (B_T0/0.24) the measured response has the wrong sign, and the iteration stops saying so and
+    naming the remedy (more neighbours)."""
+    from openmmgendpde.calibrate import Measured, Plan
+    calibration = _calibration(Plan(bulk_runs=3))
+    b0 = calibration.parameters.bulk_modulus
+
+    def measure():
+        return Measured(0.24 - 0.024 * (calibration.parameters.bulk_modulus / b0 - 1), 1e-4)
+
+    _, history, failure = calibration.iterate("bulk_modulus", measure, 1.0, "bulk modulus n dP/dn", 3)
+    assert [x for x, _ in history] == pytest.approx([b0, b0 / 0.24], rel=1e-12)
+    assert "a response of the wrong sign, no bulk_modulus reaches the target" in failure
+    assert "use more neighbours within the cutoff" in failure
+
+
+def test_an_iteration_out_of_runs_keeps_the_best_parameter():
+    """Two runs on a flat response (K = 0.18 target +- 0.01 whatever B_T): the proportional step multiplies B_T by
+    1/0.18 and moves nothing; the iteration keeps B_T0 (the measurement closest to the target, the first) and says
+    that B_T did not move n dP/dn. On a response that moves but needs more runs, it keeps the best, no failure."""
+    from openmmgendpde.calibrate import Measured, Plan
+    calibration = _calibration(Plan())
+    b0 = calibration.parameters.bulk_modulus
+    values = iter([0.18, 0.17])
+    _, history, failure = calibration.iterate("bulk_modulus", lambda: Measured(next(values), 0.01), 1.0,
+                                              "bulk modulus n dP/dn", 2)
+    assert calibration.parameters.bulk_modulus == b0 and len(history) == 2
+    assert "did not move it" in failure and "use more neighbours" in failure
+    gamma0 = calibration.parameters.friction
+    best, history, failure = calibration.iterate(
+        "friction", lambda: Measured(0.5 * calibration.parameters.friction / gamma0 + 0.2,
+                                     1e-3), 1.0, "shear viscosity", 2)
+    assert failure is None and best.value == pytest.approx(0.2 + 0.5 / 0.7)
+    assert calibration.parameters.friction == pytest.approx(gamma0 / 0.7)
 
 
 def test_pressure_step_is_a_secant_on_measured_responses():
@@ -315,7 +353,8 @@ def test_calibrate_quick_on_water(tmp_path):
     saved = json.loads(path.read_text())
     # --quick's transport coefficients are functional checks (boxes too small for their targets: QUICK_CRITERIA);
     # what it controls, the thermodynamics, must be within the criteria.
-    assert all(line.startswith(("shear viscosity", "thermal conductivity")) for line in saved["missed"])
+    assert all(line.startswith(("shear viscosity", "thermal conductivity", "bulk modulus"))
+               for line in saved["missed"])
     # The first pressure round starts at the mapping, and the friction moves towards the target (the model's
     # viscosity is below its target as mapped).
     assert len(saved["pressure_rounds"]) >= 1 and len(saved["friction_runs"]) >= 1

@@ -15,6 +15,11 @@ liquids at several densities), each particle's volume from
 V-A (1/n0), V-B, V-C and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
 averaged in slices by depth (shells by radius for the droplet); for the bulk, the mean and scatter of
 V_estimator/V_exact.
+
+Any fluid (--fluid NAME|FILE, calibrate's fluids and coarse-graining options): fluid_slab builds the slab (melted at
+n0, cut, thermostatted SLAB_THERMOSTAT_TIME, then isoenergetic at the suggested step) and the same samples are
+taken in the model's reduced units, with the kinetic and internal (harmonic) temperatures; the droplet, the bulk
+comparison and the coexistence density stay the argon model's.
 """
 
 import copy

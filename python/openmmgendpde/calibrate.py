@@ -547,20 +547,43 @@ def fluid_named(name):
                      f"(.toml or .json, docs/fluids.md)")
 
 
-def run(arguments):
-    try:
-        fluid = fluid_named(arguments.fluid)
-    except ValueError as error:
-        raise SystemExit(f"error: calibrate: {error}")
+def add_fluid_arguments(parser, default="water", cutoff=True):
+    """--fluid (a built-in name or a fluid file; ``default``, or None: the subcommand's own model), and the
+    coarse-graining of coarse_grain: --molecules-per-particle and --neighbors, or --cutoff (nm; ``cutoff`` False
+    where the subcommand defines its own --cutoff and reads it as nm with --fluid)."""
+    default_text = f"default {default}" if default else "default: the published liquid-argon model"
+    parser.add_argument("--fluid", default=default,
+                        help=f"a built-in fluid ({', '.join(sorted(FLUIDS))}; {default_text}) or a fluid file "
+                             f"(.toml or .json: each property 'value unit', docs/fluids.md)")
+    parser.add_argument("--molecules-per-particle", type=float, default=4.0,
+                        help="coarse-graining level (default 4)")
+    parser.add_argument("--neighbors", type=float, default=20.0,
+                        help="particles within the cutoff at n0 (default 20), unless --cutoff is given")
+    if cutoff:
+        parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
+
+
+def parameters_from_arguments(arguments, command):
+    """coarse_grain of --fluid (fluid_named) with --molecules-per-particle and --neighbors or --cutoff (nm); a bad
+    argument exits (SystemExit, status 1) with a one-line error naming ``command`` and the argument."""
     neighbors = arguments.neighbors if arguments.cutoff is None else None
     cutoff = None if arguments.cutoff is None else arguments.cutoff * unit.nanometer
+    try:
+        return coarse_grain(fluid_named(arguments.fluid), arguments.molecules_per_particle, neighbors=neighbors,
+                            cutoff=cutoff)
+    except ValueError as error:
+        raise SystemExit(f"error: {command}: {' '.join(str(error).split())}")
+
+
+def run(arguments):
+    parameters = parameters_from_arguments(arguments, "calibrate")
+    fluid = parameters.fluid
     plan = QUICK if arguments.quick else Plan()
     if arguments.particles is not None:
         plan = dataclasses.replace(plan, particles=arguments.particles)
     if arguments.output and os.path.splitext(arguments.output)[1].lower() not in (".toml", ".json"):
         raise SystemExit(f"error: calibrate: --output {arguments.output} is not allowed; it must end in .toml or .json")
     try:   # every argument checked before the runs: a model built once checks the particles against the cutoff
-        parameters = coarse_grain(fluid, arguments.molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
         parameters.liquid(plan.particles, arguments.estimator)
     except ValueError as error:
         raise SystemExit(f"error: calibrate: {error}")
@@ -805,14 +828,7 @@ def _scaled(measured, factor):
 
 
 def add_arguments(parser):
-    parser.add_argument("--fluid", default="water",
-                        help=f"a built-in fluid ({', '.join(sorted(FLUIDS))}; default water) or a fluid file "
-                             f"(.toml or .json: each property 'value unit', docs/fluids.md)")
-    parser.add_argument("--molecules-per-particle", type=float, default=4.0,
-                        help="coarse-graining level (default 4)")
-    parser.add_argument("--neighbors", type=float, default=20.0,
-                        help="particles within the cutoff at n0 (default 20), unless --cutoff is given")
-    parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
+    add_fluid_arguments(parser)
     parser.add_argument("--estimator", choices=list(ESTIMATOR_NAMES.values()), default="VB",
                         help="the density estimator (default VB; VC is VB with free surfaces)")
     parser.add_argument("--particles", type=int, help="4 m^3 particles (default 2048; --quick 500)")

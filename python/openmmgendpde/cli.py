@@ -82,8 +82,19 @@ def chosen_cutoffs(arguments):
     return arguments.cutoffs or [entry.cutoff for entry in ARGON_CUTOFFS]
 
 
-def add_cutoff(parser):
-    parser.add_argument("--cutoff", type=float, default=DEFAULT_CUTOFF, help=f"R_cut* (default {DEFAULT_CUTOFF})")
+def add_cutoff(parser, fluid=False):
+    """--cutoff: R_cut* of the argon model; with ``fluid`` (a subcommand that takes --fluid) it is also the cutoff R
+    in nm of a --fluid model, as calibrate's, and its default (None) is resolved by chosen_cutoff."""
+    if fluid:
+        parser.add_argument("--cutoff", type=float, help=f"R_cut* of the argon model (default {DEFAULT_CUTOFF}); "
+                                                         f"with --fluid, the cutoff R in nm (instead of --neighbors)")
+    else:
+        parser.add_argument("--cutoff", type=float, default=DEFAULT_CUTOFF, help=f"R_cut* (default {DEFAULT_CUTOFF})")
+
+
+def chosen_cutoff(arguments):
+    """R_cut* of --cutoff for the argon model, or DEFAULT_CUTOFF."""
+    return DEFAULT_CUTOFF if arguments.cutoff is None else arguments.cutoff
 
 
 def add_output(parser, contents):

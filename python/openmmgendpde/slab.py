@@ -15,6 +15,11 @@ liquids at several densities), each particle's volume from
 V-A (1/n0), V-B, V-C and the exact partition-of-unity volume with V-B's kernel range Rt = R/f_cut, as densities 1/V,
 averaged in slices by depth (shells by radius for the droplet); for the bulk, the mean and scatter of
 V_estimator/V_exact.
+
+Any fluid (--fluid NAME|FILE, calibrate's fluids and coarse-graining options): fluid_slab builds the slab (melted at
+n0, cut, thermostatted SLAB_THERMOSTAT_TIME, then isoenergetic at the suggested step) and the same samples are
+taken in the model's reduced units, with the kinetic and internal (harmonic) temperatures; the droplet, the bulk
+comparison and the coexistence density stay the argon model's.
 """
 
 import copy
@@ -24,13 +29,14 @@ import os
 
 import numpy as np
 import openmm
-from openmm import unit
+from openmm import app, unit
 
 from . import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
 from .cli import add_output, add_platform
 from .model import fcc_box
 from .interfaces import partition_of_unity_volumes
 from .pressure import pressure_tensor
+from .thermodynamics import ThermodynamicProbe
 from .presets import ARGON_UNITS, liquid_argon
 from .statistics import block_average
 
@@ -39,7 +45,7 @@ NM = unit.nanometer
 
 @dataclasses.dataclass
 class Model:
-    """A GenDPDE argon System at given positions in a rectangular periodic box, bound to a Context."""
+    """A GenDPDE System (argon, or any fluid) at given positions in a rectangular periodic box, bound to a Context."""
     context: openmm.Context
     force: GenDPDEForce
     integrator: GenDPDEIntegrator
@@ -70,6 +76,75 @@ def argon_model(positions, box, estimator, cutoff=1.6839, platform="Reference", 
     return Model(context, force, integrator, np.asarray(box, float), argon.temperature)
 
 
+#: Reduced time units (the model's own, GenDPDEParameters.units) that fluid_slab thermostats a new slab before its
+#: isoenergetic run: chosen by measurement (docs/interfaces.md, "A slab of any fluid").
+SLAB_THERMOSTAT_TIME = 10.0
+
+
+@dataclasses.dataclass
+class FluidSlab:
+    """What fluid_slab built: the Model (Isoenergetic, bound to its Context), the System and Topology (the fluid's
+    model, the box lengthened along z), the slab's initial thickness (nm), the vacuum's width (nm) and the step
+    (reduced)."""
+    model: Model
+    system: openmm.System
+    topology: app.Topology
+    thickness: float
+    vacuum: float
+    time_step: float
+
+
+def fluid_slab(parameters, cells, estimator="VC", vacuum=None, time_step=None, melt_time=20.0,
+               thermostat_time=SLAB_THERMOSTAT_TIME, platform="CPU", properties=None, seed=1):
+    """A liquid slab in vacuum of any fluid (a GenDPDEParameters: coarse_grain, fluid_files.load_parameters), ready
+    for isoenergetic GenDPDE; a FluidSlab.
+
+    ``cells`` = (n_x, n_y, n_z) cubic FCC cells at the fluid's density n0 (parameters.liquid) are melted for
+    ``melt_time`` with the DPD thermostat at T0 (Isothermal mode, periodic in all three directions), then cut: the
+    box is lengthened along z by ``vacuum`` (nm or a length Quantity; default twice the liquid's thickness, the box
+    three times the slab as in `slab`) and the liquid is centred in it, so that every particle lies in the slab
+    region [vacuum/2, vacuum/2 + thickness) and an empty layer ``vacuum`` wide separates its two faces across the
+    periodic boundary. The slab is then thermostatted (Isothermal) for ``thermostat_time`` before the integrator
+    is switched to the Isoenergetic mode with the internal energies drawn at T0: the new free surfaces relax while
+    the bath takes the energy their particles release (with V-C a cut slab started isoenergetic at once heats by
+    ~10-20 K; docs/interfaces.md). Times are in the model's reduced time (parameters.units); ``time_step`` is
+    dt* for every stage (default: stability.suggest_time_step(parameters, estimator), measured: V-C's is a tenth
+    of V-B's, for its energy error at free surfaces). ``vacuum`` must be at least twice the cutoff. ``platform`` a
+    name, ``properties`` its property dict (e.g. {'Threads': '1'}); ``seed`` for the lattice's velocities, the
+    thermostat and the internal energies. Bad arguments raise ValueError."""
+    if time_step is None:
+        from .stability import suggest_time_step
+        time_step = suggest_time_step(parameters, estimator, platform=platform)[0]
+    model = parameters.liquid(cells=cells, estimator=estimator, mode=GenDPDEIntegrator.Isothermal,
+                              time_step=time_step, seed=seed)
+    edges = np.array([row[k].value_in_unit(NM) for k, row in enumerate(model.system.getDefaultPeriodicBoxVectors())])
+    thickness = float(edges[2])
+    vacuum = 2 * thickness if vacuum is None else (vacuum.value_in_unit(NM) if unit.is_quantity(vacuum)
+                                                   else float(vacuum))
+    if not vacuum >= 2 * parameters.cutoff:
+        raise ValueError(f"vacuum = {vacuum:.4g} nm is not allowed; it must be at least twice the cutoff "
+                         f"({2 * parameters.cutoff:.4g} nm), so that the slab's faces do not interact across it")
+    steps = lambda duration: int(round(duration / time_step))
+    integrator = model.integrator
+    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(platform),
+                             properties or {})
+    context.setPositions(model.positions * NM)
+    context.setVelocitiesToTemperature(parameters.temperature * unit.kelvin, seed)
+    integrator.step(steps(melt_time))
+    melted = Model(context, model.force, integrator, edges, parameters.temperature * unit.kelvin).positions()
+    edges = edges + np.array([0.0, 0.0, vacuum])
+    box = [openmm.Vec3(*row) for row in np.diag(edges)]
+    model.system.setDefaultPeriodicBoxVectors(*box)
+    model.topology.setPeriodicBoxVectors(box * NM)
+    context.setPeriodicBoxVectors(*box)
+    context.setPositions((melted + np.array([0.0, 0.0, vacuum / 2])) * NM)
+    integrator.step(steps(thermostat_time))
+    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+    integrator.setInternalEnergiesToTemperature(parameters.temperature * unit.kelvin, seed)
+    slab = Model(context, model.force, integrator, edges, parameters.temperature * unit.kelvin)
+    return FluidSlab(slab, model.system, model.topology, thickness, vacuum, time_step)
+
+
 def slab_positions(cells=(5, 5, 10), density=0.82, vacuum=3.0):
     """(positions nm, box edges nm, thickness nm): an FCC slab at ``density`` (reduced) of ``cells`` cubic cells,
     normal to z, centred in a box ``vacuum`` times as long as the slab along z."""
@@ -98,10 +173,13 @@ class SlabSample:
     core_estimate: float   # mean n_i of the core's particles (reduced)
     width: float           # twice the 90th percentile of the depth, over the initial thickness
     tension: float         # (L_z/2) (P_zz - (P_xx + P_yy)/2): the surface tension of each of the two faces (reduced)
+    kinetic_temperature: float = float("nan")   # K: 2 K/((3N - 3) k_B), centre-of-mass frame
+    harmonic_temperature: float = float("nan")  # K: <1/theta_i>^-1, the internal temperature (T0 at equilibrium)
 
 
-def sample_slab(model, thickness, time):
-    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+def sample_slab(model, thickness, time, units=ARGON_UNITS):
+    """A SlabSample of ``model`` now (time reduced); reduced quantities in ``units`` (argon's by default)."""
+    length = units.unit("length").value_in_unit(NM)
     x = model.positions()
     d = depth(x, model.box)
     core = d < thickness / 4
@@ -109,27 +187,43 @@ def sample_slab(model, thickness, time):
     estimates = model.force.getParticleDensities(model.context).value_in_unit(NM**-3)
     p = pressure_tensor(model.force, model.context)
     tension = 0.5 * model.box[2] * (p[2, 2] - 0.5 * (p[0, 0] + p[1, 1]))                   # kJ/mol/nm^2
-    tension_unit = ARGON_UNITS.unit("energy").value_in_unit(unit.kilojoule_per_mole) / length**2
+    tension_unit = units.unit("energy").value_in_unit(unit.kilojoule_per_mole) / length**2
+    state = model.context.getState(getEnergy=True, getVelocities=True)
+    thermal = ThermodynamicProbe(model.context.getSystem()).sample(state, model.context, model.integrator)
     return SlabSample(time, core.sum() / (area * thickness / 2) * length**3,
                       float(estimates[core].mean()) * length**3, 2 * np.percentile(d, 90) / thickness,
-                      float(tension) / tension_unit)
+                      float(tension) / tension_unit, thermal.kinetic_temperature.value_in_unit(unit.kelvin),
+                      thermal.harmonic_temperature.value_in_unit(unit.kelvin))
+
+
+def sample_run(model, thickness, duration, every, units=ARGON_UNITS, report=None):
+    """Run ``model`` for ``duration`` reduced time units of ``units``; a list of SlabSample every ``every`` time
+    units (the first at t = 0). ``report(sample)`` is called after each."""
+    tau = units.unit("time").value_in_unit(unit.picosecond)
+    dt = model.integrator.getStepSize().value_in_unit(unit.picosecond) / tau
+    steps = int(round(every / dt))
+    samples = [sample_slab(model, thickness, 0.0, units)]
+    while samples[-1].time < duration - 0.5 * steps * dt:   # (a whole number of steps: the last sample nearest)
+        model.integrator.step(steps)
+        samples.append(sample_slab(model, thickness, samples[-1].time + steps * dt, units))
+        if report is not None:
+            report(samples[-1])
+    return samples
 
 
 def run_slab(estimator, duration=100.0, every=10.0, cells=(5, 5, 10), platform="CPU", seed=5, report=None):
-    """Run the slab with ``estimator`` for ``duration`` reduced time units; a list of SlabSample every ``every``
-    time units (the first at t = 0), and the Model at the end."""
+    """Run the argon slab with ``estimator`` for ``duration`` reduced time units; a list of SlabSample every
+    ``every`` time units (the first at t = 0), the Model at the end and the initial thickness (nm)."""
     positions, box, thickness = slab_positions(cells)
     model = argon_model(positions, box, estimator, platform=platform, seed=seed)
-    tau = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
-    dt = model.integrator.getStepSize().value_in_unit(unit.picosecond) / tau
-    steps = int(round(every / dt))
-    samples = [sample_slab(model, thickness, 0.0)]
-    while samples[-1].time < duration - 1e-9:
-        model.integrator.step(steps)
-        samples.append(sample_slab(model, thickness, samples[-1].time + steps * dt))
-        if report is not None:
-            report(samples[-1])
-    return samples, model, thickness
+    return sample_run(model, thickness, duration, every, report=report), model, thickness
+
+
+def run_fluid_slab(parameters, estimator, duration, every, cells, platform="CPU", seed=5, report=None, **build):
+    """The slab of any fluid (fluid_slab, with ``build`` its options) run isoenergetically for ``duration`` time
+    units of the model (parameters.units); (SlabSamples every ``every``, FluidSlab)."""
+    slab = fluid_slab(parameters, cells, estimator, platform=platform, seed=seed, **build)
+    return sample_run(slab.model, slab.thickness, duration, every, parameters.units, report), slab
 
 
 def estimator_volumes(model):
@@ -150,10 +244,10 @@ def estimator_volumes(model):
     return 1 / n0, volumes[0], volumes[1], exact
 
 
-def depth_profile(model, thickness, bin_width=0.25):
+def depth_profile(model, thickness, bin_width=0.25, units=ARGON_UNITS):
     """Rows (depth from, depth to in units of the initial half thickness, particles, true density, then the mean
-    density 1/V of the exact volume, V-B, V-A and V-C; densities reduced) of slices by depth."""
-    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    density 1/V of the exact volume, V-B, V-A and V-C; densities reduced in ``units``) of slices by depth."""
+    length = units.unit("length").value_in_unit(NM)
     va, vb, vc, exact = estimator_volumes(model)
     d = depth(model.positions(), model.box) / (thickness / 2)
     area = model.box[0] * model.box[1]
@@ -276,19 +370,57 @@ def plot(runs, profiles, path_stem):
     save(figure, path_stem, right if "VB" in profiles else None)
 
 
+#: The options of the slab of a fluid file or built-in fluid (--fluid), and fluid_slab's argument each sets.
+FLUID_OPTIONS = {"time_step": "time_step", "thermostat_time": "thermostat_time", "melt_time": "melt_time"}
+
+
+def fluid_parameters(arguments, cells):
+    """The GenDPDEParameters of --fluid (None for the published argon model), checked against the slab's ``cells``
+    before anything runs; a bad argument exits with a one-line error (status 1)."""
+    if arguments.fluid is None:
+        given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None]
+        if given:
+            raise SystemExit(f"error: slab: --{given[0].replace('_', '-')} applies to the slab of a --fluid only")
+        return None
+    from .calibrate import parameters_from_arguments   # (calibrate imports much; only --fluid needs it)
+    parameters = parameters_from_arguments(arguments, "slab")
+    try:
+        parameters.liquid(cells=cells)
+    except ValueError as error:
+        raise SystemExit(f"error: slab: --fluid {arguments.fluid}: {error}")
+    return parameters
+
+
 def run(arguments):
-    os.makedirs(arguments.output, exist_ok=True)
     duration, every = (10.0, 5.0) if arguments.quick else (arguments.duration, arguments.every)
     cells = (5, 5, 6) if arguments.quick else (5, 5, 10)
+    parameters = fluid_parameters(arguments, cells)
+    units = ARGON_UNITS if parameters is None else parameters.units
+    os.makedirs(arguments.output, exist_ok=True)
     runs, profiles = {}, {}
     for estimator in arguments.estimators:
-        print(f"{estimator}: slab of {4 * np.prod(cells)} particles, {duration:g} time units")
-        samples, model, thickness = run_slab(estimator, duration, every, cells, arguments.platform)
+        if parameters is None:
+            print(f"{estimator}: slab of {4 * np.prod(cells)} particles, {duration:g} time units")
+            samples, model, thickness = run_slab(estimator, duration, every, cells, arguments.platform)
+        else:
+            build = {key: getattr(arguments, name) for name, key in FLUID_OPTIONS.items()
+                     if getattr(arguments, name) is not None}
+            samples, slab = run_fluid_slab(parameters, estimator, duration, every, cells, arguments.platform,
+                                           arguments.seed, **build)
+            model, thickness = slab.model, slab.thickness
+            print(f"{estimator}: slab of {4 * np.prod(cells)} particles of {parameters.fluid.name} "
+                  f"(T0 = {parameters.temperature:g} K), dt* = {slab.time_step:.4g}, melted and thermostatted "
+                  f"{build.get('thermostat_time', SLAB_THERMOSTAT_TIME):g} time units after the cut, then "
+                  f"{duration:g} time units isoenergetic (time unit {units.unit('time').value_in_unit(unit.picosecond):.4g} ps; "
+                  f"reduced units of the model: length n0^(-1/3))")
         runs[estimator] = samples
-        print("   t*   core true n*   core mean n_i*   width/initial   surface tension*")
+        temperatures = parameters is not None
+        print("   t*   core true n*   core mean n_i*   width/initial   surface tension*"
+              + ("   T_kin (K)   T_harm (K)" if temperatures else ""))
         for s in samples:
             print(f"{s.time:6.1f}   {s.core_density:12.3f}   {s.core_estimate:14.3f}   {s.width:13.2f}   "
-                  f"{s.tension:16.4f}")
+                  f"{s.tension:16.4f}" + (f"   {s.kinetic_temperature:9.1f}   {s.harmonic_temperature:10.1f}"
+                                          if temperatures else ""))
         late = [s for s in samples if s.time > duration / 2]
         tensions = [s.tension for s in late]
         if len(late) >= 10:   # enough samples for 5 blocks of 2
@@ -298,19 +430,31 @@ def run(arguments):
         else:
             mean, error = float(np.mean(tensions)), f"(sd {np.std(tensions):.4f}; too few samples for an error)"
         print(f"{estimator}: over the second half ({len(late)} samples), core true n* "
-              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {mean:.4f} {error}")
+              f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {mean:.4f} {error}"
+              + (f"; T_kin {np.mean([s.kinetic_temperature for s in late]):.1f} K, T_harm "
+                 f"{np.mean([s.harmonic_temperature for s in late]):.1f} K (T0 {parameters.temperature:g} K)"
+                 if temperatures else ""))
         if not arguments.no_oracle:
-            profiles[estimator] = depth_profile(model, thickness)
+            profiles[estimator] = depth_profile(model, thickness, units=units)
             print(f"{estimator} at t* = {samples[-1].time:g}: density by depth (units of the initial half "
                   f"thickness; particles): true, exact partition of unity, V-B, V-A, V-C")
             for row in profiles[estimator]:
                 print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
     with open(os.path.join(arguments.output, "slab.csv"), "w", newline="") as out:
         writer = csv.writer(out)
-        writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width", "surface_tension"])
+        temperatures = parameters is not None
+        writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width", "surface_tension"]
+                        + (["kinetic_temperature_K", "harmonic_temperature_K"] if temperatures else []))
         for estimator, samples in runs.items():
             for s in samples:
-                writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width, s.tension])
+                writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width, s.tension]
+                                + ([s.kinetic_temperature, s.harmonic_temperature] if temperatures else []))
+    if parameters is not None:
+        print("(the droplet, the bulk comparison and the coexistence density are the argon model's: run slab "
+              "without --fluid)")
+        plot(runs, profiles, os.path.join(arguments.output, "slab"))
+        print(f"wrote {arguments.output}/slab.csv, slab.png, slab.pdf")
+        return
     if not arguments.no_oracle:
         count = 400 if arguments.quick else 1000
         model, radius = run_droplet("VB", 10.0, count, arguments.platform)
@@ -341,4 +485,13 @@ def add_arguments(parser):
     parser.add_argument("--estimators", nargs="+", choices=list(ESTIMATOR_NAMES.values()),
                         default=list(ESTIMATOR_NAMES.values()), help="the slabs to run (default: every estimator)")
     parser.add_argument("--no-oracle", action="store_true", help="skip the exact volumes (the slow part)")
+    from .calibrate import add_fluid_arguments
+    add_fluid_arguments(parser, default=None)
+    parser.add_argument("--time-step", type=float, help="with --fluid: dt* in the model's reduced time (default "
+                        "stability.suggest_time_step's, measured: V-C's is a tenth of V-B's)")
+    parser.add_argument("--thermostat-time", type=float, help=f"with --fluid: time units the slab is thermostatted "
+                        f"after the cut, before the isoenergetic run (default {SLAB_THERMOSTAT_TIME:g}; 0: none)")
+    parser.add_argument("--melt-time", type=float, help="with --fluid: time units the bulk liquid melts before the "
+                        "cut (default 20)")
+    parser.add_argument("--seed", type=int, default=5, help="with --fluid: random seed (default 5)")
     parser.set_defaults(run=run)

@@ -6,6 +6,10 @@ on those frames, evaluate n-bar at trial values of f_cut (GenDPDEForce.updatePar
 solve n-bar(f_cut) = n0 on the straight line through them; set the new f_cut in the running Context and continue.
 The structure barely depends on f_cut, so two or three iterations converge. The uncertainty of f_cut is that of
 n-bar (block average) divided by |d n-bar / d f_cut|.
+
+With --fluid NAME|FILE (calibrate's fluids and coarse-graining options: --molecules-per-particle, --neighbors or
+--cutoff in nm) the model of any fluid is tuned instead, by calibrate's own iteration (Calibration.
+tune_cutoff_scaling: --max-iterations runs of calibrate's plan, --quick its QUICK plan) to n-bar = n0.
 """
 
 import dataclasses
@@ -13,7 +17,7 @@ import dataclasses
 import numpy as np
 from openmm import unit
 
-from .cli import add_cutoff
+from .cli import add_cutoff, chosen_cutoff
 from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff, default_cutoff_scaling
 from .progress import Progress
 from .statistics import block_average
@@ -83,7 +87,36 @@ def tune(cutoff, protocol, platform="Reference", start=None, tolerance=0.001, ma
     return measured
 
 
+def run_fluid(arguments):
+    """tune-fcut --fluid: calibrate's tuning (Calibration.tune_cutoff_scaling: --max-iterations runs of its plan,
+    --quick its QUICK plan, --particles and --time-step overriding it) for the coarse-grained fluid."""
+    from .calibrate import QUICK, Calibration, Plan, parameters_from_arguments
+    parameters = parameters_from_arguments(arguments, "tune-fcut")
+    plan = QUICK if arguments.quick else Plan()
+    overrides = {"particles": arguments.particles, "time_step": arguments.time_step}
+    plan = dataclasses.replace(plan, **{key: value for key, value in overrides.items() if value is not None})
+    if arguments.start is not None:
+        parameters = parameters.with_cutoff_scaling(arguments.start)
+    try:
+        parameters.liquid(plan.particles, arguments.estimator)
+    except ValueError as error:
+        raise SystemExit(f"error: tune-fcut: {error}")
+    print(f"{parameters.fluid.name}: {arguments.molecules_per_particle:g} molecules per particle, "
+          f"{parameters.neighbors:.1f} neighbours within R = {parameters.cutoff:.4f} nm, {arguments.estimator}, "
+          f"{plan.particles} particles, n0 = {parameters.density:.4f} nm^-3", flush=True)
+    calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform,
+                              seed=1 if arguments.seed is None else arguments.seed,
+                              report=lambda line: print(line, flush=True))
+    scaling = calibration.tune_cutoff_scaling(arguments.max_iterations)
+    print(f"f_cut of {arguments.estimator} = {scaling:.4f} for n-bar = n0 ({arguments.max_iterations} iteration(s); "
+          f"the first estimate was {parameters.cutoff_scaling:.4f})")
+    return scaling
+
+
 def run(arguments):
+    if arguments.fluid is not None:
+        return run_fluid(arguments)
+    arguments.cutoff = chosen_cutoff(arguments)
     protocol = protocol_from_arguments(arguments)
     progress = Progress(arguments.max_iterations * protocol.total_steps, f"tune-fcut R*={arguments.cutoff}",
                         always=arguments.progress)
@@ -102,9 +135,14 @@ def run(arguments):
 
 def add_arguments(parser):
     add_protocol_arguments(parser)
-    add_cutoff(parser)
+    add_cutoff(parser, fluid=True)
+    from .calibrate import add_fluid_arguments   # (calibrate imports this module)
+    add_fluid_arguments(parser, default=None, cutoff=False)
     parser.add_argument("--estimator", choices=("VB", "VC"), default="VB", help="the estimator to tune (default VB)")
     parser.add_argument("--start", type=float, help="initial f_cut (default: the published value)")
-    parser.add_argument("--tolerance", type=float, default=0.001, help="|n-bar* - n0*| accepted (default 0.001)")
-    parser.add_argument("--max-iterations", type=int, default=5, help="iterations at most (default 5)")
+    parser.add_argument("--tolerance", type=float, default=0.001,
+                        help="|n-bar* - n0*| accepted (default 0.001; the argon model only: with --fluid, "
+                             "--max-iterations runs are made)")
+    parser.add_argument("--max-iterations", type=int, default=5,
+                        help="iterations at most (default 5; with --fluid, the iterations made)")
     parser.set_defaults(run=run)

@@ -215,14 +215,16 @@ def test_transport_iteration_stops_at_the_floor_of_the_model():
     _, history, failure = calibration.iterate("friction", measure, 1.0, "shear viscosity", 4)
     assert len(history) == 2
     assert failure.startswith("shear viscosity: the model's shear viscosity without its friction is 1.3 (the "
-                              "secant's intercept), above the target 1: no friction reaches it; coarse-grain")
+                              "secant's intercept), above the target 1: no friction reaches it; friction kept at")
+    assert "coarse-grain differently" in failure   # and the friction is the better of the two runs
+    assert calibration.parameters.friction == pytest.approx(gamma0 / 1.8, rel=1e-12)
 
 
 def test_bulk_modulus_iteration_stops_when_b_t_does_not_raise_it():
     """What water does with 20 neighbours (docs/fluids.md): n dP/dn = 531 MPa at B_T as mapped and 425 at 5 B_T.
     A made-up response K(B_T) = 0.24 target - 0.024 target (B_T/B_T0 - 1) (falls as B_T rises): after the
-    proportional step (B_T0/0.24) the measured response has the wrong sign, and the iteration stops saying so and
-    naming the remedy (more neighbours)."""
+    proportional step (B_T0/0.24, limited to 3 B_T0 by MAX_STEP) the measured response has the wrong sign, and the
+    iteration stops saying so and naming the remedy (more neighbours), B_T back at B_T0 (the better of the two)."""
     from openmmgendpde.calibrate import Measured, Plan
     calibration = _calibration(Plan(bulk_runs=3))
     b0 = calibration.parameters.bulk_modulus
@@ -231,7 +233,8 @@ def test_bulk_modulus_iteration_stops_when_b_t_does_not_raise_it():
         return Measured(0.24 - 0.024 * (calibration.parameters.bulk_modulus / b0 - 1), 1e-4)
 
     _, history, failure = calibration.iterate("bulk_modulus", measure, 1.0, "bulk modulus n dP/dn", 3)
-    assert [x for x, _ in history] == pytest.approx([b0, b0 / 0.24], rel=1e-12)
+    assert [x for x, _ in history] == pytest.approx([b0, 3 * b0], rel=1e-12)
+    assert calibration.parameters.bulk_modulus == b0
     assert "a response of the wrong sign, no bulk_modulus reaches the target" in failure
     assert "use more neighbours within the cutoff" in failure
 
@@ -256,6 +259,17 @@ def test_an_iteration_out_of_runs_keeps_the_best_parameter():
     assert calibration.parameters.friction == pytest.approx(gamma0 / 0.7)
 
 
+def test_elasticity_of_an_iteration():
+    """d ln(m)/d ln(x) from the last two runs: 0.5 for m ~ sqrt(x); 1 when the difference is not measured (within 2
+    standard errors) or of the wrong sign; limited to [1/3, 3]."""
+    from openmmgendpde.calibrate import Measured, _elasticity
+    assert _elasticity([(1.0, Measured(1.0, 1e-4)), (4.0, Measured(2.0, 1e-4))]) == pytest.approx(0.5)
+    assert _elasticity([(1.0, Measured(1.0, 0.5)), (4.0, Measured(2.0, 0.5))]) == 1.0
+    assert _elasticity([(1.0, Measured(2.0, 1e-4)), (4.0, Measured(1.0, 1e-4))]) == 1.0
+    assert _elasticity([(1.0, Measured(1.0, 1e-4)), (1.01, Measured(2.0, 1e-4))]) == 3.0
+    assert _elasticity([(1.0, Measured(1.0, 1e-4))]) == 1.0
+
+
 def test_pressure_step_is_a_secant_on_measured_responses():
     from openmmgendpde.calibrate import Measured, pressure_step
     assert pressure_step([(-20.0, Measured(10.0, 1.0))], 0.0) == -10.0
@@ -267,17 +281,20 @@ def test_pressure_step_is_a_secant_on_measured_responses():
     assert pressure_step([(-20.0, Measured(10.0, 0.01)), (-21.0, Measured(9.9, 0.01))], 0.0) == pytest.approx(-39.6)
 
 
-@pytest.mark.parametrize("pressure_offset, viscosity_ratio, expected", [
-    (0.0, 1.0, []),
-    (0.025, 0.039, ["pressure, pi0 tuned (MPa)", "shear viscosity, Poiseuille flow (mPa s)"]),
+@pytest.mark.parametrize("pressure_offset, viscosity_ratio, expected, frictions", [
+    (0.0, 1.0, [], [1, 1 / 0.7]),
+    (0.025, 0.039, ["pressure, pi0 tuned (MPa)", "shear viscosity, wave (mPa s)",
+                    "shear viscosity, Poiseuille flow (mPa s)"], [1, 1 / 0.7, 3 / 0.7]),
 ])
 def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offset, viscosity_ratio, expected,
-                                                                   monkeypatch, tmp_path, capsys):
+                                                                   frictions, monkeypatch, tmp_path, capsys):
     """calibrate's judgement end to end, with the simulations replaced by made-up measurements: the waves give the
     target times friction/gamma0 x 0.7 (so the iteration must raise the friction to gamma0/0.7), the conductivity
     wave the target, the pressure P0 + pressure_offset/kappa_T whatever pi0 is, the Poiseuille flow viscosity_ratio
     x the target: a calibration that misses prints which results missed on stderr, writes them to the JSON file
-    and exits with status 1; one that does not says so and returns its results."""
+    and exits with status 1; one that does not says so and returns its results. A Poiseuille flow at 0.039 of the
+    target makes calibrate take one more step on it (the friction x 3, MAX_STEP), which the made-up wave then reads
+    at 3 times the target: both viscosities miss."""
     from openmmgendpde.calibrate import Calibration, Measured
     gamma0 = coarse_grain(WATER, 4, neighbors=20).friction
 
@@ -310,10 +327,10 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     captured = capsys.readouterr()
     saved = json.loads(path.read_text())
     assert [line.split(":")[0] for line in saved["missed"]] == expected
-    assert [run[0] for run in saved["friction_runs"]] == pytest.approx([gamma0, gamma0 / 0.7], rel=1e-12)
+    assert [run[0] for run in saved["friction_runs"]] == pytest.approx([gamma0 * f for f in frictions], rel=1e-12)
     assert (tmp_path / "figure.png").stat().st_size > 0 and (tmp_path / "figure.pdf").stat().st_size > 0
     if expected:
-        assert "the calibration failed, 2 of the judged results missed" in captured.err
+        assert "the calibration failed, 3 of the judged results missed" in captured.err
         assert all(line in captured.err for line in saved["missed"])
         assert "(P - P0) kappa_T = 0.0250" in captured.err and "(model/target = 0.039)" in captured.err
         assert len(saved["pressure_rounds"]) == 2

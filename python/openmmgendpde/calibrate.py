@@ -513,6 +513,19 @@ class Calibration:
         return give_up(failure)
 
 
+def speed_of_sound(parameters, bulk_modulus):
+    """The model's speed of sound (nm/ps) from its measured isothermal n dP/dn (Measured, kJ/mol/nm^3): c^2 =
+    K_S/rho with K_S = K_T + T (dP/dT)_n^2/(n c_n). In the Tait model only the kinetic pressure depends on the
+    temperature, (dP/dT)_n = n k_B, and c_n = C_V + 3 k_B/2 is the heat capacity per particle at fixed density, so
+    K_S = K_T + n k_B^2 T/c_n. The error is K_T's, propagated."""
+    n, t = parameters.density, parameters.temperature
+    heat_capacity = parameters.heat_capacity + 1.5 * KB
+    adiabatic = bulk_modulus.value + n * KB**2 * t / heat_capacity
+    rho = n * parameters.mass
+    value = math.sqrt(adiabatic / rho)
+    return Measured(value, bulk_modulus.error / (2 * rho * value))
+
+
 def _elasticity(history):
     """d ln(property)/d ln(parameter) from the last two entries of an iteration's history [(parameter, Measured)]
     when their difference is measured (more than 2 standard errors) and positive, within [1/3, 3]; else 1."""
@@ -752,6 +765,9 @@ def run(arguments):
          _scaled(heat_flux, scaled["w_mk"])),
         (UNFITTED_DIFFUSION_ROW, _m2_s(targets["self_diffusion"]) if targets.get("self_diffusion") else math.nan,
          _scaled(thermo["self_diffusion"], _m2_s(1.0))),
+        ("not fitted: speed of sound, from n dP/dn (m/s)",
+         targets["speed_of_sound"] * 1e3 if targets.get("speed_of_sound") else math.nan,
+         _scaled(speed_of_sound(final, bulk), 1e3)),
     ]
     print("Targets and what the model gives (standard errors; independent samples: N/g of a time series, or "
           "the replicas):")

@@ -99,6 +99,7 @@ class Fluid:
     molar_mass: unit.Quantity             # M
     tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
     self_diffusion: unit.Quantity = None  # the molecules' self-diffusion coefficient: not fitted, measured back
+    speed_of_sound: unit.Quantity = None  # not fitted: compared with the model's (from its measured n dP/dn)
 
     def __post_init__(self):
         self.in_openmm()
@@ -107,7 +108,7 @@ class Fluid:
         """The properties as plain floats in OpenMM units (temperature K, pressure kJ/mol/nm^3, mass_density
         amu/nm^3, compressibility nm^3 mol/kJ, shear_viscosity amu/(nm ps), thermal_conductivity kJ/(mol ps nm K),
         molar_mass g/mol, heat_capacity kJ/mol/K per molecule, tait_exponent, and self_diffusion nm^2/ps if
-        given), checked as the class says."""
+        given, speed_of_sound nm/ps if given), checked as the class says."""
         values = {}
         for name, target in _PROPERTY_UNITS.items():
             given = getattr(self, name)
@@ -120,9 +121,10 @@ class Fluid:
         if not (isinstance(self.tait_exponent, numbers.Real) and 1 < self.tait_exponent < math.inf):
             raise ValueError(f"tait_exponent = {self.tait_exponent} is not allowed; it must be finite and > 1")
         values["tait_exponent"] = self.tait_exponent
-        if self.self_diffusion is not None:
-            values["self_diffusion"] = _positive("self_diffusion", _in_openmm(
-                self.self_diffusion, unit.nanometer**2 / unit.picosecond, "self_diffusion"), self.self_diffusion)
+        for name, target in (("self_diffusion", unit.nanometer**2 / unit.picosecond),
+                             ("speed_of_sound", unit.nanometer / unit.picosecond)):
+            if getattr(self, name) is not None:
+                values[name] = _positive(name, _in_openmm(getattr(self, name), target, name), getattr(self, name))
         return values
 
 
@@ -175,7 +177,8 @@ class GenDPDEParameters:
         f = self.fluid.in_openmm()
         return {"density": self.density, "pressure": f["pressure"], "bulk_modulus": 1 / f["compressibility"],
                 "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
-                "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion")}
+                "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion"),
+                "speed_of_sound": f.get("speed_of_sound")}
 
     def with_cutoff_scaling(self, cutoff_scaling):
         return dataclasses.replace(self, cutoff_scaling=cutoff_scaling)
@@ -320,7 +323,8 @@ ARGON = _argon_fluid()
 
 #: Liquid water at 298.15 K and 0.1 MPa (IAPWS-95 values as tabulated by NIST: 997.05 kg/m^3, kappa_T = 0.4525/GPa,
 #: c_v = 74.44 J/(mol K); viscosity 0.8900 mPa s, thermal conductivity 0.6065 W/(m K)); gamma_T = 7 (Tait); the
-#: self-diffusion coefficient 2.299e-9 m^2/s (Mills, J. Phys. Chem. 77, 685 (1973)), reported, not fitted.
+#: self-diffusion coefficient 2.299e-9 m^2/s (Mills, J. Phys. Chem. 77, 685 (1973)) and the speed of sound
+#: 1496.7 m/s (Del Grosso and Mader, J. Acoust. Soc. Am. 52, 1442 (1972)), reported, not fitted.
 WATER = Fluid(
     name="liquid water, 298.15 K, 0.1 MPa",
     temperature=298.15 * unit.kelvin,
@@ -332,4 +336,5 @@ WATER = Fluid(
     thermal_conductivity=0.6065 * unit.watt / (unit.meter * unit.kelvin),
     molar_mass=18.015 * unit.gram / unit.mole,
     tait_exponent=7.0,
-    self_diffusion=2.299e-9 * unit.meter**2 / unit.second)
+    self_diffusion=2.299e-9 * unit.meter**2 / unit.second,
+    speed_of_sound=1496.7 * unit.meter / unit.second)

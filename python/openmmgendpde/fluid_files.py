@@ -4,8 +4,8 @@ calibrated model can be built again (docs/fluids.md, "Fluid files").
 A fluid file holds the properties of a Fluid, each a string "value unit" in the syntax of pint (the units library
 of the scientific Python stack: "997.05 kg/m^3", "0.4525e-9 1/Pa", "74.44 J/(mol K)", "0.89 mPa s",
 "0.6065 W/(m K)", "18.015 g/mol"; per molecule or per mole, as a Fluid takes them), except heat_capacity, which may
-also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s) is optional,
-a property the model is not fitted to that calibrate measures back:
+also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s) and
+speed_of_sound (m/s) are optional, properties the model is not fitted to that calibrate measures back:
 
     name = "liquid methanol, 298.15 K, 0.1 MPa"
     temperature = "298.15 K"
@@ -42,7 +42,8 @@ _SI_UNITS = {
     "molar_mass": ("g/mol", unit.gram / unit.mole),
 }
 #: Optional properties (not fitted; measured back beside the targets) and their SI units.
-_OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second)}
+_OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second),
+                   "speed_of_sound": ("m/s", unit.meter / unit.second)}
 #: pint's base units and openmm.unit's.
 _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.second, "mole": unit.mole,
                "kelvin": unit.kelvin}

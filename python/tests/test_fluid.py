@@ -507,3 +507,15 @@ def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
     measured = _decay_rate(times, np.mean(curves, axis=0))
     print(f"lattice-sum decay rate {expected:.5f}/ps, measured {measured:.5f}/ps")
     assert measured == pytest.approx(expected, rel=0.05)
+
+
+def test_speed_of_sound_of_an_ideal_monatomic_gas():
+    """calibrate.speed_of_sound with K_T = n k_B T and no internal heat capacity (C_V = 0, c_n = 3 k_B/2): the ideal
+    monatomic gas, c = sqrt(5 k_B T/(3 m)) (argon atoms at 300 K: 322.6 m/s, computed here in SI)."""
+    from openmmgendpde.calibrate import KB, Measured, speed_of_sound
+    gas = dataclasses.replace(coarse_grain(ARGON, 1, neighbors=20), heat_capacity=0.0, temperature=300.0,
+                              mass=39.948)
+    result = speed_of_sound(gas, Measured(gas.density * KB * 300.0, 0.0))
+    expected = math.sqrt(5 * 1.380649e-23 * 300.0 / (3 * 39.948 * 1.66053906660e-27))   # m/s
+    assert result.value * 1e3 == pytest.approx(expected, rel=1e-6)
+    assert expected == pytest.approx(322.6, abs=0.1)

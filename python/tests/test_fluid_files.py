@@ -20,7 +20,7 @@ WATER_FILE = os.path.join(REPOSITORY, "examples", "fluids", "water.toml")
 WATER_TABLE = {"name": "water", "temperature": "298.15 K", "pressure": "0.1 MPa", "mass_density": "997.05 kg/m^3",
                "compressibility": "0.4525 1/GPa", "heat_capacity": "74.44 J/(mol K)",
                "shear_viscosity": "0.89 mPa s", "thermal_conductivity": "0.6065 W/(m K)", "molar_mass": "18.015 g/mol",
-               "tait_exponent": 7, "self_diffusion": "2.299e-9 m^2/s"}
+               "tait_exponent": 7, "self_diffusion": "2.299e-9 m^2/s", "speed_of_sound": "1496.7 m/s"}
 
 
 def _same_properties(a, b, rel=1e-12):

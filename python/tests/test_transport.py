@@ -68,8 +68,9 @@ def test_body_force_matches_openmm_evaluation_including_positions_outside_the_bo
 
 
 def _equilibrated_factory(parameters, cells, melt=300, seed=[0]):
-    """equilibrated() as calibrate.Calibration._equilibrated, in a box of ``cells``, CPU platform, one thread."""
-    def equilibrated():
+    """equilibrated() as calibrate.Calibration._equilibrated, in a box of ``cells`` (a Calibration's own cells
+    argument is ignored: the test's box is the one compared), CPU platform, one thread."""
+    def equilibrated(density=None, **ignored):
         seed[0] += 1
         model = parameters.liquid(cells=cells, mode=GenDPDEIntegrator.Isothermal, seed=seed[0])
         context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName("CPU"),

@@ -19,7 +19,7 @@ threads. Prints the medians (and the spread) of the per-round ms/step and the me
 LAMMPS with DPD-REACT is not in Debian's binary package: build it from Debian's source package with
 tools/build_lammps_dpd_react.sh (about 4 minutes on 2 cores), which prints the path of `lmp`. Usage:
 
-    .venv/bin/python tools/compare_lammps_dpde.py --lmp /tmp/lammps-dpd-react/lmp --particles 32000 --steps 100 --rounds 5
+    .venv/bin/python tools/compare_lammps_dpde.py --lmp /tmp/lammps-dpd-react/build/lmp --particles 32000 --steps 100 --rounds 5
 """
 
 import argparse

@@ -280,10 +280,11 @@ class Calibration:
         self.parameters = self.parameters.with_cutoff_scaling(scaling)
         return scaling
 
-    def thermodynamics(self, density=None, pressure_error=None):
+    def thermodynamics(self, density=None, pressure_error=None, diffusion=True):
         """The means of n-bar, P, T_kin and T_harm of an isoenergetic run, each with its standard error from
-        correlated_mean (plan.frames frames). With ``pressure_error`` (kJ/mol/nm^3) the run goes on, plan.frames/2
-        frames at a time, until the pressure's standard error is at most that, or 4 plan.frames frames."""
+        correlated_mean (plan.frames frames), and with ``diffusion`` the self-diffusion coefficient (the frames'
+        positions kept for it). With ``pressure_error`` (kJ/mol/nm^3) the run goes on, plan.frames/2 frames at a
+        time, until the pressure's standard error is at most that, or 4 plan.frames frames."""
         model, context = self._equilibrated(density)
         probe = ThermodynamicProbe(model.system)
         samples, positions = [], []
@@ -291,9 +292,10 @@ class Calibration:
         def sample(frames):
             for _ in range(frames):
                 self._step(model.integrator, self.plan.interval)
-                state = context.getState(getEnergy=True, getVelocities=True, getPositions=True)
+                state = context.getState(getEnergy=True, getVelocities=True, getPositions=diffusion)
                 samples.append(probe.sample(state, context, model.integrator))
-                positions.append(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
+                if diffusion:
+                    positions.append(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer))
 
         def average(name, unit_):
             result = correlated_mean([getattr(s, name).value_in_unit(unit_) for s in samples])
@@ -304,14 +306,16 @@ class Calibration:
         while (pressure_error is not None and average("pressure", pressure_unit).error > pressure_error
                and len(samples) < 4 * self.plan.frames):
             sample(self.plan.frames // 2)
-        return {
+        result = {
             "density": average("density", unit.nanometer**-3),
-            "pressure": average("pressure", unit.kilojoule_per_mole / unit.nanometer**3),
+            "pressure": average("pressure", pressure_unit),
             "kinetic_temperature": average("kinetic_temperature", unit.kelvin),
             "harmonic_temperature": average("harmonic_temperature", unit.kelvin),
-            "self_diffusion": Measured(*self_diffusion([s.time.value_in_unit(unit.picosecond) for s in samples],
-                                                       positions)),
         }
+        if diffusion:
+            result["self_diffusion"] = Measured(*self_diffusion(
+                [s.time.value_in_unit(unit.picosecond) for s in samples], positions))
+        return result
 
     def correct_reference_pressure(self, reference_pressure):
         """Set pi0 (kJ/mol/nm^3). With n-bar = n0 the particles' density fluctuations raise <pi(n_i)> above pi(n0)
@@ -326,8 +330,8 @@ class Calibration:
         densities, (n0/n-bar) d n-bar/d n: 1 if the n_i followed the true density n, so that the Tait pressure's
         n dpi/dn = gamma_T B_T = 1/kappa_T reached the fluid."""
         delta = self.plan.density_step
-        low = self.thermodynamics(self.parameters.density * (1 - delta))
-        high = self.thermodynamics(self.parameters.density * (1 + delta))
+        low = self.thermodynamics(self.parameters.density * (1 - delta), diffusion=False)
+        high = self.thermodynamics(self.parameters.density * (1 + delta), diffusion=False)
         value = (high["pressure"].value - low["pressure"].value) / (2 * delta)
         modulus = Measured(value, math.hypot(high["pressure"].error, low["pressure"].error) / (2 * delta))
         mean = (high["density"].value + low["density"].value) / 2
@@ -438,7 +442,7 @@ class Calibration:
         more precise (water's heat flux 3% where its wave was 19%) and see the same wavelength. Returns (the steady
         measurement, the new wave measurement or None); the new wave joins ``history``."""
         steady = measure_steady()
-        if abs(steady.value - target) <= max(TOLERANCE * target, 2 * steady.error):
+        if _reached(steady, target):
             return steady, None
         value = getattr(self.parameters, attribute)
         factor = min(MAX_STEP, max(1 / MAX_STEP, (target / steady.value) ** (1 / _elasticity(history))))
@@ -474,7 +478,7 @@ class Calibration:
             history.append((value, measured))
             self.report(f"  {name} run {run + 1}: {attribute} = {value:.5g} -> {measured.value:.5g} +- "
                         f"{measured.error:.2g} (target {target:.5g}, model/target {measured.value / target:.3f})")
-            if abs(measured.value - target) <= max(TOLERANCE * target, 2 * measured.error):
+            if _reached(measured, target):
                 return measured, history, None
             if run + 1 == runs:
                 break
@@ -482,14 +486,13 @@ class Calibration:
             if len(history) >= 2:
                 (x1, m1), (x2, m2) = history[-2:]
                 slope = (m2.value - m1.value) / (x2 - x1)
-                noise = 2 * math.hypot(m1.error, m2.error)
-                if abs(m2.value - m1.value) > noise:
+                if _measured_difference(m1, m2):
                     if slope <= 0:
                         return give_up(f"{name}: {attribute} {x1:.4g} -> {x2:.4g} moved it {m1.value:.4g} -> "
                                        f"{m2.value:.4g} (target {target:.4g}): a response of the wrong sign, no "
                                        f"{attribute} reaches the target")
                     floor = m2.value - slope * x2
-                    if floor > target + noise:
+                    if floor > target + 2 * math.hypot(m1.error, m2.error):
                         return give_up(f"{name}: the model's {name} without its {attribute} is {floor:.4g} (the "
                                        f"secant's intercept), above the target {target:.4g}: no {attribute} reaches "
                                        f"it")
@@ -505,8 +508,7 @@ class Calibration:
         failure = None
         if len(history) >= 2:
             (x1, m1), (x2, m2) = history[-2:]
-            moved = (m2.value - m1.value) * (x2 - x1) > 0 and abs(m2.value - m1.value) > 2 * math.hypot(m1.error,
-                                                                                                      m2.error)
+            moved = (m2.value - m1.value) * (x2 - x1) > 0 and _measured_difference(m1, m2)
             if not moved:
                 failure = (f"{name}: {attribute} {x1:.4g} -> {x2:.4g} did not move it ({m1.value:.4g} +- "
                            f"{m1.error:.2g} -> {m2.value:.4g} +- {m2.error:.2g}, target {target:.4g})")
@@ -526,12 +528,22 @@ def speed_of_sound(parameters, bulk_modulus):
     return Measured(value, bulk_modulus.error / (2 * rho * value))
 
 
+def _reached(measured, target):
+    """Whether a Measured value is within max(TOLERANCE target, 2 standard errors) of ``target``."""
+    return abs(measured.value - target) <= max(TOLERANCE * target, 2 * measured.error)
+
+
+def _measured_difference(a, b):
+    """Whether two Measured values differ by more than 2 standard errors of their difference."""
+    return abs(b.value - a.value) > 2 * math.hypot(a.error, b.error)
+
+
 def _elasticity(history):
     """d ln(property)/d ln(parameter) from the last two entries of an iteration's history [(parameter, Measured)]
     when their difference is measured (more than 2 standard errors) and positive, within [1/3, 3]; else 1."""
     if len(history) >= 2:
         (x1, m1), (x2, m2) = history[-2:]
-        if x1 != x2 and abs(m2.value - m1.value) > 2 * math.hypot(m1.error, m2.error) and m1.value > 0 < m2.value:
+        if x1 != x2 and _measured_difference(m1, m2) and m1.value > 0 < m2.value:
             elasticity = math.log(m2.value / m1.value) / math.log(x2 / x1)
             if elasticity > 0:
                 return min(3.0, max(1 / 3, elasticity))
@@ -570,7 +582,7 @@ def pressure_step(pressures, target):
     response = 1.0
     if len(pressures) >= 2:
         previous_pi0, previous = pressures[-2]
-        if abs(pressure.value - previous.value) > 2 * math.hypot(pressure.error, previous.error):
+        if _measured_difference(previous, pressure):
             response = min(4.0, max(0.25, (pressure.value - previous.value) / (pi0 - previous_pi0)))
     return (target - pressure.value) / response
 

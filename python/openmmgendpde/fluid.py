@@ -173,10 +173,12 @@ class GenDPDEParameters:
 
     def targets(self):
         """The fluid's properties that the model should reproduce, in OpenMM units: pressure, bulk modulus
-        1/kappa_T, temperature, viscosity, conductivity, and the density n0."""
+        1/kappa_T, temperature, viscosity, conductivity, the density n0, and the isochoric heat capacity of the
+        molecules of one particle (kJ/mol/K)."""
         f = self.fluid.in_openmm()
         return {"density": self.density, "pressure": f["pressure"], "bulk_modulus": 1 / f["compressibility"],
                 "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
+                "heat_capacity": self.molecules_per_particle * f["heat_capacity"],
                 "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion"),
                 "speed_of_sound": f.get("speed_of_sound")}
 

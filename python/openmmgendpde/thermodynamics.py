@@ -23,6 +23,7 @@ import openmm
 from openmm import unit
 
 from . import GenDPDEForce, GenDPDEIntegrator
+from .statistics import correlated_mean
 from .units import BOLTZMANN
 
 _K = unit.kelvin
@@ -157,3 +158,35 @@ def self_diffusion(times, positions, groups=10, lags=10):
     slopes = np.polyfit(lag_times, msd, 1)[0]
     values = slopes / 6
     return float(values.mean()), float(values.std(ddof=1) / np.sqrt(groups))
+
+
+def configurational_heat_capacity(potential_energies, temperature, bath_heat_capacity):
+    """The configurational heat capacity C_U = d<U>/dT at fixed volume (kJ/mol/K, whole system) of an Isoenergetic
+    GenDPDE run from the fluctuation of its potential energy U, and its standard error: (C_U, error).
+
+    ``potential_energies``: a time series of U (kJ/mol) in equilibrium; ``temperature`` (K): its harmonic-mean
+    temperature; ``bath_heat_capacity`` (kJ/mol/K): the heat capacity of what U exchanges energy with at fixed total
+    energy, the kinetic energy and the internal energies: (3N - 3) k_B/2 + N (C_V + k_B) (each eps_i/(k_B T) follows
+    a Gamma law of shape C_V/k_B + 1, docs/theory.md section 8). In the Isoenergetic mode the configurations are
+    distributed as Omega_U(U) (E - U)^(D - 1) with D k_B that heat capacity, so U fluctuates as a system in contact
+    with a finite bath: <dU^2> = k_B T^2 C_U C_B/(C_U + C_B) (Lebowitz, Percus and Verlet 1967), which this inverts:
+    C_U = X C_B/(C_B - X), X = <dU^2>/(k_B T^2). For a bath much larger than C_U this is the canonical
+    <dU^2>/(k_B T^2). The variance's error is that of the mean of the squared deviations (correlated_mean)."""
+    energies = np.asarray(potential_energies, dtype=float)
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    squares = correlated_mean((energies - energies.mean()) ** 2)
+    scale = 1 / (kb * temperature**2)
+    x, x_error = squares.mean * scale, squares.standard_error * scale
+    if not 0 <= x < bath_heat_capacity:
+        raise ValueError(f"configurational_heat_capacity: <dU^2>/(k_B T^2) = {x:.4g} kJ/mol/K is not below the bath's "
+                         f"heat capacity {bath_heat_capacity:.4g} kJ/mol/K: not an equilibrium Isoenergetic run")
+    value = x * bath_heat_capacity / (bath_heat_capacity - x)
+    error = x_error * bath_heat_capacity**2 / (bath_heat_capacity - x) ** 2
+    return value, error, squares.independent_samples
+
+
+def bath_heat_capacity(num_particles, internal_heat_capacity):
+    """(3N - 3) k_B/2 + N (C_V + k_B) (kJ/mol/K): the heat capacity of the kinetic and internal energies of N
+    particles of heat capacity C_V (``internal_heat_capacity``, kJ/mol/K) each, in the Isoenergetic mode."""
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    return (3 * num_particles - 3) * kb / 2 + num_particles * (internal_heat_capacity + kb)

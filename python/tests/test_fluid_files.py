@@ -121,7 +121,7 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     -0.02/kappa_T from the mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport
     coefficients read their targets. The model file holds exactly those parameters (computed here from coarse_grain,
     independently of calibrate)."""
-    from openmmgendpde.calibrate import Calibration, Measured
+    from openmmgendpde.calibrate import KB, Calibration, Measured
     offset = 0.02
 
     def thermodynamics(self, density=None, pressure_error=None):
@@ -129,9 +129,11 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
         measured = t["pressure"] + offset * t["bulk_modulus"]
         if self.parameters.reference_pressure != mapped.reference_pressure:
             measured = t["pressure"]
+        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
         return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
                 "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
-                "pressure": Measured(measured, 1e-4)}
+                "pressure": Measured(measured, 1e-4), "heat_capacity": self.heat_capacity(),
+                "configurational_heat_capacity": self.configurational_heat_capacity}
 
     def tune(self, iterations=None):
         self.parameters = self.parameters.with_cutoff_scaling(1.3)
@@ -155,8 +157,10 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     expected = dataclasses.replace(mapped, cutoff_scaling=1.3,
                                    reference_pressure=mapped.reference_pressure - offset * bulk_modulus)
     assert model.reference_pressure == pytest.approx(expected.reference_pressure, rel=1e-12)
+    # C_V matched to the fluid's c_v: the made-up c_U (0.5 k_B), the motion (3/2 k_B) and the Gamma law's k_B off.
+    assert model.heat_capacity == pytest.approx(mapped.heat_capacity - 3 * KB, rel=1e-12)
     for field in dataclasses.fields(expected):
-        if field.name not in ("fluid", "reference_pressure"):
+        if field.name not in ("fluid", "reference_pressure", "heat_capacity"):
             assert getattr(model, field.name) == getattr(expected, field.name), field.name
     assert "every judged result within its tolerance" in open(output).read()
 

@@ -9,28 +9,31 @@
    rounds (pressure_step; 1 at first), and f_cut is tuned again: pi0 alone barely moves the pressure, the
    structure follows it until f_cut brings n-bar back (docs/fluids.md). Every run melts until n-bar is stationary
    (Calibration.melt), each after the first in its box from the last melted liquid.
-3. The bulk modulus n dP/dn, from runs in boxes at n0 (1 -+ delta) (a central difference), and from the same runs
-   how the particle densities follow the true one, (n/n-bar) d n-bar/d n (1 would let the Tait modulus through).
-   Reported, not iterated: where the response is small (water: ~0.2), B_T would have to rise ~5x (and the time
-   step fall) to reach 1/kappa_T.
-4. The transport coefficients, iterated (iterate_transport: a proportional step, then secant steps on the measured
-   responses, until within 5% or 2 standard errors; at most plan.transport_runs measurements; a secant whose
-   intercept, the coefficient without the pair term, lies above the target stops the iteration: no friction or
-   conduction reaches it):
+3. The heat capacity: the model's c_v per particle is C_V + k_B (the Gamma law of the internal energies) + 3 k_B/2
+   (the motion) + c_U (the configurations, measured from the fluctuation of U: Calibration.heat_capacity); C_V is
+   set so that it is the fluid's N_m c_v (match_heat_capacity, one exact step).
+4. The bulk modulus n dP/dn, from runs in boxes at n0 (1 -+ delta) (a central difference), and from the same runs
+   how the particle densities follow the true one, (n/n-bar) d n-bar/d n (1 would let the Tait modulus through);
+   B_T iterated on it (Calibration.iterate), then f_cut and pi0 again if B_T moved. Where the response is small
+   (water at 20 neighbours: ~0.2) B_T does not move it, and the iteration fails saying to use more neighbours.
+5. The transport coefficients, iterated (Calibration.iterate: a proportional step, then secant steps on the
+   measured responses, until within 5% or the 95% interval; at most plan.transport_runs measurements; a secant
+   whose intercept, the coefficient without the pair term, lies above the target stops the iteration: no friction
+   or conduction reaches it):
    - the shear viscosity (friction gamma), from the decay of a transverse velocity wave v_x = V0 sin(k z)
      (k = 2 pi/L) laid on the equilibrium velocities: its amplitude decays as exp(-eta k^2 t/(n0 m));
    - the thermal conductivity (heat conduction kappa), from the decay of a wave theta_i -> theta_i (1 + e sin(k z)):
-     the energy wave decays as exp(-lambda k^2 t/(n0 c)), c = C_V + 3 k_B/2 the heat capacity per particle at
-     fixed density (the Tait energy does not depend on temperature); the amplitude is read from sum eps_i + K_i.
+     the energy wave decays as exp(-lambda k^2 t/(n0 c)), c the model's heat capacity per particle at fixed
+     density (step 3); the amplitude is read from sum eps_i + K_i.
    Then each is measured again by a method of another kind (transport.py, in boxes of plan.steady_cells): periodic
    Poiseuille flow, and a steady heat flux between thermostatted slabs.
    Every mean of a time series has the standard error of correlated_mean (sqrt(g s^2/N), the independent samples
    N/g in the table), a transport coefficient the scatter of its replicas.
-5. The results are judged (CRITERIA; --quick: QUICK_CRITERIA): n-bar within 2% of n0, P within 0.01/kappa_T of P0,
-   both temperatures within 2% of T0, each transport coefficient by both methods within 5% of its target (--quick:
-   a factor 2), each allowing 2 standard errors of the measurement as well. A calibration that misses one of them
-   says which, by how much, and exits with status 1 (after writing --json and --output). The number of runs and
-   the wall time are printed.
+6. The results are judged (CRITERIA; --quick: QUICK_CRITERIA): n-bar within 2% of n0, P within 0.01/kappa_T of P0,
+   c_v and both temperatures within 2%, each transport coefficient by both methods within 5% of its target
+   (--quick: a factor 2), each allowing the 95% interval of the measurement as well (coverage: 2 standard errors,
+   Student's t for few replicas). A calibration that misses one of them says which, by how much, and exits with
+   status 1 (after writing --json and --output). The number of runs and the wall time are printed.
 
 --fluid takes a built-in name or a fluid file (fluid_files); --output writes the calibrated model as a model file.
 --quick: 500 particles and short runs (a functional check in about a minute); the default: 2048 particles.
@@ -53,7 +56,8 @@ from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
 from .progress import Progress
 from .statistics import correlated_mean
-from .thermodynamics import ThermodynamicProbe, bath_heat_capacity, configurational_heat_capacity, self_diffusion
+from .thermodynamics import (ThermodynamicProbe, bath_heat_capacity, configurational_heat_capacity,
+                             heat_capacity_per_particle, self_diffusion)
 from .transport import heat_flux_conductivity, poiseuille_viscosity
 from .tune_fcut import mean_density_on_frames
 from .units import BOLTZMANN
@@ -370,7 +374,7 @@ class Calibration:
         if self.configurational_heat_capacity is None:
             self.thermodynamics(diffusion=False)
         configurational = self.configurational_heat_capacity
-        value = self.parameters.heat_capacity + 2.5 * KB + configurational.value
+        value = heat_capacity_per_particle(self.parameters.heat_capacity, configurational.value)
         return Measured(value, configurational.error, configurational.samples)
 
     def match_heat_capacity(self, target):

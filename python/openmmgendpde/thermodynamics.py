@@ -190,3 +190,13 @@ def bath_heat_capacity(num_particles, internal_heat_capacity):
     particles of heat capacity C_V (``internal_heat_capacity``, kJ/mol/K) each, in the Isoenergetic mode."""
     kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
     return (3 * num_particles - 3) * kb / 2 + num_particles * (internal_heat_capacity + kb)
+
+
+def heat_capacity_per_particle(internal_heat_capacity, configurational=0.0):
+    """The isochoric heat capacity per particle (kJ/mol/K) of a GenDPDE fluid whose conservative energy does not
+    depend on the temperatures (Tait): C_V + k_B (each eps_i/(k_B T) follows a Gamma law of shape C_V/k_B + 1,
+    docs/theory.md section 8) + 3 k_B/2 (the motion) + c_U (``configurational``, per particle: the configurations
+    follow T; configurational_heat_capacity measures it, 0.4 k_B for argon, 0.06 k_B for water as calibrate maps
+    them). ``internal_heat_capacity``: C_V (kJ/mol/K)."""
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    return internal_heat_capacity + 2.5 * kb + configurational

@@ -28,6 +28,7 @@ from openmm import unit
 
 from .profiles import profile
 from .statistics import block_standard_error, statistical_inefficiency
+from .thermodynamics import heat_capacity_per_particle
 from .units import BOLTZMANN
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
@@ -273,7 +274,8 @@ def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins
     C_V/(C_V + k_B) (0.926 for argon) and the whole box cools (docs/transport.md). The change of sum eps_i
     (getInternalEnergies) in each slab is the energy it took, Q_hot > 0 and Q_cold < 0. Every run starts with theta_i scaled by 1 + excess s(z) (slab_profile: the expected steady
     profile, each particle keeping its place in the equilibrium distribution), waits ``developed`` and averages over
-    ``measured`` thermal diffusion times tau = n0 c (L/2)^2/(lambda pi^2) (target lambda, c = C_V + 3 k_B/2).
+    ``measured`` thermal diffusion times tau = n0 c (L/2)^2/(lambda pi^2) (target lambda, c = C_V + 5 k_B/2, thermodynamics.heat_capacity_per_particle
+    without the configurational part).
 
     Q = (Q_hot - Q_cold)/2 per reset interval t flows through both halves: J = Q/(2 A t), A the xy area. dT/dz: the
     slopes of lines through the harmonic means of theta_i of the bins in [w + margin, L/2 - margin] and
@@ -284,7 +286,7 @@ def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins
     through the resets, E(end) - E(start) against the sum of the injected energies ('energy_change', 'injected'; the
     hot slab's alone 'injected_hot'), all in kJ/mol."""
     targets = parameters.targets()
-    heat_capacity = parameters.heat_capacity + 1.5 * KB
+    heat_capacity = heat_capacity_per_particle(parameters.heat_capacity)
     margin = parameters.cutoff if margin is None else margin
     values, errors, profiles, extra = [], [], [], {}
     for replica in range(plan.replicas):

@@ -681,6 +681,10 @@ def fluid_named(name):
                      f"(.toml or .json, docs/fluids.md)")
 
 
+#: The coarse-graining of --fluid where its options are not given (add_fluid_arguments).
+COARSE_GRAINING = {"molecules_per_particle": 4.0, "neighbors": 20.0}
+
+
 def add_fluid_arguments(parser, default="water", cutoff=True):
     """--fluid (a built-in name or a fluid file; ``default``, or None: the subcommand's own model), and the
     coarse-graining of coarse_grain: --molecules-per-particle and --neighbors, or --cutoff (nm; ``cutoff`` False
@@ -689,10 +693,11 @@ def add_fluid_arguments(parser, default="water", cutoff=True):
     parser.add_argument("--fluid", default=default,
                         help=f"a built-in fluid ({', '.join(sorted(FLUIDS))}; {default_text}) or a fluid file "
                              f"(.toml or .json: each property 'value unit', docs/fluids.md)")
-    parser.add_argument("--molecules-per-particle", type=float, default=4.0,
-                        help="coarse-graining level (default 4)")
-    parser.add_argument("--neighbors", type=float, default=20.0,
-                        help="particles within the cutoff at n0 (default 20), unless --cutoff is given")
+    parser.add_argument("--molecules-per-particle", type=float, default=COARSE_GRAINING["molecules_per_particle"],
+                        help=f"coarse-graining level (default {COARSE_GRAINING['molecules_per_particle']:g})")
+    parser.add_argument("--neighbors", type=float, default=COARSE_GRAINING["neighbors"],
+                        help=f"particles within the cutoff at n0 (default {COARSE_GRAINING['neighbors']:g}), unless "
+                             f"--cutoff is given")
     if cutoff:
         parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
 

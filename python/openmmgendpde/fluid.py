@@ -87,7 +87,8 @@ class Fluid:
     """A fluid at one state point; every property an openmm.unit Quantity in any compatible unit (SI per molecule,
     or per mole), except heat_capacity, which may also be a number in k_B per molecule. Every property must be
     finite and > 0 but the pressure (finite, of either sign), and tait_exponent > 1: a Fluid that is not raises
-    ValueError naming the property, its value and what is allowed."""
+    ValueError naming the property, its value and what is allowed. The optional properties (self_diffusion,
+    speed_of_sound, surface_tension) are not fitted, only measured back; None where not known."""
     name: str
     temperature: unit.Quantity            # T0
     pressure: unit.Quantity               # P0
@@ -100,6 +101,7 @@ class Fluid:
     tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
     self_diffusion: unit.Quantity = None  # the molecules' self-diffusion coefficient: not fitted, measured back
     speed_of_sound: unit.Quantity = None  # not fitted: compared with the model's (from its measured n dP/dn)
+    surface_tension: unit.Quantity = None  # liquid-vapour; not fitted: compared with a slab's (`slab`)
 
     def __post_init__(self):
         self.in_openmm()
@@ -108,7 +110,7 @@ class Fluid:
         """The properties as plain floats in OpenMM units (temperature K, pressure kJ/mol/nm^3, mass_density
         amu/nm^3, compressibility nm^3 mol/kJ, shear_viscosity amu/(nm ps), thermal_conductivity kJ/(mol ps nm K),
         molar_mass g/mol, heat_capacity kJ/mol/K per molecule, tait_exponent, and self_diffusion nm^2/ps if
-        given, speed_of_sound nm/ps if given), checked as the class says."""
+        given, speed_of_sound nm/ps if given, surface_tension kJ/mol/nm^2 if given), checked as the class says."""
         values = {}
         for name, target in _PROPERTY_UNITS.items():
             given = getattr(self, name)
@@ -122,7 +124,8 @@ class Fluid:
             raise ValueError(f"tait_exponent = {self.tait_exponent} is not allowed; it must be finite and > 1")
         values["tait_exponent"] = self.tait_exponent
         for name, target in (("self_diffusion", unit.nanometer**2 / unit.picosecond),
-                             ("speed_of_sound", unit.nanometer / unit.picosecond)):
+                             ("speed_of_sound", unit.nanometer / unit.picosecond),
+                             ("surface_tension", unit.kilojoule_per_mole / unit.nanometer**2)):
             if getattr(self, name) is not None:
                 values[name] = _positive(name, _in_openmm(getattr(self, name), target, name), getattr(self, name))
         return values
@@ -174,13 +177,14 @@ class GenDPDEParameters:
     def targets(self):
         """The fluid's properties that the model should reproduce, in OpenMM units: pressure, bulk modulus
         1/kappa_T, temperature, viscosity, conductivity, the density n0, and the isochoric heat capacity of the
-        molecules of one particle (kJ/mol/K)."""
+        molecules of one particle (kJ/mol/K); and those it is not fitted to, None where the fluid has none:
+        self_diffusion, speed_of_sound and surface_tension (kJ/mol/nm^2)."""
         f = self.fluid.in_openmm()
         return {"density": self.density, "pressure": f["pressure"], "bulk_modulus": 1 / f["compressibility"],
                 "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
                 "heat_capacity": self.molecules_per_particle * f["heat_capacity"],
                 "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion"),
-                "speed_of_sound": f.get("speed_of_sound")}
+                "speed_of_sound": f.get("speed_of_sound"), "surface_tension": f.get("surface_tension")}
 
     def with_cutoff_scaling(self, cutoff_scaling):
         return dataclasses.replace(self, cutoff_scaling=cutoff_scaling)
@@ -325,8 +329,10 @@ ARGON = _argon_fluid()
 
 #: Liquid water at 298.15 K and 0.1 MPa (IAPWS-95 values as tabulated by NIST: 997.05 kg/m^3, kappa_T = 0.4525/GPa,
 #: c_v = 74.44 J/(mol K); viscosity 0.8900 mPa s, thermal conductivity 0.6065 W/(m K)); gamma_T = 7 (Tait); the
-#: self-diffusion coefficient 2.299e-9 m^2/s (Mills, J. Phys. Chem. 77, 685 (1973)) and the speed of sound
-#: 1496.7 m/s (Del Grosso and Mader, J. Acoust. Soc. Am. 52, 1442 (1972)), reported, not fitted.
+#: self-diffusion coefficient 2.299e-9 m^2/s (Mills, J. Phys. Chem. 77, 685 (1973)), the speed of sound
+#: 1496.7 m/s (Del Grosso and Mader, J. Acoust. Soc. Am. 52, 1442 (1972)) and the liquid-vapour surface tension
+#: 71.97 mN/m (the IAPWS release on the surface tension of ordinary water, from Vargaftik, Volkov and Voljak,
+#: J. Phys. Chem. Ref. Data 12, 817 (1983)), reported, not fitted.
 WATER = Fluid(
     name="liquid water, 298.15 K, 0.1 MPa",
     temperature=298.15 * unit.kelvin,
@@ -339,4 +345,5 @@ WATER = Fluid(
     molar_mass=18.015 * unit.gram / unit.mole,
     tait_exponent=7.0,
     self_diffusion=2.299e-9 * unit.meter**2 / unit.second,
-    speed_of_sound=1496.7 * unit.meter / unit.second)
+    speed_of_sound=1496.7 * unit.meter / unit.second,
+    surface_tension=0.07197 * unit.newton / unit.meter)

@@ -4,8 +4,9 @@ calibrated model can be built again (docs/fluids.md, "Fluid files").
 A fluid file holds the properties of a Fluid, each a string "value unit" in the syntax of pint (the units library
 of the scientific Python stack: "997.05 kg/m^3", "0.4525e-9 1/Pa", "74.44 J/(mol K)", "0.89 mPa s",
 "0.6065 W/(m K)", "18.015 g/mol"; per molecule or per mole, as a Fluid takes them), except heat_capacity, which may
-also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s) and
-speed_of_sound (m/s) are optional, properties the model is not fitted to that calibrate measures back:
+also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s),
+speed_of_sound (m/s) and surface_tension (N/m, liquid-vapour) are optional, properties the model is not fitted to
+that calibrate (surface_tension: slab) measures back:
 
     name = "liquid methanol, 298.15 K, 0.1 MPa"
     temperature = "298.15 K"
@@ -43,7 +44,8 @@ _SI_UNITS = {
 }
 #: Optional properties (not fitted; measured back beside the targets) and their SI units.
 _OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second),
-                   "speed_of_sound": ("m/s", unit.meter / unit.second)}
+                   "speed_of_sound": ("m/s", unit.meter / unit.second),
+                   "surface_tension": ("N/m", unit.newton / unit.meter)}
 #: pint's base units and openmm.unit's.
 _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.second, "mole": unit.mole,
                "kelvin": unit.kelvin}
@@ -187,8 +189,9 @@ def _toml_value(value):
 
 
 def _check_model(table, path):
-    if table.get("format") != MODEL_FORMAT:
-        raise ValueError(f"{path}: format = {table.get('format')!r} is not a model file this version reads "
+    given = table.get("format") if isinstance(table, dict) else None
+    if given != MODEL_FORMAT:
+        raise ValueError(f"{path}: format = {given!r} is not a model file this version reads "
                          f"({MODEL_FORMAT!r})")
     for key in ("fluid", "parameters"):
         if not isinstance(table.get(key), dict):

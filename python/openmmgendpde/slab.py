@@ -16,12 +16,15 @@ V-A (1/n0), V-B, V-C and the exact partition-of-unity volume with V-B's kernel r
 averaged in slices by depth (shells by radius for the droplet); for the bulk, the mean and scatter of
 V_estimator/V_exact.
 
-Any fluid (--fluid NAME|FILE, calibrate's fluids and coarse-graining options): fluid_slab builds the slab (melted at
-n0, cut, thermostatted SLAB_THERMOSTAT_TIME, then isoenergetic at the suggested step) and the same samples are
-taken in the model's reduced units, with the kinetic and internal (harmonic) temperatures; the droplet, the bulk
+Any fluid (--fluid NAME|FILE, calibrate's fluids and coarse-graining options) or calibrated model (--model FILE,
+a model file of `calibrate --output`: exactly its parameters): fluid_slab builds the slab (melted at n0, cut,
+thermostatted SLAB_THERMOSTAT_TIME, then isoenergetic at the suggested step) and the same samples are taken in the
+model's reduced units, with the kinetic and internal (harmonic) temperatures; the surface tension over the second
+half of each run is reported in mN/m beside the fluid's (its optional surface_tension). The droplet, the bulk
 comparison and the coexistence density stay the argon model's.
 """
 
+import argparse
 import copy
 import csv
 import dataclasses
@@ -38,7 +41,7 @@ from .interfaces import partition_of_unity_volumes
 from .pressure import pressure_tensor
 from .thermodynamics import ThermodynamicProbe
 from .presets import ARGON_UNITS, liquid_argon
-from .statistics import block_average
+from .statistics import block_average, correlated_mean
 
 NM = unit.nanometer
 
@@ -187,7 +190,7 @@ def sample_slab(model, thickness, time, units=ARGON_UNITS):
     estimates = model.force.getParticleDensities(model.context).value_in_unit(NM**-3)
     p = pressure_tensor(model.force, model.context)
     tension = 0.5 * model.box[2] * (p[2, 2] - 0.5 * (p[0, 0] + p[1, 1]))                   # kJ/mol/nm^2
-    tension_unit = units.unit("energy").value_in_unit(unit.kilojoule_per_mole) / length**2
+    tension_unit = units.unit("surface_tension").value_in_unit(unit.kilojoule_per_mole / NM**2)
     state = model.context.getState(getEnergy=True, getVelocities=True)
     thermal = ThermodynamicProbe(model.context.getSystem()).sample(state, model.context, model.integrator)
     return SlabSample(time, core.sum() / (area * thickness / 2) * length**3,
@@ -370,25 +373,93 @@ def plot(runs, profiles, path_stem):
     save(figure, path_stem, right if "VB" in profiles else None)
 
 
-#: The options of the slab of a fluid file or built-in fluid (--fluid), and fluid_slab's argument each sets.
+#: The options of the slab of a fluid file or built-in fluid (--fluid) or of a model file (--model), and
+#: fluid_slab's argument each sets.
 FLUID_OPTIONS = {"time_step": "time_step", "thermostat_time": "thermostat_time", "melt_time": "melt_time"}
+#: The coarse-graining options of --fluid (calibrate.add_fluid_arguments), which a --model file's parameters replace:
+#: None where not given (fluid_parameters puts calibrate.COARSE_GRAINING's defaults back).
+COARSE_GRAINING_OPTIONS = ("molecules_per_particle", "neighbors", "cutoff")
+
+
+def _option(name):
+    return f"--{name.replace('_', '-')}"
 
 
 def fluid_parameters(arguments, cells):
-    """The GenDPDEParameters of --fluid (None for the published argon model), checked against the slab's ``cells``
-    before anything runs; a bad argument exits with a one-line error (status 1)."""
-    if arguments.fluid is None:
-        given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None]
+    """The GenDPDEParameters of --fluid (coarse-grained) or --model (a model file's, exactly), None for the published
+    argon model, checked against the slab's ``cells`` before anything runs; a bad argument exits with a one-line
+    error (status 1)."""
+    coarse_graining = [name for name in COARSE_GRAINING_OPTIONS if getattr(arguments, name) is not None]
+    if arguments.model is not None:
+        if arguments.fluid is not None:
+            raise SystemExit("error: slab: --fluid and --model exclude each other; give one")
+        if coarse_graining:
+            raise SystemExit(f"error: slab: {_option(coarse_graining[0])} applies to --fluid only; a --model file "
+                             f"holds every parameter of its model")
+        parameters = load_model(arguments.model)
+        source = f"--model {arguments.model}"
+    elif arguments.fluid is None:
+        given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None] + coarse_graining
         if given:
-            raise SystemExit(f"error: slab: --{given[0].replace('_', '-')} applies to the slab of a --fluid only")
+            raise SystemExit(f"error: slab: {_option(given[0])} applies to the slab of a --fluid or --model only")
         return None
-    from .calibrate import parameters_from_arguments   # (calibrate imports much; only --fluid needs it)
-    parameters = parameters_from_arguments(arguments, "slab")
+    else:
+        from .calibrate import COARSE_GRAINING, parameters_from_arguments   # (calibrate imports much)
+        defaults = {name: value for name, value in COARSE_GRAINING.items() if getattr(arguments, name) is None}
+        parameters = parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), "slab")
+        source = f"--fluid {arguments.fluid}"
     try:
         parameters.liquid(cells=cells)
     except ValueError as error:
-        raise SystemExit(f"error: slab: --fluid {arguments.fluid}: {error}")
+        raise SystemExit(f"error: slab: {source}: {error}")
     return parameters
+
+
+def load_model(path):
+    """fluid_files.load_parameters of the model file ``path`` (--model); exits with a one-line error naming the
+    file if it is missing or not a model file."""
+    if not os.path.isfile(path):
+        raise SystemExit(f"error: slab: --model {path}: no such file")
+    if os.path.splitext(path)[1].lower() not in (".toml", ".json"):
+        raise SystemExit(f"error: slab: --model {path} is not allowed; a model file ends in .toml or .json")
+    from .fluid_files import load_parameters
+    try:
+        return load_parameters(path)
+    except ValueError as error:
+        raise SystemExit(f"error: slab: --model {' '.join(str(error).split())}")
+
+
+def _mn_m(value):
+    """kJ/mol/nm^2 -> mN/m."""
+    return (value * unit.kilojoule_per_mole / NM**2 / unit.AVOGADRO_CONSTANT_NA).value_in_unit(
+        unit.newton / unit.meter) * 1e3
+
+
+def surface_tension_table(tensions, parameters):
+    """The surface tension over the second half of each run against the fluid's, a line and a Markdown table:
+    ``tensions`` estimator -> the samples' tensions (reduced, parameters.units); the mean +- its standard error
+    (statistics.correlated_mean) and the independent samples N/g, in mN/m, beside the target (the fluid's
+    surface_tension; '-' where it has none) and slab/target."""
+    target = parameters.targets()["surface_tension"]
+    target = None if target is None else _mn_m(target)
+    scale = _mn_m(parameters.units.unit("surface_tension").value_in_unit(unit.kilojoule_per_mole / NM**2))
+    lines = ["Surface tension over the second half of each run (standard errors and independent samples N/g from "
+             "statistics.correlated_mean); target: the liquid-vapour surface tension of " + parameters.fluid.name
+             + (" (not given: the fluid's optional surface_tension)" if target is None else ""),
+             "| estimator | target (mN/m) | slab (mN/m) | slab/target | independent samples |",
+             "|---|---|---|---|---|"]
+    for estimator, values in tensions.items():
+        values = scale * np.asarray(values, float)
+        if len(values) >= 2:
+            result = correlated_mean(values)
+            mean, measured = result.mean, f"{result.mean:.4g} +- {result.standard_error:.2g}"
+            samples = f"{result.independent_samples:.1f} of {len(values)}"
+        else:
+            mean = float(values[0])
+            measured, samples = f"{mean:.4g} (one sample: no error)", "1"
+        lines.append(f"| {estimator} | {'-' if target is None else f'{target:.4g}'} | {measured} | "
+                     f"{'-' if target is None else f'{mean / target:.3f}'} | {samples} |")
+    return "\n".join(lines)
 
 
 def run(arguments):
@@ -397,7 +468,7 @@ def run(arguments):
     parameters = fluid_parameters(arguments, cells)
     units = ARGON_UNITS if parameters is None else parameters.units
     os.makedirs(arguments.output, exist_ok=True)
-    runs, profiles = {}, {}
+    runs, profiles, tensions = {}, {}, {}
     for estimator in arguments.estimators:
         if parameters is None:
             print(f"{estimator}: slab of {4 * np.prod(cells)} particles, {duration:g} time units")
@@ -408,11 +479,13 @@ def run(arguments):
             samples, slab = run_fluid_slab(parameters, estimator, duration, every, cells, arguments.platform,
                                            arguments.seed, **build)
             model, thickness = slab.model, slab.thickness
+            model_file = "" if arguments.model is None else f"the model in {arguments.model}; "
+            tau = units.unit("time").value_in_unit(unit.picosecond)
             print(f"{estimator}: slab of {4 * np.prod(cells)} particles of {parameters.fluid.name} "
-                  f"(T0 = {parameters.temperature:g} K), dt* = {slab.time_step:.4g}, melted and thermostatted "
-                  f"{build.get('thermostat_time', SLAB_THERMOSTAT_TIME):g} time units after the cut, then "
-                  f"{duration:g} time units isoenergetic (time unit {units.unit('time').value_in_unit(unit.picosecond):.4g} ps; "
-                  f"reduced units of the model: length n0^(-1/3))")
+                  f"({model_file}T0 = {parameters.temperature:g} K), dt* = {slab.time_step:.4g}, melted and "
+                  f"thermostatted {build.get('thermostat_time', SLAB_THERMOSTAT_TIME):g} time units after the cut, "
+                  f"then {duration:g} time units isoenergetic (time unit {tau:.4g} ps; reduced units of the model: "
+                  f"length n0^(-1/3))")
         runs[estimator] = samples
         temperatures = parameters is not None
         print("   t*   core true n*   core mean n_i*   width/initial   surface tension*"
@@ -422,13 +495,15 @@ def run(arguments):
                   f"{s.tension:16.4f}" + (f"   {s.kinetic_temperature:9.1f}   {s.harmonic_temperature:10.1f}"
                                           if temperatures else ""))
         late = [s for s in samples if s.time > duration / 2]
-        tensions = [s.tension for s in late]
+        tensions[estimator] = [s.tension for s in late]
         if len(late) >= 10:   # enough samples for 5 blocks of 2
-            tension = block_average(tensions, 5, name=f"{estimator} surface tension")
+            tension = block_average(tensions[estimator], 5, name=f"{estimator} surface tension")
             mean = tension.mean
-            error = f"+- {tension.standard_error:.4f} (block average, 5 blocks; sd {np.std(tensions):.4f})"
+            error = (f"+- {tension.standard_error:.4f} (block average, 5 blocks; sd "
+                     f"{np.std(tensions[estimator]):.4f})")
         else:
-            mean, error = float(np.mean(tensions)), f"(sd {np.std(tensions):.4f}; too few samples for an error)"
+            mean = float(np.mean(tensions[estimator]))
+            error = f"(sd {np.std(tensions[estimator]):.4f}; too few samples for an error)"
         print(f"{estimator}: over the second half ({len(late)} samples), core true n* "
               f"{np.mean([s.core_density for s in late]):.3f}, surface tension* {mean:.4f} {error}"
               + (f"; T_kin {np.mean([s.kinetic_temperature for s in late]):.1f} K, T_harm "
@@ -450,8 +525,9 @@ def run(arguments):
                 writer.writerow([estimator, s.time, s.core_density, s.core_estimate, s.width, s.tension]
                                 + ([s.kinetic_temperature, s.harmonic_temperature] if temperatures else []))
     if parameters is not None:
+        print(surface_tension_table(tensions, parameters))
         print("(the droplet, the bulk comparison and the coexistence density are the argon model's: run slab "
-              "without --fluid)")
+              "without --fluid or --model)")
         plot(runs, profiles, os.path.join(arguments.output, "slab"))
         print(f"wrote {arguments.output}/slab.csv, slab.png, slab.pdf")
         return
@@ -487,11 +563,15 @@ def add_arguments(parser):
     parser.add_argument("--no-oracle", action="store_true", help="skip the exact volumes (the slow part)")
     from .calibrate import add_fluid_arguments
     add_fluid_arguments(parser, default=None)
-    parser.add_argument("--time-step", type=float, help="with --fluid: dt* in the model's reduced time (default "
-                        "stability.suggest_time_step's, measured: V-C's is a tenth of V-B's)")
-    parser.add_argument("--thermostat-time", type=float, help=f"with --fluid: time units the slab is thermostatted "
-                        f"after the cut, before the isoenergetic run (default {SLAB_THERMOSTAT_TIME:g}; 0: none)")
-    parser.add_argument("--melt-time", type=float, help="with --fluid: time units the bulk liquid melts before the "
-                        "cut (default 20)")
-    parser.add_argument("--seed", type=int, default=5, help="with --fluid: random seed (default 5)")
+    parser.set_defaults(**dict.fromkeys(COARSE_GRAINING_OPTIONS))   # (not given: None; --model refuses them)
+    parser.add_argument("--model", help="a model file written by `calibrate --output` (.toml or .json): the slab of "
+                        "exactly its parameters (a calibrated model) instead of --fluid and its coarse-graining")
+    parser.add_argument("--time-step", type=float, help="with --fluid or --model: dt* in the model's reduced time "
+                        "(default stability.suggest_time_step's, measured: V-C's is a tenth of V-B's)")
+    parser.add_argument("--thermostat-time", type=float, help=f"with --fluid or --model: time units the slab is "
+                        f"thermostatted after the cut, before the isoenergetic run (default {SLAB_THERMOSTAT_TIME:g}; "
+                        f"0: none)")
+    parser.add_argument("--melt-time", type=float, help="with --fluid or --model: time units the bulk liquid melts "
+                        "before the cut (default 20)")
+    parser.add_argument("--seed", type=int, default=5, help="with --fluid or --model: random seed (default 5)")
     parser.set_defaults(run=run)

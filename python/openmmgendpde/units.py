@@ -29,6 +29,7 @@ OPENMM_UNITS = {
     "friction": unit.amu / unit.picosecond,
     "heat_conduction": unit.kilojoule_per_mole * unit.kelvin / unit.picosecond,
     "heat_capacity": unit.kilojoule_per_mole / unit.kelvin,
+    "surface_tension": unit.kilojoule_per_mole / unit.nanometer**2,
 }
 
 
@@ -43,8 +44,8 @@ class ReducedUnits:
     """A reduced unit system defined by the mass m of one particle, a length L and an energy u, with k_B = 1.
 
     Derived units: time L sqrt(m/u), temperature u/k_B, pressure u/L^3, number density 1/L^3, friction m/time,
-    heat conduction u (u/k_B)/time, heat capacity k_B. ``mass`` and ``energy`` may be given per particle (kg, J)
-    or per mole (amu, kJ/mol).
+    heat conduction u (u/k_B)/time, heat capacity k_B, surface tension u/L^2. ``mass`` and ``energy`` may be given
+    per particle (kg, J) or per mole (amu, kJ/mol).
     """
 
     def __init__(self, mass, length, energy):
@@ -64,6 +65,7 @@ class ReducedUnits:
             "velocity": length / time, "force": energy / length, "pressure": energy / length**3,
             "number_density": length**-3, "volume": length**3, "friction": m / time,
             "heat_conduction": energy * (energy / kb) / time, "heat_capacity": kb,
+            "surface_tension": energy / length**2,
         }
         if kind not in values:
             raise ValueError(f"unknown kind of quantity '{kind}'; known: {', '.join(sorted(values))}")

@@ -109,6 +109,9 @@ def test_bad_input_names_the_argument(call, message):
     ({"heat_capacity": "3"}, "heat_capacity = 3 is not allowed"),
     ({"pressure": math.nan * unit.pascal}, "pressure = nan Pa is not allowed; it must be finite"),
     ({"tait_exponent": 1.0}, "tait_exponent = 1.0 is not allowed; it must be finite and > 1"),
+    ({"surface_tension": -0.072 * unit.newton / unit.meter}, "surface_tension = -0.072 N/m is not allowed; it must be "
+                                                             "finite and > 0"),
+    ({"surface_tension": 0.072 * unit.newton}, "surface_tension = 0.072 N is not compatible with"),
 ], ids=lambda value: str(value)[:40])
 def test_bad_fluid_properties_are_refused_naming_the_property(change, message):
     """A Fluid with a property out of range or without its unit: ValueError naming the property, its value and

@@ -20,7 +20,10 @@ WATER_FILE = os.path.join(REPOSITORY, "examples", "fluids", "water.toml")
 WATER_TABLE = {"name": "water", "temperature": "298.15 K", "pressure": "0.1 MPa", "mass_density": "997.05 kg/m^3",
                "compressibility": "0.4525 1/GPa", "heat_capacity": "74.44 J/(mol K)",
                "shear_viscosity": "0.89 mPa s", "thermal_conductivity": "0.6065 W/(m K)", "molar_mass": "18.015 g/mol",
-               "tait_exponent": 7, "self_diffusion": "2.299e-9 m^2/s", "speed_of_sound": "1496.7 m/s"}
+               "tait_exponent": 7, "self_diffusion": "2.299e-9 m^2/s", "speed_of_sound": "1496.7 m/s",
+               "surface_tension": "71.97 mN/m"}
+#: 1 N/m (J/m^2 per molecule) in OpenMM's kJ/mol/nm^2, written out: x Avogadro's number, J -> kJ, m^-2 -> nm^-2.
+N_PER_M = 6.02214076e23 * 1e-3 * 1e-18
 
 
 def _same_properties(a, b, rel=1e-12):
@@ -62,6 +65,8 @@ def test_a_saved_model_loads_to_the_same_parameters_and_system(fluid, extension,
             assert getattr(loaded, field.name) == getattr(parameters, field.name), field.name
     _same_properties(loaded.fluid, fluid)
     _same_properties(load_fluid(path), fluid)
+    assert loaded.targets()["surface_tension"] == (None if fluid.surface_tension is None else
+                                                   pytest.approx(0.07197 * N_PER_M, rel=1e-12))
     serialize = openmm.XmlSerializer.serialize
     assert serialize(loaded.liquid(500).system) == serialize(parameters.liquid(500).system)
 
@@ -82,6 +87,10 @@ def test_a_fluid_table_round_trip():
     ({"pressure": "1 A"}, "its unit may use only mass, length, time, amount of substance and temperature"),
     ({"tait_exponent": "7"}, "tait_exponent = '7' is not allowed; it must be a number > 1"),
     ({"tait_exponent": 1.0}, "tait_exponent = 1.0 is not allowed; it must be finite and > 1"),
+    ({"surface_tension": "-71.97 mN/m"}, "surface_tension = -0.07197 kg/(s**2) is not allowed; it must be finite "
+                                         "and > 0"),
+    ({"surface_tension": "71.97 mN"}, "surface_tension = '71.97 mN' is not allowed; its unit must be compatible with "
+                                      "N/m"),
 ])
 def test_bad_fluid_files_are_refused_naming_the_entry(change, message, tmp_path):
     table = dict(WATER_TABLE)
@@ -190,3 +199,32 @@ def test_the_example_nitrogen_file_holds_the_tabulated_state():
     assert values["compressibility"] == pytest.approx(kappa_t * 1e3 / n_a * 1e27, rel=2e-3)   # nm^3 mol/kJ
     assert values["heat_capacity"] == pytest.approx(28.5e-3, rel=1e-12)
     assert values["temperature"] == 70.0
+
+
+def test_surface_tension_is_optional_and_read_in_any_unit(tmp_path):
+    """A fluid file without surface_tension gives a Fluid without it (targets: None); one in dyn/cm (= mN/m) gives
+    the value in kJ/mol/nm^2, and a fluid table writes it back in N/m."""
+    table = dict(WATER_TABLE)
+    del table["surface_tension"]
+    fluid = fluid_from_table(table)
+    assert fluid.surface_tension is None and "surface_tension" not in fluid.in_openmm()
+    assert coarse_grain(fluid, 4, neighbors=20).targets()["surface_tension"] is None
+    assert "surface_tension" not in fluid_table(fluid)
+    fluid = fluid_from_table(dict(WATER_TABLE, surface_tension="71.97 dyn/cm"))
+    assert fluid.in_openmm()["surface_tension"] == pytest.approx(0.07197 * N_PER_M, rel=1e-12)
+    value, written_unit = fluid_table(fluid)["surface_tension"].split()
+    assert float(value) == pytest.approx(0.07197, rel=1e-12) and written_unit == "N/m"
+
+
+def test_the_example_surface_tensions_are_their_sources_correlations():
+    """water.toml and fluid.WATER: the IAPWS correlation (Vargaftik et al. 1983),
+    sigma = 235.8 mN/m tau^1.256 (1 - 0.625 tau), tau = 1 - T/647.096 K, at 298.15 K to the 4 digits written;
+    nitrogen.toml: Mulero et al. (2012), sigma = 28.98 mN/m (1 - T/126.192 K)^1.246, at 70 K."""
+    tau = 1 - 298.15 / 647.096
+    water = 235.8 * tau**1.256 * (1 - 0.625 * tau) * 1e-3 * N_PER_M
+    assert load_fluid(WATER_FILE).in_openmm()["surface_tension"] == pytest.approx(water, rel=1e-4)
+    assert WATER.in_openmm()["surface_tension"] == pytest.approx(water, rel=1e-4)
+    nitrogen = 28.98 * (1 - 70 / 126.192) ** 1.246 * 1e-3 * N_PER_M
+    assert load_fluid(os.path.join(REPOSITORY, "examples", "fluids", "nitrogen.toml")).in_openmm()[
+        "surface_tension"] == pytest.approx(nitrogen, rel=1e-3)
+    assert ARGON.surface_tension is None

@@ -1,7 +1,10 @@
 """The slab of any fluid (openmmgendpde.slab.fluid_slab) and the --fluid option of `slab` and `tune-fcut`
 (docs/interfaces.md, "A slab of any fluid")."""
 
+import argparse
+import dataclasses
 import os
+import re
 import subprocess
 import sys
 
@@ -10,10 +13,11 @@ import openmm
 import pytest
 from openmm import unit
 
-from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, slab as slab_module
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import WATER, coarse_grain
-from openmmgendpde.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run
+from openmmgendpde.fluid import ARGON, WATER, coarse_grain
+from openmmgendpde.fluid_files import load_parameters, save_parameters
+from openmmgendpde.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run, surface_tension_table
 
 NM = unit.nanometer
 WATER_FILE = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "fluids", "water.toml")
@@ -141,9 +145,149 @@ def test_a_bad_fluid_exits_with_status_1():
         "docs/fluids.md)"]
 
 
-def test_fluid_options_without_fluid_are_refused():
-    with pytest.raises(SystemExit, match="--thermostat-time applies to the slab of a --fluid only"):
-        main(["slab", "--thermostat-time", "5"])
+@pytest.mark.parametrize("option", [["--thermostat-time", "5"], ["--neighbors", "30"], ["--cutoff", "1.2"]])
+def test_fluid_options_without_fluid_are_refused(option):
+    message = f"^error: slab: {option[0]} applies to the slab of a --fluid or --model only$"
+    with pytest.raises(SystemExit, match=message):
+        main(["slab"] + option)
+
+
+def _slab_arguments(argv):
+    parser = argparse.ArgumentParser()
+    slab_module.add_arguments(parser)
+    return parser.parse_args(argv)
+
+
+def test_fluid_coarse_graining_defaults_are_calibrates():
+    """--fluid without the coarse-graining options is coarse-grained as calibrate does (4 molecules per particle,
+    20 neighbours); each option given is used."""
+    cells = (5, 5, 6)
+    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water"]), cells)
+    assert parameters == coarse_grain(WATER, 4, neighbors=20)
+    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water", "--neighbors", "30",
+                                                               "--molecules-per-particle", "3"]), cells)
+    assert parameters == coarse_grain(WATER, 3, neighbors=30)
+    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water", "--cutoff", "1.1"]), cells)
+    assert parameters == coarse_grain(WATER, 4, cutoff=1.1)
+
+
+@pytest.fixture
+def model_file(water, tmp_path):
+    """A model file of water whose parameters no coarse-graining gives (f_cut and the friction changed, as a
+    calibration changes them)."""
+    path = str(tmp_path / "water-model.toml")
+    save_parameters(dataclasses.replace(water, cutoff_scaling=1.2345, friction=1.1 * water.friction), path)
+    return path
+
+
+def test_slab_command_runs_a_model_file(model_file, monkeypatch, tmp_path, capsys):
+    """`slab --model FILE` (--quick: 600 particles, 10 time units): the slab is built from exactly the file's
+    parameters (load_parameters; its System has the file's f_cut and friction), named in the output, and the
+    surface tension over the second half is printed in mN/m beside water's 71.97 mN/m."""
+    built = []
+
+    def spy(parameters, *arguments, **options):
+        built.append((parameters, fluid_slab(parameters, *arguments, **options)))
+        return built[-1][1]
+
+    monkeypatch.setattr(slab_module, "fluid_slab", spy)
+    main(["slab", "--model", model_file, "--quick", "--estimators", "VC", "--no-oracle", "--time-step",
+          str(WATER_VC_STEP), "--melt-time", "5", "--output", str(tmp_path), "--threads", "1"])
+    out = capsys.readouterr().out
+    expected = load_parameters(model_file)
+    assert len(built) == 1 and built[0][0] == expected
+    slab = built[0][1]
+    assert GenDPDEForce.cast(slab.system.getForce(0)).getCutoffScaling() == expected.cutoff_scaling == 1.2345
+    assert slab.model.integrator.getFriction().value_in_unit(unit.amu / unit.picosecond) == pytest.approx(
+        expected.friction, rel=1e-12)
+    assert (f"VC: slab of 600 particles of liquid water, 298.15 K, 0.1 MPa (the model in {model_file}; "
+            f"T0 = 298.15 K), dt* = 0.0048") in out
+    assert re.search(r"^\| VC \| 71\.97 \| [0-9.e+-]+ ", out, re.MULTILINE), out
+
+
+def test_slab_model_is_the_files_parameters(model_file):
+    assert slab_module.fluid_parameters(_slab_arguments(["--model", model_file]), (5, 5, 6)) == load_parameters(
+        model_file)
+
+
+@pytest.mark.parametrize("options, message", [
+    (["--fluid", "water"], "--fluid and --model exclude each other"),
+    (["--molecules-per-particle", "4"], "--molecules-per-particle applies to --fluid only"),
+    (["--neighbors", "20"], "--neighbors applies to --fluid only"),
+    (["--cutoff", "1.0"], "--cutoff applies to --fluid only"),
+])
+def test_model_and_fluid_options_are_refused_in_one_line(options, message, model_file, tmp_path, capsys):
+    output = tmp_path / "out"
+    with pytest.raises(SystemExit) as error:
+        main(["slab", "--model", model_file, "--output", str(output)] + options)
+    text = str(error.value)
+    assert text.startswith("error: slab: ") and message in text and "\n" not in text
+    assert not output.exists() and capsys.readouterr().out == ""
+
+
+@pytest.mark.parametrize("kind, message", [
+    ("missing", "--model {path}: no such file"),
+    ("fluid file", "--model {path}: format = None is not a model file"),
+    ("broken", "--model {path} [parameters]: missing ['cutoff']"),
+    ("text", "--model {path} is not allowed; a model file ends in .toml or .json"),
+    ("small", "--model {path}: the box"),
+])
+def test_a_missing_or_bad_model_file_is_refused_naming_it(kind, message, model_file, tmp_path, capsys):
+    path = {"missing": str(tmp_path / "nowhere.toml"), "fluid file": WATER_FILE,
+            "broken": str(tmp_path / "broken.toml"), "text": str(tmp_path / "model.txt"),
+            "small": str(tmp_path / "small.toml")}[kind]
+    text = open(model_file).read()
+    if kind in ("broken", "text"):
+        open(path, "w").write(text.replace("cutoff = ", "cut = ") if kind == "broken" else text)
+    if kind == "small":   # a cutoff longer than half the slab's 5 cells across
+        open(path, "w").write(re.sub(r"^cutoff = .*$", "cutoff = 2.0", text, flags=re.MULTILINE))
+    output = tmp_path / "out"
+    with pytest.raises(SystemExit) as error:
+        main(["slab", "--model", path, "--output", str(output)])
+    text = str(error.value)
+    assert text.startswith("error: slab: ") and message.format(path=path) in text and "\n" not in text
+    assert not output.exists() and capsys.readouterr().out == ""
+
+
+def test_a_bad_model_exits_with_status_1(tmp_path):
+    result = subprocess.run([sys.executable, "-m", "openmmgendpde", "slab", "--model", str(tmp_path / "none.toml")],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1 and result.stdout == ""
+    assert result.stderr.strip().splitlines() == [f"error: slab: --model {tmp_path / 'none.toml'}: no such file"]
+
+
+def _millinewton_per_metre(parameters):
+    """The model's reduced unit of surface tension, energy/length^2 (energy L^3/kappa_T = L^3 gamma_T B_T per
+    mole, L = n0^(-1/3)), in mN/m, written out in SI: kJ/mol -> J per particle, nm -> m."""
+    length = parameters.density ** (-1 / 3)
+    energy = length**3 * parameters.tait_exponent * parameters.bulk_modulus * 1e3 / 6.02214076e23
+    return energy / (length * 1e-9) ** 2 * 1e3
+
+
+def test_the_surface_tension_table_converts_to_millinewton_per_metre(water):
+    """Made-up reduced tensions: the mean in mN/m (the reduced unit written out in SI here), an error, the target
+    (water's 71.97 mN/m) and their ratio; a fluid without a surface tension has '-' for the target and the
+    ratio; one sample has no error."""
+    values = [0.05, 0.07, 0.06, 0.065, 0.055, 0.06]
+    scale = _millinewton_per_metre(water)
+    text = surface_tension_table({"VC": values, "VB": [0.05]}, water)
+    lines = text.splitlines()
+    assert "liquid-vapour surface tension of liquid water, 298.15 K, 0.1 MPa" in lines[0]
+    assert lines[1] == "| estimator | target (mN/m) | slab (mN/m) | slab/target | independent samples |"
+    cells = [cell.strip() for cell in lines[3].strip("|").split("|")]
+    assert cells[0] == "VC" and cells[1] == "71.97"
+    mean, error = (float(x) for x in cells[2].split(" +- "))
+    assert mean == pytest.approx(np.mean(values) * scale, rel=1e-3) and 0 < error < 0.2 * mean
+    assert float(cells[3]) == pytest.approx(np.mean(values) * scale / 71.97, abs=1e-3)
+    assert cells[4].endswith("of 6")
+    assert lines[4].startswith(f"| VB | 71.97 | {0.05 * scale:.4g} (one sample: no error) |")
+    argon = coarse_grain(ARGON, 5, neighbors=20)
+    lines = surface_tension_table({"VC": values}, argon).splitlines()
+    assert "(not given" in lines[0]
+    cells = [cell.strip() for cell in lines[3].strip("|").split("|")]
+    assert cells[1] == "-" and cells[3] == "-"
+    assert float(cells[2].split(" +- ")[0]) == pytest.approx(np.mean(values) * _millinewton_per_metre(argon),
+                                                             rel=1e-3)
 
 
 def test_tune_fcut_tunes_a_fluid_file(capsys):

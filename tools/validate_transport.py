@@ -4,7 +4,8 @@ openmmgendpde.transport (Poiseuille flow / heat flux between slabs), and print b
 
     python tools/validate_transport.py --fluid argon --cells 8 8 8 --what viscosity --replicas 4
 
-The model: coarse_grain(fluid, molecules per particle, neighbors=20) as mapped (f_cut not tuned), V-B, dt* = 0.01,
+The model: coarse_grain(fluid, molecules per particle, neighbors=20) as mapped (f_cut not tuned), or a model file
+(--model, e.g. calibrate --output's), its parameters scaled by --scale; V-B, dt* = 0.01,
 in a box of n_x x n_y x n_z FCC cells; each replica is melted (Isothermal) and equilibrated (Isoenergetic) as
 Calibration._equilibrated does. CPU platform, one thread unless --threads.
 """
@@ -18,11 +19,16 @@ import openmm
 from openmmgendpde import transport
 from openmmgendpde.calibrate import FLUIDS, Calibration, Plan, _mpa_s, _w_mk
 from openmmgendpde.fluid import coarse_grain
+from openmmgendpde.fluid_files import load_parameters
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--fluid", choices=sorted(FLUIDS), default="argon")
+    parser.add_argument("--model", help="a model file (calibrate --output) instead of --fluid's mapping")
+    parser.add_argument("--scale", nargs=2, action="append", default=[], metavar=("PARAMETER", "FACTOR"),
+                        help="multiply a parameter of the model (friction, heat_conduction, heat_capacity, ...); "
+                             "repeatable")
     parser.add_argument("--molecules-per-particle", type=float, help="default: argon 5, water 4")
     parser.add_argument("--cells", type=int, nargs=3, default=(8, 8, 8))
     parser.add_argument("--what", choices=("viscosity", "conductivity"), required=True)
@@ -37,8 +43,14 @@ def main():
     parser.add_argument("--threads", default="1")
     parser.add_argument("--seed", type=int, default=1)
     arguments = parser.parse_args()
-    molecules = arguments.molecules_per_particle or {"argon": 5, "water": 4}[arguments.fluid]
-    parameters = coarse_grain(FLUIDS[arguments.fluid], molecules, neighbors=20)
+    if arguments.model:
+        parameters = load_parameters(arguments.model)
+        molecules = parameters.molecules_per_particle
+    else:
+        molecules = arguments.molecules_per_particle or {"argon": 5, "water": 4}[arguments.fluid]
+        parameters = coarse_grain(FLUIDS[arguments.fluid], molecules, neighbors=20)
+    for name, factor in arguments.scale:
+        parameters = dataclasses.replace(parameters, **{name: getattr(parameters, name) * float(factor)})
     openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", arguments.threads)
     plan = dataclasses.replace(Plan(), replicas=arguments.replicas, wave_steps=arguments.wave_steps,
                                steady_cells=tuple(arguments.cells))
@@ -65,7 +77,8 @@ def main():
                                                       excess=arguments.excess, **lengths)
         rows.append(("Poiseuille flow" if viscosity else "heat flux", result.value, result.error, time.time() - start))
     unit_name = "mPa s" if viscosity else "W/(m K)"
-    print(f"{arguments.fluid}, {molecules:g} per particle, cells {tuple(arguments.cells)}, "
+    scaled = "".join(f", {name} x {factor}" for name, factor in arguments.scale)
+    print(f"{arguments.model or arguments.fluid}{scaled}, {molecules:g} per particle, cells {tuple(arguments.cells)}, "
           f"{arguments.replicas} replicas: {arguments.what} ({unit_name})")
     print("| method | value | target | value/target | run time (s) |\n|---|---|---|---|---|")
     for name, value, error, seconds in rows:

@@ -162,7 +162,8 @@ def self_diffusion(times, positions, groups=10, lags=10):
 
 def configurational_heat_capacity(potential_energies, temperature, bath_heat_capacity):
     """The configurational heat capacity C_U = d<U>/dT at fixed volume (kJ/mol/K, whole system) of an Isoenergetic
-    GenDPDE run from the fluctuation of its potential energy U, and its standard error: (C_U, error).
+    GenDPDE run from the fluctuation of its potential energy U: (C_U, its standard error, the independent samples
+    N/g the error rests on).
 
     ``potential_energies``: a time series of U (kJ/mol) in equilibrium; ``temperature`` (K): its harmonic-mean
     temperature; ``bath_heat_capacity`` (kJ/mol/K): the heat capacity of what U exchanges energy with at fixed total

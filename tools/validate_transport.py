@@ -7,7 +7,7 @@ openmmgendpde.transport (Poiseuille flow / heat flux between slabs), and print b
 The model: coarse_grain(fluid, molecules per particle, neighbors=20) as mapped (f_cut not tuned), or a model file
 (--model, e.g. calibrate --output's), its parameters scaled by --scale; V-B, dt* = 0.01,
 in a box of n_x x n_y x n_z FCC cells; each replica is melted (Isothermal) and equilibrated (Isoenergetic) as
-Calibration._equilibrated does. CPU platform, one thread unless --threads.
+Calibration._equilibrated does. CPU platform, one thread unless --threads; --processes replicas at once.
 """
 
 import argparse
@@ -41,6 +41,8 @@ def main():
     parser.add_argument("--developed", type=float, help="diffusion times waited (default the function's)")
     parser.add_argument("--measured", type=float, help="diffusion times averaged (default the function's)")
     parser.add_argument("--threads", default="1")
+    parser.add_argument("--processes", type=int, default=1,
+                        help="replicas run at once, one thread each (calibrate: as many as --threads)")
     parser.add_argument("--seed", type=int, default=1)
     arguments = parser.parse_args()
     if arguments.model:
@@ -54,8 +56,8 @@ def main():
     openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", arguments.threads)
     plan = dataclasses.replace(Plan(), replicas=arguments.replicas, wave_steps=arguments.wave_steps,
                                steady_cells=tuple(arguments.cells))
-    calibration = Calibration(parameters, "VB", plan, "CPU", seed=arguments.seed)
-    equilibrated = lambda: calibration._equilibrated(cells=plan.steady_cells)   # noqa: E731
+    calibration = Calibration(parameters, "VB", plan, "CPU", seed=arguments.seed, workers=arguments.processes)
+    replicas = calibration.replicas(plan.steady_cells)
     viscosity = arguments.what == "viscosity"
     convert = _mpa_s if viscosity else _w_mk
     target = convert(parameters.targets()["shear_viscosity" if viscosity else "thermal_conductivity"])
@@ -68,12 +70,10 @@ def main():
     if arguments.methods in ("both", "steady"):
         start = time.time()
         if viscosity:
-            result = transport.poiseuille_viscosity(calibration.parameters, calibration.plan,
-                                                    equilibrated, bins=arguments.bins,
+            result = transport.poiseuille_viscosity(calibration.parameters, replicas, bins=arguments.bins,
                                                     peak_fraction=arguments.peak_fraction, **lengths)
         else:
-            result = transport.heat_flux_conductivity(calibration.parameters, calibration.plan,
-                                                      equilibrated, bins=arguments.bins,
+            result = transport.heat_flux_conductivity(calibration.parameters, replicas, bins=arguments.bins,
                                                       excess=arguments.excess, **lengths)
         rows.append(("Poiseuille flow" if viscosity else "heat flux", result.value, result.error, time.time() - start))
     unit_name = "mPa s" if viscosity else "W/(m K)"

@@ -50,7 +50,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from . import ESTIMATOR_NAMES, GenDPDEIntegrator
+from . import ESTIMATOR_NAMES, GenDPDEIntegrator, forked
 from .cli import add_platform, add_progress, platform_description
 from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
@@ -186,11 +186,22 @@ def misses(results, criteria=CRITERIA):
     return lines
 
 
+class _StepCounter:
+    """A progress that counts the steps (Calibration.replicas: a replica's steps reach the bar from its process)."""
+
+    def __init__(self):
+        self.steps = 0
+
+    def advance(self, steps):
+        self.steps += steps
+
+
 class Calibration:
     """The simulations of one fluid model on one platform."""
 
-    def __init__(self, parameters, estimator, plan, platform, seed=1, report=print, progress=None):
+    def __init__(self, parameters, estimator, plan, platform, seed=1, report=print, progress=None, workers=1):
         self.parameters = parameters
+        self.workers = workers   # processes for the replicas of a transport measurement (replicas(); CPU platform)
         self.estimator = estimator
         self.plan = plan
         self.platform = openmm.Platform.getPlatformByName(platform)
@@ -265,6 +276,47 @@ class Calibration:
         model.integrator.setInternalEnergiesToTemperature(self.parameters.temperature, self.seed)
         self._step(model.integrator, self.plan.melt // 2)
         return model, context
+
+    def side_by_side(self, count, work):
+        """[work(index) for index in range(count)], independent runs (each makes its own Contexts through
+        _equilibrated): each from the same start (the liquids melted before the call) with the seeds one after
+        another, in self.workers processes at once (forked.fork_map, one CPU thread each; the CPU platform only). A
+        process's bookkeeping (runs, melts, the liquids it melted, its steps) comes back with its result: the
+        calibration is the same as in one process, to the last bit on the CPU platform, whose results do not depend
+        on its thread count."""
+        seed, melted = self.seed, dict(self._melted)
+
+        def one(index):
+            self.seed, self._melted = seed + index, dict(melted)
+            runs, melts = self.runs, len(self.melt_steps)
+            progress, counter = self.progress, _StepCounter()
+            self.progress = counter
+            try:
+                result = work(index)
+            finally:
+                self.progress = progress
+            return result, (self.runs - runs, self.melt_steps[melts:], self._melted, counter.steps)
+
+        workers = self.workers if self.platform.getName() == "CPU" else 1
+        results = forked.fork_map(one, count, workers)
+        for _, (runs, melts, _, steps) in results:
+            if workers > 1:
+                self.runs += runs
+                self.melt_steps += melts
+            if self.progress is not None:
+                self.progress.advance(steps)
+        self.seed, self._melted = seed + count, results[-1][1][2]
+        return [result for result, _ in results]
+
+    def replicas(self, cells):
+        """The runner of plan.replicas replicas that transport.py's methods and the waves take: run(one) returns
+        [one(index, model, context)] (side_by_side), each model equilibrated (_equilibrated) in a box of ``cells``
+        from the last liquid melted in that box (the first time, one melted here from the lattice first)."""
+        def run(one):
+            if _box_edges(self.parameters.liquid(None, self.estimator, cells=cells)) not in self._melted:
+                self._equilibrated(cells=cells)   # the lattice melted once here, not in every replica
+            return self.side_by_side(self.plan.replicas, lambda index: one(index, *self._equilibrated(cells=cells)))
+        return run
 
     def tune_cutoff_scaling(self, iterations=None):
         """f_cut such that n-bar = n0 (V-B); returns it (or the given one for V-A). Each run measures n-bar on its
@@ -353,8 +405,8 @@ class Calibration:
         densities, (n0/n-bar) d n-bar/d n: 1 if the n_i followed the true density n, so that the Tait pressure's
         n dpi/dn = gamma_T B_T = 1/kappa_T reached the fluid."""
         delta = self.plan.density_step
-        low = self.thermodynamics(self.parameters.density * (1 - delta), diffusion=False)
-        high = self.thermodynamics(self.parameters.density * (1 + delta), diffusion=False)
+        low, high = self.side_by_side(2, lambda index: self.thermodynamics(
+            self.parameters.density * (1 + (2 * index - 1) * delta), diffusion=False))
         value = (high["pressure"].value - low["pressure"].value) / (2 * delta)
         modulus = Measured(value, math.hypot(high["pressure"].error, low["pressure"].error) / (2 * delta))
         mean = (high["density"].value + low["density"].value) / 2
@@ -403,9 +455,7 @@ class Calibration:
         viscosity ~0.7 of the 2048-particle cube's, and in that cube (k R = 0.83) it read 0.77 of the Poiseuille
         flow's in the long box once the friction was doubled: the dissipative stress is spread over R, so a wave
         much longer than R is needed for the macroscopic coefficient."""
-        rates, curves = [], []
-        for _ in range(self.plan.replicas):
-            model, context = self._equilibrated(cells=self.plan.steady_cells)
+        def one(index, model, context):
             edge = model.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(unit.nanometer)
             k = 2 * math.pi / edge
             step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
@@ -420,8 +470,11 @@ class Calibration:
                 times.append(state.getTime().value_in_unit(unit.picosecond))
                 amplitudes.append(amplitude_of(model, context, state, k))
             times, amplitudes = np.array(times) - times[0], np.array(amplitudes)
-            curves.append(amplitudes)
-            rates.append(_decay_rate(times, amplitudes))
+            return times, amplitudes, _decay_rate(times, amplitudes), k
+
+        runs = self.replicas(self.plan.steady_cells)(one)
+        times, k = runs[-1][0], runs[-1][3]
+        curves, rates = [run[1] for run in runs], [run[2] for run in runs]
         mean_rate = _decay_rate(times, np.mean(curves, axis=0))
         return mean_rate, float(np.std(rates, ddof=1) / math.sqrt(len(rates))), k, len(rates)
 
@@ -476,15 +529,15 @@ class Calibration:
     def steady_viscosity(self):
         """eta by periodic Poiseuille flow (transport.poiseuille_viscosity) in boxes of plan.steady_cells."""
         time = self.plan.steady_time
-        result = poiseuille_viscosity(self.parameters, self.plan, lambda: self._equilibrated(
-            cells=self.plan.steady_cells), developed=3.0 * time, measured=5.0 * time, report=self.report)
+        result = poiseuille_viscosity(self.parameters, self.replicas(self.plan.steady_cells), developed=3.0 * time,
+                                      measured=5.0 * time, report=self.report)
         return Measured(result.value, result.error, len(result.replica_values))
 
     def steady_conductivity(self):
         """lambda by a steady heat flux between slabs (transport.heat_flux_conductivity) in plan.steady_cells."""
         time = self.plan.steady_time
-        result = heat_flux_conductivity(self.parameters, self.plan, lambda: self._equilibrated(
-            cells=self.plan.steady_cells), developed=2.0 * time, measured=6.0 * time, report=self.report)
+        result = heat_flux_conductivity(self.parameters, self.replicas(self.plan.steady_cells), developed=2.0 * time,
+                                        measured=6.0 * time, report=self.report)
         return Measured(result.value, result.error, len(result.replica_values))
 
     def steady_correction(self, attribute, measure_steady, measure_wave, history, target, name):
@@ -668,6 +721,14 @@ def estimated_steps(plan, estimator):
     return tuning + (plan.pressure_rounds + 2) * (equilibration + runs) + waves
 
 
+def replica_processes(platform):
+    """How many replicas run at once (Calibration.workers): on the CPU platform as many as it has threads (its
+    default Threads, --threads), each process on one; elsewhere one (a GPU runs one Context at a time)."""
+    if platform != "CPU":
+        return 1
+    return int(openmm.Platform.getPlatformByName("CPU").getPropertyDefaultValue("Threads"))
+
+
 def fluid_named(name):
     """A built-in fluid by name, or the Fluid of a fluid or model file (.toml, .json; fluid_files); ValueError
     saying what is allowed."""
@@ -726,8 +787,10 @@ def run(arguments):
         parameters.liquid(plan.particles, arguments.estimator)
     except ValueError as error:
         raise SystemExit(f"error: calibrate: {error}")
+    workers = min(replica_processes(arguments.platform), plan.replicas)
     print(f"{fluid.name}: {arguments.molecules_per_particle:g} molecules per particle, {parameters.neighbors:.1f} "
-          f"neighbours within R, {arguments.estimator}, {plan.particles} particles, {platform_description(arguments)}")
+          f"neighbours within R, {arguments.estimator}, {plan.particles} particles, {platform_description(arguments)}"
+          + (f" (the replicas of a transport measurement {workers} at once, one thread each)" if workers > 1 else ""))
     print("Parameters (OpenMM units; reduced: mass of a particle, L = n0^(-1/3), energy L^3/kappa_T, k_B = 1):")
     reduced = parameters.reduced()
     rows = [("n0 (nm^-3)", parameters.density, "n0*"), ("pi0 (kJ/mol/nm^3)", parameters.reference_pressure, "pi0*"),
@@ -741,7 +804,7 @@ def run(arguments):
         print(f"| {name} | {value:.6g} | {reduced[key]:.6g} |" if key else f"| {name} | {value:.6g} | 1 |")
     progress = Progress(estimated_steps(plan, arguments.estimator), "calibrate", always=arguments.progress)
     calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed,
-                              progress=progress)
+                              progress=progress, workers=replica_processes(arguments.platform))
     started = time.monotonic()
 
     def stage(text):

@@ -11,10 +11,10 @@ each of `calibrate`'s wave-decay measurements, in OpenMM units (nm, ps, amu, kJ/
   both halves, J = Q/(2 A t) (A the box's xy area), and lambda = J/|dT/dz| with dT/dz the slope of the temperature
   profile (the harmonic mean of theta_i per bin) between the slabs, away from them.
 
-Both run in the Isoenergetic mode (the model being calibrated) on models made and equilibrated by a callable,
-``equilibrated() -> (FluidModel, Context)``, as `calibrate.Calibration._equilibrated` does, one per replica
-(``plan.replicas`` of a `calibrate.Plan`); a Calibration can call them as
-``poiseuille_viscosity(self.parameters, self.plan, self._equilibrated)``. Run lengths are given in the relaxation
+Both run in the Isoenergetic mode (the model being calibrated), one run per replica, through a runner
+``replicas(one) -> [one(index, model, context) for each replica]`` that equilibrates a model for each call:
+``each_replica(equilibrated, count)`` runs them one after another on ``equilibrated() -> (FluidModel, Context)``,
+and `calibrate.Calibration.replicas` side by side in processes of one thread. Run lengths are given in the relaxation
 time of the slowest mode of the half box (estimated from the target coefficient). Each result has ``value`` and
 ``error`` (standard error) as `calibrate.Measured` has, and the details of the run.
 """
@@ -49,6 +49,12 @@ class TransportResult:
     profile: np.ndarray
     profile_error: np.ndarray
     details: dict
+
+
+def each_replica(equilibrated, count):
+    """The runner of ``count`` replicas one after another in this process: run(one) calls
+    one(index, *equilibrated()) for index 0 .. count - 1 and returns the results."""
+    return lambda one: [one(index, *equilibrated()) for index in range(count)]
 
 
 # --- Poiseuille flow ------------------------------------------------------------------------------------------------
@@ -115,10 +121,10 @@ def momentum_diffusion_time(mass_density, viscosity, box_length):
     return mass_density * (box_length / 2) ** 2 / (viscosity * math.pi**2)
 
 
-def poiseuille_viscosity(parameters, plan, equilibrated, peak_fraction=0.2, developed=3.0, measured=5.0,
+def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0, measured=5.0,
                          bins=20, samples_per_time=10, report=print):
-    """The shear viscosity (amu/(nm ps)) from periodic Poiseuille flow along z, ``plan.replicas`` runs of
-    ``equilibrated()`` models (Isoenergetic).
+    """The shear viscosity (amu/(nm ps)) from periodic Poiseuille flow along z, a run on each of the equilibrated
+    models (Isoenergetic) that ``replicas`` gives (each_replica).
 
     F is chosen so that the peak velocity, n0 F L^2/(32 eta) with the target eta, is ``peak_fraction`` of the thermal
     velocity sqrt(k_B T0/m); every run starts from that profile laid on the equilibrium velocities, waits
@@ -134,9 +140,8 @@ def poiseuille_viscosity(parameters, plan, equilibrated, peak_fraction=0.2, deve
     rise of the harmonic mean of theta_i and of the kinetic temperature (about the bins' flow) over a run, from a
     line through their time series; keep both below ~2% of T0 (smaller f, shorter runs, more replicas)."""
     targets = parameters.targets()
-    values, errors, profiles, rises, extra = [], [], [], [], {}
-    for replica in range(plan.replicas):
-        model, context = equilibrated()
+
+    def one(replica, model, context):
         n = model.num_particles
         length = model.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(unit.nanometer)
         density = n / model.volume
@@ -171,15 +176,12 @@ def poiseuille_viscosity(parameters, plan, equilibrated, peak_fraction=0.2, deve
         amplitudes, drifts = fit_amplitude(flows[warm + 1:], shape)
         amplitude, amplitude_error = _mean_and_error(amplitudes)
         eta = viscosity_from_amplitude(amplitude, density, force)
-        values.append(eta)
-        errors.append(eta * amplitude_error / amplitude)
-        profiles.append(flows[warm + 1:])
+        error = eta * amplitude_error / amplitude
         run_time = times[-1] - times[0]
         rise = {name: np.polyfit(times, series, 1)[0] * run_time / parameters.temperature
                 for name, series in (("harmonic", harmonic), ("kinetic", kinetic))}
-        rises.append(rise)
         waited = (times[warm] - times[0]) / momentum_diffusion_time(mass_density, eta, length)
-        report(f"  Poiseuille replica {replica + 1}: eta = {eta:.4g} +- {errors[-1]:.2g} amu/(nm ps) "
+        report(f"  Poiseuille replica {replica + 1}: eta = {eta:.4g} +- {error:.2g} amu/(nm ps) "
                f"(F = {force:.4g} kJ/mol/nm, peak {amplitude * length**2 / 16:.3g} nm/ps = "
                f"{amplitude * length**2 / 16 / thermal:.2f} v_th, drift {np.mean(drifts):+.2g} nm/ps); waited "
                f"{waited:.1f} tau of this eta; heating over {run_time:.0f} ps: theta_harm {100 * rise['harmonic']:+.2f}%,"
@@ -187,8 +189,13 @@ def poiseuille_viscosity(parameters, plan, equilibrated, peak_fraction=0.2, deve
         extra = {"force": force, "box_length": length, "density": density, "thermal_velocity": thermal,
                  "peak_velocity": amplitude * length**2 / 16, "sample_interval_steps": interval,
                  "run_time": run_time, "waited_tau": waited, "drift": float(np.mean(drifts))}
-    return _combine(values, errors, profiles, length, bins,
-                    dict(extra, temperature_rise=rises, peak_fraction=peak_fraction))
+        return eta, error, flows[warm + 1:], dict(extra, temperature_rise=rise)
+
+    runs = replicas(one)
+    values, errors, profiles, details = zip(*runs)
+    rises = [detail["temperature_rise"] for detail in details]
+    return _combine(values, errors, profiles, details[-1]["box_length"], bins,
+                    dict(details[-1], temperature_rise=rises, peak_fraction=peak_fraction))
 
 
 def _sample(model, context, bins):
@@ -259,11 +266,11 @@ def _line_slopes(centre, profiles, mask):
     return (np.asarray(profiles)[:, mask] @ x) / (x @ x)
 
 
-def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins=2, bins=20, reset_steps=10,
+def heat_flux_conductivity(parameters, replicas, excess=0.1, slab_bins=2, bins=20, reset_steps=10,
                            developed=2.0, measured=6.0, samples_per_time=20, margin=None, uniform=False,
                            report=print):
-    """The thermal conductivity (kJ/(mol ps nm K)) from a steady heat flux along z between a hot and a cold slab,
-    ``plan.replicas`` runs of ``equilibrated()`` models (Isoenergetic).
+    """The thermal conductivity (kJ/(mol ps nm K)) from a steady heat flux along z between a hot and a cold slab, a
+    run on each of the equilibrated models (Isoenergetic) that ``replicas`` gives (each_replica).
 
     The box is cut into ``bins`` bins along z; the hot slab is the first ``slab_bins`` of them (width w), the cold
     slab as many from L/2. Every ``reset_steps`` steps theta_i of the particles in the hot slab is set to
@@ -288,9 +295,8 @@ def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins
     targets = parameters.targets()
     heat_capacity = heat_capacity_per_particle(parameters.heat_capacity)
     margin = parameters.cutoff if margin is None else margin
-    values, errors, profiles, extra = [], [], [], {}
-    for replica in range(plan.replicas):
-        model, context = equilibrated()
+
+    def one(replica, model, context):
         vectors = model.system.getDefaultPeriodicBoxVectors()
         length = vectors[2][2].value_in_unit(unit.nanometer)
         area = vectors[0][0].value_in_unit(unit.nanometer) * vectors[1][1].value_in_unit(unit.nanometer)
@@ -344,13 +350,11 @@ def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins
         # scatter of 10 block means (each one the injected energy of its block over its length).
         flux, flux_error = float(np.mean(fluxes)), block_standard_error(np.array(fluxes), 10)
         conductivity = flux / gradient
-        values.append(conductivity)
-        errors.append(conductivity * math.hypot(flux_error / flux, gradient_error / gradient))
-        profiles.append(np.array(frames))
+        error = conductivity * math.hypot(flux_error / flux, gradient_error / gradient)
         kinetic_gradient = float(np.mean(_line_slopes(centre, kinetic_frames, second)
                                          - _line_slopes(centre, kinetic_frames, first)) / 2)
         measured_tau = thermal_diffusion_time(density, heat_capacity, conductivity, length)
-        report(f"  heat-flux replica {replica + 1}: lambda = {conductivity:.4g} +- {errors[-1]:.2g} kJ/(mol ps nm K) "
+        report(f"  heat-flux replica {replica + 1}: lambda = {conductivity:.4g} +- {error:.2g} kJ/(mol ps nm K) "
                f"(J = {flux:.4g} +- {flux_error:.2g} kJ/(mol ps nm^2), dT/dz = {gradient:.4g} +- "
                f"{gradient_error:.2g} K/nm from theta, {kinetic_gradient:.4g} K/nm from T_kin); waited "
                f"{warm * step * reset_steps / measured_tau:.1f} tau of this lambda; mean theta_harm "
@@ -363,7 +367,10 @@ def heat_flux_conductivity(parameters, plan, equilibrated, excess=0.1, slab_bins
                  "injected_hot": hot_total,
                  "run_time": resets * reset_steps * step, "waited_tau": warm * step * reset_steps / measured_tau,
                  "kinetic_profile": np.mean(kinetic_frames, axis=0)}
-    return _combine(values, errors, profiles, length, bins, extra)
+        return conductivity, error, np.array(frames), extra
+
+    values, errors, profiles, details = zip(*replicas(one))
+    return _combine(values, errors, profiles, details[-1]["box_length"], bins, details[-1])
 
 
 def _positions(context):

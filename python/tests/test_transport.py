@@ -85,14 +85,16 @@ def _equilibrated_factory(parameters, cells, melt=300, seed=[0]):
     return equilibrated
 
 
-ONE = dataclasses.replace(Plan(), replicas=1)
+def _replicas(parameters, cells, count=1):
+    """transport.each_replica of ``count`` models from _equilibrated_factory."""
+    return transport.each_replica(_equilibrated_factory(parameters, cells), count)
 
 
 def test_heat_flux_energy_accounting():
     """Isoenergetic: E = K + U + sum eps_i changes only through the resets of the slabs, so E(end) - E(start) equals
     the sum of the energies the resets injected (hot minus cold), to the integrator's drift (measured 1e-5 of the
     hot slab's injection over this run; allowed 1e-3)."""
-    result = transport.heat_flux_conductivity(ARGON_MODEL, ONE, _equilibrated_factory(ARGON_MODEL, (4, 4, 4)),
+    result = transport.heat_flux_conductivity(ARGON_MODEL, _replicas(ARGON_MODEL, (4, 4, 4)),
                                               bins=20, slab_bins=2, margin=0.0, developed=0.3, measured=0.5,
                                               report=lambda line: None)
     d = result.details
@@ -109,9 +111,9 @@ def test_short_runs_give_the_right_magnitude():
     wave decay needs longer runs in an elongated box than this test can afford: docs/transport.md.)"""
     targets = ARGON_MODEL.targets()
     quiet = dict(report=lambda line: None)
-    viscosity = transport.poiseuille_viscosity(ARGON_MODEL, ONE, _equilibrated_factory(ARGON_MODEL, (4, 4, 4)),
+    viscosity = transport.poiseuille_viscosity(ARGON_MODEL, _replicas(ARGON_MODEL, (4, 4, 4)),
                                                bins=10, developed=3, measured=20, **quiet)
-    conductivity = transport.heat_flux_conductivity(ARGON_MODEL, ONE, _equilibrated_factory(ARGON_MODEL, (3, 3, 12)),
+    conductivity = transport.heat_flux_conductivity(ARGON_MODEL, _replicas(ARGON_MODEL, (3, 3, 12)),
                                                     bins=24, developed=1, measured=8, **quiet)
     for result, target in ((viscosity, targets["shear_viscosity"]), (conductivity, targets["thermal_conductivity"])):
         assert result.value > 0
@@ -121,3 +123,23 @@ def test_short_runs_give_the_right_magnitude():
     calibration._equilibrated = _equilibrated_factory(ARGON_MODEL, (4, 4, 4))
     wave = calibration.shear_viscosity()
     assert viscosity.value == pytest.approx(wave.value, abs=3 * math.hypot(viscosity.error, wave.error))
+
+
+def test_replicas_side_by_side_equal_replicas_one_after_another():
+    """Calibration.replicas runs each replica from the same start with its own seed; in 2 forked processes of one
+    CPU thread each (forked.fork_map) the measurement, the runs and the melts are those of one process on the
+    platform's threads to the last bit (the CPU platform's results do not depend on its thread count), and so is
+    what comes next: the seed and the liquid kept for the next run. A replica that took its seed or its start from
+    the process's state after another replica, or lost its bookkeeping on the way back, would differ."""
+    plan = dataclasses.replace(Plan(), replicas=3, steady_cells=(3, 3, 6), melt=100, melt_block=100, melt_limit=300,
+                               wave_steps=150, wave_decays=0.01)
+    outcomes = []
+    for workers in (1, 2):
+        calibration = Calibration(ARGON_MODEL, "VB", plan, "CPU", seed=7, workers=workers)
+        wave = calibration.shear_viscosity()
+        then = calibration.replicas(plan.steady_cells)(lambda index, model, context: (
+            index, context.getState(getVelocities=True).getVelocities(asNumpy=True)._value.sum(axis=0).tolist()))
+        outcomes.append((wave, calibration.runs, calibration.melt_steps, calibration.seed, then))
+    assert outcomes[0][0].value > 0
+    assert outcomes[0][1] == 7 and len(outcomes[0][2]) == 7    # the lattice melted once, then 2 x 3 replicas
+    assert outcomes[1] == outcomes[0]

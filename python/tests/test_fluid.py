@@ -214,6 +214,27 @@ def test_transport_iteration_reaches_a_linear_response_by_secant_steps():
     assert measured.value == pytest.approx(target, rel=1e-12)
 
 
+def test_an_iteration_steps_on_a_miss_beyond_one_standard_error():
+    """Water's first energy wave read 1.74 +- 0.27 (relative, 4 replicas) of the target: inside the 95% interval
+    that judges a result (3.18 standard errors for 4 replicas), but a miss of 2.7 standard errors, so the iteration
+    steps (proportional: kappa / 1.74) instead of stopping there; the next reading, 1.03 +- 0.02, is within 5% and
+    stops it. A reading of 1.08 +- 0.10 (within one standard error) stops it at once."""
+    from openmmgendpde.calibrate import Measured, Plan, _reached, _settled
+    first = Measured(1.74, 0.27, 4)
+    assert _reached(first, 1.0) and not _settled(first, 1.0)
+    assert _settled(Measured(1.08, 0.10, 4), 1.0) and not _settled(Measured(1.08, 0.07, 4), 1.0)
+    calibration = _calibration(Plan(transport_runs=4))
+    kappa0 = calibration.parameters.heat_conduction
+    readings = iter([first, Measured(1.03, 0.02, 4)])
+    measured, history, failure = calibration.iterate("heat_conduction", lambda: next(readings), 1.0,
+                                                     "thermal conductivity", 4)
+    assert failure is None and len(history) == 2 and measured.value == 1.03
+    assert calibration.parameters.heat_conduction == pytest.approx(kappa0 / 1.74, rel=1e-12)
+    readings = iter([Measured(1.08, 0.10, 4)])
+    _, history, _ = calibration.iterate("heat_conduction", lambda: next(readings), 1.0, "thermal conductivity", 4)
+    assert len(history) == 1
+
+
 def test_transport_iteration_stops_at_the_floor_of_the_model():
     """eta(gamma) = target (1.3 + 0.5 gamma/gamma0): no friction >= 0 reaches the target; after the proportional
     step the secant's intercept (1.3 target) is above it, and the iteration stops naming the floor."""

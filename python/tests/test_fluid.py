@@ -299,6 +299,19 @@ def test_an_iteration_out_of_runs_keeps_the_best_parameter():
     assert calibration.parameters.friction == pytest.approx(gamma0 / 0.7)
 
 
+def test_an_iteration_out_of_runs_after_a_small_step_is_no_failure():
+    """Water's friction: 8855 -> 8059 (a step of 9%) read 593 +- 52 -> 596 +- 11 (target 536): a proportional
+    response would have moved it by 53, within 2 standard errors of the difference (106), so the step says nothing
+    about the friction's effect and the iteration keeps the better parameter without a failure."""
+    from openmmgendpde.calibrate import Measured, Plan
+    calibration = _calibration(Plan())
+    gamma0 = calibration.parameters.friction
+    readings = iter([Measured(592.8, 52.0, 4), Measured(596.1, 11.0, 4)])
+    _, history, failure = calibration.iterate("friction", lambda: next(readings), 536.0, "shear viscosity", 2)
+    assert len(history) == 2 and history[1][0] == pytest.approx(gamma0 * 536.0 / 592.8, rel=1e-12)
+    assert failure is None
+
+
 def test_elasticity_of_an_iteration():
     """d ln(m)/d ln(x) from the last two runs: 0.5 for m ~ sqrt(x); 1 when the difference is not measured (within 2
     standard errors) or of the wrong sign; limited to [1/3, 3]."""

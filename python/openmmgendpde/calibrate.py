@@ -187,7 +187,7 @@ def misses(results, criteria=CRITERIA):
 
 
 class _StepCounter:
-    """A progress that counts the steps (Calibration.replicas: a replica's steps reach the bar from its process)."""
+    """A progress that counts the steps (Calibration.side_by_side: a run's steps reach the bar from its process)."""
 
     def __init__(self):
         self.steps = 0
@@ -201,7 +201,7 @@ class Calibration:
 
     def __init__(self, parameters, estimator, plan, platform, seed=1, report=print, progress=None, workers=1):
         self.parameters = parameters
-        self.workers = workers   # processes for the replicas of a transport measurement (replicas(); CPU platform)
+        self.workers = workers   # processes for independent runs side by side (side_by_side(); the CPU platform only)
         self.estimator = estimator
         self.plan = plan
         self.platform = openmm.Platform.getPlatformByName(platform)
@@ -540,24 +540,30 @@ class Calibration:
                                         measured=6.0 * time, report=self.report)
         return Measured(result.value, result.error, len(result.replica_values))
 
-    def steady_correction(self, attribute, measure_steady, measure_wave, history, target, name):
+    def steady_correction(self, attribute, measure_steady, measure_wave, history, target, name, failure=None):
         """The steady flow's measurement of the coefficient that ``attribute`` sets, and, if it misses the target by
         more than max(TOLERANCE target, one standard error) (_settled), one more step on it: the parameter times
         (target/measured)^(1/e), e = d ln(coefficient)/d ln(parameter) of the wave iteration (1 if not measured;
         the step at most MAX_STEP), then the wave and the steady flow measured again. The steady flows are the
         more precise (water's heat flux 3% where its wave was 19%) and see the same wavelength. Returns (the steady
-        measurement, the new wave measurement or None); the new wave joins ``history``."""
+        measurement, the new wave measurement or None, ``failure``, the wave iteration's, or None where this step
+        moved the parameter away from the one that failure kept: both methods are then measured again and judged by
+        CRITERIA; water's energy waves read kappa 12367 -> 22526 as no move and kept 22526, the heat flux then took
+        kappa to 31360, where both methods reached the target, and the stale failure failed the calibration); the new
+        wave joins ``history``."""
         steady = measure_steady()
         if _settled(steady, target):
-            return steady, None
+            return steady, None, failure
         value = getattr(self.parameters, attribute)
         factor = min(MAX_STEP, max(1 / MAX_STEP, (target / steady.value) ** (1 / _elasticity(history))))
         self.parameters = dataclasses.replace(self.parameters, **{attribute: value * factor})
         self.report(f"  {name} by the steady flow: {steady.value:.5g} +- {steady.error:.2g} (target {target:.5g}): "
                     f"{attribute} {value:.5g} -> {value * factor:.5g}, both methods measured again")
+        if failure:
+            self.report(f"  (superseded: {failure.split(';')[0]})")
         wave = measure_wave()
         history.append((value * factor, wave))
-        return measure_steady(), wave
+        return measure_steady(), wave, None
 
     def iterate(self, attribute, measure, target, name, runs):
         """Move the parameter ``attribute`` ('friction', 'heat_conduction' or 'bulk_modulus') until ``measure()``
@@ -816,7 +822,7 @@ def run(arguments):
         print(f"| {name} | {value:.6g} | {reduced[key]:.6g} |" if key else f"| {name} | {value:.6g} | 1 |")
     progress = Progress(estimated_steps(plan, arguments.estimator), "calibrate", always=arguments.progress)
     calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed,
-                              progress=progress, workers=replica_processes(arguments.platform))
+                              progress=progress, workers=workers)
     started = time.monotonic()
 
     def stage(text):
@@ -883,24 +889,24 @@ def run(arguments):
         stage("The thermodynamics measured again with the calibrated C_V")
         thermo = calibration.thermodynamics(pressure_error=pressure_error)
     stage(f"Shear viscosity: friction iterated on decaying transverse waves ({plan.replicas} per run)")
-    viscosity, viscosity_runs, failure = calibration.iterate(
+    viscosity, viscosity_runs, viscosity_failure = calibration.iterate(
         "friction", calibration.shear_viscosity, targets["shear_viscosity"], "shear viscosity", plan.transport_runs)
-    failures += [failure] if failure else []
     stage(f"Thermal conductivity: heat conduction iterated on decaying energy waves ({plan.replicas} per run)")
-    conductivity, conductivity_runs, failure = calibration.iterate(
+    conductivity, conductivity_runs, conductivity_failure = calibration.iterate(
         "heat_conduction", calibration.thermal_conductivity, targets["thermal_conductivity"], "thermal conductivity",
         plan.transport_runs)
-    failures += [failure] if failure else []
     stage(f"Shear viscosity by periodic Poiseuille flow ({plan.replicas} runs, {plan.steady_cells} cells)")
-    poiseuille, wave = calibration.steady_correction(
+    poiseuille, wave, failure = calibration.steady_correction(
         "friction", calibration.steady_viscosity, calibration.shear_viscosity, viscosity_runs,
-        targets["shear_viscosity"], "shear viscosity")
+        targets["shear_viscosity"], "shear viscosity", viscosity_failure)
+    failures += [failure] if failure else []
     viscosity = wave or viscosity
     stage(f"Thermal conductivity by a steady heat flux between slabs ({plan.replicas} runs, {plan.steady_cells} "
           f"cells)")
-    heat_flux, wave = calibration.steady_correction(
+    heat_flux, wave, failure = calibration.steady_correction(
         "heat_conduction", calibration.steady_conductivity, calibration.thermal_conductivity, conductivity_runs,
-        targets["thermal_conductivity"], "thermal conductivity")
+        targets["thermal_conductivity"], "thermal conductivity", conductivity_failure)
+    failures += [failure] if failure else []
     conductivity = wave or conductivity
     progress.finish()
     stage(f"Done: {calibration.runs} runs")

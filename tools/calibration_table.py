@@ -15,6 +15,8 @@ import json
 import math
 import pathlib
 
+from openmmgendpde.calibrate import missed_properties
+
 #: (row of the table, the record's row as calibrated, the record's row as mapped or None)
 ROWS = [
     ("density n-bar (nm^-3)", "density n-bar (nm^-3)", None),
@@ -77,7 +79,8 @@ def main():
     print()
     for name, record in zip(names, records):
         print(f"- {name}: {record['runs']} runs in {record['wall_time_s'] / 60:.1f} min; "
-              f"{len(record['missed'])} judged results missed")
+              f"missed: {'; '.join(missed_properties(record['missed'])) or 'nothing'}")
+
 
 if __name__ == "__main__":
     main()

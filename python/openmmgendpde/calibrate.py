@@ -43,6 +43,7 @@ import dataclasses
 import json
 import math
 import os
+import re
 import sys
 import time
 
@@ -184,6 +185,15 @@ def misses(results, criteria=CRITERIA):
                          f"({comparison(name, target, model, bulk_modulus)}); allowed {low:.5g} to {high:.5g}, "
                          f"widened by {factor:.3g} standard errors")
     return lines
+
+
+def missed_properties(lines):
+    """The properties named by calibrate's failure lines (``misses`` and the iterations' failures; a record's
+    "missed"), each once, in order of appearance: a property that missed its tolerance and whose iteration failed
+    has two lines (its row names a unit, its iteration does not; the iteration of the shear viscosity names the
+    property, its rows the method: "shear viscosity, wave")."""
+    names = list(dict.fromkeys(re.sub(r" \(.*\)$", "", line.split(":")[0]) for line in lines))
+    return [name for name in names if not any(other.startswith(name + ", ") for other in names)]
 
 
 class _StepCounter:
@@ -998,7 +1008,9 @@ def run(arguments):
             f"'{arguments.estimator}')"))
         print(f"The calibrated model is in {arguments.output} (fluid_files.load_parameters reads it).")
     if missed:
-        print(f"error: calibrate: the calibration failed, {len(missed)} of the judged results missed (CRITERIA, "
+        properties = missed_properties(missed)
+        print(f"error: calibrate: the calibration failed, {len(properties)} judged "
+              f"{'property' if len(properties) == 1 else 'properties'} missed ({'; '.join(properties)}; CRITERIA, "
               f"docs/fluids.md):\n  " + "\n  ".join(missed), file=sys.stderr)
         raise SystemExit(1)
     print(f"Every judged result within its tolerance ({', '.join(CRITERIA)}"

@@ -20,7 +20,7 @@ import openmm
 from openmm import unit
 
 from . import GenDPDEIntegrator
-from .cli import DEFAULT_CUTOFF, add_cutoff, add_progress, add_rounds
+from .cli import DEFAULT_CUTOFF, add_cutoff, add_json, add_progress, add_rounds
 from .measurement import alternating_rounds, default_rounds, median, median_ratio, print_results
 from .presets import liquid_argon
 from .progress import Progress
@@ -166,6 +166,6 @@ def add_arguments(parser):
     parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
     add_cutoff(parser)
     add_rounds(parser, "15, or 7 above 8000 particles")
-    parser.add_argument("--json", help="also write the results to this JSON file")
+    add_json(parser)
     add_progress(parser)
     parser.set_defaults(run=run)

@@ -52,7 +52,7 @@ import openmm
 from openmm import unit
 
 from . import ESTIMATOR_NAMES, GenDPDEIntegrator, forked
-from .cli import add_platform, add_progress, platform_description
+from .cli import add_json, add_platform, add_progress, platform_description, writable_file
 from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
 from .progress import Progress
@@ -1096,11 +1096,11 @@ def add_arguments(parser):
     parser.add_argument("--particles", type=int, help="4 m^3 particles (default 2048; --quick 500)")
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check)")
     parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--json", help="also write the parameters and results to this JSON file")
+    add_json(parser, "the parameters and results")
     add_progress(parser)
-    parser.add_argument("--plot", metavar="STEM", help="also draw the results and the iterations to STEM.png and "
+    parser.add_argument("--plot", metavar="STEM", type=writable_file, help="also draw the results and the iterations to STEM.png and "
                                                          "STEM.pdf (needs matplotlib)")
-    parser.add_argument("--output", help="write the calibrated model to this file (.toml or .json), which "
+    parser.add_argument("--output", type=writable_file, help="write the calibrated model to this file (.toml or .json), which "
                                          "openmmgendpde.fluid_files.load_parameters reads back")
     add_platform(parser)
     parser.set_defaults(run=run)

@@ -6,6 +6,9 @@ a name (``--particles``: one size for the studies, a list for the benchmarks; ``
 timing, step sizes in speed-vs-error) are defined by their subcommands.
 """
 
+import argparse
+import os
+
 from .presets import ARGON_CUTOFFS
 
 #: R_cut* of the subcommands that study one cutoff (tune-fcut, speed-vs-error, benchmark-integrator): the middle
@@ -97,9 +100,56 @@ def chosen_cutoff(arguments):
     return DEFAULT_CUTOFF if arguments.cutoff is None else arguments.cutoff
 
 
+def _writable_directory_for(path, what):
+    """Raise ArgumentTypeError unless a file or directory at ``path`` could be made: the nearest existing directory
+    above it is writable, and nothing in the way is a file."""
+    directory = os.path.dirname(os.path.abspath(path))
+    while not os.path.exists(directory):
+        directory = os.path.dirname(directory)
+    if not os.path.isdir(directory):
+        raise argparse.ArgumentTypeError(f"{path} cannot be written ({what}): {directory} is a file, not a directory")
+    if not os.access(directory, os.W_OK):
+        raise argparse.ArgumentTypeError(f"{path} cannot be written ({what}): the directory {directory} is not "
+                                         f"writable")
+
+
+def writable_file(path):
+    """An argparse type for a file a subcommand writes at its end (--json, calibrate's --output): refused when the
+    arguments are read, before anything runs, if it could not be written then (its directory missing or not writable,
+    or a directory in its place)."""
+    if os.path.isdir(path):
+        raise argparse.ArgumentTypeError(f"{path} is a directory, not a file")
+    if os.path.exists(path) and not os.access(path, os.W_OK):
+        raise argparse.ArgumentTypeError(f"{path} cannot be written (not writable)")
+    _writable_directory_for(path, "a file")
+    if not os.path.isdir(os.path.dirname(os.path.abspath(path))):
+        raise argparse.ArgumentTypeError(f"{path} cannot be written: the directory "
+                                         f"{os.path.dirname(os.path.abspath(path))} does not exist")
+    return path
+
+
+def writable_directory(path):
+    """An argparse type for a directory a subcommand writes into (made if absent): refused when the arguments are
+    read if it could not be made or written."""
+    if os.path.exists(path):
+        if not os.path.isdir(path):
+            raise argparse.ArgumentTypeError(f"{path} is a file, not a directory")
+        if not os.access(path, os.W_OK):
+            raise argparse.ArgumentTypeError(f"{path} cannot be written (the directory is not writable)")
+        return path
+    _writable_directory_for(path, "a directory to make")
+    return path
+
+
+def add_json(parser, contents="the results"):
+    """--json FILE: also write ``contents`` there (checked when the arguments are read: writable_file)."""
+    parser.add_argument("--json", type=writable_file, help=f"also write {contents} to this JSON file")
+
+
 def add_output(parser, contents):
     """--output DIR (default results); ``contents`` says what goes there."""
-    parser.add_argument("--output", default="results", help=f"directory for {contents} (default results)")
+    parser.add_argument("--output", default="results", type=writable_directory,
+                        help=f"directory for {contents} (default results)")
 
 
 def add_frames(parser, purpose, default=None, default_text=None):

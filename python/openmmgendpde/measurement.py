@@ -10,7 +10,7 @@ import json
 import statistics
 import time
 
-from .cli import add_platform, add_progress, add_rounds
+from .cli import add_json, add_platform, add_progress, add_rounds
 
 
 def alternating_rounds(candidates, rounds, progress=None):
@@ -49,7 +49,7 @@ def add_benchmark_arguments(parser):
                         help="particle counts, 4 m^3 each (default 4000 32000)")
     add_platform(parser)
     add_rounds(parser, "15, or 7 above 8000 particles")
-    parser.add_argument("--json", help="also write the results to this JSON file")
+    add_json(parser)
     add_progress(parser)
 
 

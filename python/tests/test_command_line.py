@@ -152,6 +152,43 @@ def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default
     assert message in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("command, option, place, message", [
+    (["calibrate", "--quick"], "--json", "missing/calibration.json", "the directory {tmp}/missing does not exist"),
+    (["calibrate", "--quick"], "--plot", "missing/figure", "the directory {tmp}/missing does not exist"),
+    (["calibrate", "--quick"], "--output", "missing/model.toml", "the directory {tmp}/missing does not exist"),
+    (["calibrate", "--quick"], "--json", ".", "{tmp} is a directory, not a file"),
+    (["benchmark-cpu", "--particles", "500"], "--json", "a-file/cpu.json", "{tmp}/a-file is a file, not a directory"),
+    (["benchmark-force", "--particles", "500"], "--json", "missing/force.json", "does not exist"),
+    (["table3", "--quick"], "--output", "a-file", "{tmp}/a-file is a file, not a directory"),
+    (["slab", "--quick"], "--output", "a-file/slab", "{tmp}/a-file is a file, not a directory"),
+])
+def test_an_output_that_cannot_be_written_is_refused_before_anything_runs(command, option, place, message, tmp_path,
+                                                                        capsys, monkeypatch):
+    """A file or directory that a subcommand writes at its end (calibrate's after ~25 minutes) is checked when the
+    arguments are read: usage error (status 2) naming the option, the path and why, and nothing runs (the run
+    function is replaced by one that fails the test)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "a-file").write_text("not a directory")
+    import openmmgendpde.__main__ as entry
+    for _, module, _ in entry.SUBCOMMANDS:
+        monkeypatch.setattr(module, "run", lambda arguments: pytest.fail("the subcommand ran"))
+    with pytest.raises(SystemExit) as exit_:
+        main(command + [option, str(tmp_path / place)])
+    assert exit_.value.code == 2
+    error = capsys.readouterr().err.splitlines()[-1]
+    assert f"argument {option}" in error and message.format(tmp=tmp_path) in error
+
+
+def test_an_output_directory_that_can_be_made_is_accepted(tmp_path, monkeypatch):
+    """--output DIR may name a directory to make (table3 makes it), under one that exists and is writable."""
+    import openmmgendpde.table3 as table3
+    seen = []
+    monkeypatch.setattr(table3, "run", lambda arguments: seen.append(arguments.output))
+    monkeypatch.setattr("openmmgendpde.__main__.table3", table3)
+    main(["table3", "--quick", "--output", str(tmp_path / "new" / "results")])
+    assert seen == [str(tmp_path / "new" / "results")]
+
+
 def test_too_short_production_is_refused():
     with pytest.raises(SystemExit, match="at least 20"):
         main(["table3", "--quick", "--production", "4"])

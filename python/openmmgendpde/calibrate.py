@@ -791,16 +791,34 @@ def add_fluid_arguments(parser, default="water", cutoff=True):
         parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
 
 
+#: The arguments of the Python API that the command line sets, as its errors name them, and the options that set them.
+_OPTIONS = {"num_particles = ": "--particles ", "molecules_per_particle = ": "--molecules-per-particle ",
+            "neighbors = ": "--neighbors ", "cutoff = ": "--cutoff "}
+
+
+def command_line_error(command, error, box_advice=None):
+    """A SystemExit (status 1) with the one-line error of the API's ValueError ``error``, worded for the command line:
+    the options instead of the Python arguments, and ``box_advice`` instead of the API's for a box too small for the
+    cutoff (the command line has no cells)."""
+    message = " ".join(str(error).split())
+    for name, option in _OPTIONS.items():
+        message = message.replace(name, option)
+    message = message.replace("; give cells for other boxes", "")
+    if box_advice:
+        message = message.replace("use more cells", box_advice)
+    return SystemExit(f"error: {command}: {message}")
+
+
 def parameters_from_arguments(arguments, command):
     """coarse_grain of --fluid (fluid_named) with --molecules-per-particle and --neighbors or --cutoff (nm); a bad
-    argument exits (SystemExit, status 1) with a one-line error naming ``command`` and the argument."""
+    argument exits (SystemExit, status 1) with a one-line error naming ``command`` and the option."""
     neighbors = arguments.neighbors if arguments.cutoff is None else None
     cutoff = None if arguments.cutoff is None else arguments.cutoff * unit.nanometer
     try:
         return coarse_grain(fluid_named(arguments.fluid), arguments.molecules_per_particle, neighbors=neighbors,
                             cutoff=cutoff)
     except ValueError as error:
-        raise SystemExit(f"error: {command}: {' '.join(str(error).split())}")
+        raise command_line_error(command, error)
 
 
 def run(arguments):
@@ -814,7 +832,7 @@ def run(arguments):
     try:   # every argument checked before the runs: a model built once checks the particles against the cutoff
         parameters.liquid(plan.particles, arguments.estimator)
     except ValueError as error:
-        raise SystemExit(f"error: calibrate: {error}")
+        raise command_line_error("calibrate", error, "use more --particles, or fewer --neighbors (a smaller --cutoff)")
     workers = min(replica_processes(arguments.platform), plan.replicas)
     print(f"{fluid.name}: {arguments.molecules_per_particle:g} molecules per particle, {parameters.neighbors:.1f} "
           f"neighbours within R, {arguments.estimator}, {plan.particles} particles, {platform_description(arguments)}"

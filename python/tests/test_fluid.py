@@ -435,21 +435,25 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
 
 
 @pytest.mark.parametrize("arguments, message", [
-    (["--particles", "1000"], "num_particles = 1000 is not allowed; a cube holds 4 m^3"),
-    (["--particles", "0"], "num_particles = 0 is not allowed"),
-    (["--molecules-per-particle", "-1"], "molecules_per_particle = -1.0 is not allowed; it must be finite and > 0"),
-    (["--neighbors", "1e6"], "is less than twice the cutoff 30.599 nm across"),
+    (["--particles", "1000"], "--particles 1000 is not allowed; a cube holds 4 m^3 (500, 864, 2048, 4000, ...)"),
+    (["--particles", "0"], "--particles 0 is not allowed"),
+    (["--molecules-per-particle", "-1"], "--molecules-per-particle -1.0 is not allowed; it must be finite and > 0"),
+    (["--neighbors", "1e6"], "is less than twice the cutoff 30.599 nm across; use more --particles, or fewer "
+                             "--neighbors (a smaller --cutoff)"),
     (["--cutoff", "100"], "is less than twice the cutoff 100.000 nm across"),
+    (["--neighbors", "0"], "--neighbors 0.0 is not allowed; it must be finite and > 0"),
     (["--platform", "Nope"], "argument --platform: invalid choice: 'Nope'"),
 ])
 def test_calibrate_refuses_bad_arguments_in_one_line(arguments, message):
-    """Bad arguments: a one-line error naming the value on stderr (after argparse's usage for an option it checks
-    itself), exit status non-zero, no traceback, nothing run."""
+    """Bad arguments: a one-line error naming the option (not the Python argument behind it) and the value on stderr
+    (after argparse's usage for an option it checks itself), exit status non-zero, no traceback, nothing run."""
     result = subprocess.run([sys.executable, "-m", "openmmgendpde", "calibrate", "--quick"] + arguments,
                             capture_output=True, text=True, timeout=120)
     assert result.returncode != 0 and result.stdout == ""
     assert "Traceback" not in result.stderr
-    assert message in result.stderr.splitlines()[-1]
+    last = result.stderr.splitlines()[-1]
+    assert message in last
+    assert not any(name in last for name in ("num_particles", "molecules_per_particle", "give cells", "more cells"))
 
 
 def test_calibrate_quick_on_water(tmp_path):

@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -250,14 +252,51 @@ std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box
 }
 
 /** build() gives the order of the definition, element by element, for any number of threads. */
+/**
+ * The order of pairs stored by rows (the CPU platform's list): the rows in a shuffled order, each row the pairs of
+ * its particle with larger ones in increasing order; mapped back to the (i, j) list's indices.
+ */
+std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs, int numThreads, int seed) {
+    const int numParticles = scene.positions.size();
+    std::vector<int> particleOfRow(numParticles);
+    std::iota(particleOfRow.begin(), particleOfRow.end(), 0);
+    std::shuffle(particleOfRow.begin(), particleOfRow.end(), std::mt19937(seed));
+    std::vector<int> rowOf(numParticles), rowPairStart(numParticles + 1, 0);
+    for (int row = 0; row < numParticles; row++)
+        rowOf[particleOfRow[row]] = row;
+    std::vector<std::vector<int>> pairsOfParticle(numParticles);   // indices into the (i, j) list
+    for (int k = 0; k < pairs.size(); k++)
+        pairsOfParticle[pairs.ij[2*k]].push_back(k);
+    Pairs stored;
+    std::vector<int> listIndex;   // of each stored pair
+    for (int row = 0; row < numParticles; row++) {
+        rowPairStart[row] = listIndex.size();
+        for (int k : pairsOfParticle[particleOfRow[row]]) {
+            stored.ij.push_back(pairs.ij[2*k]);
+            stored.ij.push_back(pairs.ij[2*k + 1]);
+            listIndex.push_back(k);
+        }
+    }
+    rowPairStart[numParticles] = listIndex.size();
+    GenDPDESweepOrder order;
+    order.build(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff, stored.size(),
+                stored.ij.data(), stored.ij.data() + 1, 2, numThreads, rowOf.data(), rowPairStart.data());
+    std::vector<int> result;
+    for (int k : order.getOrder())
+        result.push_back(listIndex[k]);
+    return result;
+}
+
 void testOrderIsTheDefinition() {
     auto check = [](const Scene& scene) {
         const bool periodic = scene.force->usesPeriodicBoundaryConditions();
         const Pairs pairs = findPairs(scene.positions, scene.box, periodic, cutoff);
         const std::vector<int> expected = definedOrder(scene.positions, scene.box, periodic, cutoff, pairs);
         ASSERT_EQUAL((int) expected.size(), pairs.size());
-        for (int numThreads : {1, 2})
+        for (int numThreads : {1, 2}) {
             ASSERT(expected == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
+            ASSERT(expected == orderOfPairsStoredByRows(scene, pairs, numThreads, 10 + numThreads));
+        }
     };
     for (bool periodic : {true, false}) {
         check(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 7));

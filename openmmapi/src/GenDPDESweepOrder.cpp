@@ -114,10 +114,48 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
     });
 }
 
+void GenDPDESweepOrder::sortParticlesByCell() {
+    // A counting sort by cell, stable: within a cell by index.
+    const int numParticles = particleCell.size();
+    cellCount.assign((size_t) numCells[0]*numCells[1]*numCells[2] + 1, 0);
+    auto cellIndex = [&](const std::array<int, 3>& c) { return (c[2]*numCells[1] + c[1])*numCells[0] + c[0]; };
+    for (const std::array<int, 3>& c : particleCell)
+        cellCount[cellIndex(c) + 1]++;
+    for (size_t c = 1; c < cellCount.size(); c++)
+        cellCount[c] += cellCount[c - 1];
+    particlesByCell.resize(numParticles);
+    slotOfParticle.resize(numParticles);
+    for (int i = 0; i < numParticles; i++) {
+        const int slot = cellCount[cellIndex(particleCell[i])]++;
+        particlesByCell[slot] = i;
+        slotOfParticle[i] = slot;
+    }
+}
+
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
                               double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-                              int numThreads) {
+                              int numThreads, const int* rowOfParticle, const int* rowPairStart) {
     computeCells(positions, boxVectors, periodic, range, numThreads);
+    sortParticlesByCell();
+
+    // The pairs in (i, j) order as runs of stored pairs: run r is runBound[2r] ... runBound[2r + 1] - 1 (one run per
+    // first particle if the pairs are stored by rows, else runs of 4096 consecutive pairs).
+    if (rowOfParticle != nullptr) {
+        const int numParticles = positions.size();
+        runBound.resize(2*(size_t) numParticles);
+        for (int i = 0; i < numParticles; i++) {
+            runBound[2*i] = rowPairStart[rowOfParticle[i]];
+            runBound[2*i + 1] = rowPairStart[rowOfParticle[i] + 1];
+        }
+    }
+    else {
+        runBound.resize(2*(size_t) numRanges(numPairs, 4096));
+        for (size_t r = 0; 2*r < runBound.size(); r++) {
+            runBound[2*r] = r*4096;
+            runBound[2*r + 1] = std::min(numPairs, (int) (r + 1)*4096);
+        }
+    }
+    const int numRuns = runBound.size()/2;
 
     // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
     // pairs whose cells are not adjacent.
@@ -149,23 +187,26 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
         }
     });
 
-    // A stable counting sort by rank keeps each block's pairs in (i, j) order: counts per range of pairs, then each
-    // range writes its pairs from its own offsets (the result does not depend on the ranges).
+    // A stable counting sort by rank, reading the pairs in (i, j) order (run after run), keeps each block's pairs in
+    // (i, j) order: counts per range of runs, then each range writes its pairs from its own offsets (the result does
+    // not depend on the ranges).
     const int numRanks = rank;
-    const int numPairRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
-    const int pairsPerRange = numRanges(numPairs, numPairRanges);
-    rangeCount.assign((size_t) numPairRanges*numRanks, 0);
+    const int numRunRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
+    const int runsPerRange = numRanges(numRuns, numRunRanges);
+    rangeCount.assign((size_t) numRunRanges*numRanks, 0);
     int* count = rangeCount.data();
-    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
+    const int* bound = runBound.data();
+    parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++)
-                count[(size_t) r*numRanks + rankOfPair[k]]++;
+            for (int run = r*runsPerRange; run < std::min(numRuns, (r + 1)*runsPerRange); run++)
+                for (int k = bound[2*run]; k < bound[2*run + 1]; k++)
+                    count[(size_t) r*numRanks + rankOfPair[k]]++;
     });
     blockStart.assign(numRanks + 1, 0);
     int total = 0;
     for (int s = 0; s < numRanks; s++) {
         blockStart[s] = total;
-        for (int r = 0; r < numPairRanges; r++) {
+        for (int r = 0; r < numRunRanges; r++) {
             const int n = count[(size_t) r*numRanks + s];
             count[(size_t) r*numRanks + s] = total;   // now the range's first position in rank s
             total += n;
@@ -176,13 +217,15 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     sortedFirst.resize(numPairs);
     int* sortedPairs = sorted.data();
     int* firstOfSorted = sortedFirst.data();   // their first particles, for the interleaving to read in order
-    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
+    const bool byRows = (rowOfParticle != nullptr);   // then run i holds the pairs of particle i
+    parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int k = r*pairsPerRange; k < std::min(numPairs, (r + 1)*pairsPerRange); k++) {
-                const int position = count[(size_t) r*numRanks + rankOfPair[k]]++;
-                sortedPairs[position] = k;
-                firstOfSorted[position] = pairI[(size_t) k*stride];
-            }
+            for (int run = r*runsPerRange; run < std::min(numRuns, (r + 1)*runsPerRange); run++)
+                for (int k = bound[2*run]; k < bound[2*run + 1]; k++) {
+                    const int position = count[(size_t) r*numRanks + rankOfPair[k]]++;
+                    sortedPairs[position] = k;
+                    firstOfSorted[position] = byRows ? run : pairI[(size_t) k*stride];
+                }
     });
 
     // Within each block, the lists of four consecutive first particles interleaved.

@@ -9,7 +9,9 @@
 #include "internal/CounterRandom.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDESweepOrder.h"
 #include "internal/GenDPDETypes.h"
+#include "internal/ParallelFor.h"
 #include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>
@@ -51,23 +53,86 @@ struct PairSweepParameters {
 };
 
 /**
- * Ask for the memory the sweep reaches soon: the pair 16 places ahead, and the particles of the pair 8 places ahead
+ * What the sweep reads and writes per particle, copied into the sweep order's cell order (GenDPDESweepOrder::
+ * getParticlesByCell) for the duration of the sweep: a pair's two particles are then close in memory whatever their
+ * indices (a liquid mixes its particles within a few thousand steps; in index order at 256,000 particles nearly
+ * every particle a pair reaches is a cache miss). The copies are exact, and the sweep's arithmetic and order do not
+ * change: only addresses. Velocities and internal energies go back with scatter().
+ */
+class SweepLayout {
+public:
+    /**
+     * Copy velocities, internal energies (null: none), inverse masses and classes (null: one class) into cell order,
+     * on this many threads.
+     */
+    void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& velocities, const double* energies,
+                const double* inverseMasses, const int* classes, int numThreads) {
+        slots = order.getSlots().data();
+        particles = order.getParticlesByCell().data();
+        const int n = order.getParticlesByCell().size();
+        slotVelocities.resize(n);
+        slotInverseMasses.resize(n);
+        slotEnergies.resize(energies != nullptr ? n : 0);
+        slotClasses.resize(classes != nullptr ? n : 0);
+        const int* particle = particles;
+        const OpenMM::Vec3* v = velocities.data();
+        OpenMM::Vec3* sv = slotVelocities.data();
+        double* se = slotEnergies.data();
+        double* sm = slotInverseMasses.data();
+        int* sc = slotClasses.data();
+        parallelFor(numThreads, n, 4096, [=](int begin, int end) {
+            for (int s = begin; s < end; s++) {
+                const int i = particle[s];
+                sv[s] = v[i];
+                sm[s] = inverseMasses[i];
+                if (energies != nullptr)
+                    se[s] = energies[i];
+                if (classes != nullptr)
+                    sc[s] = classes[i];
+            }
+        });
+    }
+    /** Copy the velocities and internal energies (null: none) back to index order. */
+    void scatter(std::vector<OpenMM::Vec3>& velocities, double* energies, int numThreads) const {
+        const int* particle = particles;
+        OpenMM::Vec3* v = velocities.data();
+        const OpenMM::Vec3* sv = slotVelocities.data();
+        const double* se = slotEnergies.data();
+        parallelFor(numThreads, slotVelocities.size(), 4096, [=](int begin, int end) {
+            for (int s = begin; s < end; s++) {
+                v[particle[s]] = sv[s];
+                if (energies != nullptr)
+                    energies[particle[s]] = se[s];
+            }
+        });
+    }
+    const int* slots = nullptr;       // particle i is at slots[i]
+    const int* particles = nullptr;   // slot s holds particle particles[s]
+    std::vector<OpenMM::Vec3> slotVelocities;
+    std::vector<double> slotEnergies, slotInverseMasses;
+    std::vector<int> slotClasses;
+};
+
+/**
+ * Ask for the memory the sweep reaches soon: the pair 16 places ahead, and the slots of the pair 8 places ahead
  * (whose pair was asked for 8 places ago). The pairs are reached in sweep order, at random in memory; without this,
  * each pair of 256,000 particles waited for main memory (the sweep ran 2.6x slower per pair than at 32,000). Always
  * inlined: GCC deems a function that only prefetches free of effects and deletes its calls.
  */
 template <class Pair>
-__attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, const int* order, int n, int count, const OpenMM::Vec3* velocities,
-                          const double* energies) {
+__attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, const int* order, int n, int count,
+                                                         const int* slot, const OpenMM::Vec3* velocities,
+                                                         const double* energies) {
     if (n + 16 < count)
         __builtin_prefetch(&pairs[order[n + 16]]);
     if (n + 8 < count) {
         const Pair& ahead = pairs[order[n + 8]];
-        __builtin_prefetch(&velocities[ahead.i]);
-        __builtin_prefetch(&velocities[ahead.j]);
+        const int si = slot[ahead.i], sj = slot[ahead.j];
+        __builtin_prefetch(&velocities[si]);
+        __builtin_prefetch(&velocities[sj]);
         if (energies != nullptr) {
-            __builtin_prefetch(&energies[ahead.i]);
-            __builtin_prefetch(&energies[ahead.j]);
+            __builtin_prefetch(&energies[si]);
+            __builtin_prefetch(&energies[sj]);
         }
     }
 }
@@ -75,21 +140,22 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
 /**
  * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r): dissipative
  * and random momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split
- * equally, heat conduction, all with the temperatures the particles have when the pair is reached. Returns the
- * position in order of the first pair after which an internal energy is <= 0 (the sweep stops there; the caller
- * restores the state), or -1.
+ * equally, heat conduction, all with the temperatures the particles have when the pair is reached. Particle i's data
+ * is at slot[i] of inverseMasses, velocities, energies and p's classes (SweepLayout); the random stream is keyed on
+ * (i, j). Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops
+ * there; the caller restores the state), or -1.
  */
 template <class Pair>
-int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
+int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const PairSweepParameters& p, const int* slot,
                       const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, velocities, energies);
+        prefetchAhead(pairs, order, n, count, slot, velocities, energies);
         const Pair& pair = pairs[order[n]];
-        const int i = pair.i, j = pair.j;
+        const int i = slot[pair.i], j = slot[pair.j];
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         const double omegaR = Physics::gendpdeRandomWeight(pair.r, p.cutoff);
-        CounterRandom::PairStream random(p.seed, p.step, i, j);
+        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
                 p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
@@ -114,17 +180,20 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
     return -1;
 }
 
-/** The classic DPD thermostat (Isothermal mode) on the pairs order[0..count): the heat goes to the bath. */
+/**
+ * The classic DPD thermostat (Isothermal mode) on the pairs order[0..count): the heat goes to the bath. Particle i's
+ * data at slot[i], as in sweepIsoenergetic.
+ */
 template <class Pair>
-void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairSweepParameters& p,
+void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairSweepParameters& p, const int* slot,
                      const double* inverseMasses, OpenMM::Vec3* velocities) {
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, velocities, nullptr);
+        prefetchAhead(pairs, order, n, count, slot, velocities, nullptr);
         const Pair& pair = pairs[order[n]];
-        const int i = pair.i, j = pair.j;
+        const int i = slot[pair.i], j = slot[pair.j];
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
-        CounterRandom::PairStream random(p.seed, p.step, i, j);
+        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int ab = p.classOf(i)*p.numClasses + p.classOf(j);
         Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
                                        p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
@@ -132,11 +201,14 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
     }
 }
 
-/** The particle whose internal energy failed in the pair order[failed] (i if eps_i <= 0, else j). */
+/**
+ * The particle whose internal energy failed in the pair order[failed] (i if eps_i <= 0, else j), with particle i's
+ * energy at slot[i].
+ */
 template <class Pair>
-int failedParticle(const Pair* pairs, const int* order, int failed, const double* energies) {
+int failedParticle(const Pair* pairs, const int* order, int failed, const int* slot, const double* energies) {
     const Pair& pair = pairs[order[failed]];
-    return energies[pair.i] > 0.0 ? pair.j : pair.i;
+    return energies[slot[pair.i]] > 0.0 ? pair.j : pair.i;
 }
 
 } // namespace GenDPDEPlugin

@@ -33,13 +33,16 @@ namespace GenDPDEPlugin {
 class GenDPDESweepOrder {
 public:
     /**
-     * Build the order for the pairs (pairI[k], pairJ[k]), k < numPairs, sorted by (i, j) with i < j, all closer
-     * than range (nm), at these positions (nm) and box vectors (used only if periodic). numThreads threads share
+     * Build the order for the pairs (pairI[k stride], pairJ[k stride]), k < numPairs, i < j, all closer than range
+     * (nm), at these positions (nm) and box vectors (used only if periodic). The pairs are in (i, j) order, or, if
+     * rowOfParticle is given, stored by rows: the pairs whose first particle is i are rowPairStart[rowOfParticle[i]]
+     * ... rowPairStart[rowOfParticle[i] + 1] - 1, in increasing j, the rows in any order (the CPU platform's cell
+     * order); the order is the same either way and holds indices into the pairs as stored. numThreads threads share
      * the work; the result is the same for any number.
      */
     void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-               int numThreads = 1);
+               int numThreads = 1, const int* rowOfParticle = nullptr, const int* rowPairStart = nullptr);
     /** The number of groups run one after another: the colours, then possibly the group of non-adjacent pairs. */
     int getNumGroups() const {
         return groupStart.size() - 1;
@@ -72,13 +75,26 @@ public:
     const std::array<int, 3>& getNumCells() const {
         return numCells;
     }
+    /**
+     * A memory layout for the sweep, not part of the order: the particles of the last build() sorted by cell (cells
+     * numbered (c_z n_y + c_y) n_x + c_x as the blocks are; by index within a cell). getSlots()[i] is particle i's
+     * place in getParticlesByCell(), so that particles that share pairs share cache lines whatever their indices.
+     */
+    const std::vector<int>& getParticlesByCell() const {
+        return particlesByCell;
+    }
+    const std::vector<int>& getSlots() const {
+        return slotOfParticle;
+    }
 private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                       double range, int numThreads);
+    void sortParticlesByCell();
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
     std::vector<std::array<int, 3>> particleCell;
     std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order, sorted, sortedFirst;
+    std::vector<int> cellCount, particlesByCell, slotOfParticle, runBound;
 };
 
 } // namespace GenDPDEPlugin

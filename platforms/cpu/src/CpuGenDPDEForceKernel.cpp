@@ -306,33 +306,30 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
 }
 
 PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
-    // The entries the last density pass marked in the upper parts of the rows; the rows by increasing first particle
-    // give the pairs in (i, j) order, as Reference's list. Rows are read in row order (in memory order): each row's
-    // count, then each row's first position (a prefix sum in particle order), then each row writes its pairs there.
-    const int numParticles = layout.getNumRows();
-    const int numChunks = numRanges(numParticles, rowChunk);
+    // The entries the last density pass marked in the upper parts of the rows, stored by rows in row (cell) order,
+    // so that the sweep, which reaches the pairs block by block, reads nearby memory (the pairs of a particle with
+    // larger ones, in increasing order of the other particle, as Reference's list has them): each row's count, each
+    // range of rows' total, then each row writes its pairs from its first position.
+    const int numRows = layout.getNumRows();
+    const int numChunks = numRanges(numRows, rowChunk);
     const int* particleOf = layout.getParticle().data();
-    const int* rowOf = layout.getRow().data();
     const int* rowStart = layout.getRowStart().data();
     const int* upperStart = layout.getUpperStart().data();
     const char* listed = listedFlags.data();
-    rowPairStart.resize(numParticles);
+    rowPairStart.resize(numRows + 1);
     int* pairStart = rowPairStart.data();
-    parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
-        for (int s = begin; s < end; s++) {
-            int count = 0;
-            for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
-                count += listed[m];
-            pairStart[s] = count;
-        }
-    });
     pairOffset.assign(numChunks + 1, 0);
     int* offset = pairOffset.data();
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int total = 0;
-            for (int i = c*rowChunk; i < std::min(numParticles, (c + 1)*rowChunk); i++)
-                total += pairStart[rowOf[i]];
+            for (int s = c*rowChunk; s < std::min(numRows, (c + 1)*rowChunk); s++) {
+                int count = 0;
+                for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
+                    count += listed[m];
+                pairStart[s] = count;
+                total += count;
+            }
             offset[c + 1] = total;
         }
     });
@@ -341,17 +338,18 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int next = offset[c];
-            for (int i = c*rowChunk; i < std::min(numParticles, (c + 1)*rowChunk); i++) {
-                const int count = pairStart[rowOf[i]];
-                pairStart[rowOf[i]] = next;
+            for (int s = c*rowChunk; s < std::min(numRows, (c + 1)*rowChunk); s++) {
+                const int count = pairStart[s];
+                pairStart[s] = next;
                 next += count;
             }
         }
     });
+    rowPairStart[numRows] = pairOffset[numChunks];
     pairs.resize(pairOffset[numChunks]);
     ParticlePair* pair = pairs.data();
     withRowGather([&](auto gather) {
-        parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
+        parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
             for (int s = begin; s < end; s++) {
                 ParticlePair* next = pair + pairStart[s];
                 for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
@@ -363,5 +361,5 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
             }
         });
     });
-    return PairView(pairs.data(), pairs.size());
+    return PairView(pairs.data(), pairs.size(), layout.getRow().data(), rowPairStart.data());
 }

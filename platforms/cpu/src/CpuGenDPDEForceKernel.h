@@ -41,8 +41,9 @@ public:
         return sequential ? neighborList->getPairs() : collectPairs(numThreads);
     }
     /**
-     * The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order (the pair list the
-     * integrator sweeps), on this many threads.
+     * The pairs closer than the cutoff at the positions of the last evaluation (the pair list the integrator
+     * sweeps), on this many threads: stored by rows in the rows' cell order (PairView), each row's pairs those of its
+     * particle with larger ones, in increasing order of the other particle.
      */
     PairView collectPairs(int threads);
 protected:
@@ -66,7 +67,7 @@ private:
     std::vector<Physics::Tensor> rowVirialTensor;   // each row's virial tensor, when the observables ask for them
     std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)
     std::vector<char> listedFlags;              // per row entry: a pair closer than the cutoff (upper parts only)
-    // collectPairs(): the first pair of each range of particles and of each row; the pairs.
+    // collectPairs(): the first pair of each range of rows and of each row (and the end); the pairs.
     std::vector<int> pairOffset, rowPairStart;
     std::vector<ParticlePair> pairs;
 };

@@ -63,20 +63,18 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
         return;
     }
     const long long step = context.getStepCount();
-    const int stride = sizeof(ParticlePair)/sizeof(int);
-    const bool anyPairs = pairs.size() > 0;
-    sweepOrder.build(extractPositions(context), extractBoxVectors(context),
-                     context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
-                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, threads);
+    buildSweepOrder(context, pairs, threads);
     const int* order = sweepOrder.getOrder().data();
     const std::vector<int>& groupStart = sweepOrder.getGroupStart();
     const int* blockStart = sweepOrder.getBlockStart().data();
     typeTables->update(integrator);
-    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
+    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
+    gatherSweepState(parameters, velocities, threads);
     const ParticlePair* pair = pairs.begin();
-    const double* inverseMass = inverseMasses.data();
-    Vec3* v = velocities.data();
-    double* energy = internalEnergies.data();
+    const int* slot = layout.slots;
+    const double* inverseMass = layout.slotInverseMasses.data();
+    Vec3* v = layout.slotVelocities.data();
+    double* energy = layout.slotEnergies.data();
     for (int group = 0; group < sweepOrder.getNumGroups(); group++) {
         const int firstBlock = groupStart[group], numBlocks = groupStart[group + 1] - firstBlock;
         blockFailure.assign(numBlocks, -1);
@@ -86,9 +84,10 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
                 const int* blockOrder = order + blockStart[b];
                 const int count = blockStart[b + 1] - blockStart[b];
                 if (!parameters.terms.internalEnergies)
-                    sweepIsothermal(pair, blockOrder, count, parameters, inverseMass, v);
+                    sweepIsothermal(pair, blockOrder, count, parameters, slot, inverseMass, v);
                 else {
-                    const int failed = sweepIsoenergetic(pair, blockOrder, count, parameters, inverseMass, v, energy);
+                    const int failed = sweepIsoenergetic(pair, blockOrder, count, parameters, slot, inverseMass, v,
+                                                         energy);
                     if (failed >= 0)
                         failure[b - firstBlock] = blockStart[b] + failed;
                 }
@@ -99,6 +98,7 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
             if (failed >= 0)
                 failSweep(pairs, sweepOrder.getOrder(), failed, velocities, step);
     }
+    layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, threads);
 }
 
 double CpuIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {

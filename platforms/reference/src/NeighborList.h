@@ -64,10 +64,24 @@ struct ParticlePair {
     double r;
 };
 
-/** A read-only view of the pairs found by NeighborList::update(), valid until the next update. */
+/**
+ * A read-only view of the pairs found by NeighborList::update() (in (i, j) order) or a force kernel's (maybe stored by
+ * rows: then the pairs whose first particle is i are rowPairStart[rowOfParticle[i]] ... rowPairStart[rowOfParticle[i]
+ * + 1] - 1, in increasing j, the rows in any order), valid until the next update.
+ */
 class PairView {
 public:
-    PairView(const ParticlePair* first, size_t count) : first(first), count(count) {
+    PairView(const ParticlePair* first, size_t count, const int* rowOfParticle = nullptr,
+             const int* rowPairStart = nullptr) :
+            first(first), count(count), rowOfParticle(rowOfParticle), rowPairStart(rowPairStart) {
+    }
+    /** Null if the pairs are in (i, j) order, else each particle's row (see above). */
+    const int* getRowOfParticle() const {
+        return rowOfParticle;
+    }
+    /** Null if the pairs are in (i, j) order, else where each row's pairs begin (one more than the rows). */
+    const int* getRowPairStart() const {
+        return rowPairStart;
     }
     const ParticlePair* begin() const {
         return first;
@@ -84,6 +98,8 @@ public:
 private:
     const ParticlePair* first;
     size_t count;
+    const int* rowOfParticle;
+    const int* rowPairStart;
 };
 
 /**
@@ -93,7 +109,7 @@ private:
 class GenDPDEHostPairList {
 public:
     virtual ~GenDPDEHostPairList() {}
-    /** The pairs closer than the cutoff at the positions of the last evaluation, in (i, j) order. */
+    /** The pairs closer than the cutoff at the positions of the last evaluation (in (i, j) order or by rows). */
     virtual PairView getPairs(int numThreads) = 0;
 };
 

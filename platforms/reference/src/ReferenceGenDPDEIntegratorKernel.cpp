@@ -3,7 +3,6 @@
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
-#include "internal/GenDPDEPairSweep.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
@@ -85,32 +84,52 @@ void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context
 void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
         const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
     // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows.
-    static_assert(sizeof(ParticlePair) % sizeof(int) == 0, "the sweep order reads i and j with an int stride");
     const long long step = context.getStepCount();
+    buildSweepOrder(context, pairs, 1);
+    const std::vector<int>& order = sweepOrder.getOrder();
+    typeTables->update(integrator);
+    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
+    gatherSweepState(parameters, velocities, 1);
+    const int* slot = layout.slots;
+    if (!terms.internalEnergies)
+        sweepIsothermal(pairs.begin(), order.data(), order.size(), parameters, slot, layout.slotInverseMasses.data(),
+                        layout.slotVelocities.data());
+    else {
+        // If an internal energy would become <= 0, the velocities and internal energies go back to what execute()
+        // saved before the step (positions have not moved yet), and the error names the particle and the step.
+        const int failed = sweepIsoenergetic(pairs.begin(), order.data(), order.size(), parameters, slot,
+                                             layout.slotInverseMasses.data(), layout.slotVelocities.data(),
+                                             layout.slotEnergies.data());
+        if (failed >= 0)
+            failSweep(pairs, order, failed, velocities, step);
+    }
+    layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, 1);
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, PairView pairs, int numThreads) {
+    static_assert(sizeof(ParticlePair) % sizeof(int) == 0, "the sweep order reads i and j with an int stride");
     const int stride = sizeof(ParticlePair)/sizeof(int);
     const bool anyPairs = pairs.size() > 0;
     sweepOrder.build(extractPositions(context), extractBoxVectors(context),
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
-                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride);
-    const std::vector<int>& order = sweepOrder.getOrder();
-    typeTables->update(integrator);
-    const PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
-    if (!terms.internalEnergies) {
-        sweepIsothermal(pairs.begin(), order.data(), order.size(), parameters, inverseMasses.data(), velocities.data());
-        return;
-    }
-    // If an internal energy would become <= 0, the velocities and internal energies go back to what execute() saved
-    // before the step (positions have not moved yet), and the error names the particle and the step.
-    const int failed = sweepIsoenergetic(pairs.begin(), order.data(), order.size(), parameters, inverseMasses.data(),
-                                         velocities.data(), internalEnergies.data());
-    if (failed >= 0)
-        failSweep(pairs, order, failed, velocities, step);
+                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride,
+                     numThreads, pairs.getRowOfParticle(), pairs.getRowPairStart());
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& parameters,
+                                                           const std::vector<Vec3>& velocities, int numThreads) {
+    const bool classes = parameters.numClasses > 1;
+    layout.gather(sweepOrder, velocities, parameters.terms.internalEnergies ? internalEnergies.data() : nullptr,
+                  inverseMasses.data(), classes ? parameters.particleClass : nullptr, numThreads);
+    if (classes)
+        parameters.particleClass = layout.slotClasses.data();
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
                                                     std::vector<Vec3>& velocities, long long step) {
-    const int particle = failedParticle(pairs.begin(), order.data(), failed, internalEnergies.data());
-    const double value = internalEnergies[particle];
+    const int particle = failedParticle(pairs.begin(), order.data(), failed, layout.slots,
+                                        layout.slotEnergies.data());
+    const double value = layout.slotEnergies[layout.slots[particle]];
     velocities = savedVelocities;
     internalEnergies = savedInternalEnergies;
     throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, value, step));

@@ -4,6 +4,7 @@
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDETypes.h"
 #include "NeighborList.h"
+#include "internal/GenDPDEPairSweep.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/Vec3.h"
 #include <memory>
@@ -75,7 +76,18 @@ protected:
     /** Particle i's kinetic energy with on-step velocities (kJ/mol); 0 for a massless particle. */
     double kineticEnergy(int i, const std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces,
                          double halfStep) const;
-    /** The sweep's failure at position failed of the order: restore the saved state and throw. */
+    /** Build sweepOrder for these pairs at the current positions, on this many threads. */
+    void buildSweepOrder(OpenMM::ContextImpl& context, PairView pairs, int numThreads);
+    /**
+     * Copy what the sweep reads into layout (the order's cell order), and point parameters at the copied classes.
+     * The sweep then works on layout's arrays; layout.scatter() copies its results back.
+     */
+    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities,
+                          int numThreads);
+    /**
+     * The sweep's failure at position failed of the order (the sweep's state still in layout): restore the saved
+     * state and throw.
+     */
     [[noreturn]] void failSweep(PairView pairs, const std::vector<int>& order, int failed,
                                 std::vector<OpenMM::Vec3>& velocities, long long step);
     double cutoff = 0.0;
@@ -84,6 +96,7 @@ protected:
     std::vector<double> inverseMasses, internalEnergies;
     std::vector<OpenMM::Vec3> savedVelocities;
     GenDPDESweepOrder sweepOrder;
+    SweepLayout layout;   // the sweep's particle data in sweepOrder's cell order, during a sweep
     std::vector<double> savedInternalEnergies;
     std::unique_ptr<NeighborList> neighborList;   // used when no GenDPDEForce's pairs can be reused
 };

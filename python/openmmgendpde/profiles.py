@@ -25,9 +25,11 @@ m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half 
 import reprlib
 
 import numpy as np
+import openmm
 from openmm import unit
 
 from . import GenDPDEIntegrator
+from .reporter import checked_report_interval
 from .pressure import virial_tensor
 from .units import BOLTZMANN
 
@@ -98,9 +100,9 @@ def _checked_types(types):
         particles, values = np.zeros(0, int), np.asarray(types)
     if not all(a.ndim == 1 and (a.size == 0 or np.issubdtype(a.dtype, np.integer)) for a in (particles, values)) \
             or np.any(particles < 0):
-        raise ValueError(f"ProfileReporter: types = {reprlib.repr(types)} is not allowed; it must be one integer per "
-                         f"particle (a list or 1-D array) or a dict {{particle index >= 0: type}} (as "
-                         f"GenDPDEForce.getParticleTypes returns)")
+        raise openmm.OpenMMException(f"ProfileReporter: types = {reprlib.repr(types)} is not allowed; it must be "
+                                     f"one integer per particle (a list or 1-D array) or a dict {{particle index >= "
+                                     f"0: type}} (as GenDPDEForce.getParticleTypes returns)")
     return types if isinstance(types, dict) else values
 
 
@@ -108,14 +110,14 @@ def _per_particle_types(types, num_particles):
     """Checked ``types`` (_checked_types) as an array of one type per particle of a System of ``num_particles``."""
     if isinstance(types, dict):
         if types and max(types) >= num_particles:
-            raise ValueError(f"ProfileReporter: types names particle {max(types)}, but the System has "
-                             f"{num_particles} particles")
+            raise openmm.OpenMMException(f"ProfileReporter: types names particle {max(types)}, but the System has "
+                                         f"{num_particles} particles")
         array = np.zeros(num_particles, int)
         array[list(types)] = list(types.values())
         return array
     if len(types) != num_particles:
-        raise ValueError(f"ProfileReporter: types has {len(types)} entries, but the System has {num_particles} "
-                         f"particles; give one type per particle")
+        raise openmm.OpenMMException(f"ProfileReporter: types has {len(types)} entries, but the System has "
+                                     f"{num_particles} particles; give one type per particle")
     return types
 
 
@@ -142,21 +144,21 @@ class ProfileReporter:
     Works with any integrator; theta_harmonic needs a GenDPDEIntegrator, the pressure columns a GenDPDEForce ``force``
     (periodic box). ``types``, one integer per particle or a dict {particle: type} (the form of
     GenDPDEForce.getParticleTypes, unnamed particles type 0), adds the columns of each type; by default the types
-    set on ``force``, if any. Bad arguments raise ValueError when the reporter is made; types that do not fit the
+    set on ``force``, if any. Bad arguments raise OpenMMException when the reporter is made; types that do not fit the
     System (a length other than its particle count, a particle beyond it) at the first report, before it writes
     anything (the header goes with the first report)."""
 
     def __init__(self, file, reportInterval, axis=2, bins=20, force=None, types=None):
-        if reportInterval < 1:
-            raise ValueError(f"reportInterval = {reportInterval} is not allowed; it must be >= 1")
+        interval = checked_report_interval("ProfileReporter", reportInterval)
         if not (0 <= axis <= 2) or bins < 1:
-            raise ValueError(f"axis = {axis}, bins = {bins}: the axis must be 0, 1 or 2 and bins >= 1")
+            raise openmm.OpenMMException(f"ProfileReporter: axis = {axis}, bins = {bins}: the axis must be 0, 1 or 2 "
+                                         f"and bins >= 1")
         if types is None and force is not None:
             types = force.getParticleTypes() or None
         self._types = _checked_types(types)
         self._own = isinstance(file, str)
         self._out = open(file, "w") if self._own else file
-        self._interval, self._axis, self._bins = reportInterval, axis, bins
+        self._interval, self._axis, self._bins = interval, axis, bins
         self._masses = None
         self._force = force
 

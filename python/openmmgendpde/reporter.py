@@ -14,6 +14,15 @@ _ENERGY = unit.kilojoule_per_mole
 _BAR_PER_PRESSURE = (1 * _PRESSURE / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.bar)
 
 
+def checked_report_interval(reporter, value):
+    """``value`` as a reporter's interval in steps (an integer >= 1), or an OpenMMException naming ``reporter`` (its
+    class name), the parameter and the value: the check of every reporter of this package."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 1:
+        raise openmm.OpenMMException(f"{reporter}: reportInterval = {value!r} is not allowed; it must be an integer "
+                                     f">= 1")
+    return int(value)
+
+
 class GenDPDEReporter:
     """Writes, every ``reportInterval`` steps, one line of comma-separated values:
 
@@ -42,13 +51,9 @@ class GenDPDEReporter:
     """
 
     def __init__(self, file, reportInterval, units=None, separator=",", append=False):
-        if isinstance(reportInterval, bool) or not isinstance(reportInterval, numbers.Integral) \
-                or reportInterval < 1:
-            raise openmm.OpenMMException(f"GenDPDEReporter: reportInterval = {reportInterval!r} is not allowed; it "
-                                         f"must be an integer >= 1")
+        self._interval = checked_report_interval("GenDPDEReporter", reportInterval)
         self._own = isinstance(file, str)
         self._out = open(file, "a" if append else "w") if self._own else file
-        self._interval = int(reportInterval)
         self._units = units
         self._separator = separator
         self._header_written = append

@@ -85,8 +85,15 @@ def test_profile_reporter_against_direct_bins():
 def test_profile_refuses_bad_arguments():
     with pytest.raises(ValueError, match="axis = 3"):
         profile(np.zeros((2, 3)), np.zeros((2, 3)), np.ones(2), np.eye(3), axis=3)
-    with pytest.raises(ValueError, match="reportInterval = 0"):
-        ProfileReporter(io.StringIO(), 0)
+    with pytest.raises(openmm.OpenMMException, match="ProfileReporter: axis = 3"):
+        ProfileReporter(io.StringIO(), 1, axis=3)
+
+
+@pytest.mark.parametrize("interval", [0, -3, 2.7, True, "10"])
+def test_profile_reporter_refuses_a_report_interval_as_gendpde_reporter_does(interval):
+    """The same check and error as GenDPDEReporter's (test_reporter.py): an integer >= 1, else OpenMMException."""
+    with pytest.raises(openmm.OpenMMException, match=f"ProfileReporter: reportInterval = {interval!r}.*integer >= 1"):
+        ProfileReporter(io.StringIO(), interval)
 
 
 def test_profile_by_type_against_direct_counts():
@@ -186,7 +193,7 @@ def test_profile_reporter_takes_the_types_of_the_force():
                          ids=str)
 def test_profile_reporter_refuses_bad_types_when_made(types):
     out = io.StringIO()
-    with pytest.raises(ValueError, match="types = .* is not allowed; it must be one integer per particle"):
+    with pytest.raises(openmm.OpenMMException, match="types = .* is not allowed; it must be one integer per particle"):
         ProfileReporter(out, 1, types=types)
     assert out.getvalue() == ""
 
@@ -200,7 +207,7 @@ def test_profile_reporter_refuses_types_that_do_not_fit_the_system(types, messag
     simulation = particles_in_a_box()
     out = io.StringIO()
     simulation.reporters.append(ProfileReporter(out, 1, types=types))
-    with pytest.raises(ValueError, match=message):
+    with pytest.raises(openmm.OpenMMException, match=message):
         simulation.step(1)
     assert out.getvalue() == ""
 

@@ -411,7 +411,10 @@ def fluid_parameters(arguments, cells):
     try:
         parameters.liquid(cells=cells)
     except ValueError as error:
-        raise SystemExit(f"error: slab: {source}: {error}")
+        from .calibrate import command_line_error
+        raise command_line_error(f"slab: {source}", error,
+                                 "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else
+                                 "the slab's box is fixed; use a model with a shorter cutoff")
     return parameters
 
 

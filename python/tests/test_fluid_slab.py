@@ -136,6 +136,18 @@ def test_a_bad_fluid_is_refused_in_one_line_before_anything_runs(command, fluid,
     assert not output.exists() and capsys.readouterr().out == ""
 
 
+def test_a_cutoff_too_long_for_the_slab_s_box_names_the_options_that_shorten_it(tmp_path):
+    """The slab's box is fixed (--quick or not): a --fluid whose cutoff does not fit is refused naming --neighbors
+    and --cutoff, not the Python API's cells, before anything runs."""
+    output = tmp_path / "out"
+    with pytest.raises(SystemExit) as error:
+        main(["slab", "--quick", "--fluid", "water", "--neighbors", "1e4", "--output", str(output)])
+    text = str(error.value)
+    assert text.startswith("error: slab: --fluid water: the box ") and "is less than twice the cutoff" in text
+    assert text.endswith("use fewer --neighbors (a smaller --cutoff)") and "cells" not in text
+    assert not output.exists()
+
+
 def test_a_bad_fluid_exits_with_status_1():
     result = subprocess.run([sys.executable, "-m", "openmmgendpde", "slab", "--fluid", "mercury"],
                             capture_output=True, text=True, timeout=60)

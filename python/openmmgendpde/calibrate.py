@@ -52,7 +52,7 @@ import openmm
 from openmm import unit
 
 from . import ESTIMATOR_NAMES, GenDPDEIntegrator, forked
-from .cli import add_json, add_platform, add_progress, platform_description, writable_file
+from .cli import add_json, add_platform, add_progress, command_line_error, platform_description, writable_file
 from .fluid import ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
 from .progress import Progress
@@ -789,24 +789,6 @@ def add_fluid_arguments(parser, default="water", cutoff=True):
                              f"--cutoff is given")
     if cutoff:
         parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
-
-
-#: The arguments of the Python API that the command line sets, as its errors name them, and the options that set them.
-_OPTIONS = {"num_particles = ": "--particles ", "molecules_per_particle = ": "--molecules-per-particle ",
-            "neighbors = ": "--neighbors ", "cutoff = ": "--cutoff "}
-
-
-def command_line_error(command, error, box_advice=None):
-    """A SystemExit (status 1) with the one-line error of the API's ValueError ``error``, worded for the command line:
-    the options instead of the Python arguments, and ``box_advice`` instead of the API's for a box too small for the
-    cutoff (the command line has no cells)."""
-    message = " ".join(str(error).split())
-    for name, option in _OPTIONS.items():
-        message = message.replace(name, option)
-    message = message.replace("; give cells for other boxes", "")
-    if box_advice:
-        message = message.replace("use more cells", box_advice)
-    return SystemExit(f"error: {command}: {message}")
 
 
 def parameters_from_arguments(arguments, command):

@@ -162,3 +162,21 @@ def add_frames(parser, purpose, default=None, default_text=None):
 def add_rounds(parser, default_text):
     """--rounds: alternating timing rounds; each subcommand resolves the default that ``default_text`` states."""
     parser.add_argument("--rounds", type=int, help=f"alternating timing rounds (default {default_text})")
+
+
+#: The arguments of the Python API that the command line sets, as its errors name them, and the options that set them.
+_OPTIONS = {"num_particles = ": "--particles ", "molecules_per_particle = ": "--molecules-per-particle ",
+            "neighbors = ": "--neighbors ", "cutoff = ": "--cutoff "}
+
+
+def command_line_error(command, error, box_advice=None):
+    """A SystemExit (status 1) with the one-line error of the API's ValueError ``error``, worded for the command line:
+    the options instead of the Python arguments, and ``box_advice`` instead of the API's for a box too small for the
+    cutoff (the command line has no cells)."""
+    message = " ".join(str(error).split())
+    for name, option in _OPTIONS.items():
+        message = message.replace(name, option)
+    message = message.replace("; give cells for other boxes", "")
+    if box_advice:
+        message = message.replace("use more cells", box_advice)
+    return SystemExit(f"error: {command}: {message}")

@@ -35,7 +35,7 @@ import openmm
 from openmm import app, unit
 
 from . import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
-from .cli import add_output, add_platform
+from .cli import add_output, add_platform, command_line_error
 from .model import fcc_box
 from .interfaces import partition_of_unity_volumes
 from .pressure import pressure_tensor
@@ -411,7 +411,6 @@ def fluid_parameters(arguments, cells):
     try:
         parameters.liquid(cells=cells)
     except ValueError as error:
-        from .calibrate import command_line_error
         raise command_line_error(f"slab: {source}", error,
                                  "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else
                                  "the slab's box is fixed; use a model with a shorter cutoff")

@@ -11,6 +11,9 @@ format (eam/alloy, metal units), then, on the same mixed liquid (openmmgendpde.b
    "Loop time", start-up excluded) against OpenMM's CPU platform with the same number of threads (VerletIntegrator,
    the same step), and prints the medians and the median of the per-round ratios.
 
+LAMMPS sorts its atoms spatially when a run starts; --cell-order numbers the plugin's particles cell by cell too
+(default: at random, as a long run has mixed them).
+
 Needs Debian's lammps and openmpi-bin (apt install lammps openmpi-bin). Usage:
 
     .venv/bin/python tools/compare_lammps.py [--particles 32000] [--ranks 2] [--steps 200] [--rounds 5]
@@ -72,6 +75,14 @@ def write_setfl(path, model, max_density):
         np.savetxt(stream, np.zeros(TABLE_POINTS), fmt="%.1f")
 
 
+def cell_order(positions, edge, cutoff):
+    """The permutation that numbers the particles cell by cell (cells of at least the cutoff, z-major), the layout
+    LAMMPS gives its own atoms: it sorts them spatially when a run starts and every 1000 steps (atom_modify sort)."""
+    cells = max(1, int(edge // cutoff))
+    index = np.floor(np.mod(positions, edge) / edge * cells).astype(np.int64) % cells
+    return np.lexsort((index[:, 0], index[:, 1], index[:, 2]))
+
+
 def write_data(path, positions, velocities, edge, mass, temperature=None):
     """A LAMMPS data file (A and A/ps): atomic style, or dpd style (id type theta x y z) given the particles'
     temperature (K; tools/compare_lammps_dpde.py)."""
@@ -126,6 +137,9 @@ def main():
     parser.add_argument("--steps", type=int, default=200, help="MD steps per timed run (default 200)")
     parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
     parser.add_argument("--pair-style", default="eam/alloy/opt", help="LAMMPS pair style (default eam/alloy/opt)")
+    parser.add_argument("--cell-order", action="store_true",
+                        help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
+                             "random, the layout a long run has mixed its particles into)")
     arguments = parser.parse_args()
     if shutil.which("lmp") is None or shutil.which("mpirun") is None:
         sys.exit("needs LAMMPS and MPI: apt install lammps openmpi-bin")
@@ -134,6 +148,9 @@ def main():
     positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
+    if arguments.cell_order:
+        order = cell_order(positions, edge, cutoff)
+        positions, velocities = positions[order], velocities[order]
     time_step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     integrator = openmm.VerletIntegrator(time_step)

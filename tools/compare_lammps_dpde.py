@@ -16,6 +16,10 @@ Alternating rounds: LAMMPS (its own "Loop time", start-up excluded) on 1 thread 
 LAMMPS), then the plugin's Isoenergetic step on Reference, on the CPU platform with 1 thread and with --threads
 threads. Prints the medians (and the spread) of the per-round ms/step and the median per-round ratios.
 
+LAMMPS sorts its atoms spatially when a run starts (and every 1000 steps), whatever their numbering; the plugin keeps
+the numbering it is given. --cell-order gives the plugin the same start, particles numbered cell by cell, to measure
+what the layout is worth.
+
 LAMMPS with DPD-REACT is not in Debian's binary package: build it from Debian's source package with
 tools/build_lammps_dpd_react.sh (about 4 minutes on 2 cores), which prints the path of `lmp`. Usage:
 
@@ -37,7 +41,7 @@ from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.benchmark_cpu import context_at, mixed_liquid
 from openmmgendpde.presets import liquid_argon
 
-from compare_lammps import KJ_PER_MOL_PER_EV, write_data   # (this directory: run as a script)
+from compare_lammps import KJ_PER_MOL_PER_EV, cell_order, write_data   # (this directory: run as a script)
 
 CUTOFF = 1.6839
 #: Boltzmann's constant in LAMMPS's metal units (eV/K)
@@ -105,6 +109,9 @@ def main():
     parser.add_argument("--steps", type=int, default=100, help="steps per timed run (default 100)")
     parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
     parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
+    parser.add_argument("--cell-order", action="store_true",
+                        help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
+                             "random, the layout a long run has mixed its particles into)")
     arguments = parser.parse_args()
     if arguments.threads < 1 or arguments.steps < 1 or arguments.rounds < 1:
         parser.error("--threads, --steps and --rounds must be >= 1")
@@ -119,6 +126,9 @@ def main():
     positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
+    if arguments.cell_order:
+        order = cell_order(positions, edge, cutoff)
+        positions, velocities = positions[order], velocities[order]
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     temperature = model.integrator.getTemperature().value_in_unit(unit.kelvin)
     candidates = {"Reference": ("Reference", None)} if not arguments.no_reference else {}
@@ -149,7 +159,8 @@ def main():
             for label, value in this_round.items():
                 times[label].append(value)
                 ratios[label].append(lammps_one / value)
-    print(f"N = {arguments.particles}, liquid argon R* = {CUTOFF}, {arguments.rounds} alternating rounds of "
+    layout = "numbered cell by cell" if arguments.cell_order else "numbered at random"
+    print(f"N = {arguments.particles}, liquid argon R* = {CUTOFF}, {layout}, {arguments.rounds} alternating rounds of "
           f"{arguments.steps} steps; ms per step, median (min-max); speed-up = LAMMPS DPD-E on 1 thread / candidate "
           f"(median of the per-round ratios):")
     print("| N | candidate | ms per step | speed-up over LAMMPS DPD-E, 1 thread |")

@@ -3,7 +3,10 @@
  *    bitwise CPU == Reference claim rests (the CPU platform's AVX2 gathers and the scalar core must round alike);
  *    checked in functions compiled for a processor with FMA, where the compiler would otherwise fuse;
  *  - the polynomial branch of the V-B integrals: the core's piece (chosen by frexp) and Estrin evaluation against
- *    a piece chosen from the bits of k and a Horner evaluation in long double, within 2 ulp.
+ *    a piece chosen from the bits of k and a Horner evaluation in long double, within 2 ulp;
+ *  - the temperature-dependent local equations of state (docs/theory.md section 11): every derivative against
+ *    central finite differences of the free energy f(theta, n) assembled here from the core's e and sigma, the
+ *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain.
  * (The accuracy of I and J against 40-digit quadrature is tested in python/tests/test_volume_estimators.py.) */
 
 #include "TestUtilities.h"
@@ -42,6 +45,119 @@ __attribute__((noinline)) double impulsePlain(double u0, double omegaR, double f
 
 bool sameBits(double a, double b) {
     return std::memcmp(&a, &b, sizeof(double)) == 0;
+}
+
+
+/* ---- Local equations of state f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln(theta/theta0)) ---- */
+
+struct LocalLaw {
+    int law;
+    double p[6];
+    const char* name;
+};
+
+struct LocalTerms {
+    int status;
+    double energy, entropy, pressureAtZero, thermalPressure;
+};
+
+LocalTerms localTerms(const LocalLaw& law, double n) {
+    LocalTerms t;
+    t.status = gendpdeLocalEquationOfState(law.law, n, law.p[0], law.p[1], law.p[2], law.p[3], law.p[4], law.p[5], -1,
+                                           &t.energy, &t.entropy, &t.pressureAtZero, &t.thermalPressure);
+    return t;
+}
+
+// The free energy per particle, from the core's e and sigma (the quantities differentiated below).
+double freeEnergy(const LocalLaw& law, double heatCapacity, double theta0, double theta, double n) {
+    const LocalTerms t = localTerms(law, n);
+    return t.energy - theta*t.entropy + heatCapacity*theta*(1 - std::log(theta/theta0));
+}
+
+void testLocalEquationsOfState() {
+    // Reduced units of the argon model (docs/theory.md section 9; k_B = 1): n0 = 1, the liquid's 85.31 MPa, B_T for
+    // gamma_T = 7 and kappa_T0 = 1, beta = alpha/kappa_T0 = 30 (alpha = 2.64e-3 1/K), theta0 = 125.7 K, C = 12.5;
+    // a van der Waals fluid with b n0 = 0.3 and five atoms' k.
+    const double heatCapacity = 12.5, theta0 = 0.01105;
+    const LocalLaw thermalTait{GENDPDE_EOS_TAIT_THERMAL, {1.0, 0.1271, 1.0/7, 7.0, 30.0, theta0}, "Tait with beta"};
+    const LocalLaw vanDerWaals{GENDPDE_EOS_VAN_DER_WAALS, {1.0, 0.3, 5.0, 0, 0, 0}, "van der Waals"};
+    for (const LocalLaw& law : {thermalTait, vanDerWaals})
+        for (double n : {0.6, 0.95, 1.0, 1.3, 2.2})
+            for (double theta : {0.5*theta0, theta0, 3*theta0, 40*theta0}) {
+                const std::string where = std::string(law.name) + " at n = " + std::to_string(n) + ", theta = "
+                                          + std::to_string(theta);
+                const LocalTerms t = localTerms(law, n);
+                ASSERT(t.status == GENDPDE_PARTICLE_VALID);
+                const double pressure = t.pressureAtZero + theta*t.thermalPressure;
+                // Central differences, step h: truncation ~ h^2 f'''/6, rounding ~ eps f/h; relative 1e-7 leaves a
+                // margin of 100 over both at these steps.
+                const double hn = 1e-4*n, ht = 1e-4*theta;
+                const double dfdn = (freeEnergy(law, heatCapacity, theta0, theta, n + hn)
+                                     - freeEnergy(law, heatCapacity, theta0, theta, n - hn))/(2*hn);
+                const double scale = std::abs(t.pressureAtZero) + theta*std::abs(t.thermalPressure);
+                assertClose(pressure, n*n*dfdn, 1e-7*scale, "pi = n^2 df/dn, " + where);
+                const double dfdt = (freeEnergy(law, heatCapacity, theta0, theta + ht, n)
+                                     - freeEnergy(law, heatCapacity, theta0, theta - ht, n))/(2*ht);
+                const double entropy = t.entropy + heatCapacity*std::log(theta/theta0);
+                assertClose(entropy, -dfdt, 1e-7*(std::abs(t.entropy) + heatCapacity), "s = -df/dtheta, " + where);
+                const double f = freeEnergy(law, heatCapacity, theta0, theta, n);
+                assertClose(t.energy + heatCapacity*theta, f - theta*dfdt,
+                            1e-7*(std::abs(t.energy) + heatCapacity*theta + theta*std::abs(t.entropy)),
+                            "u = f - theta df/dtheta, " + where);
+                const double d2fdt2 = (freeEnergy(law, heatCapacity, theta0, theta + ht, n) - 2*f
+                                       + freeEnergy(law, heatCapacity, theta0, theta - ht, n))/(ht*ht);
+                assertRelative(heatCapacity, -theta*d2fdt2, 1e-4, "C_V = -theta d2f/dtheta2, " + where);
+                // An isentropic compression: the energy u(s, n) = e(n) + C theta(s, n) changes by the work pi dn/n^2
+                // (du = -pi dV), and the new state has the old entropy.
+                double u[2], thetaAfter[2];
+                for (int side = 0; side < 2; side++) {
+                    const LocalTerms moved = localTerms(law, side == 0 ? n - hn : n + hn);
+                    const double thermal = gendpdeIsentropicThermalEnergy(heatCapacity*theta,
+                                                                          moved.entropy - t.entropy, heatCapacity);
+                    u[side] = moved.energy + thermal;
+                    thetaAfter[side] = thermal/heatCapacity;
+                }
+                assertClose(pressure/(n*n), (u[1] - u[0])/(2*hn), 1e-7*scale/(n*n), "du/dn at fixed s, " + where);
+                const double np = n + hn, htp = 1e-4*thetaAfter[1];
+                const double entropyAfter = -(freeEnergy(law, heatCapacity, theta0, thetaAfter[1] + htp, np)
+                                              - freeEnergy(law, heatCapacity, theta0, thetaAfter[1] - htp, np))/(2*htp);
+                assertClose(entropy, entropyAfter, 1e-7*(std::abs(t.entropy) + heatCapacity), "s kept, " + where);
+                // dtheta/dn at fixed s = theta (dpi/dtheta)_n/(n^2 C_V): the adiabatic heating of a compression.
+                assertRelative(theta*t.thermalPressure/(n*n*heatCapacity), (thetaAfter[1] - thetaAfter[0])/(2*hn),
+                               1e-6, "dtheta/dn at fixed s, " + where);
+            }
+
+    // Closed forms, written out independently.
+    const LocalTerms atReference = localTerms(thermalTait, 1.0);
+    assertRelative(0.1271, atReference.pressureAtZero + theta0*atReference.thermalPressure, 1e-15, "pi(theta0, n0)");
+    ASSERT(atReference.thermalPressure == 30.0);
+    for (double n : {0.2, 1.0, 3.0}) {
+        const LocalTerms t = localTerms(vanDerWaals, n);
+        const double theta = 0.4;
+        assertRelative(5.0*theta*n/(1 - 0.3*n) - n*n, t.pressureAtZero + theta*t.thermalPressure, 1e-14,
+                       "van der Waals pi at n = " + std::to_string(n));
+        assertRelative(-n, t.energy, 1e-15, "van der Waals e at n = " + std::to_string(n));
+    }
+
+    // The Tait law is gendpdeTait to the bit, and so is the thermal law with beta = 0.
+    const LocalLaw tait{GENDPDE_EOS_TAIT, {1.0, 0.1271, 1.0/7, 7.0, 0, 0}, "Tait"};
+    const LocalLaw taitNoBeta{GENDPDE_EOS_TAIT_THERMAL, {1.0, 0.1271, 1.0/7, 7.0, 0.0, theta0}, "Tait, beta = 0"};
+    for (double n : {0.3, 0.97, 1.0, 1.8}) {
+        double pressure, energy;
+        gendpdeTait(n, 1.0, 0.1271, 1.0/7, 7.0, -1, &pressure, &energy);
+        for (const LocalLaw& law : {tait, taitNoBeta}) {
+            const LocalTerms t = localTerms(law, n);
+            ASSERT(t.status == GENDPDE_PARTICLE_VALID);
+            ASSERT(sameBits(pressure, t.pressureAtZero) && sameBits(energy, t.energy));
+            ASSERT(t.entropy == 0 && t.thermalPressure == 0);
+        }
+    }
+
+    // The domain: van der Waals needs 0 < n < 1/b; a Tait power that overflows is reported as such.
+    for (double n : {1/0.3, 4.0, 0.0, -1.0, std::nan("")})
+        ASSERT(localTerms(vanDerWaals, n).status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN);
+    ASSERT(localTerms(vanDerWaals, 0.999/0.3).status == GENDPDE_PARTICLE_VALID);
+    ASSERT(localTerms(thermalTait, 1e300).status == GENDPDE_PARTICLE_OVERFLOW);
 }
 
 } // namespace
@@ -110,5 +226,6 @@ int main() {
     return runTestProgram([]() {
         testNoContraction();
         testPolynomialBranch();
+        testLocalEquationsOfState();
     });
 }

@@ -40,6 +40,7 @@
 #define GENDPDE_PARTICLE_VALID 0
 #define GENDPDE_PARTICLE_NO_NEIGHBOR 1   /* V-A and n0 = 0: the volume 1/n0 is undefined */
 #define GENDPDE_PARTICLE_OVERFLOW 2      /* the equation of state is not finite at the particle's density */
+#define GENDPDE_PARTICLE_OUTSIDE_DOMAIN 3 /* the density is outside the equation of state's domain (0 < n < 1/b) */
 
 /* ---- Weights (sections 2, 5; V-C's moment weight: docs/interfaces.md) ------------------------------------------- */
 
@@ -319,6 +320,71 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
     *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
     *momentForceScale = 2*((*pressure)*momentDerivative);
     return status;
+}
+
+/* ---- Temperature-dependent equations of state (section 11) ----------------------------------------------------- */
+
+/* The local equations of state of the form f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln(theta/theta0)). */
+#define GENDPDE_EOS_TAIT 0           /* sigma = 0: today's Tait law, pi(n) */
+#define GENDPDE_EOS_TAIT_THERMAL 1   /* pi = pi_Tait(n) + beta (theta - theta0) */
+#define GENDPDE_EOS_VAN_DER_WAALS 2  /* pi = k theta n/(1 - b n) - a n^2 */
+
+/**
+ * The density-dependent parts of a free energy per particle
+ *   f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln(theta/theta0))
+ * whose heat capacity C (energy/temperature, per particle) does not depend on theta or n (section 11). Then
+ *   u = e(n) + C theta,   s = sigma(n) + C ln(theta/theta0),   pi = n^2 df/dn = pressureAtZero + theta thermalPressure,
+ * with pressureAtZero = n^2 e'(n) and thermalPressure = -n^2 sigma'(n) = (dpi/dtheta) at fixed n (pressure/
+ * temperature). Results through pointers: e (energy), sigma (energy/temperature, up to a constant), pressureAtZero,
+ * thermalPressure. Parameters by law (pressure energy/length^3, density 1/length^3):
+ *   GENDPDE_EOS_TAIT:          p0..p3 = n0, pi0, B_T, gamma_T (gendpdeTait); e = f_Tait, sigma = 0;
+ *   GENDPDE_EOS_TAIT_THERMAL:  p0..p5 = n0, pi0, B_T, gamma_T, beta, theta0; e = f_Tait(n) + beta theta0/n,
+ *                              sigma = beta/n, so pi = pi_Tait(n) + beta (theta - theta0) and alpha = kappa_T0 beta at
+ *                              (n0, theta0);
+ *   GENDPDE_EOS_VAN_DER_WAALS: p0..p2 = a (energy length^3), b (length^3), k (energy/temperature); e = -a n,
+ *                              sigma = k ln(1/(b n) - 1), defined for 0 < n < 1/b.
+ * integerPower as for gendpdeTait (Tait laws only). Returns GENDPDE_PARTICLE_VALID, GENDPDE_PARTICLE_OUTSIDE_DOMAIN
+ * (van der Waals: n <= 0 or b n >= 1) or GENDPDE_PARTICLE_OVERFLOW (a result not finite).
+ */
+GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GENDPDE_REAL p0, GENDPDE_REAL p1,
+        GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, GENDPDE_REAL* energy,
+        GENDPDE_REAL* entropy, GENDPDE_REAL* pressureAtZero, GENDPDE_REAL* thermalPressure) {
+    if (law == GENDPDE_EOS_VAN_DER_WAALS) {
+        const GENDPDE_REAL excluded = p1*density;
+        if (!(density > 0 && excluded < 1)) {
+            *energy = *entropy = *pressureAtZero = *thermalPressure = 0;
+            return GENDPDE_PARTICLE_OUTSIDE_DOMAIN;
+        }
+        *energy = -p0*density;
+        *entropy = p2*log((1 - excluded)/excluded);
+        *pressureAtZero = -p0*density*density;
+        *thermalPressure = p2*density/(1 - excluded);
+    }
+    else {
+        gendpdeTait(density, p0, p1, p2, p3, integerPower, pressureAtZero, energy);
+        if (law == GENDPDE_EOS_TAIT_THERMAL) {
+            *energy += p4*p5/density;
+            *pressureAtZero -= p4*p5;
+            *entropy = p4/density;
+            *thermalPressure = p4;
+        }
+        else
+            *entropy = *thermalPressure = 0;
+    }
+    if (!(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*entropy) && GENDPDE_ISFINITE(*pressureAtZero)
+          && GENDPDE_ISFINITE(*thermalPressure)))
+        return GENDPDE_PARTICLE_OVERFLOW;
+    return GENDPDE_PARTICLE_VALID;
+}
+
+/**
+ * The thermal energy C theta a particle has after a change of its density at fixed entropy (section 11): with
+ * s = sigma(n) + C ln(theta/theta0) fixed, C theta' = C theta exp(-(sigma(n') - sigma(n))/C). thermalEnergy is
+ * C theta (energy), entropyChange sigma(n') - sigma(n) (energy/temperature), heatCapacity C. Exact for any change.
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEnergy, GENDPDE_REAL entropyChange,
+                                                         GENDPDE_REAL heatCapacity) {
+    return thermalEnergy*exp(-entropyChange/heatCapacity);
 }
 
 /* ---- Pair forces and virials (section 4) ------------------------------------------------------------------------ */

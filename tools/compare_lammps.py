@@ -75,12 +75,23 @@ def write_setfl(path, model, max_density):
         np.savetxt(stream, np.zeros(TABLE_POINTS), fmt="%.1f")
 
 
-def cell_order(positions, edge, cutoff):
-    """The permutation that numbers the particles cell by cell (cells of at least the cutoff, z-major), the layout
-    LAMMPS gives its own atoms: it sorts them spatially when a run starts and every 1000 steps (atom_modify sort)."""
+def add_layout_argument(parser):
+    """--cell-order, for both comparison tools."""
+    parser.add_argument("--cell-order", action="store_true",
+                        help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
+                             "random, the layout a long run has mixed its particles into)")
+
+
+def laid_out(positions, velocities, edge, cutoff, cell_order):
+    """The particles numbered cell by cell (cells of at least the cutoff, z-major) if cell_order, else as given: the
+    layout LAMMPS gives its own atoms, which it sorts spatially when a run starts and every 1000 steps (atom_modify
+    sort)."""
+    if not cell_order:
+        return positions, velocities
     cells = max(1, int(edge // cutoff))
     index = np.floor(np.mod(positions, edge) / edge * cells).astype(np.int64) % cells
-    return np.lexsort((index[:, 0], index[:, 1], index[:, 2]))
+    order = np.lexsort((index[:, 0], index[:, 1], index[:, 2]))
+    return positions[order], velocities[order]
 
 
 def write_data(path, positions, velocities, edge, mass, temperature=None):
@@ -137,9 +148,7 @@ def main():
     parser.add_argument("--steps", type=int, default=200, help="MD steps per timed run (default 200)")
     parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
     parser.add_argument("--pair-style", default="eam/alloy/opt", help="LAMMPS pair style (default eam/alloy/opt)")
-    parser.add_argument("--cell-order", action="store_true",
-                        help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
-                             "random, the layout a long run has mixed its particles into)")
+    add_layout_argument(parser)
     arguments = parser.parse_args()
     if shutil.which("lmp") is None or shutil.which("mpirun") is None:
         sys.exit("needs LAMMPS and MPI: apt install lammps openmpi-bin")
@@ -148,9 +157,7 @@ def main():
     positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
-    if arguments.cell_order:
-        order = cell_order(positions, edge, cutoff)
-        positions, velocities = positions[order], velocities[order]
+    positions, velocities = laid_out(positions, velocities, edge, cutoff, arguments.cell_order)
     time_step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     integrator = openmm.VerletIntegrator(time_step)

@@ -41,7 +41,8 @@ from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.benchmark_cpu import context_at, mixed_liquid
 from openmmgendpde.presets import liquid_argon
 
-from compare_lammps import KJ_PER_MOL_PER_EV, cell_order, write_data   # (this directory: run as a script)
+# (this directory: run as a script)
+from compare_lammps import KJ_PER_MOL_PER_EV, add_layout_argument, laid_out, write_data
 
 CUTOFF = 1.6839
 #: Boltzmann's constant in LAMMPS's metal units (eV/K)
@@ -109,9 +110,7 @@ def main():
     parser.add_argument("--steps", type=int, default=100, help="steps per timed run (default 100)")
     parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
     parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
-    parser.add_argument("--cell-order", action="store_true",
-                        help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
-                             "random, the layout a long run has mixed its particles into)")
+    add_layout_argument(parser)
     arguments = parser.parse_args()
     if arguments.threads < 1 or arguments.steps < 1 or arguments.rounds < 1:
         parser.error("--threads, --steps and --rounds must be >= 1")
@@ -126,9 +125,7 @@ def main():
     positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
-    if arguments.cell_order:
-        order = cell_order(positions, edge, cutoff)
-        positions, velocities = positions[order], velocities[order]
+    positions, velocities = laid_out(positions, velocities, edge, cutoff, arguments.cell_order)
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     temperature = model.integrator.getTemperature().value_in_unit(unit.kelvin)
     candidates = {"Reference": ("Reference", None)} if not arguments.no_reference else {}

@@ -101,14 +101,19 @@ def summary(values):
     return f"{statistics.median(values):.2f} ({min(values):.2f}-{max(values):.2f})"
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+def add_run_arguments(parser, rounds):
+    """--lmp, --particles, --steps and --rounds, for this tool and tools/lammps_layout.py."""
     parser.add_argument("--lmp", default=os.environ.get("GENDPDE_LAMMPS", "lmp"),
                         help="a LAMMPS executable with DPD-REACT (default $GENDPDE_LAMMPS or lmp)")
     parser.add_argument("--particles", type=int, default=32000)
-    parser.add_argument("--threads", type=int, default=2, help="the second thread count (default 2)")
     parser.add_argument("--steps", type=int, default=100, help="steps per timed run (default 100)")
-    parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
+    parser.add_argument("--rounds", type=int, default=rounds, help=f"alternating rounds (default {rounds})")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    add_run_arguments(parser, rounds=5)
+    parser.add_argument("--threads", type=int, default=2, help="the second thread count (default 2)")
     parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
     add_layout_argument(parser)
     arguments = parser.parse_args()

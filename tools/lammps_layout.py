@@ -21,7 +21,7 @@ from openmmgendpde.presets import liquid_argon
 
 # (this directory: run as a script)
 from compare_lammps import laid_out, write_data
-from compare_lammps_dpde import CUTOFF, run_lammps, write_input
+from compare_lammps_dpde import CUTOFF, add_run_arguments, run_lammps, write_input
 
 #: label -> (numbered cell by cell, the atom_modify line added after read_data or None)
 CASES = {
@@ -34,11 +34,7 @@ CASES = {
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--lmp", default=os.environ.get("GENDPDE_LAMMPS", "lmp"),
-                        help="a LAMMPS executable with DPD-REACT (default $GENDPDE_LAMMPS or lmp)")
-    parser.add_argument("--particles", type=int, default=32000)
-    parser.add_argument("--steps", type=int, default=100, help="steps per timed run (default 100)")
-    parser.add_argument("--rounds", type=int, default=3, help="alternating rounds (default 3)")
+    add_run_arguments(parser, rounds=3)
     arguments = parser.parse_args()
     if arguments.steps < 1 or arguments.rounds < 1:
         parser.error("--steps and --rounds must be >= 1")

@@ -106,6 +106,8 @@ void testLocalEquationsOfState() {
                             "u = f - theta df/dtheta, " + where);
                 const double d2fdt2 = (freeEnergy(law, heatCapacity, theta0, theta + ht, n) - 2*f
                                        + freeEnergy(law, heatCapacity, theta0, theta - ht, n))/(ht*ht);
+                // The second difference rounds to ~ eps |f|/h^2, at most ~1e-6 of C/theta here (|f| < 2, h = 1e-4
+                // theta >= 5.5e-7); 1e-4 leaves a margin of 100.
                 assertRelative(heatCapacity, -theta*d2fdt2, 1e-4, "C_V = -theta d2f/dtheta2, " + where);
                 // An isentropic compression: the energy u(s, n) = e(n) + C theta(s, n) changes by the work pi dn/n^2
                 // (du = -pi dV), and the new state has the old entropy.

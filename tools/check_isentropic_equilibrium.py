@@ -24,6 +24,8 @@ import random
 
 L, ELL, A, B, K, C, KB = 4.0, 0.7, 0.5, 0.3, 1.0, 4.0, 1.0
 GAMMA, KAPPA, DT = 1.0, 0.3, 0.01
+#: the reduced mass of the pair (masses 1 and 1): the relative motion's kinetic energy is MU v^2/2
+MU = 0.5
 
 
 def density(x):
@@ -57,7 +59,7 @@ def wrap(x):
 
 
 def pair_update(x, velocity, eps, rng):
-    """One pair of the sweep (inverse masses 1 and 1, so 1/mu = 2): momentum, heating, conduction."""
+    """One pair of the sweep (inverse masses 1 and 1, 1/MU = 2): momentum, heating, conduction."""
     sign = 1.0 if x >= 0 else -1.0
     beta = [C / e for e in eps]
     inverse_sum = 1.0 / (beta[0] + beta[1])
@@ -65,7 +67,7 @@ def pair_update(x, velocity, eps, rng):
     friction_factor = KB * (beta[0] / eps[0] + beta[1] / eps[1]) * inverse_sum * inverse_sum
     friction = GAMMA * (1.0 + friction_factor)
     noise = math.sqrt(2 * GAMMA * pair_thermal_energy)
-    inverse_reduced_mass = 2.0
+    inverse_reduced_mass = 1.0 / MU
     u0 = sign * velocity
     friction_half = 0.5 * friction * DT
     implicit_factor = 1.0 / (1.0 + inverse_reduced_mass * friction_half)
@@ -86,27 +88,27 @@ def main():
     parser.add_argument("--seed", type=int, default=1)
     arguments = parser.parse_args()
     rng = random.Random(arguments.seed)
-    x, velocity, eps = 0.3, 0.0, [4.0, 4.0]     # velocity = dx/dt; kinetic energy mu v^2/2 with mu = 1/2
-    total = 0.25 * velocity ** 2 + 2 * energy(density(x)) + sum(eps)
+    x, velocity, eps = 0.3, 0.0, [4.0, 4.0]     # velocity = dx/dt
+    total = 0.5 * MU * velocity ** 2 + 2 * energy(density(x)) + sum(eps)
     bins = 20
     counts, blocks, block = [0] * bins, [], [0] * bins
     energies = []
     f = force(x, eps)
     for step in range(arguments.steps):
         velocity, eps = pair_update(x, velocity, eps, rng)
-        velocity += 0.5 * DT * f / 0.5
+        velocity += 0.5 * DT * f / MU
         n_old = density(x)
         x = wrap(x + DT * velocity)
         n_new = density(x)
         change = entropy(n_new) - entropy(n_old)
         eps = [e * math.exp(-change / C) for e in eps]
         f = force(x, eps)
-        velocity += 0.5 * DT * f / 0.5
+        velocity += 0.5 * DT * f / MU
         if step % 50 == 0 and step > 10000:
             k = min(int(abs(x) / (L / 2) * bins), bins - 1)
             counts[k] += 1
             block[k] += 1
-            energies.append(0.25 * velocity ** 2 + 2 * energy(density(x)) + sum(eps))
+            energies.append(0.5 * MU * velocity ** 2 + 2 * energy(density(x)) + sum(eps))
             if sum(block) == 100:
                 blocks.append(block)
                 block = [0] * bins

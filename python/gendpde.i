@@ -110,6 +110,47 @@ RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
 %apply double& OUTPUT { double& heatCapacity, double& friction, double& heatConduction };
 %apply double& OUTPUT { double& volume, double& derivative, double& value, double& pressure, double& freeEnergy };
 
+/* The equation-of-state getters (getEquationOfState, getTypeEquationOfState) return the law as an int (the enum's
+ * value, GenDPDEForce.TaitThermalExpansion...) and the parameters as a list of floats. */
+%typemap(in, numinputs=0) GenDPDEPlugin::GenDPDEForce::EquationOfState& law (GenDPDEPlugin::GenDPDEForce::EquationOfState temp) {
+    $1 = &temp;
+}
+%typemap(argout) GenDPDEPlugin::GenDPDEForce::EquationOfState& law {
+    %append_output(PyLong_FromLong((long) *$1));
+}
+%typemap(in, numinputs=0) std::vector<double>& parameters (std::vector<double> temp) {
+    $1 = &temp;
+}
+/* (SWIG would match the setters' const std::vector<double>& parameters to the typemaps above, qualifiers stripped:
+ * theirs take any sequence of numbers and return nothing.) */
+%typemap(in) const std::vector<double>& parameters (std::vector<double> temp) {
+    PyObject* sequence = PySequence_Fast($input, "parameters: expected a sequence of numbers");
+    if (sequence == NULL)
+        SWIG_fail;
+    for (Py_ssize_t k = 0; k < PySequence_Fast_GET_SIZE(sequence); k++) {
+        const double value = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(sequence, k));
+        if (PyErr_Occurred()) {
+            Py_DECREF(sequence);
+            SWIG_fail;
+        }
+        temp.push_back(value);
+    }
+    Py_DECREF(sequence);
+    $1 = &temp;
+}
+%typemap(typecheck) const std::vector<double>& parameters {
+    $1 = PySequence_Check($input) ? 1 : 0;
+}
+%typemap(argout) const std::vector<double>& parameters ""
+%typemap(argout) std::vector<double>& parameters {
+    PyObject* list = PyList_New($1->size());
+    if (list == NULL)
+        SWIG_fail;
+    for (size_t k = 0; k < $1->size(); k++)
+        PyList_SET_ITEM(list, k, PyFloat_FromDouble((*$1)[k]));
+    %append_output(list);
+}
+
 /* Particle types (getParticleTypes) become a dict {particle index: type}, a copy. */
 %typemap(out) const std::map<int, int>& {
     $result = PyDict_New();

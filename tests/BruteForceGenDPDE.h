@@ -39,6 +39,11 @@ struct Model {
     double cutoffScaling;
     double n0, pi0, bulkModulus, gammaT;
     std::vector<Tait> particleTait;   // per particle, for mixtures; empty: every particle has n0, pi0, B_T, gamma_T
+    /**
+     * If set, particle i's law at density n in place of Tait: its pressure pi and its term of the energy
+     * (temperature-dependent laws, docs/theory.md section 11; the test writes them out).
+     */
+    std::function<void(int i, double n, double& pressure, double& energy)> particleLaw;
     bool periodic;
     OpenMM::Vec3 box[3];
 };
@@ -162,8 +167,11 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
         const Tait t = model.particleTait.empty() ? Tait{model.n0, model.pi0, model.bulkModulus, model.gammaT}
                                                   : model.particleTait[i];
         double pressure = t.pi0 + t.bulkModulus*(std::pow(density/t.n0, t.gammaT) - 1.0);
-        result.energy += (t.bulkModulus - t.pi0)/density
-                       + t.bulkModulus/((t.gammaT - 1.0)*t.n0)*std::pow(density/t.n0, t.gammaT - 1.0);
+        double energy = (t.bulkModulus - t.pi0)/density
+                      + t.bulkModulus/((t.gammaT - 1.0)*t.n0)*std::pow(density/t.n0, t.gammaT - 1.0);
+        if (model.particleLaw)
+            model.particleLaw(i, density, pressure, energy);
+        result.energy += energy;
         result.volume[i] = V;
         result.pressure[i] = pressure;
         coefficient[i] = n0i > 0.0 ? pressure*dV : 0.0;

@@ -25,17 +25,6 @@ namespace IntegratorTests {
 
 using namespace TestScenes;
 
-// Liquid argon (internal/LiquidArgon.h) at R* = 1.6839 in OpenMM units.
-const double boltzmann = Physics::Boltzmann;                                           // kJ/(mol K)
-const double energyUnit = LiquidArgon::energy*6.02214076e23/1000.0;                    // u (kJ/mol)
-const double timeUnit = lengthUnit*std::sqrt(particleMass/energyUnit);                 // L sqrt(m/u) (ps)
-const double temperatureUnit = energyUnit/boltzmann;                                   // u/k_B (K)
-const LiquidArgonCutoff argonCutoff = LiquidArgon::getCutoff(1);                       // R* = 1.6839
-const double friction = argonCutoff.friction*particleMass/timeUnit;                    // gamma (amu/ps)
-const double heatConduction = argonCutoff.heatConduction*energyUnit*temperatureUnit/timeUnit;   // kJ K/(mol ps)
-const double heatCapacity = LiquidArgon::heatCapacity*boltzmann;                       // C_V (kJ/(mol K))
-const double temperature = LiquidArgon::temperature*temperatureUnit;                   // T0 (K)
-const double stepSize = 0.01*timeUnit;                                                 // dt* = 0.01 (ps)
 
 struct Run {
     Scene scene;

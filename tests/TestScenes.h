@@ -5,6 +5,7 @@
 
 #include "BruteForceGenDPDE.h"
 #include "GenDPDEForce.h"
+#include "internal/GenDPDEPhysics.h"
 #include "internal/LiquidArgon.h"
 #include "OpenMM.h"
 #include <cmath>
@@ -24,6 +25,18 @@ const double lengthUnit = LiquidArgon::length;                                  
 const double cutoff = LiquidArgon::getCutoff(1).cutoff*lengthUnit;               // nm
 const double referenceDensity = LiquidArgon::density/(lengthUnit*lengthUnit*lengthUnit);   // nm^-3
 const double particleMass = LiquidArgon::particleMass*6.02214076e23*1000.0;     // amu
+
+// The integrator tests' liquid argon: units, transport coefficients at R* = 1.6839, C_V, T0 and dt* = 0.01.
+const double boltzmann = Physics::Boltzmann;                                           // kJ/(mol K)
+const double energyUnit = LiquidArgon::energy*6.02214076e23/1000.0;                    // u (kJ/mol)
+const double timeUnit = lengthUnit*std::sqrt(particleMass/energyUnit);                 // L sqrt(m/u) (ps)
+const double temperatureUnit = energyUnit/boltzmann;                                   // u/k_B (K)
+const LiquidArgonCutoff argonCutoff = LiquidArgon::getCutoff(1);                       // R* = 1.6839
+const double friction = argonCutoff.friction*particleMass/timeUnit;                    // gamma (amu/ps)
+const double heatConduction = argonCutoff.heatConduction*energyUnit*temperatureUnit/timeUnit;   // kJ K/(mol ps)
+const double heatCapacity = LiquidArgon::heatCapacity*boltzmann;                       // C_V (kJ/(mol K))
+const double temperature = LiquidArgon::temperature*temperatureUnit;                   // T0 (K)
+const double stepSize = 0.01*timeUnit;                                                 // dt* = 0.01 (ps)
 
 /** A System with only a GenDPDEForce, and positions. */
 struct Scene {

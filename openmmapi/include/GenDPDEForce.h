@@ -4,6 +4,7 @@
 #include "openmm/Context.h"
 #include "openmm/Force.h"
 #include <map>
+#include <string>
 #include <vector>
 
 namespace GenDPDEPlugin {
@@ -44,6 +45,12 @@ struct GenDPDEObservables;
  * every neighbour whatever its type: the volumes V_i partition the space the particles fill, so the mixture's
  * volume is the sum of its particles' volumes and each particle's pressure follows from its own.
  *
+ * Temperature (docs/theory.md section 11). A type may instead have a local equation of state that depends on the
+ * particle's own temperature theta_i (setEquationOfState(), addTypeEquationOfState()): a Tait law with thermal
+ * expansion, or van der Waals. The particles' temperatures then come from the GenDPDEIntegrator, the conservative
+ * motion keeps each particle's entropy, and U counts the thermal energy a compression has done since the integrator
+ * last updated eps_i, so that K + U + sum_i eps_i stays the conserved total and the force stays -dU/dr.
+ *
  * All parameters can be set before the Context is created. The estimator, the cutoff scaling and the Tait
  * parameters (per type too) can also be changed afterwards with updateParametersInContext(); the cutoff distance,
  * the nonbonded method and the particle types cannot. The per-particle observables (densities, volumes, pressures, virial tensors) and
@@ -73,6 +80,29 @@ public:
          * surfaces and droplets hold instead of foaming (docs/interfaces.md).
          */
         VC = 2
+    };
+    /**
+     * The local equation of state of a particle type (docs/theory.md section 11). Every law is one free energy per
+     * particle f(theta, n) = e(n) - theta sigma(n) + C_V theta (1 - ln(theta/theta0)), with C_V the particle's heat
+     * capacity on the GenDPDEIntegrator, so that pi = n^2 df/dn = pi_0(n) + theta pi_theta(n), and the conservative
+     * motion is isentropic: a compressed particle heats up as dtheta/dn = theta pi_theta/(n^2 C_V). A law that depends
+     * on temperature needs a GenDPDEIntegrator (it holds theta_i), on the Reference or CPU platform.
+     */
+    enum EquationOfState {
+        /** pi(n) from the Tait parameters alone (no parameters of its own): no temperature dependence. */
+        Tait = 0,
+        /**
+         * The Tait law with a thermal pressure, pi = pi_Tait(n) + beta (theta - theta0). Parameters {beta, theta0}:
+         * beta = (dpi/dtheta)_n in kJ/mol/nm^3/K, finite (alpha/kappa_T of the fluid at the reference state),
+         * theta0 > 0 in K, the temperature at which pi is the Tait law's.
+         */
+        TaitThermalExpansion = 1,
+        /**
+         * van der Waals, pi = k theta n/(1 - b n) - a n^2, for 0 < n < 1/b (a particle outside stops the simulation
+         * with an error naming it and the step). Parameters {a, b, k}: a >= 0 in kJ/mol nm^3, b > 0 in nm^3,
+         * k > 0 in kJ/(mol K) (k_B for a particle that is one molecule).
+         */
+        VanDerWaals = 2
     };
     /**
      * Create a GenDPDEForce.
@@ -151,6 +181,32 @@ public:
     /** Change an entry of addTypeParameters() (same units and checks). */
     void setTypeParameters(int index, int type, double referenceDensity, double referencePressure,
                            double bulkModulus, double exponent);
+    /**
+     * Set the local equation of state of every type without an entry of addTypeEquationOfState(): the law and its
+     * parameters (see EquationOfState for their number, units and ranges). The Tait parameters of the law are the
+     * type's (addTypeParameters()) or the force's (setTaitParameters()). Default: Tait, no parameters.
+     */
+    void setEquationOfState(EquationOfState law, const std::vector<double>& parameters);
+    /** Get the local equation of state of the types without an entry: the law and its parameters. */
+    void getEquationOfState(EquationOfState& law, std::vector<double>& parameters) const;
+    /**
+     * Give a type its own local equation of state (see setEquationOfState()). Each type may appear in one entry; the
+     * type must be one that some particle has when a Context is created.
+     *
+     * @return the index of the entry
+     */
+    int addTypeEquationOfState(int type, EquationOfState law, const std::vector<double>& parameters);
+    /** The number of entries added with addTypeEquationOfState(). */
+    int getNumTypeEquationsOfState() const;
+    /** Get an entry of addTypeEquationOfState(): its type, law and parameters. */
+    void getTypeEquationOfState(int index, int& type, EquationOfState& law, std::vector<double>& parameters) const;
+    /** Change an entry of addTypeEquationOfState() (same checks). */
+    void setTypeEquationOfState(int index, int type, EquationOfState law, const std::vector<double>& parameters);
+    /**
+     * Whether some law of this force depends on temperature (any law but Tait, as the default or in an entry): the
+     * force then needs a GenDPDEIntegrator, which holds the particles' temperatures.
+     */
+    bool dependsOnTemperature() const;
     /** Returns true if the force uses periodic boundaries (nonbonded method CutoffPeriodic). */
     bool usesPeriodicBoundaryConditions() const override;
     /**
@@ -196,6 +252,16 @@ private:
         double referenceDensity, referencePressure, bulkModulus, exponent;
     };
     std::vector<TypeEntry> typeParameters;
+    struct LawEntry {
+        int type;
+        EquationOfState law;
+        std::vector<double> parameters;
+    };
+    LawEntry defaultLaw;                // type ignored
+    std::vector<LawEntry> typeLaws;
+    /** Refuse a law or parameters outside the allowed ranges; entry names what is checked. */
+    static void checkLaw(const std::string& entry, EquationOfState law, const std::vector<double>& parameters);
+    void checkTypeLaw(int index, int type, EquationOfState law, const std::vector<double>& parameters) const;
     void checkTypeEntry(int index, int type, double referenceDensity, double referencePressure, double bulkModulus,
                         double exponent) const;
 };

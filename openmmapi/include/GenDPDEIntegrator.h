@@ -244,9 +244,18 @@ protected:
     void createCheckpoint(std::ostream& stream) const override;
     void loadCheckpoint(std::istream& stream) override;
     void serializeParameters(OpenMM::SerializationNode& node) const override;
+    /** Setting the positions forgets the densities the internal energies belong to (docs/theory.md section 11). */
+    void stateChanged(OpenMM::State::DataType changed) override;
     void deserializeParameters(const OpenMM::SerializationNode& node) override;
 private:
     friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures and initialEnergies, the initial condition
+    friend class GenDPDEIntegratorUtilities;   // lends the kernel's thermal state to a GenDPDEForce's kernel
+    /**
+     * The kernel's eps_i, brought to the current positions first if a GenDPDEForce's law depends on temperature
+     * (an evaluation of the integration groups, whose thermal state the kernel then keeps; docs/theory.md section 11).
+     */
+    const std::vector<double>& currentInternalEnergies() const;
+    bool hasThermalForce = false;   // the bound Context has a GenDPDEForce whose law depends on temperature
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;

@@ -5,6 +5,8 @@
 #include "GenDPDEIntegrator.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "openmm/KernelImpl.h"
+#include "openmm/OpenMMException.h"
+#include "openmm/Platform.h"
 #include "openmm/System.h"
 #include "openmm/internal/ContextImpl.h"
 #include <map>
@@ -72,6 +74,21 @@ private:
     long long foundStep = -1;
 };
 
+/**
+ * The particles' thermal state as the integrator kernel holds it, read by the force kernel of the same platform when
+ * some particle's equation of state depends on temperature (docs/theory.md section 11; host platforms). Valid until
+ * the integrator's state next changes.
+ */
+struct GenDPDEThermalState {
+    bool isothermal;                 // Isothermal mode: every particle at temperature
+    double temperature;              // the bath temperature T (K)
+    const double* internalEnergies;  // eps_i = C_V theta_i (kJ/mol) at the densities where sigma was densityEntropies
+    const double* densityEntropies;  // sigma(n_i) of those densities (kJ/(mol K)), or null if not known (positions or
+                                     // energies set since): then eps_i belongs to the current positions
+    const int* particleClass;        // the class of each particle (IntegratorTypeTables)
+    const double* classHeatCapacity; // C_V of each class (kJ/(mol K))
+};
+
 /** The kernel that evaluates a GenDPDEForce. */
 class CalcGenDPDEForceKernel : public OpenMM::KernelImpl {
 public:
@@ -97,6 +114,15 @@ public:
      */
     virtual GenDPDEPairSource* getPairSource() {
         return nullptr;
+    }
+    /**
+     * A force whose laws depend on temperature (docs/theory.md section 11), host platforms: each particle's C_V theta_i
+     * and sigma(n_i) at the positions of the last evaluation, which the integrator keeps as its state
+     * (IntegrateGenDPDEStepKernel::keepThermalState). Returns false (and sets nothing) if this kernel has none.
+     */
+    virtual bool getThermalState(const std::vector<double>*& thermalEnergies,
+                                 const std::vector<double>*& densityEntropies) {
+        return false;
     }
 };
 
@@ -149,8 +175,28 @@ public:
     }
     /** The kinetic energy with on-step velocities v + (dt/2) F/m (kJ/mol). */
     virtual double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) = 0;
+    /** eps_i (kJ/mol), at the densities of the last keepThermalState() if a law depends on temperature. */
     virtual const std::vector<double>& getInternalEnergies() const = 0;
+    /** Set eps_i (kJ/mol) as belonging to the current positions (forgets the sigma_i of keepThermalState()). */
     virtual void setInternalEnergies(const std::vector<double>& internalEnergies) = 0;
+    /**
+     * The thermal state a force kernel whose laws depend on temperature reads (docs/theory.md section 11). A platform
+     * that cannot provide it (the GPU platforms, for now) throws, saying so.
+     */
+    virtual GenDPDEThermalState getThermalState(const GenDPDEIntegrator& integrator) {
+        throw OpenMM::OpenMMException("GenDPDEForce: equations of state that depend on temperature run on the "
+                                      "Reference and CPU platforms only (not yet on " + getPlatform().getName() + ")");
+    }
+    /**
+     * Keep the particles' thermal state found by a force evaluation at the current positions: eps_i = thermalEnergies
+     * (C_V theta_i, kJ/mol) and the sigma(n_i) they belong to (kJ/(mol K)).
+     */
+    virtual void keepThermalState(const std::vector<double>& thermalEnergies,
+                                  const std::vector<double>& densityEntropies) {
+    }
+    /** Forget the sigma_i of keepThermalState(): eps_i now belongs to the current positions (they were set). */
+    virtual void forgetDensityEntropies() {
+    }
     virtual int getSeed() const = 0;
     virtual void setSeed(int seed) = 0;
 };

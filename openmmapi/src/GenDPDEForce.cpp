@@ -29,7 +29,7 @@ GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0),
         referencePressure((LiquidArgon::pressure - LiquidArgon::density*LiquidArgon::temperature)*argonPressureUnit),
         bulkModulus(argonPressureUnit/(LiquidArgon::taitExponent*LiquidArgon::compressibility)),   // 1/(gamma_T kappa_T0)
         exponent(LiquidArgon::taitExponent),
-        nonbondedMethod(CutoffPeriodic), estimator(VB) {
+        nonbondedMethod(CutoffPeriodic), estimator(VB), defaultLaw{0, Tait, {}} {
     setCutoffDistance(cutoff);
 }
 
@@ -160,6 +160,85 @@ void GenDPDEForce::setTypeParameters(int index, int type, double referenceDensit
     requireIndex("GenDPDEForce", "type parameters index", index, typeParameters.size());
     checkTypeEntry(index, type, referenceDensity, referencePressure, bulkModulus, exponent);
     typeParameters[index] = {type, referenceDensity, referencePressure, bulkModulus, exponent};
+}
+
+void GenDPDEForce::checkLaw(const std::string& entry, EquationOfState law, const std::vector<double>& parameters) {
+    // The parameters each law takes, with their ranges (GenDPDEForce.h, EquationOfState).
+    std::vector<std::pair<std::string, Range>> expected;
+    if (law == TaitThermalExpansion)
+        expected = {{"thermal pressure coefficient beta", Ranges::thermalPressureCoefficient},
+                    {"reference temperature theta0", Ranges::temperature}};
+    else if (law == VanDerWaals)
+        expected = {{"van der Waals attraction a", Ranges::vanDerWaalsAttraction},
+                    {"van der Waals excluded volume b", Ranges::vanDerWaalsExcludedVolume},
+                    {"van der Waals entropy scale k", Ranges::heatCapacity}};
+    else if (law != Tait)
+        reject(entry, "equation of state", (int) law, "", "Tait (0), TaitThermalExpansion (1) or VanDerWaals (2)");
+    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
+    if (parameters.size() != expected.size()) {
+        std::string list;
+        for (const auto& parameter : expected)
+            list += (list.empty() ? "" : ", ") + parameter.first;
+        throw OpenMMException(entry + ": the " + names[law] + " equation of state takes " + std::to_string(expected.size())
+                              + " parameters" + (list.empty() ? "" : " (" + list + ")") + ", not "
+                              + std::to_string(parameters.size()));
+    }
+    for (size_t k = 0; k < expected.size(); k++)
+        requireInRange(entry, expected[k].first, parameters[k], expected[k].second);
+}
+
+void GenDPDEForce::setEquationOfState(EquationOfState law, const std::vector<double>& parameters) {
+    checkLaw("GenDPDEForce", law, parameters);
+    defaultLaw = {0, law, parameters};
+}
+
+void GenDPDEForce::getEquationOfState(EquationOfState& law, std::vector<double>& parameters) const {
+    law = defaultLaw.law;
+    parameters = defaultLaw.parameters;
+}
+
+void GenDPDEForce::checkTypeLaw(int index, int type, EquationOfState law, const std::vector<double>& parameters) const {
+    const std::string entry = "GenDPDEForce type equation of state " + std::to_string(index) + " (type "
+                              + std::to_string(type) + ")";
+    checkLaw(entry, law, parameters);
+    for (int other = 0; other < (int) typeLaws.size(); other++)
+        if (other != index && typeLaws[other].type == type)
+            throw OpenMMException(entry + ": type " + std::to_string(type) + " already has an equation of state (entry "
+                                  + std::to_string(other) + "); change that entry with setTypeEquationOfState()");
+}
+
+int GenDPDEForce::addTypeEquationOfState(int type, EquationOfState law, const std::vector<double>& parameters) {
+    checkTypeLaw(typeLaws.size(), type, law, parameters);
+    typeLaws.push_back({type, law, parameters});
+    return typeLaws.size() - 1;
+}
+
+int GenDPDEForce::getNumTypeEquationsOfState() const {
+    return typeLaws.size();
+}
+
+void GenDPDEForce::getTypeEquationOfState(int index, int& type, EquationOfState& law,
+                                          std::vector<double>& parameters) const {
+    requireIndex("GenDPDEForce", "type equation of state index", index, typeLaws.size());
+    type = typeLaws[index].type;
+    law = typeLaws[index].law;
+    parameters = typeLaws[index].parameters;
+}
+
+void GenDPDEForce::setTypeEquationOfState(int index, int type, EquationOfState law,
+                                          const std::vector<double>& parameters) {
+    requireIndex("GenDPDEForce", "type equation of state index", index, typeLaws.size());
+    checkTypeLaw(index, type, law, parameters);
+    typeLaws[index] = {type, law, parameters};
+}
+
+bool GenDPDEForce::dependsOnTemperature() const {
+    if (defaultLaw.law != Tait)
+        return true;
+    for (const LawEntry& entry : typeLaws)
+        if (entry.law != Tait)
+            return true;
+    return false;
 }
 
 bool GenDPDEForce::usesPeriodicBoundaryConditions() const {

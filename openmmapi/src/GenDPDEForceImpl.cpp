@@ -1,4 +1,5 @@
 #include "internal/GenDPDEForceImpl.h"
+#include "GenDPDEIntegrator.h"
 #include "internal/BoxGeometry.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
@@ -10,6 +11,25 @@ using namespace OpenMM;
 GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
 }
 
+namespace {
+/** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (VanDerWaals)". */
+std::string describeTemperatureDependence(const GenDPDEForce& force) {
+    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
+    GenDPDEForce::EquationOfState law;
+    std::vector<double> parameters;
+    force.getEquationOfState(law, parameters);
+    if (law != GenDPDEForce::Tait)
+        return std::string("the equation of state of the types without an entry (") + names[law] + ")";
+    for (int entry = 0; entry < force.getNumTypeEquationsOfState(); entry++) {
+        int type;
+        force.getTypeEquationOfState(entry, type, law, parameters);
+        if (law != GenDPDEForce::Tait)
+            return "the equation of state of type " + std::to_string(type) + " (" + names[law] + ")";
+    }
+    return "no equation of state";
+}
+} // namespace
+
 void GenDPDEForceImpl::initialize(ContextImpl& context) {
     const System& system = context.getSystem();
     if (owner.usesPeriodicBoundaryConditions()) {
@@ -17,6 +37,11 @@ void GenDPDEForceImpl::initialize(ContextImpl& context) {
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", owner.getCutoffDistance(), box);
     }
+    if (owner.dependsOnTemperature() && dynamic_cast<GenDPDEIntegrator*>(&context.getIntegrator()) == nullptr)
+        throw OpenMMException("GenDPDEForce: " + describeTemperatureDependence(owner) + " depends on temperature and "
+                              "needs a GenDPDEIntegrator, which holds the particles' temperatures; the Context's "
+                              "integrator is another");
+    dependsOnTemperature = owner.dependsOnTemperature();
     kernel = context.getPlatform().createKernel(CalcGenDPDEForceKernel::Name(), context);
     kernel.getAs<CalcGenDPDEForceKernel>().initialize(system, owner);
 }
@@ -32,6 +57,10 @@ std::vector<std::string> GenDPDEForceImpl::getKernelNames() {
 }
 
 void GenDPDEForceImpl::updateParametersInContext(ContextImpl& context) {
+    if (owner.dependsOnTemperature() != dependsOnTemperature)
+        throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change whether an equation of state "
+                              "depends on temperature; call Context.reinitialize() (or create a new Context) after "
+                              "changing it");
     kernel.getAs<CalcGenDPDEForceKernel>().copyParametersToContext(context, owner);
     context.systemChanged();
 }
@@ -42,4 +71,9 @@ const GenDPDEObservables& GenDPDEForceImpl::getObservables(ContextImpl& context,
 
 GenDPDEPairSource* GenDPDEForceImpl::getPairSource() {
     return kernel.getAs<CalcGenDPDEForceKernel>().getPairSource();
+}
+
+bool GenDPDEForceImpl::getThermalState(const std::vector<double>*& thermalEnergies,
+                                       const std::vector<double>*& densityEntropies) {
+    return kernel.getAs<CalcGenDPDEForceKernel>().getThermalState(thermalEnergies, densityEntropies);
 }

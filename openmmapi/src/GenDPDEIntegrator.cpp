@@ -299,9 +299,23 @@ std::vector<double> GenDPDEIntegrator::configuredHeatCapacities(int numParticles
     return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
 }
 
+const std::vector<double>& GenDPDEIntegrator::currentInternalEnergies() const {
+    IntegrateGenDPDEStepKernel& k = boundKernel();
+    if (hasThermalForce && mode != Isothermal && k.hasInternalEnergies()) {
+        context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
+        GenDPDEIntegratorUtilities::keepThermalState(*context, *this, k);
+    }
+    return k.getInternalEnergies();
+}
+
+void GenDPDEIntegrator::stateChanged(State::DataType changed) {
+    if (changed == State::Positions && context != nullptr)
+        boundKernel().forgetDensityEntropies();
+}
+
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {
     if (context != nullptr)
-        return boundKernel().getInternalEnergies();
+        return currentInternalEnergies();
     if (!initialEnergies.empty())
         return initialEnergies;
     // Before a Context: the configured temperatures times C_V.
@@ -334,7 +348,7 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
                     << "to start every particle at the bath temperature";
         throw OpenMMException(message.str());
     }
-    std::vector<double> temperatures = boundKernel().getInternalEnergies();
+    std::vector<double> temperatures = currentInternalEnergies();
     const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     for (size_t i = 0; i < temperatures.size(); i++)
         temperatures[i] /= capacity[i];
@@ -396,6 +410,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     const std::map<int, int> types = GenDPDEIntegratorUtilities::particleTypes(system, *this);
     const ParticleTypeIndex typeIndex(types, system.getNumParticles(), integratorName);
     typePairTable(*this, typeIndex);
+    GenDPDEIntegratorUtilities::checkThermalForces(system, *this);
     const std::vector<double> energies = initialInternalEnergies(system, types);
     int seed = randomSeed;
     if (seed == 0) {
@@ -409,6 +424,11 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     contextParticleTypes = types;
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
+    hasThermalForce = false;
+    for (int i = 0; i < system.getNumForces(); i++) {
+        const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
+        hasThermalForce |= (force != nullptr && force->dependsOnTemperature());
+    }
     context = &contextRef;
     owner = &contextRef.getOwner();
 }
@@ -449,6 +469,8 @@ void GenDPDEIntegrator::step(int steps) {
         for (int i = 0; i < steps; i++) {
             context->updateContextState();
             context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
+            if (hasThermalForce)   // eps_i at the densities of this step's positions (docs/theory.md section 11)
+                GenDPDEIntegratorUtilities::keepThermalState(*context, *this, stepKernel);
             stepKernel.execute(*context, *this, terms, pairSource);
         }
     }

@@ -32,7 +32,7 @@ void readOrFail(std::istream& stream, T& value, const char* what) {
 
 void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
-    const std::vector<double>& energies = k.getInternalEnergies();
+    const std::vector<double>& energies = currentInternalEnergies();
     const std::int32_t version = checkpointVersion, seed = k.getSeed(), count = energies.size();
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
     stream.write((const char*) &version, sizeof(version));
@@ -91,7 +91,7 @@ void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
     std::string text;
     char buffer[40];
-    for (double e : k.getInternalEnergies()) {
+    for (double e : currentInternalEnergies()) {
         std::snprintf(buffer, sizeof(buffer), "%a ", e);
         text += buffer;
     }

@@ -1,6 +1,7 @@
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "GenDPDEForce.h"
 #include "internal/GenDPDEForceImpl.h"
+#include "GenDPDEKernels.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>
 #include <cmath>
@@ -59,6 +60,59 @@ GenDPDEPairSource* GenDPDEIntegratorUtilities::findPairSource(ContextImpl& conte
             return forceImpl->getPairSource();
     }
     return nullptr;
+}
+
+void GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const GenDPDEIntegrator& integrator) {
+    int found = -1;
+    for (int i = 0; i < system.getNumForces(); i++) {
+        const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
+        if (force == nullptr || !force->dependsOnTemperature())
+            continue;
+        if (found >= 0)
+            throw OpenMMException("GenDPDEIntegrator: forces " + std::to_string(found) + " and " + std::to_string(i)
+                                  + " of the System are GenDPDEForces whose equations of state depend on temperature; "
+                                  "at most one may (the particles have one temperature each)");
+        found = i;
+        if ((integrator.getIntegrationForceGroups() & (1<<force->getForceGroup())) == 0)
+            throw OpenMMException("GenDPDEIntegrator: the GenDPDEForce (force " + std::to_string(i) + " of the System) "
+                                  "has an equation of state that depends on temperature, and its force group "
+                                  + std::to_string(force->getForceGroup()) + " is not among the integration force "
+                                  "groups; the integrator updates the temperatures from its evaluations");
+    }
+}
+
+GenDPDEThermalState GenDPDEIntegratorUtilities::thermalState(ContextImpl& context) {
+    const GenDPDEIntegrator* integrator = dynamic_cast<const GenDPDEIntegrator*>(&context.getIntegrator());
+    if (integrator == nullptr)
+        throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs a "
+                              "GenDPDEIntegrator, which holds the particles' temperatures");
+    IntegrateGenDPDEStepKernel& kernel = integrator->boundKernel();
+    const GenDPDEThermalState state = kernel.getThermalState(*integrator);
+    if (state.isothermal && !(state.temperature > 0.0))
+        throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature, with the "
+                              "GenDPDEIntegrator in Isothermal mode, needs the bath temperature; call setTemperature()");
+    if (!state.isothermal && !kernel.hasInternalEnergies())
+        throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs the particles' "
+                              "temperatures; call the GenDPDEIntegrator's setTemperature() before creating the Context, "
+                              "or setParticleTemperatures(), setInternalEnergies() or "
+                              "setInternalEnergiesToTemperature()");
+    return state;
+}
+
+void GenDPDEIntegratorUtilities::keepThermalState(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                  IntegrateGenDPDEStepKernel& kernel) {
+    for (ForceImpl* impl : context.getForceImpls()) {
+        GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
+        const std::vector<double>* energies;
+        const std::vector<double>* entropies;
+        if (forceImpl == nullptr || !forceImpl->getThermalState(energies, entropies))
+            continue;
+        if (integrator.getMode() == GenDPDEIntegrator::Isothermal)
+            kernel.forgetDensityEntropies();
+        else
+            kernel.keepThermalState(*energies, *entropies);
+        return;
+    }
 }
 
 namespace {

@@ -68,6 +68,44 @@ std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEFor
     return table;
 }
 
+std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType(const GenDPDEForce& force,
+                                                                                 const ParticleTypeIndex& types) {
+    static_assert(GenDPDEForce::Tait == GENDPDE_EOS_TAIT && GenDPDEForce::TaitThermalExpansion == GENDPDE_EOS_TAIT_THERMAL
+                  && GenDPDEForce::VanDerWaals == GENDPDE_EOS_VAN_DER_WAALS,
+                  "GenDPDEPhysicsCore.h numbers the equations of state differently");
+    std::vector<GenDPDEForce::EquationOfState> law(types.getNumTypes());
+    std::vector<std::vector<double>> parameters(types.getNumTypes());
+    for (int t = 0; t < types.getNumTypes(); t++)
+        force.getEquationOfState(law[t], parameters[t]);
+    for (int entry = 0; entry < force.getNumTypeEquationsOfState(); entry++) {
+        int type;
+        GenDPDEForce::EquationOfState entryLaw;
+        std::vector<double> entryParameters;
+        force.getTypeEquationOfState(entry, type, entryLaw, entryParameters);
+        const int t = types.requireIndexOf(type, "type equation of state " + std::to_string(entry));
+        law[t] = entryLaw;
+        parameters[t] = entryParameters;
+    }
+    const std::vector<TaitParameters> tait = taitParametersByType(force, types);
+    std::vector<Physics::LocalEquationOfState> table(types.getNumTypes());
+    for (int t = 0; t < types.getNumTypes(); t++) {
+        Physics::LocalEquationOfState& eos = table[t];
+        eos.law = (int) law[t];
+        if (law[t] == GenDPDEForce::VanDerWaals)
+            std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter);   // a, b, k
+        else {
+            // n0, pi0, B_T, gamma_T, then the thermal law's beta and theta0.
+            eos.parameter[0] = tait[t].referenceDensity;
+            eos.parameter[1] = tait[t].referencePressure;
+            eos.parameter[2] = tait[t].bulkModulus;
+            eos.parameter[3] = tait[t].exponent;
+            std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter + 4);
+            eos.integerPower = Physics::TaitEquationOfState::integerPowerOf(tait[t].exponent);
+        }
+    }
+    return table;
+}
+
 TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, const ParticleTypeIndex& types) {
     // The classes: 0 for every type without an entry, then one per type named by an entry, in the order named.
     TypePairTable table;

@@ -52,8 +52,8 @@ def _load_kernel_libraries():
 
 
 _load_kernel_libraries()
-from ._wrapping import (DIMENSIONLESS, NUMBER_DENSITY, PRESSURE, accept_units, add_cast_copy_and_pickle,
-                        return_units)
+from ._wrapping import (DIMENSIONLESS, NUMBER_DENSITY, PRESSURE, PRESSURE_PER_KELVIN, accept_units,
+                        add_cast_copy_and_pickle, return_units, to_openmm_value)
 
 __all__ = ["GenDPDEForce", "GenDPDEIntegrator"]
 
@@ -95,6 +95,65 @@ def _particle_virials(original):
     return getParticleVirials
 
 
+# The local equations of state (docs/theory.md section 11): each law's parameters, in order, with their units.
+_LAW_PARAMETERS = {
+    GenDPDEForce.Tait: [],
+    GenDPDEForce.TaitThermalExpansion: [("beta", PRESSURE_PER_KELVIN), ("theta0", _unit.kelvin)],
+    GenDPDEForce.VanDerWaals: [("a", _unit.kilojoule_per_mole * _unit.nanometer**3), ("b", _unit.nanometer**3),
+                               ("k", _unit.kilojoule_per_mole / _unit.kelvin)],
+}
+
+
+def _law_parameters(law, parameters, where):
+    """A law's parameters as plain numbers in OpenMM units (each may be a Quantity; a per-molecule pressure or
+    pressure per kelvin, in MPa or MPa/K, is converted per mole); a law the plugin does not know passes through, for
+    the C++ check to refuse it."""
+    names = _LAW_PARAMETERS.get(int(law))
+    values = list(parameters)
+    if names is None or len(values) != len(names):
+        return law, values   # refused by the C++ check, which names the law and the parameters it takes
+    return law, [to_openmm_value(v, u, f"{where}({name})") for v, (name, u) in zip(values, names)]
+
+
+def _with_law_units(result_law, result_parameters):
+    """A getter's law and parameters, the parameters as Quantities in OpenMM units."""
+    names = _LAW_PARAMETERS.get(int(result_law), [])
+    return [_unit.Quantity(v, u) for v, (_, u) in zip(result_parameters, names)]
+
+
+def _wrap_equation_of_state():
+    set_law, get_law = GenDPDEForce.setEquationOfState, GenDPDEForce.getEquationOfState
+    add_type, set_type, get_type = (GenDPDEForce.addTypeEquationOfState, GenDPDEForce.setTypeEquationOfState,
+                                    GenDPDEForce.getTypeEquationOfState)
+
+    def setEquationOfState(self, law, parameters=()):
+        return set_law(self, *_law_parameters(law, parameters, "GenDPDEForce.setEquationOfState"))
+
+    def getEquationOfState(self):
+        law, parameters = get_law(self)
+        return [law, _with_law_units(law, parameters)]
+
+    def addTypeEquationOfState(self, type, law, parameters=()):
+        return add_type(self, type, *_law_parameters(law, parameters, "GenDPDEForce.addTypeEquationOfState"))
+
+    def setTypeEquationOfState(self, index, type, law, parameters=()):
+        return set_type(self, index, type, *_law_parameters(law, parameters, "GenDPDEForce.setTypeEquationOfState"))
+
+    def getTypeEquationOfState(self, index):
+        type_, law, parameters = get_type(self, index)
+        return [type_, law, _with_law_units(law, parameters)]
+
+    for function, original in ((setEquationOfState, set_law), (getEquationOfState, get_law),
+                               (addTypeEquationOfState, add_type), (setTypeEquationOfState, set_type),
+                               (getTypeEquationOfState, get_type)):
+        function.__doc__ = (original.__doc__ or "") + (
+            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta (kJ/mol/nm^3/K, "
+            "or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. Getters return "
+            "[law, parameters] or [type, law, parameters], the parameters as Quantities.")
+        setattr(GenDPDEForce, function.__name__, function)
+
+
+_wrap_equation_of_state()
 GenDPDEForce.getParticleVirials = _particle_virials(GenDPDEForce.getParticleVirials)
 add_cast_copy_and_pickle(GenDPDEForce)
 

@@ -1,7 +1,8 @@
 """Makes the SWIG classes behave like OpenMM's own Python classes.
 
 - Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K).
-  Pressures (Tait parameters) also accept pressure units such as bar or MPa, converted per mole.
+  Pressures (Tait parameters) also accept pressure units such as bar or MPa, converted per mole (and pressures per
+  kelvin, MPa/K, likewise).
 - Getters of parameters and observables return quantities, as OpenMM's getters do; a per-particle result is one
   Quantity holding a numpy array, as ``State.getPositions(asNumpy=True)`` returns.
 - ``cast``/``isinstance`` for objects returned by ``System.getForce`` and friends (never taking ownership), and
@@ -16,6 +17,8 @@ from openmm import XmlSerializer, unit
 
 #: Pressure in OpenMM units.
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+#: Pressure per temperature in OpenMM units (a thermal pressure coefficient beta = (dpi/dT) at fixed density).
+PRESSURE_PER_KELVIN = PRESSURE / unit.kelvin
 #: Number density in OpenMM units.
 NUMBER_DENSITY = unit.nanometer**-3
 #: Marks a dimensionless argument or result (plain float).
@@ -38,6 +41,8 @@ def to_openmm_value(value, target, where):
     if value.unit.is_compatible(target):
         return value.value_in_unit(target)
     if target is PRESSURE and value.unit.is_compatible(unit.bar):
+        return (value * unit.AVOGADRO_CONSTANT_NA).value_in_unit(target)
+    if target is PRESSURE_PER_KELVIN and value.unit.is_compatible(unit.bar / unit.kelvin):
         return (value * unit.AVOGADRO_CONSTANT_NA).value_in_unit(target)
     raise TypeError(f"{where}: {value} cannot be converted to {target}")
 

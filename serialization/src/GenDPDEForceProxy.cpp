@@ -5,13 +5,28 @@
 #include "openmm/serialization/SerializationNode.h"
 #include <memory>
 #include <sstream>
+#include <vector>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
 namespace {
-// Version 2: particle types and per-type Tait parameters. Version 1 files (no types) are still read.
-const int currentVersion = 2;
+// Version 2: particle types and per-type Tait parameters. Version 3: the local equations of state (the default law
+// and per-type entries, docs/theory.md section 11). Versions 1 and 2 are still read (every type Tait).
+const int currentVersion = 3;
+
+void serializeLaw(SerializationNode& node, GenDPDEForce::EquationOfState law, const std::vector<double>& parameters) {
+    node.setIntProperty("law", (int) law);
+    for (const double p : parameters)
+        node.createChildNode("Parameter").setDoubleProperty("value", p);
+}
+
+std::vector<double> lawParameters(const SerializationNode& node) {
+    std::vector<double> parameters;
+    for (const SerializationNode& p : node.getChildren())
+        parameters.push_back(p.getDoubleProperty("value"));
+    return parameters;
+}
 }
 
 GenDPDEForceProxy::GenDPDEForceProxy() : SerializationProxy("GenDPDEForce") {
@@ -41,6 +56,18 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
                 .setDoubleProperty("pi0", pi0).setDoubleProperty("bulkModulus", bulkModulus)
                 .setDoubleProperty("gammaT", exponent);
     }
+    GenDPDEForce::EquationOfState law;
+    std::vector<double> parameters;
+    force.getEquationOfState(law, parameters);
+    serializeLaw(node.createChildNode("EquationOfState"), law, parameters);
+    SerializationNode& typeLaws = node.createChildNode("TypeEquationsOfState");
+    for (int index = 0; index < force.getNumTypeEquationsOfState(); index++) {
+        int type;
+        force.getTypeEquationOfState(index, type, law, parameters);
+        SerializationNode& entry = typeLaws.createChildNode("Type");
+        entry.setIntProperty("type", type);
+        serializeLaw(entry, law, parameters);
+    }
 }
 
 void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
@@ -66,6 +93,14 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
             force->addTypeParameters(type.getIntProperty("type"), type.getDoubleProperty("n0"),
                                      type.getDoubleProperty("pi0"), type.getDoubleProperty("bulkModulus"),
                                      type.getDoubleProperty("gammaT"));
+    }
+    if (version >= 3) {
+        const SerializationNode& law = node.getChildNode("EquationOfState");
+        force->setEquationOfState((GenDPDEForce::EquationOfState) law.getIntProperty("law"), lawParameters(law));
+        for (const SerializationNode& type : node.getChildNode("TypeEquationsOfState").getChildren())
+            force->addTypeEquationOfState(type.getIntProperty("type"),
+                                          (GenDPDEForce::EquationOfState) type.getIntProperty("law"),
+                                          lawParameters(type));
     }
     return force.release();
 }

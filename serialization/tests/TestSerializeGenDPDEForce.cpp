@@ -104,11 +104,40 @@ void testFutureVersion() {
     std::stringstream buffer;
     XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
     std::string xml = buffer.str();
-    size_t position = xml.find("version=\"2\"");
+    size_t position = xml.find("version=\"3\"");
     ASSERT(position != std::string::npos);
     xml.replace(position, 11, "version=\"99\"");
     std::stringstream future(xml);
     assertThrowsMentioning([&]() { delete XmlSerializer::deserialize<GenDPDEForce>(future); }, {"version 99"});
+}
+
+/** The local equations of state (docs/theory.md section 11), the default and per type, survive a round trip. */
+void testEquationsOfStateRoundTrip() {
+    GenDPDEForce force(1.0);
+    force.setParticleType(1, 4);
+    force.setParticleType(2, 9);
+    force.setEquationOfState(GenDPDEForce::TaitThermalExpansion, {0.125, 300.5});
+    force.addTypeEquationOfState(4, GenDPDEForce::VanDerWaals, {0.75, 0.0625, 0.0083});
+    force.addTypeEquationOfState(9, GenDPDEForce::Tait, {});
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+    std::unique_ptr<GenDPDEForce> copy(XmlSerializer::deserialize<GenDPDEForce>(buffer));
+    GenDPDEForce::EquationOfState law;
+    std::vector<double> parameters;
+    copy->getEquationOfState(law, parameters);
+    ASSERT_EQUAL(GenDPDEForce::TaitThermalExpansion, law);
+    ASSERT(parameters == std::vector<double>({0.125, 300.5}));
+    ASSERT_EQUAL(2, copy->getNumTypeEquationsOfState());
+    int type;
+    copy->getTypeEquationOfState(0, type, law, parameters);
+    ASSERT_EQUAL(4, type);
+    ASSERT_EQUAL(GenDPDEForce::VanDerWaals, law);
+    ASSERT(parameters == std::vector<double>({0.75, 0.0625, 0.0083}));
+    copy->getTypeEquationOfState(1, type, law, parameters);
+    ASSERT_EQUAL(9, type);
+    ASSERT_EQUAL(GenDPDEForce::Tait, law);
+    ASSERT(parameters.empty());
+    ASSERT(copy->dependsOnTemperature());
 }
 
 int main() {
@@ -116,6 +145,7 @@ int main() {
         loadGenDPDEKernels("Reference");
         testSerialization();
         testTypesRoundTrip();
+        testEquationsOfStateRoundTrip();
         testVersion1();
         testSystemRoundTrip();
         testFutureVersion();

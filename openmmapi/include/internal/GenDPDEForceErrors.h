@@ -41,6 +41,20 @@ inline std::string equationOfStateOverflow(int particle, double density, double 
 }
 
 /**
+ * A particle's density n (nm^-3) is outside the domain of its van der Waals law, 0 < n < 1/b (b: excluded volume,
+ * nm^3).
+ */
+inline std::string outsideDomain(int particle, double density, double excludedVolume, long long step) {
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEForce: particle " << particle << " has the density " << density << " nm^-3 at step " << step
+            << ", outside the domain of its van der Waals equation of state (0 < n < 1/b = " << 1.0/excludedVolume
+            << " nm^-3): the simulation has become unstable (reduce the step size) or the particles are packed "
+            << "beyond their excluded volume";
+    return message.str();
+}
+
+/**
  * updateParametersInContext() may not change the cutoff, the nonbonded method or the particle types of a Context's
  * force (types: those the Context was created with).
  */

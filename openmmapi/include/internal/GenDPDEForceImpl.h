@@ -31,9 +31,12 @@ public:
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials);
     /** The pairs of the kernel's last evaluation, which an integrator kernel may reuse, or null (GenDPDEKernels.h). */
     GenDPDEPairSource* getPairSource();
+    /** The thermal state of the kernel's last evaluation, if the force's laws depend on temperature (GenDPDEKernels.h). */
+    bool getThermalState(const std::vector<double>*& thermalEnergies, const std::vector<double>*& densityEntropies);
 private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;
+    bool dependsOnTemperature = false;   // as the Context was created (updateParametersInContext cannot change it)
 };
 
 } // namespace GenDPDEPlugin

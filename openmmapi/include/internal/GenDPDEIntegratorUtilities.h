@@ -10,6 +10,8 @@
 namespace GenDPDEPlugin {
 
 class GenDPDEPairSource;
+class IntegrateGenDPDEStepKernel;
+struct GenDPDEThermalState;
 
 /**
  * Which terms one step of a GenDPDEIntegrator contains, decided once from its mode and parameters for the API's
@@ -55,6 +57,25 @@ public:
      * GenDPDEForces', differ for a particle.
      */
     static std::map<int, int> particleTypes(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
+    /**
+     * Refuse, when a Context is created, what a temperature-dependent law (GenDPDEForce::dependsOnTemperature) cannot
+     * run with: more than one such GenDPDEForce, or one outside the integration force groups (the integrator keeps
+     * the thermal state its evaluation right before each step finds).
+     */
+    static void checkThermalForces(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
+    /**
+     * For the kernel of a GenDPDEForce whose laws depend on temperature: the thermal state the Context's
+     * GenDPDEIntegrator holds. Throws if the Context's integrator is not a GenDPDEIntegrator, or if the particles'
+     * temperatures are not set (Isoenergetic, Conservative) or the bath temperature is not (Isothermal).
+     */
+    static GenDPDEThermalState thermalState(OpenMM::ContextImpl& context);
+    /**
+     * Right after the integration force groups were evaluated at the current positions: the integrator kernel keeps
+     * the thermal state the GenDPDEForce whose laws depend on temperature found (Isoenergetic, Conservative), or
+     * forgets the densities its eps_i belong to (Isothermal: eps_i is not updated there). Nothing without such a force.
+     */
+    static void keepThermalState(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                 IntegrateGenDPDEStepKernel& kernel);
     /** The errors a step reports (every platform uses the same words). */
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
     static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);

@@ -246,13 +246,43 @@ private:
     int integerPower;
 };
 
-/** What a particle contributes to the force (gendpdeParticleState). */
+/** What a particle contributes to the force (gendpdeParticleState, gendpdeThermalParticleState). */
 struct ParticleState {
     double volume;             // V (length^3)
     double pressure;           // pi (energy/length^3)
-    double freeEnergy;         // f (energy)
+    double freeEnergy;         // its term of U (energy): f(n) for the Tait law (gendpdeThermalParticleState says
+                               // what for the others)
     double forceCoefficient;   // pi dV/dn0 (energy length^3)
     double momentForceScale;   // 2 pi dV/dG (energy; VC, else 0): q = momentForceScale g
+    double thermalEnergy;      // temperature-dependent laws only: C theta now (energy)
+    double densityEntropy;     // temperature-dependent laws only: sigma(n) (energy/temperature)
+};
+
+/**
+ * A local equation of state of section 11 (gendpdeLocalEquationOfState): the law (GENDPDE_EOS_*) and its six
+ * parameters in the core's order, with the Tait law's integer power.
+ */
+struct LocalEquationOfState {
+    int law = GENDPDE_EOS_TAIT;
+    double parameter[6] = {0, 0, 0, 0, 0, 0};
+    int integerPower = -1;
+    /** Whether the law depends on temperature (any law but Tait). */
+    bool dependsOnTemperature() const {
+        return law != GENDPDE_EOS_TAIT;
+    }
+};
+
+/**
+ * What a particle whose law depends on temperature reads of its thermal state (gendpdeThermalParticleState): the
+ * Isothermal mode's temperature, or the integrator's eps_i and the sigma_i it belongs to, and C_V.
+ */
+struct ThermalInput {
+    bool isothermal;
+    double temperature;      // K (isothermal)
+    double storedEnergy;     // eps_i (kJ/mol)
+    double storedEntropy;    // sigma at the density of eps_i (kJ/(mol K)), if entropyKnown
+    bool entropyKnown;
+    double heatCapacity;     // C_V (kJ/(mol K))
 };
 
 /**
@@ -270,6 +300,24 @@ inline int particleState(const VolumeEstimator& estimator, const TaitEquationOfS
 }
 
 /** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
+/**
+ * The state of a particle whose law depends on temperature (gendpdeThermalParticleState): as particleState, with
+ * state.thermalEnergy and state.densityEntropy set too.
+ */
+inline int thermalParticleState(const VolumeEstimator& estimator, const LocalEquationOfState& law,
+                                double primitiveDensity, double squaredMoment, const ThermalInput& thermal,
+                                ParticleState& state) {
+    const double* p = law.parameter;
+    return gendpdeThermalParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment,
+            estimator.getKPerDensity(), estimator.getVolumeScale(), estimator.getDerivativeScale(),
+            estimator.getMomentScale(), estimator.getDensitySoftening(), volumePolynomials(),
+            VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient,
+            law.law, p[0], p[1], p[2], p[3], p[4], p[5], law.integerPower, thermal.isothermal ? 1 : 0,
+            thermal.temperature, thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0,
+            thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
+            &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
+}
+
 inline double momentWeightOverDistance(double r, double inverseCutoff) {
     return gendpdeMomentWeightOverDistance(r, inverseCutoff);
 }

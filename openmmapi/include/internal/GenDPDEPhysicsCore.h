@@ -387,6 +387,63 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
     return thermalEnergy*exp(-entropyChange/heatCapacity);
 }
 
+/**
+ * Everything a particle whose equation of state depends on temperature contributes to the force (section 11), as
+ * gendpdeParticleState does for the Tait law, from its primitive density n0, squared moment G (V-C), its type's law
+ * and parameters (gendpdeLocalEquationOfState) and its thermal state:
+ *  - isothermal != 0 (the Isothermal mode): theta = temperature; the particle contributes f(T, n) up to a constant,
+ *    e(n) - T sigma(n), to U, and *thermalEnergy receives C T;
+ *  - otherwise the particle's entropy is fixed between the integrator's updates of its thermal state: it had the
+ *    thermal energy storedEnergy = C theta at a density where sigma was storedEntropy, so now
+ *    C theta = gendpdeIsentropicThermalEnergy(storedEnergy, sigma(n) - storedEntropy, C) (*thermalEnergy), and it
+ *    contributes e(n) + (C theta - storedEnergy) to U: K + U + sum_i storedEnergy_i is then K + sum_i u_i(s_i, n_i),
+ *    whose gradient at fixed entropies is the force. entropyKnown = 0 (the positions or energies were just set)
+ *    takes storedEntropy = sigma(n): theta = storedEnergy/C.
+ * The pressure is pi = pressureAtZero + theta thermalPressure, and the force coefficient pi dV/dn0 and moment scale
+ * 2 pi dV/dG follow as for the Tait law. *densityEntropy receives sigma(n) (energy/temperature). Returns
+ * GENDPDE_PARTICLE_VALID or why the state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW).
+ */
+GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
+        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
+        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_REAL p0, GENDPDE_REAL p1,
+        GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, int isothermal,
+        GENDPDE_REAL temperature, GENDPDE_REAL storedEnergy, GENDPDE_REAL storedEntropy, int entropyKnown,
+        GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* energy,
+        GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale, GENDPDE_REAL* thermalEnergy,
+        GENDPDE_REAL* densityEntropy) {
+    GENDPDE_REAL derivative, momentDerivative;
+    int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
+                                       densitySoftening, polynomials, nodeSquared, mirrorNodeSquared,
+                                       quadratureCoefficient, volume, &derivative, &momentDerivative);
+    GENDPDE_REAL e, sigma, pressureAtZero, thermalPressure;
+    const int lawStatus = gendpdeLocalEquationOfState(law, 1/(*volume), p0, p1, p2, p3, p4, p5, integerPower, &e,
+                                                      &sigma, &pressureAtZero, &thermalPressure);
+    if (status == GENDPDE_PARTICLE_VALID)
+        status = lawStatus;
+    GENDPDE_REAL theta;
+    if (isothermal) {
+        theta = temperature;
+        *thermalEnergy = heatCapacity*temperature;
+        *energy = e - temperature*sigma;
+    }
+    else {
+        *thermalEnergy = gendpdeIsentropicThermalEnergy(storedEnergy, entropyKnown ? sigma - storedEntropy : 0,
+                                                        heatCapacity);
+        theta = *thermalEnergy/heatCapacity;
+        *energy = e + (*thermalEnergy - storedEnergy);
+    }
+    *densityEntropy = sigma;
+    *pressure = pressureAtZero + theta*thermalPressure;
+    if (status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*pressure)
+                                              && GENDPDE_ISFINITE(*thermalEnergy)))
+        status = GENDPDE_PARTICLE_OVERFLOW;
+    *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
+    *momentForceScale = 2*((*pressure)*momentDerivative);
+    return status;
+}
+
 /* ---- Pair forces and virials (section 4) ------------------------------------------------------------------------ */
 
 /**

@@ -7,6 +7,7 @@
 
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
+#include "internal/GenDPDEPhysics.h"
 #include <map>
 #include <string>
 #include <vector>
@@ -59,6 +60,13 @@ struct TaitParameters {
 
 /** Per type index: the type's own Tait parameters (addTypeParameters), else the force's. */
 std::vector<TaitParameters> taitParametersByType(const GenDPDEForce& force, const ParticleTypeIndex& types);
+
+/**
+ * Per type index: the type's local equation of state (addTypeEquationOfState, else the force's
+ * setEquationOfState) with its Tait parameters (taitParametersByType), in the physics core's order.
+ */
+std::vector<Physics::LocalEquationOfState> equationsOfStateByType(const GenDPDEForce& force,
+                                                                  const ParticleTypeIndex& types);
 
 /**
  * The integrator's per-type and per-type-pair parameters (OpenMM units), by class: each type named by an entry

@@ -81,6 +81,10 @@ int roundUp(double value, int multiple) {
 } // namespace
 
 void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
+    if (force.dependsOnTemperature())
+        throw OpenMMException("GenDPDEForce: equations of state that depend on temperature run on the Reference and "
+                              "CPU platforms only (not yet on " + getPlatform().getName()
+                              + ")");
     ContextSelector selector(cc);
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();

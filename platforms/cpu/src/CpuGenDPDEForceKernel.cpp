@@ -149,7 +149,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     Vec3* momentForceOf = rowMomentForce.data();
     listedFlags.resize(layout.getNeighbors().size());
     char* listed = listedFlags.data();
-    const ParticleModel model(*this);
+    const ParticleModel model(*this, context);
     const int* typeOf = types->getParticleTypeIndices().data();
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
     std::vector<int> failedParticle(numRanges(numParticles, rowChunk), INT_MAX);
@@ -181,8 +181,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
             for (int s = begin; s < end; s++) {
                 const int i = particleOf[s];
                 const double G = moments ? momentOf[s].dot(momentOf[s]) : 0.0;
-                const int particleStatus = Physics::particleState(model.estimator, model.tait[typeOf[i]], density[s],
-                                                                  G, state[s]);
+                const int particleStatus = model.particleState(i, typeOf[i], density[s], G, state[s]);
                 if (moments)
                     momentForceOf[s] = momentOf[s]*state[s].momentForceScale;   // as storeParticle()
                 if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin/rowChunk]) {

@@ -3,6 +3,7 @@
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/GenDPDEForceErrors.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 
@@ -25,6 +26,16 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     readParameters(force);
 }
 
+ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel,
+                                                              ContextImpl& context) :
+        estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
+        thermal() {
+    for (const TaitParameters& p : kernel.taitByType)
+        tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
+    if (kernel.dependsOnTemperature)
+        thermal = GenDPDEIntegratorUtilities::thermalState(context);
+}
+
 void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
     readParameters(force);
 }
@@ -32,7 +43,14 @@ void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& conte
 void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
     std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
+    std::vector<Physics::LocalEquationOfState> laws = equationsOfStateByType(force, *types);
     estimator = (int) force.getDensityEstimator();
+    lawByType = laws;
+    dependsOnTemperature = false;
+    for (const Physics::LocalEquationOfState& law : lawByType)
+        dependsOnTemperature |= law.dependsOnTemperature();
+    thermalEnergy.assign(dependsOnTemperature ? primitiveDensity.size() : 0, 0.0);
+    densityEntropy.assign(thermalEnergy.size(), 0.0);
     cutoffScaling = force.getCutoffScaling();
     taitByType = tait;
     observablesValid = false;
@@ -58,6 +76,9 @@ void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, doub
                                                          ContextImpl& context) const {
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
+    if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
+        throw OpenMMException(GenDPDEForceErrors::outsideDomain(i, 1.0/volume,
+                lawByType[types->getParticleTypeIndices()[i]].parameter[1], context.getStepCount()));
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, 1.0/volume,
             taitByType[types->getParticleTypeIndices()[i]].referenceDensity, context.getStepCount()));
 }
@@ -88,14 +109,14 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     }
 
     // docs/theory.md sections 3-4: volumes, Tait pressures and free energies; U = sum_i f(n_i).
-    const ParticleModel model(*this);
+    const ParticleModel model(*this, context);
     const std::vector<int>& type = types->getParticleTypeIndices();
     const bool moments = usesMoments();
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
         Physics::ParticleState state;
-        const int status = Physics::particleState(model.estimator, model.tait[type[i]], primitiveDensity[i],
-                                                  moments ? moment[i].dot(moment[i]) : 0.0, state);
+        const int status = model.particleState(i, type[i], primitiveDensity[i],
+                                               moments ? moment[i].dot(moment[i]) : 0.0, state);
         if (status != GENDPDE_PARTICLE_VALID)
             throwParticleError(status, i, state.volume, context);
         storeParticle(i, state);

@@ -30,6 +30,14 @@ public:
     GenDPDEPairSource* getPairSource() override {
         return this;
     }
+    bool getThermalState(const std::vector<double>*& thermalEnergies,
+                         const std::vector<double>*& densityEntropies) override {
+        if (!dependsOnTemperature)
+            return false;
+        thermalEnergies = &thermalEnergy;
+        densityEntropies = &densityEntropy;
+        return true;
+    }
     // GenDPDEPairSource: the neighbor list of the last evaluation.
     GenDPDEHostPairList* getHostPairList() override {
         return this;
@@ -39,15 +47,29 @@ public:
         return neighborList->getPairs();
     }
 protected:
-    /** What the particle pass needs per evaluation: the estimator and the Tait equation of state of each type. */
+    /**
+     * What the particle pass needs per evaluation: the estimator, the equation of state of each type and, if a law
+     * depends on temperature, the particles' thermal state (the Context's GenDPDEIntegrator's).
+     */
     struct ParticleModel {
-        explicit ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel) :
-                estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling) {
-            for (const TaitParameters& p : kernel.taitByType)
-                tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
+        ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel, OpenMM::ContextImpl& context);
+        /**
+         * Particle i's state (type index t, primitive density n0, squared moment G): the physics core's
+         * gendpdeParticleState for a Tait law, gendpdeThermalParticleState for a law that depends on temperature.
+         */
+        int particleState(int i, int t, double n0, double G, Physics::ParticleState& state) const {
+            const Physics::LocalEquationOfState& law = (*laws)[t];
+            if (!law.dependsOnTemperature())
+                return Physics::particleState(estimator, tait[t], n0, G, state);
+            const Physics::ThermalInput input = {thermal.isothermal, thermal.temperature,
+                    thermal.internalEnergies[i], thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
+                    thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]]};
+            return Physics::thermalParticleState(estimator, law, n0, G, input, state);
         }
         Physics::VolumeEstimator estimator;
         std::vector<Physics::TaitEquationOfState> tait;   // by type index
+        const std::vector<Physics::LocalEquationOfState>* laws;   // by type index
+        GenDPDEThermalState thermal;   // if kernel.dependsOnTemperature
     };
     /** Take the parameters that updateParametersInContext() may change; reject changes of the others. */
     void readParameters(const GenDPDEForce& force);
@@ -66,6 +88,11 @@ protected:
         forceCoefficient[i] = state.forceCoefficient;
         if (usesMoments())
             momentForce[i] = moment[i]*state.momentForceScale;
+        if (dependsOnTemperature) {
+            const bool thermalLaw = lawByType[types->getParticleTypeIndices()[i]].dependsOnTemperature();
+            thermalEnergy[i] = thermalLaw ? state.thermalEnergy : 0.0;
+            densityEntropy[i] = thermalLaw ? state.densityEntropy : 0.0;
+        }
     }
     /**
      * The error for particle i whose state has this status (Physics, GENDPDE_PARTICLE_*), naming it and the step;
@@ -83,12 +110,16 @@ protected:
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
     std::vector<TaitParameters> taitByType;    // by type index
+    std::vector<Physics::LocalEquationOfState> lawByType;   // by type index
+    bool dependsOnTemperature = false;          // some type's law does (docs/theory.md section 11)
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
     std::unique_ptr<NeighborList> neighborList;
     // Per particle, at the positions of the last evaluation.
     std::vector<double> primitiveDensity, volume, pressure;
     std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
+    // Laws that depend on temperature: C_V theta_i (kJ/mol) and sigma(n_i) (kJ/(mol K)); 0 for Tait particles.
+    std::vector<double> thermalEnergy, densityEntropy;
     std::vector<double> particleVirial;     // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
     std::vector<OpenMM::Vec3> moment;        // VC: g_i = sum_j phi(r_ij) e_ij (dimensionless)
     std::vector<OpenMM::Vec3> momentForce;   // VC: q_i = 2 pi_i dV_i/dG_i g_i (kJ/mol)

@@ -31,6 +31,18 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
         neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
 }
 
+GenDPDEThermalState ReferenceIntegrateGenDPDEStepKernel::getThermalState(const GenDPDEIntegrator& integrator) {
+    typeTables->update(integrator);   // the heat capacities may have changed since the last step
+    GenDPDEThermalState state;
+    state.isothermal = (integrator.getMode() == GenDPDEIntegrator::Isothermal);
+    state.temperature = integrator.getTemperature();
+    state.internalEnergies = internalEnergies.data();
+    state.densityEntropies = densityEntropiesKnown ? densityEntropies.data() : nullptr;
+    state.particleClass = typeTables->getParticleClasses().data();
+    state.classHeatCapacity = typeTables->getTable().heatCapacity.data();
+    return state;
+}
+
 PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEPairSource* pairSource,
                                                            int numThreads) {
     // The source, if any, was evaluated at the current positions just before this step (see execute()).

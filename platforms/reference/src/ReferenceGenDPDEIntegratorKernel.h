@@ -33,6 +33,17 @@ public:
     }
     void setInternalEnergies(const std::vector<double>& energies) override {
         internalEnergies = energies;
+        forgetDensityEntropies();
+    }
+    GenDPDEThermalState getThermalState(const GenDPDEIntegrator& integrator) override;
+    void keepThermalState(const std::vector<double>& thermalEnergies,
+                          const std::vector<double>& densityEntropies) override {
+        internalEnergies = thermalEnergies;
+        this->densityEntropies = densityEntropies;
+        densityEntropiesKnown = true;
+    }
+    void forgetDensityEntropies() override {
+        densityEntropiesKnown = false;
     }
     int getSeed() const override {
         return seed;
@@ -98,6 +109,9 @@ protected:
     GenDPDESweepOrder sweepOrder;
     SweepLayout layout;   // the sweep's particle data in sweepOrder's cell order, during a sweep
     std::vector<double> savedInternalEnergies;
+    // docs/theory.md section 11: sigma(n_i) at the densities internalEnergies belong to, if known.
+    std::vector<double> densityEntropies;
+    bool densityEntropiesKnown = false;
     std::unique_ptr<NeighborList> neighborList;   // used when no GenDPDEForce's pairs can be reused
 };
 

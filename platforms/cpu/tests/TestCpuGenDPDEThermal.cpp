@@ -1,0 +1,17 @@
+#include "TestGenDPDEThermal.h"
+#include "TestPlugins.h"
+
+OpenMM::Platform* platform;
+
+int main() {
+    return runTestProgram([]() {
+        loadPlugins();
+        platform = &OpenMM::Platform::getPlatformByName("CPU");
+        // The shared tests with 1 and 3 threads (the results must not depend on the thread count, and equal
+        // Reference's bit for bit).
+        for (const char* threads : {"1", "3"}) {
+            platform->setPropertyDefaultValue("Threads", threads);
+            ThermalTests::runThermalTests();
+        }
+    });
+}

@@ -1,0 +1,103 @@
+"""The local equations of state that depend on temperature (docs/theory.md section 11), from Python: the API with
+units, copies, and what is refused. Their physics is tested in C++ (tests/TestGenDPDEThermal.h) on Reference and CPU."""
+
+import copy
+import pickle
+
+import numpy
+import openmm
+import pytest
+from openmm import unit
+
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+
+AVOGADRO = 6.02214076e23
+
+
+def test_laws_round_trip_with_units():
+    force = GenDPDEForce(1.0)
+    assert force.getEquationOfState() == [GenDPDEForce.Tait, []]
+    assert not force.dependsOnTemperature()
+    # beta given per molecule in MPa/K: converted per mole, as Tait pressures are (1 MPa = 1e-21 J/nm^3).
+    force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [1.77 * unit.megapascal / unit.kelvin, 125.7])
+    law, (beta, theta0) = force.getEquationOfState()
+    assert law == GenDPDEForce.TaitThermalExpansion
+    assert beta.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3 / unit.kelvin) == pytest.approx(
+        1.77e6 * 1e-27 * AVOGADRO / 1000, rel=1e-12)
+    assert theta0 == 125.7 * unit.kelvin
+    assert force.addTypeEquationOfState(4, GenDPDEForce.VanDerWaals, [0.5, 0.1 * unit.nanometer**3, 0.01]) == 0
+    assert force.getNumTypeEquationsOfState() == 1
+    type_, law, parameters = force.getTypeEquationOfState(0)
+    assert (type_, law) == (4, GenDPDEForce.VanDerWaals)
+    assert [p._value for p in parameters] == [0.5, 0.1, 0.01]
+    assert force.dependsOnTemperature()
+    for other in (copy.deepcopy(force), pickle.loads(pickle.dumps(force))):
+        assert other.getTypeEquationOfState(0)[1] == GenDPDEForce.VanDerWaals
+        assert other.getEquationOfState()[1][1] == 125.7 * unit.kelvin
+
+
+def test_bad_laws_are_refused_by_name():
+    force = GenDPDEForce(1.0)
+    with pytest.raises(openmm.OpenMMException, match="takes 2 parameters .*not 1"):
+        force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [1.0])
+    with pytest.raises(openmm.OpenMMException, match="van der Waals excluded volume b = -1"):
+        force.setEquationOfState(GenDPDEForce.VanDerWaals, [1.0, -1.0, 1.0])
+    with pytest.raises(TypeError, match="theta0"):
+        force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [1.0, 3 * unit.nanometer])
+    assert force.getEquationOfState() == [GenDPDEForce.Tait, []]
+
+
+def _lattice_system(law_force):
+    system = openmm.System()
+    edge, side = 3.0, 6
+    system.setDefaultPeriodicBoxVectors(*(openmm.Vec3(*(edge if i == k else 0 for i in range(3))) for k in range(3)))
+    positions = []
+    for x in range(side):
+        for y in range(side):
+            for z in range(side):
+                system.addParticle(200.0)
+                positions.append(openmm.Vec3(x + 0.5, y + 0.5, z + 0.5) * (edge / side))
+    system.addForce(law_force)
+    return system, positions
+
+
+def test_a_law_that_depends_on_temperature_needs_a_gendpde_integrator():
+    force = GenDPDEForce(1.0)
+    force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [10.0, 300.0])
+    system, _ = _lattice_system(force)
+    with pytest.raises(openmm.OpenMMException, match="TaitThermalExpansion.*needs a GenDPDEIntegrator"):
+        openmm.Context(system, openmm.VerletIntegrator(0.001), openmm.Platform.getPlatformByName("Reference"))
+
+
+def test_gpu_platforms_refuse_it_for_now():
+    names = [openmm.Platform.getPlatform(i).getName() for i in range(openmm.Platform.getNumPlatforms())]
+    if "OpenCL" not in names:
+        pytest.skip("no OpenCL platform here")
+    force = GenDPDEForce(1.0)
+    force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [10.0, 300.0])
+    system, _ = _lattice_system(force)
+    integrator = GenDPDEIntegrator(0.001, 0.0, 0.0, 0.1)
+    integrator.setTemperature(300)
+    with pytest.raises(openmm.OpenMMException, match="Reference and CPU platforms only .*OpenCL"):
+        openmm.Context(system, integrator, openmm.Platform.getPlatformByName("OpenCL"))
+
+
+def test_isothermal_pressure_is_the_law_at_the_bath_temperature():
+    """In the Isothermal mode every particle is at T: pi_i = pi_Tait(n_i) + beta (T - theta0), with the Tait pressure
+    that the same force gives without the thermal law (the particles' densities are the same)."""
+    tait = GenDPDEForce(1.0)
+    system, positions = _lattice_system(tait)
+    context = openmm.Context(system, openmm.VerletIntegrator(0.001), openmm.Platform.getPlatformByName("Reference"))
+    context.setPositions(positions)
+    expected = tait.getParticlePressures(context).value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
+    thermal = GenDPDEForce(1.0)
+    beta, theta0, bath = 2.5, 300.0, 340.0
+    thermal.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [beta, theta0])
+    system, positions = _lattice_system(thermal)
+    integrator = GenDPDEIntegrator(0.001, 1.0, 0.0, 0.1)
+    integrator.setMode(GenDPDEIntegrator.Isothermal)
+    integrator.setTemperature(bath)
+    context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName("Reference"))
+    context.setPositions(positions)
+    found = thermal.getParticlePressures(context).value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
+    numpy.testing.assert_allclose(found, expected + beta * (bath - theta0), rtol=1e-12)

@@ -331,6 +331,28 @@ void testStateHandling() {
         r *= 0.999;
     a.context->setPositions(squeezed);
     ASSERT(a.integrator.getParticleTemperatures() == before);
+
+    // With adiabatic position changes, the same move keeps each particle's entropy instead: theta_i/theta_i(before)
+    // = exp(-(sigma(n_i') - sigma(n_i))/C) with the oracle's densities before and after (to 1e-9).
+    d.integrator.setAdiabaticPositionChanges(true);
+    const std::vector<double> thetaBefore = d.integrator.getParticleTemperatures();
+    const std::vector<double> densityBefore = oracleDensities(d.scene, d.positions());
+    std::vector<Vec3> moved = d.positions();
+    for (Vec3& r : moved)
+        r *= 0.995;
+    d.context->setPositions(moved);
+    const std::vector<double> thetaAfter = d.integrator.getParticleTemperatures();
+    const std::vector<double> densityAfter = oracleDensities(d.scene, moved);
+    double largest = 0;
+    for (size_t i = 0; i < thetaAfter.size(); i++) {
+        double e, sigma0, sigma1, p0, pt;
+        d.laws.parts(isVanDerWaals(i), densityBefore[i], e, sigma0, p0, pt);
+        d.laws.parts(isVanDerWaals(i), densityAfter[i], e, sigma1, p0, pt);
+        assertRelative(std::exp(-(sigma1 - sigma0)/heatCapacity), thetaAfter[i]/thetaBefore[i], 1e-9,
+                       "adiabatic move, particle " + std::to_string(i));
+        largest = std::max(largest, std::fabs(thetaAfter[i]/thetaBefore[i] - 1));
+    }
+    ASSERT(largest > 1e-4);
 }
 
 /** Bad input and bad states: refused with the parameter, the value, the particle and the step named. */

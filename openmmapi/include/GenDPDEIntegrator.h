@@ -222,6 +222,18 @@ public:
      */
     std::vector<double> getInternalEnergies() const;
     /**
+     * Whether setting the Context's positions (Context::setPositions, setState, a barostat's move, a deformation of
+     * the box) keeps each particle's entropy instead of its temperature, for the GenDPDEForce laws that depend on
+     * temperature (docs/theory.md section 11). false (the default): the particles keep their temperatures at the new
+     * positions. true: the move is adiabatic for each particle, as the dynamics' own motion is; a particle the move
+     * compresses heats up by C_V theta' = C_V theta exp(-(sigma(n') - sigma(n))/C_V), e.g. for a quasi-static
+     * compression by small deformations of the box. Loading a checkpoint or a State, or setting the internal energies,
+     * sets the state as given, either way. No effect on laws that do not depend on temperature.
+     */
+    void setAdiabaticPositionChanges(bool adiabatic);
+    /** Whether setting the positions keeps the particles' entropies (see setAdiabaticPositionChanges()). */
+    bool getAdiabaticPositionChanges() const;
+    /**
      * The total energy K + U + sum_i eps_i (in kJ/mol) of the Context this integrator is bound to, with the on-step
      * kinetic energy and the potential energy of the integration force groups: the quantity the dynamics conserves.
      */
@@ -256,6 +268,7 @@ private:
      */
     const std::vector<double>& currentInternalEnergies() const;
     bool hasThermalForce = false;   // the bound Context has a GenDPDEForce whose law depends on temperature
+    bool adiabaticPositionChanges = false;
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;

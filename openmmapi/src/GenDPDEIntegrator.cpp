@@ -309,8 +309,16 @@ const std::vector<double>& GenDPDEIntegrator::currentInternalEnergies() const {
 }
 
 void GenDPDEIntegrator::stateChanged(State::DataType changed) {
-    if (changed == State::Positions && context != nullptr)
+    if (changed == State::Positions && context != nullptr && !adiabaticPositionChanges)
         boundKernel().forgetDensityEntropies();
+}
+
+void GenDPDEIntegrator::setAdiabaticPositionChanges(bool adiabatic) {
+    adiabaticPositionChanges = adiabatic;
+}
+
+bool GenDPDEIntegrator::getAdiabaticPositionChanges() const {
+    return adiabaticPositionChanges;
 }
 
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {

@@ -3,8 +3,8 @@
 import argparse
 import warnings
 
-from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, rdf, slab, speed_vs_error, table3,
-               timing, tune_fcut)
+from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, expansion, rdf, slab, speed_vs_error,
+               table3, timing, tune_fcut)
 from .cli import apply_threads
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
@@ -14,6 +14,8 @@ SUBCOMMANDS = (
     ("timing", timing, "Table IV analogue: wall time per step with VA and VB, and their ratio, per cutoff"),
     ("tune-fcut", tune_fcut, "find f_cut of VB or VC so that the mean density is n0, with its uncertainty"),
     ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties measured back"),
+    ("thermal-expansion", expansion, "a fluid with thermal expansion: (dP/dT)_V and alpha measured back beside the "
+                                     "fluid's"),
     ("slab", slab, "a liquid slab in vacuum with VA, VB and VC, and the estimators against the exact "
                    "partition-of-unity volume"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),

@@ -102,6 +102,7 @@ class Fluid:
     self_diffusion: unit.Quantity = None  # the molecules' self-diffusion coefficient: not fitted, measured back
     speed_of_sound: unit.Quantity = None  # not fitted: compared with the model's (from its measured n dP/dn)
     surface_tension: unit.Quantity = None  # liquid-vapour; not fitted: compared with a slab's (`slab`)
+    thermal_expansion: unit.Quantity = None  # alpha (1/K): if given, the model's law is TaitThermalExpansion
 
     def __post_init__(self):
         self.in_openmm()
@@ -125,7 +126,8 @@ class Fluid:
         values["tait_exponent"] = self.tait_exponent
         for name, target in (("self_diffusion", unit.nanometer**2 / unit.picosecond),
                              ("speed_of_sound", unit.nanometer / unit.picosecond),
-                             ("surface_tension", unit.kilojoule_per_mole / unit.nanometer**2)):
+                             ("surface_tension", unit.kilojoule_per_mole / unit.nanometer**2),
+                             ("thermal_expansion", unit.kelvin**-1)):
             if getattr(self, name) is not None:
                 values[name] = _positive(name, _in_openmm(getattr(self, name), target, name), getattr(self, name))
         return values
@@ -149,6 +151,8 @@ class GenDPDEParameters:
     friction: float               # amu/ps, gamma
     heat_conduction: float        # kJ K/(mol ps), kappa
     heat_capacity: float          # kJ/mol/K, C_V per particle
+    thermal_pressure: float = None              # kJ/mol/nm^3/K, beta of TaitThermalExpansion (None: the Tait law)
+    thermal_reference_temperature: float = None  # K, theta0 of TaitThermalExpansion
 
     @property
     def units(self):
@@ -184,7 +188,8 @@ class GenDPDEParameters:
                 "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
                 "heat_capacity": self.molecules_per_particle * f["heat_capacity"],
                 "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion"),
-                "speed_of_sound": f.get("speed_of_sound"), "surface_tension": f.get("surface_tension")}
+                "speed_of_sound": f.get("speed_of_sound"), "surface_tension": f.get("surface_tension"),
+                "thermal_expansion": f.get("thermal_expansion")}
 
     def with_cutoff_scaling(self, cutoff_scaling):
         return dataclasses.replace(self, cutoff_scaling=cutoff_scaling)
@@ -219,6 +224,9 @@ class GenDPDEParameters:
             [openmm.Vec3(*row) for row in box], num_particles, self.mass, self.cutoff, estimator_value(estimator),
             self.cutoff_scaling, (self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent), step,
             self.friction, self.heat_conduction, self.heat_capacity, self.temperature, seed, mode)
+        if self.thermal_pressure is not None:
+            force.setEquationOfState(GenDPDEForce.TaitThermalExpansion,
+                                     [self.thermal_pressure, self.thermal_reference_temperature])
         return FluidModel(system, force, integrator, topology, positions, self)
 
 
@@ -285,6 +293,11 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
         cutoff = _positive("cutoff", _in_openmm(cutoff, unit.nanometer, "cutoff") if unit.is_quantity(cutoff)
                            else cutoff, cutoff)
         neighbors = 4 * math.pi / 3 * density * cutoff**3
+    thermal_pressure = thermal_reference_temperature = None
+    if "thermal_expansion" in f:
+        thermal_pressure, thermal_reference_temperature = thermal_expansion_law(
+            f["thermal_expansion"], f["compressibility"], density, temperature,
+            molecules_per_particle * f["heat_capacity"])
     r5 = density**2 * cutoff**5
     friction = 1575 * f["shear_viscosity"] / (2 * math.pi * r5)
     heat_conduction = 315 * f["thermal_conductivity"] * temperature**2 / (2 * math.pi * r5)
@@ -294,7 +307,24 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
         tait_exponent=f["tait_exponent"], cutoff=cutoff, neighbors=neighbors,
         cutoff_scaling=cutoff_scaling_guess(neighbors) if cutoff_scaling is None else cutoff_scaling,
         friction=friction, heat_conduction=heat_conduction,
-        heat_capacity=molecules_per_particle * f["heat_capacity"])
+        heat_capacity=molecules_per_particle * f["heat_capacity"], thermal_pressure=thermal_pressure,
+        thermal_reference_temperature=thermal_reference_temperature)
+
+
+def thermal_expansion_law(alpha, compressibility, density, temperature, heat_capacity):
+    """beta (kJ/mol/nm^3/K) and theta0 (K) of TaitThermalExpansion for a fluid's thermal expansion coefficient alpha
+    (1/K) and compressibility kappa_T (nm^3 mol/kJ) at (n0, T0), for particles of heat capacity C (kJ/mol/K), in the
+    Isoenergetic mode (docs/theory.md section 11): the particles' positions see the thermal pressure beta (1 + k_B/C)
+    at the kinetic temperature T, and the motion adds n k_B, so (dP/dT)_V = alpha/kappa_T asks for
+    beta = (alpha/kappa_T - n0 k_B)/(1 + k_B/C); theta0 = T0 (1 + k_B/C), the mean particle temperature at T0, keeps
+    P(n0, T0) = P0. Raises ValueError if alpha/kappa_T is below the ideal gas's n0 k_B (beta would be negative)."""
+    kb = BOLTZMANN.value_in_unit(HEAT_CAPACITY)
+    dressing = 1 + kb / heat_capacity
+    beta = (alpha / compressibility - density * kb) / dressing
+    if not beta > 0:
+        raise ValueError(f"thermal_expansion = {alpha} 1/K gives (dP/dT)_V = {alpha / compressibility} kJ/mol/nm^3/K, "
+                         f"less than the kinetic n0 k_B = {density * kb}: this mapping needs a liquid")
+    return beta, temperature * dressing
 
 
 def _argon_fluid():
@@ -326,6 +356,12 @@ def _argon_fluid():
 
 #: Liquid argon of the paper: coarse_grain(ARGON, 5, cutoff=1.6839 L) is its R* = 1.6839 model (Table II).
 ARGON = _argon_fluid()
+
+#: The same liquid argon with its thermal expansion coefficient at this state (125.7 K, 85.31 MPa),
+#: alpha = 2.64e-3 1/K (the local thermodynamic model of Colella, Mackie, Larentzos, Bresme and Bonet Avalos,
+#: arXiv 2603.11203): its particles have the TaitThermalExpansion law (docs/theory.md section 11).
+ARGON_EXPANDING = dataclasses.replace(ARGON, name="liquid argon with thermal expansion (Colella et al.)",
+                                      thermal_expansion=2.64e-3 / unit.kelvin)
 
 #: Liquid water at 298.15 K and 0.1 MPa (IAPWS-95 values as tabulated by NIST: 997.05 kg/m^3, kappa_T = 0.4525/GPa,
 #: c_v = 74.44 J/(mol K); viscosity 0.8900 mPa s, thermal conductivity 0.6065 W/(m K)); gamma_T = 7 (Tait); the

@@ -11,7 +11,8 @@ import pytest
 from openmm import unit
 
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import (ARGON, WATER, Fluid, coarse_grain, heat_capacity_per_molecule,
+from openmmgendpde import GenDPDEForce
+from openmmgendpde.fluid import (ARGON, ARGON_EXPANDING, WATER, Fluid, coarse_grain, heat_capacity_per_molecule,
                                  set_temperature_field)
 from openmmgendpde.model import fcc_box
 from openmmgendpde.presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
@@ -38,6 +39,32 @@ def test_argon_mapping_recovers_table_ii(published):
     assert round(reduced["gamma*"], 2) == published.friction
     assert round(reduced["kappa*"], 4) == published.heat_conduction
     assert round(reduced["f_cut"], 2) == published.cutoff_scaling
+
+
+def test_thermal_expansion_mapping_by_hand():
+    """alpha = 2.64e-3 1/K for argon (docs/theory.md section 11): (dP/dT)_V = alpha/kappa_T = n0 k_B + beta (1 + k_B/C),
+    so beta = (alpha/kappa_T - n0 k_B)/(1 + k_B/C), and theta0 = T0 (1 + k_B/C); here in SI per particle from the
+    state's values (rho = 1418.4 kg/m^3 at 5 atoms of 40.00 g/mol, kappa_T = 1.490/GPa, C = 12.51 k_B), then per mole.
+    The force of the model carries the law; a fluid without alpha keeps the Tait law."""
+    parameters = coarse_grain(ARGON_EXPANDING, 5, cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
+    f = ARGON_EXPANDING.in_openmm()
+    kappa_si = f["compressibility"] * 1e-27 / 1000 * N_A                  # nm^3 mol/kJ -> 1/Pa
+    n0_si = parameters.density * 1e27                                        # 1/m^3
+    c_over_kb = ARGON_STATE.heat_capacity
+    beta_si = (2.64e-3 / kappa_si - n0_si * K_B) / (1 + 1 / c_over_kb)      # Pa/K per particle
+    assert kappa_si == pytest.approx(1.490e-9, rel=2e-3)
+    assert parameters.thermal_pressure == pytest.approx(beta_si * 1e-27 * N_A / 1000, rel=1e-9)
+    assert parameters.thermal_reference_temperature == pytest.approx(parameters.temperature * (1 + 1 / c_over_kb),
+                                                                     rel=1e-12)
+    law, (beta, theta0) = parameters.liquid(500).force.getEquationOfState()
+    assert law == GenDPDEForce.TaitThermalExpansion
+    assert beta._value == parameters.thermal_pressure and theta0._value == parameters.thermal_reference_temperature
+    plain = coarse_grain(ARGON, 5, cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
+    assert plain.thermal_pressure is None and plain.liquid(500).force.getEquationOfState()[0] == GenDPDEForce.Tait
+    # An expansion below the ideal gas's (beta < 0) is refused, naming the property.
+    with pytest.raises(ValueError, match="thermal_expansion = 1e-06"):
+        coarse_grain(dataclasses.replace(ARGON, thermal_expansion=1e-6 / unit.kelvin), 5,
+                     cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
 
 
 def test_water_mapping_by_hand():

@@ -10,8 +10,8 @@ using namespace OpenMM;
 
 namespace {
 // Version 2: particle types, per-type heat capacities and type pairs. Version 3: the initial internal energies
-// (setInternalEnergies before a Context). Versions 1 and 2 are still read.
-const int currentVersion = 3;
+// (setInternalEnergies before a Context). Version 4: adiabaticPositionChanges. Versions 1 to 3 are still read.
+const int currentVersion = 4;
 }
 
 GenDPDEIntegratorProxy::GenDPDEIntegratorProxy() : SerializationProxy("GenDPDEIntegrator") {
@@ -30,6 +30,7 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
     node.setIntProperty("randomSeed", integrator.getRandomNumberSeed());
     node.setIntProperty("mode", (int) integrator.getMode());
     node.setDoubleProperty("temperature", integrator.getTemperature());
+    node.setBoolProperty("adiabaticPositionChanges", integrator.getAdiabaticPositionChanges());
     // The initial particle temperatures or internal energies configured before a Context existed (at most one list
     // is not empty): a parameter of the integrator. The live state of a bound integrator (its Context's internal
     // energies) travels in checkpoints and States only.
@@ -75,6 +76,8 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
     double temperature = node.getDoubleProperty("temperature");
     if (temperature != 0.0)
         integrator->setTemperature(temperature);
+    if (version >= 4)
+        integrator->setAdiabaticPositionChanges(node.getBoolProperty("adiabaticPositionChanges"));
     std::vector<double> temperatures;
     for (const SerializationNode& particle : node.getChildNode("ParticleTemperatures").getChildren())
         temperatures.push_back(particle.getDoubleProperty("t"));

@@ -18,6 +18,7 @@ void testSerialization() {
     integrator.setMode(GenDPDEIntegrator::Isothermal);
     integrator.setTemperature(125.7);
     integrator.setParticleTemperatures({120.0, 125.5, 131.25});
+    integrator.setAdiabaticPositionChanges(true);
     std::stringstream buffer;
     XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);
     GenDPDEIntegrator* copy = dynamic_cast<GenDPDEIntegrator*>(XmlSerializer::deserialize<Integrator>(buffer));
@@ -33,6 +34,7 @@ void testSerialization() {
     ASSERT_EQUAL(integrator.getMode(), copy->getMode());
     ASSERT_EQUAL(integrator.getTemperature(), copy->getTemperature());
     ASSERT(integrator.getParticleTemperatures() == copy->getParticleTemperatures());
+    ASSERT(copy->getAdiabaticPositionChanges());
     delete copy;
 }
 
@@ -44,7 +46,7 @@ void testInternalEnergiesRoundTrip() {
     integrator.setInternalEnergies(energies);
     std::stringstream buffer;
     XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);
-    ASSERT(buffer.str().find("version=\"3\"") != std::string::npos);
+    ASSERT(buffer.str().find("version=\"4\"") != std::string::npos);
     std::unique_ptr<Integrator> deserialized(XmlSerializer::deserialize<Integrator>(buffer));
     GenDPDEIntegrator* copy = dynamic_cast<GenDPDEIntegrator*>(deserialized.get());
     ASSERT(copy != nullptr);

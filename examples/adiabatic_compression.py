@@ -1,0 +1,83 @@
+"""Adiabatic compression of a liquid whose particles expand with temperature (docs/theory.md section 11).
+
+Liquid argon with its thermal expansion (fluid.ARGON_EXPANDING: 125.7 K, 85.31 MPa, alpha = 2.64e-3 1/K; 5 atoms per
+particle, R* = 1.6839), melted at T0, is compressed quasi-statically in the Conservative mode (velocity Verlet, no
+exchange of heat between particles): a number of small deformations of the box, each scaling the box and the
+positions so that the volume falls by a fixed fraction, with the integrator's setAdiabaticPositionChanges(True) (the
+deformation keeps each particle's entropy, as the motion does), each followed by steps of the dynamics.
+
+A particle of the TaitThermalExpansion law has sigma(n) = beta/n and C_V = C, so at fixed entropy
+dtheta/dn = theta (dpi/dtheta)_n/(n^2 C) = theta beta/(n^2 C), i.e. theta = theta0 exp(beta (1/n0 - 1/n)/C).
+Printed per stage: the volume, the mean particle density <n>, the mean particle temperature <theta>, the prediction of
+that law at the mean density, theta(<n>) = <theta0> exp(beta (1/<n0> - 1/<n>)/C), and the relative drift of
+K + U + sum eps (the conserved energy; the deformations do work, so it is reported since the last deformation).
+
+    .venv/bin/python examples/adiabatic_compression.py                # 864 particles, 20 stages of 0.5%
+"""
+
+import argparse
+import math
+
+import numpy as np
+import openmm
+from openmm import unit
+
+from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.fluid import ARGON_EXPANDING, coarse_grain
+from openmmgendpde.presets import ARGON_UNITS
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--particles", type=int, default=864, help="4 m^3 particles (default 864)")
+    parser.add_argument("--stages", type=int, default=20, help="deformations of the box (default 20)")
+    parser.add_argument("--fraction", type=float, default=0.005, help="volume removed per stage (default 0.005)")
+    parser.add_argument("--steps", type=int, default=100, help="Conservative steps after each stage (default 100)")
+    parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU"))
+    arguments = parser.parse_args()
+
+    parameters = coarse_grain(ARGON_EXPANDING, 5, cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
+    model = parameters.liquid(arguments.particles, mode=GenDPDEIntegrator.Isothermal, seed=3)
+    integrator, force = model.integrator, model.force
+    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(arguments.platform))
+    context.setPositions(model.positions)
+    context.setVelocitiesToTemperature(parameters.temperature * unit.kelvin, 3)
+    integrator.step(500)                                     # melt at T0 (DPD thermostat)
+    integrator.setMode(GenDPDEIntegrator.Conservative)
+    integrator.setInternalEnergiesToTemperature(parameters.temperature, 3)
+    integrator.step(200)
+    integrator.setAdiabaticPositionChanges(True)
+
+    beta, capacity = parameters.thermal_pressure, parameters.heat_capacity
+    kelvin, density_unit = unit.kelvin, unit.nanometer**-3
+
+    def observe():
+        theta = integrator.getParticleTemperatures().value_in_unit(kelvin)
+        n = force.getParticleDensities(context).value_in_unit(density_unit)
+        return float(np.mean(n)), float(np.mean(theta))
+
+    n0, theta0 = observe()
+    volume0 = model.volume
+    print(f"{ARGON_EXPANDING.name}: {arguments.particles} particles, beta = {beta:.4f} kJ/mol/nm^3/K, "
+          f"C = {capacity:.5f} kJ/mol/K")
+    print(f"dtheta/dn at fixed s at the start: theta beta/(n^2 C) = {theta0 * beta / (n0 * n0 * capacity):.4f} K nm^3")
+    print(" V/V0     <n> (nm^-3)  <theta> (K)  theta(<n>) (K)  difference  energy drift")
+    print(f" {1:.4f}   {n0:.5f}      {theta0:.3f}      {theta0:.3f}          {0:+.2e}   {0:+.1e}")
+    scale = (1 - arguments.fraction) ** (1 / 3)
+    for stage in range(arguments.stages):
+        state = context.getState(getPositions=True)
+        a, b, c = state.getPeriodicBoxVectors()
+        context.setPeriodicBoxVectors(a * scale, b * scale, c * scale)
+        context.setPositions(state.getPositions(asNumpy=True) * scale)
+        start = integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+        integrator.step(arguments.steps)
+        end = integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+        n, theta = observe()
+        predicted = theta0 * math.exp(beta * (1 / n0 - 1 / n) / capacity)
+        volume = model.volume * scale ** (3 * (stage + 1))
+        print(f" {volume / volume0:.4f}   {n:.5f}      {theta:.3f}      {predicted:.3f}          "
+              f"{theta / predicted - 1:+.2e}   {(end - start) / abs(start):+.1e}", flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,146 @@
+"""The model's thermal expansion measured back (`thermal-expansion`): the thermal pressure coefficient (dP/dT)_V of a
+fluid whose particles have the TaitThermalExpansion law (docs/theory.md section 11), and alpha = kappa_T (dP/dT)_V,
+beside the fluid's.
+
+The fluid (default: liquid argon at 125.7 K and 85.31 MPa with alpha = 2.64e-3 1/K, `fluid.ARGON_EXPANDING`) is mapped
+by `fluid.coarse_grain` and simulated at its density n0 (fixed volume) at two temperatures T0 - dT and T0 + dT: an
+Isothermal melt at the temperature, then the full GenDPDE dynamics (Isoenergetic, the internal energies drawn from
+their equilibrium law at that temperature), sampling the virial pressure P and the kinetic temperature T. The slope
+(P+ - P-)/(T+ - T-) is (dP/dT)_V; its standard error comes from the two runs' pressures (statistics.correlated_mean:
+the error of a correlated series, with its statistical inefficiency). alpha uses the
+fluid's own kappa_T (the Tait part of the law reproduces it; `calibrate` measures it). The mapped beta is then
+corrected once from the measured slope (`corrected`; the particles' pressures reach the virial pressure through
+the estimator, not one for one) and measured again (--iterations).
+
+    .venv/bin/python -m openmmgendpde thermal-expansion --particles 4000 --steps 4000 --threads 2
+"""
+
+import dataclasses
+import math
+
+import openmm
+from openmm import unit
+
+from . import GenDPDEIntegrator
+from .cli import add_platform
+from .fluid import ARGON_EXPANDING, coarse_grain
+from .statistics import correlated_mean
+from .units import BOLTZMANN
+from .thermodynamics import ThermodynamicProbe
+
+#: MPa per kJ/mol/nm^3 (a pressure per mole of particles, as OpenMM's units are, to one per particle).
+MPA_PER_OPENMM_PRESSURE = (1.0 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA
+                           ).value_in_unit(unit.megapascal)
+
+
+@dataclasses.dataclass
+class ThermalExpansion:
+    temperatures: tuple        # the two runs' mean kinetic temperatures (K)
+    pressures: tuple           # their mean virial pressures (MPa)
+    pressure_errors: tuple     # their standard errors (MPa)
+    slope: float               # (dP/dT)_V measured (MPa/K)
+    slope_error: float         # its standard error (MPa/K)
+    target_slope: float        # alpha/kappa_T of the fluid (MPa/K)
+    alpha: float               # kappa_T (dP/dT)_V (1/K)
+    alpha_error: float
+    target_alpha: float        # (1/K)
+    thermal_pressure: float    # beta of the law measured (kJ/mol/nm^3/K)
+
+
+def run_at(parameters, num_particles, temperature, melt_steps, steps, sample_every, platform, seed):
+    """Mean kinetic temperature (K) and CorrelatedMean of the pressure (kJ/mol/nm^3) of one run at ``temperature``."""
+    model = parameters.liquid(num_particles, mode=GenDPDEIntegrator.Isothermal, seed=seed)
+    integrator = model.integrator
+    integrator.setTemperature(temperature)
+    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(platform))
+    context.setPositions(model.positions)
+    context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
+    integrator.step(melt_steps)
+    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
+    integrator.setInternalEnergiesToTemperature(temperature, seed)
+    integrator.step(melt_steps // 2)   # the exchange with the internal energies settles
+    probe = ThermodynamicProbe(model.system)
+    pressures, temperatures = [], []
+    for _ in range(steps // sample_every):
+        integrator.step(sample_every)
+        state = context.getState(getEnergy=True, getVelocities=True)
+        sample = probe.sample(state, context, integrator)
+        pressures.append(sample.pressure.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3))
+        temperatures.append(sample.kinetic_temperature.value_in_unit(unit.kelvin))
+    return sum(temperatures) / len(temperatures), correlated_mean(pressures)
+
+
+def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=5, neighbors=None, cutoff=None):
+    """The GenDPDEParameters of ``fluid`` at this coarse-graining level (`fluid.coarse_grain`; default: the paper's
+    R* = 1.6839 for argon); ValueError if the fluid has no thermal expansion."""
+    if cutoff is None and neighbors is None:
+        cutoff = 1.6839 * 0.61616 * unit.nanometer if fluid is ARGON_EXPANDING else None
+        neighbors = None if cutoff is not None else 20
+    parameters = coarse_grain(fluid, molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
+    if parameters.thermal_pressure is None:
+        raise ValueError(f"{fluid.name}: no thermal_expansion, so no TaitThermalExpansion law to measure")
+    return parameters
+
+
+def corrected(parameters, result):
+    """The parameters with beta scaled so that the thermal part of (dP/dT)_V, beyond the kinetic n0 k_B, reaches the
+    fluid's: the response of P to beta is linear (a uniform shift of every pi_i), so one secant step from the origin
+    lands, to the measurement's error."""
+    kinetic = parameters.density * BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin) \
+        * MPA_PER_OPENMM_PRESSURE
+    scale = (result.target_slope - kinetic) / (result.slope - kinetic)
+    return dataclasses.replace(parameters, thermal_pressure=parameters.thermal_pressure * scale)
+
+
+def measure(parameters, num_particles=4000, delta=10.0, melt_steps=1000, steps=4000, sample_every=20,
+            platform="CPU", seed=1):
+    """ThermalExpansion of the model ``parameters`` (GenDPDEParameters with a thermal law), from runs at
+    T0 -+ ``delta`` K."""
+    fluid = parameters.fluid
+    runs = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps, sample_every,
+                   platform, seed + k) for k, sign in enumerate((-1, 1))]
+    (t_minus, p_minus), (t_plus, p_plus) = runs
+    slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * MPA_PER_OPENMM_PRESSURE
+    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error) / (t_plus - t_minus) * MPA_PER_OPENMM_PRESSURE
+    f = fluid.in_openmm()
+    kappa = f["compressibility"] / MPA_PER_OPENMM_PRESSURE   # 1/MPa
+    target_alpha = f["thermal_expansion"]
+    return ThermalExpansion(
+        temperatures=(t_minus, t_plus),
+        pressures=(p_minus.mean * MPA_PER_OPENMM_PRESSURE, p_plus.mean * MPA_PER_OPENMM_PRESSURE),
+        pressure_errors=(p_minus.standard_error * MPA_PER_OPENMM_PRESSURE, p_plus.standard_error * MPA_PER_OPENMM_PRESSURE),
+        slope=slope, slope_error=slope_error, target_slope=target_alpha / kappa,
+        alpha=kappa * slope, alpha_error=kappa * slope_error, target_alpha=target_alpha,
+        thermal_pressure=parameters.thermal_pressure)
+
+
+def run(arguments):
+    parameters = mapped()
+    print(f"{ARGON_EXPANDING.name}, {arguments.particles} particles, R* = 1.6839, {arguments.platform}")
+    results = []
+    for iteration in range(arguments.iterations + 1):
+        result = measure(parameters, num_particles=arguments.particles, delta=arguments.delta,
+                         melt_steps=arguments.melt, steps=arguments.steps, platform=arguments.platform,
+                         seed=arguments.seed)
+        label = "mapped" if iteration == 0 else f"after correction {iteration}"
+        print(f" beta = {result.thermal_pressure:.5f} kJ/mol/nm^3/K ({label})")
+        for t, p, e in zip(result.temperatures, result.pressures, result.pressure_errors):
+            print(f"  T = {t:.2f} K: P = {p:.3f} +- {e:.3f} MPa")
+        print(f"  (dP/dT)_V = {result.slope:.4f} +- {result.slope_error:.4f} MPa/K (fluid: {result.target_slope:.4f})")
+        print(f"  alpha = kappa_T (dP/dT)_V = {result.alpha:.4e} +- {result.alpha_error:.1e} 1/K "
+              f"(fluid: {result.target_alpha:.4e}; ratio {result.alpha / result.target_alpha:.3f})", flush=True)
+        results.append(result)
+        parameters = corrected(parameters, result)
+    return results
+
+
+def add_arguments(parser):
+    parser.add_argument("--particles", type=int, default=4000, help="4 m^3 particles (default 4000)")
+    parser.add_argument("--delta", type=float, default=10.0, help="dT (K) of the runs at T0 -+ dT (default 10)")
+    parser.add_argument("--melt", type=int, default=1000, help="Isothermal steps before each run (default 1000)")
+    parser.add_argument("--steps", type=int, default=4000, help="sampled Isoenergetic steps per run (default 4000)")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--iterations", type=int, default=1,
+                        help="corrections of beta from the measured slope, each measured again (default 1)")
+    add_platform(parser, default="CPU")
+    parser.set_defaults(run=run)

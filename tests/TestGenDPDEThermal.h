@@ -443,7 +443,30 @@ void testEqualsReference() {
     assertSameState(here, reference, platform->getName() + " against Reference");
 }
 
+/**
+ * A Tait type in a force whose other type's law depends on temperature: its particles' internal energies are left
+ * exactly as they are by Conservative steps (no sweep), while the thermal particles' change with their densities.
+ */
+void testTaitParticlesInAThermalForce() {
+    Run run(GenDPDEIntegrator::Conservative);
+    run.scene.force->setTypeEquationOfState(0, 1, GenDPDEForce::Tait, {});
+    run.start();
+    const std::vector<double> before = run.integrator.getInternalEnergies();
+    run.integrator.step(20);
+    const std::vector<double> after = run.integrator.getInternalEnergies();
+    double thermalChange = 0;
+    for (size_t i = 0; i < before.size(); i++) {
+        if (isVanDerWaals(i)) {   // (type 1, Tait here)
+            ASSERT(after[i] == before[i]);
+        }
+        else
+            thermalChange = std::max(thermalChange, std::fabs(after[i]/before[i] - 1));
+    }
+    ASSERT(thermalChange > 1e-5);
+}
+
 void runThermalTests() {
+    testTaitParticlesInAThermalForce();
     testErrors();
     testTaitUnchanged();
     testAgainstOracle();

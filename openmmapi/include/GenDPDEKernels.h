@@ -18,6 +18,7 @@ namespace GenDPDEPlugin {
 class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
 class CommonGenDPDECellGrid;      // platforms/common/src/CommonGenDPDECellGrid.h
 class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
+struct CommonGenDPDEThermalArrays;   // platforms/common/src/CommonGenDPDEThermalArrays.h
 
 /** Per-particle observables of a GenDPDEForce at one configuration (OpenMM units). */
 struct GenDPDEObservables {
@@ -116,12 +117,12 @@ public:
         return nullptr;
     }
     /**
-     * A force whose laws depend on temperature (docs/theory.md section 11), host platforms: each particle's C_V theta_i
-     * and sigma(n_i) at the positions of the last evaluation, which the integrator keeps as its state
-     * (IntegrateGenDPDEStepKernel::keepThermalState). Returns false (and sets nothing) if this kernel has none.
+     * A force whose laws depend on temperature (docs/theory.md section 11): give the integrator kernel of the same
+     * platform each particle's C_V theta_i and sigma(n_i) at the positions of the last evaluation, to keep as its
+     * state (IntegrateGenDPDEStepKernel::keepThermalState, or its device counterpart). Returns false if this kernel's
+     * laws do not depend on temperature.
      */
-    virtual bool getThermalState(const std::vector<double>*& thermalEnergies,
-                                 const std::vector<double>*& densityEntropies) {
+    virtual bool giveThermalState(class IntegrateGenDPDEStepKernel& integratorKernel) {
         return false;
     }
 };
@@ -196,6 +197,13 @@ public:
     }
     /** Forget the sigma_i of keepThermalState(): eps_i now belongs to the current positions (they were set). */
     virtual void forgetDensityEntropies() {
+    }
+    /**
+     * The GPU platforms' counterpart of getThermalState(): the device arrays of the thermal state (null on the host
+     * platforms). The force kernel of the same platform reads them.
+     */
+    virtual CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) {
+        return nullptr;
     }
     virtual int getSeed() const = 0;
     virtual void setSeed(int seed) = 0;

@@ -73,7 +73,6 @@ GenDPDEPairSource* GenDPDEForceImpl::getPairSource() {
     return kernel.getAs<CalcGenDPDEForceKernel>().getPairSource();
 }
 
-bool GenDPDEForceImpl::getThermalState(const std::vector<double>*& thermalEnergies,
-                                       const std::vector<double>*& densityEntropies) {
-    return kernel.getAs<CalcGenDPDEForceKernel>().getThermalState(thermalEnergies, densityEntropies);
+bool GenDPDEForceImpl::giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) {
+    return kernel.getAs<CalcGenDPDEForceKernel>().giveThermalState(integratorKernel);
 }

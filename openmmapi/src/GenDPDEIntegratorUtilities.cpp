@@ -81,37 +81,41 @@ void GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const 
     }
 }
 
-GenDPDEThermalState GenDPDEIntegratorUtilities::thermalState(ContextImpl& context) {
-    const GenDPDEIntegrator* integrator = dynamic_cast<const GenDPDEIntegrator*>(&context.getIntegrator());
+IntegrateGenDPDEStepKernel& GenDPDEIntegratorUtilities::thermalStateHolder(ContextImpl& context,
+                                                                         const GenDPDEIntegrator*& integrator) {
+    integrator = dynamic_cast<const GenDPDEIntegrator*>(&context.getIntegrator());
     if (integrator == nullptr)
         throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs a "
                               "GenDPDEIntegrator, which holds the particles' temperatures");
     IntegrateGenDPDEStepKernel& kernel = integrator->boundKernel();
-    const GenDPDEThermalState state = kernel.getThermalState(*integrator);
-    if (state.isothermal && !(state.temperature > 0.0))
+    const bool isothermal = (integrator->getMode() == GenDPDEIntegrator::Isothermal);
+    if (isothermal && !(integrator->getTemperature() > 0.0))
         throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature, with the "
                               "GenDPDEIntegrator in Isothermal mode, needs the bath temperature; call setTemperature()");
-    if (!state.isothermal && !kernel.hasInternalEnergies())
+    if (!isothermal && !kernel.hasInternalEnergies())
         throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs the particles' "
                               "temperatures; call the GenDPDEIntegrator's setTemperature() before creating the Context, "
                               "or setParticleTemperatures(), setInternalEnergies() or "
                               "setInternalEnergiesToTemperature()");
-    return state;
+    return kernel;
+}
+
+GenDPDEThermalState GenDPDEIntegratorUtilities::thermalState(ContextImpl& context) {
+    const GenDPDEIntegrator* integrator;
+    IntegrateGenDPDEStepKernel& kernel = thermalStateHolder(context, integrator);
+    return kernel.getThermalState(*integrator);
 }
 
 void GenDPDEIntegratorUtilities::keepThermalState(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                   IntegrateGenDPDEStepKernel& kernel) {
+    if (integrator.getMode() == GenDPDEIntegrator::Isothermal) {
+        kernel.forgetDensityEntropies();
+        return;
+    }
     for (ForceImpl* impl : context.getForceImpls()) {
         GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
-        const std::vector<double>* energies;
-        const std::vector<double>* entropies;
-        if (forceImpl == nullptr || !forceImpl->getThermalState(energies, entropies))
-            continue;
-        if (integrator.getMode() == GenDPDEIntegrator::Isothermal)
-            kernel.forgetDensityEntropies();
-        else
-            kernel.keepThermalState(*energies, *entropies);
-        return;
+        if (forceImpl != nullptr && forceImpl->giveThermalState(kernel))
+            return;   // (at most one such force: checkThermalForces)
     }
 }
 

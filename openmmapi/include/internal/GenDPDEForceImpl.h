@@ -31,8 +31,11 @@ public:
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials);
     /** The pairs of the kernel's last evaluation, which an integrator kernel may reuse, or null (GenDPDEKernels.h). */
     GenDPDEPairSource* getPairSource();
-    /** The thermal state of the kernel's last evaluation, if the force's laws depend on temperature (GenDPDEKernels.h). */
-    bool getThermalState(const std::vector<double>*& thermalEnergies, const std::vector<double>*& densityEntropies);
+    /**
+     * Give the thermal state of the kernel's last evaluation to an integrator kernel, if the force's laws depend on
+     * temperature (CalcGenDPDEForceKernel::giveThermalState); false if they do not.
+     */
+    bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel);
 private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;

@@ -70,6 +70,12 @@ public:
      */
     static GenDPDEThermalState thermalState(OpenMM::ContextImpl& context);
     /**
+     * The checks of thermalState(), then the Context's GenDPDEIntegrator (through integrator) and its kernel, whose
+     * device thermal state a GPU platform's force kernel reads (IntegrateGenDPDEStepKernel::getDeviceThermalState).
+     */
+    static IntegrateGenDPDEStepKernel& thermalStateHolder(OpenMM::ContextImpl& context,
+                                                          const GenDPDEIntegrator*& integrator);
+    /**
      * Right after the integration force groups were evaluated at the current positions: the integrator kernel keeps
      * the thermal state the GenDPDEForce whose laws depend on temperature found (Isoenergetic, Conservative), or
      * forgets the densities its eps_i belong to (Isothermal: eps_i is not updated there). Nothing without such a force.

@@ -29,7 +29,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
 ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel,
                                                               ContextImpl& context) :
         estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
-        thermal() {
+        thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr}) {
     for (const TaitParameters& p : kernel.taitByType)
         tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
     if (kernel.dependsOnTemperature)

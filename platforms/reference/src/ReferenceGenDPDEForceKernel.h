@@ -30,13 +30,10 @@ public:
     GenDPDEPairSource* getPairSource() override {
         return this;
     }
-    bool getThermalState(const std::vector<double>*& thermalEnergies,
-                         const std::vector<double>*& densityEntropies) override {
-        if (!dependsOnTemperature)
-            return false;
-        thermalEnergies = &thermalEnergy;
-        densityEntropies = &densityEntropy;
-        return true;
+    bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override {
+        if (dependsOnTemperature)
+            integratorKernel.keepThermalState(thermalEnergy, densityEntropy);
+        return dependsOnTemperature;
     }
     // GenDPDEPairSource: the neighbor list of the last evaluation.
     GenDPDEHostPairList* getHostPairList() override {
@@ -59,8 +56,12 @@ protected:
          */
         int particleState(int i, int t, double n0, double G, Physics::ParticleState& state) const {
             const Physics::LocalEquationOfState& law = (*laws)[t];
-            if (!law.dependsOnTemperature())
+            if (!law.dependsOnTemperature()) {
+                // A Tait particle in a force whose other laws depend on temperature keeps its eps_i as it is.
+                state.thermalEnergy = thermal.internalEnergies != nullptr ? thermal.internalEnergies[i] : 0.0;
+                state.densityEntropy = 0.0;
                 return Physics::particleState(estimator, tait[t], n0, G, state);
+            }
             const Physics::ThermalInput input = {thermal.isothermal, thermal.temperature,
                     thermal.internalEnergies[i], thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
                     thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]]};
@@ -89,9 +90,8 @@ protected:
         if (usesMoments())
             momentForce[i] = moment[i]*state.momentForceScale;
         if (dependsOnTemperature) {
-            const bool thermalLaw = lawByType[types->getParticleTypeIndices()[i]].dependsOnTemperature();
-            thermalEnergy[i] = thermalLaw ? state.thermalEnergy : 0.0;
-            densityEntropy[i] = thermalLaw ? state.densityEntropy : 0.0;
+            thermalEnergy[i] = state.thermalEnergy;
+            densityEntropy[i] = state.densityEntropy;
         }
     }
     /**
@@ -118,7 +118,7 @@ protected:
     // Per particle, at the positions of the last evaluation.
     std::vector<double> primitiveDensity, volume, pressure;
     std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
-    // Laws that depend on temperature: C_V theta_i (kJ/mol) and sigma(n_i) (kJ/(mol K)); 0 for Tait particles.
+    // Laws that depend on temperature: C_V theta_i (kJ/mol) and sigma(n_i) (kJ/(mol K)); eps_i and 0 for Tait particles.
     std::vector<double> thermalEnergy, densityEntropy;
     std::vector<double> particleVirial;     // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
     std::vector<OpenMM::Vec3> moment;        // VC: g_i = sum_j phi(r_ij) e_ij (dimensionless)

@@ -50,7 +50,7 @@ for precision in single mixed double; do
     # As CommonGenDPDEKernelSources::physicsCore: the shared core in real (force) or mixed (integrator) precision,
     # with the V-B table sizes of openmmapi/include/internal/VolumeVBTables.h.
     core_in() {
-        printf '#define GENDPDE_REAL %s\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"
+        printf '#define GENDPDE_REAL %s\n#define GENDPDE_ENERGY mixed\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"
         printf '#define GENDPDE_ISFINITE(x) isfinite(x)\n#define GENDPDE_FREXP(x, e) frexp(x, e)\n'
         printf '#define GENDPDE_VB_FIRST_OCTAVE -4\n'
         printf '#define GENDPDE_VB_LAST_OCTAVE 3\n#define GENDPDE_VB_QUADRATURE_PAIRS 12\n'

@@ -86,7 +86,7 @@ public:
      * particle f(theta, n) = e(n) - theta sigma(n) + C_V theta (1 - ln(theta/theta0)), with C_V the particle's heat
      * capacity on the GenDPDEIntegrator, so that pi = n^2 df/dn = pi_0(n) + theta pi_theta(n), and the conservative
      * motion is isentropic: a compressed particle heats up as dtheta/dn = theta pi_theta/(n^2 C_V). A law that depends
-     * on temperature needs a GenDPDEIntegrator (it holds theta_i), on the Reference or CPU platform.
+     * on temperature needs a GenDPDEIntegrator (it holds theta_i); every platform runs it.
      */
     enum EquationOfState {
         /** pi(n) from the Tait parameters alone (no parameters of its own): no temperature dependence. */

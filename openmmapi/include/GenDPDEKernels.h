@@ -13,6 +13,10 @@
 #include <string>
 #include <vector>
 
+namespace OpenMM {
+class ComputeArray;
+}
+
 namespace GenDPDEPlugin {
 
 class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
@@ -181,12 +185,12 @@ public:
     /** Set eps_i (kJ/mol) as belonging to the current positions (forgets the sigma_i of keepThermalState()). */
     virtual void setInternalEnergies(const std::vector<double>& internalEnergies) = 0;
     /**
-     * The thermal state a force kernel whose laws depend on temperature reads (docs/theory.md section 11). A platform
-     * that cannot provide it (the GPU platforms, for now) throws, saying so.
+     * The thermal state a host platform's force kernel whose laws depend on temperature reads (docs/theory.md section
+     * 11); the GPU platforms hold it on the device instead (getDeviceThermalState) and throw here.
      */
     virtual GenDPDEThermalState getThermalState(const GenDPDEIntegrator& integrator) {
-        throw OpenMM::OpenMMException("GenDPDEForce: equations of state that depend on temperature run on the "
-                                      "Reference and CPU platforms only (not yet on " + getPlatform().getName() + ")");
+        throw OpenMM::OpenMMException("GenDPDEIntegrator: the " + getPlatform().getName() + " platform holds the "
+                                      "particles' thermal state on the device, not on the host");
     }
     /**
      * Keep the particles' thermal state found by a force evaluation at the current positions: eps_i = thermalEnergies
@@ -204,6 +208,9 @@ public:
      */
     virtual CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) {
         return nullptr;
+    }
+    /** The GPU platforms' counterpart of keepThermalState(): device arrays by original index (mixed precision). */
+    virtual void keepDeviceThermalState(OpenMM::ComputeArray& thermalEnergies, OpenMM::ComputeArray& densityEntropies) {
     }
     virtual int getSeed() const = 0;
     virtual void setSeed(int seed) = 0;

@@ -30,6 +30,10 @@
 #ifndef GENDPDE_GLOBAL
 #define GENDPDE_GLOBAL
 #endif
+/* The precision of the internal energies eps_i the integrator keeps (the device's "mixed"; the host's double). */
+#ifndef GENDPDE_ENERGY
+#define GENDPDE_ENERGY GENDPDE_REAL
+#endif
 
 /* The density estimators, as GenDPDEForce::DensityEstimator numbers them (GenDPDEPhysics.h checks that they agree). */
 #define GENDPDE_ESTIMATOR_VA 0   /* traditional, V = 1/n0 */
@@ -395,10 +399,11 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
  *    e(n) - T sigma(n), to U, and *thermalEnergy receives C T;
  *  - otherwise the particle's entropy is fixed between the integrator's updates of its thermal state: it had the
  *    thermal energy storedEnergy = C theta at a density where sigma was storedEntropy, so now
- *    C theta = gendpdeIsentropicThermalEnergy(storedEnergy, sigma(n) - storedEntropy, C) (*thermalEnergy), and it
- *    contributes e(n) + (C theta - storedEnergy) to U: K + U + sum_i storedEnergy_i is then K + sum_i u_i(s_i, n_i),
- *    whose gradient at fixed entropies is the force. entropyKnown = 0 (the positions or energies were just set)
- *    takes storedEntropy = sigma(n): theta = storedEnergy/C.
+ *    C theta = storedEnergy gendpdeIsentropicThermalEnergy(1, sigma(n) - storedEntropy, C) (*thermalEnergy, in the
+ *    precision of the stored energies, GENDPDE_ENERGY, so that keeping it loses nothing and an unmoved particle keeps
+ *    its bits), and it contributes e(n) + (C theta - storedEnergy) to U: K + U + sum_i storedEnergy_i is then
+ *    K + sum_i u_i(s_i, n_i), whose gradient at fixed entropies is the force. entropyKnown = 0 (the positions or
+ *    energies were just set) takes storedEntropy = sigma(n): theta = storedEnergy/C.
  * The pressure is pi = pressureAtZero + theta thermalPressure, and the force coefficient pi dV/dn0 and moment scale
  * 2 pi dV/dG follow as for the Tait law. *densityEntropy receives sigma(n) (energy/temperature). Returns
  * GENDPDE_PARTICLE_VALID or why the state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW).
@@ -409,9 +414,9 @@ GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GEN
         GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
         GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_REAL p0, GENDPDE_REAL p1,
         GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, int isothermal,
-        GENDPDE_REAL temperature, GENDPDE_REAL storedEnergy, GENDPDE_REAL storedEntropy, int entropyKnown,
+        GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy, GENDPDE_REAL storedEntropy, int entropyKnown,
         GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* energy,
-        GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale, GENDPDE_REAL* thermalEnergy,
+        GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale, GENDPDE_ENERGY* thermalEnergy,
         GENDPDE_REAL* densityEntropy) {
     GENDPDE_REAL derivative, momentDerivative;
     int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
@@ -429,10 +434,10 @@ GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GEN
         *energy = e - temperature*sigma;
     }
     else {
-        *thermalEnergy = gendpdeIsentropicThermalEnergy(storedEnergy, entropyKnown ? sigma - storedEntropy : 0,
-                                                        heatCapacity);
-        theta = *thermalEnergy/heatCapacity;
-        *energy = e + (*thermalEnergy - storedEnergy);
+        *thermalEnergy = storedEnergy*gendpdeIsentropicThermalEnergy(1, entropyKnown ? sigma - storedEntropy : 0,
+                                                                     heatCapacity);
+        theta = (GENDPDE_REAL) (*thermalEnergy/heatCapacity);
+        *energy = e + (GENDPDE_REAL) (*thermalEnergy - storedEnergy);
     }
     *densityEntropy = sigma;
     *pressure = pressureAtZero + theta*thermalPressure;

@@ -1,4 +1,6 @@
 #include "CommonGenDPDEForceKernel.h"
+#include "CommonGenDPDEThermalArrays.h"
+#include "internal/GenDPDEIntegratorUtilities.h"
 #include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/BoxGeometry.h"
@@ -61,7 +63,8 @@ enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom,
 namespace DensityArgument {
 enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, TaitTable, TaitPower, VolumeConstants, MomentConstants,
       Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
-      Rebuild, Errors, Count};
+      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, LawTable, LawExtraTable, StoredEnergy,
+      StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
 }
 namespace ForceArgument {
 enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count};
@@ -81,10 +84,6 @@ int roundUp(double value, int multiple) {
 } // namespace
 
 void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
-    if (force.dependsOnTemperature())
-        throw OpenMMException("GenDPDEForce: equations of state that depend on temperature run on the Reference and "
-                              "CPU platforms only (not yet on " + getPlatform().getName()
-                              + ")");
     ContextSelector selector(cc);
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();
@@ -132,6 +131,13 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     atomType.upload(typeIndex);
     taitTable.initialize(cc, numTypes, 4*realSize, "gendpdeTaitTable");
     taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
+    lawTable.initialize<int>(cc, numTypes, "gendpdeLawTable");
+    lawExtraTable.initialize(cc, numTypes, 2*realSize, "gendpdeLawExtraTable");
+    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
+    const int thermalSize = dependsOnTemperature ? numAtoms : 1;
+    thermalEnergyOut.initialize(cc, thermalSize, mixedSize, "gendpdeThermalEnergy");
+    densityEntropyOut.initialize(cc, thermalSize, mixedSize, "gendpdeDensityEntropy");
+    placeholderInt.initialize<int>(cc, 1, "gendpdeThermalPlaceholder");
 
     // The V-B tables from the host's arrays (one source for every platform), in the context's precision, as the
     // physics core reads them (gendpdeVolumeIntegralsVB).
@@ -179,7 +185,19 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                 .later(VolumeConstants).later(MomentConstants).later(Estimator).array(Polynomials, polynomialTable)
                 .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
                 .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
-                .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).done(Count);
+                .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).later(Thermal)
+                .later(Isothermal).later(Temperature).later(EntropyKnown).array(LawTable, lawTable)
+                .array(LawExtraTable, lawExtraTable).later(StoredEnergy).later(StoredEntropy).later(ParticleClass)
+                .later(ClassHeatCapacity).array(ThermalEnergyOut, thermalEnergyOut)
+                .array(DensityEntropyOut, densityEntropyOut).done(Count);
+        // Without a law that depends on temperature the thermal arguments are placeholders, never read.
+        densityKernel->setArg(Thermal, 0);
+        densityKernel->setArg(Isothermal, 0);
+        setReal(cc, densityKernel, Temperature, 0.0);
+        densityKernel->setArg(EntropyKnown, 0);
+        for (int argument : {StoredEnergy, StoredEntropy, ClassHeatCapacity})
+            densityKernel->setArg(argument, thermalEnergyOut);
+        densityKernel->setArg(ParticleClass, placeholderInt);
     }
     forceKernel = program->createKernel("computeForces");
     {
@@ -221,24 +239,32 @@ void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context,
 
 void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
-    std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
+    std::vector<Physics::LocalEquationOfState> laws = equationsOfStateByType(force, *types);   // checked first
     estimator = (int) force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
-    taitByType = tait;
+    lawByType = laws;
+    dependsOnTemperature = false;
+    for (const Physics::LocalEquationOfState& law : lawByType)
+        dependsOnTemperature |= law.dependsOnTemperature();
     if (taitTable.isInitialized())
         uploadTypeTables();
 }
 
 void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
-    // The Tait equation of state of each type (Physics::TaitEquationOfState).
-    std::vector<double> tait;
-    std::vector<int> power;
-    for (const TaitParameters& p : taitByType) {
-        tait.insert(tait.end(), {p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent});
-        power.push_back(Physics::TaitEquationOfState::integerPowerOf(p.exponent));
+    // The law of each type in the physics core's order (Physics::LocalEquationOfState): p0..p3 (for Tait: n0, pi0,
+    // B_T, gamma_T), the integer power, the law and p4, p5.
+    std::vector<double> tait, extra;
+    std::vector<int> power, law;
+    for (const Physics::LocalEquationOfState& p : lawByType) {
+        tait.insert(tait.end(), p.parameter, p.parameter + 4);
+        extra.insert(extra.end(), p.parameter + 4, p.parameter + 6);
+        power.push_back(p.integerPower);
+        law.push_back(p.law);
     }
     uploadValues(taitTable, tait, cc.getUseDoublePrecision());
+    uploadValues(lawExtraTable, extra, cc.getUseDoublePrecision());
     taitPowerTable.upload(power);
+    lawTable.upload(law);
 }
 
 KernelArguments CommonCalcGenDPDEForceKernel::addNeighbourArguments(ComputeKernel& kernel, const std::string& name) {
@@ -284,7 +310,33 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     virialKernel->setArg(VirialArgument::Moments, constants.needsMoments() ? 1 : 0);
 }
 
+void CommonCalcGenDPDEForceKernel::setThermalArguments(ContextImpl& context) {
+    using namespace DensityArgument;
+    const GenDPDEIntegrator* integrator;
+    IntegrateGenDPDEStepKernel& holder = GenDPDEIntegratorUtilities::thermalStateHolder(context, integrator);
+    CommonGenDPDEThermalArrays* state = holder.getDeviceThermalState(*integrator);
+    if (state == nullptr)
+        throw OpenMMException("GenDPDEForce: the GenDPDEIntegrator's kernel does not hold its thermal state on the "
+                              "device");
+    densityKernel->setArg(Thermal, 1);
+    densityKernel->setArg(Isothermal, state->isothermal ? 1 : 0);
+    setReal(cc, densityKernel, Temperature, state->temperature);
+    densityKernel->setArg(EntropyKnown, state->entropiesKnown ? 1 : 0);
+    densityKernel->setArg(StoredEnergy, *state->internalEnergies);
+    densityKernel->setArg(StoredEntropy, *state->densityEntropies);
+    densityKernel->setArg(ParticleClass, *state->particleClass);
+    densityKernel->setArg(ClassHeatCapacity, *state->classHeatCapacity);
+}
+
+bool CommonCalcGenDPDEForceKernel::giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) {
+    if (dependsOnTemperature)
+        integratorKernel.keepDeviceThermalState(thermalEnergyOut, densityEntropyOut);
+    return dependsOnTemperature;
+}
+
 void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
+    if (dependsOnTemperature)
+        setThermalArguments(context);
     densityPass();
     if (deferred)
         return;   // the integrator's run checks the flags on the device
@@ -356,14 +408,16 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     const int particle = invalid/4, status = invalid%4;
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
+    const Physics::LocalEquationOfState& law = lawByType[types->getParticleTypeIndices()[particle]];
     // The density of the particle at these positions (the flags came from an evaluation at them; the atoms may have
     // been reordered since, so the pass runs again).
     densityPass();
     std::vector<double> volumes;
     volume.download(volumes, true);
     const double density = 1.0/volumes[slotOf(particle)];
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density,
-            taitByType[types->getParticleTypeIndices()[particle]].referenceDensity, step));
+    if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
+        throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law.parameter[1], step));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, law.parameter[0], step));
 }
 
 int CommonCalcGenDPDEForceKernel::slotOf(int particle) const {

@@ -42,6 +42,7 @@ public:
     CommonGenDPDEForceChecks* getDeviceChecks() override {
         return this;
     }
+    bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override;
     // CommonGenDPDEForceChecks
     void setDeferred(bool deferred) override;
     OpenMM::ArrayInterface& getErrorFlags() override {
@@ -66,12 +67,15 @@ private:
     /** The cell grid, the neighbour list (rebuilt if needed) and the density pass, without waiting for the device. */
     void densityPass();
     void setModelArguments();
-    /** The per-type Tait tables from the parameters read last. */
+    /** Point the density pass at the integrator's thermal state (laws that depend on temperature). */
+    void setThermalArguments(OpenMM::ContextImpl& context);
+    /** The per-type tables of the laws from the parameters read last. */
     void uploadTypeTables();
     OpenMM::ComputeContext& cc;
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
-    std::vector<TaitParameters> taitByType;    // by type index
+    std::vector<Physics::LocalEquationOfState> lawByType;   // by type index (p0..p3: taitTable, p4, p5: lawExtraTable)
+    bool dependsOnTemperature = false;          // some type's law does (docs/theory.md section 11)
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
     bool deferred = false;   // the checks are made by an integrator's run of steps (CommonGenDPDEForceChecks)
@@ -86,7 +90,11 @@ private:
     OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)
     OpenMM::ComputeArray momentForce;   // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
     OpenMM::ComputeArray polynomialTable, quadratureTable, errors;   // the V-B tables (real); error flags
-    OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type Tait parameters
+    OpenMM::ComputeArray atomType, taitTable, taitPowerTable;   // type by original index; per-type p0..p3, power
+    OpenMM::ComputeArray lawTable, lawExtraTable;   // per type: the law (GENDPDE_EOS_*, int), p4 and p5 (real2)
+    // Laws that depend on temperature: C_V theta_i and sigma(n_i) by original index (mixed), for the integrator; a
+    // placeholder of one element (and for the integrator's arrays) when no law does.
+    OpenMM::ComputeArray thermalEnergyOut, densityEntropyOut, placeholderInt;
     OpenMM::ComputeKernel checkKernel, buildKernel, densityKernel, forceKernel, virialKernel;
     GenDPDEObservables observables;
     CommonGenDPDEProfiler profiler;

@@ -54,6 +54,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     const int numAtoms = cc.getNumAtoms();
     const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
     energies.initialize(cc, numAtoms, mixedSize, "gendpdeInternalEnergies");
+    densityEntropies.initialize(cc, numAtoms, mixedSize, "gendpdeDensityEntropies");
     savedEnergies.initialize(cc, numAtoms, mixedSize, "gendpdeSavedInternalEnergies");
     savedVelm.initialize(cc, cc.getVelm().getSize(), cc.getVelm().getElementSize(), "gendpdeSavedVelm");
     kinetic.initialize(cc, numAtoms, mixedSize, "gendpdeKineticEnergy");
@@ -127,6 +128,23 @@ void CommonIntegrateGenDPDEStepKernel::setInternalEnergies(const std::vector<dou
                               "for " + std::to_string(cc.getNumAtoms()) + " particles");
     energies.upload(internalEnergies, true);
     energiesSet = !internalEnergies.empty() && internalEnergies[0] != 0.0;
+    entropiesKnown = false;
+}
+
+CommonGenDPDEThermalArrays* CommonIntegrateGenDPDEStepKernel::getDeviceThermalState(const GenDPDEIntegrator& integrator) {
+    // The classes and heat capacities as the sweep reads them (they may have changed since the last run of steps).
+    uploadTypeTables(integrator, GenDPDEIntegratorUtilities::stepTerms(integrator, cutoff));
+    thermalArrays = {integrator.getMode() == GenDPDEIntegrator::Isothermal, integrator.getTemperature(), &energies,
+                     &densityEntropies, entropiesKnown, &atomType, &heatCapacityTable};
+    return &thermalArrays;
+}
+
+void CommonIntegrateGenDPDEStepKernel::keepDeviceThermalState(ComputeArray& thermalEnergies,
+                                                              ComputeArray& entropies) {
+    ContextSelector selector(cc);
+    thermalEnergies.copyTo(energies);
+    entropies.copyTo(densityEntropies);
+    entropiesKnown = true;
 }
 
 void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int particle, double stepSize,

@@ -5,6 +5,7 @@
 #include "CommonGenDPDECellGrid.h"
 #include "CommonGenDPDEForceChecks.h"
 #include "CommonGenDPDEProfiler.h"
+#include "CommonGenDPDEThermalArrays.h"
 #include "GenDPDEKernels.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/common/ComputeArray.h"
@@ -48,6 +49,11 @@ public:
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override;
     void setInternalEnergies(const std::vector<double>& internalEnergies) override;
+    CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) override;
+    void keepDeviceThermalState(OpenMM::ComputeArray& thermalEnergies, OpenMM::ComputeArray& densityEntropies) override;
+    void forgetDensityEntropies() override {
+        entropiesKnown = false;
+    }
     int getSeed() const override {
         return seed;
     }
@@ -86,6 +92,10 @@ private:
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
     OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel;
     mutable std::vector<double> hostEnergies;
+    // docs/theory.md section 11: sigma(n_i) at the densities `energies` belong to (mixed, by original index), if known.
+    OpenMM::ComputeArray densityEntropies;
+    bool entropiesKnown = false;
+    CommonGenDPDEThermalArrays thermalArrays;
     CommonGenDPDEProfiler profiler;
 };
 

@@ -199,7 +199,13 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
  * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). Results by slot; momentForce[s] receives q (estimators that read
  * moments). errors[0] gets the smallest original index of a particle whose position is not finite, errors[1] the
  * smallest 4 i + status over the particles whose state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR,
- * GENDPDE_PARTICLE_OVERFLOW). The list's rebuild mark is cleared.
+ * GENDPDE_PARTICLE_OVERFLOW, GENDPDE_PARTICLE_OUTSIDE_DOMAIN). The list's rebuild mark is cleared.
+ * With thermal != 0 (a law depends on temperature, docs/theory.md section 11), a type whose lawTable entry is not
+ * GENDPDE_EOS_TAIT takes the law with parameters taitTable[t] (p0..p3) and lawExtraTable[t] (p4, p5), its particles'
+ * temperatures from the integrator (isothermal: every theta = temperature; otherwise storedEnergy eps_i, with
+ * storedEntropy sigma_i if entropyKnown, and C_V = classHeatCapacity[particleClass[i]], all by original index), and
+ * writes C_V theta_i and sigma(n_i) by original index to thermalEnergyOut and densityEntropyOut (a Tait particle:
+ * its eps_i and 0).
  */
 KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT atomIndex, real4 model,
         GLOBAL const int* RESTRICT atomType, GLOBAL const real4* RESTRICT taitTable,
@@ -207,7 +213,12 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
         GLOBAL const real* RESTRICT polynomials, GLOBAL const real* RESTRICT quadrature,
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
         GLOBAL real* RESTRICT forceCoefficient, GLOBAL real4* RESTRICT momentForce,
-        GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors) {
+        GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors,
+        int thermal, int isothermal, real temperature, int entropyKnown, GLOBAL const int* RESTRICT lawTable,
+        GLOBAL const real2* RESTRICT lawExtraTable, GLOBAL const mixed* RESTRICT storedEnergy,
+        GLOBAL const mixed* RESTRICT storedEntropy, GLOBAL const int* RESTRICT particleClass,
+        GLOBAL const mixed* RESTRICT classHeatCapacity, GLOBAL mixed* RESTRICT thermalEnergyOut,
+        GLOBAL mixed* RESTRICT densityEntropyOut) {
     if (GLOBAL_ID == 0)
         rebuild[0] = 0;
     const int moments = gendpdeEstimatorNeedsMoments(estimator);
@@ -226,10 +237,32 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
         const int type = atomType[atom];
         const real4 tait = taitTable[type];
         real v, pi, f, coefficient, momentForceScale;
-        const int status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
-                volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
-                quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, tait.x, tait.y,
-                tait.z, tait.w, taitPowerTable[type], &v, &pi, &f, &coefficient, &momentForceScale);
+        int status;
+        if (thermal && lawTable[type] != GENDPDE_EOS_TAIT) {
+            // docs/theory.md section 11: the law at theta_i, with eps_i in mixed precision.
+            const real2 extra = lawExtraTable[type];
+            mixed thermalEnergy;
+            real sigma;
+            status = gendpdeThermalParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
+                    volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
+                    quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS,
+                    lawTable[type], tait.x, tait.y, tait.z, tait.w, extra.x, extra.y, taitPowerTable[type], isothermal,
+                    temperature, storedEnergy[atom], (real) storedEntropy[atom], entropyKnown,
+                    (real) classHeatCapacity[particleClass[atom]], &v, &pi, &f, &coefficient, &momentForceScale,
+                    &thermalEnergy, &sigma);
+            thermalEnergyOut[atom] = thermalEnergy;
+            densityEntropyOut[atom] = sigma;
+        }
+        else {
+            status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
+                    volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
+                    quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, tait.x, tait.y,
+                    tait.z, tait.w, taitPowerTable[type], &v, &pi, &f, &coefficient, &momentForceScale);
+            if (thermal) {   // a Tait particle in a force whose other laws depend on temperature keeps its eps_i
+                thermalEnergyOut[atom] = storedEnergy[atom];
+                densityEntropyOut[atom] = 0;
+            }
+        }
         if (moments) {
             const real3 q = g*momentForceScale;
             momentForce[s] = make_real4(q.x, q.y, q.z, 0);

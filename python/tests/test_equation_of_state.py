@@ -115,3 +115,8 @@ def test_isothermal_pressure_is_the_law_at_the_bath_temperature():
     context.setPositions(positions)
     found = thermal.getParticlePressures(context).value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
     numpy.testing.assert_allclose(found, expected + beta * (bath - theta0), rtol=1e-12)
+    # The law's parameters change in the Context with updateParametersInContext.
+    thermal.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [2 * beta, theta0])
+    thermal.updateParametersInContext(context)
+    found = thermal.getParticlePressures(context).value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
+    numpy.testing.assert_allclose(found, expected + 2 * beta * (bath - theta0), rtol=1e-12)

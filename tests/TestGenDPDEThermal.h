@@ -235,7 +235,7 @@ void testAgainstOracle() {
  */
 void testConservation() {
     if (floatForces())
-        return;   // float forces: rounding, not the step, sets the excursion (the GPU platforms' double precision runs it)
+        return;   // float forces: rounding, not the step, sets the excursion (the double precision runs it)
     double excursion[2];
     for (int halving = 0; halving < 2; halving++) {
         const double dt = stepSize/(1 << halving);
@@ -266,7 +266,8 @@ void testConservation() {
     }
     const double ratio = excursion[0]/excursion[1];
     std::ostringstream what;
-    what << "energy excursion ratio dt/(dt/2) = " << ratio << " (" << excursion[0] << ", " << excursion[1] << " kJ/mol)";
+    what << "energy excursion ratio dt/(dt/2) = " << ratio << " (" << excursion[0] << ", " << excursion[1]
+         << " kJ/mol)";
     std::fprintf(stderr, "%s\n", what.str().c_str());
     if (!(ratio > 3 && ratio < 5.3))
         throw std::runtime_error(what.str() + ", expected 4 (second order)");

@@ -418,7 +418,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     const std::map<int, int> types = GenDPDEIntegratorUtilities::particleTypes(system, *this);
     const ParticleTypeIndex typeIndex(types, system.getNumParticles(), integratorName);
     typePairTable(*this, typeIndex);
-    GenDPDEIntegratorUtilities::checkThermalForces(system, *this);
+    const bool thermalForce = GenDPDEIntegratorUtilities::checkThermalForces(system, *this);
     const std::vector<double> energies = initialInternalEnergies(system, types);
     int seed = randomSeed;
     if (seed == 0) {
@@ -432,11 +432,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     contextParticleTypes = types;
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
-    hasThermalForce = false;
-    for (int i = 0; i < system.getNumForces(); i++) {
-        const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
-        hasThermalForce |= (force != nullptr && force->dependsOnTemperature());
-    }
+    hasThermalForce = thermalForce;
     context = &contextRef;
     owner = &contextRef.getOwner();
 }

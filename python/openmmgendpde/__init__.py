@@ -147,9 +147,9 @@ def _wrap_equation_of_state():
                                (addTypeEquationOfState, add_type), (setTypeEquationOfState, set_type),
                                (getTypeEquationOfState, get_type)):
         function.__doc__ = (original.__doc__ or "") + (
-            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta (kJ/mol/nm^3/K, "
-            "or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. Getters return "
-            "[law, parameters] or [type, law, parameters], the parameters as Quantities.")
+            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta "
+            "(kJ/mol/nm^3/K, or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. "
+            "Getters return [law, parameters] or [type, law, parameters], the parameters as Quantities.")
         setattr(GenDPDEForce, function.__name__, function)
 
 

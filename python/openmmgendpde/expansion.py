@@ -24,6 +24,7 @@ from openmm import unit
 from . import GenDPDEIntegrator
 from .cli import add_platform
 from .fluid import ARGON_EXPANDING, coarse_grain
+from .presets import ARGON_UNITS
 from .statistics import correlated_mean
 from .units import BOLTZMANN
 from .thermodynamics import ThermodynamicProbe
@@ -74,7 +75,7 @@ def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=5, neighbors=None, cuto
     """The GenDPDEParameters of ``fluid`` at this coarse-graining level (`fluid.coarse_grain`; default: the paper's
     R* = 1.6839 for argon); ValueError if the fluid has no thermal expansion."""
     if cutoff is None and neighbors is None:
-        cutoff = 1.6839 * 0.61616 * unit.nanometer if fluid is ARGON_EXPANDING else None
+        cutoff = ARGON_UNITS.to_openmm(1.6839, "length") if fluid is ARGON_EXPANDING else None
         neighbors = None if cutoff is not None else 20
     parameters = coarse_grain(fluid, molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
     if parameters.thermal_pressure is None:
@@ -100,15 +101,16 @@ def measure(parameters, num_particles=4000, delta=10.0, melt_steps=1000, steps=4
     runs = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps, sample_every,
                    platform, seed + k) for k, sign in enumerate((-1, 1))]
     (t_minus, p_minus), (t_plus, p_plus) = runs
-    slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * MPA_PER_OPENMM_PRESSURE
-    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error) / (t_plus - t_minus) * MPA_PER_OPENMM_PRESSURE
+    to_mpa = MPA_PER_OPENMM_PRESSURE
+    slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * to_mpa
+    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error) / (t_plus - t_minus) * to_mpa
     f = fluid.in_openmm()
     kappa = f["compressibility"] / MPA_PER_OPENMM_PRESSURE   # 1/MPa
     target_alpha = f["thermal_expansion"]
     return ThermalExpansion(
         temperatures=(t_minus, t_plus),
-        pressures=(p_minus.mean * MPA_PER_OPENMM_PRESSURE, p_plus.mean * MPA_PER_OPENMM_PRESSURE),
-        pressure_errors=(p_minus.standard_error * MPA_PER_OPENMM_PRESSURE, p_plus.standard_error * MPA_PER_OPENMM_PRESSURE),
+        pressures=(p_minus.mean * to_mpa, p_plus.mean * to_mpa),
+        pressure_errors=(p_minus.standard_error * to_mpa, p_plus.standard_error * to_mpa),
         slope=slope, slope_error=slope_error, target_slope=target_alpha / kappa,
         alpha=kappa * slope, alpha_error=kappa * slope_error, target_alpha=target_alpha,
         thermal_pressure=parameters.thermal_pressure)

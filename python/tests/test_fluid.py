@@ -683,3 +683,23 @@ def test_model_heat_capacity_from_fluctuations_equals_the_energy_it_takes():
     print(f"c = {measured.value / KB:.3f} +- {measured.error / KB:.3f} k_B from fluctuations, "
           f"{difference / KB:.3f} +- {error / KB:.3f} k_B from the energy")
     assert abs(measured.value - difference) < 3 * math.hypot(measured.error, error)
+
+
+def test_one_correction_of_beta_scales_the_thermal_part_of_the_slope():
+    """expansion.corrected: (dP/dT)_V = n0 k_B + X beta (1 + k_B/C), linear in beta with the estimator's response X,
+    so beta' = beta (target - n0 k_B)/(measured - n0 k_B). A measured slope equal to the target leaves beta as it is;
+    one whose thermal part is half the target's doubles it."""
+    from openmmgendpde.expansion import MPA_PER_OPENMM_PRESSURE, ThermalExpansion, corrected, mapped
+    parameters = mapped()
+    kinetic = parameters.density * K_B * N_A / 1000 * MPA_PER_OPENMM_PRESSURE   # n0 k_B in MPa/K
+    target = 1.7718
+
+    def result(slope):
+        return ThermalExpansion(temperatures=(0, 0), pressures=(0, 0), pressure_errors=(0, 0), slope=slope,
+                                slope_error=0, target_slope=target, alpha=0, alpha_error=0, target_alpha=0,
+                                thermal_pressure=parameters.thermal_pressure)
+    assert corrected(parameters, result(target)).thermal_pressure == pytest.approx(parameters.thermal_pressure,
+                                                                                   rel=1e-12)
+    half = kinetic + (target - kinetic) / 2
+    assert corrected(parameters, result(half)).thermal_pressure == pytest.approx(2 * parameters.thermal_pressure,
+                                                                                 rel=1e-12)

@@ -30,13 +30,21 @@ inline std::string noNeighbor(int particle, double cutoff, long long step) {
     return message.str();
 }
 
-/** The Tait equation of state overflows for a particle at density n (nm^-3); referenceDensity: its Tait n0. */
-inline std::string equationOfStateOverflow(int particle, double density, double referenceDensity, long long step) {
+/**
+ * The equation of state of a particle (law: its type's, Physics::LocalEquationOfState) overflows at density n
+ * (nm^-3); a Tait law says how many times its n0 that is.
+ */
+inline std::string equationOfStateOverflow(int particle, double density, const Physics::LocalEquationOfState& law,
+                                           long long step) {
     std::ostringstream message;
     message.precision(6);
-    message << "GenDPDEForce: the Tait equation of state of particle " << particle << " overflows at its density "
-            << density << " nm^-3 (" << density/referenceDensity << " n0) at step " << step
-            << ": the simulation has become unstable (reduce the step size) or the Tait parameters are extreme";
+    const bool vanDerWaals = (law.law == GENDPDE_EOS_VAN_DER_WAALS);
+    message << "GenDPDEForce: the " << (vanDerWaals ? "van der Waals" : "Tait") << " equation of state of particle "
+            << particle << " overflows at its density " << density << " nm^-3";
+    if (!vanDerWaals)
+        message << " (" << density/law.parameter[0] << " n0)";
+    message << " at step " << step << ": the simulation has become unstable (reduce the step size) or the parameters "
+            << "of the law are extreme";
     return message.str();
 }
 

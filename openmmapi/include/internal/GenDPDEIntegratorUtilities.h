@@ -60,9 +60,9 @@ public:
     /**
      * Refuse, when a Context is created, what a temperature-dependent law (GenDPDEForce::dependsOnTemperature) cannot
      * run with: more than one such GenDPDEForce, or one outside the integration force groups (the integrator keeps
-     * the thermal state its evaluation right before each step finds).
+     * the thermal state its evaluation right before each step finds). Returns whether the System has such a force.
      */
-    static void checkThermalForces(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
+    static bool checkThermalForces(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
     /**
      * For the kernel of a GenDPDEForce whose laws depend on temperature: the thermal state the Context's
      * GenDPDEIntegrator holds. Throws if the Context's integrator is not a GenDPDEIntegrator, or if the particles'

@@ -61,7 +61,7 @@ enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom,
       BoxB, BoxC, Count};
 }
 namespace DensityArgument {
-enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, TaitTable, TaitPower, VolumeConstants, MomentConstants,
+enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, LawParameters, TaitPower, VolumeConstants, MomentConstants,
       Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
       Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, LawTable, LawExtraTable, StoredEnergy,
       StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
@@ -129,7 +129,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     typeIndex.resize(numAtoms, 0);   // padding atoms
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
     atomType.upload(typeIndex);
-    taitTable.initialize(cc, numTypes, 4*realSize, "gendpdeTaitTable");
+    lawParameterTable.initialize(cc, numTypes, 4*realSize, "gendpdeLawParameters");
     taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
     lawTable.initialize<int>(cc, numTypes, "gendpdeLawTable");
     lawExtraTable.initialize(cc, numTypes, 2*realSize, "gendpdeLawExtraTable");
@@ -181,7 +181,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     {
         using namespace DensityArgument;
         addNeighbourArguments(densityKernel, "computeDensities").array(AtomIndex, cc.getAtomIndexArray()).later(Model)
-                .array(AtomType, atomType).array(TaitTable, taitTable).array(TaitPower, taitPowerTable)
+                .array(AtomType, atomType).array(LawParameters, lawParameterTable).array(TaitPower, taitPowerTable)
                 .later(VolumeConstants).later(MomentConstants).later(Estimator).array(Polynomials, polynomialTable)
                 .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
                 .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
@@ -246,7 +246,7 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     dependsOnTemperature = false;
     for (const Physics::LocalEquationOfState& law : lawByType)
         dependsOnTemperature |= law.dependsOnTemperature();
-    if (taitTable.isInitialized())
+    if (lawParameterTable.isInitialized())
         uploadTypeTables();
 }
 
@@ -261,7 +261,7 @@ void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
         power.push_back(p.integerPower);
         law.push_back(p.law);
     }
-    uploadValues(taitTable, tait, cc.getUseDoublePrecision());
+    uploadValues(lawParameterTable, tait, cc.getUseDoublePrecision());
     uploadValues(lawExtraTable, extra, cc.getUseDoublePrecision());
     taitPowerTable.upload(power);
     lawTable.upload(law);
@@ -417,7 +417,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     const double density = 1.0/volumes[slotOf(particle)];
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law.parameter[1], step));
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, law.parameter[0], step));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, law, step));
 }
 
 int CommonCalcGenDPDEForceKernel::slotOf(int particle) const {

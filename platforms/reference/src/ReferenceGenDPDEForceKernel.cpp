@@ -30,8 +30,8 @@ ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCal
                                                               ContextImpl& context) :
         estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
         thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr}) {
-    for (const TaitParameters& p : kernel.taitByType)
-        tait.emplace_back(p.referenceDensity, p.referencePressure, p.bulkModulus, p.exponent);
+    for (const Physics::LocalEquationOfState& law : kernel.lawByType)   // (a Tait law's p0..p3: n0, pi0, B_T, gamma_T)
+        tait.emplace_back(law.parameter[0], law.parameter[1], law.parameter[2], law.parameter[3]);
     if (kernel.dependsOnTemperature)
         thermal = GenDPDEIntegratorUtilities::thermalState(context);
 }
@@ -42,8 +42,7 @@ void ReferenceCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& conte
 
 void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     GenDPDEForceErrors::checkUnchangeableParameters(force, cutoff, periodic, *types);
-    std::vector<TaitParameters> tait = taitParametersByType(force, *types);   // checked before anything changes
-    std::vector<Physics::LocalEquationOfState> laws = equationsOfStateByType(force, *types);
+    std::vector<Physics::LocalEquationOfState> laws = equationsOfStateByType(force, *types);   // checked first
     estimator = (int) force.getDensityEstimator();
     lawByType = laws;
     dependsOnTemperature = false;
@@ -52,7 +51,6 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
     thermalEnergy.assign(dependsOnTemperature ? primitiveDensity.size() : 0, 0.0);
     densityEntropy.assign(thermalEnergy.size(), 0.0);
     cutoffScaling = force.getCutoffScaling();
-    taitByType = tait;
     observablesValid = false;
 }
 
@@ -80,7 +78,7 @@ void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, doub
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(i, 1.0/volume,
                 lawByType[types->getParticleTypeIndices()[i]].parameter[1], context.getStepCount()));
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, 1.0/volume,
-            taitByType[types->getParticleTypeIndices()[i]].referenceDensity, context.getStepCount()));
+            lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {

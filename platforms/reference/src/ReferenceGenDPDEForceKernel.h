@@ -109,7 +109,6 @@ protected:
                                      std::vector<double>* particleVirials);
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
-    std::vector<TaitParameters> taitByType;    // by type index
     std::vector<Physics::LocalEquationOfState> lawByType;   // by type index
     bool dependsOnTemperature = false;          // some type's law does (docs/theory.md section 11)
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)

@@ -192,8 +192,8 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
 
 /**
  * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
- * taitTable[t] = (reference density, reference pressure, bulk modulus, exponent) and taitPower[t] (gamma - 1 if
- * an integer, else -1) for particle type t = atomType[original index], volumeConstants = (k per density, volume
+ * lawParameters[t] = p0..p3 of the type's law (for a Tait law: reference density, reference pressure, bulk modulus,
+ * exponent) and taitPower[t] (gamma - 1 if an integer, else -1) for particle type t = atomType[original index], volumeConstants = (k per density, volume
  * scale, derivative scale, 0) and momentConstants = (c^2, eps^2, 0, 0) of gendpdeEstimatorConstants, estimator one of
  * GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
  * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). Results by slot; momentForce[s] receives q (estimators that read
@@ -201,14 +201,14 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
  * smallest 4 i + status over the particles whose state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR,
  * GENDPDE_PARTICLE_OVERFLOW, GENDPDE_PARTICLE_OUTSIDE_DOMAIN). The list's rebuild mark is cleared.
  * With thermal != 0 (a law depends on temperature, docs/theory.md section 11), a type whose lawTable entry is not
- * GENDPDE_EOS_TAIT takes the law with parameters taitTable[t] (p0..p3) and lawExtraTable[t] (p4, p5), its particles'
+ * GENDPDE_EOS_TAIT takes the law with parameters lawParameters[t] (p0..p3) and lawExtraTable[t] (p4, p5), its particles'
  * temperatures from the integrator (isothermal: every theta = temperature; otherwise storedEnergy eps_i, with
  * storedEntropy sigma_i if entropyKnown, and C_V = classHeatCapacity[particleClass[i]], all by original index), and
  * writes C_V theta_i and sigma(n_i) by original index to thermalEnergyOut and densityEntropyOut (a Tait particle:
  * its eps_i and 0).
  */
 KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT atomIndex, real4 model,
-        GLOBAL const int* RESTRICT atomType, GLOBAL const real4* RESTRICT taitTable,
+        GLOBAL const int* RESTRICT atomType, GLOBAL const real4* RESTRICT lawParameters,
         GLOBAL const int* RESTRICT taitPowerTable, real4 volumeConstants, real4 momentConstants, int estimator,
         GLOBAL const real* RESTRICT polynomials, GLOBAL const real* RESTRICT quadrature,
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
@@ -235,7 +235,7 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
         while (NEXT_NEIGHBOUR(cursor, ri, d) >= 0)
             addDensityTerms(d, model, moments, &n0, &g);
         const int type = atomType[atom];
-        const real4 tait = taitTable[type];
+        const real4 tait = lawParameters[type];   // (p0..p3: for a Tait law n0, pi0, B_T, gamma_T)
         real v, pi, f, coefficient, momentForceScale;
         int status;
         if (thermal && lawTable[type] != GENDPDE_EOS_TAIT) {

@@ -45,12 +45,17 @@ _SI_UNITS = {
 #: Optional properties (not fitted; measured back beside the targets) and their SI units.
 _OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second),
                    "speed_of_sound": ("m/s", unit.meter / unit.second),
-                   "surface_tension": ("N/m", unit.newton / unit.meter)}
+                   "surface_tension": ("N/m", unit.newton / unit.meter),
+                   "thermal_expansion": ("1/K", unit.kelvin**-1)}   # (if given, the law is TaitThermalExpansion)
 #: pint's base units and openmm.unit's.
 _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.second, "mole": unit.mole,
                "kelvin": unit.kelvin}
-#: The parameters of GenDPDEParameters that a model file holds, in order (the fluid aside).
-_PARAMETERS = [field for field in GenDPDEParameters.__dataclass_fields__ if field != "fluid"]
+#: The parameters of GenDPDEParameters that a model file may hold but need not (None: absent): those of a law that
+#: depends on temperature.
+_OPTIONAL_PARAMETERS = ["thermal_pressure", "thermal_reference_temperature"]
+#: The parameters of GenDPDEParameters that a model file holds, in order (the fluid and the optional ones aside).
+_PARAMETERS = [field for field in GenDPDEParameters.__dataclass_fields__
+               if field != "fluid" and field not in _OPTIONAL_PARAMETERS]
 
 
 def quantity(text, name="quantity"):
@@ -164,9 +169,10 @@ def save_parameters(parameters, path, comment=None):
     """Write a model file (TOML or JSON by the extension of ``path``): the fluid and every parameter, so that
     load_parameters(path) returns the same parameters. ``comment``: lines written at the top of a TOML file (e.g.
     how the model was calibrated)."""
-    model = {name: getattr(parameters, name) for name in _PARAMETERS}
-    for name, value in model.items():
-        model[name] = float(value)
+    model = {name: float(getattr(parameters, name)) for name in _PARAMETERS}
+    for name in _OPTIONAL_PARAMETERS:
+        if getattr(parameters, name) is not None:
+            model[name] = float(getattr(parameters, name))
     extension = os.path.splitext(path)[1].lower()
     if extension == ".json":
         with open(path, "w") as stream:
@@ -205,13 +211,13 @@ def load_parameters(path):
     fluid = fluid_from_table(table["fluid"], f"{path} [fluid]")
     given = table["parameters"]
     missing = sorted(set(_PARAMETERS) - set(given))
-    unknown = sorted(set(given) - set(_PARAMETERS))
+    unknown = sorted(set(given) - set(_PARAMETERS) - set(_OPTIONAL_PARAMETERS))
     if missing or unknown:
         raise ValueError(f"{path} [parameters]: " + "; ".join(
             part for part in (f"missing {missing}" if missing else "", f"unknown {unknown}" if unknown else "")
             if part))
     values = {}
-    for name in _PARAMETERS:
+    for name in _PARAMETERS + [name for name in _OPTIONAL_PARAMETERS if name in given]:
         value = given[name]
         if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
             raise ValueError(f"{path} [parameters]: {name} = {value!r} is not allowed; it must be a finite number")

@@ -11,7 +11,7 @@ import openmm
 import pytest
 
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import ARGON, WATER, coarse_grain
+from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, WATER, coarse_grain
 from openmmgendpde.fluid_files import (fluid_from_table, fluid_table, load_fluid, load_parameters, quantity,
                                        save_parameters)
 
@@ -49,7 +49,7 @@ def test_quantities_in_pint_syntax_become_si_quantities(text, expected_si):
     assert quantity(text).value_in_unit_system(openmm.unit.si_unit_system) == pytest.approx(expected_si, rel=1e-12)
 
 
-@pytest.mark.parametrize("fluid", [WATER, ARGON], ids=["water", "argon"])
+@pytest.mark.parametrize("fluid", [WATER, ARGON, ARGON_EXPANDING], ids=["water", "argon", "argon-expanding"])
 @pytest.mark.parametrize("extension", [".toml", ".json"])
 def test_a_saved_model_loads_to_the_same_parameters_and_system(fluid, extension, tmp_path):
     """save_parameters then load_parameters: every parameter equal to the last bit (with a changed f_cut and pi0, as

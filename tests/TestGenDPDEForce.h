@@ -23,32 +23,6 @@ namespace ForceTests {
 
 using namespace TestScenes;
 
-
-inline BruteForce::Model bruteForceModel(const Scene& scene) {
-    BruteForce::Model model;
-    model.cutoff = scene.force->getCutoffDistance();
-    model.estimator = scene.force->getDensityEstimator();
-    model.cutoffScaling = scene.force->getCutoffScaling();
-    scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
-    if (!scene.force->getParticleTypes().empty() || scene.force->getNumTypeParameters() > 0)
-        for (int i = 0; i < scene.system.getNumParticles(); i++) {
-            // Each particle's type, then that type's entry if it has one (written out here, not GenDPDETypes.h).
-            BruteForce::Tait tait{model.n0, model.pi0, model.bulkModulus, model.gammaT};
-            for (int entry = 0; entry < scene.force->getNumTypeParameters(); entry++) {
-                int type;
-                BruteForce::Tait p;
-                scene.force->getTypeParameters(entry, type, p.n0, p.pi0, p.bulkModulus, p.gammaT);
-                if (type == scene.force->getParticleType(i))
-                    tait = p;
-            }
-            model.particleTait.push_back(tait);
-        }
-    model.periodic = scene.force->usesPeriodicBoundaryConditions();
-    for (int k = 0; k < 3; k++)
-        model.box[k] = scene.box[k];
-    return model;
-}
-
 double energyAt(Context& context, const std::vector<Vec3>& positions) {
     context.setPositions(positions);
     return context.getState(State::Energy).getPotentialEnergy();

@@ -91,22 +91,9 @@ inline void setLaws(Scene& scene, const Laws& laws, bool mixture) {
     scene.force->addTypeEquationOfState(1, GenDPDEForce::VanDerWaals, {laws.a, laws.b, laws.k});
 }
 
-/** The brute-force oracle of a scene (its force's geometry and Tait parameters) with no particle law yet. */
-inline BruteForce::Model oracleModel(const Scene& scene) {
-    BruteForce::Model model;
-    model.cutoff = scene.force->getCutoffDistance();
-    model.estimator = scene.force->getDensityEstimator();
-    model.cutoffScaling = scene.force->getCutoffScaling();
-    scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
-    model.periodic = scene.force->usesPeriodicBoundaryConditions();
-    for (int k = 0; k < 3; k++)
-        model.box[k] = scene.box[k];
-    return model;
-}
-
 /** The particles' densities n_i = 1/V_i at these positions, by the oracle. */
 inline std::vector<double> oracleDensities(const Scene& scene, const std::vector<Vec3>& positions) {
-    const BruteForce::Result result = BruteForce::evaluate(oracleModel(scene), positions);
+    const BruteForce::Result result = BruteForce::evaluate(bruteForceModel(scene), positions);
     std::vector<double> density;
     for (double v : result.volume)
         density.push_back(1/v);
@@ -193,7 +180,7 @@ void testAgainstOracle() {
         }
         run.integrator.step(1);
         const std::vector<Vec3> positions = run.positions();
-        BruteForce::Model model = oracleModel(run.scene);
+        BruteForce::Model model = bruteForceModel(run.scene);
         model.particleLaw = law;
         const BruteForce::Result expected = BruteForce::evaluate(model, positions);
         const State state = context.getState(State::Energy | State::Forces);

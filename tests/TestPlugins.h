@@ -7,7 +7,9 @@
  * compiled in by tests/CMakeLists.txt). Loading OpenMM's whole plugin directory could also load an installed copy
  * of this plugin. */
 
+#include "TestUtilities.h"
 #include "openmm/Platform.h"
+#include <functional>
 #include <string>
 
 /** Load OpenMM's CPU platform and its kernels (libOpenMMCPU). */
@@ -20,6 +22,24 @@ inline void loadComputePlugins(const std::string& platformName) {
     OpenMM::Platform::loadPluginLibrary(OPENMM_PLUGIN_DIR "/libOpenMM" + platformName + ".so");
     OpenMM::Platform::loadPluginLibrary(GENDPDE_PLUGIN_DIR "/libOpenMMGenDPDEReference.so");
     OpenMM::Platform::loadPluginLibrary(GENDPDE_PLUGIN_DIR "/libOpenMMGenDPDE" + platformName + ".so");
+}
+
+/**
+ * The whole main() of a GPU platform's test driver (platforms/common/tests): load the platform platformName
+ * ("OpenCL" or "CUDA") and this build's kernels for it, point platform at it, give it the precision named on the
+ * command line (argv[1], double by default; the shared tests' tolerances follow it, precisionTolerance in
+ * TestUtilities.h), and run tests.
+ */
+inline int runComputeTestProgram(int argc, char** argv, const std::string& platformName, OpenMM::Platform*& platform,
+                                 const std::function<void()>& tests) {
+    const std::string precision = (argc > 1 ? argv[1] : "double");
+    return runTestProgram([&]() {
+        loadComputePlugins(platformName);
+        platform = &OpenMM::Platform::getPlatformByName(platformName);
+        platform->setPropertyDefaultValue("Precision", precision);
+        testPrecision() = precision;
+        tests();
+    });
 }
 
 /** Load this build's kernel library for one platform ("Reference" or "CPU"). */

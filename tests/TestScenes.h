@@ -113,6 +113,32 @@ inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::Densi
     return scene;
 }
 
+/** The brute-force oracle of a scene: its force's geometry and Tait parameters, per particle if it has types. */
+inline BruteForce::Model bruteForceModel(const Scene& scene) {
+    BruteForce::Model model;
+    model.cutoff = scene.force->getCutoffDistance();
+    model.estimator = scene.force->getDensityEstimator();
+    model.cutoffScaling = scene.force->getCutoffScaling();
+    scene.force->getTaitParameters(model.n0, model.pi0, model.bulkModulus, model.gammaT);
+    if (!scene.force->getParticleTypes().empty() || scene.force->getNumTypeParameters() > 0)
+        for (int i = 0; i < scene.system.getNumParticles(); i++) {
+            // Each particle's type, then that type's entry if it has one (written out here, not GenDPDETypes.h).
+            BruteForce::Tait tait{model.n0, model.pi0, model.bulkModulus, model.gammaT};
+            for (int entry = 0; entry < scene.force->getNumTypeParameters(); entry++) {
+                int type;
+                BruteForce::Tait p;
+                scene.force->getTypeParameters(entry, type, p.n0, p.pi0, p.bulkModulus, p.gammaT);
+                if (type == scene.force->getParticleType(i))
+                    tait = p;
+            }
+            model.particleTait.push_back(tait);
+        }
+    model.periodic = scene.force->usesPeriodicBoundaryConditions();
+    for (int k = 0; k < 3; k++)
+        model.box[k] = scene.box[k];
+    return model;
+}
+
 /**
  * Give the particles of a scene three types in turn, 7, -3 and 0 (non-consecutive, one negative, one the default):
  * type 7 its own Tait parameters (denser, softer, gamma_T 7), type -3 others (a non-integer gamma_T, by pow()),

@@ -174,12 +174,11 @@ void GenDPDEForce::checkLaw(const std::string& entry, EquationOfState law, const
                     {"van der Waals entropy scale k", Ranges::heatCapacity}};
     else if (law != Tait)
         reject(entry, "equation of state", (int) law, "", "Tait (0), TaitThermalExpansion (1) or VanDerWaals (2)");
-    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
     if (parameters.size() != expected.size()) {
         std::string list;
         for (const auto& parameter : expected)
             list += (list.empty() ? "" : ", ") + parameter.first;
-        throw OpenMMException(entry + ": the " + names[law] + " equation of state takes " + std::to_string(expected.size())
+        throw OpenMMException(entry + ": the " + equationOfStateName(law) + " equation of state takes " + std::to_string(expected.size())
                               + " parameters" + (list.empty() ? "" : " (" + list + ")") + ", not "
                               + std::to_string(parameters.size()));
     }

@@ -1,6 +1,7 @@
 #include "internal/GenDPDEForceImpl.h"
 #include "GenDPDEIntegrator.h"
 #include "internal/BoxGeometry.h"
+#include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include <sstream>
@@ -14,17 +15,16 @@ GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
 namespace {
 /** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (VanDerWaals)". */
 std::string describeTemperatureDependence(const GenDPDEForce& force) {
-    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
     GenDPDEForce::EquationOfState law;
     std::vector<double> parameters;
     force.getEquationOfState(law, parameters);
     if (law != GenDPDEForce::Tait)
-        return std::string("the equation of state of the types without an entry (") + names[law] + ")";
+        return std::string("the equation of state of the types without an entry (") + equationOfStateName(law) + ")";
     for (int entry = 0; entry < force.getNumTypeEquationsOfState(); entry++) {
         int type;
         force.getTypeEquationOfState(entry, type, law, parameters);
         if (law != GenDPDEForce::Tait)
-            return "the equation of state of type " + std::to_string(type) + " (" + names[law] + ")";
+            return "the equation of state of type " + std::to_string(type) + " (" + equationOfStateName(law) + ")";
     }
     return "no equation of state";
 }

@@ -68,6 +68,11 @@ std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEFor
     return table;
 }
 
+const char* GenDPDEPlugin::equationOfStateName(GenDPDEForce::EquationOfState law) {
+    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
+    return names[law];
+}
+
 std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType(const GenDPDEForce& force,
                                                                                  const ParticleTypeIndex& types) {
     static_assert(GenDPDEForce::Tait == GENDPDE_EOS_TAIT && GenDPDEForce::TaitThermalExpansion == GENDPDE_EOS_TAIT_THERMAL

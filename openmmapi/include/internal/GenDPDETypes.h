@@ -61,6 +61,9 @@ struct TaitParameters {
 /** Per type index: the type's own Tait parameters (addTypeParameters), else the force's. */
 std::vector<TaitParameters> taitParametersByType(const GenDPDEForce& force, const ParticleTypeIndex& types);
 
+/** The name of a law as the API spells it ("TaitThermalExpansion"), for messages; law must be a valid one. */
+const char* equationOfStateName(GenDPDEForce::EquationOfState law);
+
 /**
  * Per type index: the type's local equation of state (addTypeEquationOfState, else the force's
  * setEquationOfState) with its Tait parameters (taitParametersByType), in the physics core's order.

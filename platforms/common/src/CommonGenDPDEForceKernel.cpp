@@ -243,9 +243,7 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
     estimator = (int) force.getDensityEstimator();
     cutoffScaling = force.getCutoffScaling();
     lawByType = laws;
-    dependsOnTemperature = false;
-    for (const Physics::LocalEquationOfState& law : lawByType)
-        dependsOnTemperature |= law.dependsOnTemperature();
+    dependsOnTemperature = force.dependsOnTemperature();
     if (lawParameterTable.isInitialized())
         uploadTypeTables();
 }

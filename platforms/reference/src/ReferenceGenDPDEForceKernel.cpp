@@ -45,9 +45,7 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
     std::vector<Physics::LocalEquationOfState> laws = equationsOfStateByType(force, *types);   // checked first
     estimator = (int) force.getDensityEstimator();
     lawByType = laws;
-    dependsOnTemperature = false;
-    for (const Physics::LocalEquationOfState& law : lawByType)
-        dependsOnTemperature |= law.dependsOnTemperature();
+    dependsOnTemperature = force.dependsOnTemperature();
     thermalEnergy.assign(dependsOnTemperature ? primitiveDensity.size() : 0, 0.0);
     densityEntropy.assign(thermalEnergy.size(), 0.0);
     cutoffScaling = force.getCutoffScaling();

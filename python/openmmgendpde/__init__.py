@@ -115,10 +115,10 @@ def _law_parameters(law, parameters, where):
     return law, [to_openmm_value(v, u, f"{where}({name})") for v, (name, u) in zip(values, names)]
 
 
-def _with_law_units(result_law, result_parameters):
-    """A getter's law and parameters, the parameters as Quantities in OpenMM units."""
-    names = _LAW_PARAMETERS.get(int(result_law), [])
-    return [_unit.Quantity(v, u) for v, (_, u) in zip(result_parameters, names)]
+def _with_law_units(law, parameters):
+    """A getter's parameters of ``law`` as Quantities in OpenMM units."""
+    names = _LAW_PARAMETERS.get(int(law), [])
+    return [_unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
 
 
 def _wrap_equation_of_state():

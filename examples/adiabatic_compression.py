@@ -20,7 +20,6 @@ import argparse
 import math
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
@@ -40,13 +39,7 @@ def main():
     parameters = coarse_grain(ARGON_EXPANDING, 5, cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
     model = parameters.liquid(arguments.particles, mode=GenDPDEIntegrator.Isothermal, seed=3)
     integrator, force = model.integrator, model.force
-    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(arguments.platform))
-    context.setPositions(model.positions)
-    context.setVelocitiesToTemperature(parameters.temperature * unit.kelvin, 3)
-    integrator.step(500)                                     # melt at T0 (DPD thermostat)
-    integrator.setMode(GenDPDEIntegrator.Conservative)
-    integrator.setInternalEnergiesToTemperature(parameters.temperature, 3)
-    integrator.step(200)
+    context = model.melted(arguments.platform, GenDPDEIntegrator.Conservative, 500, 200, seed=3)   # melt at T0
     integrator.setAdiabaticPositionChanges(True)
 
     beta, capacity = parameters.thermal_pressure, parameters.heat_capacity

@@ -2,7 +2,8 @@
 fluid whose particles have the TaitThermalExpansion law (docs/theory.md section 11), and alpha = kappa_T (dP/dT)_V,
 beside the fluid's.
 
-The fluid (default: liquid argon at 125.7 K and 85.31 MPa with alpha = 2.64e-3 1/K, `fluid.ARGON_EXPANDING`) is mapped
+The fluid (default: liquid argon at 125.7 K and 85.31 MPa with alpha = 2.64e-3 1/K, `fluid.ARGON_EXPANDING`;
+--fluid supercritical: argon at 418.8 K and 85.31 MPa with alpha = 1.97e-3 1/K, `fluid.SUPERCRITICAL_ARGON`) is mapped
 by `fluid.coarse_grain` and simulated at its density n0 (fixed volume) at two temperatures T0 - dT and T0 + dT: an
 Isothermal melt at the temperature, then the full GenDPDE dynamics (Isoenergetic, the internal energies drawn from
 their equilibrium law at that temperature), sampling the virial pressure P and the kinetic temperature T. The slope
@@ -18,17 +19,18 @@ the estimator, not one for one) and measured again (--iterations).
 import dataclasses
 import math
 
-import openmm
 from openmm import unit
 
 from . import GenDPDEIntegrator
 from .cli import add_platform
-from .fluid import ARGON_EXPANDING, coarse_grain
+from .fluid import ARGON_EXPANDING, SUPERCRITICAL_ARGON, coarse_grain
 from .presets import ARGON_UNITS
 from .statistics import correlated_mean
 from .units import BOLTZMANN
 from .thermodynamics import ThermodynamicProbe
 
+#: The default half-difference of the two runs' temperatures, a fraction of T0.
+DELTA = 0.08
 #: MPa per kJ/mol/nm^3 (a pressure per mole of particles, as OpenMM's units are, to one per particle).
 MPA_PER_OPENMM_PRESSURE = (1.0 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA
                            ).value_in_unit(unit.megapascal)
@@ -37,6 +39,7 @@ MPA_PER_OPENMM_PRESSURE = (1.0 * unit.kilojoule_per_mole / unit.nanometer**3 / u
 @dataclasses.dataclass
 class ThermalExpansion:
     temperatures: tuple        # the two runs' mean kinetic temperatures (K)
+    temperature_errors: tuple  # their standard errors (K)
     pressures: tuple           # their mean virial pressures (MPa)
     pressure_errors: tuple     # their standard errors (MPa)
     slope: float               # (dP/dT)_V measured (MPa/K)
@@ -48,27 +51,35 @@ class ThermalExpansion:
     thermal_pressure: float    # beta of the law measured (kJ/mol/nm^3/K)
 
 
-def run_at(parameters, num_particles, temperature, melt_steps, steps, sample_every, platform, seed):
-    """Mean kinetic temperature (K) and CorrelatedMean of the pressure (kJ/mol/nm^3) of one run at ``temperature``."""
-    model = parameters.liquid(num_particles, mode=GenDPDEIntegrator.Isothermal, seed=seed)
+@dataclasses.dataclass
+class EquilibriumRun:
+    """Means of one equilibrium run (OpenMM units)."""
+    temperature: object  # statistics.CorrelatedMean of the kinetic temperature (K)
+    pressure: object     # statistics.CorrelatedMean of the virial pressure (kJ/mol/nm^3)
+    energy: float        # kJ/mol: the mean of K + U + sum eps per particle
+    density: float       # nm^-3: N/V
+
+
+def run_at(parameters, num_particles, temperature, melt_steps, steps, sample_every, platform, seed, density=None,
+           estimator="VB"):
+    """EquilibriumRun of the model ``parameters`` at ``temperature`` (K) and n0 (or ``density``, nm^-3): an Isothermal
+    melt, then the full dynamics (Isoenergetic, the internal energies drawn from their equilibrium law at that
+    temperature)."""
+    model = parameters.liquid(num_particles, estimator, mode=GenDPDEIntegrator.Isothermal, seed=seed, density=density)
     integrator = model.integrator
-    integrator.setTemperature(temperature)
-    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(platform))
-    context.setPositions(model.positions)
-    context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
-    integrator.step(melt_steps)
-    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-    integrator.setInternalEnergiesToTemperature(temperature, seed)
-    integrator.step(melt_steps // 2)   # the exchange with the internal energies settles
+    context = model.melted(platform, GenDPDEIntegrator.Isoenergetic, melt_steps, melt_steps // 2, temperature, seed)
     probe = ThermodynamicProbe(model.system)
-    pressures, temperatures = [], []
+    pressures, temperatures, energies = [], [], []
     for _ in range(steps // sample_every):
         integrator.step(sample_every)
         state = context.getState(getEnergy=True, getVelocities=True)
         sample = probe.sample(state, context, integrator)
         pressures.append(sample.pressure.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3))
         temperatures.append(sample.kinetic_temperature.value_in_unit(unit.kelvin))
-    return sum(temperatures) / len(temperatures), correlated_mean(pressures)
+        energies.append(sample.conserved_energy.value_in_unit(unit.kilojoule_per_mole))
+    return EquilibriumRun(temperature=correlated_mean(temperatures), pressure=correlated_mean(pressures),
+                          energy=sum(energies) / len(energies) / model.num_particles,
+                          density=model.num_particles / model.volume)
 
 
 def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=5, neighbors=None, cutoff=None):
@@ -93,22 +104,31 @@ def corrected(parameters, result):
     return dataclasses.replace(parameters, thermal_pressure=parameters.thermal_pressure * scale)
 
 
-def measure(parameters, num_particles=4000, delta=10.0, melt_steps=1000, steps=4000, sample_every=20,
-            platform="CPU", seed=1):
+def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4000, sample_every=20,
+            platform="CPU", seed=1, estimator="VB"):
     """ThermalExpansion of the model ``parameters`` (GenDPDEParameters with a thermal law), from runs at
-    T0 -+ ``delta`` K."""
+    T0 -+ ``delta`` K (default: 8% of T0, 10 K for the liquid argon: the slope's error from the mean temperatures
+    falls as 1/delta)."""
+    delta = DELTA * parameters.temperature if delta is None else delta
     fluid = parameters.fluid
-    runs = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps, sample_every,
-                   platform, seed + k) for k, sign in enumerate((-1, 1))]
-    (t_minus, p_minus), (t_plus, p_plus) = runs
+    minus, plus = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps,
+                          sample_every, platform, seed + k, estimator=estimator) for k, sign in enumerate((-1, 1))]
+    (t_minus, p_minus), (t_plus, p_plus) = (minus.temperature.mean, minus.pressure), (plus.temperature.mean,
+                                                                                     plus.pressure)
     to_mpa = MPA_PER_OPENMM_PRESSURE
     slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * to_mpa
-    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error) / (t_plus - t_minus) * to_mpa
+    # The errors of all four means, P's and T's (an error of a mean temperature moves the slope as P's does),
+    # summed as if independent (a run's P and T fluctuate together through the kinetic energy: an upper bound).
+    per_kelvin = slope / to_mpa
+    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error,
+                             per_kelvin * plus.temperature.standard_error,
+                             per_kelvin * minus.temperature.standard_error) / (t_plus - t_minus) * to_mpa
     f = fluid.in_openmm()
     kappa = f["compressibility"] / MPA_PER_OPENMM_PRESSURE   # 1/MPa
     target_alpha = f["thermal_expansion"]
     return ThermalExpansion(
         temperatures=(t_minus, t_plus),
+        temperature_errors=(minus.temperature.standard_error, plus.temperature.standard_error),
         pressures=(p_minus.mean * to_mpa, p_plus.mean * to_mpa),
         pressure_errors=(p_minus.standard_error * to_mpa, p_plus.standard_error * to_mpa),
         slope=slope, slope_error=slope_error, target_slope=target_alpha / kappa,
@@ -116,9 +136,15 @@ def measure(parameters, num_particles=4000, delta=10.0, melt_steps=1000, steps=4
         thermal_pressure=parameters.thermal_pressure)
 
 
+#: The fluids of --fluid: the two states of argon of the local thermodynamic model.
+FLUIDS = {"liquid": ARGON_EXPANDING, "supercritical": SUPERCRITICAL_ARGON}
+
+
 def run(arguments):
-    parameters = mapped()
-    print(f"{ARGON_EXPANDING.name}, {arguments.particles} particles, R* = 1.6839, {arguments.platform}")
+    fluid = FLUIDS[arguments.fluid]
+    parameters = mapped(fluid)
+    print(f"{fluid.name}, {arguments.particles} particles, {parameters.neighbors:.2f} neighbours within the cutoff "
+          f"{parameters.cutoff:.4f} nm, {arguments.platform}")
     results = []
     for iteration in range(arguments.iterations + 1):
         result = measure(parameters, num_particles=arguments.particles, delta=arguments.delta,
@@ -126,8 +152,9 @@ def run(arguments):
                          seed=arguments.seed)
         label = "mapped" if iteration == 0 else f"after correction {iteration}"
         print(f" beta = {result.thermal_pressure:.5f} kJ/mol/nm^3/K ({label})")
-        for t, p, e in zip(result.temperatures, result.pressures, result.pressure_errors):
-            print(f"  T = {t:.2f} K: P = {p:.3f} +- {e:.3f} MPa")
+        for t, te, p, e in zip(result.temperatures, result.temperature_errors, result.pressures,
+                               result.pressure_errors):
+            print(f"  T = {t:.2f} +- {te:.2f} K: P = {p:.3f} +- {e:.3f} MPa")
         print(f"  (dP/dT)_V = {result.slope:.4f} +- {result.slope_error:.4f} MPa/K (fluid: {result.target_slope:.4f})")
         print(f"  alpha = kappa_T (dP/dT)_V = {result.alpha:.4e} +- {result.alpha_error:.1e} 1/K "
               f"(fluid: {result.target_alpha:.4e}; ratio {result.alpha / result.target_alpha:.3f})", flush=True)
@@ -137,8 +164,11 @@ def run(arguments):
 
 
 def add_arguments(parser):
+    parser.add_argument("--fluid", choices=sorted(FLUIDS), default="liquid",
+                        help="liquid argon at 125.7 K (default; the paper's R* = 1.6839) or supercritical argon at "
+                             "418.8 K (20 neighbours within the cutoff, as the liquid's R* gives), both at 85.31 MPa")
     parser.add_argument("--particles", type=int, default=4000, help="4 m^3 particles (default 4000)")
-    parser.add_argument("--delta", type=float, default=10.0, help="dT (K) of the runs at T0 -+ dT (default 10)")
+    parser.add_argument("--delta", type=float, help="dT (K) of the runs at T0 -+ dT (default: 8%% of T0)")
     parser.add_argument("--melt", type=int, default=1000, help="Isothermal steps before each run (default 1000)")
     parser.add_argument("--steps", type=int, default=4000, help="sampled Isoenergetic steps per run (default 4000)")
     parser.add_argument("--seed", type=int, default=1)

@@ -244,6 +244,26 @@ class FluidModel:
     def num_particles(self):
         return self.system.getNumParticles()
 
+    def melted(self, platform, mode, melt_steps, settle_steps, temperature=None, seed=0):
+        """A Context of the model (``platform``: an openmm.Platform or its name), melted from the lattice: velocities
+        drawn at ``temperature`` (K; default T0), ``melt_steps`` Isothermal steps at it (the DPD thermostat), then the
+        integrator in ``mode`` with the internal energies drawn at that temperature and ``settle_steps`` steps (the
+        exchange between the motion and the internal energies settles)."""
+        temperature = self.parameters.temperature if temperature is None else temperature
+        if isinstance(platform, str):
+            platform = openmm.Platform.getPlatformByName(platform)
+        integrator = self.integrator
+        integrator.setMode(GenDPDEIntegrator.Isothermal)
+        integrator.setTemperature(temperature)
+        context = openmm.Context(self.system, integrator, platform)
+        context.setPositions(self.positions)
+        context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
+        integrator.step(melt_steps)
+        integrator.setMode(mode)
+        integrator.setInternalEnergiesToTemperature(temperature, seed)
+        integrator.step(settle_steps)
+        return context
+
     @property
     def volume(self):
         a, b, c = self.system.getDefaultPeriodicBoxVectors()
@@ -362,6 +382,27 @@ ARGON = _argon_fluid()
 #: arXiv 2603.11203): its particles have the TaitThermalExpansion law (docs/theory.md section 11).
 ARGON_EXPANDING = dataclasses.replace(ARGON, name="liquid argon with thermal expansion (Colella et al.)",
                                       thermal_expansion=2.64e-3 / unit.kelvin)
+
+#: Supercritical argon at 418.8 K and 85.31 MPa, the second state of the local thermodynamic model of Colella,
+#: Mackie, Larentzos, Bresme and Bonet Avalos (arXiv 2603.11203: 695.99 kg/m^3, c_v = 356 J/(kg K),
+#: kappa_T = 6.83e-9 1/Pa, alpha = 1.97e-3 1/K). The density, viscosity, conductivity and speed of sound are the
+#: reference correlations' as CoolProp 8.0.0 evaluates them (the Tegeler-Span-Wagner equation of state, J. Phys. Chem.
+#: Ref. Data 28, 779 (1999); the Lemmon-Jacobsen viscosity and conductivity, Int. J. Thermophys. 25, 21 (2004)):
+#: 695.97 kg/m^3, 5.556e-5 Pa s, 0.05320 W/(m K), 641.6 m/s; the same evaluation gives c_v = 356.5 J/(kg K),
+#: kappa_T = 6.828e-9 1/Pa and alpha = 1.966e-3 1/K, the paper's values. gamma_T = 6 as for the liquid (a model choice).
+SUPERCRITICAL_ARGON = Fluid(
+    name="supercritical argon, 418.8 K, 85.31 MPa",
+    temperature=418.8 * unit.kelvin,
+    pressure=85.31 * unit.megapascal,
+    mass_density=695.99 * unit.kilogram / unit.meter**3,
+    compressibility=6.83e-9 / unit.pascal,
+    heat_capacity=356.0 * 39.948e-3 * unit.joule / (unit.mole * unit.kelvin),
+    shear_viscosity=5.556e-5 * unit.pascal * unit.second,
+    thermal_conductivity=0.05320 * unit.watt / (unit.meter * unit.kelvin),
+    molar_mass=39.948 * unit.gram / unit.mole,
+    tait_exponent=6.0,
+    speed_of_sound=641.6 * unit.meter / unit.second,
+    thermal_expansion=1.97e-3 / unit.kelvin)
 
 #: Liquid water at 298.15 K and 0.1 MPa (IAPWS-95 values as tabulated by NIST: 997.05 kg/m^3, kappa_T = 0.4525/GPa,
 #: c_v = 74.44 J/(mol K); viscosity 0.8900 mPa s, thermal conductivity 0.6065 W/(m K)); gamma_T = 7 (Tait); the

@@ -659,7 +659,8 @@ def thermal_expansion_rows(calibration, plan, platform, seed):
     correction of beta (expansion.measure and expansion.corrected, with the calibration's parameters so far; the
     corrected beta is kept): (name, target, Measured) each."""
     runs = dict(num_particles=plan.particles, melt_steps=plan.melt, steps=plan.frames * plan.interval,
-                sample_every=plan.interval, platform=platform, seed=seed, estimator=calibration.estimator)
+                sample_every=plan.interval, platform=platform, seed=seed, estimator=calibration.estimator,
+                time_step=plan.time_step)
     first = expansion.measure(calibration.parameters, **runs)
     calibration.parameters = expansion.corrected(calibration.parameters, first)
     second = expansion.measure(calibration.parameters, **runs)
@@ -833,6 +834,10 @@ def run(arguments):
     plan = QUICK if arguments.quick else Plan()
     if arguments.particles is not None:
         plan = dataclasses.replace(plan, particles=arguments.particles)
+    if arguments.time_step is not None:
+        if not 0 < arguments.time_step < math.inf:
+            raise SystemExit(f"error: calibrate: --time-step {arguments.time_step} is not allowed; it must be > 0")
+        plan = dataclasses.replace(plan, time_step=arguments.time_step)
     if arguments.output and os.path.splitext(arguments.output)[1].lower() not in (".toml", ".json"):
         raise SystemExit(f"error: calibrate: --output {arguments.output} is not allowed; it must end in .toml or .json")
     try:   # every argument checked before the runs: a model built once checks the particles against the cutoff
@@ -1127,6 +1132,9 @@ def add_arguments(parser):
                         help="the density estimator (default VB; VC is VB with free surfaces)")
     parser.add_argument("--particles", type=int, help="4 m^3 particles (default 2048; --quick 500)")
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check)")
+    parser.add_argument("--time-step", type=float, help="dt* in the model's reduced time (default 0.01; smaller where "
+                        "an internal energy would become negative: openmmgendpde.stability.suggest_time_step gives "
+                        "one for a model)")
     parser.add_argument("--seed", type=int, default=1)
     add_json(parser, "the parameters and results")
     add_progress(parser)

@@ -61,11 +61,12 @@ class EquilibriumRun:
 
 
 def run_at(parameters, num_particles, temperature, melt_steps, steps, sample_every, platform, seed, density=None,
-           estimator="VB"):
+           estimator="VB", time_step=0.01):
     """EquilibriumRun of the model ``parameters`` at ``temperature`` (K) and n0 (or ``density``, nm^-3): an Isothermal
     melt, then the full dynamics (Isoenergetic, the internal energies drawn from their equilibrium law at that
     temperature)."""
-    model = parameters.liquid(num_particles, estimator, mode=GenDPDEIntegrator.Isothermal, seed=seed, density=density)
+    model = parameters.liquid(num_particles, estimator, mode=GenDPDEIntegrator.Isothermal, time_step=time_step,
+                              seed=seed, density=density)
     integrator = model.integrator
     context = model.melted(platform, GenDPDEIntegrator.Isoenergetic, melt_steps, melt_steps // 2, temperature, seed)
     probe = ThermodynamicProbe(model.system)
@@ -105,14 +106,15 @@ def corrected(parameters, result):
 
 
 def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4000, sample_every=20,
-            platform="CPU", seed=1, estimator="VB"):
+            platform="CPU", seed=1, estimator="VB", time_step=0.01):
     """ThermalExpansion of the model ``parameters`` (GenDPDEParameters with a thermal law), from runs at
     T0 -+ ``delta`` K (default: 8% of T0, 10 K for the liquid argon: the slope's error from the mean temperatures
     falls as 1/delta)."""
     delta = DELTA * parameters.temperature if delta is None else delta
     fluid = parameters.fluid
     minus, plus = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps,
-                          sample_every, platform, seed + k, estimator=estimator) for k, sign in enumerate((-1, 1))]
+                          sample_every, platform, seed + k, estimator=estimator, time_step=time_step)
+                   for k, sign in enumerate((-1, 1))]
     (t_minus, p_minus), (t_plus, p_plus) = (minus.temperature.mean, minus.pressure), (plus.temperature.mean,
                                                                                      plus.pressure)
     to_mpa = MPA_PER_OPENMM_PRESSURE

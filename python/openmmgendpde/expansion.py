@@ -115,8 +115,8 @@ def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4
     minus, plus = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps,
                           sample_every, platform, seed + k, estimator=estimator, time_step=time_step)
                    for k, sign in enumerate((-1, 1))]
-    (t_minus, p_minus), (t_plus, p_plus) = (minus.temperature.mean, minus.pressure), (plus.temperature.mean,
-                                                                                     plus.pressure)
+    t_minus, t_plus = minus.temperature.mean, plus.temperature.mean
+    p_minus, p_plus = minus.pressure, plus.pressure
     to_mpa = MPA_PER_OPENMM_PRESSURE
     slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * to_mpa
     # The errors of all four means, P's and T's (an error of a mean temperature moves the slope as P's does),

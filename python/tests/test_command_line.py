@@ -230,3 +230,11 @@ def test_platform_help_states_the_default_in_use():
                 assert f"(default {default})" in action.help, (name, default, action.help)
                 checked += 1
     assert checked == len(SUBCOMMANDS) - 1   # all but benchmark-cpu, which runs CPU and Reference side by side
+
+
+@pytest.mark.parametrize("value", ["0.0", "-0.01", "nan"])
+def test_calibrate_refuses_a_time_step_that_is_not_positive(value):
+    """calibrate --time-step: an error naming the option, the value and what is allowed, before any run."""
+    with pytest.raises(SystemExit) as exit_:
+        main(["calibrate", "--quick", "--time-step", value])
+    assert str(exit_.value) == f"error: calibrate: --time-step {value} is not allowed; it must be > 0"

@@ -44,13 +44,13 @@ def test_adiabatic_compression_heats_the_liquid_as_its_isentrope_says():
 
 
 def test_shock_jumps_to_the_hugoniot_of_the_models_equation_of_state():
-    """examples/shock.py at a small size: the equation of state from 21 equilibrium runs of 500 particles (400
+    """examples/shock.py at a small size: the equation of state from 21 equilibrium runs of 256 particles (400
     sampled steps each), one impact at u_p = 200 m/s in a 4 x 4 x 40-cell box (2560 particles). Expected: the
     Rankine-Hugoniot state of the fitted equation of state. The full example (docs/thermal.md) meets it to 2% of the
-    temperature jump, 1% of U_s and 0.7% of n1; this small one missed by 7.6%, 5.7% and 0.5% (short tables, a short
-    run in which the fronts' formation weighs more). Required: twice that, 15% of the jump T1 - T0, 10% of U_s and
+    temperature jump, 1% of U_s and 0.7% of n1; this small one missed by 8.4%, 5.6% and 0.5% (short tables, a short
+    run in which the fronts' formation weighs more). Required: about twice that, 15% of the jump T1 - T0, 10% of U_s and
     1.5% of n1/n0. The jump itself (~60 K) is required (> 40 K): its tolerance, ~9 K, is a small part of it."""
-    result = subprocess.run([sys.executable, str(EXAMPLES / "shock.py"), "--table-particles", "500", "--table-melt",
+    result = subprocess.run([sys.executable, str(EXAMPLES / "shock.py"), "--table-particles", "256", "--table-melt",
                              "300", "--table-steps", "400", "--speeds", "200", "--length", "40", "--width", "4"],
                             capture_output=True, text=True, check=True, timeout=600)
     lines = result.stdout.splitlines()

@@ -23,8 +23,8 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.fluid import ARGON_EXPANDING, coarse_grain
-from openmmgendpde.presets import ARGON_UNITS
+from openmmgendpde.expansion import mapped
+from openmmgendpde.fluid import ARGON_EXPANDING
 
 
 def main():
@@ -36,7 +36,7 @@ def main():
     parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU"))
     arguments = parser.parse_args()
 
-    parameters = coarse_grain(ARGON_EXPANDING, 5, cutoff=ARGON_UNITS.to_openmm(1.6839, "length"))
+    parameters = mapped()                                    # 5 atoms per particle, R* = 1.6839
     model = parameters.liquid(arguments.particles, mode=GenDPDEIntegrator.Isothermal, seed=3)
     integrator, force = model.integrator, model.force
     context = model.melted(arguments.platform, GenDPDEIntegrator.Conservative, 500, 200, seed=3)   # melt at T0

@@ -29,7 +29,7 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.expansion import mapped, run_at
+from openmmgendpde.expansion import MPA_PER_OPENMM_PRESSURE as MPA, mapped, run_at
 from openmmgendpde.hugoniot import EquationOfStateFit, shocked_state
 from openmmgendpde.statistics import correlated_mean
 from openmmgendpde.thermodynamics import ThermodynamicProbe
@@ -37,7 +37,6 @@ from openmmgendpde.units import BOLTZMANN
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
-MPA = (1.0 * PRESSURE / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.megapascal)
 M_PER_S = (1.0 * unit.nanometer / unit.picosecond).value_in_unit(unit.meter / unit.second)
 
 

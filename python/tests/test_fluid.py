@@ -437,6 +437,21 @@ def test_a_property_that_missed_and_whose_iteration_failed_counts_once():
     assert missed_properties([]) == []
 
 
+def made_up_thermodynamics(pressure_offset=0.0):
+    """Calibration.thermodynamics replaced by made-up measurements: every target met, but the pressure, which reads
+    P0 + pressure_offset/kappa_T; c_U = 0.5 k_B."""
+    from openmmgendpde.calibrate import KB, Measured
+
+    def thermodynamics(self, density=None, pressure_error=None):
+        t = self.parameters.targets()
+        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
+        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
+                "heat_capacity": self.heat_capacity(), "configurational_heat_capacity": Measured(0.5 * KB, 0.01 * KB),
+                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
+                "pressure": Measured(t["pressure"] + pressure_offset * t["bulk_modulus"], 1e-3)}
+    return thermodynamics
+
+
 @pytest.mark.parametrize("pressure_offset, viscosity_ratio, expected, frictions", [
     (0.0, 1.0, [], [1, 1 / 0.7]),
     (0.025, 0.039, ["pressure, pi0 tuned (MPa)", "shear viscosity, wave (mPa s)",
@@ -451,20 +466,12 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     and exits with status 1; one that does not says so and returns its results. A Poiseuille flow at 0.039 of the
     target makes calibrate take one more step on it (the friction x 3, MAX_STEP), which the made-up wave then reads
     at 3 times the target: both viscosities miss."""
-    from openmmgendpde.calibrate import KB, Calibration, Measured
+    from openmmgendpde.calibrate import Calibration, Measured
     gamma0 = coarse_grain(WATER, 4, neighbors=20).friction
-
-    def thermodynamics(self, density=None, pressure_error=None):
-        t = self.parameters.targets()
-        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
-        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
-                "heat_capacity": self.heat_capacity(), "configurational_heat_capacity": Measured(0.5 * KB, 0.01 * KB),
-                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
-                "pressure": Measured(t["pressure"] + pressure_offset * t["bulk_modulus"], 1e-3)}
 
     monkeypatch.setattr(Calibration, "tune_cutoff_scaling",
                         lambda self, iterations=None: self.parameters.cutoff_scaling)
-    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
+    monkeypatch.setattr(Calibration, "thermodynamics", made_up_thermodynamics(pressure_offset))
     monkeypatch.setattr(Calibration, "bulk_modulus",
                         lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
     monkeypatch.setattr(Calibration, "shear_viscosity", lambda self: Measured(
@@ -495,6 +502,44 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
         assert len(saved["pressure_rounds"]) == 2
     else:
         assert "Every judged result within its tolerance" in captured.out and captured.err == ""
+
+
+def test_calibrate_iterates_the_conductivity_of_a_fluid_that_expands_on_the_heat_flux(monkeypatch, tmp_path):
+    """calibrate --fluid argon-expanding end to end, with the simulations replaced by made-up measurements: the heat
+    flux reads the target times kappa/(2 kappa0), so the iteration must double kappa; the energy wave, which a fluid
+    that expands turns partly into sound (it read 11x the target whatever kappa was, docs/thermal.md), must not be
+    called, and its rows must be absent. Everything else reads its target."""
+    from openmmgendpde import calibrate as calibrate_module
+    from openmmgendpde.calibrate import Calibration, Measured
+    kappa0 = coarse_grain(ARGON_EXPANDING, 5, neighbors=20).heat_conduction
+
+    def wave(self):
+        raise AssertionError("the energy wave was read for a fluid that expands")
+
+    monkeypatch.setattr(Calibration, "tune_cutoff_scaling",
+                        lambda self, iterations=None: self.parameters.cutoff_scaling)
+    monkeypatch.setattr(Calibration, "thermodynamics", made_up_thermodynamics())
+    monkeypatch.setattr(Calibration, "bulk_modulus",
+                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
+    for name in ("shear_viscosity", "steady_viscosity"):
+        monkeypatch.setattr(Calibration, name, lambda self: Measured(
+            self.parameters.targets()["shear_viscosity"], 1e-6, 3))
+    monkeypatch.setattr(Calibration, "thermal_conductivity", wave)
+    monkeypatch.setattr(Calibration, "steady_conductivity", lambda self: Measured(
+        self.parameters.targets()["thermal_conductivity"] * self.parameters.heat_conduction / (2 * kappa0), 1e-6, 3))
+    monkeypatch.setattr(calibrate_module, "thermal_expansion_rows", lambda calibration, plan, platform, seed: [])
+    path = tmp_path / "calibration.json"
+    main(["calibrate", "--quick", "--fluid", "argon-expanding", "--molecules-per-particle", "5", "--neighbors", "20",
+          "--json", str(path)])
+    saved = json.loads(path.read_text())
+    assert saved["missed"] == []
+    assert [run[0] / kappa0 for run in saved["heat_conduction_runs"]] == pytest.approx([1, 2], rel=1e-12)
+    results = saved["results"]
+    assert not [name for name in results if name.startswith("thermal conductivity, wave")]
+    assert results["thermal conductivity, heat flux, kappa as mapped (W/(m K))"]["model"] == pytest.approx(
+        0.5 * results["thermal conductivity, heat flux, kappa as mapped (W/(m K))"]["target"], rel=1e-9)
+    assert results["thermal conductivity, heat flux (W/(m K))"]["model"] == pytest.approx(
+        results["thermal conductivity, heat flux (W/(m K))"]["target"], rel=1e-9)
 
 
 @pytest.mark.parametrize("arguments, message", [

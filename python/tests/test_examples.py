@@ -62,3 +62,28 @@ def test_shock_jumps_to_the_hugoniot_of_the_models_equation_of_state():
     assert abs(t_measured - t_predicted) < 0.15 * (t_predicted - t0), row
     assert abs(shock_measured / shock_predicted - 1) < 0.10, row
     assert abs(n_measured / n_predicted - 1) < 0.015, row
+
+
+def test_rayleigh_benard_layer_conducts_below_the_onset():
+    """examples/rayleigh_benard.py at a small size: nu from one transverse wave, one run at dT = 10 K (below the
+    onset, ~16 K in the full example) of 0.05 thermal times (4536 steps; the full runs are 0.6). Expected, from the
+    full example (docs/thermal.md): conduction, the flow at the noise's level (flow/noise 2.5 at 12 K, where the
+    convecting runs have 7-30: required < 5); the liquid takes 0.885 of dT (the rest falls at the walls: required
+    0.7-1, the short run is not yet steady); D_T* = 0.050 (required 0.025-0.1: the target D_T* that the conductivity
+    was chosen for, 0.025, plus what the particles' motion carries; twice the full run's at most); nu* = 0.045 +- 0.006
+    (required 0.02-0.1: the floor of the particles' motion, above the mapping's 0.013); an interior gradient."""
+    result = subprocess.run([sys.executable, str(EXAMPLES / "rayleigh_benard.py"), "--differences", "10",
+                             "--thermal-times", "0.05", "--viscosity-replicas", "1"],
+                            capture_output=True, text=True, check=True, timeout=600)
+    lines = result.stdout.splitlines()
+    nu = float(next(line for line in lines if line.startswith("measured nu")).split("=")[1].split()[0])
+    conduction = next(line for line in lines if line.strip().startswith("conduction:"))
+    diffusivity = float(conduction.split("D_T = ")[1].split()[0])
+    fraction = float(conduction.split("takes ")[1].split()[0])
+    row = [float(value) for value in lines[-1].replace("+-", " ").split()]
+    difference, _, nusselt, _, flow_over_noise, _, gradient, _ = row
+    assert difference == 10.0 and nusselt == 1.0
+    assert 0.02 < nu < 0.1, nu
+    assert 0.025 < diffusivity < 0.1, conduction
+    assert 0.7 < fraction < 1.0 and gradient < 0, (conduction, row)
+    assert flow_over_noise < 5, row

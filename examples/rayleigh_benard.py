@@ -58,7 +58,8 @@ DIFFUSIVITY = 0.025          # the target D_T, L^2/tau
 def liquid_fluid():
     """The model liquid: argon's density, compressibility and Tait law; 1/30 of its viscosity, 3 times its alpha, 30
     times its c_v, and the conductivity of D_T* = DIFFUSIVITY at 5 atoms per particle."""
-    fluid = dataclasses.replace(ARGON_EXPANDING, name="model liquid for convection (argon's density and compressibility)",
+    fluid = dataclasses.replace(ARGON_EXPANDING,
+                                name="model liquid for convection (argon's density and compressibility)",
                                 shear_viscosity=ARGON.shear_viscosity / 30,
                                 thermal_expansion=3 * ARGON_EXPANDING.thermal_expansion,
                                 heat_capacity=30 * ARGON.heat_capacity)
@@ -161,9 +162,9 @@ def run(parameters, difference, gravity, steps, platform, seed, grid, time_step,
     # W ~ (1 - 4 (z/H)^2)^2 at the centres of 7 rows)
     row_flow = np.sqrt(np.mean(velocity[0] ** 2, axis=0))
     slip = float((row_flow[0] + row_flow[-1]) / 2 / row_flow.max())
-    return {"flux": flux, "velocity": velocity, "theta": counts / np.maximum(inverse, 1e-30), "flow": flow,
-            "noise": noise, "gradient": gradient, "slip": slip, "flux_error": flux_error, "depth": top - bottom - 2 * layer, "box": box,
-            "time": steps * dt}
+    return {"flux": flux, "flux_error": flux_error, "velocity": velocity, "flow": flow, "noise": noise,
+            "theta": counts / np.maximum(inverse, 1e-30), "gradient": gradient, "slip": slip,
+            "depth": top - bottom - 2 * layer, "box": box}
 
 
 def viscosity(parameters, time_step, platform, replicas):
@@ -192,8 +193,8 @@ def main():
     parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU", "OpenCL", "CUDA"))
     parser.add_argument("--viscosity-replicas", type=int, default=3, help="transverse waves for nu (default 3)")
     parser.add_argument("--measured", type=float, nargs=3, metavar=("NU", "LAMBDA", "FRACTION"),
-                        help="nu (L^2/tau), lambda (kJ/(mol ps nm K)) and the liquid's fraction of dT from an earlier run, "
-                             "instead of measuring them (then every difference is a convection run)")
+                        help="nu (L^2/tau), lambda (kJ/(mol ps nm K)) and the liquid's fraction of dT from an "
+                             "earlier run, instead of measuring them (then every difference is a convection run)")
     parser.add_argument("--plot", metavar="STEM", help="draw the second halves' mean fields to STEM.png")
     arguments = parser.parse_args()
 
@@ -206,14 +207,15 @@ def main():
     rho = f["mass_density"]
     alpha, t0 = f["thermal_expansion"], parameters.temperature
     c_v, c_p = specific_heat(f)
-    cell = length * (4 / 1) ** (1 / 3)       # FCC cell edge at n0 = 1/L^3
+    cell = length * 4 ** (1 / 3)             # FCC cell edge at n0 = 1/L^3 (4 particles a cell)
     layer = cell / 2                         # the liquid within this of a wall takes the wall's temperature
     depth = (CELLS[2] - 2 * WALL_CELLS) * cell - 2 * layer
     gravity = arguments.compression / (depth / length) * length / tau**2      # nm/ps^2
     thermal_time = (depth / length) ** 2 / DIFFUSIVITY * tau
     steps = round(arguments.thermal_times * thermal_time / (arguments.time_step * tau))
     adiabatic = gravity * depth * alpha * t0 / c_p
-    print(f"{fluid.name}, {ATOMS} atoms per particle: L = {length:.4f} nm, tau = {tau:.4f} ps; H = {depth / length:.2f} L"
+    print(f"{fluid.name}, {ATOMS} atoms per particle: L = {length:.4f} nm, tau = {tau:.4f} ps; "
+          f"H = {depth / length:.2f} L"
           f" = {depth:.2f} nm; g = {gravity / length * tau**2:.4f} L/tau^2; dT_ad = {adiabatic:.2f} K; "
           f"gamma = c_p/c_v = {c_p / c_v:.3f}; {steps} steps of dt* = {arguments.time_step} per run", flush=True)
 

@@ -34,8 +34,9 @@
 6. The results are judged (CRITERIA; --quick: QUICK_CRITERIA): n-bar within 2% of n0, P within 0.01/kappa_T of P0,
    c_v and both temperatures within 2%, each transport coefficient by both methods within 5% of its target
    (a fluid that expands: its conductivity by the heat flux alone; --quick: a factor 2), each allowing the 95%
-   interval of the measurement as well (coverage: 2 standard errors, Student's t for few replicas). A calibration that misses one of them says which, by how much, and exits with
-   status 1 (after writing --json and --output). The number of runs and the wall time are printed.
+   interval of the measurement as well (coverage: 2 standard errors, Student's t for few replicas). A calibration
+   that misses one of them says which, by how much, and exits with status 1 (after writing --json and --output).
+   The number of runs and the wall time are printed.
 
 --fluid takes a built-in name or a fluid file (fluid_files); --output writes the calibrated model as a model file.
 --quick: 500 particles and short runs (a functional check in about a minute); the default: 2048 particles.

@@ -43,9 +43,7 @@ from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.calibrate import Calibration, Plan
 from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, coarse_grain
 from openmmgendpde.statistics import block_standard_error
-from openmmgendpde.units import BOLTZMANN
 
-KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 CELLS = (14, 3, 11)          # FCC cells along x, y, z: 2 of wall, 7 of liquid, 2 of wall
 WALL_CELLS = 2
 #: Ra_c of linear stability (Chandrasekhar 1961): both walls rigid (no slip), and both stress-free (full slip)
@@ -164,7 +162,7 @@ def run(parameters, difference, gravity, steps, platform, seed, grid, time_step,
     slip = float((row_flow[0] + row_flow[-1]) / 2 / row_flow.max())
     return {"flux": flux, "flux_error": flux_error, "velocity": velocity, "flow": flow, "noise": noise,
             "theta": counts / np.maximum(inverse, 1e-30), "gradient": gradient, "slip": slip,
-            "depth": top - bottom - 2 * layer, "box": box}
+            "span": top - bottom, "box": box}
 
 
 def viscosity(parameters, time_step, platform, replicas):
@@ -183,7 +181,7 @@ def main():
     parser.add_argument("--differences", type=float, nargs="+", default=[12.0, 15.0, 18.0, 24.0, 40.0],
                         help="dT between the walls in K; the first must be below the onset (default 12 15 18 24 40)")
     parser.add_argument("--compression", type=float, default=0.3,
-                        help="g H/c_T^2, the layer's hydrostatic compression, which sets g (default 0.2)")
+                        help="g H/c_T^2, the layer's hydrostatic compression, which sets g (default 0.3)")
     parser.add_argument("--thermal-times", type=float, default=0.6,
                         help="length of each run in H^2/D_T of the target D_T (default 0.6)")
     parser.add_argument("--time-step", type=float, default=0.04, help="dt* (default 0.04)")
@@ -264,17 +262,20 @@ def plot(results, stem):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     figure, axes = plt.subplots(len(results), 1, figsize=(8, 2.6 * len(results)), squeeze=False)
+    # One arrow scale for every panel: the largest run's rms flow is 1/12 of the width
+    scale = 12 * max(result["flow"] for result in results)
     for axis, result in zip(axes[:, 0], results):
-        velocity, theta, box, depth = result["velocity"], result["theta"], result["box"], result["depth"]
+        # The grid spans the liquid from face to face (``span``), its layers at the walls' temperatures included
+        velocity, theta, box, span = result["velocity"], result["theta"], result["box"], result["span"]
         nx, nz = theta.shape
         x = (np.arange(nx) + 0.5) / nx * box[0]
-        z = (np.arange(nz) + 0.5) / nz * depth
-        image = axis.pcolormesh(np.linspace(0, box[0], nx + 1), np.linspace(0, depth, nz + 1),
+        z = (np.arange(nz) + 0.5) / nz * span
+        image = axis.pcolormesh(np.linspace(0, box[0], nx + 1), np.linspace(0, span, nz + 1),
                                 theta.T, cmap="coolwarm", shading="flat")
-        axis.quiver(*np.meshgrid(x, z, indexing="ij"), velocity[0], velocity[2])
+        axis.quiver(*np.meshgrid(x, z, indexing="ij"), velocity[0], velocity[2], scale=scale)
         axis.set_aspect("equal")
         axis.set_title(f"dT = {result['difference']:g} K, Ra = {result['rayleigh']:.0f}, "
-                       f"Nu = {result['nusselt']:.2f}")
+                       f"Nu = {result['nusselt']:.2f}, flow/noise = {result['flow'] / result['noise']:.1f}")
         axis.set_xlabel("x (nm)")
         axis.set_ylabel("z (nm)")
         figure.colorbar(image, ax=axis, label="theta (K), harmonic mean")

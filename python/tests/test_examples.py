@@ -68,7 +68,7 @@ def test_rayleigh_benard_layer_conducts_below_the_onset():
     """examples/rayleigh_benard.py at a small size: nu from one transverse wave, one run at dT = 10 K (below the
     onset, ~16 K in the full example) of 0.05 thermal times (4536 steps; the full runs are 0.6). Expected, from the
     full example (docs/thermal.md): conduction, the flow at the noise's level (flow/noise 2.5 at 12 K, where the
-    convecting runs have 7-30: required < 5); the liquid takes 0.885 of dT (the rest falls at the walls: required
+    convecting runs have 5.2-25.6: required < 5); the liquid takes 0.885 of dT (the rest falls at the walls: required
     0.7-1, the short run is not yet steady); D_T* = 0.050 (required 0.025-0.1: the target D_T* that the conductivity
     was chosen for, 0.025, plus what the particles' motion carries; twice the full run's at most); nu* = 0.045 +- 0.006
     (required 0.02-0.1: the floor of the particles' motion, above the mapping's 0.013); an interior gradient."""

@@ -176,7 +176,8 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
 
 @pytest.mark.parametrize("arguments, message", [
     (["--fluid", "nowhere.toml"], "--fluid nowhere.toml: no such file"),
-    (["--fluid", "mercury"], "--fluid mercury is not allowed; give one of argon, argon-expanding, supercritical-argon, water or a fluid file"),
+    (["--fluid", "mercury"], "--fluid mercury is not allowed; give one of argon, argon-expanding, "
+                             "supercritical-argon, water or a fluid file"),
     (["--output", "model.txt"], "--output model.txt is not allowed; it must end in .toml or .json"),
 ])
 def test_calibrate_refuses_a_bad_fluid_or_output_in_one_line(arguments, message):

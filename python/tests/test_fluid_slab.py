@@ -118,7 +118,8 @@ def test_slab_command_runs_a_fluid_file(tmp_path, capsys):
 
 @pytest.mark.parametrize("command", [["slab"], ["tune-fcut", "--quick"]])
 @pytest.mark.parametrize("fluid, message", [
-    ("mercury", "--fluid mercury is not allowed; give one of argon, argon-expanding, supercritical-argon, water or a fluid file"),
+    ("mercury", "--fluid mercury is not allowed; give one of argon, argon-expanding, supercritical-argon, water or a "
+                "fluid file"),
     ("missing.toml", "--fluid missing.toml: no such file"),
     ("BAD", "bad.toml: missing ['molar_mass']"),
 ])
@@ -153,7 +154,8 @@ def test_a_bad_fluid_exits_with_status_1():
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 1 and result.stdout == ""
     assert result.stderr.strip().splitlines() == [
-        "error: slab: --fluid mercury is not allowed; give one of argon, argon-expanding, supercritical-argon, water or a fluid file (.toml or .json, "
+        "error: slab: --fluid mercury is not allowed; give one of argon, argon-expanding, supercritical-argon, water "
+        "or a fluid file (.toml or .json, "
         "docs/fluids.md)"]
 
 

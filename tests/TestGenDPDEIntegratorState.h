@@ -67,8 +67,49 @@ void testSerializationHoldsNoLiveState() {
         ASSERT_EQUAL(temperature, t);   // the initial condition, not the 3 T0 of the running Context
 }
 
-/** A checkpoint with its last bytes missing, or written by another integrator, or with corrupt internal energies,
- *  is refused and leaves the integrator's state (seed, internal energies) untouched. */
+/**
+ * The integrator's data in a checkpoint of version 3 (docs/integrator.md): the end of the stream, magic, version,
+ * seed, count, energies, coverage, checksum (FNV-1a, 64 bits), magic. Written again here to make checkpoints that are
+ * well formed but say something else.
+ */
+struct CheckpointTail {
+    static const size_t header = 4*sizeof(std::int32_t);   // magic, version, seed, count
+    static const size_t trailer = sizeof(std::int32_t) + sizeof(std::uint64_t) + sizeof(std::int32_t);
+    size_t start;   // where the integrator's data begins
+    int numParticles;
+    CheckpointTail(const std::string& bytes, int numParticles) :
+            start(bytes.size() - header - numParticles*sizeof(double) - trailer), numParticles(numParticles) {
+    }
+    size_t energiesAt() const {
+        return start + header;
+    }
+    size_t coverageAt() const {
+        return energiesAt() + numParticles*sizeof(double);
+    }
+    /** The checkpoint with its checksum computed again over what it now holds (its coverage word must be 0 or 1). */
+    std::string resealed(std::string bytes) const {
+        std::int32_t coverage;
+        std::memcpy(&coverage, &bytes[coverageAt()], sizeof(coverage));
+        std::uint64_t hash = 14695981039346656037ULL;
+        auto add = [&](size_t from, size_t to) {
+            for (size_t i = from; i < to; i++) {
+                hash ^= (unsigned char) bytes[i];
+                hash *= 1099511628211ULL;
+            }
+        };
+        if (coverage == 1)
+            add(0, start);   // OpenMM's part: the whole stream before the integrator's data
+        add(start, coverageAt() + sizeof(std::int32_t));
+        std::memcpy(&bytes[coverageAt() + sizeof(std::int32_t)], &hash, sizeof(hash));
+        return bytes;
+    }
+};
+
+/**
+ * A checkpoint with its last bytes missing, or bytes appended, or any one byte changed, or written by another
+ * integrator, or holding a bad internal energy, is refused and leaves the integrator's state (seed, internal
+ * energies) untouched. A checkpoint written to a string stream covers OpenMM's part too. Versions 1 and 2 are read.
+ */
 void testCheckpointsAreValidated() {
     Run run(4, 34);
     Context& context = run.start();
@@ -77,6 +118,8 @@ void testCheckpointsAreValidated() {
     context.createCheckpoint(good);
     const std::string bytes = good.str();
     const int numParticles = context.getSystem().getNumParticles();
+    const CheckpointTail tail(bytes, numParticles);
+    ASSERT_EQUAL(1, *(const std::int32_t*) &bytes[tail.coverageAt()]);   // a string stream: OpenMM's part covered
     run.integrator.step(2);
     const std::vector<double> energies = run.integrator.getInternalEnergies();
     const int seed = run.integrator.getSeedInUse();
@@ -84,28 +127,46 @@ void testCheckpointsAreValidated() {
         if (run.integrator.getInternalEnergies() != energies || run.integrator.getSeedInUse() != seed)
             throw std::runtime_error(what + ": the integrator's state changed");
     };
-    for (size_t missing : {1, 4, 8, 100}) {
-        std::stringstream truncated(bytes.substr(0, bytes.size() - missing));
-        assertThrowsMentioning([&]() { context.loadCheckpoint(truncated); }, {"GenDPDEIntegrator", "checkpoint"});
-        untouched("truncated checkpoint");
+    auto refused = [&](const std::string& checkpoint, const std::vector<std::string>& words, const std::string& what) {
+        std::stringstream stream(checkpoint);
+        assertThrowsMentioning([&]() { context.loadCheckpoint(stream); }, words);
+        untouched(what);
+    };
+    for (size_t missing : {1, 4, 8, 12, 100})
+        refused(bytes.substr(0, bytes.size() - missing), {"GenDPDEIntegrator", "checkpoint"}, "truncated checkpoint");
+    refused(bytes + std::string(1000, '\0'), {"continues after its end"}, "1000 zero bytes appended");
+    refused(bytes + "x", {"continues after its end"}, "one byte appended");
+    // Any one byte changed: every byte of the integrator's data and, on the host platforms, every 7th of OpenMM's part.
+    // (OpenMM reads its part first, with its own reader: the GPU platforms' reader may crash on some damaged bytes,
+    // e.g. an atom order, before this plugin sees the checkpoint.)
+    const bool hostPlatform = (platform->getName() == "Reference" || platform->getName() == "CPU");
+    for (size_t i = hostPlatform ? 0 : tail.start; i < bytes.size(); i += (i >= tail.start ? 1 : 7)) {
+        std::string flipped = bytes;
+        flipped[i] ^= 0x10;
+        std::stringstream stream(flipped);
+        bool threw = false;
+        try {
+            context.loadCheckpoint(stream);
+        }
+        catch (const std::exception&) {   // (OpenMM's own part may fail otherwise, e.g. a garbage string length)
+            threw = true;
+        }
+        if (!threw)
+            throw std::runtime_error("a checkpoint with byte " + std::to_string(i) + " of " + std::to_string(bytes.size())
+                                     + " changed was accepted");
+        untouched("a changed byte");
     }
-    // The integrator's data is the end of the stream: magic, version, seed, count, energies, magic.
-    const size_t tail = 4*sizeof(std::int32_t) + numParticles*sizeof(double) + sizeof(std::int32_t);
-    const size_t energiesAt = bytes.size() - tail + 4*sizeof(std::int32_t);
+    // Well formed, checksum and all, but with a bad internal energy.
     for (double bad : {std::nan(""), -1.0, 0.0, 1e300}) {
         std::string corrupt = bytes;
-        std::memcpy(&corrupt[energiesAt + 5*sizeof(double)], &bad, sizeof(double));
-        std::stringstream stream(corrupt);
-        assertThrowsMentioning([&]() { context.loadCheckpoint(stream); }, {"corrupt", "particle 5"});
-        untouched("corrupt internal energy");
+        std::memcpy(&corrupt[tail.energiesAt() + 5*sizeof(double)], &bad, sizeof(double));
+        refused(tail.resealed(corrupt), {"corrupt", "particle 5"}, "corrupt internal energy");
     }
     {
         std::string future = bytes;
         const std::int32_t version = 9;
-        std::memcpy(&future[bytes.size() - tail + sizeof(std::int32_t)], &version, sizeof(version));
-        std::stringstream stream(future);
-        assertThrowsMentioning([&]() { context.loadCheckpoint(stream); }, {"version 9"});
-        untouched("future version");
+        std::memcpy(&future[tail.start + sizeof(std::int32_t)], &version, sizeof(version));
+        refused(future, {"version 9"}, "future version");
     }
     // A checkpoint of the same System made with VerletIntegrator holds no integrator data at all.
     VerletIntegrator verlet(stepSize);
@@ -113,20 +174,29 @@ void testCheckpointsAreValidated() {
     other.setPositions(run.scene.positions);
     std::stringstream foreign;
     other.createCheckpoint(foreign);
-    assertThrowsMentioning([&]() { context.loadCheckpoint(foreign); }, {"GenDPDEIntegrator"});
-    untouched("another integrator's checkpoint");
-    // Version 1 (0.1.x: version, seed, a flag byte, count, energies) is still read.
-    std::string legacy = bytes.substr(0, bytes.size() - tail);
-    const std::int32_t one = 1, count = numParticles;
-    const std::int32_t legacySeed = 4242;
-    legacy.append((const char*) &one, sizeof(one));
-    legacy.append((const char*) &legacySeed, sizeof(legacySeed));
-    legacy.push_back(1);
-    legacy.append((const char*) &count, sizeof(count));
-    legacy.append(bytes, energiesAt, numParticles*sizeof(double));
-    std::stringstream legacyStream(legacy);
-    context.loadCheckpoint(legacyStream);
-    ASSERT_EQUAL(legacySeed, run.integrator.getSeedInUse());
+    refused(foreign.str(), {"GenDPDEIntegrator"}, "another integrator's checkpoint");
+    // Version 2 (magic, version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a
+    // flag byte, count, energies) are still read.
+    const std::string openmmPart = bytes.substr(0, tail.start);
+    const std::string energyBytes = bytes.substr(tail.energiesAt(), numParticles*sizeof(double));
+    const std::int32_t magic = *(const std::int32_t*) &bytes[tail.start], count = numParticles;
+    for (std::int32_t version : {1, 2}) {
+        const std::int32_t olderSeed = 4240 + version;
+        std::string older = openmmPart;
+        if (version == 2)
+            older.append((const char*) &magic, sizeof(magic));
+        older.append((const char*) &version, sizeof(version));
+        older.append((const char*) &olderSeed, sizeof(olderSeed));
+        if (version == 1)
+            older.push_back(1);
+        older.append((const char*) &count, sizeof(count));
+        older.append(energyBytes);
+        if (version == 2)
+            older.append((const char*) &magic, sizeof(magic));
+        std::stringstream olderStream(older);
+        context.loadCheckpoint(olderStream);
+        ASSERT_EQUAL(olderSeed, run.integrator.getSeedInUse());
+    }
     std::stringstream reload(bytes);
     context.loadCheckpoint(reload);
     ASSERT_EQUAL(seed, run.integrator.getSeedInUse());

@@ -10,6 +10,7 @@
 
 namespace GenDPDEPlugin {
 
+class GenDPDEForceImpl;
 class IntegrateGenDPDEStepKernel;
 
 /**
@@ -69,6 +70,13 @@ class IntegrateGenDPDEStepKernel;
  * setParticleTemperatures() or setInternalEnergies() before (the later call wins), else at the bath temperature,
  * else they are not set and an Isoenergetic step refuses to run. Like every OpenMM integrator, one
  * GenDPDEIntegrator serves one Context.
+ *
+ * With a GenDPDEForce whose equation of state depends on temperature, the dynamics keep each particle's entropy (a
+ * compressed particle heats up), and what every other call keeps of a particle's state is one rule
+ * (docs/integrator.md, "The particles' thermal state: one rule"): temperatures set or loaded are those at the current
+ * positions; a move from outside the dynamics (setting positions, a barostat's move) keeps each temperature, or each
+ * entropy with setAdiabaticPositionChanges(true); a change of the force's parameters keeps each temperature; reading
+ * changes nothing. Outside step(), getInternalEnergies() is C_V theta_i at the current positions.
  *
  * A step in which a particle would move farther than the pair range R (or by a non-finite amount), or in which a
  * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
@@ -222,13 +230,17 @@ public:
      */
     std::vector<double> getInternalEnergies() const;
     /**
-     * Whether setting the Context's positions (Context::setPositions, setState, a barostat's move, a deformation of
-     * the box) keeps each particle's entropy instead of its temperature, for the GenDPDEForce laws that depend on
-     * temperature (docs/theory.md section 11). false (the default): the particles keep their temperatures at the new
-     * positions. true: the move is adiabatic for each particle, as the dynamics' own motion is; a particle the move
-     * compresses heats up by C_V theta' = C_V theta exp(-(sigma(n') - sigma(n))/C_V), e.g. for a quasi-static
-     * compression by small deformations of the box. Loading a checkpoint or a State, or setting the internal energies,
-     * sets the state as given, either way. No effect on laws that do not depend on temperature.
+     * What a move of the particles from outside the dynamics keeps of each particle's thermal state, for the
+     * GenDPDEForce laws that depend on temperature (docs/theory.md section 11, docs/integrator.md "The particles'
+     * thermal state: one rule"). A move is Context::setPositions(), setState(), loadCheckpoint() (and the positions of
+     * a refused checkpoint, which OpenMM restores before the integrator reads its part) and a barostat's accepted move.
+     * false (the default): each particle keeps its temperature theta_i. true: each keeps its entropy, as the dynamics'
+     * own motion does; a particle the move compresses heats up by C_V theta' = C_V theta exp(-(sigma(n') - sigma(n))/C_V),
+     * e.g. for a quasi-static compression by small deformations of the box. The entropies are then fixed whenever the
+     * temperatures are set (setInternalEnergies() and the like, a checkpoint or State, a change of the force's
+     * parameters: each at the positions of that moment, or the first positions set), and turning this on fixes them at
+     * the current positions. No effect on laws that do not depend on temperature, or in the Isothermal mode (the
+     * particles' own state is then frozen).
      */
     void setAdiabaticPositionChanges(bool adiabatic);
     /** Whether setting the positions keeps the particles' entropies (see setAdiabaticPositionChanges()). */
@@ -256,19 +268,65 @@ protected:
     void createCheckpoint(std::ostream& stream) const override;
     void loadCheckpoint(std::istream& stream) override;
     void serializeParameters(OpenMM::SerializationNode& node) const override;
-    /** Setting the positions forgets the densities the internal energies belong to (docs/theory.md section 11). */
+    /**
+     * The Context's state changed (positions, velocities, parameters, or a Force's parameters): the rule of the
+     * particles' thermal state (applyThermalRule) for a position change or a change of the law.
+     */
     void stateChanged(OpenMM::State::DataType changed) override;
     void deserializeParameters(const OpenMM::SerializationNode& node) override;
 private:
     friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures and initialEnergies, the initial condition
     friend class GenDPDEIntegratorUtilities;   // lends the kernel's thermal state to a GenDPDEForce's kernel
+    // ---- The particles' thermal state with a law that depends on temperature (GenDPDEIntegratorThermalState.cpp;
+    // docs/theory.md section 11, docs/integrator.md "The particles' thermal state: one rule"). Outside step(), every
+    // particle's eps_i is C_V theta_i at the Context's current positions; with adiabatic position changes its entropy
+    // is also kept (sigma_i of those positions), so that a move can keep it.
+    /** What happened to the Context, for applyThermalRule(). */
+    enum class ThermalEvent {
+        EnergiesSet,            // setInternalEnergies(), setParticleTemperatures(), ...ToTemperature(), checkpoint, State
+        PositionsSet,           // Context.setPositions(), setState(), loadCheckpoint(), a refused checkpoint's positions
+        PositionsMovedByForce,  // a Force's updateContextState() in step() (a barostat's move)
+        LawChanged,             // updateParametersInContext() of the GenDPDEForce whose laws depend on temperature
+        AdiabaticChanged,       // setAdiabaticPositionChanges()
+        ModeChanged,            // setMode()
+        ParametersChanged       // heat capacities, bath temperature: the forces change, the particles' state does not
+    };
+    /** Which positions the kernel's eps_i and sigma_i belong to. */
+    enum class EntropyState {
+        Unknown,   // eps_i = C_V theta_i at the current positions, sigma_i not kept: the particles' entropies are not fixed
+        Current,   // eps_i and sigma_i of the current positions
+        Earlier    // eps_i and sigma_i of earlier positions (inside step(), after its drift; or an evaluation failed)
+    };
+    /** The one rule: what each event does to the particles' thermal state (docs/integrator.md). */
+    void applyThermalRule(ThermalEvent event);
     /**
-     * The kernel's eps_i, brought to the current positions first if a GenDPDEForce's law depends on temperature
-     * (an evaluation of the integration groups, whose thermal state the kernel then keeps; docs/theory.md section 11).
+     * Evaluate the integration groups at the current positions and keep the thermal state the GenDPDEForce found
+     * there (entropies fixed at the current positions), if the positions and internal energies are set; a failed
+     * evaluation leaves the state as it was (the next step reports it). The forces then serve the next step.
      */
-    const std::vector<double>& currentInternalEnergies() const;
+    void settleThermalState();
+    /**
+     * The evaluation of a step: the integration groups' forces, and the thermal state of these positions kept. With
+     * checkStep (the state was kept at the previous step's positions), a particle whose temperature the step's
+     * motion changed by more than GENDPDE_STEP_TEMPERATURE_FACTOR stops the run (GenDPDEThermalState::checkStep).
+     */
+    void evaluateStepForces(bool checkStep);
+    /** Whether the force array holds the forces of the current state (those of the last evaluation step() made). */
+    bool forcesAreCurrent() const;
+    /** The force array now holds the forces of the current state (after an evaluation of the integration groups). */
+    void rememberForces();
+    /** The GenDPDEForce's Impl whose laws depend on temperature in the bound Context, or null. */
+    GenDPDEForceImpl* thermalForceImpl() const;
     bool hasThermalForce = false;   // the bound Context has a GenDPDEForce whose law depends on temperature
     bool adiabaticPositionChanges = false;
+    EntropyState entropyState = EntropyState::Unknown;
+    bool positionsSet = false;           // the bound Context's positions were set (its initial ones are not positions)
+    bool checkingStepTemperatures = false;   // inside evaluateStepForces(true)
+    long long lawUpdatesSeen = 0;        // thermalForceImpl()'s parameter updates the rule has applied
+    // The forces the last step() left (with a thermal force), reused by the next step() if nothing changed since.
+    bool forcesCurrent = false;
+    long long forcesEvaluation = 0;      // thermalForceImpl()'s evaluation count then
+    OpenMM::Vec3 forcesBox[3];
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
     void checkSystem(const OpenMM::System& system) const;
@@ -286,6 +344,11 @@ private:
     std::vector<double> configuredHeatCapacities(int numParticles) const;
     void checkTypeHeatCapacity(int index, int type, double heatCapacity) const;
     void checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const;
+    /**
+     * Read a checkpoint's integrator data (any version) and check all of it: the checksum, the end, the internal
+     * energies (checkInternalEnergies). Changes nothing; throws what is wrong.
+     */
+    void readCheckpoint(std::istream& stream, int& seed, std::vector<double>& energies) const;
     /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
     void checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const;
     void requireTemperatures() const;

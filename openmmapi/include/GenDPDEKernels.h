@@ -92,6 +92,8 @@ struct GenDPDEThermalState {
                                      // energies set since): then eps_i belongs to the current positions
     const int* particleClass;        // the class of each particle (IntegratorTypeTables)
     const double* classHeatCapacity; // C_V of each class (kJ/(mol K))
+    bool checkStep;                  // an evaluation of a step: a particle whose temperature the step's motion
+                                     // changed by more than GENDPDE_STEP_TEMPERATURE_FACTOR is an error
 };
 
 /** The kernel that evaluates a GenDPDEForce. */

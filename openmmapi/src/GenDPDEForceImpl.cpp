@@ -47,9 +47,10 @@ void GenDPDEForceImpl::initialize(ContextImpl& context) {
 }
 
 double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeForces, bool includeEnergy, int groups) {
-    if ((groups & (1<<owner.getForceGroup())) != 0)
-        return kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
-    return 0.0;
+    if ((groups & (1<<owner.getForceGroup())) == 0)
+        return 0.0;
+    numEvaluations++;
+    return kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
 }
 
 std::vector<std::string> GenDPDEForceImpl::getKernelNames() {
@@ -62,7 +63,8 @@ void GenDPDEForceImpl::updateParametersInContext(ContextImpl& context) {
                               "depends on temperature; call Context.reinitialize() (or create a new Context) after "
                               "changing it");
     kernel.getAs<CalcGenDPDEForceKernel>().copyParametersToContext(context, owner);
-    context.systemChanged();
+    numParameterUpdates++;
+    context.systemChanged();   // (a GenDPDEIntegrator applies its rule for the particles' thermal state)
 }
 
 const GenDPDEObservables& GenDPDEForceImpl::getObservables(ContextImpl& context, bool particleVirials) {

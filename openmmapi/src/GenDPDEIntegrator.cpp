@@ -88,6 +88,7 @@ double GenDPDEIntegrator::getHeatCapacity() const {
 void GenDPDEIntegrator::setHeatCapacity(double heatCapacity) {
     requireInRange(integratorName, "heat capacity", heatCapacity, Ranges::heatCapacity);
     this->heatCapacity = heatCapacity;
+    applyThermalRule(ThermalEvent::ParametersChanged);
 }
 
 double GenDPDEIntegrator::getCutoffDistance() const {
@@ -154,6 +155,7 @@ void GenDPDEIntegrator::checkTypeHeatCapacity(int index, int type, double heatCa
 int GenDPDEIntegrator::addTypeHeatCapacity(int type, double heatCapacity) {
     checkTypeHeatCapacity(typeHeatCapacities.size(), type, heatCapacity);
     typeHeatCapacities.push_back({type, heatCapacity});
+    applyThermalRule(ThermalEvent::ParametersChanged);
     return typeHeatCapacities.size() - 1;
 }
 
@@ -171,6 +173,7 @@ void GenDPDEIntegrator::setTypeHeatCapacity(int index, int type, double heatCapa
     requireIndex(integratorName, "type heat capacity index", index, typeHeatCapacities.size());
     checkTypeHeatCapacity(index, type, heatCapacity);
     typeHeatCapacities[index] = {type, heatCapacity};
+    applyThermalRule(ThermalEvent::ParametersChanged);
 }
 
 void GenDPDEIntegrator::checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const {
@@ -236,6 +239,7 @@ void GenDPDEIntegrator::setMode(Mode mode) {
     if (mode != Isoenergetic && mode != Isothermal && mode != Conservative)
         reject(integratorName, "mode", (int) mode, "", "Isoenergetic (0), Isothermal (1) or Conservative (2)");
     this->mode = mode;
+    applyThermalRule(ThermalEvent::ModeChanged);
 }
 
 double GenDPDEIntegrator::getTemperature() const {
@@ -245,6 +249,7 @@ double GenDPDEIntegrator::getTemperature() const {
 void GenDPDEIntegrator::setTemperature(double temperature) {
     requireInRange(integratorName, "temperature", temperature, Ranges::temperature);
     this->temperature = temperature;
+    applyThermalRule(ThermalEvent::ParametersChanged);   // (the Isothermal mode's forces use it)
 }
 
 IntegrateGenDPDEStepKernel& GenDPDEIntegrator::boundKernel() const {
@@ -264,6 +269,7 @@ void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& tempe
     for (size_t i = 0; i < energies.size(); i++)
         energies[i] = capacity[i]*temperatures[i];
     boundKernel().setInternalEnergies(energies);
+    applyThermalRule(ThermalEvent::EnergiesSet);
 }
 
 void GenDPDEIntegrator::setInternalEnergies(const std::vector<double>& energies) {
@@ -275,6 +281,7 @@ void GenDPDEIntegrator::setInternalEnergies(const std::vector<double>& energies)
         return;
     }
     boundKernel().setInternalEnergies(energies);
+    applyThermalRule(ThermalEvent::EnergiesSet);
 }
 
 void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int randomSeed) {
@@ -290,6 +297,7 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
         energies[i] = scale*random.gamma(capacity[i]/Physics::Boltzmann + 1.0);
     }
     boundKernel().setInternalEnergies(energies);
+    applyThermalRule(ThermalEvent::EnergiesSet);
 }
 
 std::vector<double> GenDPDEIntegrator::configuredHeatCapacities(int numParticles) const {
@@ -299,31 +307,9 @@ std::vector<double> GenDPDEIntegrator::configuredHeatCapacities(int numParticles
     return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
 }
 
-const std::vector<double>& GenDPDEIntegrator::currentInternalEnergies() const {
-    IntegrateGenDPDEStepKernel& k = boundKernel();
-    if (hasThermalForce && mode != Isothermal && k.hasInternalEnergies()) {
-        context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
-        GenDPDEIntegratorUtilities::keepThermalState(*context, *this, k);
-    }
-    return k.getInternalEnergies();
-}
-
-void GenDPDEIntegrator::stateChanged(State::DataType changed) {
-    if (changed == State::Positions && context != nullptr && !adiabaticPositionChanges)
-        boundKernel().forgetDensityEntropies();
-}
-
-void GenDPDEIntegrator::setAdiabaticPositionChanges(bool adiabatic) {
-    adiabaticPositionChanges = adiabatic;
-}
-
-bool GenDPDEIntegrator::getAdiabaticPositionChanges() const {
-    return adiabaticPositionChanges;
-}
-
 std::vector<double> GenDPDEIntegrator::getInternalEnergies() const {
     if (context != nullptr)
-        return currentInternalEnergies();
+        return boundKernel().getInternalEnergies();   // (C_V theta_i at the current positions: applyThermalRule)
     if (!initialEnergies.empty())
         return initialEnergies;
     // Before a Context: the configured temperatures times C_V.
@@ -356,7 +342,7 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
                     << "to start every particle at the bath temperature";
         throw OpenMMException(message.str());
     }
-    std::vector<double> temperatures = currentInternalEnergies();
+    std::vector<double> temperatures = boundKernel().getInternalEnergies();
     const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     for (size_t i = 0; i < temperatures.size(); i++)
         temperatures[i] /= capacity[i];
@@ -433,6 +419,10 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
     hasThermalForce = thermalForce;
+    entropyState = EntropyState::Unknown;
+    positionsSet = false;
+    lawUpdatesSeen = 0;
+    forcesCurrent = false;
     context = &contextRef;
     owner = &contextRef.getOwner();
 }
@@ -469,13 +459,24 @@ void GenDPDEIntegrator::step(int steps) {
             ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
     IntegrateGenDPDEStepKernel& stepKernel = boundKernel();
     stepKernel.beginSteps(*context, *this, terms, pairSource);
+    // With a law that depends on temperature, every step starts from the thermal state of its positions, fixed before
+    // a Force (a barostat) may move them, so that a move keeps exactly what applyThermalRule says; that evaluation
+    // serves the step unless the Force moved the particles or evaluated them elsewhere.
+    const bool keepsThermalState = hasThermalForce && mode != Isothermal;
     try {
         for (int i = 0; i < steps; i++) {
-            context->updateContextState();
-            context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
-            if (hasThermalForce)   // eps_i at the densities of this step's positions (docs/theory.md section 11)
-                GenDPDEIntegratorUtilities::keepThermalState(*context, *this, stepKernel);
+            if (keepsThermalState && !forcesAreCurrent()) {
+                evaluateStepForces(i > 0 || entropyState == EntropyState::Earlier);
+                rememberForces();
+            }
+            if (context->updateContextState())   // a Force moved the particles (a barostat) or changed its parameters
+                applyThermalRule(ThermalEvent::PositionsMovedByForce);
+            if (!forcesAreCurrent())
+                evaluateStepForces(entropyState == EntropyState::Earlier);
+            forcesCurrent = false;
             stepKernel.execute(*context, *this, terms, pairSource);
+            if (entropyState == EntropyState::Current)
+                entropyState = EntropyState::Earlier;   // the drift: the entropies belong to the last positions
         }
     }
     catch (...) {
@@ -483,6 +484,12 @@ void GenDPDEIntegrator::step(int steps) {
         throw;
     }
     stepKernel.finishSteps(*context, *this);
+    if (steps > 0 && keepsThermalState) {
+        // The thermal state at the positions the steps reached (outside step(), eps_i is C_V theta_i at the current
+        // positions: applyThermalRule); its forces serve the next step.
+        evaluateStepForces(true);
+        rememberForces();
+    }
 }
 
 double GenDPDEIntegrator::computeKineticEnergy() {
@@ -492,7 +499,10 @@ double GenDPDEIntegrator::computeKineticEnergy() {
 double GenDPDEIntegrator::getConservedEnergy() {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
+    const bool forcesWereCurrent = forcesAreCurrent();
     double potential = context->calcForcesAndEnergy(true, true, getIntegrationForceGroups());
+    if (forcesWereCurrent)
+        rememberForces();   // the same forces again: the next step still needs no evaluation
     double kinetic = computeKineticEnergy();
     double internal = 0.0;
     for (double e : boundKernel().getInternalEnergies())

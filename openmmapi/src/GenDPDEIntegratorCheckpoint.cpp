@@ -11,15 +11,52 @@
 #include <cstdlib>
 #include <locale>
 #include <sstream>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-// Checkpoints (docs/integrator.md): magic, version, seed in use, count, the internal energies (binary, exact), and
-// the magic again as an end mark. Version 1 (0.1.x) had no magic: version, seed, a flag byte, count, energies.
+// Checkpoints (docs/integrator.md). Version 3: magic, version, seed in use, count, the internal energies (binary,
+// exact), what the checksum covers (0: this data, 1: also OpenMM's part of the checkpoint before it, from its header),
+// the checksum (FNV-1a, 64 bits), and the magic again as an end mark; nothing may follow. Version 2 had no coverage
+// and no checksum; version 1 (0.1.x) no magic: version, seed, a flag byte, count, energies. Both are still read.
 namespace {
 const std::int32_t checkpointMagic = 0x45504447;   // "GDPE"
-const std::int32_t checkpointVersion = 2;
+const std::int32_t checkpointVersion = 3;
+// The header of OpenMM's checkpoints (ContextImpl::createCheckpoint writes these bytes and their terminating NUL).
+const char openmmCheckpointHeader[] = "OpenMM Binary Checkpoint\n";
+const std::int32_t coversIntegratorData = 0, coversWholeCheckpoint = 1;
+
+/** FNV-1a (64 bits) of size bytes, continuing from hash: a change of any one byte always changes it. */
+std::uint64_t fnv1a(const void* data, size_t size, std::uint64_t hash = 14695981039346656037ULL) {
+    const unsigned char* bytes = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < size; i++) {
+        hash ^= bytes[i];
+        hash *= 1099511628211ULL;
+    }
+    return hash;
+}
+
+/** OpenMM's part of a checkpoint: the bytes of content before end, from the last OpenMM header on (false if none). */
+bool openmmPart(const std::string& content, size_t end, std::string& part) {
+    const std::string header(openmmCheckpointHeader, sizeof(openmmCheckpointHeader));
+    const size_t start = content.rfind(header, end < header.size() ? 0 : end - header.size());
+    if (start == std::string::npos || start + header.size() > end)
+        return false;
+    part = content.substr(start, end - start);
+    return true;
+}
+
+/** The checksum of version 3: OpenMM's part (if covered), then the integrator's data up to the coverage word. */
+std::uint64_t checkpointChecksum(const std::string* openmm, std::int32_t version, std::int32_t seed,
+                                 const std::vector<double>& energies, std::int32_t coverage) {
+    std::uint64_t hash = fnv1a(openmm != nullptr ? openmm->data() : nullptr, openmm != nullptr ? openmm->size() : 0);
+    const std::int32_t count = energies.size();
+    for (std::int32_t word : {checkpointMagic, version, seed, count})
+        hash = fnv1a(&word, sizeof(word), hash);
+    hash = fnv1a(energies.data(), energies.size()*sizeof(double), hash);
+    return fnv1a(&coverage, sizeof(coverage), hash);
+}
 
 template <class T>
 void readOrFail(std::istream& stream, T& value, const char* what) {
@@ -32,18 +69,31 @@ void readOrFail(std::istream& stream, T& value, const char* what) {
 
 void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
-    const std::vector<double>& energies = currentInternalEnergies();
+    const std::vector<double>& energies = k.getInternalEnergies();   // C_V theta_i at the current positions
+    // OpenMM's part is covered where the stream's buffer can be read back (a string buffer: Python's
+    // Context.createCheckpoint, Simulation.saveCheckpoint, Context.reinitialize).
+    std::string openmm;
+    std::int32_t coverage = coversIntegratorData;
+    if (std::stringbuf* buffer = dynamic_cast<std::stringbuf*>(stream.rdbuf())) {
+        const std::streampos here = stream.tellp();
+        if (here != std::streampos(-1) && openmmPart(buffer->str(), (size_t) here, openmm))
+            coverage = coversWholeCheckpoint;
+    }
     const std::int32_t version = checkpointVersion, seed = k.getSeed(), count = energies.size();
+    const std::uint64_t checksum = checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version,
+                                                      seed, energies, coverage);
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
     stream.write((const char*) &version, sizeof(version));
     stream.write((const char*) &seed, sizeof(seed));
     stream.write((const char*) &count, sizeof(count));
     stream.write((const char*) energies.data(), sizeof(double)*count);
+    stream.write((const char*) &coverage, sizeof(coverage));
+    stream.write((const char*) &checksum, sizeof(checksum));
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
 }
 
-void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
-    // Everything is read and checked before the integrator's state changes.
+void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std::vector<double>& energies) const {
+    const std::streampos start = stream.tellg();   // where the integrator's data begins (-1: the stream cannot tell)
     std::int32_t first, version, seed, count;
     readOrFail(stream, first, "header");
     if (first == checkpointMagic)
@@ -67,11 +117,46 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     if (count != numParticles)
         throw OpenMMException("GenDPDEIntegrator: the checkpoint holds " + std::to_string(count)
                               + " internal energies, the System has " + std::to_string(numParticles) + " particles");
-    std::vector<double> energies(count);
+    energies.assign(count, 0.0);
     if (count > 0) {
         stream.read((char*) energies.data(), sizeof(double)*count);
         if (!stream)
             throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its internal energies (truncated)");
+    }
+    if (version >= 3) {
+        std::int32_t coverage;
+        std::uint64_t checksum;
+        readOrFail(stream, coverage, "checksum");
+        readOrFail(stream, checksum, "checksum");
+        if (coverage != coversIntegratorData && coverage != coversWholeCheckpoint)
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint is corrupt (its checksum's coverage word is "
+                                  + std::to_string(coverage) + ")");
+        std::string openmm;
+        if (coverage == coversWholeCheckpoint) {
+            // OpenMM's part, read back from the stream (a string or a file).
+            std::string content;
+            if (start != std::streampos(-1)) {
+                const std::streampos after = stream.tellg();
+                content.resize((size_t) start);
+                stream.seekg(0);
+                stream.read(&content[0], content.size());
+                const bool read = (bool) stream;
+                stream.clear();
+                stream.seekg(after);
+                if (!read)
+                    content.clear();
+            }
+            if (!openmmPart(content, content.size(), openmm))
+                throw OpenMMException("GenDPDEIntegrator: the checkpoint's checksum covers OpenMM's part of it, which "
+                                      "cannot be read back from this stream (a checkpoint is read from a string or a "
+                                      "file holding it alone)");
+        }
+        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies,
+                               coverage) != checksum)
+            throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint is corrupt: its checksum does not "
+                                  "match its contents (") + (coverage == coversWholeCheckpoint ? "OpenMM's part and "
+                                  "the integrator's data" : "the integrator's data") + "); it was changed or damaged "
+                                  "since it was written");
     }
     if (version >= 2) {
         std::int32_t end;
@@ -79,10 +164,30 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
         if (end != checkpointMagic)
             throw OpenMMException("GenDPDEIntegrator: the checkpoint's integrator data has no end mark (corrupt)");
     }
+    if (stream.peek() != std::char_traits<char>::eof())
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint continues after its end (corrupt, or more than one "
+                              "checkpoint in the stream)");
     checkInternalEnergies(energies, "the checkpoint");
+    seedRead = seed;
+}
+
+void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
+    int seed;
+    std::vector<double> energies;
+    try {
+        readCheckpoint(stream, seed, energies);   // everything read and checked before anything changes
+    }
+    catch (...) {
+        // OpenMM restored the checkpoint's positions, velocities and parameters before asking for this part, and
+        // says nothing of it once this part is refused: for the particles' thermal state that is a move of the
+        // particles (applyThermalRule); the integrator's own state is unchanged.
+        stateChanged(State::Positions);
+        throw;
+    }
     IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(seed);
     k.setInternalEnergies(energies);
+    applyThermalRule(ThermalEvent::EnergiesSet);
 }
 
 // States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies as exact hex floats.
@@ -91,7 +196,7 @@ void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
     std::string text;
     char buffer[40];
-    for (double e : currentInternalEnergies()) {
+    for (double e : k.getInternalEnergies()) {
         std::snprintf(buffer, sizeof(buffer), "%a ", e);
         text += buffer;
     }
@@ -126,4 +231,5 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
     IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(node.getIntProperty("seedInUse"));
     k.setInternalEnergies(energies);
+    applyThermalRule(ThermalEvent::EnergiesSet);
 }

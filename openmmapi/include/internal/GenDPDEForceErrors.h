@@ -63,6 +63,20 @@ inline std::string outsideDomain(int particle, double density, double excludedVo
 }
 
 /**
+ * A step's motion changed a particle's temperature from thetaBefore to thetaAfter (K), more than a factor
+ * GENDPDE_STEP_TEMPERATURE_FACTOR, at the density n (nm^-3) it reached (docs/theory.md section 11).
+ */
+inline std::string temperatureJump(int particle, double thetaBefore, double thetaAfter, double density, long long step) {
+    std::ostringstream message;
+    message.precision(6);
+    message << "GenDPDEForce: the temperature of particle " << particle << " went from " << thetaBefore << " K to "
+            << thetaAfter << " K in one step (by its compression or expansion alone, to the density " << density
+            << " nm^-3), more than a factor " << GENDPDE_STEP_TEMPERATURE_FACTOR << ", at step " << step << ": its "
+            << "equation of state is not being integrated; the simulation has become unstable (reduce the step size)";
+    return message.str();
+}
+
+/**
  * updateParametersInContext() may not change the cutoff, the nonbonded method or the particle types of a Context's
  * force (types: those the Context was created with).
  */

@@ -36,10 +36,27 @@ public:
      * temperature (CalcGenDPDEForceKernel::giveThermalState); false if they do not.
      */
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel);
+    /** Whether the force's laws depend on temperature (fixed when the Context is created). */
+    bool hasThermalLaws() const {
+        return dependsOnTemperature;
+    }
+    /**
+     * How many times the force has been evaluated in this Context: an evaluation at other positions (a barostat's
+     * trial move) replaces the pairs and thermal state the kernel holds, so a GenDPDEIntegrator that keeps the forces
+     * of its last evaluation for the next step checks that none came between.
+     */
+    long long getNumEvaluations() const {
+        return numEvaluations;
+    }
+    /** How many times updateParametersInContext() has changed the force's parameters in this Context. */
+    long long getNumParameterUpdates() const {
+        return numParameterUpdates;
+    }
 private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;
     bool dependsOnTemperature = false;   // as the Context was created (updateParametersInContext cannot change it)
+    long long numEvaluations = 0, numParameterUpdates = 0;
 };
 
 } // namespace GenDPDEPlugin

@@ -82,6 +82,13 @@ public:
      */
     static void keepThermalState(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
                                  IntegrateGenDPDEStepKernel& kernel);
+    /**
+     * Whether the evaluation under way is a step's, whose particles' temperatures the step's motion may change by at
+     * most GENDPDE_STEP_TEMPERATURE_FACTOR (GenDPDEThermalState::checkStep).
+     */
+    static bool checksStepTemperatures(const GenDPDEIntegrator& integrator) {
+        return integrator.checkingStepTemperatures;
+    }
     /** The errors a step reports (every platform uses the same words). */
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
     static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);

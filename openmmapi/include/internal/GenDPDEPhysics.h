@@ -283,6 +283,7 @@ struct ThermalInput {
     double storedEntropy;    // sigma at the density of eps_i (kJ/(mol K)), if entropyKnown
     bool entropyKnown;
     double heatCapacity;     // C_V (kJ/(mol K))
+    bool checkStep;          // an evaluation of a step: a temperature jump is an error (gendpdeThermalParticleState)
 };
 
 /**
@@ -314,7 +315,7 @@ inline int thermalParticleState(const VolumeEstimator& estimator, const LocalEqu
             VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient,
             law.law, p[0], p[1], p[2], p[3], p[4], p[5], law.integerPower, thermal.isothermal ? 1 : 0,
             thermal.temperature, thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0,
-            thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
+            thermal.checkStep ? 1 : 0, thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
             &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
 }
 

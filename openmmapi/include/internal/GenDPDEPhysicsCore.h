@@ -45,6 +45,16 @@
 #define GENDPDE_PARTICLE_NO_NEIGHBOR 1   /* V-A and n0 = 0: the volume 1/n0 is undefined */
 #define GENDPDE_PARTICLE_OVERFLOW 2      /* the equation of state is not finite at the particle's density */
 #define GENDPDE_PARTICLE_OUTSIDE_DOMAIN 3 /* the density is outside the equation of state's domain (0 < n < 1/b) */
+#define GENDPDE_PARTICLE_TEMPERATURE_JUMP 4 /* one step's motion changed its temperature by more than a factor
+                                               GENDPDE_STEP_TEMPERATURE_FACTOR (section 11): not integrated */
+/* The number of statuses: the GPU platforms flag an invalid particle i as GENDPDE_PARTICLE_STATUSES i + status. */
+#define GENDPDE_PARTICLE_STATUSES 8
+
+/* The largest factor by which the conservative motion of one step may change a particle's temperature (section 11):
+ * the drift of a stable run changes it by ~1% (0.6% in bulk liquid argon, 4% at a V-C slab's free surface, measured),
+ * so a particle whose temperature doubles or halves in one step is no longer being integrated. Its logarithm: */
+#define GENDPDE_STEP_TEMPERATURE_FACTOR 2
+#define GENDPDE_LOG_STEP_TEMPERATURE_FACTOR 0.69314718055994531
 
 /* ---- Weights (sections 2, 5; V-C's moment weight: docs/interfaces.md) ------------------------------------------- */
 
@@ -403,10 +413,13 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
  *    precision of the stored energies, GENDPDE_ENERGY, so that keeping it loses nothing and an unmoved particle keeps
  *    its bits), and it contributes e(n) + (C theta - storedEnergy) to U: K + U + sum_i storedEnergy_i is then
  *    K + sum_i u_i(s_i, n_i), whose gradient at fixed entropies is the force. entropyKnown = 0 (the positions or
- *    energies were just set) takes storedEntropy = sigma(n): theta = storedEnergy/C.
+ *    energies were just set) takes storedEntropy = sigma(n): theta = storedEnergy/C. With checkStep != 0 (an
+ *    evaluation of a step, storedEntropy of the previous step's positions) a change of theta by more than a factor
+ *    GENDPDE_STEP_TEMPERATURE_FACTOR, |sigma(n) - storedEntropy| > C ln 2, is GENDPDE_PARTICLE_TEMPERATURE_JUMP.
  * The pressure is pi = pressureAtZero + theta thermalPressure, and the force coefficient pi dV/dn0 and moment scale
  * 2 pi dV/dG follow as for the Tait law. *densityEntropy receives sigma(n) (energy/temperature). Returns
- * GENDPDE_PARTICLE_VALID or why the state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW).
+ * GENDPDE_PARTICLE_VALID or why the state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW,
+ * _TEMPERATURE_JUMP).
  */
 GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
         GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
@@ -415,7 +428,7 @@ GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GEN
         GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_REAL p0, GENDPDE_REAL p1,
         GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, int isothermal,
         GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy, GENDPDE_REAL storedEntropy, int entropyKnown,
-        GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* energy,
+        int checkStep, GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* energy,
         GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale, GENDPDE_ENERGY* thermalEnergy,
         GENDPDE_REAL* densityEntropy) {
     GENDPDE_REAL derivative, momentDerivative;
@@ -434,8 +447,11 @@ GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GEN
         *energy = e - temperature*sigma;
     }
     else {
-        *thermalEnergy = storedEnergy*gendpdeIsentropicThermalEnergy(1, entropyKnown ? sigma - storedEntropy : 0,
-                                                                     heatCapacity);
+        const GENDPDE_REAL entropyChange = entropyKnown ? sigma - storedEntropy : 0;
+        if (checkStep && status == GENDPDE_PARTICLE_VALID
+                && !(fabs(entropyChange) <= GENDPDE_LOG_STEP_TEMPERATURE_FACTOR*heatCapacity))
+            status = GENDPDE_PARTICLE_TEMPERATURE_JUMP;
+        *thermalEnergy = storedEnergy*gendpdeIsentropicThermalEnergy(1, entropyChange, heatCapacity);
         theta = (GENDPDE_REAL) (*thermalEnergy/heatCapacity);
         *energy = e + (GENDPDE_REAL) (*thermalEnergy - storedEnergy);
     }

@@ -63,8 +63,8 @@ enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom,
 namespace DensityArgument {
 enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, LawParameters, TaitPower, VolumeConstants, MomentConstants,
       Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
-      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, LawTable, LawExtraTable, StoredEnergy,
-      StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
+      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, CheckStep, LawTable, LawExtraTable,
+      StoredEnergy, StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
 }
 namespace ForceArgument {
 enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count};
@@ -186,7 +186,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                 .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
                 .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
                 .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).later(Thermal)
-                .later(Isothermal).later(Temperature).later(EntropyKnown).array(LawTable, lawTable)
+                .later(Isothermal).later(Temperature).later(EntropyKnown).later(CheckStep).array(LawTable, lawTable)
                 .array(LawExtraTable, lawExtraTable).later(StoredEnergy).later(StoredEntropy).later(ParticleClass)
                 .later(ClassHeatCapacity).array(ThermalEnergyOut, thermalEnergyOut)
                 .array(DensityEntropyOut, densityEntropyOut).done(Count);
@@ -195,6 +195,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
         densityKernel->setArg(Isothermal, 0);
         setReal(cc, densityKernel, Temperature, 0.0);
         densityKernel->setArg(EntropyKnown, 0);
+        densityKernel->setArg(CheckStep, 0);
         for (int argument : {StoredEnergy, StoredEntropy, ClassHeatCapacity})
             densityKernel->setArg(argument, thermalEnergyOut);
         densityKernel->setArg(ParticleClass, placeholderInt);
@@ -320,6 +321,7 @@ void CommonCalcGenDPDEForceKernel::setThermalArguments(ContextImpl& context) {
     densityKernel->setArg(Isothermal, state->isothermal ? 1 : 0);
     setReal(cc, densityKernel, Temperature, state->temperature);
     densityKernel->setArg(EntropyKnown, state->entropiesKnown ? 1 : 0);
+    densityKernel->setArg(CheckStep, state->checkStep ? 1 : 0);
     densityKernel->setArg(StoredEnergy, *state->internalEnergies);
     densityKernel->setArg(StoredEntropy, *state->densityEntropies);
     densityKernel->setArg(ParticleClass, *state->particleClass);
@@ -403,7 +405,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     if (invalid == noValue)
         throw OpenMMException("GenDPDEForce: a particle's position is not finite at step " + std::to_string(step)
                               + " (particle " + std::to_string(nonFinite) + ")");
-    const int particle = invalid/4, status = invalid%4;
+    const int particle = invalid/GENDPDE_PARTICLE_STATUSES, status = invalid%GENDPDE_PARTICLE_STATUSES;
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
     const Physics::LocalEquationOfState& law = lawByType[types->getParticleTypeIndices()[particle]];
@@ -415,6 +417,22 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     const double density = 1.0/volumes[slotOf(particle)];
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law.parameter[1], step));
+    if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
+        // theta where the integrator kept the state (the last step's positions; it kept none from the failed
+        // evaluation) and here
+        const GenDPDEIntegrator* integrator;
+        CommonGenDPDEThermalArrays* state = GenDPDEIntegratorUtilities::thermalStateHolder(context, integrator)
+                .getDeviceThermalState(*integrator);
+        std::vector<double> stored, found, capacity;
+        std::vector<int> particleClass;
+        state->internalEnergies->download(stored, true);
+        thermalEnergyOut.download(found, true);
+        state->classHeatCapacity->download(capacity, true);
+        state->particleClass->download(particleClass);
+        const double c = capacity[particleClass[particle]];
+        throw OpenMMException(GenDPDEForceErrors::temperatureJump(particle, stored[particle]/c, found[particle]/c,
+                                                                  density, step));
+    }
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, law, step));
 }
 

@@ -29,6 +29,9 @@ enum {Velm, ForceBuffers, Posq, PosqCorrection, KickStep, DriftStep, Status, Sav
 namespace KineticArgument {
 enum {Velm, ForceBuffers, HalfStep, Energy, Count};
 }
+namespace KeepArgument {
+enum {ThermalEnergy, DensityEntropy, Energies, Entropies, Status, CheckForce, ForceErrors, Count};
+}
 
 /** The status words as a run starts: nothing failed (the counters are kept). */
 void resetStatusWords(std::vector<int>& words) {
@@ -103,6 +106,11 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
                 .array(Status, status).array(SavedVelm, savedVelm).later(RestoreEnergies).array(Energies, energies)
                 .array(SavedEnergies, savedEnergies).done(Count);
     }
+    keepKernel = program->createKernel("keepThermalState");
+    KernelArguments(keepKernel, "keepThermalState").later(KeepArgument::ThermalEnergy)
+            .later(KeepArgument::DensityEntropy).array(KeepArgument::Energies, energies)
+            .array(KeepArgument::Entropies, densityEntropies).array(KeepArgument::Status, status)
+            .later(KeepArgument::CheckForce).later(KeepArgument::ForceErrors).done(KeepArgument::Count);
     kineticKernel = program->createKernel("kineticEnergies");
     KernelArguments(kineticKernel, "kineticEnergies").array(KineticArgument::Velm, cc.getVelm())
             .array(KineticArgument::ForceBuffers, cc.getLongForceBuffer()).later(KineticArgument::HalfStep)
@@ -135,15 +143,26 @@ CommonGenDPDEThermalArrays* CommonIntegrateGenDPDEStepKernel::getDeviceThermalSt
     // The classes and heat capacities as the sweep reads them (they may have changed since the last run of steps).
     uploadTypeTables(integrator, GenDPDEIntegratorUtilities::stepTerms(integrator, cutoff));
     thermalArrays = {integrator.getMode() == GenDPDEIntegrator::Isothermal, integrator.getTemperature(), &energies,
-                     &densityEntropies, entropiesKnown, &atomType, &heatCapacityTable};
+                     &densityEntropies, entropiesKnown, &atomType, &heatCapacityTable,
+                     GenDPDEIntegratorUtilities::checksStepTemperatures(integrator)};
     return &thermalArrays;
 }
 
 void CommonIntegrateGenDPDEStepKernel::keepDeviceThermalState(ComputeArray& thermalEnergies,
                                                               ComputeArray& entropies) {
     ContextSelector selector(cc);
-    thermalEnergies.copyTo(energies);
-    entropies.copyTo(densityEntropies);
+    if (!inRun) {   // (outside a run the force has checked its evaluation already)
+        thermalEnergies.copyTo(energies);
+        entropies.copyTo(densityEntropies);
+    }
+    else {
+        using namespace KeepArgument;
+        keepKernel->setArg(ThermalEnergy, thermalEnergies);
+        keepKernel->setArg(DensityEntropy, entropies);
+        keepKernel->setArg(CheckForce, deferredChecks != nullptr ? 1 : 0);
+        keepKernel->setArg(ForceErrors, deferredChecks != nullptr ? deferredChecks->getErrorFlags() : noForceErrors);
+        profiler.launch(keepKernel, cc.getNumAtoms());
+    }
     entropiesKnown = true;
 }
 
@@ -189,6 +208,7 @@ void CommonIntegrateGenDPDEStepKernel::beginSteps(ContextImpl& context, const Ge
     runStartTime = cc.getTime();
     runTerms = terms;
     runStepSize = integrator.getStepSize();
+    runStartEntropiesKnown = entropiesKnown;
     stepsSincePoll = 0;
     if (terms.pairSweep)
         uploadTypeTables(integrator, terms);
@@ -313,6 +333,8 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     cc.setStepCount(step);
     cc.setTime(time);
     endRun();   // (a no-op when the run has ended already)
+    if (found[Halted] == HaltForce && found[HaltStep] == 0)
+        entropiesKnown = runStartEntropiesKnown;   // the run's first evaluation failed: its state was not kept
     if (found[Halted] == HaltForce)
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)

@@ -90,11 +90,11 @@ private:
     std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
     OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // class by original index; per-class parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
-    OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel;
+    OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel, keepKernel;
     mutable std::vector<double> hostEnergies;
     // docs/theory.md section 11: sigma(n_i) at the densities `energies` belong to (mixed, by original index), if known.
     OpenMM::ComputeArray densityEntropies;
-    bool entropiesKnown = false;
+    bool entropiesKnown = false, runStartEntropiesKnown = false;
     CommonGenDPDEThermalArrays thermalArrays;
     CommonGenDPDEProfiler profiler;
 };

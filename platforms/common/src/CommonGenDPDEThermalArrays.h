@@ -18,6 +18,7 @@ struct CommonGenDPDEThermalArrays {
     bool entropiesKnown;
     OpenMM::ComputeArray* particleClass;       // int
     OpenMM::ComputeArray* classHeatCapacity;   // C_V by class (kJ/(mol K), mixed)
+    bool checkStep;                            // an evaluation of a step (GenDPDEThermalState::checkStep)
 };
 
 } // namespace GenDPDEPlugin

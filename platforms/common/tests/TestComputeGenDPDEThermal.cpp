@@ -1,8 +1,11 @@
-#include "TestGenDPDEThermal.h"
+#include "TestGenDPDEThermalState.h"
 #include "TestPlugins.h"
 
 OpenMM::Platform* platform;
 
 int main(int argc, char** argv) {
-    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform, []() { ThermalTests::runThermalTests(); });
+    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform, []() {
+        ThermalTests::runThermalTests();
+        ThermalTests::runThermalStateTests();
+    });
 }

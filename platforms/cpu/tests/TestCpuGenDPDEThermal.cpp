@@ -1,4 +1,4 @@
-#include "TestGenDPDEThermal.h"
+#include "TestGenDPDEThermalState.h"
 #include "TestPlugins.h"
 
 OpenMM::Platform* platform;
@@ -12,6 +12,7 @@ int main() {
         for (const char* threads : {"1", "3"}) {
             platform->setPropertyDefaultValue("Threads", threads);
             ThermalTests::runThermalTests();
+            ThermalTests::runThermalStateTests();
         }
     });
 }

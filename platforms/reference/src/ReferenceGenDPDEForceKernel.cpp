@@ -29,7 +29,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
 ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel,
                                                               ContextImpl& context) :
         estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
-        thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr}) {
+        thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr, false}) {
     for (const Physics::LocalEquationOfState& law : kernel.lawByType)   // (a Tait law's p0..p3: n0, pi0, B_T, gamma_T)
         tait.emplace_back(law.parameter[0], law.parameter[1], law.parameter[2], law.parameter[3]);
     if (kernel.dependsOnTemperature)
@@ -75,6 +75,13 @@ void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, doub
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(i, 1.0/volume,
                 lawByType[types->getParticleTypeIndices()[i]].parameter[1], context.getStepCount()));
+    if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
+        // theta where the integrator kept the state (the last step's positions) and here (storeParticle())
+        const GenDPDEThermalState thermal = GenDPDEIntegratorUtilities::thermalState(context);
+        const double capacity = thermal.classHeatCapacity[thermal.particleClass[i]];
+        throw OpenMMException(GenDPDEForceErrors::temperatureJump(i, thermal.internalEnergies[i]/capacity,
+                thermalEnergy[i]/capacity, 1.0/volume, context.getStepCount()));
+    }
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, 1.0/volume,
             lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
 }
@@ -113,9 +120,9 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         Physics::ParticleState state;
         const int status = model.particleState(i, type[i], primitiveDensity[i],
                                                moments ? moment[i].dot(moment[i]) : 0.0, state);
+        storeParticle(i, state);
         if (status != GENDPDE_PARTICLE_VALID)
             throwParticleError(status, i, state.volume, context);
-        storeParticle(i, state);
         energy.add(state.freeEnergy);
     }
     return energy.sum();
@@ -187,7 +194,8 @@ double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool inclu
 const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(ContextImpl& context, bool particleVirials) {
     const std::vector<Vec3>& positions = extractPositions(context);
     Vec3* box = extractBoxVectors(context);
-    if (observablesValid && (observedVirials || !particleVirials) && positions == observedPositions
+    // (With a law that depends on temperature they also depend on the integrator's state: always computed.)
+    if (observablesValid && !dependsOnTemperature && (observedVirials || !particleVirials) && positions == observedPositions
             && box[0] == observedBox[0] && box[1] == observedBox[1] && box[2] == observedBox[2])
         return observables;
     computeDensitiesAndEnergy(context);

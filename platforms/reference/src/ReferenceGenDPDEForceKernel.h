@@ -64,7 +64,8 @@ protected:
             }
             const Physics::ThermalInput input = {thermal.isothermal, thermal.temperature,
                     thermal.internalEnergies[i], thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
-                    thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]]};
+                    thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]],
+                    thermal.checkStep};
             return Physics::thermalParticleState(estimator, law, n0, G, input, state);
         }
         Physics::VolumeEstimator estimator;
@@ -96,7 +97,7 @@ protected:
     }
     /**
      * The error for particle i whose state has this status (Physics, GENDPDE_PARTICLE_*), naming it and the step;
-     * volume: its volume (nm^3).
+     * volume: its volume (nm^3). The particle's state is stored already (storeParticle()).
      */
     [[noreturn]] void throwParticleError(int status, int i, double volume, OpenMM::ContextImpl& context) const;
     /** Pair sweep and particle pass: fills the per-particle arrays and returns U = sum_i f(n_i) (kJ/mol). */

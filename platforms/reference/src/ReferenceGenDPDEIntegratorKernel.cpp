@@ -40,6 +40,7 @@ GenDPDEThermalState ReferenceIntegrateGenDPDEStepKernel::getThermalState(const G
     state.densityEntropies = densityEntropiesKnown ? densityEntropies.data() : nullptr;
     state.particleClass = typeTables->getParticleClasses().data();
     state.classHeatCapacity = typeTables->getTable().heatCapacity.data();
+    state.checkStep = GenDPDEIntegratorUtilities::checksStepTemperatures(integrator);
     return state;
 }
 

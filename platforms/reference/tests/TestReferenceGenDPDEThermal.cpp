@@ -1,4 +1,4 @@
-#include "TestGenDPDEThermal.h"
+#include "TestGenDPDEThermalState.h"
 #include "TestPlugins.h"
 
 OpenMM::Platform* platform;
@@ -8,5 +8,6 @@ int main() {
         loadPlugins();
         platform = &OpenMM::Platform::getPlatformByName("Reference");
         ThermalTests::runThermalTests();
+        ThermalTests::runThermalStateTests();
     });
 }

@@ -198,12 +198,13 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
  * GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
  * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). Results by slot; momentForce[s] receives q (estimators that read
  * moments). errors[0] gets the smallest original index of a particle whose position is not finite, errors[1] the
- * smallest 4 i + status over the particles whose state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR,
- * GENDPDE_PARTICLE_OVERFLOW, GENDPDE_PARTICLE_OUTSIDE_DOMAIN). The list's rebuild mark is cleared.
+ * smallest GENDPDE_PARTICLE_STATUSES i + status over the particles whose state is invalid (GENDPDE_PARTICLE_*).
+ * The list's rebuild mark is cleared.
  * With thermal != 0 (a law depends on temperature, docs/theory.md section 11), a type whose lawTable entry is not
  * GENDPDE_EOS_TAIT takes the law with parameters lawParameters[t] (p0..p3) and lawExtraTable[t] (p4, p5), its particles'
  * temperatures from the integrator (isothermal: every theta = temperature; otherwise storedEnergy eps_i, with
- * storedEntropy sigma_i if entropyKnown, and C_V = classHeatCapacity[particleClass[i]], all by original index), and
+ * storedEntropy sigma_i if entropyKnown, and C_V = classHeatCapacity[particleClass[i]], all by original index;
+ * checkStep: a step's evaluation, gendpdeThermalParticleState), and
  * writes C_V theta_i and sigma(n_i) by original index to thermalEnergyOut and densityEntropyOut (a Tait particle:
  * its eps_i and 0).
  */
@@ -214,7 +215,8 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
         GLOBAL real* RESTRICT forceCoefficient, GLOBAL real4* RESTRICT momentForce,
         GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors,
-        int thermal, int isothermal, real temperature, int entropyKnown, GLOBAL const int* RESTRICT lawTable,
+        int thermal, int isothermal, real temperature, int entropyKnown, int checkStep,
+        GLOBAL const int* RESTRICT lawTable,
         GLOBAL const real2* RESTRICT lawExtraTable, GLOBAL const mixed* RESTRICT storedEnergy,
         GLOBAL const mixed* RESTRICT storedEntropy, GLOBAL const int* RESTRICT particleClass,
         GLOBAL const mixed* RESTRICT classHeatCapacity, GLOBAL mixed* RESTRICT thermalEnergyOut,
@@ -247,7 +249,7 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
                     volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
                     quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS,
                     lawTable[type], tait.x, tait.y, tait.z, tait.w, extra.x, extra.y, taitPowerTable[type], isothermal,
-                    temperature, storedEnergy[atom], (real) storedEntropy[atom], entropyKnown,
+                    temperature, storedEnergy[atom], (real) storedEntropy[atom], entropyKnown, checkStep,
                     (real) classHeatCapacity[particleClass[atom]], &v, &pi, &f, &coefficient, &momentForceScale,
                     &thermalEnergy, &sigma);
             thermalEnergyOut[atom] = thermalEnergy;
@@ -268,7 +270,7 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
             momentForce[s] = make_real4(q.x, q.y, q.z, 0);
         }
         if (status != GENDPDE_PARTICLE_VALID)
-            ATOMIC_MIN(&errors[1], 4*atom + status);
+            ATOMIC_MIN(&errors[1], GENDPDE_PARTICLE_STATUSES*atom + status);
         primitiveDensity[s] = n0;
         volume[s] = v;
         pressure[s] = pi;

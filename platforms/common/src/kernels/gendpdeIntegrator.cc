@@ -102,6 +102,23 @@ KERNEL void finishStep(GLOBAL mixed4* RESTRICT velm, GLOBAL const mm_long* RESTR
     }
 }
 
+/**
+ * The thermal state a GenDPDEForce's evaluation found (C_V theta_i and sigma(n_i), by original index, docs/theory.md
+ * section 11), kept as the particles' state, unless the run has stopped or the evaluation found an invalid particle
+ * (forceErrors, when this run makes the force's checks): a failed evaluation leaves the state as it was, as on the
+ * host platforms, whose force stops before the state is kept.
+ */
+KERNEL void keepThermalState(GLOBAL const mixed* RESTRICT thermalEnergy, GLOBAL const mixed* RESTRICT densityEntropy,
+        GLOBAL mixed* RESTRICT energies, GLOBAL mixed* RESTRICT entropies, GLOBAL const int* RESTRICT status,
+        int checkForce, GLOBAL const int* RESTRICT forceErrors) {
+    if (status[STATUS_HALTED] != 0 || (checkForce && (forceErrors[0] != NO_VALUE || forceErrors[1] != NO_VALUE)))
+        return;
+    for (int i = GLOBAL_ID; i < NUM_ATOMS; i += GLOBAL_SIZE) {
+        energies[i] = thermalEnergy[i];
+        entropies[i] = densityEntropy[i];
+    }
+}
+
 /** Each particle's kinetic energy with the on-step velocity v + (dt/2) F/m. */
 KERNEL void kineticEnergies(GLOBAL const mixed4* RESTRICT velm, GLOBAL const mm_long* RESTRICT forceBuffers,
                             mixed halfStep, GLOBAL mixed* RESTRICT energy) {

@@ -143,7 +143,8 @@ def test_threads_sets_the_cpu_platform_and_is_reported(tmp_path, cpu_threads_def
 
 @pytest.mark.parametrize("arguments, message", [
     (["--platform", "Reference", "--threads", "2"], "--threads = 2 applies to the CPU platform only"),
-    (["--platform", "CPU", "--threads", "0"], "--threads = 0 is not allowed; it must be >= 1"),
+    (["--platform", "CPU", "--threads", "0"], "argument --threads: 0 is not allowed; it must be an integer from 1 to "
+                                              "1024"),
     (["--platform", "CPU", "--precision", "mixed"], "--precision = mixed applies to the OpenCL and CUDA platforms only"),
 ])
 def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default):
@@ -238,3 +239,56 @@ def test_calibrate_refuses_a_time_step_that_is_not_positive(value):
     with pytest.raises(SystemExit) as exit_:
         main(["calibrate", "--quick", "--time-step", value])
     assert str(exit_.value) == f"error: calibrate: --time-step {value} is not allowed; it must be > 0"
+
+
+@pytest.fixture
+def nothing_runs(monkeypatch):
+    """Every subcommand's run replaced by one that fails the test: the arguments must be refused first."""
+    import openmmgendpde.__main__ as entry
+    for _, module, _ in entry.SUBCOMMANDS:
+        monkeypatch.setattr(module, "run", lambda arguments: pytest.fail("the subcommand ran"))
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["benchmark-force", "--particles", "500", "--json", "/proc/x.json"], "/proc/x.json cannot be written"),
+    (["table3", "--output", "/proc/results"], "/proc/results cannot be written"),
+])
+def test_an_output_where_no_file_can_be_made_is_refused(arguments, message, nothing_runs, capsys):
+    """Writable permission bits are not enough (root passes them; /proc takes no new file): a file is made there and
+    removed when the arguments are read."""
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert exit_.value.code == 2 and message in capsys.readouterr().err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("failure, status, message", [
+    (openmm.OpenMMException("GenDPDEIntegrator: the internal energy of particle 3 would become -0.1 kJ/mol"), 1,
+     "error: timing: GenDPDEIntegrator: the internal energy of particle 3 would become -0.1 kJ/mol"),
+    (OSError(28, "No space left on device", "/dev/full"), 1, "error: timing: /dev/full: No space left on device"),
+    (KeyboardInterrupt(), 130, "error: timing: interrupted"),
+])
+def test_a_failure_during_the_run_ends_in_one_line(failure, status, message, monkeypatch, capsys):
+    """A simulation that goes bad, an output that cannot be written, Ctrl-C: one line on stderr and a nonzero status,
+    not a traceback."""
+    import openmmgendpde.timing as timing
+
+    def fail(arguments):
+        raise failure
+    monkeypatch.setattr(timing, "run", fail)
+    with pytest.raises(SystemExit) as exit_:
+        main(["timing", "--quick"])
+    code = exit_.value.code
+    if isinstance(code, str):   # SystemExit(message): Python writes it to stderr and exits with status 1
+        assert status == 1 and code == message
+    else:
+        assert code == status and capsys.readouterr().err.strip() == message
+
+
+def test_a_script_failure_ends_in_one_line():
+    """cli.one_line_errors (the examples): an OpenMMException nothing catches is one line on stderr, status 1."""
+    import subprocess
+    import sys
+    result = subprocess.run([sys.executable, "-c", "import openmm\nfrom openmmgendpde.cli import one_line_errors\n"
+                             "one_line_errors('x.py')\nraise openmm.OpenMMException('the step was not applied')"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1 and result.stderr == "error: x.py: the step was not applied\n"

@@ -250,6 +250,43 @@ def nothing_runs(monkeypatch):
 
 
 @pytest.mark.parametrize("arguments, message", [
+    (["thermal-expansion", "--particles", "100"], "argument --particles: 100 is not allowed; it must be 4 m^3"),
+    (["thermal-expansion", "--particles", "0"], "argument --particles: 0 is not allowed; it must be 4 m^3"),
+    (["thermal-expansion", "--steps", "0"], "argument --steps: 0 is not allowed; it must be an integer >= 400"),
+    (["thermal-expansion", "--delta", "nan"], "argument --delta: nan is not allowed; it must be a finite number > 0"),
+    (["thermal-expansion", "--delta", "0"], "argument --delta: 0 is not allowed; it must be a finite number > 0"),
+    (["thermal-expansion", "--delta", "-5"], "argument --delta: -5 is not allowed"),
+    (["thermal-expansion", "--melt", "-1"], "argument --melt: -1 is not allowed; it must be an integer >= 0"),
+    (["thermal-expansion", "--seed", "99999999999"], "argument --seed: 99999999999 is not allowed; it must be an "
+                                                     "integer from 0 to 1000000000"),
+    (["thermal-expansion", "--iterations", "-1"], "argument --iterations: -1 is not allowed"),
+    (["table3", "--particles", "100"], "argument --particles: 100 is not allowed; it must be 4 m^3"),
+    (["table3", "--time-step", "-0.01"], "argument --time-step: -0.01 is not allowed; it must be a finite number > 0"),
+    (["table3", "--cutoffs", "1.5"], "argument --cutoffs: 1.5 is not allowed; R_cut* must be one of the published"),
+    (["table3", "--frames", "0"], "argument --frames: 0 is not allowed; it must be an integer >= 1"),
+    (["rdf", "--production", "inf"], "argument --production: inf is not allowed"),
+    (["timing", "--steps", "0"], "argument --steps: 0 is not allowed"),
+    (["timing", "--rounds", "0"], "argument --rounds: 0 is not allowed"),
+    (["tune-fcut", "--tolerance", "0"], "argument --tolerance: 0 is not allowed"),
+    (["tune-fcut", "--max-iterations", "0"], "argument --max-iterations: 0 is not allowed"),
+    (["speed-vs-error", "--steps", "0.01", "-1"], "argument --steps: -1 is not allowed"),
+    (["slab", "--duration", "inf"], "argument --duration: inf is not allowed"),
+    (["slab", "--thermostat-time", "-1"], "argument --thermostat-time: -1 is not allowed"),
+    (["benchmark-force", "--particles", "100"], "argument --particles: 100 is not allowed"),
+    (["benchmark-integrator", "--cutoff", "3"], "argument --cutoff: 3 is not allowed; R_cut* must be one of"),
+    (["benchmark-cpu", "--thread-counts", "0"], "argument --thread-counts: 0 is not allowed"),
+])
+def test_a_bad_number_is_a_usage_error_before_anything_runs(arguments, message, nothing_runs, capsys):
+    """Every number of every subcommand is checked when the arguments are read (finite, in range, an integer for a
+    count, 4 m^3 particles, a published R_cut*, a seed OpenMM takes): usage error, status 2, one line naming the
+    option, the value and what is allowed."""
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert exit_.value.code == 2
+    assert message in capsys.readouterr().err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("arguments, message", [
     (["benchmark-force", "--particles", "500", "--json", "/proc/x.json"], "/proc/x.json cannot be written"),
     (["table3", "--output", "/proc/results"], "/proc/results cannot be written"),
 ])
@@ -259,6 +296,30 @@ def test_an_output_where_no_file_can_be_made_is_refused(arguments, message, noth
     with pytest.raises(SystemExit) as exit_:
         main(arguments)
     assert exit_.value.code == 2 and message in capsys.readouterr().err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["thermal-expansion", "--delta", "200"], "error: thermal-expansion: --delta 200 is not allowed; it must be < T0 = "
+                                              "125.7 K"),
+    (["thermal-expansion", "--particles", "32"], "error: thermal-expansion: the box"),
+    (["table3", "--particles", "32"], "error: table3: 32 particles make a box of edge"),
+    (["tune-fcut", "--quick", "--cutoff", "1.5"], "error: tune-fcut: --cutoff 1.5 is not allowed"),
+    (["tune-fcut", "--quick", "--start", "0.5"], "error: tune-fcut: GenDPDEForce: cutoff scaling f_cut = 0.5 is not "
+                                                 "allowed"),
+    (["benchmark-force", "--particles", "32"], "error: benchmark-force: 32 particles make a box"),
+    (["slab", "--duration", "10", "--every", "20"], "error: slab: --every 20 is not allowed; it must be at most "
+                                                    "--duration 10"),
+    (["slab", "--every", "0.001"], "error: slab: --every 0.001 is not allowed; it must be at least one step"),
+    (["rdf", "--quick", "--frames-from", "/nonexistent"], "error: rdf: --frames-from /nonexistent is not a directory"),
+])
+def test_arguments_that_do_not_fit_together_end_in_one_line_before_anything_runs(arguments, message, monkeypatch):
+    """Arguments checked against each other (the particles against the cutoff, dT against T0, f_cut against the
+    force's range) before any simulation: a one-line error (status 1) naming the subcommand (Context creation fails
+    the test)."""
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert str(exit_.value).startswith(message) and "\n" not in str(exit_.value)
 
 
 @pytest.mark.parametrize("failure, status, message", [
@@ -292,3 +353,74 @@ def test_a_script_failure_ends_in_one_line():
                              "one_line_errors('x.py')\nraise openmm.OpenMMException('the step was not applied')"],
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 1 and result.stderr == "error: x.py: the step was not applied\n"
+
+
+def _fake_argon_runs(monkeypatch, interrupt_at=None):
+    """table3's runs replaced by made-up samples (seconds, not minutes): frames of 500 particles that differ from
+    call to call; the run number ``interrupt_at`` (from 1) raises KeyboardInterrupt, as Ctrl-C would."""
+    import numpy as np
+    import openmmgendpde.table3 as table3
+    from openmmgendpde.study import ArgonRun, Samples
+    calls = []
+
+    def run_argon(cutoff, estimator, protocol, platform, frames=0, progress=None, **options):
+        calls.append((cutoff, estimator))
+        if len(calls) == interrupt_at:
+            raise KeyboardInterrupt
+        rng = np.random.default_rng(len(calls) + 100 * (interrupt_at or 0))
+        samples = Samples(box_edge=3.0, frames=[rng.uniform(0, 3, (500, 3)) for _ in range(frames)])
+        for name in ("kinetic_temperature", "harmonic_temperature", "density", "pressure"):
+            setattr(samples, name, list(1 + 0.01 * rng.standard_normal(40)))
+        return ArgonRun(samples, None, None)
+    monkeypatch.setattr(table3, "run_argon", run_argon)
+    return calls
+
+
+def _files(directory):
+    return {path.name: path.read_bytes() for path in directory.iterdir()}
+
+
+def test_an_interrupted_table3_leaves_the_previous_frames_complete(tmp_path, monkeypatch, capsys):
+    """Ctrl-C during table3 --output D: one line, status 130, and D as the last complete run left it (its frames and
+    their manifest), nothing of the interrupted run; rdf's reader takes it."""
+    from openmmgendpde.table3 import FRAMES_MANIFEST, read_frames
+    _fake_argon_runs(monkeypatch)
+    main(["table3", "--quick", "--output", str(tmp_path)])
+    before = _files(tmp_path)
+    assert FRAMES_MANIFEST in before and len([name for name in before if name.endswith(".npz")]) == 6
+    _fake_argon_runs(monkeypatch, interrupt_at=5)
+    with pytest.raises(SystemExit) as exit_:
+        main(["table3", "--quick", "--output", str(tmp_path)])
+    assert exit_.value.code == 130 and capsys.readouterr().err.strip() == "error: table3: interrupted"
+    assert _files(tmp_path) == before
+    cases = [(cutoff, estimator) for cutoff in (1.3365, 1.6839, 2.1564) for estimator in ("VA", "VB")]
+    assert sorted(read_frames(tmp_path, cases)) == sorted(cases)
+
+
+@pytest.mark.parametrize("damage, message", [
+    ("no manifest", "holds no complete set of table3 frames"),
+    ("a file replaced", "is not the file table3 wrote"),
+    ("a file missing", "frames-R2.1564-VB.npz is missing"),
+    ("fewer cutoffs", "has no frames of R_cut* = 1.6839 VA"),
+])
+def test_rdf_refuses_an_incomplete_or_foreign_frame_directory_in_one_line(damage, message, tmp_path, monkeypatch):
+    """rdf --frames-from D reads a complete set only (table3's manifest, every case, each file as table3 wrote it):
+    else one line (status 1) before anything runs."""
+    import numpy as np
+    from openmmgendpde.table3 import FRAMES_MANIFEST
+    _fake_argon_runs(monkeypatch)
+    main(["table3", "--quick", "--output", str(tmp_path)] + (["--cutoffs", "1.3365"] if damage == "fewer cutoffs"
+                                                               else []))
+    if damage == "no manifest":   # the 4 of 6 frame files an interrupted table3 used to leave
+        (tmp_path / FRAMES_MANIFEST).unlink()
+        for path in sorted(tmp_path.glob("*.npz"))[4:]:
+            path.unlink()
+    elif damage == "a file replaced":
+        np.savez_compressed(tmp_path / "frames-R1.6839-VA.npz", positions=np.zeros((2, 500, 3)), box_edge=3.0)
+    elif damage == "a file missing":
+        (tmp_path / "frames-R2.1564-VB.npz").unlink()
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    with pytest.raises(SystemExit) as exit_:
+        main(["rdf", "--quick", "--frames-from", str(tmp_path), "--output", str(tmp_path / "rdf")])
+    assert str(exit_.value).startswith(f"error: rdf: --frames-from {tmp_path}") and message in str(exit_.value)
+    assert "\n" not in str(exit_.value) and not (tmp_path / "rdf" / "fig1-rdf.csv").exists()

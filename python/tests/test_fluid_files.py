@@ -229,3 +229,49 @@ def test_the_example_surface_tensions_are_their_sources_correlations():
     assert load_fluid(os.path.join(REPOSITORY, "examples", "fluids", "nitrogen.toml")).in_openmm()[
         "surface_tension"] == pytest.approx(nitrogen, rel=1e-3)
     assert ARGON.surface_tension is None
+
+
+@pytest.mark.parametrize("key, text", [
+    ("temperature", "298.15 kelvin + 5 K"),
+    ("temperature", "2 * 150 K"),
+    ("pressure", "0.1 MPa * 2"),
+    ("mass_density", "(997.05 kg/m^3)"),
+    ("temperature", "nan K"),
+])
+def test_a_fluid_file_value_is_one_number_with_a_unit_not_an_expression(key, text, tmp_path):
+    """pint evaluates expressions ('298.15 kelvin + 5 K' is 303.15 K); a fluid file takes one number followed by a
+    unit, and refuses anything else naming the key, the value and what is allowed."""
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **{key: text})))
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert f"{key} = {text!r}" in str(error.value) and "it must be one number followed by its unit" in str(error.value)
+
+
+@pytest.mark.parametrize("key, text", [
+    ("thermal_expansion", "2.64e-3 1/(K mol)"),   # made 'per molecule' by Avogadro's number: 4.4e-27 1/K
+    ("thermal_expansion", "4.4e-27 mol/K"),        # made 'per mole': 2.64e-3 1/K
+    ("temperature", "4.9e-22 K mol"),
+    ("speed_of_sound", "1496.7 m/(s mol)"),
+    ("self_diffusion", "2.3e-9 m^2 mol/s"),
+])
+def test_a_property_that_is_not_molar_takes_no_per_mole_conversion(key, text, tmp_path):
+    """The per-mole rule (a quantity per molecule made per mole by Avogadro's number) is for the properties whose
+    OpenMM unit is per mole (energies, pressures, masses); a thermal expansion coefficient, a temperature or a speed
+    with mol in its unit is refused, naming the key, the value and the unit it must have."""
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **{key: text})))
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert f"{key} = {text!r} is not allowed; its unit must be compatible with" in str(error.value)
+    assert "not per mole" in str(error.value)
+
+
+def test_the_per_mole_rule_still_converts_the_molar_properties(tmp_path):
+    """Per molecule in SI (J/K, Pa, kg) or per mole: the same Fluid either way."""
+    avogadro = 6.02214076e23
+    per_molecule = dict(WATER_TABLE, heat_capacity=f"{74.44 / avogadro!r} J/K",
+                        molar_mass=f"{18.015e-3 / avogadro!r} kg", pressure=f"{0.1e6!r} Pa")
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(per_molecule))
+    _same_properties(load_fluid(str(path)), load_fluid(WATER_FILE), rel=1e-12)

@@ -234,11 +234,14 @@ def test_platform_help_states_the_default_in_use():
 
 
 @pytest.mark.parametrize("value", ["0.0", "-0.01", "nan"])
-def test_calibrate_refuses_a_time_step_that_is_not_positive(value):
-    """calibrate --time-step: an error naming the option, the value and what is allowed, before any run."""
+def test_calibrate_refuses_a_time_step_that_is_not_positive(value, capsys):
+    """calibrate --time-step: a usage error (status 2) naming the option, the value and what is allowed, before any
+    run."""
     with pytest.raises(SystemExit) as exit_:
         main(["calibrate", "--quick", "--time-step", value])
-    assert str(exit_.value) == f"error: calibrate: --time-step {value} is not allowed; it must be > 0"
+    assert exit_.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1].endswith(
+        f"error: argument --time-step: {value} is not allowed; it must be a finite number > 0")
 
 
 @pytest.fixture
@@ -270,6 +273,9 @@ def nothing_runs(monkeypatch):
     (["tune-fcut", "--tolerance", "0"], "argument --tolerance: 0 is not allowed"),
     (["tune-fcut", "--max-iterations", "0"], "argument --max-iterations: 0 is not allowed"),
     (["speed-vs-error", "--steps", "0.01", "-1"], "argument --steps: -1 is not allowed"),
+    (["calibrate", "--particles", "100"], "argument --particles: 100 is not allowed"),
+    (["calibrate", "--seed", "-1"], "argument --seed: -1 is not allowed"),
+    (["calibrate", "--molecules-per-particle", "nan"], "argument --molecules-per-particle: nan is not allowed"),
     (["slab", "--duration", "inf"], "argument --duration: inf is not allowed"),
     (["slab", "--thermostat-time", "-1"], "argument --thermostat-time: -1 is not allowed"),
     (["benchmark-force", "--particles", "100"], "argument --particles: 100 is not allowed"),
@@ -424,3 +430,60 @@ def test_rdf_refuses_an_incomplete_or_foreign_frame_directory_in_one_line(damage
         main(["rdf", "--quick", "--frames-from", str(tmp_path), "--output", str(tmp_path / "rdf")])
     assert str(exit_.value).startswith(f"error: rdf: --frames-from {tmp_path}") and message in str(exit_.value)
     assert "\n" not in str(exit_.value) and not (tmp_path / "rdf" / "fig1-rdf.csv").exists()
+
+
+def _fake_water_calibration(monkeypatch):
+    from helpers import fake_calibration
+    from openmmgendpde.fluid import WATER, coarse_grain
+    fake_calibration(monkeypatch, coarse_grain(WATER, 4, neighbors=20))
+
+
+def test_calibrate_writes_every_output_it_can_and_reports_the_one_it_cannot(tmp_path, monkeypatch, capsys):
+    """calibrate --json /dev/full (a write that fails after the run): the model (--output) is still written, and the
+    failure is one line (status 1) naming the option and the reason."""
+    from openmmgendpde.fluid_files import load_parameters
+    _fake_water_calibration(monkeypatch)
+    model = tmp_path / "model.toml"
+    with pytest.raises(SystemExit) as exit_:
+        main(["calibrate", "--quick", "--fluid", "water", "--output", str(model), "--json", "/dev/full"])
+    assert exit_.value.code == ("error: calibrate: --json /dev/full could not be written (/dev/full: No space left on "
+                                "device); the other outputs were written")
+    assert load_parameters(str(model)).fluid.name.startswith("liquid water")
+    assert [path.name for path in tmp_path.iterdir()] == ["model.toml"]   # no temporary file left
+
+
+def test_a_simulation_failure_in_calibrate_names_its_stage(monkeypatch):
+    """An OpenMMException in a stage of calibrate (a negative internal energy in the bulk-modulus runs, as argon at
+    4 atoms per particle gave): one line (status 1) naming the stage, the error and the options that set the step and
+    the heat capacity."""
+    from openmmgendpde.calibrate import Calibration
+    _fake_water_calibration(monkeypatch)
+
+    def bulk_modulus(self):
+        raise openmm.OpenMMException("GenDPDEIntegrator: the internal energy of particle 39 would become -0.36 kJ/mol "
+                                     "(<= 0) at step 3076; the step was not applied.")
+    monkeypatch.setattr(Calibration, "bulk_modulus", bulk_modulus)
+    with pytest.raises(SystemExit) as exit_:
+        main(["calibrate", "--quick", "--fluid", "water"])
+    assert exit_.value.code == ("error: calibrate: the stage 'Bulk modulus: B_T iterated on n dP/dn' failed: "
+                                "GenDPDEIntegrator: the internal energy of particle 39 would become -0.36 kJ/mol "
+                                "(<= 0) at step 3076; the step was not applied. (dt* = 0.01: --time-step; heat "
+                                "capacity: --molecules-per-particle)")
+
+
+@pytest.mark.parametrize("fluid, molecules", [("water", 4), ("argon", 5), ("argon-expanding", 5),
+                                              ("supercritical-argon", 7)])
+def test_calibrates_default_coarse_graining_leaves_the_particles_heat_capacity(fluid, molecules, monkeypatch, capsys):
+    """calibrate's default molecules per particle: 4, or more where the molecules hold little heat, so that C_V
+    stays >= 9 k_B once c_v is matched (calibrate.MIN_DEFAULT_INTERNAL_HEAT_CAPACITY; argon at 4 stopped on a
+    negative internal energy at dt* = 0.01). The mapped C_V minus the 5/2 k_B of the motion and the Gamma law is at
+    least 9 k_B."""
+    from openmmgendpde.calibrate import FLUIDS, KB, default_molecules_per_particle
+    from openmmgendpde.fluid import coarse_grain
+    assert default_molecules_per_particle(FLUIDS[fluid]) == molecules
+    parameters = coarse_grain(FLUIDS[fluid], molecules, neighbors=20)
+    assert parameters.heat_capacity / KB - 2.5 >= 9.0
+    assert coarse_grain(FLUIDS[fluid], molecules - 1, neighbors=20).heat_capacity / KB - 2.5 < 9.0 or molecules == 4
+    _fake_water_calibration(monkeypatch)
+    main(["calibrate", "--quick", "--fluid", fluid])
+    assert f": {molecules} molecules per particle, 20.0 neighbours" in capsys.readouterr().out

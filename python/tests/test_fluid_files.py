@@ -10,6 +10,7 @@ import sys
 import openmm
 import pytest
 
+from helpers import fake_calibration
 from openmmgendpde.__main__ import main
 from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, WATER, coarse_grain
 from openmmgendpde.fluid_files import (fluid_from_table, fluid_table, load_fluid, load_parameters, quantity,
@@ -130,34 +131,10 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     -0.02/kappa_T from the mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport
     coefficients read their targets. The model file holds exactly those parameters (computed here from coarse_grain,
     independently of calibrate)."""
-    from openmmgendpde.calibrate import KB, Calibration, Measured
+    from openmmgendpde.calibrate import KB
     offset = 0.02
-
-    def thermodynamics(self, density=None, pressure_error=None):
-        t = self.parameters.targets()
-        measured = t["pressure"] + offset * t["bulk_modulus"]
-        if self.parameters.reference_pressure != mapped.reference_pressure:
-            measured = t["pressure"]
-        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
-        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
-                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
-                "pressure": Measured(measured, 1e-4), "heat_capacity": self.heat_capacity(),
-                "configurational_heat_capacity": self.configurational_heat_capacity}
-
-    def tune(self, iterations=None):
-        self.parameters = self.parameters.with_cutoff_scaling(1.3)
-        return 1.3
-
     mapped = coarse_grain(load_fluid(WATER_FILE), 4, neighbors=20)
-    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", tune)
-    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
-    monkeypatch.setattr(Calibration, "bulk_modulus",
-                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
-    for name, target in (("shear_viscosity", "shear_viscosity"), ("steady_viscosity", "shear_viscosity"),
-                         ("thermal_conductivity", "thermal_conductivity"),
-                         ("steady_conductivity", "thermal_conductivity")):
-        monkeypatch.setattr(Calibration, name, lambda self, target=target: Measured(
-            self.parameters.targets()[target], 1e-6, 3))
+    fake_calibration(monkeypatch, mapped, offset)
     output = str(tmp_path / "water-model.toml")
     main(["calibrate", "--quick", "--fluid", WATER_FILE, "--output", output])
     assert f"The calibrated model is in {output}" in capsys.readouterr().out
@@ -275,3 +252,22 @@ def test_the_per_mole_rule_still_converts_the_molar_properties(tmp_path):
     path = tmp_path / "fluid.json"
     path.write_text(json.dumps(per_molecule))
     _same_properties(load_fluid(str(path)), load_fluid(WATER_FILE), rel=1e-12)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"temperature": "1e300 K"}, "the mapping"),
+    ({"tait_exponent": 1e6}, "gamma_T = 1000000 is not allowed"),
+])
+@pytest.mark.parametrize("command", ["calibrate", "tune-fcut"])
+def test_a_fluid_out_of_range_ends_in_one_line_before_anything_runs(command, change, message, tmp_path, capsys,
+                                                                    monkeypatch):
+    """A fluid file whose values the mapping cannot turn into a model (an overflow) or that the force refuses (gamma_T
+    beyond GenDPDEForce's range): a one-line error, status 1, before any simulation (Context creation fails the
+    test)."""
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **change)))
+    with pytest.raises(SystemExit) as exit_:
+        main([command, "--quick", "--fluid", str(path)])
+    assert str(exit_.value).startswith(f"error: {command}: ") and message in str(exit_.value)
+    assert "\n" not in str(exit_.value)

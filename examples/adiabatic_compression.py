@@ -23,21 +23,33 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.cli import (COUNT, NON_NEGATIVE_COUNT, add_platform, fcc_particles, number, one_line_errors,
+                               parse_arguments)
 from openmmgendpde.expansion import mapped
 from openmmgendpde.fluid import ARGON_EXPANDING
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--particles", type=int, default=864, help="4 m^3 particles (default 864)")
-    parser.add_argument("--stages", type=int, default=20, help="deformations of the box (default 20)")
-    parser.add_argument("--fraction", type=float, default=0.005, help="volume removed per stage (default 0.005)")
-    parser.add_argument("--steps", type=int, default=100, help="Conservative steps after each stage (default 100)")
-    parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU"))
-    arguments = parser.parse_args()
+    parser.add_argument("--particles", type=fcc_particles, default=864, help="4 m^3 particles (default 864)")
+    parser.add_argument("--stages", type=NON_NEGATIVE_COUNT, default=20, help="deformations of the box (default 20)")
+    parser.add_argument("--fraction", type=number(above=0, below=1), default=0.005,
+                        help="volume removed per stage, > 0 and < 1 (default 0.005)")
+    parser.add_argument("--steps", type=COUNT, default=100, help="Conservative steps after each stage (default 100)")
+    add_platform(parser, default="CPU", allowed=("Reference", "CPU"))
+    arguments = parse_arguments(parser)
 
     parameters = mapped()                                    # 5 atoms per particle, R* = 1.6839
-    model = parameters.liquid(arguments.particles, mode=GenDPDEIntegrator.Isothermal, seed=3)
+    try:
+        model = parameters.liquid(arguments.particles, mode=GenDPDEIntegrator.Isothermal, seed=3)
+    except ValueError as error:
+        parser.error(f"--particles {arguments.particles}: {error}".replace("use more cells", "use more --particles"))
+    # Every argument checked before anything runs: the box at the end of the last stage still holds the cutoff.
+    edge = model.volume ** (1 / 3) * (1 - arguments.fraction) ** (arguments.stages / 3)
+    if edge < 2 * parameters.cutoff:
+        parser.error(f"--fraction {arguments.fraction:g} and --stages {arguments.stages} are not allowed with "
+                     f"--particles {arguments.particles}: the box would end {edge:.3f} nm across, less than twice the "
+                     f"cutoff {parameters.cutoff:.3f} nm; use more --particles, or compress less")
     integrator, force = model.integrator, model.force
     context = model.melted(arguments.platform, GenDPDEIntegrator.Conservative, 500, 200, seed=3)   # melt at T0
     integrator.setAdiabaticPositionChanges(True)
@@ -79,4 +91,5 @@ def main():
 
 
 if __name__ == "__main__":
+    one_line_errors("adiabatic_compression.py")
     main()

@@ -18,13 +18,16 @@ import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.cli import NON_NEGATIVE, NON_NEGATIVE_COUNT, add_platform, one_line_errors, parse_arguments
 from openmmgendpde.presets import liquid_argon
 
+one_line_errors("immiscible_pair.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-parser.add_argument("--platform", default="CPU")
-parser.add_argument("--steps", type=int, default=20000, help="thermostatted steps (dt* = 0.01)")
-parser.add_argument("--repulsion", type=float, nargs="+", default=[0.0, 20.0], help="a in units of k_B T0")
-args = parser.parse_args()
+add_platform(parser, default="CPU")
+parser.add_argument("--steps", type=NON_NEGATIVE_COUNT, default=20000, help="thermostatted steps (dt* = 0.01)")
+parser.add_argument("--repulsion", type=NON_NEGATIVE, nargs="+", default=[0.0, 20.0],
+                    help="a in units of k_B T0, >= 0 (default 0 20)")
+args = parse_arguments(parser)
 
 
 def unlike_fraction(positions, box, types, cutoff):

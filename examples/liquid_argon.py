@@ -14,12 +14,14 @@ import sys
 from openmm import app
 
 from openmmgendpde import GenDPDEReporter
+from openmmgendpde.cli import one_line_errors, published_cutoff
 from openmmgendpde.presets import ARGON_UNITS, liquid_argon
 from openmmgendpde.study import melt_then_draw
 
+one_line_errors("liquid_argon.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
 parser.add_argument("--estimator", default="VB", choices=["VA", "VB"])
-parser.add_argument("--cutoff", type=float, default=1.3365, help="R_cut*: 1.3365, 1.6839 or 2.1564")
+parser.add_argument("--cutoff", type=published_cutoff, default=1.3365, help="R_cut*: 1.3365, 1.6839 or 2.1564")
 args = parser.parse_args()
 
 argon = liquid_argon(num_particles=500, cutoff=args.cutoff, estimator=args.estimator, time_step=0.01, seed=1)

@@ -41,6 +41,9 @@ from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.calibrate import Calibration, Plan
+from openmmgendpde.cli import (COUNT, NON_NEGATIVE, POSITIVE, add_platform, number, one_line_errors, parse_arguments,
+                               writable_stem)
+from openmmgendpde.files import atomic_write
 from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, coarse_grain
 from openmmgendpde.statistics import block_standard_error
 
@@ -51,6 +54,20 @@ RAYLEIGH_CRITICAL = {"rigid": 1707.8, "stress-free": 27 * math.pi**4 / 4}
 ATOMS = 5
 NEIGHBORS = 20
 DIFFUSIVITY = 0.025          # the target D_T, L^2/tau
+#: The most cells of the fields' grid (--grid): one per layer of particles, 2 per FCC cell, across the box (x) and the
+#: liquid (z).
+MAX_GRID = (2 * CELLS[0], 2 * (CELLS[2] - 2 * WALL_CELLS))
+#: Steps between the samples of the fields (run's sample_every).
+SAMPLE_EVERY = 100
+#: H in units of L = n0^(-1/3): the liquid's cells less the layer of half a cell at each wall (FCC cell 4^(1/3) L).
+DEPTH = (CELLS[2] - 2 * WALL_CELLS - 1) * 4 ** (1 / 3)
+
+
+def middle_layers(nz):
+    """Which of the grid's nz layers (from the bottom face) are the interior, the middle 60% of the depth, over which
+    the temperature gradient is fitted (at least 2 are needed)."""
+    centres = (np.arange(nz) + 0.5) / nz
+    return (centres > 0.2) & (centres < 0.8)
 
 
 def liquid_fluid():
@@ -99,7 +116,7 @@ def build(parameters, gravity, seed, time_step):
 
 
 def run(parameters, difference, gravity, steps, platform, seed, grid, time_step, perturbation, layer,
-        reset_every=20, sample_every=100):
+        reset_every=20, sample_every=SAMPLE_EVERY):
     """One run at the wall difference ``difference`` (K). Over its second half: the heat flux (kJ/mol/ps per nm^2,
     the mean of what the hot wall gives and the cold one takes), the grid's mean velocity (x, z; nm/ps) and theta
     fields, the flow and its noise (nm/ps), and the interior's temperature gradient (K/nm, from the harmonic means
@@ -150,7 +167,7 @@ def run(parameters, difference, gravity, steps, platform, seed, grid, time_step,
     flow = math.sqrt(float(np.mean(velocity[0] ** 2 + velocity[2] ** 2)) / 2)
     layers = counts.sum(axis=0) / inverse.sum(axis=0)
     centre = (np.arange(nz) + 0.5) / nz * (top - bottom)
-    middle = (centre > 0.2 * (top - bottom)) & (centre < 0.8 * (top - bottom))
+    middle = middle_layers(nz)
     gradient = float(np.polyfit(centre[middle], layers[middle], 1)[0])
     # The heat per reset interval over the area; its error from 10 block means (successive resets anti-correlate)
     per_area = np.array(heats) / (reset_every * dt) / (box[0] * box[1])
@@ -178,23 +195,29 @@ def viscosity(parameters, time_step, platform, replicas):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--differences", type=float, nargs="+", default=[12.0, 15.0, 18.0, 24.0, 40.0],
-                        help="dT between the walls in K; the first must be below the onset (default 12 15 18 24 40)")
-    parser.add_argument("--compression", type=float, default=0.3,
-                        help="g H/c_T^2, the layer's hydrostatic compression, which sets g (default 0.3)")
-    parser.add_argument("--thermal-times", type=float, default=0.6,
+    parser.add_argument("--differences", type=POSITIVE, nargs="+", default=[12.0, 15.0, 18.0, 24.0, 40.0],
+                        help="dT between the walls in K, > 0; the first must be below the onset (default 12 15 18 24 "
+                             "40)")
+    parser.add_argument("--compression", type=number(above=0, below=1), default=0.3,
+                        help="g H/c_T^2, the layer's hydrostatic compression, which sets g; > 0 and < 1 (default 0.3)")
+    parser.add_argument("--thermal-times", type=POSITIVE, default=0.6,
                         help="length of each run in H^2/D_T of the target D_T (default 0.6)")
-    parser.add_argument("--time-step", type=float, default=0.04, help="dt* (default 0.04)")
-    parser.add_argument("--perturbation", type=float, default=2.0,
+    parser.add_argument("--time-step", type=POSITIVE, default=0.04, help="dt* (default 0.04)")
+    parser.add_argument("--perturbation", type=NON_NEGATIVE, default=2.0,
                         help="amplitude (K) of the roll pattern added to the conduction profile (default 2)")
-    parser.add_argument("--grid", type=int, nargs=2, default=(14, 7), help="cells of the fields (default 14 7)")
-    parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU", "OpenCL", "CUDA"))
-    parser.add_argument("--viscosity-replicas", type=int, default=3, help="transverse waves for nu (default 3)")
-    parser.add_argument("--measured", type=float, nargs=3, metavar=("NU", "LAMBDA", "FRACTION"),
-                        help="nu (L^2/tau), lambda (kJ/(mol ps nm K)) and the liquid's fraction of dT from an "
-                             "earlier run, instead of measuring them (then every difference is a convection run)")
-    parser.add_argument("--plot", metavar="STEM", help="draw the second halves' mean fields to STEM.png")
-    arguments = parser.parse_args()
+    parser.add_argument("--grid", type=COUNT, nargs=2, default=(14, 7), metavar=("NX", "NZ"),
+                        help=f"cells of the fields (default 14 7; at most {MAX_GRID[0]} {MAX_GRID[1]}, one per layer "
+                             f"of particles)")
+    add_platform(parser, default="CPU")
+    parser.add_argument("--viscosity-replicas", type=COUNT, default=3, help="transverse waves for nu (default 3)")
+    parser.add_argument("--measured", type=POSITIVE, nargs=3, metavar=("NU", "LAMBDA", "FRACTION"),
+                        help="nu (L^2/tau), lambda (kJ/(mol ps nm K)) and the liquid's fraction of dT (at most 1) "
+                             "from an earlier run, instead of measuring them (then every difference is a convection "
+                             "run)")
+    parser.add_argument("--plot", metavar="STEM", type=writable_stem(".png"),
+                        help="draw the second halves' mean fields to STEM.png (needs matplotlib)")
+    arguments = parse_arguments(parser)
+    check(parser, arguments)
 
     fluid = liquid_fluid()
     parameters = coarse_grain(fluid, ATOMS, neighbors=NEIGHBORS)
@@ -207,10 +230,9 @@ def main():
     c_v, c_p = specific_heat(f)
     cell = length * 4 ** (1 / 3)             # FCC cell edge at n0 = 1/L^3 (4 particles a cell)
     layer = cell / 2                         # the liquid within this of a wall takes the wall's temperature
-    depth = (CELLS[2] - 2 * WALL_CELLS) * cell - 2 * layer
+    depth = DEPTH * length                   # (CELLS[2] - 2 WALL_CELLS) cells less a layer at each wall
     gravity = arguments.compression / (depth / length) * length / tau**2      # nm/ps^2
-    thermal_time = (depth / length) ** 2 / DIFFUSIVITY * tau
-    steps = round(arguments.thermal_times * thermal_time / (arguments.time_step * tau))
+    steps = run_steps(arguments)
     adiabatic = gravity * depth * alpha * t0 / c_p
     print(f"{fluid.name}, {ATOMS} atoms per particle: L = {length:.4f} nm, tau = {tau:.4f} ps; "
           f"H = {depth / length:.2f} L"
@@ -257,6 +279,41 @@ def main():
         plot(results, arguments.plot)
 
 
+def check(parser, arguments):
+    """Every argument checked against the others before anything runs (a usage error, status 2): the grid against
+    the layers of particles and the interior's fit, the temperatures above zero, runs long enough to sample, the
+    measured fraction of dT at most 1, matplotlib for --plot."""
+    nx, nz = arguments.grid
+    if nx > MAX_GRID[0] or nz > MAX_GRID[1] or middle_layers(nz).sum() < 2:
+        parser.error(f"--grid {nx} {nz} is not allowed; it must be at most {MAX_GRID[0]} {MAX_GRID[1]} (one cell per "
+                     f"layer of particles), with at least 2 layers in the middle 60% of the depth, where the "
+                     f"temperature gradient is fitted (NZ = 2 or from 4 on)")
+    t0 = liquid_fluid().in_openmm()["temperature"]
+    coldest = max(arguments.differences) / 2 + arguments.perturbation
+    if not coldest < t0:
+        parser.error(f"--differences {max(arguments.differences):g} and --perturbation {arguments.perturbation:g} "
+                     f"are not allowed together: the cold wall and the roll pattern would reach {t0 - coldest:g} K; "
+                     f"dT/2 + the perturbation must stay below T0 = {t0:g} K")
+    steps = run_steps(arguments)
+    if steps < 2 * SAMPLE_EVERY:
+        parser.error(f"--thermal-times {arguments.thermal_times:g} is not allowed with --time-step "
+                     f"{arguments.time_step:g}: runs of {steps} steps; at least {2 * SAMPLE_EVERY} are needed (the "
+                     f"second half sampled every {SAMPLE_EVERY})")
+    if arguments.measured and arguments.measured[2] > 1:
+        parser.error(f"--measured FRACTION {arguments.measured[2]:g} is not allowed; the liquid's fraction of dT is "
+                     f"at most 1")
+    if arguments.plot:
+        try:
+            import matplotlib   # noqa: F401
+        except ImportError:
+            parser.error("--plot needs matplotlib (pip install matplotlib)")
+
+
+def run_steps(arguments):
+    """The steps of each run: --thermal-times H^2/D_T (the target D_T) at --time-step."""
+    return round(arguments.thermal_times * DEPTH**2 / DIFFUSIVITY / arguments.time_step)
+
+
 def plot(results, stem):
     import matplotlib
     matplotlib.use("Agg")
@@ -280,9 +337,11 @@ def plot(results, stem):
         axis.set_ylabel("z (nm)")
         figure.colorbar(image, ax=axis, label="theta (K), harmonic mean")
     figure.tight_layout()
-    figure.savefig(f"{stem}.png", dpi=120)
+    with atomic_write(f"{stem}.png", "wb") as stream:
+        figure.savefig(stream, format="png", dpi=120)
     print(f"wrote {stem}.png")
 
 
 if __name__ == "__main__":
+    one_line_errors("rayleigh_benard.py")
     main()

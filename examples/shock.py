@@ -29,7 +29,9 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.expansion import MPA_PER_OPENMM_PRESSURE as MPA, mapped, run_at
+from openmmgendpde.cli import (COUNT, NON_NEGATIVE_COUNT, POSITIVE, add_platform, fcc_particles, integer, number,
+                               one_line_errors, parse_arguments)
+from openmmgendpde.expansion import MIN_SAMPLES, MPA_PER_OPENMM_PRESSURE as MPA, SAMPLE_EVERY, mapped, run_at
 from openmmgendpde.hugoniot import EquationOfStateFit, shocked_state
 from openmmgendpde.statistics import correlated_mean
 from openmmgendpde.thermodynamics import ThermodynamicProbe
@@ -49,7 +51,7 @@ def equation_of_state(parameters, arguments):
     for k, ratio in enumerate(np.linspace(1.0, arguments.table_compression, 7)):
         for j, offset in enumerate((-10.0, 60.0, 130.0)):
             run = run_at(parameters, arguments.table_particles, parameters.temperature + offset, arguments.table_melt,
-                         arguments.table_steps, 20, arguments.platform, seed=10 * k + j + 1,
+                         arguments.table_steps, SAMPLE_EVERY, arguments.platform, seed=10 * k + j + 1,
                          density=ratio * parameters.density)
             rows.append((run.density, run.energy, run.pressure.mean, run.temperature.mean))
             print(f"  {ratio:.3f}  {run.temperature.mean:8.2f}  {run.energy:10.4f}  {run.pressure.mean * MPA:9.2f}",
@@ -117,20 +119,39 @@ def shock_run(context, integrator, checkpoint, speed, steps, chunk, box, mass):
             "temperature": correlated_mean(temperatures), "theta": float(np.mean(thetas))}
 
 
+#: Steps between the shock run's samples (shock_run's chunk), and the fewest samples a run needs: the front's speed is
+#: fitted over the last two thirds, the shocked state averaged over the second half.
+CHUNK, MIN_CHUNKS = 25, 8
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--speeds", type=float, nargs="+", default=[100.0, 200.0, 300.0],
-                        help="piston speeds u_p in m/s (default 100 200 300)")
-    parser.add_argument("--width", type=int, default=6, help="FCC cells across the box (default 6)")
-    parser.add_argument("--length", type=int, default=60, help="FCC cells along the box (default 60)")
-    parser.add_argument("--table-particles", type=int, default=864, help="particles of each equilibrium run")
-    parser.add_argument("--table-melt", type=int, default=1000, help="Isothermal steps before each equilibrium run")
-    parser.add_argument("--table-steps", type=int, default=3000, help="sampled steps of each equilibrium run")
-    parser.add_argument("--table-compression", type=float, default=1.4, help="the largest n/n0 of the runs")
-    parser.add_argument("--platform", default="CPU", choices=("Reference", "CPU"))
-    arguments = parser.parse_args()
+    parser.add_argument("--speeds", type=POSITIVE, nargs="+", default=[100.0, 200.0, 300.0],
+                        help="piston speeds u_p in m/s, > 0 (default 100 200 300)")
+    parser.add_argument("--width", type=COUNT, default=6, help="FCC cells across the box (default 6)")
+    parser.add_argument("--length", type=COUNT, default=60, help="FCC cells along the box (default 60)")
+    parser.add_argument("--table-particles", type=fcc_particles, default=864,
+                        help="particles of each equilibrium run, 4 m^3 (default 864)")
+    parser.add_argument("--table-melt", type=NON_NEGATIVE_COUNT, default=1000,
+                        help="Isothermal steps before each equilibrium run (default 1000)")
+    parser.add_argument("--table-steps", type=integer(SAMPLE_EVERY * MIN_SAMPLES, why=f" ({MIN_SAMPLES} samples, one "
+                                                                                       f"every {SAMPLE_EVERY} steps)"),
+                        default=3000, help="sampled steps of each equilibrium run (default 3000)")
+    parser.add_argument("--table-compression", type=number(above=1), default=1.4,
+                        help="the largest n/n0 of the runs, > 1 (default 1.4)")
+    add_platform(parser, default="CPU", allowed=("Reference", "CPU"))
+    arguments = parse_arguments(parser)
 
     parameters = mapped()
+    # Every argument checked before anything runs: each box holds the cutoff (the table's at its largest density).
+    for option, build in (("--width and --length", lambda: parameters.liquid(
+                              cells=(arguments.width, arguments.width, arguments.length))),
+                          ("--table-particles and --table-compression", lambda: parameters.liquid(
+                              arguments.table_particles, density=arguments.table_compression * parameters.density))):
+        try:
+            build()
+        except ValueError as error:
+            parser.error(f"{option}: {error}".replace("use more cells", "give more cells or particles"))
     fit = equation_of_state(parameters, arguments)
 
     model = parameters.liquid(cells=(arguments.width, arguments.width, arguments.length),
@@ -150,17 +171,30 @@ def main():
     p0 = float(fit.pressure(n0, e0))
     checkpoint = context.createCheckpoint()
     box = [model.system.getDefaultPeriodicBoxVectors()[k][k].value_in_unit(unit.nanometer) for k in range(3)]
+    dt = integrator.getStepSize().value_in_unit(unit.picosecond)
+    # Each speed's predicted state and run length, before any impact is run: within the table's densities, and long
+    # enough to measure.
+    runs = []
+    for speed_si in arguments.speeds:
+        try:
+            predicted = shocked_state(fit, n0, e0, p0, parameters.mass, speed_si / M_PER_S)
+        except ValueError as error:
+            raise SystemExit(f"error: shock.py: --speeds {speed_si:g}: {error} (the table's: raise "
+                             f"--table-compression, or give lower speeds)") from None
+        steps = int(box[2] / (4 * predicted.shock_speed) / dt)
+        if steps < MIN_CHUNKS * CHUNK:
+            raise SystemExit(f"error: shock.py: --speeds {speed_si:g}: the shock would cross the box in {steps} steps, "
+                             f"fewer than the {MIN_CHUNKS * CHUNK} a measurement needs; give a longer box (--length) "
+                             f"or lower speeds")
+        runs.append((speed_si, predicted, steps))
     print(f"Ahead of the shock: {model.num_particles} particles, n0 = {n0:.4f} nm^-3, T0 = {t0:.2f} K, "
           f"E0 = {e0:.4f} kJ/mol, P0 = {p0 * MPA:.2f} MPa from the fit ({p_measured * MPA:.2f} measured), "
           f"box {box[0]:.2f} x {box[1]:.2f} x {box[2]:.2f} nm")
     print("   u_p     U_s (m/s)              n1/n0                     T1 (K)           <theta> (K)")
     print(" (m/s)  measured Hugoniot      measured  Hugoniot       measured Hugoniot      measured")
-    dt = integrator.getStepSize().value_in_unit(unit.picosecond)
-    for speed_si in arguments.speeds:
+    for speed_si, predicted, steps in runs:
         speed = speed_si / M_PER_S
-        predicted = shocked_state(fit, n0, e0, p0, parameters.mass, speed)
-        steps = int(box[2] / (4 * predicted.shock_speed) / dt)
-        measured = shock_run(context, integrator, checkpoint, speed, steps, 25, box, parameters.mass)
+        measured = shock_run(context, integrator, checkpoint, speed, steps, CHUNK, box, parameters.mass)
         print(f" {speed_si:5.0f}  {measured['shock_speed'] * M_PER_S:8.1f} {predicted.shock_speed * M_PER_S:8.1f}  "
               f"{measured['density'].mean / n0:.4f} +- {measured['density'].standard_error / n0:.4f}    "
               f"{predicted.density / n0:.4f}  "
@@ -169,4 +203,5 @@ def main():
 
 
 if __name__ == "__main__":
+    one_line_errors("shock.py")
     main()

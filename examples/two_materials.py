@@ -20,12 +20,15 @@ import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.cli import add_platform, integer, one_line_errors, parse_arguments
 from openmmgendpde.presets import ARGON_UNITS, liquid_argon
 
+one_line_errors("two_materials.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-parser.add_argument("--platform", default="CPU")
-parser.add_argument("--steps", type=int, default=8000, help="isoenergetic steps after melting (dt* = 0.01)")
-args = parser.parse_args()
+add_platform(parser, default="CPU")
+parser.add_argument("--steps", type=integer(400, why=" (a report every 400 steps)"), default=8000,
+                    help="isoenergetic steps after melting (dt* = 0.01), reported every 400 (default 8000)")
+args = parse_arguments(parser)
 
 # One cube of liquid argon (500 particles, n0* = 1); the box is doubled along x and the second cube becomes B.
 argon = liquid_argon(num_particles=500, cutoff=1.6839, time_step=0.01, seed=3)

@@ -5,7 +5,7 @@ import warnings
 
 from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, expansion, rdf, slab, speed_vs_error,
                table3, timing, tune_fcut)
-from .cli import apply_threads
+from .cli import parse_arguments, run_command
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
 SUBCOMMANDS = (
@@ -28,16 +28,14 @@ SUBCOMMANDS = (
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m openmmgendpde",
                                      description="GenDPDE for OpenMM: fluid calibration, liquid-argon studies and benchmarks.")
-    subcommands = parser.add_subparsers(title="subcommands", required=True, metavar="SUBCOMMAND")
+    subcommands = parser.add_subparsers(title="subcommands", required=True, metavar="SUBCOMMAND", dest="command")
     for name, module, summary in SUBCOMMANDS:
         module.add_arguments(subcommands.add_parser(name, help=summary, description=module.__doc__,
                                                     formatter_class=argparse.RawDescriptionHelpFormatter))
-    arguments = parser.parse_args(argv)
-    try:
-        apply_threads(arguments)
-    except ValueError as error:
-        parser.error(str(error))
-    return arguments.run(arguments)
+    arguments = parse_arguments(parser, argv)
+    # Every argument is checked by now (its type) or by the subcommand before it runs anything; what fails during the
+    # run (a simulation that goes bad, an output that cannot be written, Ctrl-C) ends in one line, not a traceback.
+    return run_command(arguments.command, arguments.run, arguments)
 
 
 def _format_warning(message, category, filename, lineno, line=None):

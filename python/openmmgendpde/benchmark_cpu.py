@@ -20,10 +20,11 @@ import openmm
 from openmm import unit
 
 from . import GenDPDEIntegrator
-from .cli import DEFAULT_CUTOFF, add_cutoff, add_json, add_progress, add_rounds
+from .cli import DEFAULT_CUTOFF, THREADS, add_cutoff, add_json, add_progress, add_rounds, fcc_particles
 from .measurement import alternating_rounds, default_rounds, median, median_ratio, print_results
 from .presets import liquid_argon
 from .progress import Progress
+from .study import check_argon
 
 #: Isothermal steps that melt the lattice before the particles are renumbered.
 MELTING_STEPS = 300
@@ -147,6 +148,7 @@ def format_table(results):
 
 
 def run(arguments):
+    check_argon("benchmark-cpu", arguments.particles, [arguments.cutoff])
     progress = Progress(sum(arguments.rounds or default_rounds(n) for n in arguments.particles), "benchmark-cpu",
                         always=arguments.progress)
     results = [benchmark(n, arguments.cutoff, arguments.thread_counts, not arguments.no_reference, arguments.rounds,
@@ -159,9 +161,9 @@ def run(arguments):
 
 
 def add_arguments(parser):
-    parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
+    parser.add_argument("--particles", type=fcc_particles, nargs="+", default=[4000, 32000],
                         help="particle counts, 4 m^3 each (default 4000 32000)")
-    parser.add_argument("--thread-counts", type=int, nargs="+", default=[1, 2],
+    parser.add_argument("--thread-counts", type=THREADS, nargs="+", default=[1, 2],
                         help="CPU thread counts, the first the baseline of the speed-ups (default 1 2)")
     parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
     add_cutoff(parser)

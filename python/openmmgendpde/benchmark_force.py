@@ -19,6 +19,7 @@ from .presets import ARGON_STATE, ARGON_UNITS, liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
                           print_results)
 from .progress import Progress
+from .study import check_argon
 
 #: Time step of the preparation and of the timed Verlet steps (reduced units).
 TIME_STEP = 0.01
@@ -108,6 +109,7 @@ def format_table(results):
 
 def run(arguments):
     cutoffs = chosen_cutoffs(arguments)
+    check_argon("benchmark-force", arguments.particles, cutoffs, ("VA", "VB"))
     cases = [(n, c) for n in arguments.particles for c in cutoffs]
     rounds = arguments.rounds
     total = sum(2 * (rounds or default_rounds(n)) for n, _ in cases)

@@ -28,6 +28,7 @@ from .presets import liquid_argon
 from .measurement import (add_benchmark_arguments, alternating_rounds, default_rounds, median, median_ratio,
                           print_results)
 from .progress import Progress
+from .study import check_argon
 from .statistics import block_average
 from .units import BOLTZMANN
 from . import GenDPDEIntegrator
@@ -217,6 +218,7 @@ def format_dpd_table(results):
 
 
 def run(arguments):
+    check_argon("benchmark-integrator", arguments.particles, [arguments.cutoff])
     total = sum(arguments.rounds or default_rounds(n) for n in arguments.particles)
     progress = Progress(total, "benchmark-integrator", always=arguments.progress)
     results = []

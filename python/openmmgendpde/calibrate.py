@@ -55,7 +55,9 @@ import openmm
 from openmm import unit
 
 from . import ESTIMATOR_NAMES, GenDPDEIntegrator, expansion, forked
-from .cli import add_json, add_platform, add_progress, command_line_error, platform_description, writable_file
+from .cli import (POSITIVE, SEED, add_json, add_platform, add_progress, checked_model, command_line_error,
+                  failure_message, fcc_particles, platform_description, writable_file, writable_stem)
+from .files import atomic_write
 from .fluid import ARGON, ARGON_EXPANDING, SUPERCRITICAL_ARGON, WATER, CONDUCTIVITY, VISCOSITY, coarse_grain
 from .fluid_files import load_fluid, save_parameters
 from .progress import Progress
@@ -798,8 +800,28 @@ def fluid_named(name):
                      f"(.toml or .json, docs/fluids.md)")
 
 
-#: The coarse-graining of --fluid where its options are not given (add_fluid_arguments).
-COARSE_GRAINING = {"molecules_per_particle": 4.0, "neighbors": 20.0}
+#: The coarse-graining of --fluid where its options are not given (add_fluid_arguments); the molecules per particle
+#: by default_molecules_per_particle (None here).
+COARSE_GRAINING = {"molecules_per_particle": None, "neighbors": 20.0}
+#: The fewest molecules per particle by default.
+MOLECULES_PER_PARTICLE = 4
+#: The internal heat capacity C_V (k_B) that the default coarse-graining leaves a particle at least, once calibrate has
+#: matched the fluid's c_v (match_heat_capacity: C_V = N_m c_v - k_B - 3 k_B/2 - c_U, c_U ~ 0.1-0.4 k_B). The relative
+#: fluctuations of the internal energies go as sqrt(k_B/C_V), and with a smaller C_V a step of dt* = 0.01 takes one
+#: below zero within a calibration (the integrator refuses the step): argon at 4 atoms per particle (C_V matched to
+#: 7.4 k_B) stopped in the bulk-modulus stage of --quick, and ran at dt* = 0.005; at 5 atoms (9.3 k_B) it runs at
+#: 0.01 (docs/fluids.md). Supercritical argon at 4 (4.3 k_B) stopped at dt* = 0.005 and 0.0025, at 5 (5.9 k_B) at
+#: 0.01 and 0.005 (docs/thermal.md); at 7 (9.4 k_B) its --quick calibration runs at 0.01 (3 min, every result
+#: within its tolerance).
+MIN_DEFAULT_INTERNAL_HEAT_CAPACITY = 9.0
+
+
+def default_molecules_per_particle(fluid):
+    """The molecules per particle of --fluid where --molecules-per-particle is not given: MOLECULES_PER_PARTICLE, or
+    the fewest (a whole number) that leave a particle MIN_DEFAULT_INTERNAL_HEAT_CAPACITY once c_v is matched, for a
+    fluid whose molecules hold little heat (argon 5, supercritical argon 7; water 4)."""
+    c_v = fluid.in_openmm()["heat_capacity"] / KB   # k_B per molecule
+    return float(max(MOLECULES_PER_PARTICLE, math.ceil((MIN_DEFAULT_INTERNAL_HEAT_CAPACITY + 2.5) / c_v)))
 
 
 def add_fluid_arguments(parser, default="water", cutoff=True):
@@ -810,43 +832,67 @@ def add_fluid_arguments(parser, default="water", cutoff=True):
     parser.add_argument("--fluid", default=default,
                         help=f"a built-in fluid ({', '.join(sorted(FLUIDS))}; {default_text}) or a fluid file "
                              f"(.toml or .json: each property 'value unit', docs/fluids.md)")
-    parser.add_argument("--molecules-per-particle", type=float, default=COARSE_GRAINING["molecules_per_particle"],
-                        help=f"coarse-graining level (default {COARSE_GRAINING['molecules_per_particle']:g})")
-    parser.add_argument("--neighbors", type=float, default=COARSE_GRAINING["neighbors"],
+    parser.add_argument("--molecules-per-particle", type=POSITIVE, default=COARSE_GRAINING["molecules_per_particle"],
+                        help=f"coarse-graining level (default {MOLECULES_PER_PARTICLE}, or more where the fluid's "
+                             f"molecules hold little heat: enough for a particle's internal heat capacity to stay >= "
+                             f"{MIN_DEFAULT_INTERNAL_HEAT_CAPACITY:g} k_B once c_v is matched; argon 5, supercritical "
+                             f"argon 7)")
+    parser.add_argument("--neighbors", type=POSITIVE, default=COARSE_GRAINING["neighbors"],
                         help=f"particles within the cutoff at n0 (default {COARSE_GRAINING['neighbors']:g}), unless "
                              f"--cutoff is given")
     if cutoff:
-        parser.add_argument("--cutoff", type=float, help="the cutoff R in nm (instead of --neighbors)")
+        parser.add_argument("--cutoff", type=POSITIVE, help="the cutoff R in nm (instead of --neighbors)")
 
 
 def parameters_from_arguments(arguments, command):
-    """coarse_grain of --fluid (fluid_named) with --molecules-per-particle and --neighbors or --cutoff (nm); a bad
-    argument exits (SystemExit, status 1) with a one-line error naming ``command`` and the option."""
+    """coarse_grain of --fluid (fluid_named) with --molecules-per-particle (default_molecules_per_particle where not
+    given: ``arguments`` is set to it) and --neighbors or --cutoff (nm); a bad argument exits (SystemExit, status 1)
+    with a one-line error naming ``command`` and the option."""
     neighbors = arguments.neighbors if arguments.cutoff is None else None
     cutoff = None if arguments.cutoff is None else arguments.cutoff * unit.nanometer
     try:
-        return coarse_grain(fluid_named(arguments.fluid), arguments.molecules_per_particle, neighbors=neighbors,
-                            cutoff=cutoff)
+        fluid = fluid_named(arguments.fluid)
+        if arguments.molecules_per_particle is None:
+            arguments.molecules_per_particle = default_molecules_per_particle(fluid)
+        return coarse_grain(fluid, arguments.molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
     except ValueError as error:
-        raise command_line_error(command, error)
+        raise command_line_error(command, error) from None
 
 
 def run(arguments):
+    """calibrate (the module's docstring): every argument checked before anything runs; a simulation that fails
+    (openmm.OpenMMException: e.g. an internal energy that a step would take below zero) ends in a one-line error
+    naming the stage it failed in."""
+    stages = ["setting up"]
+    try:
+        return _run(arguments, stages)
+    except openmm.OpenMMException as error:
+        raise SystemExit(f"error: calibrate: the stage '{stages[-1]}' failed: {' '.join(str(error).split())} "
+                         f"(dt* = {getattr(arguments, 'time_step_used', Plan.time_step):g}: --time-step; heat "
+                         f"capacity: --molecules-per-particle)") from None
+
+
+def _run(arguments, stages):
     parameters = parameters_from_arguments(arguments, "calibrate")
     fluid = parameters.fluid
     plan = QUICK if arguments.quick else Plan()
     if arguments.particles is not None:
         plan = dataclasses.replace(plan, particles=arguments.particles)
     if arguments.time_step is not None:
-        if not 0 < arguments.time_step < math.inf:
-            raise SystemExit(f"error: calibrate: --time-step {arguments.time_step} is not allowed; it must be > 0")
         plan = dataclasses.replace(plan, time_step=arguments.time_step)
+    arguments.time_step_used = plan.time_step
     if arguments.output and os.path.splitext(arguments.output)[1].lower() not in (".toml", ".json"):
         raise SystemExit(f"error: calibrate: --output {arguments.output} is not allowed; it must end in .toml or .json")
-    try:   # every argument checked before the runs: a model built once checks the particles against the cutoff
-        parameters.liquid(plan.particles, arguments.estimator)
-    except ValueError as error:
-        raise command_line_error("calibrate", error, "use more --particles, or fewer --neighbors (a smaller --cutoff)")
+    if arguments.plot:
+        try:
+            import matplotlib   # noqa: F401 (the optional studies dependency, needed for --plot at the end)
+        except ImportError:
+            raise SystemExit("error: calibrate: --plot needs matplotlib (pip install matplotlib)") from None
+    # Every argument checked before the runs: a model built once checks the particles against the cutoff, and every
+    # parameter against what GenDPDEForce and GenDPDEIntegrator allow.
+    checked_model("calibrate", lambda: parameters.liquid(plan.particles, arguments.estimator, time_step=plan.time_step,
+                                                         seed=arguments.seed),
+                  "use more --particles, or fewer --neighbors (a smaller --cutoff)")
     workers = min(replica_processes(arguments.platform), plan.replicas)
     print(f"{fluid.name}: {arguments.molecules_per_particle:g} molecules per particle, {parameters.neighbors:.1f} "
           f"neighbours within R, {arguments.estimator}, {plan.particles} particles, {platform_description(arguments)}"
@@ -869,7 +915,8 @@ def run(arguments):
 
     def stage(text):
         print(f"[{time.monotonic() - started:6.0f} s] {text}", flush=True)
-        progress.label = f"calibrate: {text.split(' (')[0]}"
+        stages.append(text.split(' (')[0])
+        progress.label = f"calibrate: {stages[-1]}"
 
     targets = parameters.targets()
     # The pressure's error matters (pi0 is moved by it and it is judged to 0.01/kappa_T): its runs go on until the
@@ -1047,29 +1094,50 @@ def run(arguments):
               "friction_runs": [[x, _mpa_s(m.value), _mpa_s(m.error)] for x, m in viscosity_runs],
               "heat_conduction_runs": [[x, _w_mk(m.value), _w_mk(m.error)] for x, m in conductivity_runs],
               "calibrated": calibration.parameters.reduced(), "results": results, "missed": missed}
-    if arguments.json:
-        with open(arguments.json, "w") as stream:
-            json.dump(record, stream, indent=1)
-    if arguments.plot:
-        plot(record, arguments.plot)
-        print(f"Figure: {arguments.plot}.png and .pdf")
+    # The outputs, each written atomically (files.atomic_write) and each on its own: one that cannot be written (a
+    # full disk) does not keep the others from being written, and is reported in one line at the end.
+    unwritten = []
+
+    def write(option, path, done, function, *arguments_):
+        try:
+            function(*arguments_)
+            print(done)
+        except OSError as error:
+            unwritten.append(f"{option} {path} could not be written ({failure_message(error)})")
+
     if arguments.output:
-        save_parameters(calibration.parameters, arguments.output, comment=(
-            f"{fluid.name}: calibrated by python -m openmmgendpde calibrate ({arguments.molecules_per_particle:g} "
-            f"molecules per particle, {arguments.estimator}, {plan.particles} particles, seed {arguments.seed}); "
-            f"{'MISSED: ' + '; '.join(missed) if missed else 'every judged result within its tolerance'}.\n"
-            f"Build it again: openmmgendpde.fluid_files.load_parameters(path).liquid(num_particles, "
-            f"'{arguments.estimator}')"))
-        print(f"The calibrated model is in {arguments.output} (fluid_files.load_parameters reads it).")
+        write("--output", arguments.output,
+              f"The calibrated model is in {arguments.output} (fluid_files.load_parameters reads it).",
+              save_parameters, calibration.parameters, arguments.output,
+              f"{fluid.name}: calibrated by python -m openmmgendpde calibrate ({arguments.molecules_per_particle:g} "
+              f"molecules per particle, {arguments.estimator}, {plan.particles} particles, seed {arguments.seed}); "
+              f"{'MISSED: ' + '; '.join(missed) if missed else 'every judged result within its tolerance'}.\n"
+              f"Build it again: openmmgendpde.fluid_files.load_parameters(path).liquid(num_particles, "
+              f"'{arguments.estimator}')")
+    if arguments.json:
+        write("--json", arguments.json, f"The parameters and results are in {arguments.json}.", _write_json, record,
+              arguments.json)
+    if arguments.plot:
+        write("--plot", arguments.plot, f"Figure: {arguments.plot}.png and .pdf", plot, record, arguments.plot)
     if missed:
         properties = missed_properties(missed)
         print(f"error: calibrate: the calibration failed, {len(properties)} judged "
               f"{'property' if len(properties) == 1 else 'properties'} missed ({'; '.join(properties)}; CRITERIA, "
               f"docs/fluids.md):\n  " + "\n  ".join(missed), file=sys.stderr)
+    if unwritten:
+        outputs = sum(bool(given) for given in (arguments.output, arguments.json, arguments.plot))
+        raise SystemExit(f"error: calibrate: {'; '.join(unwritten)}"
+                         + ("; the other outputs were written" if len(unwritten) < outputs else ""))
+    if missed:
         raise SystemExit(1)
     print(f"Every judged result within its tolerance ({', '.join(name for name in CRITERIA if name in results)}"
           f"{'; --quick: transport within a factor 2' if arguments.quick else ''}).")
     return results
+
+
+def _write_json(record, path):
+    with atomic_write(path) as stream:
+        json.dump(record, stream, indent=1)
 
 
 def plot(record, path_stem):
@@ -1147,17 +1215,17 @@ def add_arguments(parser):
     add_fluid_arguments(parser)
     parser.add_argument("--estimator", choices=list(ESTIMATOR_NAMES.values()), default="VB",
                         help="the density estimator (default VB; VC is VB with free surfaces)")
-    parser.add_argument("--particles", type=int, help="4 m^3 particles (default 2048; --quick 500)")
+    parser.add_argument("--particles", type=fcc_particles, help="4 m^3 particles (default 2048; --quick 500)")
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check)")
-    parser.add_argument("--time-step", type=float, help="dt* in the model's reduced time (default 0.01; smaller where "
-                        "an internal energy would become negative: openmmgendpde.stability.suggest_time_step gives "
-                        "one for a model)")
-    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--time-step", type=POSITIVE, help="dt* in the model's reduced time (default 0.01; smaller "
+                        "where an internal energy would become negative: openmmgendpde.stability.suggest_time_step "
+                        "gives one for a model)")
+    parser.add_argument("--seed", type=SEED, default=1, help="random seed (default 1)")
     add_json(parser, "the parameters and results")
     add_progress(parser)
-    parser.add_argument("--plot", metavar="STEM", type=writable_file, help="also draw the results and the iterations to STEM.png and "
-                                                         "STEM.pdf (needs matplotlib)")
-    parser.add_argument("--output", type=writable_file, help="write the calibrated model to this file (.toml or .json), which "
-                                         "openmmgendpde.fluid_files.load_parameters reads back")
+    parser.add_argument("--plot", metavar="STEM", type=writable_stem(),
+                        help="also draw the results and the iterations to STEM.png and STEM.pdf (needs matplotlib)")
+    parser.add_argument("--output", type=writable_file, help="write the calibrated model to this file (.toml or "
+                        ".json), which openmmgendpde.fluid_files.load_parameters reads back")
     add_platform(parser)
     parser.set_defaults(run=run)

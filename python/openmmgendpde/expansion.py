@@ -22,7 +22,7 @@ import math
 from openmm import unit
 
 from . import GenDPDEIntegrator
-from .cli import add_platform
+from .cli import NON_NEGATIVE_COUNT, POSITIVE, SEED, add_platform, checked_model, fcc_particles, integer
 from .fluid import ARGON_EXPANDING, SUPERCRITICAL_ARGON, coarse_grain
 from .presets import ARGON_UNITS
 from .statistics import correlated_mean
@@ -31,6 +31,9 @@ from .thermodynamics import ThermodynamicProbe
 
 #: The default half-difference of the two runs' temperatures, a fraction of T0.
 DELTA = 0.08
+#: Steps between the samples of a run (run_at's sample_every on the command line), and the fewest samples a run
+#: takes there (for the standard errors of correlated_mean).
+SAMPLE_EVERY, MIN_SAMPLES = 20, 20
 #: MPa per kJ/mol/nm^3 (a pressure per mole of particles, as OpenMM's units are, to one per particle).
 MPA_PER_OPENMM_PRESSURE = (1.0 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA
                            ).value_in_unit(unit.megapascal)
@@ -145,13 +148,19 @@ FLUIDS = {"liquid": ARGON_EXPANDING, "supercritical": SUPERCRITICAL_ARGON}
 def run(arguments):
     fluid = FLUIDS[arguments.fluid]
     parameters = mapped(fluid)
+    # Checked before anything runs: the box against the cutoff, and the two temperatures T0 -+ dT above zero.
+    checked_model("thermal-expansion", lambda: parameters.liquid(arguments.particles, seed=arguments.seed),
+                  "use more --particles")
+    if arguments.delta is not None and not arguments.delta < parameters.temperature:
+        raise SystemExit(f"error: thermal-expansion: --delta {arguments.delta:g} is not allowed; it must be < T0 = "
+                         f"{parameters.temperature:g} K of {fluid.name} (the run at T0 - dT needs a temperature > 0)")
     print(f"{fluid.name}, {arguments.particles} particles, {parameters.neighbors:.2f} neighbours within the cutoff "
           f"{parameters.cutoff:.4f} nm, {arguments.platform}")
     results = []
     for iteration in range(arguments.iterations + 1):
         result = measure(parameters, num_particles=arguments.particles, delta=arguments.delta,
-                         melt_steps=arguments.melt, steps=arguments.steps, platform=arguments.platform,
-                         seed=arguments.seed)
+                         melt_steps=arguments.melt, steps=arguments.steps, sample_every=SAMPLE_EVERY,
+                         platform=arguments.platform, seed=arguments.seed)
         label = "mapped" if iteration == 0 else f"after correction {iteration}"
         print(f" beta = {result.thermal_pressure:.5f} kJ/mol/nm^3/K ({label})")
         for t, te, p, e in zip(result.temperatures, result.temperature_errors, result.pressures,
@@ -169,12 +178,17 @@ def add_arguments(parser):
     parser.add_argument("--fluid", choices=sorted(FLUIDS), default="liquid",
                         help="liquid argon at 125.7 K (default; the paper's R* = 1.6839) or supercritical argon at "
                              "418.8 K (20 neighbours within the cutoff, as the liquid's R* gives), both at 85.31 MPa")
-    parser.add_argument("--particles", type=int, default=4000, help="4 m^3 particles (default 4000)")
-    parser.add_argument("--delta", type=float, help="dT (K) of the runs at T0 -+ dT (default: 8%% of T0)")
-    parser.add_argument("--melt", type=int, default=1000, help="Isothermal steps before each run (default 1000)")
-    parser.add_argument("--steps", type=int, default=4000, help="sampled Isoenergetic steps per run (default 4000)")
-    parser.add_argument("--seed", type=int, default=1)
-    parser.add_argument("--iterations", type=int, default=1,
+    parser.add_argument("--particles", type=fcc_particles, default=4000, help="4 m^3 particles (default 4000)")
+    parser.add_argument("--delta", type=POSITIVE, help="dT (K) of the runs at T0 -+ dT, > 0 and < T0 (default: 8%% "
+                                                       "of T0)")
+    parser.add_argument("--melt", type=NON_NEGATIVE_COUNT, default=1000,
+                        help="Isothermal steps before each run (default 1000)")
+    parser.add_argument("--steps", type=integer(SAMPLE_EVERY * MIN_SAMPLES, why=f" ({MIN_SAMPLES} samples, one every "
+                                                                                  f"{SAMPLE_EVERY} steps)"),
+                        default=4000, help=f"sampled Isoenergetic steps per run (default 4000; at least "
+                                           f"{SAMPLE_EVERY * MIN_SAMPLES})")
+    parser.add_argument("--seed", type=SEED, default=1, help="random seed (default 1)")
+    parser.add_argument("--iterations", type=NON_NEGATIVE_COUNT, default=1,
                         help="corrections of beta from the measured slope, each measured again (default 1)")
     add_platform(parser, default="CPU")
     parser.set_defaults(run=run)

@@ -47,16 +47,30 @@ MOLAR_MASS = unit.gram / unit.mole
 COMPRESSIBILITY = PRESSURE**-1
 
 
+def amount_power(unit_):
+    """The power of the amount of substance (mol) in an openmm.unit Unit: -1 for kJ/mol, 1 for a compressibility in
+    OpenMM units (nm^3 mol/kJ), 0 for a temperature or an SI unit per molecule (Pa, J/K)."""
+    return int(round(sum(power for dimension, power in unit_.iter_base_dimensions() if dimension.name == "amount")))
+
+
 def _in_openmm(quantity, target, name):
-    """A Quantity in ``target`` (an OpenMM unit, energies per mole): directly if compatible, else as a quantity per
-    molecule (SI: J, Pa, W, kg, 1/Pa ...) made per mole (times Avogadro's number, or divided by it for the inverse of
-    an energy, such as a compressibility). Raises ValueError naming the property if none works."""
+    """A Quantity in ``target`` (an OpenMM unit): directly if compatible; else, where ``target`` is per mole (OpenMM's
+    energies, pressures and masses are) and the quantity per molecule (SI: J, Pa, W, kg, 1/Pa ...: no mol in its
+    unit), made per mole (times Avogadro's number, or divided by it for the inverse of an energy, such as a
+    compressibility). Nothing else: a property with no mol in its unit (a temperature, a thermal expansion coefficient,
+    a speed) takes only a compatible unit, and a quantity per mole is not made per molecule. Raises ValueError naming
+    the property if neither works."""
     if not unit.is_quantity(quantity):
         raise ValueError(f"{name} = {quantity!r} needs a unit (an openmm.unit Quantity compatible with {target})")
-    for candidate in (quantity, quantity * unit.AVOGADRO_CONSTANT_NA, quantity / unit.AVOGADRO_CONSTANT_NA):
-        if candidate.unit.is_compatible(target):
-            return candidate.value_in_unit(target)
-    raise ValueError(f"{name} = {quantity} is not compatible with {target}")
+    if quantity.unit.is_compatible(target):
+        return quantity.value_in_unit(target)
+    moles = amount_power(target)
+    if moles and not amount_power(quantity.unit):
+        per_mole = quantity * unit.AVOGADRO_CONSTANT_NA ** -moles
+        if per_mole.unit.is_compatible(target):
+            return per_mole.value_in_unit(target)
+    raise ValueError(f"{name} = {quantity} is not compatible with {target}"
+                     + (" (per mole, or per molecule in SI)" if moles else ""))
 
 
 def _positive(name, value, given=None):
@@ -80,6 +94,13 @@ def heat_capacity_per_molecule(value):
 _PROPERTY_UNITS = {"temperature": unit.kelvin, "pressure": PRESSURE, "mass_density": MASS_DENSITY,
                    "compressibility": COMPRESSIBILITY, "shear_viscosity": VISCOSITY,
                    "thermal_conductivity": CONDUCTIVITY, "molar_mass": MOLAR_MASS}
+#: The OpenMM units of the optional properties.
+_OPTIONAL_PROPERTY_UNITS = {"self_diffusion": unit.nanometer**2 / unit.picosecond,
+                            "speed_of_sound": unit.nanometer / unit.picosecond,
+                            "surface_tension": unit.kilojoule_per_mole / unit.nanometer**2,
+                            "thermal_expansion": unit.kelvin**-1}
+#: The OpenMM unit of every property with a unit (heat_capacity also takes a plain number in k_B).
+PROPERTY_UNITS = {**_PROPERTY_UNITS, "heat_capacity": HEAT_CAPACITY, **_OPTIONAL_PROPERTY_UNITS}
 
 
 @dataclasses.dataclass(frozen=True)
@@ -124,10 +145,7 @@ class Fluid:
         if not (isinstance(self.tait_exponent, numbers.Real) and 1 < self.tait_exponent < math.inf):
             raise ValueError(f"tait_exponent = {self.tait_exponent} is not allowed; it must be finite and > 1")
         values["tait_exponent"] = self.tait_exponent
-        for name, target in (("self_diffusion", unit.nanometer**2 / unit.picosecond),
-                             ("speed_of_sound", unit.nanometer / unit.picosecond),
-                             ("surface_tension", unit.kilojoule_per_mole / unit.nanometer**2),
-                             ("thermal_expansion", unit.kelvin**-1)):
+        for name, target in _OPTIONAL_PROPERTY_UNITS.items():
             if getattr(self, name) is not None:
                 values[name] = _positive(name, _in_openmm(getattr(self, name), target, name), getattr(self, name))
         return values
@@ -298,6 +316,14 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
     ``neighbors`` particles within the cutoff at n0 or the ``cutoff`` itself (a length Quantity or nm); the formulas
     are the module's. Raises ValueError naming a bad argument."""
     _positive("molecules_per_particle", molecules_per_particle)
+    try:
+        return _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_scaling)
+    except (OverflowError, ZeroDivisionError):
+        raise ValueError(f"{fluid.name}: the mapping overflows: the fluid's properties are out of the range of a "
+                         f"model ({molecules_per_particle:g} molecules per particle)") from None
+
+
+def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_scaling):
     if (neighbors is None) == (cutoff is None):
         raise ValueError("give exactly one of neighbors (particles within the cutoff) and cutoff")
     f = fluid.in_openmm()
@@ -318,10 +344,10 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
         thermal_pressure, thermal_reference_temperature = thermal_expansion_law(
             f["thermal_expansion"], f["compressibility"], density, temperature,
             molecules_per_particle * f["heat_capacity"])
-    r5 = density**2 * cutoff**5
+    r5 = density * density * cutoff**5
     friction = 1575 * f["shear_viscosity"] / (2 * math.pi * r5)
-    heat_conduction = 315 * f["thermal_conductivity"] * temperature**2 / (2 * math.pi * r5)
-    return GenDPDEParameters(
+    heat_conduction = 315 * f["thermal_conductivity"] * temperature * temperature / (2 * math.pi * r5)
+    parameters = GenDPDEParameters(
         fluid=fluid, molecules_per_particle=molecules_per_particle, mass=mass, temperature=temperature,
         density=density, reference_pressure=reference_pressure, bulk_modulus=bulk_modulus,
         tait_exponent=f["tait_exponent"], cutoff=cutoff, neighbors=neighbors,
@@ -329,6 +355,17 @@ def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cut
         friction=friction, heat_conduction=heat_conduction,
         heat_capacity=molecules_per_particle * f["heat_capacity"], thermal_pressure=thermal_pressure,
         thermal_reference_temperature=thermal_reference_temperature)
+    # Properties far outside what a fluid has (a temperature of 1e300 K) can take a parameter out of the floats: say
+    # so here, naming it, rather than in a Context or as inf in a model file.
+    for field in dataclasses.fields(GenDPDEParameters):
+        value = getattr(parameters, field.name)
+        signed = field.name in ("reference_pressure", "thermal_pressure")
+        if field.name != "fluid" and value is not None and not (math.isfinite(value) and (signed or value > 0)):
+            raise ValueError(f"{fluid.name}: the mapping gives {field.name} = {value}, not a finite number"
+                             f"{'' if signed else ' > 0'}; the fluid's properties are out of the range of a model "
+                             f"(temperature = {temperature:g} K, mass_density = {f['mass_density']:g} amu/nm^3, "
+                             f"{molecules_per_particle:g} molecules per particle)")
+    return parameters
 
 
 def thermal_expansion_law(alpha, compressibility, density, temperature, heat_capacity):

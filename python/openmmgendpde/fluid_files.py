@@ -22,11 +22,13 @@ import json
 import math
 import numbers
 import os
+import re
 import tomllib
 
 from openmm import unit
 
-from .fluid import Fluid, GenDPDEParameters, _in_openmm
+from .files import atomic_write
+from .fluid import PROPERTY_UNITS, Fluid, GenDPDEParameters, _in_openmm, amount_power
 
 #: The first line of a model file's format key, checked when it is read.
 MODEL_FORMAT = "openmmgendpde-model-1"
@@ -58,18 +60,29 @@ _PARAMETERS = [field for field in GenDPDEParameters.__dataclass_fields__
                if field != "fluid" and field not in _OPTIONAL_PARAMETERS]
 
 
+#: One quantity: a number (digits, an optional decimal point and exponent; no nan or inf) then its unit.
+_QUANTITY = re.compile(r"\s*([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?)\s*(.*?)\s*")
+_EXAMPLES = "e.g. '298.15 K', '0.1 MPa', '997.05 kg/m^3'"
+
+
 def quantity(text, name="quantity"):
-    """An openmm.unit Quantity (SI base units) from a string "value unit" in pint's syntax; ValueError naming
-    ``name`` if it cannot be read or has a unit that is not made of kg, m, s, mol and K."""
+    """An openmm.unit Quantity (SI base units) from a string "value unit": one number followed by a unit in pint's
+    syntax (no expression: '298.15 K + 5 K' and '2 * 150 K' are refused); ValueError naming ``name``, the text and
+    what is allowed if it cannot be read or has a unit that is not made of kg, m, s, mol and K."""
     import pint   # imported here: only the file readers need it
     registry = _registry(pint)
     if not isinstance(text, str):
-        raise ValueError(f"{name} = {text!r} is not allowed; it must be a string 'value unit', e.g. '298.15 K'")
+        raise ValueError(f"{name} = {text!r} is not allowed; it must be a string 'value unit', {_EXAMPLES}")
+    match = _QUANTITY.fullmatch(text)
+    if match is None:
+        raise ValueError(f"{name} = {text!r} is not allowed; it must be one number followed by its unit (no "
+                         f"expression), {_EXAMPLES}")
     try:
-        parsed = registry.Quantity(text).to_base_units()
+        parsed = (float(match.group(1)) * registry.Unit(match.group(2))).to_base_units()
     except Exception as error:   # pint raises several kinds; all mean the same to a user
-        raise ValueError(f"{name} = {text!r} cannot be read as 'value unit' ({type(error).__name__}: {error}); "
-                         f"write e.g. '298.15 K', '0.1 MPa', '997.05 kg/m^3'") from None
+        raise ValueError(f"{name} = {text!r} cannot be read as 'value unit' ({type(error).__name__}: "
+                         f"{' '.join(str(error).split())}); it must be one number followed by its unit (no "
+                         f"expression; K, not degC), {_EXAMPLES}") from None
     magnitude = parsed.magnitude
     if not (isinstance(magnitude, numbers.Real) and math.isfinite(magnitude)):
         raise ValueError(f"{name} = {text!r} is not allowed; its value must be a finite number")
@@ -127,10 +140,12 @@ def fluid_from_table(table, source="fluid"):
             else:
                 values[name] = quantity(given, name)
                 try:
-                    _in_openmm(values[name], units[name][1], name)
+                    _in_openmm(values[name], PROPERTY_UNITS[name], name)
                 except ValueError:
+                    molar = amount_power(PROPERTY_UNITS[name]) != 0
                     raise ValueError(f"{name} = {given!r} is not allowed; its unit must be compatible with "
-                                     f"{units[name][0]} (per molecule or per mole)") from None
+                                     f"{units[name][0]}" + (" (per molecule or per mole)" if molar else
+                                                            " (not per mole: the property is not molar)")) from None
         if "tait_exponent" in table:
             exponent = table["tait_exponent"]
             if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
@@ -160,9 +175,18 @@ def fluid_table(fluid):
         if name == "heat_capacity" and not unit.is_quantity(given):
             table[name] = float(given)
         else:
-            table[name] = f"{_in_openmm(given, target, name)!r} {text}"
+            table[name] = f"{_in_si(given, name, target)!r} {text}"
     table["tait_exponent"] = float(fluid.tait_exponent)
     return table
+
+
+def _in_si(given, name, target):
+    """A Fluid's property ``name`` (checked as Fluid checks it: _in_openmm into its OpenMM unit) in the SI unit
+    ``target``, made per molecule where the OpenMM unit is per mole and the SI one is not (Pa, 1/Pa, W/(m K))."""
+    openmm_unit = PROPERTY_UNITS[name]
+    value = _in_openmm(given, openmm_unit, name) * openmm_unit
+    return (value * unit.AVOGADRO_CONSTANT_NA ** (amount_power(openmm_unit) - amount_power(target))).value_in_unit(
+        target)
 
 
 def save_parameters(parameters, path, comment=None):
@@ -175,7 +199,7 @@ def save_parameters(parameters, path, comment=None):
             model[name] = float(getattr(parameters, name))
     extension = os.path.splitext(path)[1].lower()
     if extension == ".json":
-        with open(path, "w") as stream:
+        with atomic_write(path) as stream:
             json.dump({"format": MODEL_FORMAT, "fluid": fluid_table(parameters.fluid), "parameters": model},
                       stream, indent=1)
         return
@@ -186,7 +210,7 @@ def save_parameters(parameters, path, comment=None):
     lines += [f"{name} = {_toml_value(value)}" for name, value in fluid_table(parameters.fluid).items()]
     lines += ["", "# The model (OpenMM units: nm, amu, ps, kJ/mol, K; see GenDPDEParameters).", "[parameters]"]
     lines += [f"{name} = {value!r}" for name, value in model.items()]
-    with open(path, "w") as stream:
+    with atomic_write(path) as stream:   # (a model file is complete or absent, never half written)
         stream.write("\n".join(lines) + "\n")
 
 

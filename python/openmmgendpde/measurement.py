@@ -10,7 +10,8 @@ import json
 import statistics
 import time
 
-from .cli import add_json, add_platform, add_progress, add_rounds
+from .cli import add_json, add_platform, add_progress, add_rounds, fcc_particles
+from .files import atomic_write
 
 
 def alternating_rounds(candidates, rounds, progress=None):
@@ -45,7 +46,7 @@ def default_rounds(num_particles):
 
 def add_benchmark_arguments(parser):
     """The options shared by the benchmark subcommands."""
-    parser.add_argument("--particles", type=int, nargs="+", default=[4000, 32000],
+    parser.add_argument("--particles", type=fcc_particles, nargs="+", default=[4000, 32000],
                         help="particle counts, 4 m^3 each (default 4000 32000)")
     add_platform(parser)
     add_rounds(parser, "15, or 7 above 8000 particles")
@@ -58,5 +59,5 @@ def print_results(header, table, results, json_path):
     print(header)
     print(table)
     if json_path:
-        with open(json_path, "w") as stream:
+        with atomic_write(json_path) as stream:
             json.dump([dataclasses.asdict(r) for r in results], stream, indent=1)

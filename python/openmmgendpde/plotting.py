@@ -7,6 +7,8 @@ made, so that the subcommands without figures run without it.
 
 import numpy as np
 
+from .files import atomic_write
+
 
 def panels(count, width=4.2, height=3.6, **options):
     """A figure with `count` panels side by side: (figure, list of axes)."""
@@ -17,9 +19,10 @@ def panels(count, width=4.2, height=3.6, **options):
 
 
 def save(figure, path_stem, legend_axis=None):
-    """Save as path_stem.png and path_stem.pdf."""
+    """Save as path_stem.png and path_stem.pdf, each atomically (files.atomic_write)."""
     if legend_axis is not None:
         legend_axis.legend(frameon=False)
     figure.tight_layout()
     for suffix in (".png", ".pdf"):
-        figure.savefig(str(path_stem) + suffix, dpi=150)
+        with atomic_write(str(path_stem) + suffix, "wb") as stream:
+            figure.savefig(stream, format=suffix[1:], dpi=150)

@@ -22,14 +22,15 @@ m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half 
 """
 
 
+import numbers
 import reprlib
 
 import numpy as np
 import openmm
 from openmm import unit
 
-from . import GenDPDEIntegrator
-from .reporter import checked_report_interval
+from . import GenDPDEForce, GenDPDEIntegrator
+from .reporter import checked_choice, checked_file, checked_report_interval, open_file
 from .pressure import virial_tensor
 from .units import BOLTZMANN
 
@@ -87,6 +88,13 @@ def profile(positions, velocities, masses, box, axis=2, bins=20, temperatures=No
             kinetic = np.einsum("i,ia,ib->ab", m, relative, relative)
             result["pressure"][b] = (kinetic + np.asarray(virials)[members].sum(axis=0)) / volume
     return result
+
+
+#: The most bins of a ProfileReporter: each report computes ~20 values per bin (the pressure tensor 9, each particle
+#: type 2 more) and writes one CSV row per bin, so 10^5 bins take ~100 MB and ~10 MB of text per report at most, while
+#: a count far beyond any system's particles (a typo, 10^9) would exhaust the memory at the first report. A bin needs
+#: particles to mean anything: 10^5 bins of a 4-million-particle box hold 40 each.
+MAX_BINS = 100000
 
 
 def _checked_types(types):
@@ -149,16 +157,25 @@ class ProfileReporter:
     anything (the header goes with the first report)."""
 
     def __init__(self, file, reportInterval, axis=2, bins=20, force=None, types=None):
-        interval = checked_report_interval("ProfileReporter", reportInterval)
-        if not (0 <= axis <= 2) or bins < 1:
-            raise openmm.OpenMMException(f"ProfileReporter: axis = {axis}, bins = {bins}: the axis must be 0, 1 or 2 "
-                                         f"and bins >= 1")
+        name = "ProfileReporter"
+        interval = checked_report_interval(name, reportInterval)
+        file = checked_file(name, file)
+        integral = lambda value: isinstance(value, numbers.Integral) and not isinstance(value, bool)   # noqa: E731
+        checked_choice(name, "axis", axis, lambda a: integral(a) and 0 <= a <= 2, "0, 1 or 2 (x, y or z)")
+        checked_choice(name, "bins", bins, lambda b: integral(b) and 1 <= b <= MAX_BINS,
+                       f"an integer from 1 to {MAX_BINS} (each report computes and writes every bin: more would "
+                       f"exhaust the memory, and no system has the particles to fill them)")
+        if force is not None:
+            if isinstance(force, openmm.Force) and not isinstance(force, GenDPDEForce) \
+                    and GenDPDEForce.isinstance(force):
+                force = GenDPDEForce.cast(force)   # (from System.getForce)
+            checked_choice(name, "force", force, lambda f: isinstance(f, GenDPDEForce),
+                           "None or a GenDPDEForce (the one in the System: its virials give the pressure columns)")
         if types is None and force is not None:
             types = force.getParticleTypes() or None
         self._types = _checked_types(types)
-        self._own = isinstance(file, str)
-        self._out = open(file, "w") if self._own else file
-        self._interval, self._axis, self._bins = interval, axis, bins
+        self._out, self._own = open_file(name, file)
+        self._interval, self._axis, self._bins = interval, int(axis), int(bins)
         self._masses = None
         self._force = force
 

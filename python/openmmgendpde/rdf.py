@@ -13,6 +13,7 @@ from openmm import unit
 
 from .plotting import panels, save
 from .cli import add_cutoffs, add_frames, add_output, chosen_cutoffs
+from .files import atomic_write
 from .presets import ARGON_UNITS
 from .progress import Progress
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
@@ -41,11 +42,12 @@ def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH):
     return r / length, sums / chunks
 
 
-def load_or_run(arguments, cutoff, estimator, protocol, progress):
-    if arguments.frames_from:
-        data = np.load(pathlib.Path(arguments.frames_from) / f"frames-R{cutoff}-{estimator}.npz")
+def load_or_run(arguments, cutoff, estimator, protocol, progress, saved=None):
+    """The frames (nm) and box edge (nm) of one case: from ``saved`` (table3.read_frames of --frames-from), or from a
+    run of its own."""
+    if saved is not None:
         progress.advance(protocol.total_steps)
-        return data["positions"], float(data["box_edge"])
+        return saved[(cutoff, estimator)]
     samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=arguments.frames,
                         progress=progress).samples
     return samples.frames, samples.box_edge
@@ -66,8 +68,15 @@ def plot(curves, cutoffs, path_stem):
 
 
 def run(arguments):
-    protocol = protocol_from_arguments(arguments)
     cutoffs = chosen_cutoffs(arguments)
+    saved = None
+    if arguments.frames_from:   # read and checked before anything runs: a complete set from table3, every case
+        from .table3 import read_frames
+        try:
+            saved = read_frames(arguments.frames_from, [(c, e) for c in cutoffs for e in ("VA", "VB")])
+        except ValueError as error:
+            raise SystemExit(f"error: rdf: --frames-from {error}") from None
+    protocol = protocol_from_arguments(arguments, cutoffs=() if saved else cutoffs, estimators=("VA", "VB"))
     output = pathlib.Path(arguments.output)
     output.mkdir(parents=True, exist_ok=True)
     progress = Progress(2 * len(cutoffs) * protocol.total_steps, "rdf", always=arguments.progress)
@@ -75,12 +84,12 @@ def run(arguments):
     for cutoff in cutoffs:
         for estimator in ("VA", "VB"):
             progress.label = f"rdf R*={cutoff} {estimator}"
-            frames, box_edge = load_or_run(arguments, cutoff, estimator, protocol, progress)
+            frames, box_edge = load_or_run(arguments, cutoff, estimator, protocol, progress, saved)
             curves[(cutoff, estimator)] = radial_distribution(frames, box_edge)
     progress.finish()
     stem = output / "fig1-rdf"
     plot(curves, cutoffs, stem)
-    with open(output / "fig1-rdf.csv", "w", newline="") as stream:
+    with atomic_write(output / "fig1-rdf.csv", newline="") as stream:
         writer = csv.writer(stream)
         keys = [(c, e) for c in cutoffs for e in ("VA", "VB")]
         writer.writerow(["r*"] + [f"g R*={c} {e}" for c, e in keys])

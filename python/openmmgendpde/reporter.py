@@ -1,11 +1,14 @@
 """GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol."""
 
 import numbers
+import os
+import reprlib
 
 import openmm
 from openmm import unit
 
 from .thermodynamics import ThermodynamicProbe
+from .units import ReducedUnits
 
 _K = unit.kelvin
 _DENSITY = unit.nanometer**-3
@@ -21,6 +24,48 @@ def checked_report_interval(reporter, value):
         raise openmm.OpenMMException(f"{reporter}: reportInterval = {value!r} is not allowed; it must be an integer "
                                      f">= 1")
     return int(value)
+
+
+def checked_file(reporter, file):
+    """``file`` as a reporter's output, checked before anything is created: a path (str or os.PathLike) to a file whose
+    directory exists (it is opened, for writing or appending, by open_file), or an open text stream (an object with a
+    write method); else an OpenMMException naming ``reporter``, the parameter, the value and what is allowed."""
+    if isinstance(file, (str, os.PathLike)):
+        path = os.fspath(file)
+        directory = os.path.dirname(os.path.abspath(path))
+        problem = ("it is a directory" if os.path.isdir(path) else
+                   f"the directory {directory} does not exist" if not os.path.isdir(directory) else None)
+        if problem is None:
+            return path
+    elif callable(getattr(file, "write", None)):
+        return file
+    else:
+        problem = f"it is a {type(file).__name__}"
+    raise openmm.OpenMMException(f"{reporter}: file = {reprlib.repr(file)} is not allowed ({problem}); it must be a "
+                                 f"path to a file in an existing directory, or an open text stream (with a write "
+                                 f"method)")
+
+
+def open_file(reporter, file, append=False):
+    """(stream, whether the reporter opened it) for a checked_file: a path is opened for writing (or appending); a
+    failure is an OpenMMException naming ``reporter`` and the file."""
+    if not isinstance(file, (str, bytes)):
+        return file, False
+    try:
+        return open(file, "a" if append else "w"), True
+    except OSError as error:
+        raise openmm.OpenMMException(f"{reporter}: file = {file!r} cannot be opened for writing "
+                                     f"({error.strerror or error})") from None
+
+
+def checked_choice(reporter, name, value, allowed, text):
+    """``value`` if ``allowed(value)``, else an OpenMMException naming ``reporter``, the parameter ``name``, the value
+    (an OpenMM object by its class) and ``text`` (what is allowed)."""
+    if not allowed(value):
+        shown = f"a {type(value).__name__}" if isinstance(value, (openmm.Force, openmm.Integrator)) \
+            else reprlib.repr(value)
+        raise openmm.OpenMMException(f"{reporter}: {name} = {shown} is not allowed; it must be {text}")
+    return value
 
 
 class GenDPDEReporter:
@@ -39,23 +84,32 @@ class GenDPDEReporter:
     Parameters
     ----------
     file : str or file-like
-        Where to write (a path is opened for writing, or appending if ``append``).
+        Where to write (a path, in an existing directory, is opened for writing, or appending if ``append``; or an
+        open text stream).
     reportInterval : int
         Steps between reports, an integer >= 1.
     units : openmmgendpde.units.ReducedUnits, optional
         Report in these reduced units instead of OpenMM units (K, nm^-3, bar, kJ/mol).
     separator : str
-        Between values (default ',').
+        Between values (default ','): a non-empty string without a line break.
     append : bool
         Append to an existing file without a header.
+
+    Every argument is checked when the reporter is made, before the file is created: a bad one raises
+    OpenMMException naming it, its value and what is allowed.
     """
 
     def __init__(self, file, reportInterval, units=None, separator=",", append=False):
-        self._interval = checked_report_interval("GenDPDEReporter", reportInterval)
-        self._own = isinstance(file, str)
-        self._out = open(file, "a" if append else "w") if self._own else file
-        self._units = units
-        self._separator = separator
+        name = "GenDPDEReporter"
+        self._interval = checked_report_interval(name, reportInterval)
+        file = checked_file(name, file)
+        self._units = checked_choice(name, "units", units, lambda u: u is None or isinstance(u, ReducedUnits),
+                                     "None (OpenMM units) or an openmmgendpde.units.ReducedUnits")
+        self._separator = checked_choice(name, "separator", separator, lambda s: isinstance(s, str) and s != ""
+                                         and "\n" not in s and "\r" not in s,
+                                         "a non-empty string without a line break")
+        append = checked_choice(name, "append", append, lambda a: isinstance(a, bool), "True or False")
+        self._out, self._own = open_file(name, file, append)
         self._header_written = append
         self._first_energy = None
         self._probe = None

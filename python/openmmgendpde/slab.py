@@ -35,7 +35,8 @@ import openmm
 from openmm import app, unit
 
 from . import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
-from .cli import add_output, add_platform, command_line_error
+from .cli import NON_NEGATIVE, POSITIVE, SEED, add_output, add_platform, checked_model
+from .files import atomic_write
 from .model import fcc_box
 from .interfaces import partition_of_unity_volumes
 from .pressure import pressure_tensor
@@ -61,10 +62,14 @@ class Model:
         return x - np.floor(x / self.box) * self.box
 
 
+#: dt* of the argon slabs (argon_model).
+ARGON_SLAB_TIME_STEP = 0.01
+
+
 def argon_model(positions, box, estimator, cutoff=1.6839, platform="Reference", seed=1):
     """The liquid-argon model (presets.liquid_argon's parameters at R* = ``cutoff``) for ``positions`` (nm) in a
     rectangular box of edges ``box`` (nm): a Context with velocities and internal energies drawn at T0, Isoenergetic."""
-    argon = liquid_argon(500, cutoff, estimator, time_step=0.01, seed=seed)
+    argon = liquid_argon(500, cutoff, estimator, time_step=ARGON_SLAB_TIME_STEP, seed=seed)
     system = openmm.System()
     system.setDefaultPeriodicBoxVectors(*(openmm.Vec3(*row) for row in np.diag(box)))
     for _ in range(len(positions)):
@@ -205,6 +210,8 @@ def sample_run(model, thickness, duration, every, units=ARGON_UNITS, report=None
     tau = units.unit("time").value_in_unit(unit.picosecond)
     dt = model.integrator.getStepSize().value_in_unit(unit.picosecond) / tau
     steps = int(round(every / dt))
+    if steps < 1:
+        raise ValueError(f"every = {every:g} time units is less than one step (dt* = {dt:g}); it must be at least that")
     samples = [sample_slab(model, thickness, 0.0, units)]
     while samples[-1].time < duration - 0.5 * steps * dt:   # (a whole number of steps: the last sample nearest)
         model.integrator.step(steps)
@@ -408,12 +415,10 @@ def fluid_parameters(arguments, cells):
         defaults = {name: value for name, value in COARSE_GRAINING.items() if getattr(arguments, name) is None}
         parameters = parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), "slab")
         source = f"--fluid {arguments.fluid}"
-    try:
-        parameters.liquid(cells=cells)
-    except ValueError as error:
-        raise command_line_error(f"slab: {source}", error,
-                                 "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else
-                                 "the slab's box is fixed; use a model with a shorter cutoff")
+    checked_model(f"slab: {source}", lambda: parameters.liquid(
+        cells=cells, **({} if arguments.time_step is None else {"time_step": arguments.time_step}),
+        seed=arguments.seed), "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else
+        "the slab's box is fixed; use a model with a shorter cutoff")
     return parameters
 
 
@@ -466,8 +471,15 @@ def surface_tension_table(tensions, parameters):
 
 def run(arguments):
     duration, every = (10.0, 5.0) if arguments.quick else (arguments.duration, arguments.every)
+    if every > duration:
+        raise SystemExit(f"error: slab: --every {every:g} is not allowed; it must be at most --duration {duration:g} "
+                         f"(a sample every --every time units of the run)")
     cells = (5, 5, 6) if arguments.quick else (5, 5, 10)
     parameters = fluid_parameters(arguments, cells)
+    time_step = ARGON_SLAB_TIME_STEP if parameters is None else arguments.time_step   # (None: measured in the run)
+    if time_step is not None and round(every / time_step) < 1:
+        raise SystemExit(f"error: slab: --every {every:g} is not allowed; it must be at least one step, dt* = "
+                         f"{time_step:g}")
     units = ARGON_UNITS if parameters is None else parameters.units
     os.makedirs(arguments.output, exist_ok=True)
     runs, profiles, tensions = {}, {}, {}
@@ -478,8 +490,11 @@ def run(arguments):
         else:
             build = {key: getattr(arguments, name) for name, key in FLUID_OPTIONS.items()
                      if getattr(arguments, name) is not None}
-            samples, slab = run_fluid_slab(parameters, estimator, duration, every, cells, arguments.platform,
-                                           arguments.seed, **build)
+            try:
+                samples, slab = run_fluid_slab(parameters, estimator, duration, every, cells, arguments.platform,
+                                               arguments.seed, **build)
+            except ValueError as error:   # (--every less than the step measured for the model)
+                raise SystemExit(f"error: slab: {error}") from None
             model, thickness = slab.model, slab.thickness
             model_file = "" if arguments.model is None else f"the model in {arguments.model}; "
             tau = units.unit("time").value_in_unit(unit.picosecond)
@@ -517,7 +532,7 @@ def run(arguments):
                   f"thickness; particles): true, exact partition of unity, V-B, V-A, V-C")
             for row in profiles[estimator]:
                 print("  {:4.1f}-{:4.1f} ({:4d}): {:6.3f} {:8.3f} {:8.3f} {:8.3f} {:8.3f}".format(*row))
-    with open(os.path.join(arguments.output, "slab.csv"), "w", newline="") as out:
+    with atomic_write(os.path.join(arguments.output, "slab.csv"), newline="") as out:
         writer = csv.writer(out)
         temperatures = parameters is not None
         writer.writerow(["estimator", "time", "core_true_density", "core_mean_estimate", "width", "surface_tension"]
@@ -557,8 +572,8 @@ def run(arguments):
 def add_arguments(parser):
     add_platform(parser, default="CPU")
     add_output(parser, "slab.csv and the plots")
-    parser.add_argument("--duration", type=float, default=100.0, help="time units per run (default 100)")
-    parser.add_argument("--every", type=float, default=10.0, help="time units between samples (default 10)")
+    parser.add_argument("--duration", type=POSITIVE, default=100.0, help="time units per run (default 100)")
+    parser.add_argument("--every", type=POSITIVE, default=10.0, help="time units between samples (default 10)")
     parser.add_argument("--quick", action="store_true", help="a 600-particle slab for 10 time units (seconds)")
     parser.add_argument("--estimators", nargs="+", choices=list(ESTIMATOR_NAMES.values()),
                         default=list(ESTIMATOR_NAMES.values()), help="the slabs to run (default: every estimator)")
@@ -568,12 +583,12 @@ def add_arguments(parser):
     parser.set_defaults(**dict.fromkeys(COARSE_GRAINING_OPTIONS))   # (not given: None; --model refuses them)
     parser.add_argument("--model", help="a model file written by `calibrate --output` (.toml or .json): the slab of "
                         "exactly its parameters (a calibrated model) instead of --fluid and its coarse-graining")
-    parser.add_argument("--time-step", type=float, help="with --fluid or --model: dt* in the model's reduced time "
+    parser.add_argument("--time-step", type=POSITIVE, help="with --fluid or --model: dt* in the model's reduced time "
                         "(default stability.suggest_time_step's, measured: V-C's is a tenth of V-B's)")
-    parser.add_argument("--thermostat-time", type=float, help=f"with --fluid or --model: time units the slab is "
+    parser.add_argument("--thermostat-time", type=NON_NEGATIVE, help=f"with --fluid or --model: time units the slab is "
                         f"thermostatted after the cut, before the isoenergetic run (default {SLAB_THERMOSTAT_TIME:g}; "
                         f"0: none)")
-    parser.add_argument("--melt-time", type=float, help="with --fluid or --model: time units the bulk liquid melts "
-                        "before the cut (default 20)")
-    parser.add_argument("--seed", type=int, default=5, help="with --fluid or --model: random seed (default 5)")
+    parser.add_argument("--melt-time", type=NON_NEGATIVE, help="with --fluid or --model: time units the bulk liquid "
+                        "melts before the cut (default 20)")
+    parser.add_argument("--seed", type=SEED, default=5, help="with --fluid or --model: random seed (default 5)")
     parser.set_defaults(run=run)

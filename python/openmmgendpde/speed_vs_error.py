@@ -17,11 +17,12 @@ import numpy as np
 import openmm
 
 from .cli import add_cutoff, add_output, platform_description
+from .files import atomic_write
 from .plotting import panels, save
 from .presets import liquid_argon
 from .progress import Progress
 from .statistics import BlockAverage, block_average
-from .study import FULL, QUICK, add_protocol_arguments, protocol_from_arguments, run_argon
+from .study import FULL, QUICK, TIME_STEP, add_protocol_arguments, protocol_from_arguments, run_argon
 
 
 @dataclasses.dataclass
@@ -102,7 +103,8 @@ def plot(points, path_stem):
 
 
 def run(arguments):
-    protocol = protocol_from_arguments(arguments, defaults=dataclasses.replace(FULL, production_time=50.0))
+    protocol = protocol_from_arguments(arguments, defaults=dataclasses.replace(FULL, production_time=50.0),
+                                       cutoffs=[arguments.cutoff], estimators=("VA", "VB"))
     if arguments.quick and arguments.production is None:
         protocol = dataclasses.replace(protocol, production_time=10.0)
     steps = arguments.steps or ([0.02, 0.01, 0.005] if arguments.quick else [0.04, 0.02, 0.01, 0.005, 0.0025])
@@ -126,7 +128,7 @@ def run(arguments):
               f"| {p.temperature_error:.4f} +- {p.temperature_error_bar:.4f} | {p.density.mean:.4f} +- "
               f"{p.density.standard_error:.4f} | {p.density_error:.4f} | {p.pressure.mean:.4f} +- "
               f"{p.pressure.standard_error:.4f} | {p.pressure_error:.4f} |")
-    with open(output / "speed-vs-error.csv", "w", newline="") as stream:
+    with atomic_write(output / "speed-vs-error.csv", newline="") as stream:
         writer = csv.writer(stream)
         writer.writerow(["estimator", "dt*", "wall s per time unit", "drift", "|Tkin/Tharm-1|", "its error",
                          "n-bar*", "n-bar* error", "|dn|", "P*", "P* error", "|dP|"])
@@ -142,7 +144,7 @@ def run(arguments):
 def add_arguments(parser):
     add_protocol_arguments(parser, defaults=dataclasses.replace(FULL, production_time=50.0))
     add_cutoff(parser)
-    parser.add_argument("--steps", type=float, nargs="+",
+    parser.add_argument("--steps", type=TIME_STEP, nargs="+",
                         help="step sizes dt* (default 0.04 0.02 0.01 0.005 0.0025; quick 0.02 0.01 0.005)")
     add_output(parser, "the table and plot")
     parser.set_defaults(run=run)

@@ -9,7 +9,7 @@ import dataclasses
 
 from openmm import unit
 
-from .cli import add_cutoffs, add_rounds, chosen_cutoffs, platform_description
+from .cli import COUNT, add_cutoffs, add_rounds, chosen_cutoffs, platform_description
 from .measurement import alternating_rounds, median, median_ratio
 from .presets import ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from .progress import Progress
@@ -34,8 +34,8 @@ def prepared_simulation(cutoff, estimator, protocol, platform, preparation_time)
 
 
 def run(arguments):
-    protocol = protocol_from_arguments(arguments)
     cutoffs = chosen_cutoffs(arguments)
+    protocol = protocol_from_arguments(arguments, cutoffs=cutoffs, estimators=("VA", "VB"))
     rounds = arguments.rounds or (7 if arguments.quick else 15)
     steps = arguments.steps or (20 if arguments.quick else 50)
     preparation = 2.0 if arguments.quick else 10.0
@@ -67,5 +67,5 @@ def add_arguments(parser):
     add_protocol_arguments(parser)
     add_cutoffs(parser)
     add_rounds(parser, "15, quick 7")
-    parser.add_argument("--steps", type=int, help="steps per round (default 50, quick 20)")
+    parser.add_argument("--steps", type=COUNT, help="steps per round (default 50, quick 20)")
     parser.set_defaults(run=run)

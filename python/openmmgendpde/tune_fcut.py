@@ -17,8 +17,8 @@ import dataclasses
 import numpy as np
 from openmm import unit
 
-from .cli import add_cutoff, chosen_cutoff
-from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff, default_cutoff_scaling
+from .cli import COUNT, POSITIVE, add_cutoff, checked_model, chosen_cutoff
+from .presets import ARGON_STATE, ARGON_UNITS, argon_cutoff, default_cutoff_scaling, liquid_argon
 from .progress import Progress
 from .statistics import block_average
 from .study import add_protocol_arguments, protocol_from_arguments, run_argon
@@ -97,10 +97,9 @@ def run_fluid(arguments):
     plan = dataclasses.replace(plan, **{key: value for key, value in overrides.items() if value is not None})
     if arguments.start is not None:
         parameters = parameters.with_cutoff_scaling(arguments.start)
-    try:
-        parameters.liquid(plan.particles, arguments.estimator)
-    except ValueError as error:
-        raise SystemExit(f"error: tune-fcut: {error}")
+    checked_model("tune-fcut", lambda: parameters.liquid(plan.particles, arguments.estimator, time_step=plan.time_step,
+                                                         seed=1 if arguments.seed is None else arguments.seed),
+                  "use more --particles, or fewer --neighbors (a smaller --cutoff)")
     print(f"{parameters.fluid.name}: {arguments.molecules_per_particle:g} molecules per particle, "
           f"{parameters.neighbors:.1f} neighbours within R = {parameters.cutoff:.4f} nm, {arguments.estimator}, "
           f"{plan.particles} particles, n0 = {parameters.density:.4f} nm^-3", flush=True)
@@ -117,7 +116,10 @@ def run(arguments):
     if arguments.fluid is not None:
         return run_fluid(arguments)
     arguments.cutoff = chosen_cutoff(arguments)
-    protocol = protocol_from_arguments(arguments)
+    protocol = protocol_from_arguments(arguments, cutoffs=[arguments.cutoff], estimators=[arguments.estimator])
+    if arguments.start is not None:   # (f_cut within what GenDPDEForce allows)
+        checked_model("tune-fcut", lambda: liquid_argon(protocol.num_particles, arguments.cutoff, arguments.estimator,
+                                                        arguments.start, protocol.time_step))
     progress = Progress(arguments.max_iterations * protocol.total_steps, f"tune-fcut R*={arguments.cutoff}",
                         always=arguments.progress)
     estimate = tune(arguments.cutoff, protocol, arguments.platform, arguments.start, arguments.tolerance,
@@ -139,10 +141,10 @@ def add_arguments(parser):
     from .calibrate import add_fluid_arguments   # (calibrate imports this module)
     add_fluid_arguments(parser, default=None, cutoff=False)
     parser.add_argument("--estimator", choices=("VB", "VC"), default="VB", help="the estimator to tune (default VB)")
-    parser.add_argument("--start", type=float, help="initial f_cut (default: the published value)")
-    parser.add_argument("--tolerance", type=float, default=0.001,
+    parser.add_argument("--start", type=POSITIVE, help="initial f_cut (default: the published value)")
+    parser.add_argument("--tolerance", type=POSITIVE, default=0.001,
                         help="|n-bar* - n0*| accepted (default 0.001; the argon model only: with --fluid, "
                              "--max-iterations runs are made)")
-    parser.add_argument("--max-iterations", type=int, default=5,
+    parser.add_argument("--max-iterations", type=COUNT, default=5,
                         help="iterations at most (default 5; with --fluid, the iterations made)")
     parser.set_defaults(run=run)

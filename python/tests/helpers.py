@@ -75,3 +75,38 @@ def assert_rejected_without_change(obj, call, fragments):
     for fragment in fragments:
         assert fragment in str(error.value)
     assert openmm.XmlSerializer.serialize(obj) == before
+
+
+def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
+    """Replace calibrate's simulations (Calibration's measurements) by made-up ones, for tests of the command
+    around them: the pressure reads P0 + ``pressure_offset``/kappa_T while pi0 is ``mapped``'s and P0 once it moved;
+    f_cut is 'tuned' to 1.3; c_U reads 0.5 k_B; the bulk modulus and the transport coefficients read their targets;
+    the thermal expansion of a fluid that has one is not measured."""
+    import openmmgendpde.calibrate as calibrate
+    from openmmgendpde.calibrate import KB, Calibration, Measured
+    monkeypatch.setattr(calibrate, "thermal_expansion_rows", lambda *arguments: [])   # (runs of its own)
+
+    def thermodynamics(self, density=None, pressure_error=None):
+        t = self.parameters.targets()
+        measured = t["pressure"] + pressure_offset * t["bulk_modulus"]
+        if self.parameters.reference_pressure != mapped.reference_pressure:
+            measured = t["pressure"]
+        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
+        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
+                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
+                "pressure": Measured(measured, 1e-4), "heat_capacity": self.heat_capacity(),
+                "configurational_heat_capacity": self.configurational_heat_capacity}
+
+    def tune(self, iterations=None):
+        self.parameters = self.parameters.with_cutoff_scaling(1.3)
+        return 1.3
+
+    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", tune)
+    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
+    monkeypatch.setattr(Calibration, "bulk_modulus",
+                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
+    for name, target in (("shear_viscosity", "shear_viscosity"), ("steady_viscosity", "shear_viscosity"),
+                         ("thermal_conductivity", "thermal_conductivity"),
+                         ("steady_conductivity", "thermal_conductivity")):
+        monkeypatch.setattr(Calibration, name, lambda self, target=target: Measured(
+            self.parameters.targets()[target], 1e-6, 3))

@@ -143,7 +143,8 @@ def test_threads_sets_the_cpu_platform_and_is_reported(tmp_path, cpu_threads_def
 
 @pytest.mark.parametrize("arguments, message", [
     (["--platform", "Reference", "--threads", "2"], "--threads = 2 applies to the CPU platform only"),
-    (["--platform", "CPU", "--threads", "0"], "--threads = 0 is not allowed; it must be >= 1"),
+    (["--platform", "CPU", "--threads", "0"], "argument --threads: 0 is not allowed; it must be an integer from 1 to "
+                                              "1024"),
     (["--platform", "CPU", "--precision", "mixed"], "--precision = mixed applies to the OpenCL and CUDA platforms only"),
 ])
 def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default):
@@ -233,8 +234,256 @@ def test_platform_help_states_the_default_in_use():
 
 
 @pytest.mark.parametrize("value", ["0.0", "-0.01", "nan"])
-def test_calibrate_refuses_a_time_step_that_is_not_positive(value):
-    """calibrate --time-step: an error naming the option, the value and what is allowed, before any run."""
+def test_calibrate_refuses_a_time_step_that_is_not_positive(value, capsys):
+    """calibrate --time-step: a usage error (status 2) naming the option, the value and what is allowed, before any
+    run."""
     with pytest.raises(SystemExit) as exit_:
         main(["calibrate", "--quick", "--time-step", value])
-    assert str(exit_.value) == f"error: calibrate: --time-step {value} is not allowed; it must be > 0"
+    assert exit_.value.code == 2
+    assert capsys.readouterr().err.splitlines()[-1].endswith(
+        f"error: argument --time-step: {value} is not allowed; it must be a finite number > 0")
+
+
+@pytest.fixture
+def nothing_runs(monkeypatch):
+    """Every subcommand's run replaced by one that fails the test: the arguments must be refused first."""
+    import openmmgendpde.__main__ as entry
+    for _, module, _ in entry.SUBCOMMANDS:
+        monkeypatch.setattr(module, "run", lambda arguments: pytest.fail("the subcommand ran"))
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["thermal-expansion", "--particles", "100"], "argument --particles: 100 is not allowed; it must be 4 m^3"),
+    (["thermal-expansion", "--particles", "0"], "argument --particles: 0 is not allowed; it must be 4 m^3"),
+    (["thermal-expansion", "--steps", "0"], "argument --steps: 0 is not allowed; it must be an integer >= 400"),
+    (["thermal-expansion", "--delta", "nan"], "argument --delta: nan is not allowed; it must be a finite number > 0"),
+    (["thermal-expansion", "--delta", "0"], "argument --delta: 0 is not allowed; it must be a finite number > 0"),
+    (["thermal-expansion", "--delta", "-5"], "argument --delta: -5 is not allowed"),
+    (["thermal-expansion", "--melt", "-1"], "argument --melt: -1 is not allowed; it must be an integer >= 0"),
+    (["thermal-expansion", "--seed", "99999999999"], "argument --seed: 99999999999 is not allowed; it must be an "
+                                                     "integer from 0 to 1000000000"),
+    (["thermal-expansion", "--iterations", "-1"], "argument --iterations: -1 is not allowed"),
+    (["table3", "--particles", "100"], "argument --particles: 100 is not allowed; it must be 4 m^3"),
+    (["table3", "--time-step", "-0.01"], "argument --time-step: -0.01 is not allowed; it must be a finite number > 0"),
+    (["table3", "--cutoffs", "1.5"], "argument --cutoffs: 1.5 is not allowed; R_cut* must be one of the published"),
+    (["table3", "--frames", "0"], "argument --frames: 0 is not allowed; it must be an integer >= 1"),
+    (["rdf", "--production", "inf"], "argument --production: inf is not allowed"),
+    (["timing", "--steps", "0"], "argument --steps: 0 is not allowed"),
+    (["timing", "--rounds", "0"], "argument --rounds: 0 is not allowed"),
+    (["tune-fcut", "--tolerance", "0"], "argument --tolerance: 0 is not allowed"),
+    (["tune-fcut", "--max-iterations", "0"], "argument --max-iterations: 0 is not allowed"),
+    (["speed-vs-error", "--steps", "0.01", "-1"], "argument --steps: -1 is not allowed"),
+    (["calibrate", "--particles", "100"], "argument --particles: 100 is not allowed"),
+    (["calibrate", "--seed", "-1"], "argument --seed: -1 is not allowed"),
+    (["calibrate", "--molecules-per-particle", "nan"], "argument --molecules-per-particle: nan is not allowed"),
+    (["slab", "--duration", "inf"], "argument --duration: inf is not allowed"),
+    (["slab", "--thermostat-time", "-1"], "argument --thermostat-time: -1 is not allowed"),
+    (["benchmark-force", "--particles", "100"], "argument --particles: 100 is not allowed"),
+    (["benchmark-integrator", "--cutoff", "3"], "argument --cutoff: 3 is not allowed; R_cut* must be one of"),
+    (["benchmark-cpu", "--thread-counts", "0"], "argument --thread-counts: 0 is not allowed"),
+])
+def test_a_bad_number_is_a_usage_error_before_anything_runs(arguments, message, nothing_runs, capsys):
+    """Every number of every subcommand is checked when the arguments are read (finite, in range, an integer for a
+    count, 4 m^3 particles, a published R_cut*, a seed OpenMM takes): usage error, status 2, one line naming the
+    option, the value and what is allowed."""
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert exit_.value.code == 2
+    assert message in capsys.readouterr().err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["benchmark-force", "--particles", "500", "--json", "/proc/x.json"], "/proc/x.json cannot be written"),
+    (["table3", "--output", "/proc/results"], "/proc/results cannot be written"),
+])
+def test_an_output_where_no_file_can_be_made_is_refused(arguments, message, nothing_runs, capsys):
+    """Writable permission bits are not enough (root passes them; /proc takes no new file): a file is made there and
+    removed when the arguments are read."""
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert exit_.value.code == 2 and message in capsys.readouterr().err.splitlines()[-1]
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["thermal-expansion", "--delta", "200"], "error: thermal-expansion: --delta 200 is not allowed; it must be < T0 = "
+                                              "125.7 K"),
+    (["thermal-expansion", "--particles", "32"], "error: thermal-expansion: the box"),
+    (["table3", "--particles", "32"], "error: table3: 32 particles make a box of edge"),
+    (["tune-fcut", "--quick", "--cutoff", "1.5"], "error: tune-fcut: --cutoff 1.5 is not allowed"),
+    (["tune-fcut", "--quick", "--start", "0.5"], "error: tune-fcut: GenDPDEForce: cutoff scaling f_cut = 0.5 is not "
+                                                 "allowed"),
+    (["benchmark-force", "--particles", "32"], "error: benchmark-force: 32 particles make a box"),
+    (["slab", "--duration", "10", "--every", "20"], "error: slab: --every 20 is not allowed; it must be at most "
+                                                    "--duration 10"),
+    (["slab", "--every", "0.001"], "error: slab: --every 0.001 is not allowed; it must be at least one step"),
+    (["rdf", "--quick", "--frames-from", "/nonexistent"], "error: rdf: --frames-from /nonexistent is not a directory"),
+])
+def test_arguments_that_do_not_fit_together_end_in_one_line_before_anything_runs(arguments, message, monkeypatch):
+    """Arguments checked against each other (the particles against the cutoff, dT against T0, f_cut against the
+    force's range) before any simulation: a one-line error (status 1) naming the subcommand (Context creation fails
+    the test)."""
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    with pytest.raises(SystemExit) as exit_:
+        main(arguments)
+    assert str(exit_.value).startswith(message) and "\n" not in str(exit_.value)
+
+
+@pytest.mark.parametrize("failure, status, message", [
+    (openmm.OpenMMException("GenDPDEIntegrator: the internal energy of particle 3 would become -0.1 kJ/mol"), 1,
+     "error: timing: GenDPDEIntegrator: the internal energy of particle 3 would become -0.1 kJ/mol"),
+    (OSError(28, "No space left on device", "/dev/full"), 1, "error: timing: /dev/full: No space left on device"),
+    (KeyboardInterrupt(), 130, "error: timing: interrupted"),
+])
+def test_a_failure_during_the_run_ends_in_one_line(failure, status, message, monkeypatch, capsys):
+    """A simulation that goes bad, an output that cannot be written, Ctrl-C: one line on stderr and a nonzero status,
+    not a traceback."""
+    import openmmgendpde.timing as timing
+
+    def fail(arguments):
+        raise failure
+    monkeypatch.setattr(timing, "run", fail)
+    with pytest.raises(SystemExit) as exit_:
+        main(["timing", "--quick"])
+    code = exit_.value.code
+    if isinstance(code, str):   # SystemExit(message): Python writes it to stderr and exits with status 1
+        assert status == 1 and code == message
+    else:
+        assert code == status and capsys.readouterr().err.strip() == message
+
+
+def test_a_script_failure_ends_in_one_line():
+    """cli.one_line_errors (the examples): an OpenMMException nothing catches is one line on stderr, status 1."""
+    import subprocess
+    import sys
+    result = subprocess.run([sys.executable, "-c", "import openmm\nfrom openmmgendpde.cli import one_line_errors\n"
+                             "one_line_errors('x.py')\nraise openmm.OpenMMException('the step was not applied')"],
+                            capture_output=True, text=True, timeout=60)
+    assert result.returncode == 1 and result.stderr == "error: x.py: the step was not applied\n"
+
+
+def _fake_argon_runs(monkeypatch, interrupt_at=None):
+    """table3's runs replaced by made-up samples (seconds, not minutes): frames of 500 particles that differ from
+    call to call; the run number ``interrupt_at`` (from 1) raises KeyboardInterrupt, as Ctrl-C would."""
+    import numpy as np
+    import openmmgendpde.table3 as table3
+    from openmmgendpde.study import ArgonRun, Samples
+    calls = []
+
+    def run_argon(cutoff, estimator, protocol, platform, frames=0, progress=None, **options):
+        calls.append((cutoff, estimator))
+        if len(calls) == interrupt_at:
+            raise KeyboardInterrupt
+        rng = np.random.default_rng(len(calls) + 100 * (interrupt_at or 0))
+        samples = Samples(box_edge=3.0, frames=[rng.uniform(0, 3, (500, 3)) for _ in range(frames)])
+        for name in ("kinetic_temperature", "harmonic_temperature", "density", "pressure"):
+            setattr(samples, name, list(1 + 0.01 * rng.standard_normal(40)))
+        return ArgonRun(samples, None, None)
+    monkeypatch.setattr(table3, "run_argon", run_argon)
+    return calls
+
+
+def _files(directory):
+    return {path.name: path.read_bytes() for path in directory.iterdir()}
+
+
+def test_an_interrupted_table3_leaves_the_previous_frames_complete(tmp_path, monkeypatch, capsys):
+    """Ctrl-C during table3 --output D: one line, status 130, and D as the last complete run left it (its frames and
+    their manifest), nothing of the interrupted run; rdf's reader takes it."""
+    from openmmgendpde.table3 import FRAMES_MANIFEST, read_frames
+    _fake_argon_runs(monkeypatch)
+    main(["table3", "--quick", "--output", str(tmp_path)])
+    before = _files(tmp_path)
+    assert FRAMES_MANIFEST in before and len([name for name in before if name.endswith(".npz")]) == 6
+    _fake_argon_runs(monkeypatch, interrupt_at=5)
+    with pytest.raises(SystemExit) as exit_:
+        main(["table3", "--quick", "--output", str(tmp_path)])
+    assert exit_.value.code == 130 and capsys.readouterr().err.strip() == "error: table3: interrupted"
+    assert _files(tmp_path) == before
+    cases = [(cutoff, estimator) for cutoff in (1.3365, 1.6839, 2.1564) for estimator in ("VA", "VB")]
+    assert sorted(read_frames(tmp_path, cases)) == sorted(cases)
+
+
+@pytest.mark.parametrize("damage, message", [
+    ("no manifest", "holds no complete set of table3 frames"),
+    ("a file replaced", "is not the file table3 wrote"),
+    ("a file missing", "frames-R2.1564-VB.npz is missing"),
+    ("fewer cutoffs", "has no frames of R_cut* = 1.6839 VA"),
+])
+def test_rdf_refuses_an_incomplete_or_foreign_frame_directory_in_one_line(damage, message, tmp_path, monkeypatch):
+    """rdf --frames-from D reads a complete set only (table3's manifest, every case, each file as table3 wrote it):
+    else one line (status 1) before anything runs."""
+    import numpy as np
+    from openmmgendpde.table3 import FRAMES_MANIFEST
+    _fake_argon_runs(monkeypatch)
+    main(["table3", "--quick", "--output", str(tmp_path)] + (["--cutoffs", "1.3365"] if damage == "fewer cutoffs"
+                                                               else []))
+    if damage == "no manifest":   # the 4 of 6 frame files an interrupted table3 used to leave
+        (tmp_path / FRAMES_MANIFEST).unlink()
+        for path in sorted(tmp_path.glob("*.npz"))[4:]:
+            path.unlink()
+    elif damage == "a file replaced":
+        np.savez_compressed(tmp_path / "frames-R1.6839-VA.npz", positions=np.zeros((2, 500, 3)), box_edge=3.0)
+    elif damage == "a file missing":
+        (tmp_path / "frames-R2.1564-VB.npz").unlink()
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    with pytest.raises(SystemExit) as exit_:
+        main(["rdf", "--quick", "--frames-from", str(tmp_path), "--output", str(tmp_path / "rdf")])
+    assert str(exit_.value).startswith(f"error: rdf: --frames-from {tmp_path}") and message in str(exit_.value)
+    assert "\n" not in str(exit_.value) and not (tmp_path / "rdf" / "fig1-rdf.csv").exists()
+
+
+def _fake_water_calibration(monkeypatch):
+    from helpers import fake_calibration
+    from openmmgendpde.fluid import WATER, coarse_grain
+    fake_calibration(monkeypatch, coarse_grain(WATER, 4, neighbors=20))
+
+
+def test_calibrate_writes_every_output_it_can_and_reports_the_one_it_cannot(tmp_path, monkeypatch, capsys):
+    """calibrate --json /dev/full (a write that fails after the run): the model (--output) is still written, and the
+    failure is one line (status 1) naming the option and the reason."""
+    from openmmgendpde.fluid_files import load_parameters
+    _fake_water_calibration(monkeypatch)
+    model = tmp_path / "model.toml"
+    with pytest.raises(SystemExit) as exit_:
+        main(["calibrate", "--quick", "--fluid", "water", "--output", str(model), "--json", "/dev/full"])
+    assert exit_.value.code == ("error: calibrate: --json /dev/full could not be written (/dev/full: No space left on "
+                                "device); the other outputs were written")
+    assert load_parameters(str(model)).fluid.name.startswith("liquid water")
+    assert [path.name for path in tmp_path.iterdir()] == ["model.toml"]   # no temporary file left
+
+
+def test_a_simulation_failure_in_calibrate_names_its_stage(monkeypatch):
+    """An OpenMMException in a stage of calibrate (a negative internal energy in the bulk-modulus runs, as argon at
+    4 atoms per particle gave): one line (status 1) naming the stage, the error and the options that set the step and
+    the heat capacity."""
+    from openmmgendpde.calibrate import Calibration
+    _fake_water_calibration(monkeypatch)
+
+    def bulk_modulus(self):
+        raise openmm.OpenMMException("GenDPDEIntegrator: the internal energy of particle 39 would become -0.36 kJ/mol "
+                                     "(<= 0) at step 3076; the step was not applied.")
+    monkeypatch.setattr(Calibration, "bulk_modulus", bulk_modulus)
+    with pytest.raises(SystemExit) as exit_:
+        main(["calibrate", "--quick", "--fluid", "water"])
+    assert exit_.value.code == ("error: calibrate: the stage 'Bulk modulus: B_T iterated on n dP/dn' failed: "
+                                "GenDPDEIntegrator: the internal energy of particle 39 would become -0.36 kJ/mol "
+                                "(<= 0) at step 3076; the step was not applied. (dt* = 0.01: --time-step; heat "
+                                "capacity: --molecules-per-particle)")
+
+
+@pytest.mark.parametrize("fluid, molecules", [("water", 4), ("argon", 5), ("argon-expanding", 5),
+                                              ("supercritical-argon", 7)])
+def test_calibrates_default_coarse_graining_leaves_the_particles_heat_capacity(fluid, molecules, monkeypatch, capsys):
+    """calibrate's default molecules per particle: 4, or more where the molecules hold little heat, so that C_V
+    stays >= 9 k_B once c_v is matched (calibrate.MIN_DEFAULT_INTERNAL_HEAT_CAPACITY; argon at 4 stopped on a
+    negative internal energy at dt* = 0.01). The mapped C_V minus the 5/2 k_B of the motion and the Gamma law is at
+    least 9 k_B."""
+    from openmmgendpde.calibrate import FLUIDS, KB, default_molecules_per_particle
+    from openmmgendpde.fluid import coarse_grain
+    assert default_molecules_per_particle(FLUIDS[fluid]) == molecules
+    parameters = coarse_grain(FLUIDS[fluid], molecules, neighbors=20)
+    assert parameters.heat_capacity / KB - 2.5 >= 9.0
+    assert coarse_grain(FLUIDS[fluid], molecules - 1, neighbors=20).heat_capacity / KB - 2.5 < 9.0 or molecules == 4
+    _fake_water_calibration(monkeypatch)
+    main(["calibrate", "--quick", "--fluid", fluid])
+    assert f": {molecules} molecules per particle, 20.0 neighbours" in capsys.readouterr().out

@@ -5,6 +5,8 @@ import pathlib
 import subprocess
 import sys
 
+import pytest
+
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 
 
@@ -87,3 +89,31 @@ def test_rayleigh_benard_layer_conducts_below_the_onset():
     assert 0.025 < diffusivity < 0.1, conduction
     assert 0.7 < fraction < 1.0 and gradient < 0, (conduction, row)
     assert flow_over_noise < 5, row
+
+
+@pytest.mark.parametrize("script, arguments, message", [
+    ("adiabatic_compression.py", ["--fraction", "1"], "argument --fraction: 1 is not allowed; it must be a finite "
+                                                       "number > 0 and < 1"),
+    ("adiabatic_compression.py", ["--fraction", "-0.5"], "argument --fraction: -0.5 is not allowed"),
+    ("adiabatic_compression.py", ["--fraction", "0.5"], "the box would end 0.058 nm across, less than twice the "
+                                                         "cutoff"),
+    ("immiscible_pair.py", ["--platform", "Nope"], "argument --platform: invalid choice: 'Nope'"),
+    ("immiscible_pair.py", ["--repulsion", "nan"], "argument --repulsion: nan is not allowed; it must be a finite "
+                                                    "number >= 0"),
+    ("two_materials.py", ["--platform", "Nope"], "argument --platform: invalid choice: 'Nope'"),
+    ("shock.py", ["--speeds", "-1"], "argument --speeds: -1 is not allowed; it must be a finite number > 0"),
+    ("shock.py", ["--width", "1"], "--width and --length: the box"),
+    ("rayleigh_benard.py", ["--grid", "0", "0"], "argument --grid: 0 is not allowed; it must be an integer >= 1"),
+    ("rayleigh_benard.py", ["--grid", "14", "3"], "--grid 14 3 is not allowed"),
+    ("rayleigh_benard.py", ["--plot", "/missing/x"], "argument --plot: /missing/x.png cannot be written"),
+    ("rayleigh_benard.py", ["--differences", "300"], "dT/2 + the perturbation must stay below T0"),
+    ("liquid_argon.py", ["--cutoff", "2"], "argument --cutoff: 2 is not allowed; R_cut* must be one of the published"),
+])
+def test_an_example_refuses_a_bad_argument_at_once(script, arguments, message):
+    """Every example checks its arguments before it runs anything: a usage error (status 2) in one line naming the
+    option, within seconds (rayleigh_benard.py --grid 0 0 failed after 53 s, --plot /missing/x after the whole run;
+    immiscible_pair.py --repulsion nan ran 20000 steps and exited 0)."""
+    result = subprocess.run([sys.executable, str(EXAMPLES / script)] + arguments, capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 2 and "Traceback" not in result.stderr and result.stdout == "", result.stderr
+    assert message in result.stderr.splitlines()[-1]

@@ -543,13 +543,15 @@ def test_calibrate_iterates_the_conductivity_of_a_fluid_that_expands_on_the_heat
 
 
 @pytest.mark.parametrize("arguments, message", [
-    (["--particles", "1000"], "--particles 1000 is not allowed; a cube holds 4 m^3 (500, 864, 2048, 4000, ...)"),
-    (["--particles", "0"], "--particles 0 is not allowed"),
-    (["--molecules-per-particle", "-1"], "--molecules-per-particle -1.0 is not allowed; it must be finite and > 0"),
+    (["--particles", "1000"], "argument --particles: 1000 is not allowed; it must be 4 m^3 for an integer m from 1 "
+                              "to 100 (500, 864, 2048, 4000, ..."),
+    (["--particles", "0"], "argument --particles: 0 is not allowed"),
+    (["--molecules-per-particle", "-1"], "argument --molecules-per-particle: -1 is not allowed; it must be a finite "
+                                         "number > 0"),
     (["--neighbors", "1e6"], "is less than twice the cutoff 30.599 nm across; use more --particles, or fewer "
                              "--neighbors (a smaller --cutoff)"),
     (["--cutoff", "100"], "is less than twice the cutoff 100.000 nm across"),
-    (["--neighbors", "0"], "--neighbors 0.0 is not allowed; it must be finite and > 0"),
+    (["--neighbors", "0"], "argument --neighbors: 0 is not allowed; it must be a finite number > 0"),
     (["--platform", "Nope"], "argument --platform: invalid choice: 'Nope'"),
 ])
 def test_calibrate_refuses_bad_arguments_in_one_line(arguments, message):

@@ -10,6 +10,7 @@ import sys
 import openmm
 import pytest
 
+from helpers import fake_calibration
 from openmmgendpde.__main__ import main
 from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, WATER, coarse_grain
 from openmmgendpde.fluid_files import (fluid_from_table, fluid_table, load_fluid, load_parameters, quantity,
@@ -130,34 +131,10 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     -0.02/kappa_T from the mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport
     coefficients read their targets. The model file holds exactly those parameters (computed here from coarse_grain,
     independently of calibrate)."""
-    from openmmgendpde.calibrate import KB, Calibration, Measured
+    from openmmgendpde.calibrate import KB
     offset = 0.02
-
-    def thermodynamics(self, density=None, pressure_error=None):
-        t = self.parameters.targets()
-        measured = t["pressure"] + offset * t["bulk_modulus"]
-        if self.parameters.reference_pressure != mapped.reference_pressure:
-            measured = t["pressure"]
-        self.configurational_heat_capacity = Measured(0.5 * KB, 0.01 * KB, 50)
-        return {"density": Measured(t["density"], 1e-3), "kinetic_temperature": Measured(t["temperature"], 0.1),
-                "harmonic_temperature": Measured(t["temperature"], 0.1), "self_diffusion": Measured(1e-3, 1e-5),
-                "pressure": Measured(measured, 1e-4), "heat_capacity": self.heat_capacity(),
-                "configurational_heat_capacity": self.configurational_heat_capacity}
-
-    def tune(self, iterations=None):
-        self.parameters = self.parameters.with_cutoff_scaling(1.3)
-        return 1.3
-
     mapped = coarse_grain(load_fluid(WATER_FILE), 4, neighbors=20)
-    monkeypatch.setattr(Calibration, "tune_cutoff_scaling", tune)
-    monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
-    monkeypatch.setattr(Calibration, "bulk_modulus",
-                        lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
-    for name, target in (("shear_viscosity", "shear_viscosity"), ("steady_viscosity", "shear_viscosity"),
-                         ("thermal_conductivity", "thermal_conductivity"),
-                         ("steady_conductivity", "thermal_conductivity")):
-        monkeypatch.setattr(Calibration, name, lambda self, target=target: Measured(
-            self.parameters.targets()[target], 1e-6, 3))
+    fake_calibration(monkeypatch, mapped, offset)
     output = str(tmp_path / "water-model.toml")
     main(["calibrate", "--quick", "--fluid", WATER_FILE, "--output", output])
     assert f"The calibrated model is in {output}" in capsys.readouterr().out
@@ -229,3 +206,68 @@ def test_the_example_surface_tensions_are_their_sources_correlations():
     assert load_fluid(os.path.join(REPOSITORY, "examples", "fluids", "nitrogen.toml")).in_openmm()[
         "surface_tension"] == pytest.approx(nitrogen, rel=1e-3)
     assert ARGON.surface_tension is None
+
+
+@pytest.mark.parametrize("key, text", [
+    ("temperature", "298.15 kelvin + 5 K"),
+    ("temperature", "2 * 150 K"),
+    ("pressure", "0.1 MPa * 2"),
+    ("mass_density", "(997.05 kg/m^3)"),
+    ("temperature", "nan K"),
+])
+def test_a_fluid_file_value_is_one_number_with_a_unit_not_an_expression(key, text, tmp_path):
+    """pint evaluates expressions ('298.15 kelvin + 5 K' is 303.15 K); a fluid file takes one number followed by a
+    unit, and refuses anything else naming the key, the value and what is allowed."""
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **{key: text})))
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert f"{key} = {text!r}" in str(error.value) and "it must be one number followed by its unit" in str(error.value)
+
+
+@pytest.mark.parametrize("key, text", [
+    ("thermal_expansion", "2.64e-3 1/(K mol)"),   # made 'per molecule' by Avogadro's number: 4.4e-27 1/K
+    ("thermal_expansion", "4.4e-27 mol/K"),        # made 'per mole': 2.64e-3 1/K
+    ("temperature", "4.9e-22 K mol"),
+    ("speed_of_sound", "1496.7 m/(s mol)"),
+    ("self_diffusion", "2.3e-9 m^2 mol/s"),
+])
+def test_a_property_that_is_not_molar_takes_no_per_mole_conversion(key, text, tmp_path):
+    """The per-mole rule (a quantity per molecule made per mole by Avogadro's number) is for the properties whose
+    OpenMM unit is per mole (energies, pressures, masses); a thermal expansion coefficient, a temperature or a speed
+    with mol in its unit is refused, naming the key, the value and the unit it must have."""
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **{key: text})))
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert f"{key} = {text!r} is not allowed; its unit must be compatible with" in str(error.value)
+    assert "not per mole" in str(error.value)
+
+
+def test_the_per_mole_rule_still_converts_the_molar_properties(tmp_path):
+    """Per molecule in SI (J/K, Pa, kg) or per mole: the same Fluid either way."""
+    avogadro = 6.02214076e23
+    per_molecule = dict(WATER_TABLE, heat_capacity=f"{74.44 / avogadro!r} J/K",
+                        molar_mass=f"{18.015e-3 / avogadro!r} kg", pressure=f"{0.1e6!r} Pa")
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(per_molecule))
+    _same_properties(load_fluid(str(path)), load_fluid(WATER_FILE), rel=1e-12)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"temperature": "1e300 K"}, "the mapping"),
+    ({"tait_exponent": 1e6}, "gamma_T = 1000000 is not allowed"),
+])
+@pytest.mark.parametrize("command", ["calibrate", "tune-fcut"])
+def test_a_fluid_out_of_range_ends_in_one_line_before_anything_runs(command, change, message, tmp_path, capsys,
+                                                                    monkeypatch):
+    """A fluid file whose values the mapping cannot turn into a model (an overflow) or that the force refuses (gamma_T
+    beyond GenDPDEForce's range): a one-line error, status 1, before any simulation (Context creation fails the
+    test)."""
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(WATER_TABLE, **change)))
+    with pytest.raises(SystemExit) as exit_:
+        main([command, "--quick", "--fluid", str(path)])
+    assert str(exit_.value).startswith(f"error: {command}: ") and message in str(exit_.value)
+    assert "\n" not in str(exit_.value)

@@ -146,3 +146,44 @@ def test_pressure_counts_every_force():
     other = openmm.XmlSerializer.clone(argon.system)
     other.addForce(openmm.CustomExternalForce("0"))
     assert ThermodynamicProbe(other).numerical_virial_groups == [0]
+
+
+def _reporters():
+    from openmmgendpde.profiles import ProfileReporter
+    return {"GenDPDEReporter": GenDPDEReporter, "ProfileReporter": ProfileReporter}
+
+
+@pytest.mark.parametrize("reporter, options, fragments", [
+    ("GenDPDEReporter", {"file": None}, ["file = None is not allowed", "a path to a file"]),
+    ("ProfileReporter", {"file": 3}, ["file = 3 is not allowed", "a path to a file"]),
+    ("GenDPDEReporter", {"file": "missing/log.csv"}, ["missing/log.csv", "does not exist"]),
+    ("GenDPDEReporter", {"units": "nonsense"}, ["units = 'nonsense' is not allowed", "ReducedUnits"]),
+    ("GenDPDEReporter", {"separator": ""}, ["separator = '' is not allowed", "non-empty string"]),
+    ("GenDPDEReporter", {"append": "yes"}, ["append = 'yes' is not allowed", "True or False"]),
+    ("ProfileReporter", {"bins": 2.5}, ["bins = 2.5 is not allowed", "an integer from 1 to 100000"]),
+    ("ProfileReporter", {"bins": 10**9}, ["bins = 1000000000 is not allowed", "exhaust the memory"]),
+    ("ProfileReporter", {"bins": 0}, ["bins = 0 is not allowed"]),
+    ("ProfileReporter", {"axis": "z"}, ["axis = 'z' is not allowed", "0, 1 or 2"]),
+    ("ProfileReporter", {"axis": 1.0}, ["axis = 1.0 is not allowed"]),
+    ("ProfileReporter", {"force": openmm.NonbondedForce()}, ["force = a NonbondedForce is not allowed",
+                                                             "a GenDPDEForce"]),
+])
+def test_reporters_refuse_bad_arguments_when_made_before_creating_the_file(reporter, options, fragments, tmp_path,
+                                                                           monkeypatch):
+    """Every argument of a reporter is checked when it is made: OpenMMException naming the parameter, the value and
+    what is allowed, and no file created (the file is the last thing made). bins is bounded (each report computes and
+    writes every bin: 10^9 would exhaust the memory at the first report)."""
+    monkeypatch.chdir(tmp_path)
+    arguments = {"file": "out.csv", "reportInterval": 10, **options}
+    with pytest.raises(openmm.OpenMMException) as error:
+        _reporters()[reporter](**arguments)
+    for fragment in [f"{reporter}: "] + fragments:
+        assert fragment in str(error.value)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_profile_reporter_takes_a_gendpde_force_from_the_system():
+    """A GenDPDEForce as System.getForce returns it (an openmm.Force) is taken, cast to GenDPDEForce."""
+    from openmmgendpde.profiles import ProfileReporter
+    argon = liquid_argon(500, 1.6839, "VB", seed=5)
+    ProfileReporter(io.StringIO(), 10, force=argon.system.getForce(0))

@@ -4,6 +4,7 @@
 
 #include "GenDPDEIntegrator.h"
 #include "GenDPDEKernels.h"
+#include "internal/StrictXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <cstdint>
@@ -211,7 +212,7 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
             || !node.hasProperty("seedInUse"))
         throw OpenMMException("GenDPDEIntegrator: the State does not hold GenDPDEIntegrator parameters (it was saved "
                               "with another integrator, or without getIntegratorParameters=True)");
-    const int version = node.getIntProperty("GenDPDEIntegratorVersion");
+    const int version = StrictXml::integer(node, "GenDPDEIntegrator State", "GenDPDEIntegratorVersion");
     if (version < 1 || version > 2)
         throw OpenMMException("GenDPDEIntegrator: the State holds integrator parameters of version "
                               + std::to_string(version) + "; this build reads versions 1 to 2");
@@ -227,9 +228,10 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
                                   + "' (entry " + std::to_string(energies.size()) + ") is not a number");
         energies.push_back(value);
     }
+    const int seed = StrictXml::integer(node, "GenDPDEIntegrator State", "seedInUse");
     checkInternalEnergies(energies, "the State");
     IntegrateGenDPDEStepKernel& k = boundKernel();
-    k.setSeed(node.getIntProperty("seedInUse"));
+    k.setSeed(seed);
     k.setInternalEnergies(energies);
     applyThermalRule(ThermalEvent::EnergiesSet);
 }

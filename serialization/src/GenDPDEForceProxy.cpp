@@ -1,6 +1,7 @@
 #include "GenDPDEForceProxy.h"
 #include "GenDPDEForce.h"
 #include "ParticleTypesXml.h"
+#include "internal/StrictXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <memory>
@@ -21,10 +22,20 @@ void serializeLaw(SerializationNode& node, GenDPDEForce::EquationOfState law, co
         node.createChildNode("Parameter").setDoubleProperty("value", p);
 }
 
+const char* owner = "GenDPDEForce";
+const std::string lawNames = "an integer naming a law (0 Tait, 1 TaitThermalExpansion, 2 VanDerWaals)";
+
+/** A law's number (the setter checks that it names a law). */
+GenDPDEForce::EquationOfState lawOf(const SerializationNode& node) {
+    return (GenDPDEForce::EquationOfState) StrictXml::integer(node, owner, "law", lawNames);
+}
+
 std::vector<double> lawParameters(const SerializationNode& node) {
     std::vector<double> parameters;
-    for (const SerializationNode& p : node.getChildren())
-        parameters.push_back(p.getDoubleProperty("value"));
+    for (const SerializationNode& p : node.getChildren()) {
+        StrictXml::requireOnly(p, owner, currentVersion, {"value"}, {});
+        parameters.push_back(StrictXml::number(p, owner, "value"));
+    }
     return parameters;
 }
 }
@@ -71,36 +82,53 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
 }
 
 void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
-    int version = node.getIntProperty("version");
+    using namespace StrictXml;
+    const int version = integer(node, owner, "version");
     if (version < 1 || version > currentVersion) {
         std::ostringstream message;
         message << "GenDPDEForce: cannot read serialization version " << version << "; this build reads versions 1 to "
                 << currentVersion;
         throw OpenMMException(message.str());
     }
-    // The setters validate every value, so a corrupted file is rejected with the usual messages.
-    std::unique_ptr<GenDPDEForce> force(new GenDPDEForce(node.getDoubleProperty("cutoff")));
-    force->setName(node.getStringProperty("name", force->getName()));
-    force->setForceGroup(node.getIntProperty("forceGroup", 0));
-    force->setNonbondedMethod((GenDPDEForce::NonbondedMethod) node.getIntProperty("method"));
-    force->setDensityEstimator((GenDPDEForce::DensityEstimator) node.getIntProperty("estimator"));
-    force->setCutoffScaling(node.getDoubleProperty("cutoffScaling"));
-    force->setTaitParameters(node.getDoubleProperty("n0"), node.getDoubleProperty("pi0"),
-                             node.getDoubleProperty("bulkModulus"), node.getDoubleProperty("gammaT"));
+    // Every value is read whole (StrictXml), the node may hold only what its version defines, and the setters
+    // validate every value: a corrupted file is refused, never read in part.
+    std::vector<std::string> children;
+    if (version >= 2)
+        children.insert(children.end(), {"ParticleTypes", "TypeParameters"});
+    if (version >= 3)
+        children.insert(children.end(), {"EquationOfState", "TypeEquationsOfState"});
+    requireOnly(node, owner, version, {"version", "name", "forceGroup", "cutoff", "method", "estimator",
+                                       "cutoffScaling", "n0", "pi0", "bulkModulus", "gammaT"}, children);
+    std::unique_ptr<GenDPDEForce> force(new GenDPDEForce(number(node, owner, "cutoff")));
+    if (node.hasProperty("name"))
+        force->setName(node.getStringProperty("name"));
+    force->setForceGroup(node.hasProperty("forceGroup") ? integer(node, owner, "forceGroup") : 0);
+    force->setNonbondedMethod((GenDPDEForce::NonbondedMethod) integer(node, owner, "method"));
+    force->setDensityEstimator((GenDPDEForce::DensityEstimator) integer(node, owner, "estimator"));
+    force->setCutoffScaling(number(node, owner, "cutoffScaling"));
+    force->setTaitParameters(number(node, owner, "n0"), number(node, owner, "pi0"), number(node, owner, "bulkModulus"),
+                             number(node, owner, "gammaT"));
     if (version >= 2) {
-        deserializeParticleTypes(node, *force);
-        for (const SerializationNode& type : node.getChildNode("TypeParameters").getChildren())
-            force->addTypeParameters(type.getIntProperty("type"), type.getDoubleProperty("n0"),
-                                     type.getDoubleProperty("pi0"), type.getDoubleProperty("bulkModulus"),
-                                     type.getDoubleProperty("gammaT"));
+        deserializeParticleTypes(node, *force, owner, version);
+        const SerializationNode& typeParameters = child(node, owner, "TypeParameters");
+        requireOnly(typeParameters, owner, version, {}, {"Type"});
+        for (const SerializationNode& type : typeParameters.getChildren()) {
+            requireOnly(type, owner, version, {"type", "n0", "pi0", "bulkModulus", "gammaT"}, {});
+            force->addTypeParameters(integer(type, owner, "type"), number(type, owner, "n0"),
+                                     number(type, owner, "pi0"), number(type, owner, "bulkModulus"),
+                                     number(type, owner, "gammaT"));
+        }
     }
     if (version >= 3) {
-        const SerializationNode& law = node.getChildNode("EquationOfState");
-        force->setEquationOfState((GenDPDEForce::EquationOfState) law.getIntProperty("law"), lawParameters(law));
-        for (const SerializationNode& type : node.getChildNode("TypeEquationsOfState").getChildren())
-            force->addTypeEquationOfState(type.getIntProperty("type"),
-                                          (GenDPDEForce::EquationOfState) type.getIntProperty("law"),
-                                          lawParameters(type));
+        const SerializationNode& law = child(node, owner, "EquationOfState");
+        requireOnly(law, owner, version, {"law"}, {"Parameter"});
+        force->setEquationOfState(lawOf(law), lawParameters(law));
+        const SerializationNode& typeLaws = child(node, owner, "TypeEquationsOfState");
+        requireOnly(typeLaws, owner, version, {}, {"Type"});
+        for (const SerializationNode& type : typeLaws.getChildren()) {
+            requireOnly(type, owner, version, {"type", "law"}, {"Parameter"});
+            force->addTypeEquationOfState(integer(type, owner, "type"), lawOf(type), lawParameters(type));
+        }
     }
     return force.release();
 }

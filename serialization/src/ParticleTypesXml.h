@@ -4,8 +4,10 @@
 /* The particle types of a GenDPDEForce or GenDPDEIntegrator in XML (version 2 of both proxies, docs/types.md): a
  * ParticleTypes node with one Particle (index, type) per particle whose type was set. */
 
+#include "internal/StrictXml.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <map>
+#include <string>
 
 namespace GenDPDEPlugin {
 
@@ -15,11 +17,20 @@ inline void serializeParticleTypes(OpenMM::SerializationNode& node, const std::m
         types.createChildNode("Particle").setIntProperty("index", entry.first).setIntProperty("type", entry.second);
 }
 
-/** Set the types read from node's ParticleTypes on owner (its setParticleType validates them). */
+/**
+ * Set the types read from node's ParticleTypes on owner (its setParticleType validates them); ownerName and version
+ * for StrictXml's messages.
+ */
 template <class Owner>
-void deserializeParticleTypes(const OpenMM::SerializationNode& node, Owner& owner) {
-    for (const OpenMM::SerializationNode& particle : node.getChildNode("ParticleTypes").getChildren())
-        owner.setParticleType(particle.getIntProperty("index"), particle.getIntProperty("type"));
+void deserializeParticleTypes(const OpenMM::SerializationNode& node, Owner& owner, const std::string& ownerName,
+                              int version) {
+    const OpenMM::SerializationNode& types = StrictXml::child(node, ownerName, "ParticleTypes");
+    StrictXml::requireOnly(types, ownerName, version, {}, {"Particle"});
+    for (const OpenMM::SerializationNode& particle : types.getChildren()) {
+        StrictXml::requireOnly(particle, ownerName, version, {"index", "type"}, {});
+        owner.setParticleType(StrictXml::integer(particle, ownerName, "index"),
+                              StrictXml::integer(particle, ownerName, "type"));
+    }
 }
 
 } // namespace GenDPDEPlugin

@@ -5,6 +5,8 @@
 #include "openmm/serialization/XmlSerializer.h"
 #include <memory>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -140,6 +142,48 @@ void testEquationsOfStateRoundTrip() {
     ASSERT(copy->dependsOnTemperature());
 }
 
+/** The XML of this force with the first occurrence of `from` replaced by `to` (which must be there). */
+std::string edited(const GenDPDEForce& force, const std::string& from, const std::string& to) {
+    std::stringstream buffer;
+    XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+    std::string xml = buffer.str();
+    const size_t position = xml.find(from);
+    if (position == std::string::npos)
+        throw std::runtime_error("the XML holds no " + from + ":\n" + xml);
+    return xml.replace(position, from.size(), to);
+}
+
+/**
+ * Values are read whole and a node holds only what its version defines: an empty value, trailing garbage, a fraction
+ * or a word where an integer law is, and a version-2 file with an equation of state are refused, naming what is
+ * wrong (OpenMM's reader took "" as 0, "1.0garbage" as 1, "1.5" as 1, "abc" as Tait, and dropped the law).
+ */
+void testStrictReading() {
+    GenDPDEForce force(1.25);
+    force.setEquationOfState(GenDPDEForce::TaitThermalExpansion, {0.5, 300.0});
+    force.addTypeEquationOfState(3, GenDPDEForce::VanDerWaals, {0.75, 0.0625, 0.0083});
+    auto refused = [&](const std::string& from, const std::string& to, const std::vector<std::string>& words) {
+        std::stringstream xml(edited(force, from, to));
+        assertThrowsMentioning([&]() { delete XmlSerializer::deserialize<GenDPDEForce>(xml); }, words);
+    };
+    refused("cutoff=\"1.25\"", "cutoff=\"\"", {"GenDPDEForce XML", "cutoff = ''", "not a number"});
+    refused("cutoff=\"1.25\"", "cutoff=\"1.25garbage\"", {"cutoff = '1.25garbage'", "not a number"});
+    refused("cutoff=\"1.25\"", "cutoff=\" 1.25\"", {"cutoff = ' 1.25'"});
+    refused("law=\"1\"", "law=\"1.5\"", {"law = '1.5'", "an integer naming a law"});
+    refused("law=\"1\"", "law=\"abc\"", {"law = 'abc'", "0 Tait, 1 TaitThermalExpansion, 2 VanDerWaals"});
+    refused("law=\"1\"", "law=\"7\"", {"equation of state = 7"});
+    refused("value=\".5\"", "value=\".5x\"", {"Parameter.value = '.5x'"});
+    refused("estimator=\"1\"", "estimator=\"1e0\"", {"estimator = '1e0'"});
+    refused("version=\"3\"", "version=\"2\"", {"version 2", "<EquationOfState>", "does not define"});
+    refused("version=\"3\"", "version=\"3\" extra=\"1\"", {"property 'extra'", "does not define"});
+    refused(" n0=", " m0=", {"property 'm0'"});
+    // A number in the C locale's form, and the non-finite words OpenMM writes, are read (the setter then judges).
+    std::stringstream exponent(edited(force, "cutoff=\"1.25\"", "cutoff=\"125e-2\""));
+    std::unique_ptr<GenDPDEForce> copy(XmlSerializer::deserialize<GenDPDEForce>(exponent));
+    ASSERT_EQUAL(1.25, copy->getCutoffDistance());
+    refused("cutoff=\"1.25\"", "cutoff=\"Infinity\"", {"cutoff", "inf"});
+}
+
 int main() {
     return runTestProgram([]() {
         loadGenDPDEKernels("Reference");
@@ -149,5 +193,6 @@ int main() {
         testVersion1();
         testSystemRoundTrip();
         testFutureVersion();
+        testStrictReading();
     });
 }

@@ -4,6 +4,8 @@
 #include "openmm/serialization/XmlSerializer.h"
 #include <memory>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -110,11 +112,47 @@ void testVersion1() {
     ASSERT_EQUAL(0, integrator->getNumTypeHeatCapacities());
 }
 
+/**
+ * Values are read whole and a node holds only what its version defines: an empty value, trailing garbage, a
+ * fraction where an integer is, a word for a flag, a version-3 file with adiabaticPositionChanges, and both initial
+ * lists at once are refused, naming what is wrong.
+ */
+void testStrictReading() {
+    GenDPDEIntegrator integrator(0.0125, 1644.8, 2999.1, 0.104);
+    integrator.setMode(GenDPDEIntegrator::Conservative);
+    integrator.setParticleTemperatures({120.0, 125.5});
+    integrator.setAdiabaticPositionChanges(true);
+    std::stringstream buffer;
+    XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);
+    const std::string xml = buffer.str();
+    auto refused = [&](const std::string& from, const std::string& to, const std::vector<std::string>& words) {
+        std::string text = xml;
+        const size_t position = text.find(from);
+        if (position == std::string::npos)
+            throw std::runtime_error("the XML holds no " + from + ":\n" + xml);
+        std::stringstream stream(text.replace(position, from.size(), to));
+        assertThrowsMentioning([&]() { delete XmlSerializer::deserialize<Integrator>(stream); }, words);
+    };
+    refused("stepSize=\".0125\"", "stepSize=\"\"", {"GenDPDEIntegrator XML", "stepSize = ''", "not a number"});
+    refused("friction=\"1644.8\"", "friction=\"1644.8kg\"", {"friction = '1644.8kg'"});
+    refused("mode=\"2\"", "mode=\"1.5\"", {"mode = '1.5'", "not an integer"});
+    refused("adiabaticPositionChanges=\"1\"", "adiabaticPositionChanges=\"yes\"",
+            {"adiabaticPositionChanges = 'yes'", "0 or 1"});
+    refused("version=\"4\"", "version=\"3\"", {"version 3", "property 'adiabaticPositionChanges'"});
+    refused("t=\"120\"", "t=\"120 K\"", {"Particle.t = '120 K'"});
+    refused("<InternalEnergies/>", "<InternalEnergies><Particle e=\"1\"/></InternalEnergies>",
+            {"both initial temperatures and initial internal energies"});
+    std::stringstream good(xml);
+    std::unique_ptr<Integrator> copy(XmlSerializer::deserialize<Integrator>(good));
+    ASSERT(dynamic_cast<GenDPDEIntegrator&>(*copy).getAdiabaticPositionChanges());
+}
+
 int main() {
     return runTestProgram([]() {
         testSerialization();
         testInternalEnergiesRoundTrip();
         testTypesRoundTrip();
         testVersion1();
+        testStrictReading();
     });
 }

@@ -1,0 +1,118 @@
+#ifndef GENDPDE_STRICT_XML_H_
+#define GENDPDE_STRICT_XML_H_
+
+/* Reading the plugin's XML strictly (docs/force.md, docs/integrator.md): OpenMM's SerializationNode reads a number
+ * leniently (an empty string as 0, "1.0garbage" as 1, "1.5" as the integer 1, "abc" as 0), and a node may hold what
+ * its version cannot. Here a value is the whole string or an error naming the object, the property and the value, and
+ * a node holds only the properties and children its version defines. */
+
+#include "openmm/OpenMMException.h"
+#include "openmm/serialization/SerializationNode.h"
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <locale>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace GenDPDEPlugin {
+namespace StrictXml {
+
+/** The text of a property, or an error naming it if the node has none. */
+inline std::string text(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name) {
+    if (!node.hasProperty(name))
+        throw OpenMM::OpenMMException(owner + " XML: the <" + node.getName() + "> element has no property '" + name
+                                      + "' (corrupt, or not written by this plugin)");
+    return node.getStringProperty(name);
+}
+
+[[noreturn]] inline void refuse(const OpenMM::SerializationNode& node, const std::string& owner,
+                                const std::string& name, const std::string& value, const std::string& allowed) {
+    throw OpenMM::OpenMMException(owner + " XML: " + node.getName() + "." + name + " = '" + value + "' is not "
+                                  + allowed);
+}
+
+/**
+ * A property holding a number: the whole text a decimal number in the C locale, or inf, infinity, nan (any case,
+ * signed; OpenMM writes non-finite values so): the setter it is given to then checks its range.
+ */
+inline double number(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name) {
+    const std::string value = text(node, owner, name);
+    std::string lower = value;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+    const bool negative = (!lower.empty() && lower[0] == '-');
+    const std::string word = (!lower.empty() && (lower[0] == '-' || lower[0] == '+')) ? lower.substr(1) : lower;
+    if (word == "inf" || word == "infinity")
+        return negative ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    if (word == "nan")
+        return std::numeric_limits<double>::quiet_NaN();
+    std::istringstream stream(value);
+    stream.imbue(std::locale::classic());
+    double result;
+    stream >> std::noskipws >> result;
+    if (value.empty() || !stream || stream.peek() != std::char_traits<char>::eof())
+        refuse(node, owner, name, value, "a number");
+    return result;
+}
+
+/** A property holding an integer: the whole text, within the range of int. */
+inline int integer(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name,
+                   const std::string& allowed = "an integer") {
+    const std::string value = text(node, owner, name);
+    std::istringstream stream(value);
+    stream.imbue(std::locale::classic());
+    long long result;
+    stream >> std::noskipws >> result;
+    if (value.empty() || !stream || stream.peek() != std::char_traits<char>::eof() || result < INT_MIN
+            || result > INT_MAX)
+        refuse(node, owner, name, value, allowed);
+    return (int) result;
+}
+
+/** A property holding a flag: 0 or 1 (as OpenMM writes them), or false or true. */
+inline bool boolean(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name) {
+    const std::string value = text(node, owner, name);
+    if (value == "1" || value == "true")
+        return true;
+    if (value == "0" || value == "false")
+        return false;
+    refuse(node, owner, name, value, "0 or 1");
+}
+
+/**
+ * Refuse a property or child element that the node's version does not define: a file that says more than its version
+ * can hold is corrupt or mislabelled, and what it says would otherwise be dropped silently. (A "type" property, which
+ * OpenMM's serializer adds to the root and to a System's forces, is always allowed.)
+ */
+inline void requireOnly(const OpenMM::SerializationNode& node, const std::string& owner, int version,
+                        const std::vector<std::string>& properties, const std::vector<std::string>& children) {
+    const std::string where = owner + " XML (version " + std::to_string(version) + "): the <" + node.getName()
+                              + "> element";
+    for (const auto& property : node.getProperties())
+        if (property.first != "type"
+                && std::find(properties.begin(), properties.end(), property.first) == properties.end())
+            throw OpenMM::OpenMMException(where + " has a property '" + property.first + "' that this version does "
+                                          "not define (corrupt, mislabelled, or written by a later version)");
+    for (const OpenMM::SerializationNode& child : node.getChildren())
+        if (std::find(children.begin(), children.end(), child.getName()) == children.end())
+            throw OpenMM::OpenMMException(where + " has a child <" + child.getName() + "> that this version does "
+                                          "not define (corrupt, mislabelled, or written by a later version)");
+}
+
+/** The child element of this name, or an error naming it if the node has none. */
+inline const OpenMM::SerializationNode& child(const OpenMM::SerializationNode& node, const std::string& owner,
+                                              const std::string& name) {
+    for (const OpenMM::SerializationNode& c : node.getChildren())
+        if (c.getName() == name)
+            return c;
+    throw OpenMM::OpenMMException(owner + " XML: the <" + node.getName() + "> element has no child <" + name
+                                  + "> (corrupt, or not written by this plugin)");
+}
+
+} // namespace StrictXml
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_STRICT_XML_H_*/

@@ -263,6 +263,36 @@ void testBlownUpStepIsRefused() {
     }
 }
 
+/**
+ * One message per event, the same words on every platform: a force that is not finite (another Force's, here a
+ * CustomExternalForce whose parameter is NaN; the GPU platforms see it through their fixed-point forces) and a
+ * position that is not finite (set by the user; OpenMM's own checks name neither particle nor step) stop the step
+ * before anything changes, naming the particle and the step.
+ */
+void testNonFiniteValuesAreNamedAlike() {
+    {
+        Run run(4, 42);
+        CustomExternalForce* bad = new CustomExternalForce("a*x");
+        bad->addGlobalParameter("a", std::nan(""));
+        bad->addParticle(7, {});
+        run.scene.system.addForce(bad);
+        run.start();
+        assertThrowsMentioning([&]() { run.integrator.step(1); }, {"GenDPDEIntegrator: the force on particle 7 is not "
+                                                                   "finite (nan, ", "at step 0; the step was not applied"});
+        ASSERT_EQUAL(0, (int) run.context->getStepCount());
+    }
+    {
+        Run run(4, 43);
+        Context& context = run.start();
+        std::vector<Vec3> positions = run.scene.positions;
+        positions[5] = Vec3(std::nan(""), 0, 0);
+        context.setPositions(positions);
+        assertThrowsMentioning([&]() { run.integrator.step(1); }, {"GenDPDEIntegrator: the position of particle 5 is "
+                                                                   "not finite (nan, 0, 0) at step 0; the step was not "
+                                                                   "applied"});
+    }
+}
+
 /** What the integrator cannot run is refused when the Context is created, naming the particle. */
 void testUnsupportedSystemsAreRefused() {
     Run sites(4, 37);
@@ -290,6 +320,26 @@ void testOwnCutoffCheckedWhenTheBoxChanges() {
     integrator.step(1);
     context.setPeriodicBoxVectors(Vec3(1.5*cutoff, 0, 0), Vec3(0, 1.5*cutoff, 0), Vec3(0, 0, 1.5*cutoff));
     assertThrowsMentioning([&]() { integrator.step(1); }, {"GenDPDEIntegrator", "cutoff distance", "half"});
+}
+
+/**
+ * The cutoff is read when the Context is created: a step after setCutoffDistance() changed it is refused (it was
+ * accepted and ignored), naming both values; reinitialize() applies it, and setting it back lets the steps go on.
+ */
+void testCutoffChangeAfterTheContext() {
+    Run run(5, 41);
+    run.start();
+    run.integrator.step(1);
+    run.integrator.setCutoffDistance(0.9*cutoff);
+    assertThrowsMentioning([&]() { run.integrator.step(1); }, {"cutoff distance was changed to", "after the Context",
+                                                                "reinitialize"});
+    ASSERT_EQUAL(1, (int) run.context->getStepCount());
+    run.integrator.setCutoffDistance(0.0);   // back to the Context's (the force's)
+    run.integrator.step(1);
+    run.integrator.setCutoffDistance(0.9*cutoff);
+    run.context->reinitialize(true);
+    run.integrator.step(1);
+    ASSERT_EQUAL(3, (int) run.context->getStepCount());
 }
 
 /** setInternalEnergiesToTemperature() is a pure function of (seed, particle): the same draw on every machine. */
@@ -445,6 +495,8 @@ void runIntegratorStateTests() {
     testStatesAreValidated();
     testBlownUpStepIsRefused();
     testUnsupportedSystemsAreRefused();
+    testNonFiniteValuesAreNamedAlike();
+    testCutoffChangeAfterTheContext();
     testOwnCutoffCheckedWhenTheBoxChanges();
     testInternalEnergyDrawIsReproducible();
     testSetInternalEnergiesLikeTemperatures();

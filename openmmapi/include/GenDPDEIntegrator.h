@@ -94,8 +94,8 @@ class IntegrateGenDPDEStepKernel;
  * its own C_V (docs/types.md lists the identities).
  *
  * Parameters can be changed at any time and take effect at the next step, except the cutoff and the particle types,
- * which are read when the Context is created (or reinitialized): after that, a step is refused while a particle's
- * type differs from the Context's, and an entry naming a type no particle of the Context has is refused when added
+ * which are read when the Context is created (or reinitialized): after that, a step is refused while the cutoff or a
+ * particle's type differs from the Context's, and an entry naming a type no particle of the Context has is refused when added
  * (docs/types.md, "Changing types"). Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
  * moved. Constraints and virtual sites are not supported (refused when the Context is created).
  */
@@ -135,7 +135,10 @@ public:
     void setHeatCapacity(double heatCapacity);
     /** Get the cutoff R of the pair interactions (in nm); 0 means that of the System's GenDPDEForce. */
     double getCutoffDistance() const;
-    /** Set the cutoff R (in nm), >= 0; 0 takes that of the System's GenDPDEForce. Read when a Context is created. */
+    /**
+     * Set the cutoff R (in nm), >= 0; 0 takes that of the System's GenDPDEForce. Read when a Context is created: after
+     * that a step is refused while it differs from the Context's (call Context.reinitialize() to apply it).
+     */
     void setCutoffDistance(double distance);
     /**
      * Set the type of a particle: any integer (particles never given one have type 0). Read when a Context is
@@ -354,6 +357,7 @@ private:
     void requireTemperatures() const;
     double friction, heatConduction, heatCapacity, cutoff, temperature;
     double pairRange = 0.0;   // the range of the pair terms in the bound Context (nm); 0 if unknown
+    double boundCutoff = 0.0;   // the cutoff setting when the Context was created (a step refuses another)
     int randomSeed;
     Mode mode;
     // The per-particle state lives in the kernel once a Context exists (eps_i; all zero until set). Before that,

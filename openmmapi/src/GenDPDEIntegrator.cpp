@@ -415,6 +415,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     kernel = contextRef.getPlatform().createKernel(IntegrateGenDPDEStepKernel::Name(), contextRef);
     kernel.getAs<IntegrateGenDPDEStepKernel>().initialize(contextRef, *this, range, seed, energies, types);
     pairRange = range;
+    boundCutoff = cutoff;
     contextParticleTypes = types;
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
@@ -449,6 +450,15 @@ void GenDPDEIntegrator::step(int steps) {
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
     requireTemperatures();
     requireBoundTypes();
+    if (cutoff != boundCutoff) {
+        std::ostringstream message;
+        message.precision(12);
+        message << "GenDPDEIntegrator: the cutoff distance was changed to " << cutoff << " nm after the Context was "
+                << "created (it runs with " << boundCutoff << (boundCutoff == 0.0 ? ", the GenDPDEForce's" : " nm")
+                << "); the cutoff is read when the Context is created: call Context.reinitialize(preserveState=True) "
+                << "to apply it, or set it back";
+        throw OpenMMException(message.str());
+    }
     const GenDPDEStepTerms terms = GenDPDEIntegratorUtilities::stepTerms(*this, pairRange);
     if (terms.pairSweep && pairRange == 0.0)
         throw OpenMMException("GenDPDEIntegrator: no cutoff distance for the pair terms: the System has no "
@@ -465,6 +475,7 @@ void GenDPDEIntegrator::step(int steps) {
     const bool keepsThermalState = hasThermalForce && mode != Isothermal;
     try {
         for (int i = 0; i < steps; i++) {
+            stepKernel.checkPositions(*context);
             if (keepsThermalState && !forcesAreCurrent()) {
                 evaluateStepForces(i > 0 || entropyState == EntropyState::Earlier);
                 rememberForces();

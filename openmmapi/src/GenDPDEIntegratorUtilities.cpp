@@ -171,6 +171,13 @@ std::map<int, int> GenDPDEIntegratorUtilities::particleTypes(const System& syste
     return own;
 }
 
+std::string GenDPDEIntegratorUtilities::nonFinitePositionMessage(int particle, const Vec3& position, long long step) {
+    std::ostringstream message;
+    message << "GenDPDEIntegrator: the position of particle " << particle << " is not finite (" << position[0] << ", "
+            << position[1] << ", " << position[2] << ") at step " << step << "; the step was not applied";
+    return message.str();
+}
+
 std::string GenDPDEIntegratorUtilities::nonFiniteForceMessage(int particle, const Vec3& force, long long step) {
     std::ostringstream message;
     message << "GenDPDEIntegrator: the force on particle " << particle << " is not finite (" << force[0] << ", "

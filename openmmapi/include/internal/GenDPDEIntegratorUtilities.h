@@ -90,6 +90,7 @@ public:
         return integrator.checkingStepTemperatures;
     }
     /** The errors a step reports (every platform uses the same words). */
+    static std::string nonFinitePositionMessage(int particle, const OpenMM::Vec3& position, long long step);
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);
     static std::string unstableStepMessage(int particle, double distance, double maxDisplacement, long long step);
     static std::string nonPositiveEnergyMessage(int particle, double energy, long long step);

@@ -171,6 +171,13 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
     std::vector<Vec3> forces, velocities;
     context.getForces(forces);
     context.getVelocities(velocities);
+    // The forces are fixed point (2^-32 kJ/mol/nm, range +-2^31): a component that was not finite converts to the end
+    // of the range, -2^31 kJ/mol/nm, plus whatever the other forces add (the host platforms see the NaN itself). A
+    // component within 2^24 of the end is reported as not finite, in their words: no force that large can be summed
+    // on the device without overflowing.
+    for (int c = 0; c < 3; c++)
+        if (std::fabs(forces[particle][c]) > 2147483648.0 - 16777216.0)
+            forces[particle][c] = std::nan("");
     throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(particle, velocities[particle],
             forces[particle], 1.0/context.getSystem().getParticleMass(particle), stepSize,
             runTerms.maxDisplacement, step));
@@ -335,6 +342,15 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     endRun();   // (a no-op when the run has ended already)
     if (found[Halted] == HaltForce && found[HaltStep] == 0)
         entropiesKnown = runStartEntropiesKnown;   // the run's first evaluation failed: its state was not kept
+    if (found[Halted] == HaltForce && found[ForceNonFinite] != NoValue) {
+        // The step's first error, in the host platforms' words (their integrator checks the positions before the
+        // step's evaluation): the first particle in index order whose position is not finite.
+        std::vector<Vec3> positions;
+        context.getPositions(positions);
+        for (int i = 0; i < (int) positions.size(); i++)
+            if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
+                throw OpenMMException(GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i], step));
+    }
     if (found[Halted] == HaltForce)
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)

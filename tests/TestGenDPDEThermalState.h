@@ -96,25 +96,30 @@ void testParameterUpdatesKeepTemperatures() {
 /**
  * The temperatures set are those of the positions where they are set, and an adiabatic move then keeps each
  * particle's entropy: after setParticleTemperatures() before the Context (the first positions set), after
- * setInternalEnergies(), and after loadCheckpoint(), a compression by setPositions() heats every particle as the
- * oracle's isentropic law says. (This is also what happens after a getter: the same, see testReadingChangesNothing.)
+ * setInternalEnergies(), and after loadCheckpoint(), a move by setPositions() (the positions scaled by 0.99 in the
+ * same box: a compression, and a gap at the box's faces) changes every particle's temperature as the oracle's
+ * isentropic law says. Nothing is read between setting the temperatures and the move (the temperatures
+ * before are those set), so that a getter cannot be what fixes the entropies (see testReadingChangesNothing).
  */
 void testAdiabaticMovesAfterSettingTemperatures() {
     for (const std::string how : {"set before the Context", "setInternalEnergies", "loadCheckpoint"}) {
         Run run(GenDPDEIntegrator::Conservative);
         run.integrator.setAdiabaticPositionChanges(true);
+        std::vector<double> before = run.integrator.getParticleTemperatures();   // (those set: no Context yet)
         Context& context = run.start();
         if (how != "set before the Context") {
             run.integrator.step(4);
+            const std::vector<double> energies = run.integrator.getInternalEnergies();
             std::stringstream checkpoint;
             context.createCheckpoint(checkpoint);
             run.integrator.step(3);
             if (how == "loadCheckpoint")
                 context.loadCheckpoint(checkpoint);
             else
-                run.integrator.setInternalEnergies(run.integrator.getInternalEnergies());
+                run.integrator.setInternalEnergies(energies);
+            for (size_t i = 0; i < energies.size(); i++)
+                before[i] = energies[i]/heatCapacity;
         }
-        const std::vector<double> before = run.integrator.getParticleTemperatures();
         const std::vector<Vec3> from = run.positions(), to = scaled(from, 0.99);
         context.setPositions(to);
         assertTemperatureRatios(before, run.integrator.getParticleTemperatures(), isentropicRatios(run, from, to),

@@ -152,8 +152,8 @@ void testCheckpointsAreValidated() {
             threw = true;
         }
         if (!threw)
-            throw std::runtime_error("a checkpoint with byte " + std::to_string(i) + " of " + std::to_string(bytes.size())
-                                     + " changed was accepted");
+            throw std::runtime_error("a checkpoint with byte " + std::to_string(i) + " of "
+                                     + std::to_string(bytes.size()) + " changed was accepted");
         untouched("a changed byte");
     }
     // Well formed, checksum and all, but with a bad internal energy.
@@ -277,8 +277,9 @@ void testNonFiniteValuesAreNamedAlike() {
         bad->addParticle(7, {});
         run.scene.system.addForce(bad);
         run.start();
-        assertThrowsMentioning([&]() { run.integrator.step(1); }, {"GenDPDEIntegrator: the force on particle 7 is not "
-                                                                   "finite (nan, ", "at step 0; the step was not applied"});
+        assertThrowsMentioning([&]() { run.integrator.step(1); },
+                               {"GenDPDEIntegrator: the force on particle 7 is not finite (nan, ",
+                                "at step 0; the step was not applied"});
         ASSERT_EQUAL(0, (int) run.context->getStepCount());
     }
     {

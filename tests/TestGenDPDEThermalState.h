@@ -33,7 +33,10 @@ inline std::vector<double> isentropicRatios(const Run& run, const std::vector<Ve
     return ratio;
 }
 
-/** Every theta_i(after)/theta_i(before) equals ratio_i (to 1e-9; float forces 1e-5), and some differ from 1 by > 1e-4. */
+/**
+ * Every theta_i(after)/theta_i(before) equals ratio_i (to 1e-9; float forces 1e-5), and some differ from 1 by more than
+ * 1e-4.
+ */
 inline void assertTemperatureRatios(const std::vector<double>& before, const std::vector<double>& after,
                                     const std::vector<double>& ratio, const std::string& what) {
     double largest = 0;
@@ -185,7 +188,8 @@ void testReadingChangesNothing() {
         readEverything();
         run.integrator.step(3);
     };
-    Run plain(GenDPDEIntegrator::Isoenergetic, stepSize, true), reading(GenDPDEIntegrator::Isoenergetic, stepSize, true);
+    Run plain(GenDPDEIntegrator::Isoenergetic, stepSize, true);
+    Run reading(GenDPDEIntegrator::Isoenergetic, stepSize, true);
     plain.start();
     reading.start();
     script(plain, false);

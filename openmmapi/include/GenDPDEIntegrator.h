@@ -95,9 +95,9 @@ class IntegrateGenDPDEStepKernel;
  *
  * Parameters can be changed at any time and take effect at the next step, except the cutoff and the particle types,
  * which are read when the Context is created (or reinitialized): after that, a step is refused while the cutoff or a
- * particle's type differs from the Context's, and an entry naming a type no particle of the Context has is refused when added
- * (docs/types.md, "Changing types"). Their allowed ranges are listed in docs/integrator.md. Particles with zero mass are not
- * moved. Constraints and virtual sites are not supported (refused when the Context is created).
+ * particle's type differs from the Context's, and an entry naming a type no particle of the Context has is refused
+ * when added (docs/types.md, "Changing types"). Their allowed ranges are listed in docs/integrator.md. Particles with
+ * zero mass are not moved. Constraints and virtual sites are not supported (refused when the Context is created).
  */
 class GenDPDEIntegrator : public OpenMM::Integrator {
 public:
@@ -238,8 +238,8 @@ public:
      * thermal state: one rule"). A move is Context::setPositions(), setState(), loadCheckpoint() (and the positions of
      * a refused checkpoint, which OpenMM restores before the integrator reads its part) and a barostat's accepted move.
      * false (the default): each particle keeps its temperature theta_i. true: each keeps its entropy, as the dynamics'
-     * own motion does; a particle the move compresses heats up by C_V theta' = C_V theta exp(-(sigma(n') - sigma(n))/C_V),
-     * e.g. for a quasi-static compression by small deformations of the box. The entropies are then fixed whenever the
+     * own motion does; a particle the move compresses heats up by
+     * C_V theta' = C_V theta exp(-(sigma(n') - sigma(n))/C_V), e.g. for a quasi-static compression by small deformations of the box. The entropies are then fixed whenever the
      * temperatures are set (setInternalEnergies() and the like, a checkpoint or State, a change of the force's
      * parameters: each at the positions of that moment, or the first positions set), and turning this on fixes them at
      * the current positions. No effect on laws that do not depend on temperature, or in the Isothermal mode (the
@@ -286,8 +286,10 @@ private:
     // is also kept (sigma_i of those positions), so that a move can keep it.
     /** What happened to the Context, for applyThermalRule(). */
     enum class ThermalEvent {
-        EnergiesSet,            // setInternalEnergies(), setParticleTemperatures(), ...ToTemperature(), checkpoint, State
-        PositionsSet,           // Context.setPositions(), setState(), loadCheckpoint(), a refused checkpoint's positions
+        EnergiesSet,            // setInternalEnergies(), setParticleTemperatures(), ...ToTemperature(), checkpoints,
+                                // States
+        PositionsSet,           // Context.setPositions(), setState(), loadCheckpoint(), a refused checkpoint's
+                                // positions
         PositionsMovedByForce,  // a Force's updateContextState() in step() (a barostat's move)
         LawChanged,             // updateParametersInContext() of the GenDPDEForce whose laws depend on temperature
         AdiabaticChanged,       // setAdiabaticPositionChanges()
@@ -296,7 +298,7 @@ private:
     };
     /** Which positions the kernel's eps_i and sigma_i belong to. */
     enum class EntropyState {
-        Unknown,   // eps_i = C_V theta_i at the current positions, sigma_i not kept: the particles' entropies are not fixed
+        Unknown,   // eps_i = C_V theta_i at the current positions, sigma_i not kept: the entropies are not fixed
         Current,   // eps_i and sigma_i of the current positions
         Earlier    // eps_i and sigma_i of earlier positions (inside step(), after its drift; or an evaluation failed)
     };

@@ -66,7 +66,8 @@ inline std::string outsideDomain(int particle, double density, double excludedVo
  * A step's motion changed a particle's temperature from thetaBefore to thetaAfter (K), more than a factor
  * GENDPDE_STEP_TEMPERATURE_FACTOR, at the density n (nm^-3) it reached (docs/theory.md section 11).
  */
-inline std::string temperatureJump(int particle, double thetaBefore, double thetaAfter, double density, long long step) {
+inline std::string temperatureJump(int particle, double thetaBefore, double thetaAfter, double density,
+                                   long long step) {
     std::ostringstream message;
     message.precision(6);
     message << "GenDPDEForce: the temperature of particle " << particle << " went from " << thetaBefore << " K to "

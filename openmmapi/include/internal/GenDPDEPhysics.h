@@ -315,8 +315,8 @@ inline int thermalParticleState(const VolumeEstimator& estimator, const LocalEqu
             VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient,
             law.law, p[0], p[1], p[2], p[3], p[4], p[5], law.integerPower, thermal.isothermal ? 1 : 0,
             thermal.temperature, thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0,
-            thermal.checkStep ? 1 : 0, thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
-            &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
+            thermal.checkStep ? 1 : 0, thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy,
+            &state.forceCoefficient, &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
 }
 
 inline double momentWeightOverDistance(double r, double inverseCutoff) {

@@ -195,8 +195,8 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
     const std::vector<Vec3>& positions = extractPositions(context);
     Vec3* box = extractBoxVectors(context);
     // (With a law that depends on temperature they also depend on the integrator's state: always computed.)
-    if (observablesValid && !dependsOnTemperature && (observedVirials || !particleVirials) && positions == observedPositions
-            && box[0] == observedBox[0] && box[1] == observedBox[1] && box[2] == observedBox[2])
+    if (observablesValid && !dependsOnTemperature && (observedVirials || !particleVirials)
+            && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1] && box[2] == observedBox[2])
         return observables;
     computeDensitiesAndEnergy(context);
     observables.virial = computePairForces(context, nullptr, particleVirials ? &observables.particleVirials : nullptr);

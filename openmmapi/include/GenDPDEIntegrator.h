@@ -320,17 +320,21 @@ private:
     bool forcesAreCurrent() const;
     /** The force array now holds the forces of the current state (after an evaluation of the integration groups). */
     void rememberForces();
-    /** The GenDPDEForce's Impl whose laws depend on temperature in the bound Context, or null. */
-    GenDPDEForceImpl* thermalForceImpl() const;
-    bool hasThermalForce = false;   // the bound Context has a GenDPDEForce whose law depends on temperature
+    /**
+     * After a step's failure: if a position is not finite, throw that, naming the particle and the step, in the same
+     * words on every platform (the first check to see it may be OpenMM's own, which names neither).
+     */
+    void requireFinitePositions() const;
+    // The bound Context's GenDPDEForce whose laws depend on temperature (its Impl), or null if it has none.
+    const GenDPDEForceImpl* thermalForce = nullptr;
     bool adiabaticPositionChanges = false;
     EntropyState entropyState = EntropyState::Unknown;
     bool positionsSet = false;           // the bound Context's positions were set (its initial ones are not positions)
     bool checkingStepTemperatures = false;   // inside evaluateStepForces(true)
-    long long lawUpdatesSeen = 0;        // thermalForceImpl()'s parameter updates the rule has applied
+    long long lawUpdatesSeen = 0;        // thermalForce's parameter updates the rule has applied
     // The forces the last step() left (with a thermal force), reused by the next step() if nothing changed since.
     bool forcesCurrent = false;
-    long long forcesEvaluation = 0;      // thermalForceImpl()'s evaluation count then
+    long long forcesEvaluation = 0;      // thermalForce's evaluation count then
     OpenMM::Vec3 forcesBox[3];
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */

@@ -175,12 +175,6 @@ public:
      */
     virtual void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) {
     }
-    /**
-     * Before a step's evaluation: throw, naming the particle and the step, if a position is not finite (host platforms:
-     * before OpenMM's own check, which names neither; the GPU platforms check on the device, within the run).
-     */
-    virtual void checkPositions(OpenMM::ContextImpl& context) {
-    }
     /** Whether the internal energies were ever set (all zero means never: docs/integrator.md). */
     virtual bool hasInternalEnergies() const {
         const std::vector<double>& energies = getInternalEnergies();

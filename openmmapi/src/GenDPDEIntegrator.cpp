@@ -3,6 +3,7 @@
 #include "GenDPDEKernels.h"
 #include "internal/BoxGeometry.h"
 #include "internal/CounterRandom.h"
+#include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
@@ -404,7 +405,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     const std::map<int, int> types = GenDPDEIntegratorUtilities::particleTypes(system, *this);
     const ParticleTypeIndex typeIndex(types, system.getNumParticles(), integratorName);
     typePairTable(*this, typeIndex);
-    const bool thermalForce = GenDPDEIntegratorUtilities::checkThermalForces(system, *this);
+    const int thermalForceIndex = GenDPDEIntegratorUtilities::checkThermalForces(system, *this);
     const std::vector<double> energies = initialInternalEnergies(system, types);
     int seed = randomSeed;
     if (seed == 0) {
@@ -419,7 +420,9 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     contextParticleTypes = types;
     typesChangedWhileBound = false;
     contextTypes = typeIndex.getTypes();
-    hasThermalForce = thermalForce;
+    // (the Forces' Impls are made and initialized before the integrator, in the order of the System's Forces)
+    thermalForce = thermalForceIndex >= 0
+            ? dynamic_cast<const GenDPDEForceImpl*>(contextRef.getForceImpls()[thermalForceIndex]) : nullptr;
     entropyState = EntropyState::Unknown;
     positionsSet = false;
     lawUpdatesSeen = 0;
@@ -472,34 +475,39 @@ void GenDPDEIntegrator::step(int steps) {
     // With a law that depends on temperature, every step starts from the thermal state of its positions, fixed before
     // a Force (a barostat) may move them, so that a move keeps exactly what applyThermalRule says; that evaluation
     // serves the step unless the Force moved the particles or evaluated them elsewhere.
-    const bool keepsThermalState = hasThermalForce && mode != Isothermal;
+    const bool keepsThermalState = thermalForce != nullptr && mode != Isothermal;
     try {
-        for (int i = 0; i < steps; i++) {
-            stepKernel.checkPositions(*context);
-            if (keepsThermalState && !forcesAreCurrent()) {
-                evaluateStepForces(i > 0 || entropyState == EntropyState::Earlier);
-                rememberForces();
+        try {
+            for (int i = 0; i < steps; i++) {
+                if (keepsThermalState && !forcesAreCurrent()) {
+                    evaluateStepForces(entropyState == EntropyState::Earlier);   // (the drift of the step before)
+                    rememberForces();
+                }
+                if (context->updateContextState())   // a Force moved the particles (a barostat) or its parameters
+                    applyThermalRule(ThermalEvent::PositionsMovedByForce);
+                if (!forcesAreCurrent())
+                    evaluateStepForces(entropyState == EntropyState::Earlier);
+                forcesCurrent = false;
+                stepKernel.execute(*context, *this, terms, pairSource);
+                if (entropyState == EntropyState::Current)
+                    entropyState = EntropyState::Earlier;   // the drift: the entropies belong to the last positions
             }
-            if (context->updateContextState())   // a Force moved the particles (a barostat) or changed its parameters
-                applyThermalRule(ThermalEvent::PositionsMovedByForce);
-            if (!forcesAreCurrent())
-                evaluateStepForces(entropyState == EntropyState::Earlier);
-            forcesCurrent = false;
-            stepKernel.execute(*context, *this, terms, pairSource);
-            if (entropyState == EntropyState::Current)
-                entropyState = EntropyState::Earlier;   // the drift: the entropies belong to the last positions
+        }
+        catch (...) {
+            stepKernel.finishSteps(*context, *this);   // a failure the device found earlier is the one to report
+            throw;
+        }
+        stepKernel.finishSteps(*context, *this);
+        if (steps > 0 && keepsThermalState) {
+            // The thermal state at the positions the steps reached (outside step(), eps_i is C_V theta_i at the
+            // current positions: applyThermalRule); its forces serve the next step.
+            evaluateStepForces(true);
+            rememberForces();
         }
     }
-    catch (...) {
-        stepKernel.finishSteps(*context, *this);   // a failure the device found earlier is the one to report
+    catch (const OpenMMException&) {
+        requireFinitePositions();
         throw;
-    }
-    stepKernel.finishSteps(*context, *this);
-    if (steps > 0 && keepsThermalState) {
-        // The thermal state at the positions the steps reached (outside step(), eps_i is C_V theta_i at the current
-        // positions: applyThermalRule); its forces serve the next step.
-        evaluateStepForces(true);
-        rememberForces();
     }
 }
 

@@ -14,20 +14,11 @@
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
+#include <cmath>
+#include <vector>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
-
-GenDPDEForceImpl* GenDPDEIntegrator::thermalForceImpl() const {
-    if (!hasThermalForce)
-        return nullptr;
-    for (ForceImpl* impl : context->getForceImpls()) {
-        GenDPDEForceImpl* forceImpl = dynamic_cast<GenDPDEForceImpl*>(impl);
-        if (forceImpl != nullptr && forceImpl->hasThermalLaws())
-            return forceImpl;   // (at most one: GenDPDEIntegratorUtilities::checkThermalForces)
-    }
-    return nullptr;
-}
 
 void GenDPDEIntegrator::stateChanged(State::DataType changed) {
     if (context == nullptr)
@@ -38,9 +29,8 @@ void GenDPDEIntegrator::stateChanged(State::DataType changed) {
     else if (changed == State::Energy) {
         // A Force's parameters changed (ContextImpl::systemChanged), or a checkpoint was loaded: the rule applies if
         // they were the laws of the particles' state.
-        const GenDPDEForceImpl* impl = thermalForceImpl();
-        if (impl != nullptr && impl->getNumParameterUpdates() != lawUpdatesSeen) {
-            lawUpdatesSeen = impl->getNumParameterUpdates();
+        if (thermalForce != nullptr && thermalForce->getNumParameterUpdates() != lawUpdatesSeen) {
+            lawUpdatesSeen = thermalForce->getNumParameterUpdates();
             applyThermalRule(ThermalEvent::LawChanged);
         }
     }
@@ -48,7 +38,7 @@ void GenDPDEIntegrator::stateChanged(State::DataType changed) {
 
 void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
     forcesCurrent = false;   // every event changes the forces or what they act on
-    if (context == nullptr || !hasThermalForce || event == ThermalEvent::ParametersChanged)
+    if (context == nullptr || thermalForce == nullptr || event == ThermalEvent::ParametersChanged)
         return;
     IntegrateGenDPDEStepKernel& k = boundKernel();
     auto forget = [&]() {   // eps_i stays: C_V theta_i at the current positions, the entropies not fixed
@@ -64,13 +54,6 @@ void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
     }
     const bool keepEntropies = adiabaticPositionChanges;
     switch (event) {
-    case ThermalEvent::EnergiesSet:
-        // The temperatures just set are those at the current positions (the kernel forgot sigma_i); with adiabatic
-        // moves, their entropies are fixed here.
-        entropyState = EntropyState::Unknown;
-        if (keepEntropies)
-            settleThermalState();
-        break;
     case ThermalEvent::PositionsSet:
         positionsSet = true;
         if (!keepEntropies)
@@ -89,9 +72,10 @@ void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
         else if (entropyState == EntropyState::Current)
             entropyState = EntropyState::Earlier;
         break;
+    case ThermalEvent::EnergiesSet:
     case ThermalEvent::LawChanged:
-        // A new law at the same positions: each particle keeps its temperature (eps_i is C_V theta_i here), and
-        // with adiabatic moves its entropy under the new law is fixed now.
+        // Temperatures just set, or a new law at the same positions: each particle has its temperature here (eps_i
+        // is C_V theta_i at the current positions); with adiabatic moves its entropy is fixed now.
         forget();
         if (keepEntropies)
             settleThermalState();
@@ -121,7 +105,7 @@ void GenDPDEIntegrator::settleThermalState() {
 }
 
 void GenDPDEIntegrator::evaluateStepForces(bool checkStep) {
-    checkingStepTemperatures = checkStep && hasThermalForce;
+    checkingStepTemperatures = checkStep && thermalForce != nullptr;
     try {
         context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
     }
@@ -130,7 +114,7 @@ void GenDPDEIntegrator::evaluateStepForces(bool checkStep) {
         throw;
     }
     checkingStepTemperatures = false;
-    if (!hasThermalForce)
+    if (thermalForce == nullptr)
         return;
     // eps_i at the densities of these positions (docs/theory.md section 11), or, in the Isothermal mode, forgotten
     GenDPDEIntegratorUtilities::keepThermalState(*context, *this, boundKernel());
@@ -140,8 +124,7 @@ void GenDPDEIntegrator::evaluateStepForces(bool checkStep) {
 bool GenDPDEIntegrator::forcesAreCurrent() const {
     if (!forcesCurrent || context->getLastForceGroups() != getIntegrationForceGroups())
         return false;
-    const GenDPDEForceImpl* impl = thermalForceImpl();
-    if (impl == nullptr || impl->getNumEvaluations() != forcesEvaluation)
+    if (thermalForce == nullptr || thermalForce->getNumEvaluations() != forcesEvaluation)
         return false;   // another evaluation (a barostat's trial) replaced the force's pairs and thermal state
     Vec3 box[3];
     context->getPeriodicBoxVectors(box[0], box[1], box[2]);   // (setting the box alone tells no integrator)
@@ -149,17 +132,25 @@ bool GenDPDEIntegrator::forcesAreCurrent() const {
 }
 
 void GenDPDEIntegrator::rememberForces() {
-    const GenDPDEForceImpl* impl = thermalForceImpl();
-    if (impl == nullptr || mode == Isothermal)
+    if (thermalForce == nullptr || mode == Isothermal)
         return;
     forcesCurrent = true;
-    forcesEvaluation = impl->getNumEvaluations();
+    forcesEvaluation = thermalForce->getNumEvaluations();
     context->getPeriodicBoxVectors(forcesBox[0], forcesBox[1], forcesBox[2]);
 }
 
 void GenDPDEIntegrator::setAdiabaticPositionChanges(bool adiabatic) {
     adiabaticPositionChanges = adiabatic;
     applyThermalRule(ThermalEvent::AdiabaticChanged);
+}
+
+void GenDPDEIntegrator::requireFinitePositions() const {
+    std::vector<Vec3> positions;
+    context->getPositions(positions);
+    for (size_t i = 0; i < positions.size(); i++)
+        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
+            throw OpenMMException(GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i],
+                                                                                      context->getStepCount()));
 }
 
 bool GenDPDEIntegrator::getAdiabaticPositionChanges() const {

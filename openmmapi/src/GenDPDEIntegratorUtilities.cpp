@@ -62,7 +62,7 @@ GenDPDEPairSource* GenDPDEIntegratorUtilities::findPairSource(ContextImpl& conte
     return nullptr;
 }
 
-bool GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const GenDPDEIntegrator& integrator) {
+int GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const GenDPDEIntegrator& integrator) {
     int found = -1;
     for (int i = 0; i < system.getNumForces(); i++) {
         const GenDPDEForce* force = dynamic_cast<const GenDPDEForce*>(&system.getForce(i));
@@ -79,7 +79,7 @@ bool GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const 
                                   + std::to_string(force->getForceGroup()) + " is not among the integration force "
                                   "groups; the integrator updates the temperatures from its evaluations");
     }
-    return found >= 0;
+    return found;
 }
 
 IntegrateGenDPDEStepKernel& GenDPDEIntegratorUtilities::thermalStateHolder(ContextImpl& context,

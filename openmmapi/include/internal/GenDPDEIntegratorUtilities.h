@@ -60,9 +60,10 @@ public:
     /**
      * Refuse, when a Context is created, what a temperature-dependent law (GenDPDEForce::dependsOnTemperature) cannot
      * run with: more than one such GenDPDEForce, or one outside the integration force groups (the integrator keeps
-     * the thermal state its evaluation right before each step finds). Returns whether the System has such a force.
+     * the thermal state its evaluation right before each step finds). Returns the index of such a force in the System,
+     * or -1 if it has none.
      */
-    static bool checkThermalForces(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
+    static int checkThermalForces(const OpenMM::System& system, const GenDPDEIntegrator& integrator);
     /**
      * For the kernel of a GenDPDEForce whose laws depend on temperature: the thermal state the Context's
      * GenDPDEIntegrator holds. Throws if the Context's integrator is not a GenDPDEIntegrator, or if the particles'

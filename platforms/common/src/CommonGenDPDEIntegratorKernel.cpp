@@ -342,15 +342,6 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     endRun();   // (a no-op when the run has ended already)
     if (found[Halted] == HaltForce && found[HaltStep] == 0)
         entropiesKnown = runStartEntropiesKnown;   // the run's first evaluation failed: its state was not kept
-    if (found[Halted] == HaltForce && found[ForceNonFinite] != NoValue) {
-        // The step's first error, in the host platforms' words (their integrator checks the positions before the
-        // step's evaluation): the first particle in index order whose position is not finite.
-        std::vector<Vec3> positions;
-        context.getPositions(positions);
-        for (int i = 0; i < (int) positions.size(); i++)
-            if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
-                throw OpenMMException(GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i], step));
-    }
     if (found[Halted] == HaltForce)
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)

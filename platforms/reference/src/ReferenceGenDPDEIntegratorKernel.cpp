@@ -56,14 +56,6 @@ PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context,
     return neighborList->update(extractPositions(context), box, numThreads);
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::checkPositions(ContextImpl& context) {
-    const std::vector<Vec3>& positions = extractPositions(context);
-    for (size_t i = 0; i < positions.size(); i++)
-        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
-            throw OpenMMException(GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i],
-                                                                                      context.getStepCount()));
-}
-
 void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
                                                const std::vector<Vec3>& forces, double timeStep) {
     for (size_t i = 0; i < velocities.size(); i++)

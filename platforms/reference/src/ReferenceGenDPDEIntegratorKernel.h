@@ -28,7 +28,6 @@ public:
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
                  GenDPDEPairSource* pairSource) override;
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
-    void checkPositions(OpenMM::ContextImpl& context) override;
     const std::vector<double>& getInternalEnergies() const override {
         return internalEnergies;
     }

@@ -44,6 +44,11 @@ struct Model {
      * (temperature-dependent laws, docs/theory.md section 11; the test writes them out).
      */
     std::function<void(int i, double n, double& pressure, double& energy)> particleLaw;
+    /**
+     * The background pressure p_b: every particle's pressure + p_b and energy - p_b V_i, and the energy + p_b V_box
+     * (periodic), whose virial is -3 p_b V_box, shared equally by the particles' tensors.
+     */
+    double backgroundPressure = 0.0;
     bool periodic;
     OpenMM::Vec3 box[3];
 };
@@ -171,6 +176,8 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
                       + t.bulkModulus/((t.gammaT - 1.0)*t.n0)*std::pow(density/t.n0, t.gammaT - 1.0);
         if (model.particleLaw)
             model.particleLaw(i, density, pressure, energy);
+        pressure += model.backgroundPressure;
+        energy -= model.backgroundPressure*V;
         result.energy += energy;
         result.volume[i] = V;
         result.pressure[i] = pressure;
@@ -201,6 +208,16 @@ inline Result evaluate(const Model& model, const std::vector<OpenMM::Vec3>& posi
                         result.particleVirial[j].element[a][b] += 0.5*f[a]*d[b];
                     }
             }
+    if (model.periodic && model.backgroundPressure != 0.0) {
+        const double boxVolume = model.box[0][0]*model.box[1][1]*model.box[2][2];
+        result.energy += model.backgroundPressure*boxVolume;
+        result.virial -= 3.0*model.backgroundPressure*boxVolume;
+        for (int a = 0; a < 3; a++) {
+            result.virialTensor.element[a][a] -= model.backgroundPressure*boxVolume;
+            for (int i = 0; i < n; i++)
+                result.particleVirial[i].element[a][a] -= model.backgroundPressure*boxVolume/n;
+        }
+    }
     return result;
 }
 

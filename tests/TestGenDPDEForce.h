@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -390,6 +391,7 @@ void testVCSurfaceCorrection() {
 #include "TestGenDPDEForceInput.h"
 #include "TestGenDPDEForceTypes.h"
 #include "TestGenDPDEForceVirial.h"
+#include "TestGenDPDEBackgroundPressure.h"
 
 namespace ForceTests {
 
@@ -407,6 +409,8 @@ void runForceTests() {
     testSymmetries();
     testVirial();
     testVirialTensor();
+    testBackgroundPressure();
+    testBackgroundPressureInput();
     testCoincidentParticles();
     testIsolatedParticle();
     testVCSurfaceCorrection();

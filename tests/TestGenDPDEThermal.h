@@ -166,8 +166,8 @@ struct OracleLaw {
 };
 
 /**
- * The platform's energy, forces and pressures against the oracle (to 1e-9 in double precision; with float forces to
- * 2e-6 for U and 1e-5 for the rest, float rounding), and its forces against central differences of the
+ * The platform's energy, forces and pressures against the oracle, with and without a background pressure (to 1e-9
+ * in double precision; with float forces to 2e-6 for U and 1e-5 for the rest, float rounding), and its forces against central differences of the
  * oracle's U, in the Isothermal mode (theta = T, U = sum e - T sigma) and in the Conservative mode one step after the
  * state was read, so that the entropies carry theta_i away from eps_i/C (sigma(n) - sigma_i != 0 in the step's
  * evaluations). Outside step() the platform has kept the thermal energies of the current positions (docs/integrator.md,
@@ -175,9 +175,12 @@ struct OracleLaw {
  * sum_i (C theta_i - eps_i) the compression did, which its internal energies now hold.
  */
 void testAgainstOracle() {
-    for (bool isothermal : {true, false}) {
-        const std::string mode = isothermal ? "Isothermal" : "Conservative";
+    for (bool isothermal : {true, false})
+    for (double background : {0.0, 60.0}) {   // (the background pressure adds to both laws: the oracle adds it too)
+        const std::string mode = std::string(isothermal ? "Isothermal" : "Conservative")
+                                 + (background != 0 ? ", background pressure" : "");
         Run run(isothermal ? GenDPDEIntegrator::Isothermal : GenDPDEIntegrator::Conservative);
+        run.scene.force->setBackgroundPressure(background);
         Context& context = run.start();
         run.integrator.step(2);
         OracleLaw law{run.laws, isothermal, {}, {}};

@@ -133,6 +133,7 @@ inline BruteForce::Model bruteForceModel(const Scene& scene) {
             }
             model.particleTait.push_back(tait);
         }
+    model.backgroundPressure = scene.force->getBackgroundPressure();
     model.periodic = scene.force->usesPeriodicBoundaryConditions();
     for (int k = 0; k < 3; k++)
         model.box[k] = scene.box[k];

@@ -153,6 +153,20 @@ public:
     /** Get the Tait exponent gamma_T (dimensionless). */
     double getTaitExponent() const;
     /**
+     * Set the background pressure p_b (in kJ/mol/nm^3), finite and >= 0; default 0 (docs/theory.md section 12). Every
+     * particle's pressure becomes pi_i + p_b (its free energy f_i - p_b V_i, whatever its law) and the energy gains
+     * p_b V_box, so that U = sum_i f_i + p_b (V_box - sum_i V_i): the system's pressure is unchanged where the volumes
+     * add up to the box (sum_i V_i = V_box, a partition of unity), and a structure whose volumes add up to less is
+     * penalised. It keeps the particle pressures positive in a liquid whose own pressure is low against n k_B T
+     * (water at 0.1 MPa with 4 molecules per particle), where a negative pi_i lets the structure absorb a
+     * compression. getParticlePressures() includes p_b; getVirial() and getParticleVirials() include the box term
+     * (-3 p_b V_box, shared equally by the particles). Needs periodic boundaries (CutoffPeriodic) when p_b > 0.
+     * Takes effect when a Context is created or at updateParametersInContext().
+     */
+    void setBackgroundPressure(double pressure);
+    /** Get the background pressure p_b (in kJ/mol/nm^3). */
+    double getBackgroundPressure() const;
+    /**
      * Set the type of a particle: any integer (particles never given one have type 0). Read when a Context is
      * created; the particle index is checked against the System then.
      *
@@ -210,9 +224,9 @@ public:
     /** Returns true if the force uses periodic boundaries (nonbonded method CutoffPeriodic). */
     bool usesPeriodicBoundaryConditions() const override;
     /**
-     * Copy the estimator, the cutoff scaling and the Tait parameters (the force's and each type's) into a Context
-     * that already exists, without reinitialising it. The cutoff distance, the nonbonded method and the particle
-     * types cannot be changed this way.
+     * Copy the estimator, the cutoff scaling, the background pressure, the Tait parameters (the force's and each
+     * type's) and the equations of state into a Context that already exists, without reinitialising it. The cutoff
+     * distance, the nonbonded method and the particle types cannot be changed this way.
      */
     void updateParametersInContext(OpenMM::Context& context);
     /** The primitive density n0_i of every particle (in nm^-3) at the Context's current positions. */
@@ -221,7 +235,10 @@ public:
     std::vector<double> getParticleDensities(OpenMM::Context& context) const;
     /** The volume V_i of every particle (in nm^3) at the Context's current positions. */
     std::vector<double> getParticleVolumes(OpenMM::Context& context) const;
-    /** The Tait pressure pi_i of every particle (in kJ/mol/nm^3) at the Context's current positions. */
+    /**
+     * The pressure pi_i of every particle (in kJ/mol/nm^3) at the Context's current positions: its law's, plus the
+     * background pressure.
+     */
     std::vector<double> getParticlePressures(OpenMM::Context& context) const;
     /**
      * The conservative virial W = sum_{i<j} r_ij . F_ij (in kJ/mol) at the Context's current positions, so that
@@ -242,7 +259,7 @@ protected:
 private:
     GenDPDEForceImpl& getImpl(OpenMM::Context& context) const;
     const GenDPDEObservables& observablesInContext(OpenMM::Context& context, bool particleVirials = false) const;
-    double cutoff, cutoffScaling;
+    double cutoff, cutoffScaling, backgroundPressure;
     double referenceDensity, referencePressure, bulkModulus, exponent;
     NonbondedMethod nonbondedMethod;
     DensityEstimator estimator;

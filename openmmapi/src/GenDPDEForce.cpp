@@ -23,7 +23,7 @@ const double argonEnergy = LiquidArgon::energy*6.02214076e23/1000.0;            
 const double argonPressureUnit = argonEnergy/(argonLength*argonLength*argonLength);   // u/L^3 (kJ/mol/nm^3)
 }
 
-GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0),
+GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0), backgroundPressure(0.0),
         referenceDensity(LiquidArgon::density/(argonLength*argonLength*argonLength)),
         // pi0* = P0* - n0* T0*
         referencePressure((LiquidArgon::pressure - LiquidArgon::density*LiquidArgon::temperature)*argonPressureUnit),
@@ -70,6 +70,15 @@ double GenDPDEForce::getCutoffScaling() const {
 void GenDPDEForce::setCutoffScaling(double scaling) {
     requireInRange("GenDPDEForce", "cutoff scaling f_cut", scaling, Ranges::cutoffScaling);
     cutoffScaling = scaling;
+}
+
+double GenDPDEForce::getBackgroundPressure() const {
+    return backgroundPressure;
+}
+
+void GenDPDEForce::setBackgroundPressure(double pressure) {
+    requireInRange("GenDPDEForce", "background pressure p_b", pressure, Ranges::backgroundPressure);
+    backgroundPressure = pressure;
 }
 
 void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus, double exponent) {
@@ -278,9 +287,20 @@ std::vector<double> GenDPDEForce::getParticlePressures(Context& context) const {
 }
 
 double GenDPDEForce::getVirial(Context& context) const {
-    return observablesInContext(context).virial;
+    return observablesInContext(context).virial + getImpl(context).backgroundVirial(const_cast<GenDPDEForce*>(this)->getContextImpl(context));
 }
 
 std::vector<double> GenDPDEForce::getParticleVirials(Context& context) const {
-    return observablesInContext(context, true).particleVirials;
+    std::vector<double> virials = observablesInContext(context, true).particleVirials;
+    const int numParticles = virials.size()/9;
+    if (numParticles > 0) {
+        // The box term -p_b V_box on the diagonal of the system's tensor, shared equally.
+        ContextImpl& impl = const_cast<GenDPDEForce*>(this)->getContextImpl(context);
+        const double share = getImpl(context).backgroundVirial(impl)/(3.0*numParticles);
+        if (share != 0)
+            for (int i = 0; i < numParticles; i++)
+                for (int a = 0; a < 3; a++)
+                    virials[9*i + 4*a] += share;
+    }
+    return virials;
 }

@@ -13,6 +13,13 @@ GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
 }
 
 namespace {
+/** The volume of the Context's periodic box (nm^3). */
+double boxVolume(ContextImpl& context) {
+    Vec3 a, b, c;
+    context.getPeriodicBoxVectors(a, b, c);
+    return a[0]*b[1]*c[2];
+}
+
 /** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (VanDerWaals)". */
 std::string describeTemperatureDependence(const GenDPDEForce& force) {
     GenDPDEForce::EquationOfState law;
@@ -41,7 +48,9 @@ void GenDPDEForceImpl::initialize(ContextImpl& context) {
         throw OpenMMException("GenDPDEForce: " + describeTemperatureDependence(owner) + " depends on temperature and "
                               "needs a GenDPDEIntegrator, which holds the particles' temperatures; the Context's "
                               "integrator is another");
+    checkBackgroundPressure();
     dependsOnTemperature = owner.dependsOnTemperature();
+    backgroundPressure = owner.getBackgroundPressure();
     kernel = context.getPlatform().createKernel(CalcGenDPDEForceKernel::Name(), context);
     kernel.getAs<CalcGenDPDEForceKernel>().initialize(system, owner);
 }
@@ -50,7 +59,24 @@ double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeF
     if ((groups & (1<<owner.getForceGroup())) == 0)
         return 0.0;
     numEvaluations++;
-    return kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
+    double energy = kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
+    if (includeEnergy && backgroundPressure != 0)
+        energy += backgroundPressure*boxVolume(context);
+    return energy;
+}
+
+double GenDPDEForceImpl::backgroundVirial(ContextImpl& context) const {
+    return backgroundPressure == 0 ? 0.0 : -3*backgroundPressure*boxVolume(context);
+}
+
+void GenDPDEForceImpl::checkBackgroundPressure() const {
+    if (owner.getBackgroundPressure() != 0 && !owner.usesPeriodicBoundaryConditions()) {
+        std::ostringstream message;
+        message << "GenDPDEForce: background pressure p_b = " << owner.getBackgroundPressure() << " kJ/mol/nm^3 "
+                << "needs periodic boundaries (its energy is p_b V_box); the nonbonded method is CutoffNonPeriodic: "
+                << "set p_b = 0 or use CutoffPeriodic";
+        throw OpenMMException(message.str());
+    }
 }
 
 std::vector<std::string> GenDPDEForceImpl::getKernelNames() {
@@ -62,7 +88,9 @@ void GenDPDEForceImpl::updateParametersInContext(ContextImpl& context) {
         throw OpenMMException("GenDPDEForce: updateParametersInContext() cannot change whether an equation of state "
                               "depends on temperature; call Context.reinitialize() (or create a new Context) after "
                               "changing it");
+    checkBackgroundPressure();
     kernel.getAs<CalcGenDPDEForceKernel>().copyParametersToContext(context, owner);
+    backgroundPressure = owner.getBackgroundPressure();
     numParameterUpdates++;
     context.systemChanged();   // (a GenDPDEIntegrator applies its rule for the particles' thermal state)
 }

@@ -96,12 +96,16 @@ std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType
     for (int t = 0; t < types.getNumTypes(); t++) {
         Physics::LocalEquationOfState& eos = table[t];
         eos.law = (int) law[t];
-        if (law[t] == GenDPDEForce::VanDerWaals)
+        // The background pressure p_b adds to every law's pressure (and -p_b/n to its free energy): to the Tait
+        // laws' pi0, and as the van der Waals law's fourth parameter (gendpdeLocalEquationOfState).
+        if (law[t] == GenDPDEForce::VanDerWaals) {
             std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter);   // a, b, k
+            eos.parameter[3] = force.getBackgroundPressure();
+        }
         else {
-            // n0, pi0, B_T, gamma_T, then the thermal law's beta and theta0.
+            // n0, pi0 + p_b, B_T, gamma_T, then the thermal law's beta and theta0.
             eos.parameter[0] = tait[t].referenceDensity;
-            eos.parameter[1] = tait[t].referencePressure;
+            eos.parameter[1] = tait[t].referencePressure + force.getBackgroundPressure();
             eos.parameter[2] = tait[t].bulkModulus;
             eos.parameter[3] = tait[t].exponent;
             std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter + 4);

@@ -80,6 +80,8 @@ return_units(GenDPDEForce, "getTypeParameters", [DIMENSIONLESS] + _units_of(_TAI
 return_units(GenDPDEForce, "getReferenceDensity", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getReferencePressure", PRESSURE)
 return_units(GenDPDEForce, "getBulkModulus", PRESSURE)
+accept_units(GenDPDEForce, "setBackgroundPressure", [("pressure", PRESSURE)])
+return_units(GenDPDEForce, "getBackgroundPressure", PRESSURE)
 return_units(GenDPDEForce, "getVirial", _unit.kilojoule_per_mole)
 return_units(GenDPDEForce, "getPrimitiveDensities", NUMBER_DENSITY)
 return_units(GenDPDEForce, "getParticleDensities", NUMBER_DENSITY)

@@ -14,7 +14,7 @@ using namespace OpenMM;
 namespace {
 // Version 2: particle types and per-type Tait parameters. Version 3: the local equations of state (the default law
 // and per-type entries, docs/theory.md section 11). Versions 1 and 2 are still read (every type Tait).
-const int currentVersion = 3;
+const int currentVersion = 4;
 
 void serializeLaw(SerializationNode& node, GenDPDEForce::EquationOfState law, const std::vector<double>& parameters) {
     node.setIntProperty("law", (int) law);
@@ -58,6 +58,7 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
     node.setDoubleProperty("pi0", pi0);
     node.setDoubleProperty("bulkModulus", bulkModulus);
     node.setDoubleProperty("gammaT", exponent);
+    node.setDoubleProperty("backgroundPressure", force.getBackgroundPressure());
     serializeParticleTypes(node, force.getParticleTypes());
     SerializationNode& typeParameters = node.createChildNode("TypeParameters");
     for (int index = 0; index < force.getNumTypeParameters(); index++) {
@@ -97,8 +98,11 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
         children.insert(children.end(), {"ParticleTypes", "TypeParameters"});
     if (version >= 3)
         children.insert(children.end(), {"EquationOfState", "TypeEquationsOfState"});
-    requireOnly(node, owner, version, {"version", "name", "forceGroup", "cutoff", "method", "estimator",
-                                       "cutoffScaling", "n0", "pi0", "bulkModulus", "gammaT"}, children);
+    std::vector<std::string> properties = {"version", "name", "forceGroup", "cutoff", "method", "estimator",
+                                           "cutoffScaling", "n0", "pi0", "bulkModulus", "gammaT"};
+    if (version >= 4)
+        properties.push_back("backgroundPressure");
+    requireOnly(node, owner, version, properties, children);
     std::unique_ptr<GenDPDEForce> force(new GenDPDEForce(number(node, owner, "cutoff")));
     if (node.hasProperty("name"))
         force->setName(node.getStringProperty("name"));
@@ -108,6 +112,8 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
     force->setCutoffScaling(number(node, owner, "cutoffScaling"));
     force->setTaitParameters(number(node, owner, "n0"), number(node, owner, "pi0"), number(node, owner, "bulkModulus"),
                              number(node, owner, "gammaT"));
+    if (version >= 4)
+        force->setBackgroundPressure(number(node, owner, "backgroundPressure"));
     if (version >= 2) {
         deserializeParticleTypes(node, *force, owner, version);
         const SerializationNode& typeParameters = child(node, owner, "TypeParameters");

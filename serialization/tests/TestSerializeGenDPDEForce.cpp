@@ -18,6 +18,7 @@ void testSerialization() {
     force.setDensityEstimator(GenDPDEForce::VA);
     force.setCutoffScaling(1.41);
     force.setTaitParameters(4.5, 47.25, 67.5, 6.5);
+    force.setBackgroundPressure(123.25);
     force.setForceGroup(5);
     force.setName("argon");
     std::stringstream buffer;
@@ -31,6 +32,7 @@ void testSerialization() {
     ASSERT_EQUAL(force.getReferencePressure(), copy->getReferencePressure());
     ASSERT_EQUAL(force.getBulkModulus(), copy->getBulkModulus());
     ASSERT_EQUAL(force.getTaitExponent(), copy->getTaitExponent());
+    ASSERT_EQUAL(force.getBackgroundPressure(), copy->getBackgroundPressure());
     ASSERT_EQUAL(force.getForceGroup(), copy->getForceGroup());
     ASSERT_EQUAL(force.getName(), copy->getName());
     delete copy;
@@ -106,7 +108,7 @@ void testFutureVersion() {
     std::stringstream buffer;
     XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
     std::string xml = buffer.str();
-    size_t position = xml.find("version=\"3\"");
+    size_t position = xml.find("version=\"4\"");
     ASSERT(position != std::string::npos);
     xml.replace(position, 11, "version=\"99\"");
     std::stringstream future(xml);
@@ -174,8 +176,10 @@ void testStrictReading() {
     refused("law=\"1\"", "law=\"7\"", {"equation of state = 7"});
     refused("value=\".5\"", "value=\".5x\"", {"Parameter.value = '.5x'"});
     refused("estimator=\"1\"", "estimator=\"1e0\"", {"estimator = '1e0'"});
-    refused("version=\"3\"", "version=\"2\"", {"version 2", "<EquationOfState>", "does not define"});
-    refused("version=\"3\"", "version=\"3\" extra=\"1\"", {"property 'extra'", "does not define"});
+    refused("version=\"4\"", "version=\"2\"", {"version 2", "does not define"});
+    refused("version=\"4\"", "version=\"3\"", {"version 3", "property 'backgroundPressure'", "does not define"});
+    refused("version=\"4\"", "version=\"4\" extra=\"1\"", {"property 'extra'", "does not define"});
+    refused("backgroundPressure=\"0\"", "backgroundPressure=\"-1\"", {"background pressure p_b", "-1"});
     refused(" n0=", " m0=", {"property 'm0'"});
     // A number in the C locale's form, and the non-finite words OpenMM writes, are read (the setter then judges).
     std::stringstream exponent(edited(force, "cutoff=\"1.25\"", "cutoff=\"125e-2\""));

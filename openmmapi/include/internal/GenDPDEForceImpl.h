@@ -48,6 +48,11 @@ public:
     long long getNumEvaluations() const {
         return numEvaluations;
     }
+    /**
+     * The box term of the background pressure p_b in the virial, -3 p_b V_box (kJ/mol), with p_b as the Context has
+     * it (copied at creation and by updateParametersInContext); 0 where p_b = 0.
+     */
+    double backgroundVirial(OpenMM::ContextImpl& context) const;
     /** How many times updateParametersInContext() has changed the force's parameters in this Context. */
     long long getNumParameterUpdates() const {
         return numParameterUpdates;
@@ -56,6 +61,9 @@ private:
     const GenDPDEForce& owner;
     OpenMM::Kernel kernel;
     bool dependsOnTemperature = false;   // as the Context was created (updateParametersInContext cannot change it)
+    double backgroundPressure = 0;       // p_b as the Context has it (kJ/mol/nm^3)
+    /** p_b > 0 needs periodic boundaries (its energy term is p_b V_box). */
+    void checkBackgroundPressure() const;
     long long numEvaluations = 0, numParameterUpdates = 0;
 };
 

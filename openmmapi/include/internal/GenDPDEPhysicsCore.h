@@ -355,8 +355,10 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
  *   GENDPDE_EOS_TAIT_THERMAL:  p0..p5 = n0, pi0, B_T, gamma_T, beta, theta0; e = f_Tait(n) + beta theta0/n,
  *                              sigma = beta/n, so pi = pi_Tait(n) + beta (theta - theta0) and alpha = kappa_T0 beta at
  *                              (n0, theta0);
- *   GENDPDE_EOS_VAN_DER_WAALS: p0..p2 = a (energy length^3), b (length^3), k (energy/temperature); e = -a n,
- *                              sigma = k ln(1/(b n) - 1), defined for 0 < n < 1/b.
+ *   GENDPDE_EOS_VAN_DER_WAALS: p0..p3 = a (energy length^3), b (length^3), k (energy/temperature), p_b (the
+ *                              background pressure, energy/length^3); e = -a n - p_b/n, sigma = k ln(1/(b n) - 1),
+ *                              defined for 0 < n < 1/b.
+ * (The Tait laws take the background pressure p_b in pi0: pi0 + p_b adds p_b to pi and -p_b/n to e.)
  * integerPower as for gendpdeTait (Tait laws only). Returns GENDPDE_PARTICLE_VALID, GENDPDE_PARTICLE_OUTSIDE_DOMAIN
  * (van der Waals: n <= 0 or b n >= 1) or GENDPDE_PARTICLE_OVERFLOW (a result not finite).
  */
@@ -369,9 +371,9 @@ GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GEND
             *energy = *entropy = *pressureAtZero = *thermalPressure = 0;
             return GENDPDE_PARTICLE_OUTSIDE_DOMAIN;
         }
-        *energy = -p0*density;
+        *energy = -p0*density - p3/density;
         *entropy = p2*log((1 - excluded)/excluded);
-        *pressureAtZero = -p0*density*density;
+        *pressureAtZero = -p0*density*density + p3;
         *thermalPressure = p2*density/(1 - excluded);
     }
     else {

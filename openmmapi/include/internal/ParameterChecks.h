@@ -39,6 +39,7 @@ constexpr Range cutoffScaling{1.0, 100.0, ""};
 constexpr Range referenceDensity{1e-12, 1e12, "nm^-3"};
 constexpr Range referencePressure{-1e12, 1e12, "kJ/mol/nm^3"};
 constexpr Range bulkModulus{1e-12, 1e12, "kJ/mol/nm^3"};
+constexpr Range backgroundPressure{0.0, 1e12, "kJ/mol/nm^3"};
 constexpr Range taitExponent{1.0, 100.0, ""};          // gamma_T > 1 (the minimum is excluded)
 constexpr Range stepSize{0.0, 1e3, "ps"};            // dt > 0 (the minimum is excluded)
 constexpr Range friction{0.0, 1e12, "amu/ps"};

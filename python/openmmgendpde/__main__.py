@@ -3,8 +3,8 @@
 import argparse
 import warnings
 
-from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, expansion, rdf, slab, speed_vs_error,
-               table3, timing, tune_fcut)
+from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, compression, expansion, rdf, slab,
+               speed_vs_error, table3, timing, tune_fcut)
 from .cli import parse_arguments, run_command
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
@@ -16,6 +16,8 @@ SUBCOMMANDS = (
     ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties measured back"),
     ("thermal-expansion", expansion, "a fluid with thermal expansion: (dP/dT)_V and alpha measured back beside the "
                                      "fluid's"),
+    ("compression", compression, "how a model liquid's particle densities, structure and pressure follow a "
+                                 "compression: the response, n dP/dn and n k_B T/S(0)"),
     ("slab", slab, "a liquid slab in vacuum with VA, VB and VC, and the estimators against the exact "
                    "partition-of-unity volume"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),

@@ -171,6 +171,7 @@ class GenDPDEParameters:
     heat_capacity: float          # kJ/mol/K, C_V per particle
     thermal_pressure: float = None              # kJ/mol/nm^3/K, beta of TaitThermalExpansion (None: the Tait law)
     thermal_reference_temperature: float = None  # K, theta0 of TaitThermalExpansion
+    background_pressure: float = None   # kJ/mol/nm^3, p_b of GenDPDEForce (None: none); background_pressure_for()
 
     @property
     def units(self):
@@ -194,6 +195,7 @@ class GenDPDEParameters:
             "gamma*": u.from_openmm(self.friction, "friction"),
             "kappa*": u.from_openmm(self.heat_conduction, "heat_conduction"),
             "C_V*": self.heat_capacity / kb,
+            "p_b*": u.from_openmm(self.background_pressure or 0.0, "pressure"),
         }
 
     def targets(self):
@@ -242,6 +244,8 @@ class GenDPDEParameters:
             [openmm.Vec3(*row) for row in box], num_particles, self.mass, self.cutoff, estimator_value(estimator),
             self.cutoff_scaling, (self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent), step,
             self.friction, self.heat_conduction, self.heat_capacity, self.temperature, seed, mode)
+        if self.background_pressure is not None:
+            force.setBackgroundPressure(self.background_pressure)
         if self.thermal_pressure is not None:
             force.setEquationOfState(GenDPDEForce.TaitThermalExpansion,
                                      [self.thermal_pressure, self.thermal_reference_temperature])
@@ -354,7 +358,8 @@ def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_sca
         cutoff_scaling=cutoff_scaling_guess(neighbors) if cutoff_scaling is None else cutoff_scaling,
         friction=friction, heat_conduction=heat_conduction,
         heat_capacity=molecules_per_particle * f["heat_capacity"], thermal_pressure=thermal_pressure,
-        thermal_reference_temperature=thermal_reference_temperature)
+        thermal_reference_temperature=thermal_reference_temperature,
+        background_pressure=background_pressure_for(reference_pressure, bulk_modulus))
     # Properties far outside what a fluid has (a temperature of 1e300 K) can take a parameter out of the floats: say
     # so here, naming it, rather than in a Context or as inf in a model file.
     for field in dataclasses.fields(GenDPDEParameters):
@@ -366,6 +371,18 @@ def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_sca
                              f"(temperature = {temperature:g} K, mass_density = {f['mass_density']:g} amu/nm^3, "
                              f"{molecules_per_particle:g} molecules per particle)")
     return parameters
+
+
+def background_pressure_for(reference_pressure, bulk_modulus):
+    """The background pressure p_b (kJ/mol/nm^3) of a model whose particles would be under tension, pi0 < 0: a liquid
+    whose pressure is below n0 k_B T0, the pressure of its particles' motion (water at 0.1 MPa: pi0 = -34 MPa with 4
+    molecules per particle). There a particle's free energy falls as its density rises, and the structure (close
+    pairs, docs/theory.md section 12) lets the mean n_i stay where it is while the true density changes: the bulk
+    modulus comes out ~0.1 of the fluid's. p_b = B_T - pi0 makes each particle's pressure B_T (n_i/n0)^gamma_T,
+    positive at every density, and the energy's p_b (V_box - sum_i V_i) leaves the system's pressure as it was.
+    None (no background pressure) where pi0 >= 0 (argon at 85 MPa: its Tait law keeps its particles in
+    compression)."""
+    return bulk_modulus - reference_pressure if reference_pressure < 0 else None
 
 
 def thermal_expansion_law(alpha, compressibility, density, temperature, heat_capacity):

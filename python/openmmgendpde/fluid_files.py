@@ -54,7 +54,7 @@ _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.se
                "kelvin": unit.kelvin}
 #: The parameters of GenDPDEParameters that a model file may hold but need not (None: absent): those of a law that
 #: depends on temperature.
-_OPTIONAL_PARAMETERS = ["thermal_pressure", "thermal_reference_temperature"]
+_OPTIONAL_PARAMETERS = ["thermal_pressure", "thermal_reference_temperature", "background_pressure"]
 #: The parameters of GenDPDEParameters that a model file holds, in order (the fluid and the optional ones aside).
 _PARAMETERS = [field for field in GenDPDEParameters.__dataclass_fields__
                if field != "fluid" and field not in _OPTIONAL_PARAMETERS]

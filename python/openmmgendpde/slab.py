@@ -415,6 +415,9 @@ def fluid_parameters(arguments, cells):
         defaults = {name: value for name, value in COARSE_GRAINING.items() if getattr(arguments, name) is None}
         parameters = parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), "slab")
         source = f"--fluid {arguments.fluid}"
+    # A background pressure (a bulk model's, fluid.background_pressure_for) would push the slab's free surfaces
+    # apart: its energy p_b (V_box - sum_i V_i) counts the vacuum as a defect. The slab runs without it.
+    parameters = dataclasses.replace(parameters, background_pressure=None)
     checked_model(f"slab: {source}", lambda: parameters.liquid(
         cells=cells, **({} if arguments.time_step is None else {"time_step": arguments.time_step}),
         seed=arguments.seed), "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else

@@ -14,8 +14,8 @@ Scene backgroundScene(GenDPDEForce::DensityEstimator estimator, double backgroun
  * Against the oracle (energy, forces, per-particle pressures, virial and tensors: checkAgainstBruteForce, whose
  * tolerances say why), and the identity that defines p_b, independent of both: U(p_b) - U(0) = p_b (V_box -
  * sum_i V_i) with the V_i the platform reports, to 1e-10 of p_b V_box (double; float forces: 1e-5, the energies'
- * rounding). The forces' difference is p_b grad sum_i V_i, which the virial's finite difference (-3 V dU/dV, the box
- * term included; tolerances as in testVirial) and the brute force check.
+ * rounding). The forces' difference is p_b grad sum_i V_i, which the brute force checks, and the virial's finite
+ * difference (-3 V dU/dV, the box term included; double precision, tolerances as in testVirial).
  */
 void testBackgroundPressure() {
     const double background = 150.0;
@@ -36,7 +36,12 @@ void testBackgroundPressure() {
         const double energyWithout = context.getState(State::Energy).getPotentialEnergy();
         assertClose(background*(boxVolume - volumeSum), energy - energyWithout,
                     precisionTolerance(1e-10, 1e-5)*background*boxVolume, label + ": U(p_b) - U(0)");
-        // The virial, box term included, is -dU/dlambda under r -> lambda r of positions and box.
+        // The virial, box term included, is -dU/dlambda under r -> lambda r of positions and box; in double precision
+        // only: with p_b the energy holds p_b sum_i V_i, whose float rounding (V-C's V to ~3e-5, docs of
+        // floatErrorScale) is ~1e-2 kJ/mol here, 5 kJ/mol (0.2%) of W once the central difference divides it by
+        // 2e-3 (seen on CUDA single and mixed); the float virial is checked against the oracle above.
+        if (floatForces())
+            continue;
         scene.force->setBackgroundPressure(background);
         scene.force->updateParametersInContext(context);
         const double virial = scene.force->getVirial(context);
@@ -47,9 +52,9 @@ void testBackgroundPressure() {
                 r *= lambda;
             return energyAt(context, scaled);
         };
-        const double epsilon = precisionTolerance(1e-6, 1e-3);
+        const double epsilon = 1e-6;
         const double derivative = (scaledEnergy(1 + epsilon) - scaledEnergy(1 - epsilon))/(2*epsilon);
-        assertRelative(-derivative, virial, precisionTolerance(1e-7, 1e-3), label + ": virial = -3V dU/dV");
+        assertRelative(-derivative, virial, 1e-7, label + ": virial = -3V dU/dV");
     }
 }
 

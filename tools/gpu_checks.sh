@@ -135,7 +135,7 @@ build=/tmp/gendpde-gpu-build
 rm -rf "$prefix" "$build"
 site=$prefix/lib/python$("$python" -c 'import sys; print("%d.%d" % sys.version_info[:2])')/site-packages
 export PYTHONPATH=$site${PYTHONPATH:+:$PYTHONPATH}
-export PYTHONUNBUFFERED=1
+export PYTHONUNBUFFERED=1 PYTHONFAULTHANDLER=1   # (a crash prints the Python stack of every thread)
 note "gpu_checks.sh $mode at $(git rev-parse --short HEAD 2>/dev/null || echo '?'), $(date -u '+%Y-%m-%d %H:%M UTC')"
 
 environment() {

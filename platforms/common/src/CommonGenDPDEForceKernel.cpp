@@ -235,6 +235,7 @@ CommonCalcGenDPDEForceKernel::~CommonCalcGenDPDEForceKernel() {
 }
 
 void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
+    ContextSelector selector(cc);   // (the tables are uploaded: CUDA needs its context current on this thread)
     readParameters(force);
 }
 

@@ -140,6 +140,7 @@ void CommonIntegrateGenDPDEStepKernel::setInternalEnergies(const std::vector<dou
 }
 
 CommonGenDPDEThermalArrays* CommonIntegrateGenDPDEStepKernel::getDeviceThermalState(const GenDPDEIntegrator& integrator) {
+    ContextSelector selector(cc);
     // The classes and heat capacities as the sweep reads them (they may have changed since the last run of steps).
     uploadTypeTables(integrator, GenDPDEIntegratorUtilities::stepTerms(integrator, cutoff));
     thermalArrays = {integrator.getMode() == GenDPDEIntegrator::Isothermal, integrator.getTemperature(), &energies,

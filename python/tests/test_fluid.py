@@ -787,3 +787,37 @@ def test_one_correction_of_beta_scales_the_thermal_part_of_the_slope():
     half = kinetic + (target - kinetic) / 2
     assert corrected(parameters, result(half)).thermal_pressure == pytest.approx(2 * parameters.thermal_pressure,
                                                                                  rel=1e-12)
+
+
+def test_beta_is_iterated_on_the_measured_slope_until_alpha_reaches_the_target(monkeypatch):
+    """calibrate's thermal-expansion stage with made-up measurements whose slope is not proportional to beta:
+    (dP/dT)_V = n0 k_B + 0.4 g(beta/beta0) s_t with g(x) = x^0.5 (a structure that absorbs part of each shift), s_t
+    the target's thermal part, with a standard error of 1% of the target. One proportional correction (the old rule)
+    leaves the thermal part at 0.4 sqrt(2.5) = 0.63 of the target's; the iteration's secant steps must reach alpha
+    within 5% in at most EXPANSION_RUNS measurements, and keep the last beta. Expected from the law:
+    beta -> 6.25 beta0 (g = 2.5), within 10% (the secant approaches it from below: 1, 2.5, 4.9, 6.0)."""
+    from openmmgendpde import calibrate as calibrate_module, expansion
+    from openmmgendpde.calibrate import EXPANSION_RUNS, QUICK, THERMAL_EXPANSION_ROW, Calibration
+    from openmmgendpde.expansion import MPA_PER_OPENMM_PRESSURE, ThermalExpansion
+    parameters = expansion.mapped()
+    beta0 = parameters.thermal_pressure
+    kinetic = parameters.density * K_B * N_A / 1000 * MPA_PER_OPENMM_PRESSURE
+    target_slope, target_alpha = 1.7718, 2.64e-3
+    thermal = target_slope - kinetic
+    calls = []
+
+    def measure(model, **_):
+        slope = kinetic + 0.4 * math.sqrt(model.thermal_pressure / beta0) * thermal
+        calls.append(model.thermal_pressure)
+        alpha = target_alpha * slope / target_slope
+        return ThermalExpansion(temperatures=(0, 0), temperature_errors=(0, 0), pressures=(0, 0),
+                                pressure_errors=(0, 0), slope=slope, slope_error=0.01 * target_slope,
+                                target_slope=target_slope, alpha=alpha, alpha_error=0.01 * target_alpha,
+                                target_alpha=target_alpha, thermal_pressure=model.thermal_pressure)
+    monkeypatch.setattr(expansion, "measure", measure)
+    calibration = Calibration(parameters, "VB", QUICK, "CPU", report=lambda _: None)
+    rows = calibrate_module.thermal_expansion_rows(calibration, QUICK, "CPU", 1)
+    assert rows[1][0] == THERMAL_EXPANSION_ROW and 2 <= len(calls) <= EXPANSION_RUNS
+    assert abs(rows[1][2].value / rows[1][1] - 1) <= 0.05
+    assert calibration.parameters.thermal_pressure == calls[-1]
+    assert calibration.parameters.thermal_pressure == pytest.approx(6.25 * beta0, rel=0.1)

@@ -222,7 +222,10 @@ def run(arguments):
         changes["background_pressure"] = arguments.background_pressure or None
     parameters = dataclasses.replace(parameters, **changes)
     compressions = sorted(arguments.compressions)
-    plan = Plan(particles=arguments.particles, frames=arguments.frames, interval=arguments.interval)
+    if arguments.quick:
+        plan = Plan(particles=500, melt=400, melt_block=500, frames=40, interval=25)
+    else:
+        plan = Plan(particles=arguments.particles, frames=arguments.frames, interval=arguments.interval)
     calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed,
                               report=lambda *_: None)
     mpa = MPA_PER_OPENMM_PRESSURE
@@ -297,6 +300,8 @@ def add_arguments(parser):
                         help="relative compressions c, comma-separated: boxes at n0 (1 + c) (default -0.05,0,0.05; "
                              "write --compressions=-0.02,0,0.02)")
     parser.add_argument("--particles", type=fcc_particles, default=2048, help="4 m^3 particles (default 2048)")
+    parser.add_argument("--quick", action="store_true",
+                        help="500 particles, 40 frames 25 steps apart (a functional check in about a minute)")
     parser.add_argument("--frames", type=integer(2), default=150, help="frames per box (default 150)")
     parser.add_argument("--interval", type=integer(1), default=50, help="steps between frames (default 50)")
     parser.add_argument("--cutoff-scaling", type=number(at_least=1.0), help="f_cut instead of the model's")

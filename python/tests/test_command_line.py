@@ -92,6 +92,22 @@ def test_slab_quick(tmp_path, capsys):
     assert all(math.isfinite(float(row[2])) and math.isfinite(float(row[5])) for row in rows)
 
 
+def test_compression_quick(tmp_path, capsys):
+    """`compression --quick` of water as mapped (with its background pressure, 500 particles, c = -+3%): a row per
+    box, the response and both bulk moduli, the JSON record. The response is expected ~0.9 (2048 particles, -+5%:
+    0.85; docs/theory.md section 12) and ~0.25 without p_b (docs/fluids.md, 500 particles); required > 0.5, which
+    the model under tension does not reach. Not near freezing: Q6 < 0.1 (a crystal: 0.575)."""
+    path = tmp_path / "compression.json"
+    main(["compression", "--fluid", "water", "--quick", "--compressions=-0.03,0.03", "--json", str(path)])
+    out = capsys.readouterr().out
+    assert "| -0.030 |" in out and "| +0.030 |" in out and "n k_B T/S(k -> 0)" in out
+    record = json.loads(path.read_text())
+    assert record["model"]["background_pressure"] > 0 and len(record["points"]) == 2
+    assert record["response"]["value"] > 0.5, record["response"]
+    assert record["bulk_modulus"]["value"] > 0 and math.isfinite(record["structure_modulus"]["value"])
+    assert all(point["global_q6"] < 0.1 and point["diffusion"]["value"] > 0 for point in record["points"])
+
+
 def test_benchmarks_quick(capsys):
     main(["benchmark-force", "--particles", "500", "--cutoffs", "1.3365", "--rounds", "2"])
     main(["benchmark-integrator", "--particles", "500", "--rounds", "2"])
@@ -200,7 +216,7 @@ def test_help_lists_every_subcommand(capsys):
         main(["--help"])
     out = capsys.readouterr().out
     for name in ("table3", "rdf", "timing", "tune-fcut", "speed-vs-error", "benchmark-force", "benchmark-integrator",
-                 "benchmark-cpu"):
+                 "benchmark-cpu", "compression"):
         assert name in out
 
 

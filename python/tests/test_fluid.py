@@ -420,7 +420,7 @@ def test_pressure_step_is_a_secant_on_measured_responses():
 
 
 def test_a_property_that_missed_and_whose_iteration_failed_counts_once():
-    """The failure lines of water's calibration at 20 neighbours (docs/figures/calibrated-water.json): the bulk
+    """The failure lines of water's calibration at 20 neighbours before its background pressure (issue 24): the bulk
     modulus's judged row and its iteration's advice are one property, not two; an iteration's failure goes with the
     rows of its property; distinct rows stay distinct."""
     from openmmgendpde.calibrate import missed_properties

@@ -45,15 +45,9 @@ void testBackgroundPressure() {
         scene.force->setBackgroundPressure(background);
         scene.force->updateParametersInContext(context);
         const double virial = scene.force->getVirial(context);
-        auto scaledEnergy = [&](double lambda) {
-            context.setPeriodicBoxVectors(scene.box[0]*lambda, scene.box[1]*lambda, scene.box[2]*lambda);
-            std::vector<Vec3> scaled = scene.positions;
-            for (Vec3& r : scaled)
-                r *= lambda;
-            return energyAt(context, scaled);
-        };
         const double epsilon = 1e-6;
-        const double derivative = (scaledEnergy(1 + epsilon) - scaledEnergy(1 - epsilon))/(2*epsilon);
+        const double derivative = (scaledEnergy(context, scene, 1 + epsilon)
+                                   - scaledEnergy(context, scene, 1 - epsilon))/(2*epsilon);
         assertRelative(-derivative, virial, 1e-7, label + ": virial = -3V dU/dV");
     }
 }

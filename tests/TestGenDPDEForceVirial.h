@@ -3,6 +3,15 @@
 
 namespace ForceTests {
 
+/** U at the scene's positions and box scaled uniformly by lambda (r -> lambda r), in a periodic Context. */
+double scaledEnergy(Context& context, const Scene& scene, double lambda) {
+    context.setPeriodicBoxVectors(scene.box[0]*lambda, scene.box[1]*lambda, scene.box[2]*lambda);
+    std::vector<Vec3> scaled = scene.positions;
+    for (Vec3& r : scaled)
+        r *= lambda;
+    return energyAt(context, scaled);
+}
+
 /**
  * The virial equals sum_i r_i . F_i for open boundaries, and -dU/d(lambda) under uniform scaling r -> lambda r of
  * positions and box (= -3 V dU/dV) for periodic ones; the finite difference uses lambda = 1 +- 1e-6, whose
@@ -28,17 +37,11 @@ void testVirial() {
             Context context2(periodic.system, integrator2, *platform);
             context2.setPositions(periodic.positions);
             double virial = periodic.force->getVirial(context2);
-            auto scaledEnergy = [&](double lambda) {
-                context2.setPeriodicBoxVectors(periodic.box[0]*lambda, periodic.box[1]*lambda, periodic.box[2]*lambda);
-                std::vector<Vec3> scaled = periodic.positions;
-                for (Vec3& r : scaled)
-                    r *= lambda;
-                return energyAt(context2, scaled);
-            };
             // Float forces: the energy's ~1e-7 relative rounding over 2 epsilon needs epsilon = 1e-3 (rounding
             // ~1e-4 of U/W, truncation ~1e-6): 1e-3.
             const double epsilon = precisionTolerance(1e-6, 1e-3);
-            double derivative = (scaledEnergy(1 + epsilon) - scaledEnergy(1 - epsilon))/(2*epsilon);
+            double derivative = (scaledEnergy(context2, periodic, 1 + epsilon)
+                                 - scaledEnergy(context2, periodic, 1 - epsilon))/(2*epsilon);
             assertRelative(-derivative, virial, precisionTolerance(1e-7, 1e-3), "virial = -3V dU/dV");
         }
     }

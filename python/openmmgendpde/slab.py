@@ -119,7 +119,10 @@ def fluid_slab(parameters, cells, estimator="VC", vacuum=None, time_step=None, m
     dt* for every stage (default: stability.suggest_time_step(parameters, estimator), measured: V-C's is a tenth
     of V-B's, for its energy error at free surfaces). ``vacuum`` must be at least twice the cutoff. ``platform`` a
     name, ``properties`` its property dict (e.g. {'Threads': '1'}); ``seed`` for the lattice's velocities, the
-    thermostat and the internal energies. Bad arguments raise ValueError."""
+    thermostat and the internal energies. Bad arguments raise ValueError. The slab runs without the parameters'
+    background pressure (a bulk model's, fluid.background_pressure_for): its energy p_b (V_box - sum_i V_i) counts the
+    vacuum as a defect and would push the free surfaces apart."""
+    parameters = dataclasses.replace(parameters, background_pressure=None)
     if time_step is None:
         from .stability import suggest_time_step
         time_step = suggest_time_step(parameters, estimator, platform=platform)[0]
@@ -415,9 +418,6 @@ def fluid_parameters(arguments, cells):
         defaults = {name: value for name, value in COARSE_GRAINING.items() if getattr(arguments, name) is None}
         parameters = parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), "slab")
         source = f"--fluid {arguments.fluid}"
-    # A background pressure (a bulk model's, fluid.background_pressure_for) would push the slab's free surfaces
-    # apart: its energy p_b (V_box - sum_i V_i) counts the vacuum as a defect. The slab runs without it.
-    parameters = dataclasses.replace(parameters, background_pressure=None)
     checked_model(f"slab: {source}", lambda: parameters.liquid(
         cells=cells, **({} if arguments.time_step is None else {"time_step": arguments.time_step}),
         seed=arguments.seed), "use fewer --neighbors (a smaller --cutoff)" if arguments.model is None else

@@ -15,7 +15,8 @@
 4. The bulk modulus n dP/dn, from runs in boxes at n0 (1 -+ delta) (a central difference), and from the same runs
    how the particle densities follow the true one, (n/n-bar) d n-bar/d n (1 would let the Tait modulus through);
    B_T iterated on it (Calibration.iterate), then f_cut and pi0 again if B_T moved. Where the response is small
-   (water at 20 neighbours: ~0.2) B_T does not move it, and the iteration fails saying to use more neighbours.
+   (water at 20 neighbours without its background pressure: ~0.2) B_T does not move it, and the iteration fails
+   saying what to change (FAILURE_ADVICE).
 5. The transport coefficients, iterated (Calibration.iterate: a proportional step, then secant steps on the
    measured responses, until within 5% or one standard error (_settled); at most plan.transport_runs measurements;
    a secant whose intercept, the coefficient without the pair term, lies above the target stops the iteration: no

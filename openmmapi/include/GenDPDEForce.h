@@ -241,14 +241,16 @@ public:
      */
     std::vector<double> getParticlePressures(OpenMM::Context& context) const;
     /**
-     * The conservative virial W = sum_{i<j} r_ij . F_ij (in kJ/mol) at the Context's current positions, so that
-     * the pressure is P = (2K + W)/(3 V_box). It equals -3 V_box dU/dV_box under uniform scaling.
+     * The conservative virial W = sum_{i<j} r_ij . F_ij (in kJ/mol) at the Context's current positions, plus the
+     * background pressure's box term -3 p_b V_box, so that the pressure is P = (2K + W)/(3 V_box). It equals
+     * -3 V_box dU/dV_box under uniform scaling.
      */
     double getVirial(OpenMM::Context& context) const;
     /**
      * The virial tensor of every particle (in kJ/mol) at the Context's current positions: nine numbers per particle,
      * row-major, W_i[3a + b] = sum_j (1/2) F_ij,a r_ij,b with F_ij the force on i from its pair with j and
-     * r_ij = r_i - r_j, so that each pair's tensor is shared equally by its two particles. They add up to the
+     * r_ij = r_i - r_j, so that each pair's tensor is shared equally by its two particles (and the background
+     * pressure's -p_b V_box on the diagonal equally by all particles). They add up to the
      * system's virial tensor W_ab = -dU/d epsilon_ab (the energy's response to the strain r -> (1 + epsilon) r of
      * positions and box), whose trace is getVirial(); the pressure tensor of the system is
      * P_ab = (sum_i m_i v_i,a v_i,b + W_ab)/V_box. Computed on request only, by the platform's own kernels.

@@ -287,7 +287,8 @@ std::vector<double> GenDPDEForce::getParticlePressures(Context& context) const {
 }
 
 double GenDPDEForce::getVirial(Context& context) const {
-    return observablesInContext(context).virial + getImpl(context).backgroundVirial(const_cast<GenDPDEForce*>(this)->getContextImpl(context));
+    ContextImpl& impl = const_cast<GenDPDEForce*>(this)->getContextImpl(context);
+    return observablesInContext(context).virial + getImpl(context).backgroundVirial(impl);
 }
 
 std::vector<double> GenDPDEForce::getParticleVirials(Context& context) const {

@@ -19,14 +19,15 @@ import math
 import numpy as np
 from openmm import unit
 
-from .calibrate import Calibration, Measured, Plan, add_fluid_arguments, model_positions, parameters_from_arguments
+from .calibrate import (KB, Calibration, Measured, Plan, add_fluid_arguments, model_positions,
+                        parameters_from_arguments)
 from .cli import add_json, add_platform, command_line_error, fcc_particles, integer, number
 from .expansion import MPA_PER_OPENMM_PRESSURE
 from .files import atomic_write
 from .fluid_files import load_parameters
 from .statistics import correlated_mean
 from .thermodynamics import ThermodynamicProbe, self_diffusion
-from .units import BOLTZMANN
+from .rdf import radial_distribution
 
 #: Pairs closer than this fraction of the cutoff are "close pairs" (water's calibrated model: g = 0.24 there).
 CLOSE_PAIR_FRACTION = 0.15
@@ -42,29 +43,6 @@ def _pairs(positions, box, cutoff):
     d = wrapped[pairs[:, 1]] - wrapped[pairs[:, 0]]
     d -= box * np.round(d / box)
     return pairs[:, 0], pairs[:, 1], d
-
-
-def primitive_densities(positions, box, cutoff):
-    """n0_i = sum_{j != i} w(r_ij), w(r) = 15/(2 pi R^3) (1 - r/R)^2 (nm^-3): what GenDPDEForce.getPrimitiveDensities
-    returns, evaluated here from positions alone (saved frames)."""
-    i, j, d = _pairs(positions, box, cutoff)
-    w = 15 / (2 * math.pi * cutoff**3) * (1 - np.linalg.norm(d, axis=1) / cutoff) ** 2
-    n0 = np.zeros(len(positions))
-    np.add.at(n0, i, w)
-    np.add.at(n0, j, w)
-    return n0
-
-
-def pair_distribution(frames, box, r_max, bins=40):
-    """(r, g(r)) over ``frames`` (frames x N x 3, nm) in a rectangular periodic ``box``, bins of r_max/bins."""
-    edges = np.linspace(0, r_max, bins + 1)
-    counts = np.zeros(bins)
-    for positions in frames:
-        _, _, d = _pairs(positions, box, r_max)
-        counts += np.histogram(np.linalg.norm(d, axis=1), edges)[0]
-    n = len(frames[0]) / np.prod(box)
-    shells = 4 * math.pi / 3 * (edges[1:] ** 3 - edges[:-1] ** 3)
-    return 0.5 * (edges[1:] + edges[:-1]), 2 * counts / (len(frames) * len(frames[0]) * n * shells)
 
 
 def bond_order(positions, box, cutoff):
@@ -120,7 +98,7 @@ class CompressionPoint:
     density: float            # n = n0 (1 + c), nm^-3
     mean_density: Measured    # n-bar
     spread: float             # sd(n_i)/n-bar over particles and frames
-    primitive: float          # <n0_i>/n
+    primitive: float          # <n0_i>/n (GenDPDEForce.getPrimitiveDensities)
     close_pairs: float        # g(r < CLOSE_PAIR_FRACTION R)
     global_q6: float
     local_q6: float
@@ -131,18 +109,20 @@ class CompressionPoint:
 
 
 def measure(calibration, compression, plan):
-    """A CompressionPoint at n0 (1 + compression), from plan.frames frames every plan.interval steps."""
+    """A CompressionPoint at n0 (1 + compression), from plan.frames frames every plan.interval steps (a cubic box:
+    parameters.liquid of plan.particles)."""
     parameters = calibration.parameters
     density = parameters.density * (1 + compression)
     model, context = calibration._equilibrated(density)
     probe = ThermodynamicProbe(model.system)
-    frames, times, means, spreads, pressures, temperatures = [], [], [], [], [], []
+    frames, times, means, primitives, spreads, pressures, temperatures = [], [], [], [], [], [], []
     for _ in range(plan.frames):
         calibration._step(model.integrator, plan.interval)
         state = context.getState(getEnergy=True, getVelocities=True, getPositions=True)
         sample = probe.sample(state, context, model.integrator)
         densities = np.asarray(model.force.getParticleDensities(context).value_in_unit(unit.nanometer**-3))
         means.append(densities.mean())
+        primitives.append(np.mean(model.force.getPrimitiveDensities(context).value_in_unit(unit.nanometer**-3)))
         spreads.append(densities.std() / densities.mean())
         pressures.append(sample.pressure.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3))
         temperatures.append(sample.kinetic_temperature.value_in_unit(unit.kelvin))
@@ -151,8 +131,7 @@ def measure(calibration, compression, plan):
     box = np.array([v.value_in_unit(unit.nanometer)[k] for k, v in enumerate(state.getPeriodicBoxVectors())])
     cutoff = parameters.cutoff
     every = frames[::max(1, len(frames) // 20)]
-    primitive = np.mean([primitive_densities(p, box, cutoff).mean() for p in every]) / density
-    r, g = pair_distribution(every, box, cutoff)
+    r, g = radial_distribution(every, box[0], r_max=cutoff, bin_width=cutoff / 40, length=1.0)
     order = [bond_order(p, box, 1.35 * density ** (-1 / 3)) for p in every[::4]]
 
     def measured(values):
@@ -161,11 +140,11 @@ def measure(calibration, compression, plan):
 
     return CompressionPoint(
         compression=compression, density=density, mean_density=measured(means), spread=float(np.mean(spreads)),
-        primitive=float(primitive), close_pairs=float(g[r < CLOSE_PAIR_FRACTION * cutoff].mean()),
+        primitive=float(np.mean(primitives)) / density, close_pairs=float(g[r < CLOSE_PAIR_FRACTION * cutoff].mean()),
         global_q6=float(np.mean([o[0] for o in order])), local_q6=float(np.mean([o[1] for o in order])),
         diffusion=Measured(*self_diffusion(times, frames)), pressure=measured(pressures),
         temperature=float(np.mean(temperatures)),
-        structure=structure_factor(frames, box) if np.allclose(box, box[0]) else [])
+        structure=structure_factor(frames, box))
 
 
 def responses(points):
@@ -194,15 +173,11 @@ def structure_modulus(point):
     covariance = np.linalg.inv(design.T @ (design * weights[:, None]))
     s0 = (covariance @ design.T @ (weights * s))[0]
     s0_error = math.sqrt(covariance[0, 0])
-    kt = _kb() * point.temperature
+    kt = KB * point.temperature
     if not s0 > 0:
         return Measured(float("inf"), float("inf"))
     value = point.density * kt / s0
     return Measured(value, value * s0_error / s0)
-
-
-def _kb():
-    return BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 
 
 def run(arguments):
@@ -234,7 +209,7 @@ def run(arguments):
           f"{parameters.reference_pressure * mpa:.4g} MPa, B_T = {parameters.bulk_modulus * mpa:.4g} MPa "
           f"(gamma_T B_T = {parameters.tait_exponent * parameters.bulk_modulus * mpa:.4g} MPa), p_b = "
           f"{(parameters.background_pressure or 0) * mpa:.4g} MPa, B_T/(n0 k_B T0) = "
-          f"{parameters.bulk_modulus / (parameters.density * _kb() * parameters.temperature):.3g}", flush=True)
+          f"{parameters.bulk_modulus / (parameters.density * KB * parameters.temperature):.3g}", flush=True)
     print("| c | n-bar/n | sd(n_i)/n-bar | n0-bar/n | g(r < 0.15 R) | Q6 | q6 | D (1e-9 m^2/s) | P (MPa) |")
     print("|---|---|---|---|---|---|---|---|---|")
     points = []

@@ -22,11 +22,13 @@ from .study import add_protocol_arguments, protocol_from_arguments, run_argon
 R_MAX, BIN_WIDTH = 3.0, 0.02
 
 
-def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH):
-    """(r*, g(r)) for frames (F x N x 3, nm) in a cubic box of edge box_edge (nm), by mdtraj in chunks of 5 frames."""
-    import mdtraj   # optional dependency (the studies extra of pyproject.toml): only this subcommand needs it
+def radial_distribution(frames, box_edge, r_max=R_MAX, bin_width=BIN_WIDTH, length=None):
+    """(r, g(r)) for frames (F x N x 3, nm) in a cubic box of edge box_edge (nm), by mdtraj in chunks of 5 frames; r,
+    r_max and bin_width in units of ``length`` nm (default: the argon model's L, reduced units; 1.0: nm)."""
+    import mdtraj   # optional dependency (the studies extra of pyproject.toml): only the studies need it
     frames = np.asarray(frames, dtype=np.float32)
-    length = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)
+    if length is None:
+        length = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)
     topology = mdtraj.Topology()
     chain = topology.add_chain()
     for _ in range(frames.shape[1]):

@@ -9,8 +9,8 @@ from openmm import unit
 
 from helpers import assert_rejected_without_change, lattice_liquid, make_context
 from openmmgendpde import GenDPDEForce, fluid, fluid_files
-from openmmgendpde.compression import (bond_order, pair_distribution, primitive_densities, responses,
-                                       structure_factor)
+from openmmgendpde.compression import bond_order, responses, structure_factor
+from openmmgendpde.rdf import radial_distribution
 from openmmgendpde.model import fcc_positions
 
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
@@ -92,21 +92,11 @@ def test_structure_measures_against_known_values():
         assert s == pytest.approx(0.0, abs=1e-20)
     rng = np.random.default_rng(5)
     gas = [rng.uniform(0, box[0], (2000, 3)) for _ in range(40)]
-    r, g = pair_distribution(gas, box, 1.5, bins=10)
+    r, g = radial_distribution(gas, box[0], r_max=1.5, bin_width=0.15, length=1.0)
     # each bin holds >~ 2000 * 40 * 4 pi r^2 dr n / 2 pairs: the outer bins ~1e5, the first ~400 (error 5%)
     assert np.all(np.abs(g[3:] - 1) < 0.03) and abs(g[0] - 1) < 0.25
     for k, s, error in structure_factor(gas, box):
         assert abs(s - 1) < 5 * max(error, 1 / math.sqrt(40 * 3)), (k, s, error)
-
-
-def test_primitive_densities_equal_the_force(platform):
-    system, force, positions = lattice_liquid(6, seed=9, jitter=0.3)
-    context = make_context(system, positions, platform)
-    box = np.array([context.getState().getPeriodicBoxVectors()[k][k].value_in_unit(unit.nanometer)
-                    for k in range(3)])
-    expected = force.getPrimitiveDensities(context).value_in_unit(unit.nanometer**-3)
-    cutoff = force.getCutoffDistance().value_in_unit(unit.nanometer)
-    assert primitive_densities(np.asarray(positions), box, cutoff) == pytest.approx(expected, rel=1e-10)
 
 
 def test_responses_of_two_boxes():

@@ -23,10 +23,17 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.cli import (COUNT, NON_NEGATIVE_COUNT, add_platform, fcc_particles, number, one_line_errors,
-                               parse_arguments)
-from openmmgendpde.expansion import mapped
-from openmmgendpde.fluid import ARGON_EXPANDING
+from openmmgendpde.calibration.expansion import mapped
+from openmmgendpde.cli.options import (
+    COUNT,
+    NON_NEGATIVE_COUNT,
+    add_platform,
+    fcc_particles,
+    number,
+    one_line_errors,
+    parse_arguments,
+)
+from openmmgendpde.models.fluid import ARGON_EXPANDING
 
 
 def main():

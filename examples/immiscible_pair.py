@@ -18,8 +18,8 @@ import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.cli import NON_NEGATIVE, NON_NEGATIVE_COUNT, add_platform, one_line_errors, parse_arguments
-from openmmgendpde.presets import liquid_argon
+from openmmgendpde.cli.options import NON_NEGATIVE, NON_NEGATIVE_COUNT, add_platform, one_line_errors, parse_arguments
+from openmmgendpde.models.argon import liquid_argon
 
 one_line_errors("immiscible_pair.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

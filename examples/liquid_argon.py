@@ -14,9 +14,9 @@ import sys
 from openmm import app
 
 from openmmgendpde import GenDPDEReporter
-from openmmgendpde.cli import one_line_errors, published_cutoff
-from openmmgendpde.presets import ARGON_UNITS, liquid_argon
-from openmmgendpde.study import melt_then_draw
+from openmmgendpde.cli.options import one_line_errors, published_cutoff
+from openmmgendpde.models.argon import ARGON_UNITS, liquid_argon
+from openmmgendpde.models.argon_runs import melt_then_draw
 
 one_line_errors("liquid_argon.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -40,12 +40,20 @@ import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.calibrate import Calibration, Plan
-from openmmgendpde.cli import (COUNT, NON_NEGATIVE, POSITIVE, add_platform, number, one_line_errors, parse_arguments,
-                               writable_stem)
-from openmmgendpde.files import atomic_write
-from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, coarse_grain
-from openmmgendpde.statistics import block_standard_error
+from openmmgendpde.analysis.statistics import block_standard_error
+from openmmgendpde.calibration.calibrate import Calibration, Plan
+from openmmgendpde.cli.options import (
+    COUNT,
+    NON_NEGATIVE,
+    POSITIVE,
+    add_platform,
+    number,
+    one_line_errors,
+    parse_arguments,
+    writable_stem,
+)
+from openmmgendpde.internal.files import atomic_write
+from openmmgendpde.models.fluid import ARGON, ARGON_EXPANDING, coarse_grain
 
 CELLS = (14, 3, 11)          # FCC cells along x, y, z: 2 of wall, 7 of liquid, 2 of wall
 WALL_CELLS = 2
@@ -304,7 +312,7 @@ def check(parser, arguments):
                      f"at most 1")
     if arguments.plot:
         try:
-            import matplotlib   # noqa: F401
+            import matplotlib  # noqa: F401
         except ImportError:
             parser.error("--plot needs matplotlib (pip install matplotlib)")
 

@@ -13,8 +13,8 @@ Measured: the shock speed U_s (the distance between the two fronts, where the me
 the fronts and from the plane of first impact), the density n1, the kinetic temperature T1 and the mean particle
 temperature <theta>, over the second half of the run.
 
-Predicted: the Rankine-Hugoniot state (openmmgendpde.hugoniot) of the model's equation of state P(n, E), T(n, E),
-fitted to equilibrium runs of the same model at seven densities from n0 to 1.4 n0 and three temperatures each
+Predicted: the Rankine-Hugoniot state (openmmgendpde.analysis.hugoniot) of the model's equation of state P(n, E), T(n,
+E), fitted to equilibrium runs of the same model at seven densities from n0 to 1.4 n0 and three temperatures each
 (T0 - 10, T0 + 60 and T0 + 130 K). That is the
 fluid's equation of state, not the particles' law: the fluid's pressure adds the kinetic n k_B T and reaches the
 particles' pressures through the estimator (docs/thermal.md).
@@ -29,12 +29,22 @@ import numpy as np
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.cli import (COUNT, NON_NEGATIVE_COUNT, POSITIVE, add_platform, fcc_particles, integer, number,
-                               one_line_errors, parse_arguments)
-from openmmgendpde.expansion import MIN_SAMPLES, MPA_PER_OPENMM_PRESSURE as MPA, SAMPLE_EVERY, mapped, run_at
-from openmmgendpde.hugoniot import EquationOfStateFit, shocked_state
-from openmmgendpde.statistics import correlated_mean
-from openmmgendpde.thermodynamics import ThermodynamicProbe
+from openmmgendpde.analysis.hugoniot import EquationOfStateFit, shocked_state
+from openmmgendpde.analysis.statistics import correlated_mean
+from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe
+from openmmgendpde.calibration.expansion import MIN_SAMPLES, SAMPLE_EVERY, mapped, run_at
+from openmmgendpde.calibration.expansion import MPA_PER_OPENMM_PRESSURE as MPA
+from openmmgendpde.cli.options import (
+    COUNT,
+    NON_NEGATIVE_COUNT,
+    POSITIVE,
+    add_platform,
+    fcc_particles,
+    integer,
+    number,
+    one_line_errors,
+    parse_arguments,
+)
 from openmmgendpde.units import BOLTZMANN
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)

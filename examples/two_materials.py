@@ -20,8 +20,8 @@ import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.cli import add_platform, integer, one_line_errors, parse_arguments
-from openmmgendpde.presets import ARGON_UNITS, liquid_argon
+from openmmgendpde.cli.options import add_platform, integer, one_line_errors, parse_arguments
+from openmmgendpde.models.argon import ARGON_UNITS, liquid_argon
 
 one_line_errors("two_materials.py")
 parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
-# Every test: set up, build and install (scripts/setup.sh), then the C++ tests (ctest) and the Python tests (pytest
-# against the installed package).
+# Every test: set up, build and install (scripts/setup.sh), then the style checks (ruff), the C++ tests (ctest) and
+# the Python tests of every tier (pytest against the installed package; a plain `pytest` runs the fast tier only).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 # PoCL (OpenCL on the CPU) compiles kernels slowly: both test suites share one cache of compiled kernels.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
+echo "== Style (ruff, pyproject.toml)"
+.venv/bin/ruff check --no-cache .
 echo "== C++ tests (ctest)"
 # The C++ tests are separate processes that share nothing but the kernel cache: run them two (or one per core) at a
 # time (cold cache, 2 cores: 223 s against 314 s one at a time, measured back to back).
@@ -13,4 +15,5 @@ ctest --test-dir build --output-on-failure -j "$(nproc)"
 echo "== Python tests (pytest)"
 # The Python tests, one worker per core, each test file on one worker (its module fixtures made once): 317 s against
 # 544 s in one process, on 2 cores.
-.venv/bin/python -m pytest -q -ra -p no:cacheprovider -n "$(nproc)" --dist loadfile python/tests
+# -m "": every tier (fast, validation, gpu; pyproject.toml's markers).
+.venv/bin/python -m pytest -q -ra -m "" -n "$(nproc)" --dist loadfile python/tests

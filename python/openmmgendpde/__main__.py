@@ -3,9 +3,14 @@
 import argparse
 import warnings
 
-from . import (benchmark_cpu, benchmark_force, benchmark_integrator, calibrate, compression, expansion, rdf, slab,
-               speed_vs_error, table3, timing, tune_fcut)
-from .cli import parse_arguments, run_command
+from .benchmarks import cpu as benchmark_cpu
+from .benchmarks import force as benchmark_force
+from .benchmarks import integrator as benchmark_integrator
+from .benchmarks import timing
+from .calibration import calibrate, expansion
+from .calibration import fcut as tune_fcut
+from .cli.options import parse_arguments, run_command
+from .studies import compression, rdf, slab, speed_vs_error, table3
 
 #: (name, module, one-line help); each module has add_arguments(parser) and a docstring for --help.
 SUBCOMMANDS = (
@@ -13,7 +18,8 @@ SUBCOMMANDS = (
     ("rdf", rdf, "radial distribution functions of the six cases, plotted like Fig. 1 (PNG and PDF)"),
     ("timing", timing, "Table IV analogue: wall time per step with VA and VB, and their ratio, per cutoff"),
     ("tune-fcut", tune_fcut, "find f_cut of VB or VC so that the mean density is n0, with its uncertainty"),
-    ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties measured back"),
+    ("calibrate", calibrate, "any fluid: parameters from its physical properties, and the model's properties "
+                             "measured back"),
     ("thermal-expansion", expansion, "a fluid with thermal expansion: (dP/dT)_V and alpha measured back beside the "
                                      "fluid's"),
     ("compression", compression, "how a model liquid's particle densities, structure and pressure follow a "
@@ -29,7 +35,8 @@ SUBCOMMANDS = (
 
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python3 -m openmmgendpde",
-                                     description="GenDPDE for OpenMM: fluid calibration, liquid-argon studies and benchmarks.")
+                                     description="GenDPDE for OpenMM: fluid calibration, liquid-argon studies and "
+                                                 "benchmarks.")
     subcommands = parser.add_subparsers(title="subcommands", required=True, metavar="SUBCOMMAND", dest="command")
     for name, module, summary in SUBCOMMANDS:
         module.add_arguments(subcommands.add_parser(name, help=summary, description=module.__doc__,

@@ -1,6 +1,6 @@
 """Reduced GenDPDE units (mass, length, energy; k_B = 1) and their conversion to OpenMM units.
 
->>> from openmmgendpde.presets import ARGON_UNITS
+>>> from openmmgendpde.units import ARGON_UNITS
 >>> ARGON_UNITS.to_openmm(0.011054, "temperature")          # T0* of liquid argon
 Quantity(value=125.7..., unit=kelvin)
 >>> ARGON_UNITS.from_openmm(125.7 * unit.kelvin, "temperature")
@@ -10,6 +10,8 @@ Quantity(value=125.7..., unit=kelvin)
 import math
 
 from openmm import unit
+
+from .gendpde import LiquidArgon as _Model
 
 #: Boltzmann's constant in OpenMM units (kJ/mol/K), the value OpenMM itself uses.
 BOLTZMANN = (unit.BOLTZMANN_CONSTANT_kB * unit.AVOGADRO_CONSTANT_NA).in_units_of(unit.kilojoule_per_mole / unit.kelvin)
@@ -83,3 +85,9 @@ class ReducedUnits:
 
     def __repr__(self):
         return f"ReducedUnits(mass={self.mass}, length={self.length}, energy={self.energy})"
+
+
+#: The reduced units of the published liquid-argon model (openmmgendpde.models.argon): sigma, epsilon and the mass of
+#: a particle, whose numbers have one home, the C++ header internal/LiquidArgon.h.
+ARGON_UNITS = ReducedUnits(mass=_Model.particleMass * unit.kilogram, length=_Model.length * unit.nanometer,
+                           energy=_Model.energy * unit.joule)

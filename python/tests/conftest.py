@@ -15,6 +15,11 @@ for _name in GPU_PLATFORMS:
     openmm.Platform.getPlatformByName(_name).setPropertyDefaultValue("Precision", "double")
 
 
-@pytest.fixture(params=PLATFORMS)
+#: PLATFORMS as parameters of a test: the GPU platforms' cases in the gpu tier (pyproject.toml's markers).
+PLATFORM_PARAMETERS = [pytest.param(name, marks=pytest.mark.gpu) if name in GPU_PLATFORMS else name
+                       for name in PLATFORMS]
+
+
+@pytest.fixture(params=PLATFORM_PARAMETERS)
 def platform(request):
     return openmm.Platform.getPlatformByName(request.param)

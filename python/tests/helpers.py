@@ -1,5 +1,5 @@
 """Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units, its numbers taken
-from openmmgendpde.presets)."""
+from openmmgendpde.models.argon)."""
 
 import math
 
@@ -9,7 +9,7 @@ import pytest
 from openmm import unit
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.presets import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
+from openmmgendpde.models.argon import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
 
 LENGTH = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)   # nm, the reduced length unit (n0* = 1)
 MASS = ARGON_UNITS.unit("mass").value_in_unit(unit.amu)             # amu, one particle = 5 argon atoms
@@ -82,8 +82,9 @@ def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
     around them: the pressure reads P0 + ``pressure_offset``/kappa_T while pi0 is ``mapped``'s and P0 once it moved;
     f_cut is 'tuned' to 1.3; c_U reads 0.5 k_B; the bulk modulus and the transport coefficients read their targets;
     the thermal expansion of a fluid that has one is not measured."""
-    import openmmgendpde.calibrate as calibrate
-    from openmmgendpde.calibrate import KB, Calibration, Measured
+    import openmmgendpde.calibration.calibrate as calibrate
+    from openmmgendpde.calibration.calibrate import Calibration, Measured
+    from openmmgendpde.models.fluid import KB
     monkeypatch.setattr(calibrate, "thermal_expansion_rows", lambda *arguments: [])   # (runs of its own)
 
     def thermodynamics(self, density=None, pressure_error=None):

@@ -5,13 +5,14 @@ import math
 import numpy as np
 import openmm
 import pytest
+from helpers import assert_rejected_without_change, lattice_liquid, make_context
 from openmm import unit
 
-from helpers import assert_rejected_without_change, lattice_liquid, make_context
-from openmmgendpde import GenDPDEForce, fluid, fluid_files
-from openmmgendpde.compression import bond_order, responses, structure_factor
-from openmmgendpde.rdf import radial_distribution
-from openmmgendpde.model import fcc_positions
+from openmmgendpde import GenDPDEForce
+from openmmgendpde.analysis.rdf import radial_distribution
+from openmmgendpde.models import fluid, fluid_files
+from openmmgendpde.models.lattice import fcc_positions
+from openmmgendpde.studies.compression import bond_order, responses, structure_factor
 
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
 
@@ -101,8 +102,8 @@ def test_structure_measures_against_known_values():
 
 def test_responses_of_two_boxes():
     """A fluid whose n-bar follows n exactly and whose P = K ln n: response 1, n dP/dn = K."""
-    from openmmgendpde.calibrate import Measured
-    from openmmgendpde.compression import CompressionPoint
+    from openmmgendpde.calibration.calibrate import Measured
+    from openmmgendpde.studies.compression import CompressionPoint
 
     def point(c):
         n = 8.0 * (1 + c)

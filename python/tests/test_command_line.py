@@ -10,11 +10,11 @@ import pytest
 from openmm import unit
 
 from openmmgendpde.__main__ import main
-from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS
+from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS
 
 # The quick sizes run in seconds, too short for the error bars to reach their plateau: every study would warn
 # (BlockAverageWarning). The warning itself is tested in test_statistics.py.
-pytestmark = pytest.mark.filterwarnings("ignore::openmmgendpde.statistics.BlockAverageWarning")
+pytestmark = pytest.mark.filterwarnings("ignore::openmmgendpde.analysis.statistics.BlockAverageWarning")
 
 
 @pytest.fixture(scope="module")
@@ -24,6 +24,7 @@ def table3_output(tmp_path_factory):
     return directory, cells
 
 
+@pytest.mark.validation
 def test_table3_quick(table3_output, capsys):
     directory, _ = table3_output
     rows = list(csv.DictReader(open(directory / "table3.csv")))
@@ -39,6 +40,7 @@ def test_table3_quick(table3_output, capsys):
     assert published["2.1564", "VA", "T* (kinetic)"] == "0.0111" and published["1.3365", "VA", "P*"] == "0.008"
 
 
+@pytest.mark.validation
 def test_rdf_from_table3_frames(table3_output, capsys):
     directory, _ = table3_output
     main(["rdf", "--quick", "--frames-from", str(directory), "--output", str(directory)])
@@ -67,12 +69,14 @@ def test_progress_goes_to_stderr_only_and_only_when_asked(capsys):
     assert "remaining" not in capsys.readouterr().err   # stderr is not a terminal here: silent without --progress
 
 
+@pytest.mark.validation
 def test_tune_fcut_quick(capsys):
     main(["tune-fcut", "--quick", "--cutoff", "1.3365", "--max-iterations", "2"])
     out = capsys.readouterr().out
     assert "f_cut =" in out and "published f_cut = 1.41" in out   # the paper's value, written out
 
 
+@pytest.mark.validation
 def test_speed_vs_error_quick(tmp_path, capsys):
     main(["speed-vs-error", "--quick", "--steps", "0.02", "0.01", "--production", "10", "--output", str(tmp_path)])
     rows = list(csv.DictReader(open(tmp_path / "speed-vs-error.csv")))
@@ -80,6 +84,7 @@ def test_speed_vs_error_quick(tmp_path, capsys):
     assert all(float(row["wall s per time unit"]) > 0 for row in rows)
 
 
+@pytest.mark.validation
 def test_slab_quick(tmp_path, capsys):
     """`slab --quick` for one estimator without the oracle (3 s): every sample and the second-half summary printed,
     and the CSV holds the run's rows with finite densities and surface tensions (the pressure tensor of the force's
@@ -92,6 +97,7 @@ def test_slab_quick(tmp_path, capsys):
     assert all(math.isfinite(float(row[2])) and math.isfinite(float(row[5])) for row in rows)
 
 
+@pytest.mark.validation
 def test_compression_quick(tmp_path, capsys):
     """`compression --quick` of water as mapped (with its background pressure, 500 particles, c = -+3%): a row per
     box, the response and both bulk moduli, the JSON record. The response is expected ~0.9 (2048 particles, -+5%:
@@ -108,6 +114,7 @@ def test_compression_quick(tmp_path, capsys):
     assert all(point["global_q6"] < 0.1 and point["diffusion"]["value"] > 0 for point in record["points"])
 
 
+@pytest.mark.validation
 def test_benchmarks_quick(capsys):
     main(["benchmark-force", "--particles", "500", "--cutoffs", "1.3365", "--rounds", "2"])
     main(["benchmark-integrator", "--particles", "500", "--rounds", "2"])
@@ -161,7 +168,8 @@ def test_threads_sets_the_cpu_platform_and_is_reported(tmp_path, cpu_threads_def
     (["--platform", "Reference", "--threads", "2"], "--threads = 2 applies to the CPU platform only"),
     (["--platform", "CPU", "--threads", "0"], "argument --threads: 0 is not allowed; it must be an integer from 1 to "
                                               "1024"),
-    (["--platform", "CPU", "--precision", "mixed"], "--precision = mixed applies to the OpenCL and CUDA platforms only"),
+    (["--platform", "CPU", "--precision", "mixed"],
+     "--precision = mixed applies to the OpenCL and CUDA platforms only"),
 ])
 def test_bad_threads_are_refused(arguments, message, capsys, cpu_threads_default):
     with pytest.raises(SystemExit):
@@ -198,7 +206,7 @@ def test_an_output_that_cannot_be_written_is_refused_before_anything_runs(comman
 
 def test_an_output_directory_that_can_be_made_is_accepted(tmp_path, monkeypatch):
     """--output DIR may name a directory to make (table3 makes it), under one that exists and is writable."""
-    import openmmgendpde.table3 as table3
+    import openmmgendpde.studies.table3 as table3
     seen = []
     monkeypatch.setattr(table3, "run", lambda arguments: seen.append(arguments.output))
     monkeypatch.setattr("openmmgendpde.__main__.table3", table3)
@@ -236,6 +244,7 @@ def test_help_names_the_estimators_a_subcommand_runs(name, capsys):
 def test_platform_help_states_the_default_in_use():
     """Each subcommand's --platform help names the default its parser really uses (slab's is CPU, not Reference)."""
     import argparse
+
     from openmmgendpde.__main__ import SUBCOMMANDS
     checked = 0
     for name, module, _ in SUBCOMMANDS:
@@ -324,6 +333,10 @@ def test_an_output_where_no_file_can_be_made_is_refused(arguments, message, noth
     (["thermal-expansion", "--delta", "200"], "error: thermal-expansion: --delta 200 is not allowed; it must be < T0 = "
                                               "125.7 K"),
     (["thermal-expansion", "--particles", "32"], "error: thermal-expansion: the box"),
+    (["thermal-expansion", "--fluid", "water"], "error: thermal-expansion: liquid water, 298.15 K, 0.1 MPa: no "
+                                                "thermal_expansion, so no TaitThermalExpansion law to measure"),
+    (["thermal-expansion", "--fluid", "oil"], "error: thermal-expansion: --fluid oil is not allowed; give one of "
+                                              "argon, argon-expanding, supercritical-argon, water or a fluid file"),
     (["table3", "--particles", "32"], "error: table3: 32 particles make a box of edge"),
     (["tune-fcut", "--quick", "--cutoff", "1.5"], "error: tune-fcut: --cutoff 1.5 is not allowed"),
     (["tune-fcut", "--quick", "--start", "0.5"], "error: tune-fcut: GenDPDEForce: cutoff scaling f_cut = 0.5 is not "
@@ -353,7 +366,7 @@ def test_arguments_that_do_not_fit_together_end_in_one_line_before_anything_runs
 def test_a_failure_during_the_run_ends_in_one_line(failure, status, message, monkeypatch, capsys):
     """A simulation that goes bad, an output that cannot be written, Ctrl-C: one line on stderr and a nonzero status,
     not a traceback."""
-    import openmmgendpde.timing as timing
+    import openmmgendpde.benchmarks.timing as timing
 
     def fail(arguments):
         raise failure
@@ -371,7 +384,8 @@ def test_a_script_failure_ends_in_one_line():
     """cli.one_line_errors (the examples): an OpenMMException nothing catches is one line on stderr, status 1."""
     import subprocess
     import sys
-    result = subprocess.run([sys.executable, "-c", "import openmm\nfrom openmmgendpde.cli import one_line_errors\n"
+    result = subprocess.run([sys.executable, "-c", "import openmm\n"
+                             "from openmmgendpde.cli.options import one_line_errors\n"
                              "one_line_errors('x.py')\nraise openmm.OpenMMException('the step was not applied')"],
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 1 and result.stderr == "error: x.py: the step was not applied\n"
@@ -381,8 +395,9 @@ def _fake_argon_runs(monkeypatch, interrupt_at=None):
     """table3's runs replaced by made-up samples (seconds, not minutes): frames of 500 particles that differ from
     call to call; the run number ``interrupt_at`` (from 1) raises KeyboardInterrupt, as Ctrl-C would."""
     import numpy as np
-    import openmmgendpde.table3 as table3
-    from openmmgendpde.study import ArgonRun, Samples
+
+    import openmmgendpde.studies.table3 as table3
+    from openmmgendpde.models.argon_runs import ArgonRun, Samples
     calls = []
 
     def run_argon(cutoff, estimator, protocol, platform, frames=0, progress=None, **options):
@@ -405,7 +420,7 @@ def _files(directory):
 def test_an_interrupted_table3_leaves_the_previous_frames_complete(tmp_path, monkeypatch, capsys):
     """Ctrl-C during table3 --output D: one line, status 130, and D as the last complete run left it (its frames and
     their manifest), nothing of the interrupted run; rdf's reader takes it."""
-    from openmmgendpde.table3 import FRAMES_MANIFEST, read_frames
+    from openmmgendpde.studies.table3 import FRAMES_MANIFEST, read_frames
     _fake_argon_runs(monkeypatch)
     main(["table3", "--quick", "--output", str(tmp_path)])
     before = _files(tmp_path)
@@ -429,7 +444,8 @@ def test_rdf_refuses_an_incomplete_or_foreign_frame_directory_in_one_line(damage
     """rdf --frames-from D reads a complete set only (table3's manifest, every case, each file as table3 wrote it):
     else one line (status 1) before anything runs."""
     import numpy as np
-    from openmmgendpde.table3 import FRAMES_MANIFEST
+
+    from openmmgendpde.studies.table3 import FRAMES_MANIFEST
     _fake_argon_runs(monkeypatch)
     main(["table3", "--quick", "--output", str(tmp_path)] + (["--cutoffs", "1.3365"] if damage == "fewer cutoffs"
                                                                else []))
@@ -450,14 +466,15 @@ def test_rdf_refuses_an_incomplete_or_foreign_frame_directory_in_one_line(damage
 
 def _fake_water_calibration(monkeypatch):
     from helpers import fake_calibration
-    from openmmgendpde.fluid import WATER, coarse_grain
+
+    from openmmgendpde.models.fluid import WATER, coarse_grain
     fake_calibration(monkeypatch, coarse_grain(WATER, 4, neighbors=20))
 
 
 def test_calibrate_writes_every_output_it_can_and_reports_the_one_it_cannot(tmp_path, monkeypatch, capsys):
     """calibrate --json /dev/full (a write that fails after the run): the model (--output) is still written, and the
     failure is one line (status 1) naming the option and the reason."""
-    from openmmgendpde.fluid_files import load_parameters
+    from openmmgendpde.models.fluid_files import load_parameters
     _fake_water_calibration(monkeypatch)
     model = tmp_path / "model.toml"
     with pytest.raises(SystemExit) as exit_:
@@ -472,7 +489,7 @@ def test_a_simulation_failure_in_calibrate_names_its_stage(monkeypatch):
     """An OpenMMException in a stage of calibrate (a negative internal energy in the bulk-modulus runs, as argon at
     4 atoms per particle gave): one line (status 1) naming the stage, the error and the options that set the step and
     the heat capacity."""
-    from openmmgendpde.calibrate import Calibration
+    from openmmgendpde.calibration.calibrate import Calibration
     _fake_water_calibration(monkeypatch)
 
     def bulk_modulus(self):
@@ -494,8 +511,8 @@ def test_calibrates_default_coarse_graining_leaves_the_particles_heat_capacity(f
     stays >= 9 k_B once c_v is matched (calibrate.MIN_DEFAULT_INTERNAL_HEAT_CAPACITY; argon at 4 stopped on a
     negative internal energy at dt* = 0.01). The mapped C_V minus the 5/2 k_B of the motion and the Gamma law is at
     least 9 k_B."""
-    from openmmgendpde.calibrate import FLUIDS, KB, default_molecules_per_particle
-    from openmmgendpde.fluid import coarse_grain
+    from openmmgendpde.models.fluid import KB, coarse_grain, default_molecules_per_particle
+    from openmmgendpde.models.fluid_files import FLUIDS
     assert default_molecules_per_particle(FLUIDS[fluid]) == molecules
     parameters = coarse_grain(FLUIDS[fluid], molecules, neighbors=20)
     assert parameters.heat_capacity / KB - 2.5 >= 9.0
@@ -503,3 +520,33 @@ def test_calibrates_default_coarse_graining_leaves_the_particles_heat_capacity(f
     _fake_water_calibration(monkeypatch)
     main(["calibrate", "--quick", "--fluid", fluid])
     assert f": {molecules} molecules per particle, 20.0 neighbours" in capsys.readouterr().out
+
+
+def test_thermal_expansion_takes_a_fluid_as_every_command_does(capsys):
+    """--fluid NAME|FILE as calibrate takes it: a fluid file with a thermal expansion is mapped at 20 neighbours and 5
+    molecules per particle (the command's defaults), the built-in argon-expanding at the paper's R* = 1.6839; the
+    names of version 0.2 (liquid, supercritical) still work, with a warning naming the new one."""
+    import argparse
+    import os
+
+    from openmmgendpde.calibration.expansion import fluid_of, mapped
+    from openmmgendpde.models.fluid import ARGON_EXPANDING, SUPERCRITICAL_ARGON
+
+    def given(fluid, **options):
+        return argparse.Namespace(**{"fluid": fluid, "molecules_per_particle": None, "neighbors": None,
+                                     "cutoff": None, **options})
+
+    nitrogen = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "fluids", "nitrogen-expanding.toml")
+    fluid, parameters = fluid_of(given(nitrogen))
+    assert "nitrogen" in fluid.name and parameters.thermal_pressure is not None
+    assert parameters.neighbors == pytest.approx(20.0, rel=1e-12) and parameters.molecules_per_particle == 5
+    assert fluid_of(given(nitrogen, neighbors=30.0))[1].neighbors == pytest.approx(30.0, rel=1e-12)
+    assert fluid_of(given("argon-expanding"))[1] == mapped(ARGON_EXPANDING)
+    capsys.readouterr()
+    assert fluid_of(given("liquid"))[1] == mapped(ARGON_EXPANDING)
+    assert fluid_of(given("supercritical"))[1] == mapped(SUPERCRITICAL_ARGON)
+    warnings = capsys.readouterr().err.splitlines()
+    assert warnings == ["warning: thermal-expansion: --fluid liquid is now --fluid argon-expanding (the old name is "
+                        "removed in version 0.4)",
+                        "warning: thermal-expansion: --fluid supercritical is now --fluid supercritical-argon (the "
+                        "old name is removed in version 0.4)"]

@@ -4,10 +4,10 @@ Lepton expressions, OpenMM's neighbor search and automatic chain rule), on the R
 import numpy as np
 import openmm
 import pytest
-
 from helpers import DENSITY, energy_and_forces, lattice_liquid, make_context, rms
+
 from openmmgendpde import GenDPDEForce
-from openmmgendpde.customgb import custom_gb_equivalent
+from openmmgendpde.models.customgb import custom_gb_equivalent
 
 
 @pytest.mark.parametrize("estimator", [GenDPDEForce.VA, GenDPDEForce.VB])

@@ -7,6 +7,9 @@ import sys
 
 import pytest
 
+#: The tier of every test here (pyproject.toml's markers).
+pytestmark = pytest.mark.validation
+
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
 
 

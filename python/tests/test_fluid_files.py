@@ -1,4 +1,5 @@
-"""Fluids and calibrated models as files (openmmgendpde.fluid_files) and calibrate's --fluid FILE and --output."""
+"""Fluids and calibrated models as files (openmmgendpde.models.fluid_files) and calibrate's --fluid FILE and
+--output."""
 
 import dataclasses
 import json
@@ -9,12 +10,18 @@ import sys
 
 import openmm
 import pytest
-
 from helpers import fake_calibration
+
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import ARGON, ARGON_EXPANDING, WATER, coarse_grain
-from openmmgendpde.fluid_files import (fluid_from_table, fluid_table, load_fluid, load_parameters, quantity,
-                                       save_parameters)
+from openmmgendpde.models.fluid import ARGON, ARGON_EXPANDING, WATER, coarse_grain
+from openmmgendpde.models.fluid_files import (
+    fluid_from_table,
+    fluid_table,
+    load_fluid,
+    load_parameters,
+    quantity,
+    save_parameters,
+)
 
 REPOSITORY = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 WATER_FILE = os.path.join(REPOSITORY, "examples", "fluids", "water.toml")
@@ -111,7 +118,7 @@ def test_bad_model_files_are_refused(tmp_path):
     path = str(tmp_path / "model.toml")
     save_parameters(coarse_grain(WATER, 4, neighbors=20), path)
     text = open(path).read()
-    for old, new, message in [("openmmgendpde-model-1", "other-2", "format = 'other-2' is not a model file"),
+    for old, new, message in [("openmmgendpde-model-2", "other-2", "format = 'other-2' is not a model file"),
                               ("cutoff = ", "cut = ", "missing ['cutoff']; unknown ['cut']"),
                               ("mass = 72.06", "mass = -72.06", "mass = -72.06 is not allowed; it must be > 0"),
                               ("mass = 72.06", 'mass = "72.06"', "mass = '72.06' is not allowed; it must be a finite")]:
@@ -125,13 +132,77 @@ def test_bad_model_files_are_refused(tmp_path):
         save_parameters(coarse_grain(WATER, 4, neighbors=20), str(tmp_path / "model.txt"))
 
 
+def test_a_model_file_records_the_estimator_and_the_law_and_refuses_another_estimator(tmp_path):
+    """Format 2 writes the estimator that f_cut was tuned for and the equation of state; loaded, liquid() builds with
+    that estimator by default, allows V-A (which has no f_cut), and refuses V-C with V-B's f_cut, naming both (the
+    bug of format 1: V-C ran silently on V-B's f_cut)."""
+    path = str(tmp_path / "model.toml")
+    tuned = coarse_grain(ARGON_EXPANDING, 5, neighbors=20).with_cutoff_scaling(1.3371, "VB")
+    save_parameters(tuned, path)
+    text = open(path).read()
+    assert 'format = "openmmgendpde-model-2"' in text
+    assert 'estimator = "VB"' in text and 'equation_of_state = "TaitThermalExpansion"' in text
+    loaded = load_parameters(path)
+    assert loaded.estimator == "VB" and loaded.equation_of_state == "TaitThermalExpansion"
+    assert loaded.liquid(500).force.getDensityEstimator() == openmm_gendpde_estimator("VB")
+    assert loaded.liquid(500, "VA").force.getDensityEstimator() == openmm_gendpde_estimator("VA")
+    with pytest.raises(ValueError, match=r"estimator = 'VC' is not allowed for this model: its f_cut = 1\.3371 was "
+                                         r"tuned for VB"):
+        loaded.liquid(500, "VC")
+    assert loaded.with_cutoff_scaling(1.41, "VC").liquid(500, "VC").force.getCutoffScaling() == 1.41
+    # A fresh mapping records no estimator: its f_cut is a first estimate for any.
+    assert coarse_grain(WATER, 4, neighbors=20).estimator is None
+    assert coarse_grain(WATER, 4, neighbors=20).liquid(500, "VC").force.getDensityEstimator() == \
+        openmm_gendpde_estimator("VC")
+
+
+def openmm_gendpde_estimator(name):
+    from openmmgendpde import GenDPDEForce
+    return getattr(GenDPDEForce, name)
+
+
+def test_a_format_1_model_file_is_still_read_without_an_estimator(tmp_path):
+    """A model file of version 0.2 (format 1: no estimator, no equation_of_state) loads with the same numbers and
+    estimator None (unknown: any estimator builds, as before)."""
+    path = str(tmp_path / "model.toml")
+    parameters = coarse_grain(WATER, 4, neighbors=20)
+    save_parameters(parameters, path)
+    lines = [line for line in open(path).read().splitlines()
+             if not line.startswith(("estimator", "equation_of_state"))]
+    old = str(tmp_path / "old.toml")
+    with open(old, "w") as stream:
+        stream.write("\n".join(lines).replace("openmmgendpde-model-2", "openmmgendpde-model-1") + "\n")
+    loaded = load_parameters(old)
+    assert loaded.estimator is None and loaded == dataclasses.replace(parameters, fluid=loaded.fluid)
+    with open(old, "a") as stream:   # format 1 knows no estimator key
+        stream.write('estimator = "VB"\n')
+    with pytest.raises(ValueError, match=r"unknown \['estimator'\]"):
+        load_parameters(old)
+
+
+@pytest.mark.parametrize("old, new, message", [
+    ('estimator = "VB"', 'estimator = "VD"', "estimator = 'VD' is not allowed; it must be one of 'VA', 'VB', 'VC'"),
+    ('equation_of_state = "Tait"', 'equation_of_state = "TaitThermalExpansion"',
+     "equation_of_state = 'TaitThermalExpansion' does not match the parameters given"),
+])
+def test_a_model_file_with_a_bad_estimator_or_law_is_refused(old, new, message, tmp_path):
+    path = str(tmp_path / "model.toml")
+    save_parameters(coarse_grain(WATER, 4, neighbors=20).for_estimator("VB"), path)
+    broken = str(tmp_path / "broken.toml")
+    with open(broken, "w") as stream:
+        stream.write(open(path).read().replace(old, new))
+    with pytest.raises(ValueError) as error:
+        load_parameters(broken)
+    assert message in str(error.value)
+
+
 def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatch, tmp_path, capsys):
     """calibrate --fluid FILE --output MODEL with the simulations replaced by made-up measurements: the pressure
     reads P0 + 0.02/kappa_T (beyond the 0.01 allowed) with pi0 as mapped and P0 after any move, so pi0 must end
     -0.02/kappa_T from the mapping (one round, a response of 1); f_cut is 'tuned' to 1.3; the transport
     coefficients read their targets. The model file holds exactly those parameters (computed here from coarse_grain,
     independently of calibrate)."""
-    from openmmgendpde.calibrate import KB
+    from openmmgendpde.models.fluid import KB
     offset = 0.02
     mapped = coarse_grain(load_fluid(WATER_FILE), 4, neighbors=20)
     fake_calibration(monkeypatch, mapped, offset)
@@ -140,7 +211,7 @@ def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatc
     assert f"The calibrated model is in {output}" in capsys.readouterr().out
     model = load_parameters(output)
     bulk_modulus = mapped.targets()["bulk_modulus"]
-    expected = dataclasses.replace(mapped, cutoff_scaling=1.3,
+    expected = dataclasses.replace(mapped, cutoff_scaling=1.3, estimator="VB",   # (calibrate's --estimator default)
                                    reference_pressure=mapped.reference_pressure - offset * bulk_modulus)
     assert model.reference_pressure == pytest.approx(expected.reference_pressure, rel=1e-12)
     # C_V matched to the fluid's c_v: the made-up c_U (0.5 k_B), the motion (3/2 k_B) and the Gamma law's k_B off.

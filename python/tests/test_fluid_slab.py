@@ -1,4 +1,4 @@
-"""The slab of any fluid (openmmgendpde.slab.fluid_slab) and the --fluid option of `slab` and `tune-fcut`
+"""The slab of any fluid (openmmgendpde.studies.slab.fluid_slab) and the --fluid option of `slab` and `tune-fcut`
 (docs/interfaces.md, "A slab of any fluid")."""
 
 import argparse
@@ -9,15 +9,15 @@ import subprocess
 import sys
 
 import numpy as np
-import openmm
 import pytest
 from openmm import unit
 
-from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, slab as slab_module
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.__main__ import main
-from openmmgendpde.fluid import ARGON, WATER, coarse_grain
-from openmmgendpde.fluid_files import load_parameters, save_parameters
-from openmmgendpde.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run, surface_tension_table
+from openmmgendpde.models.fluid import ARGON, WATER, coarse_grain
+from openmmgendpde.models.fluid_files import load_parameters, save_parameters
+from openmmgendpde.studies import slab as slab_module
+from openmmgendpde.studies.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run, surface_tension_table
 
 NM = unit.nanometer
 WATER_FILE = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "fluids", "water.toml")
@@ -88,14 +88,15 @@ def _temperatures(water, thermostat_time):
     return (np.mean([s.kinetic_temperature for s in samples]), np.mean([s.harmonic_temperature for s in samples]))
 
 
+@pytest.mark.validation
 def test_thermostatted_vc_water_slab_stays_at_t0_where_the_unthermostatted_one_heats(water):
     """The heating that the thermostatted stage removes (docs/interfaces.md, "A slab of any fluid"): a V-C water slab
     cut from a melted liquid and started isoenergetic at once heats as its new surfaces relax (measured here, 600
     particles, seed 5: T_kin 334.7 K and T_harm 323.6 K over 10 time units, T0 = 298.15 K); thermostatted for
     SLAB_THERMOSTAT_TIME first, it stays at T0 (299.0 K and 299.0 K). Tolerance 6 K (2%) on both means: a kinetic
     temperature of 600 particles scatters by sqrt(2/(3N)) = 3.3% (10 K) per sample, and the 10 samples are
-    correlated over ~1 time unit, so their mean is good to ~4 K; the harmonic mean of theta_i (C_V = 36 k_B per particle) to ~2 K. The
-    unthermostatted slab must exceed T0 by 15 K in both (it exceeds it by 25-37 K)."""
+    correlated over ~1 time unit, so their mean is good to ~4 K; the harmonic mean of theta_i (C_V = 36 k_B per
+    particle) to ~2 K. The unthermostatted slab must exceed T0 by 15 K in both (it exceeds it by 25-37 K)."""
     assert SLAB_THERMOSTAT_TIME > 0
     kinetic, harmonic = _temperatures(water, SLAB_THERMOSTAT_TIME)
     assert abs(kinetic - water.temperature) < 6 and abs(harmonic - water.temperature) < 6, (kinetic, harmonic)
@@ -103,6 +104,7 @@ def test_thermostatted_vc_water_slab_stays_at_t0_where_the_unthermostatted_one_h
     assert kinetic - water.temperature > 15 and harmonic - water.temperature > 15, (kinetic, harmonic)
 
 
+@pytest.mark.validation
 def test_slab_command_runs_a_fluid_file(tmp_path, capsys):
     """`slab --fluid FILE` (examples/fluids/water.toml, --quick: 600 particles, 10 time units): the fluid named, the
     temperatures printed and written beside the argon columns."""
@@ -194,6 +196,7 @@ def model_file(water, tmp_path):
     return path
 
 
+@pytest.mark.validation
 def test_slab_command_runs_a_model_file(model_file, monkeypatch, tmp_path, capsys):
     """`slab --model FILE` (--quick: 600 particles, 10 time units): the slab is built from exactly the file's
     parameters (load_parameters; its System has the file's f_cut and friction), named in the output, and the

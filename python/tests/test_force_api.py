@@ -7,11 +7,18 @@ import pickle
 import numpy as np
 import openmm
 import pytest
+from conftest import GPU_PLATFORMS
+from helpers import (
+    DENSITY,
+    MIDDLE_CUTOFF,
+    TEMPERATURE,
+    assert_rejected_without_change,
+    energy_and_forces,
+    lattice_liquid,
+    make_context,
+)
 from openmm import app, unit
 
-from conftest import GPU_PLATFORMS
-from helpers import (DENSITY, MIDDLE_CUTOFF, TEMPERATURE, assert_rejected_without_change, energy_and_forces,
-                     lattice_liquid, make_context)
 from openmmgendpde import GenDPDEForce
 from openmmgendpde.physics import particleVolumeVB, taitEquationOfState
 
@@ -27,7 +34,7 @@ def test_is_an_openmm_force_with_quantity_getters():
     assert force.getNonbondedMethod() == GenDPDEForce.CutoffPeriodic and force.usesPeriodicBoundaryConditions()
     n0, pi0, bulk, gamma = force.getTaitParameters()
     # Defaults: liquid argon of docs/theory.md section 9 (u = 94.5476 kJ/mol, L = 0.61616 nm), written out here in SI
-    # so that the C++ defaults are checked independently of openmmgendpde.presets.
+    # so that the C++ defaults are checked independently of openmmgendpde.models.argon.
     length = 0.61616
     pressure_unit = 1.5700e-19 * 6.02214076e23 / 1000 / length**3
     assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(1 / length**3, rel=1e-14)
@@ -44,8 +51,8 @@ def test_is_an_openmm_force_with_quantity_getters():
 def test_arguments_accept_quantities_in_any_compatible_unit():
     force = GenDPDEForce(12.0 * unit.angstrom)
     assert force.getCutoffDistance().value_in_unit(unit.nanometer) == pytest.approx(1.2)
-    force.setTaitParameters(4.0e27 / unit.meter**3, 80 * unit.megapascal, 1 * unit.kilocalorie_per_mole / unit.angstrom**3,
-                            7.0)
+    force.setTaitParameters(4.0e27 / unit.meter**3, 80 * unit.megapascal,
+                            1 * unit.kilocalorie_per_mole / unit.angstrom**3, 7.0)
     n0, pi0, bulk, gamma = force.getTaitParameters()
     assert n0.value_in_unit(unit.nanometer**-3) == pytest.approx(4.0)
     # A pressure in MPa is converted per mole: 1 MPa = 0.602214 kJ/mol/nm^3.
@@ -150,7 +157,8 @@ def test_observables_are_quantity_arrays_consistent_with_the_model(platform):
     densities = densities.value_in_unit(NUMBER_DENSITY)
     pressures = pressures.value_in_unit(PRESSURE)
     reduced_range = force.getCutoffDistance().value_in_unit(unit.nanometer) / force.getCutoffScaling()
-    tait = [value.value_in_unit(value.unit) if unit.is_quantity(value) else value for value in force.getTaitParameters()]
+    tait = [value.value_in_unit(value.unit) if unit.is_quantity(value) else value
+            for value in force.getTaitParameters()]
     # The host platforms call the model's own function (the same bits); the GPU platforms evaluate it on the device,
     # where the compiler fuses multiply-adds (a few ulp).
     exact = platform.getName() not in GPU_PLATFORMS

@@ -8,18 +8,20 @@ target; measured 3e-6 on PoCL)."""
 import numpy as np
 import openmm
 import pytest
-from openmm import unit
-
 from conftest import GPU_PLATFORMS
-from helpers import argon_integrator, energy_and_forces, lattice_liquid, make_context, rms, TEMPERATURE
-from openmmgendpde import ESTIMATOR_NAMES, GenDPDEForce
-from openmmgendpde.physics import particleVolumeVB
-from openmmgendpde.presets import liquid_argon
-from openmmgendpde.statistics import block_average
-from openmmgendpde.units import BOLTZMANN
+from helpers import TEMPERATURE, argon_integrator, energy_and_forces, lattice_liquid, make_context, rms
+from openmm import unit
 from scipy import stats
 
-pytestmark = pytest.mark.skipif(not GPU_PLATFORMS, reason="no GPU platform (OpenCL or CUDA) in this OpenMM")
+from openmmgendpde import ESTIMATOR_NAMES, GenDPDEForce
+from openmmgendpde.analysis.statistics import block_average
+from openmmgendpde.models.argon import liquid_argon
+from openmmgendpde.physics import particleVolumeVB
+from openmmgendpde.units import BOLTZMANN
+
+#: Every test here is of the gpu tier (pyproject.toml's markers), and needs a GPU platform.
+pytestmark = [pytest.mark.gpu,
+              pytest.mark.skipif(not GPU_PLATFORMS, reason="no GPU platform (OpenCL or CUDA) in this OpenMM")]
 
 PRECISIONS = ["single", "mixed", "double"]
 

@@ -1,12 +1,12 @@
-"""The Rankine-Hugoniot solver (openmmgendpde.hugoniot) against the ideal gas's shock, known in closed form, and
-the fit of an equation of state against functions it must reproduce exactly."""
+"""The Rankine-Hugoniot solver (openmmgendpde.analysis.hugoniot) against the ideal gas's shock, known in closed form,
+and the fit of an equation of state against functions it must reproduce exactly."""
 
 import math
 
 import numpy as np
 import pytest
 
-from openmmgendpde.hugoniot import EquationOfStateFit, shocked_state
+from openmmgendpde.analysis.hugoniot import EquationOfStateFit, shocked_state
 
 GAMMA = 5 / 3       # monatomic ideal gas: P = (GAMMA - 1) n E, T = (GAMMA - 1) E/k_B
 KB = 0.0083144626   # kJ/mol/K

@@ -2,18 +2,17 @@
 XmlSerializer, checkpoints and States."""
 
 import copy
-import io
 import pickle
 
 import numpy as np
 import openmm
 import pytest
+from helpers import MIDDLE_CUTOFF, TEMPERATURE, argon_integrator, assert_rejected_without_change
 from openmm import app, unit
 from scipy import stats
 
-from helpers import MIDDLE_CUTOFF, TEMPERATURE, argon_integrator, assert_rejected_without_change
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.presets import ARGON_STATE, ARGON_UNITS, liquid_argon
+from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS, liquid_argon
 
 ENERGY = unit.kilojoule_per_mole
 
@@ -162,7 +161,7 @@ def test_force_group_not_integrated_gives_own_pair_list():
     argon = liquid_argon(500, 1.6839, "VB", seed=6)
     argon.force.setForceGroup(1)
     argon.integrator.setIntegrationForceGroups({0})
-    simulation = argon.simulation()
+    _simulation = argon.simulation()   # (kept alive: the Context the integrator is bound to)
     argon.integrator.step(10)
     assert np.all(np.isfinite(argon.integrator.getInternalEnergies().value_in_unit(ENERGY)))
     assert GenDPDEForce.isinstance(argon.system.getForce(0))

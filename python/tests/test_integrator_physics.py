@@ -10,8 +10,8 @@ from openmm import unit
 from scipy import integrate, stats
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.presets import liquid_argon
-from openmmgendpde.statistics import block_average
+from openmmgendpde.analysis.statistics import block_average
+from openmmgendpde.models.argon import liquid_argon
 from openmmgendpde.units import BOLTZMANN
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
@@ -55,6 +55,7 @@ def equilibrium_samples(request):
     return kinetic, temperatures, heat_capacity
 
 
+@pytest.mark.validation
 def test_kinetic_temperature_equals_harmonic_mean_temperature(equilibrium_samples):
     """Exact expected value: at fixed positions the stationary state is microcanonical in E = K + U + sum eps with
     density prod_i eps_i^c (c = C_V/k_B), so (K, eps_1..eps_N)/(E - U) is Dirichlet(d/2, c+1, ..., c+1) with
@@ -122,6 +123,7 @@ def mixture_samples():
     return kinetic, temperatures, capacity
 
 
+@pytest.mark.validation
 def test_mixture_equilibrium_identities_hold_per_type(mixture_samples):
     """docs/types.md: with per-type C_V the stationary law on the shell is Dirichlet(d/2, c_1 + 1, ..., c_N + 1)
     (c_i = C_i/k_B), so A = d/2 + sum_i (c_i + 1), <1/theta_i> = k_B (A - 1)/(E - U) for every particle whatever
@@ -188,9 +190,9 @@ def _pair(mode, heat_capacity, temperature):
 ])
 def test_relative_velocity_relaxes_at_the_predicted_rate(mode, heat_capacity, temperature):
     """Without noise, docs/theory.md section 6 gives du/dt = -gamma (1 - r/R)^2 (1/m_i + 1/m_j) u and dr/dt = u for
-    the relative velocity u along e_ij; solved here with scipy to 1e-12. The integrator (dt = 0.5 fs, rate ~2/ps) follows it up
-    to the O(dt) error of the splitting in the r-u coupling (the pair update acts at fixed r, then the drift):
-    measured 3e-6 = 3e-5 u0; tolerance 1e-4 u0. Velocities perpendicular to e_ij are untouched."""
+    the relative velocity u along e_ij; solved here with scipy to 1e-12. The integrator (dt = 0.5 fs, rate ~2/ps)
+    follows it up to the O(dt) error of the splitting in the r-u coupling (the pair update acts at fixed r, then the
+    drift): measured 3e-6 = 3e-5 u0; tolerance 1e-4 u0. Velocities perpendicular to e_ij are untouched."""
     context, integrator = _pair(mode, heat_capacity, temperature)
     mu = 1 / 2.0 + 1 / 3.0
     solution = integrate.solve_ivp(lambda t, y: [y[1], -10.0 * (1 - y[0]) ** 2 * mu * y[1]], (0, 1.5), [0.5, 0.1],
@@ -207,6 +209,7 @@ def test_relative_velocity_relaxes_at_the_predicted_rate(mode, heat_capacity, te
     assert solution.sol(1.5)[1] < 0.1 * math.exp(-2)   # the test spans more than two relaxation times
 
 
+@pytest.mark.validation
 def test_conserved_energy_error_is_second_order_in_the_step():
     """Full GenDPDE on liquid argon from 4 equilibrated states, dt* = 0.01, 0.005, 0.0025 over 10 time units: the
     root-mean-square change of K + U + sum eps over windows of 0.5 time units (80 windows per step size). Velocity
@@ -274,6 +277,7 @@ def _force_free_dpd_run(kind, seed, steps=1500, every=5, lag=20):
     return np.array(temperatures), displacement2 / (6 * lag * every * dt)
 
 
+@pytest.mark.validation
 def test_force_free_dpd_fluid_against_equipartition_and_openmm():
     """Plain DPD (no GenDPDEForce; the integrator's own pair list). Expected: kinetic temperature = T exactly (each
     pair update and the drift preserve uniform positions x Maxwell-Boltzmann velocities, so the start is stationary

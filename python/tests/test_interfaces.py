@@ -1,11 +1,11 @@
-"""The exact partition-of-unity volume (openmmgendpde.interfaces) against closed forms and an independent grid
-integration, and the slab study's bookkeeping (openmmgendpde.slab)."""
+"""The exact partition-of-unity volume (openmmgendpde.analysis.interfaces) against closed forms and an independent grid
+integration, and the slab study's bookkeeping (openmmgendpde.studies.slab)."""
 
 import numpy as np
 import pytest
 
-from openmmgendpde.interfaces import partition_of_unity_volumes
-from openmmgendpde.slab import depth, slab_positions
+from openmmgendpde.analysis.interfaces import partition_of_unity_volumes
+from openmmgendpde.studies.slab import depth, slab_positions
 
 
 def test_one_particle_has_the_volume_of_its_ball():
@@ -78,12 +78,13 @@ def test_slab_bookkeeping():
     assert d.max() < thickness / 2 and d.max() > 0.45 * thickness
 
 
+@pytest.mark.validation
 def test_quick_slab_shows_where_vb_goes_wrong():
     """A 600-particle V-B slab after 10 time units (the `slab --quick` run, CPU platform, ~2 s): in the interior V-B's
     density is within 10% of the exact partition-of-unity density (measured +5%), at the surface it is far above it
     (measured 1.8 times: 0.685 against 0.379), which is why V-B slabs foam (docs/interfaces.md). Tolerance: the
     surface ratio above 1.3."""
-    from openmmgendpde.slab import depth_profile, run_slab
+    from openmmgendpde.studies.slab import depth_profile, run_slab
     samples, model, thickness = run_slab("VB", duration=10.0, every=10.0, cells=(5, 5, 6), platform="CPU")
     assert samples[0].core_density == pytest.approx(0.82)
     rows = depth_profile(model, thickness, bin_width=0.5)
@@ -92,12 +93,13 @@ def test_quick_slab_shows_where_vb_goes_wrong():
     assert surface[5] / surface[4] > 1.3, surface
 
 
+@pytest.mark.validation
 def test_vc_slab_holds_where_vb_foams():
     """The 600-particle slab for 40 time units with V-B and with V-C (CPU platform, ~2 s each): V-B's core thins
     (measured 0.54) while V-C's stays near the liquid's (measured 0.75); tolerance: V-C's core above 0.68 (15% below
     the start) and at least 0.1 above V-B's. At the surface V-C's density is closer to the exact one than V-B's
     (measured 0.81 and 0.84 against 0.49: closer, not close)."""
-    from openmmgendpde.slab import depth_profile, run_slab
+    from openmmgendpde.studies.slab import depth_profile, run_slab
     cores = {}
     for estimator in ("VB", "VC"):
         samples, model, thickness = run_slab(estimator, duration=40.0, every=40.0, cells=(5, 5, 6), platform="CPU")

@@ -8,16 +8,16 @@ import subprocess
 import sys
 import threading
 import time
-import tomllib
 
 import numpy as np
 import openmm
 import pytest
+import tomllib
+from helpers import TEMPERATURE, argon_integrator, lattice_liquid, make_context
 from openmm import unit
 from packaging.requirements import Requirement
 
 import openmmgendpde
-from helpers import TEMPERATURE, argon_integrator, lattice_liquid, make_context
 from openmmgendpde import KERNEL_NAMES, GenDPDEForce, GenDPDEIntegrator
 
 

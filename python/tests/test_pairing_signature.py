@@ -3,13 +3,14 @@
 import numpy as np
 import pytest
 
-from openmmgendpde.statistics import block_average
-from openmmgendpde.study import QUICK, run_argon
+from openmmgendpde.analysis.statistics import block_average
+from openmmgendpde.models.argon_runs import QUICK, run_argon
 
 
 # QUICK's blocks (3 time units) are shorter than the plateau check asks (BlockAverageWarning); the assertions use
 # the means only, and the margins below stay many block errors wide even if those errors were twice as large.
-@pytest.mark.filterwarnings("ignore::openmmgendpde.statistics.BlockAverageWarning")
+@pytest.mark.validation
+@pytest.mark.filterwarnings("ignore::openmmgendpde.analysis.statistics.BlockAverageWarning")
 def test_va_clumps_and_vb_keeps_the_imposed_density():
     """At R_cut* = 1.3365 (the worst case), with the QUICK protocol (500 particles, thermostat 10 + isoenergetic
     10 + production 30 time units at dt* = 0.01): VA gives n-bar* below 0.9 and VB within 0.02 of n0* = 1.

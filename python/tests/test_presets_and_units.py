@@ -11,8 +11,14 @@ import pytest
 from openmm import app, unit
 
 from openmmgendpde import GenDPDEForce
-from openmmgendpde.presets import (ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, fcc_lattice, liquid_argon,
-                                   pressure_unit_mpa)
+from openmmgendpde.models.argon import (
+    ARGON_CUTOFFS,
+    ARGON_STATE,
+    ARGON_UNITS,
+    fcc_lattice,
+    liquid_argon,
+    pressure_unit_mpa,
+)
 from openmmgendpde.units import OPENMM_UNITS, ReducedUnits
 
 AVOGADRO = 6.02214076e23
@@ -35,7 +41,8 @@ def test_derived_units_match_model_md_from_si():
     assert ARGON_UNITS.unit("time").value_in_unit(unit.picosecond) == pytest.approx(0.8962, abs=5e-5)
     assert pressure_unit_mpa() == pytest.approx(1.5700e-19 / 0.61616e-9**3 / 1e6, rel=1e-12)
     assert pressure_unit_mpa() == pytest.approx(671.1, abs=0.05)
-    assert ARGON_UNITS.unit("temperature").value_in_unit(unit.kelvin) == pytest.approx(1.5700e-19 / BOLTZMANN_SI, rel=1e-12)
+    assert ARGON_UNITS.unit("temperature").value_in_unit(unit.kelvin) == pytest.approx(1.5700e-19 / BOLTZMANN_SI,
+                                                                                       rel=1e-12)
 
 
 def test_reduced_state_recovered_from_si_values():
@@ -132,8 +139,8 @@ def test_a_presets_force_keeps_its_system_alive():
     fails reliably; the force, read after garbage collection and other allocations by a ProfileReporter and by
     XmlSerializer, against a fresh preset's."""
     script = ("import gc, io, openmm\n"
-              "from openmmgendpde.presets import liquid_argon\n"
-              "from openmmgendpde.profiles import ProfileReporter\n"
+              "from openmmgendpde.models.argon import liquid_argon\n"
+              "from openmmgendpde.analysis.profiles import ProfileReporter\n"
               "force = liquid_argon(500, estimator='VC').force\n"
               "gc.collect()\n"
               "others = [liquid_argon(500) for _ in range(3)]\n"

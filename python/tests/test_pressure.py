@@ -1,17 +1,17 @@
-"""The virial and pressure tensors (GenDPDEForce.getParticleVirials, openmmgendpde.pressure) against the scalar virial
-and the energy's response to deformations of the box, for every estimator (V-C's pair forces are not central) and
+"""The virial and pressure tensors (GenDPDEForce.getParticleVirials, openmmgendpde.analysis.pressure) against the scalar
+virial and the energy's response to deformations of the box, for every estimator (V-C's pair forces are not central) and
 platform, in cubic and triclinic boxes and a slab. (The C++ tests check each particle's tensor against the
 brute-force evaluator and every element by finite differences on every platform and precision.)"""
 
 import numpy as np
 import openmm
 import pytest
+from conftest import PLATFORM_PARAMETERS
+from helpers import DENSITY, lattice_liquid, make_context
 from openmm import unit
 
-from conftest import PLATFORMS
-from helpers import DENSITY, lattice_liquid, make_context
-from openmmgendpde import ESTIMATOR_NAMES, GenDPDEForce
-from openmmgendpde.pressure import pressure_tensor, virial_tensor
+from openmmgendpde import ESTIMATOR_NAMES
+from openmmgendpde.analysis.pressure import pressure_tensor, virial_tensor
 
 ESTIMATORS = list(ESTIMATOR_NAMES)
 
@@ -26,7 +26,7 @@ def triclinic(system, positions):
 
 
 @pytest.mark.parametrize("estimator", ESTIMATORS, ids=[ESTIMATOR_NAMES[e] for e in ESTIMATORS])
-@pytest.mark.parametrize("name", PLATFORMS)
+@pytest.mark.parametrize("name", PLATFORM_PARAMETERS)
 def test_trace_is_the_scalar_virial(name, estimator):
     """The per-particle tensors (N x 3 x 3, kJ/mol) add up to W with trace W = GenDPDEForce.getVirial (the
     platform's own sum over pairs): 1e-10 relative to the sum of the particles' |trace| (the same sums in another
@@ -83,10 +83,12 @@ def test_components_are_the_energys_response_to_strain(estimator, geometry):
 
 
 def test_pressure_tensor_trace_is_the_virial_pressure():
-    """trace P / 3 = (2 K_int + W)/(3V), the scalar virial pressure of the reporters (openmmgendpde.thermodynamics,
-    from the integrator's kinetic energy and GenDPDEForce.getVirial): the same sums, 1e-10 relative."""
-    from openmmgendpde.thermodynamics import ThermodynamicProbe
-    from helpers import argon_integrator, TEMPERATURE
+    """trace P / 3 = (2 K_int + W)/(3V), the scalar virial pressure of the reporters
+    (openmmgendpde.analysis.thermodynamics, from the integrator's kinetic energy and GenDPDEForce.getVirial): the same
+    sums, 1e-10 relative."""
+    from helpers import TEMPERATURE, argon_integrator
+
+    from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe
     system, force, positions = lattice_liquid(6, seed=14)
     integrator = argon_integrator(0.01 * unit.picosecond)
     integrator.setTemperature(TEMPERATURE * unit.kelvin)

@@ -1,4 +1,4 @@
-"""ProfileReporter (openmmgendpde.profiles) against a direct computation of the same bins."""
+"""ProfileReporter (openmmgendpde.analysis.profiles) against a direct computation of the same bins."""
 
 import io
 
@@ -8,9 +8,9 @@ import pytest
 from openmm import app, unit
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.fluid import WATER, coarse_grain, set_temperature_field
-from openmmgendpde.presets import liquid_argon
-from openmmgendpde.profiles import ProfileReporter, profile
+from openmmgendpde.analysis.profiles import ProfileReporter, profile
+from openmmgendpde.models.argon import liquid_argon
+from openmmgendpde.models.fluid import WATER, coarse_grain, set_temperature_field
 from openmmgendpde.units import BOLTZMANN
 
 

@@ -8,12 +8,12 @@ import math
 import numpy as np
 import openmm
 import pytest
+from helpers import TEMPERATURE, argon_integrator
 from openmm import app, unit
 
-from helpers import TEMPERATURE, argon_integrator
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator, GenDPDEReporter
-from openmmgendpde.presets import ARGON_UNITS, liquid_argon
-from openmmgendpde.thermodynamics import ThermodynamicProbe, numerical_virial
+from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe, numerical_virial
+from openmmgendpde.models.argon import ARGON_UNITS, liquid_argon
 from openmmgendpde.units import BOLTZMANN
 
 ENERGY = unit.kilojoule_per_mole
@@ -105,7 +105,8 @@ def test_kinetic_temperature_is_measured_in_the_centre_of_mass_frame():
     forces = context.getState(getForces=True).getForces(asNumpy=True).value_in_unit(ENERGY / unit.nanometer)
     mass = argon.system.getParticleMass(0).value_in_unit(unit.amu)
     dt = argon.integrator.getStepSize().value_in_unit(unit.picosecond)
-    on_step = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond) + 0.5 * dt * forces / mass
+    velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+    on_step = velocities + 0.5 * dt * forces / mass
     internal = on_step - on_step.mean(axis=0)
     expected = mass * np.sum(internal**2) / ((3 * 500 - 3) * BOLTZMANN.value_in_unit(ENERGY / unit.kelvin))
     assert sample.kinetic_temperature.value_in_unit(unit.kelvin) == pytest.approx(expected, rel=1e-10)
@@ -149,7 +150,7 @@ def test_pressure_counts_every_force():
 
 
 def _reporters():
-    from openmmgendpde.profiles import ProfileReporter
+    from openmmgendpde.analysis.profiles import ProfileReporter
     return {"GenDPDEReporter": GenDPDEReporter, "ProfileReporter": ProfileReporter}
 
 
@@ -184,6 +185,6 @@ def test_reporters_refuse_bad_arguments_when_made_before_creating_the_file(repor
 
 def test_profile_reporter_takes_a_gendpde_force_from_the_system():
     """A GenDPDEForce as System.getForce returns it (an openmm.Force) is taken, cast to GenDPDEForce."""
-    from openmmgendpde.profiles import ProfileReporter
+    from openmmgendpde.analysis.profiles import ProfileReporter
     argon = liquid_argon(500, 1.6839, "VB", seed=5)
     ProfileReporter(io.StringIO(), 10, force=argon.system.getForce(0))

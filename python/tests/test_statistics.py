@@ -1,4 +1,5 @@
-"""Block averages (openmmgendpde.statistics): the value, and the plateau check that warns without changing it."""
+"""Block averages (openmmgendpde.analysis.statistics): the value, and the plateau check that warns without changing
+it."""
 
 import math
 import warnings
@@ -6,8 +7,14 @@ import warnings
 import numpy as np
 import pytest
 
-from openmmgendpde.statistics import (BlockAverage, BlockAverageWarning, block_average, block_standard_error,
-                                      correlated_mean, statistical_inefficiency)
+from openmmgendpde.analysis.statistics import (
+    BlockAverage,
+    BlockAverageWarning,
+    block_average,
+    block_standard_error,
+    correlated_mean,
+    statistical_inefficiency,
+)
 
 
 def correlated_series(length, correlation_time, seed):
@@ -88,7 +95,7 @@ def test_self_diffusion_of_a_random_walk():
     particles, plus a common drift that the centre-of-mass removal must take out): D recovered within 3 of its
     standard errors, and the error within a factor 2 of the expected scatter (the MSD of 2000 particles at the
     fitted lags, ~sqrt(2/(3 x 200)) relative per group: about 1.6% of D over 10 groups)."""
-    from openmmgendpde.thermodynamics import self_diffusion
+    from openmmgendpde.analysis.thermodynamics import self_diffusion
     rng = np.random.default_rng(11)
     d, dt, frames, particles = 0.05, 0.1, 300, 2000
     steps = rng.normal(scale=math.sqrt(2 * d * dt), size=(frames, particles, 3))

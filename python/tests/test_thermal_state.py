@@ -12,8 +12,8 @@ import pytest
 from openmm import unit
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.expansion import mapped
-from openmmgendpde.slab import argon_model, slab_positions
+from openmmgendpde.calibration.expansion import mapped
+from openmmgendpde.studies.slab import argon_model, slab_positions
 
 KELVIN = unit.kelvin
 KJ = unit.kilojoule_per_mole

@@ -1,5 +1,5 @@
-"""The steady-flow transport measurements (openmmgendpde.transport, docs/transport.md): the Poiseuille fit, the body
-force against OpenMM's own evaluation, the heat-flux energy accounting, and short runs of both methods."""
+"""The steady-flow transport measurements (openmmgendpde.analysis.transport, docs/transport.md): the Poiseuille fit, the
+body force against OpenMM's own evaluation, the heat-flux energy accounting, and short runs of both methods."""
 
 import dataclasses
 import math
@@ -9,9 +9,10 @@ import openmm
 import pytest
 from openmm import unit
 
-from openmmgendpde import GenDPDEIntegrator, transport
-from openmmgendpde.calibrate import Calibration, Plan
-from openmmgendpde.fluid import ARGON, coarse_grain
+from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.analysis import transport
+from openmmgendpde.calibration.calibrate import Calibration, Plan
+from openmmgendpde.models.fluid import ARGON, coarse_grain
 
 ARGON_MODEL = coarse_grain(ARGON, 5, neighbors=20)
 #: The short runs' measured/target may lie within this factor: the mapping of gamma and kappa is kinetic theory,
@@ -103,6 +104,7 @@ def test_heat_flux_energy_accounting():
     assert d["energy_change"] == pytest.approx(d["injected"], abs=1e-3 * d["injected_hot"])
 
 
+@pytest.mark.validation
 def test_short_runs_give_the_right_magnitude():
     """Both methods on small argon boxes (256 particles for the viscosity, 432 in an elongated box for the
     conductivity), a few seconds each on one core: a positive value within FACTOR of the fluid's target (see FACTOR

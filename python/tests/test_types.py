@@ -7,9 +7,9 @@ import pickle
 import numpy as np
 import openmm
 import pytest
+from helpers import assert_rejected_without_change, lattice_liquid, make_context
 from openmm import unit
 
-from helpers import assert_rejected_without_change, lattice_liquid, make_context
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 
 PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3

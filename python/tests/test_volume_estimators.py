@@ -48,6 +48,7 @@ def test_integrals_at_zero_are_the_exact_limits():
     assert integral_j == math.inf
 
 
+@pytest.mark.validation
 @pytest.mark.parametrize("k", K_GRID)
 def test_integrals_match_quadrature(k):
     integral_i, integral_j = volumeIntegralsVB(k)

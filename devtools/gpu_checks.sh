@@ -1,0 +1,231 @@
+#!/usr/bin/env bash
+# The CUDA platform's checks and benchmarks on a lent GPU machine without network: the H200 of the device tool,
+# whose python3 (3.12, /opt/torch/.venv) holds numpy, scipy, tqdm, scikit-build-core, cmake, ninja and NVIDIA's
+# CUDA 13 runtime wheels, with nvcc 13 and g++, but no OpenMM.
+#
+#   devtools/gpu_checks.sh prepare          here: cp312 wheels of only what that image lacks (openmm, openmm-cuda-13,
+#                                        swig) into .gpu-wheels/ (git-ignored), checked against the 64 MiB carry
+#   devtools/gpu_checks.sh run OUTDIR       there: the stages below, each under a time limit, the most important first,
+#                                        the whole run under 8 minutes; OUTDIR/summary.txt (each stage's status, its
+#                                        figures, and every failure's last lines) and OUTDIR/logs.tar.gz (every log):
+#                                        two files, as the device tool brings back at most eight
+#   devtools/gpu_checks.sh dry-run OUTDIR   here: the same run with cp311 wheels, a python that holds what the image
+#                                        holds (made once in /tmp from PyPI), OpenCL (PoCL) in place of CUDA and
+#                                        small systems: every step but the GPU itself
+#
+# The device call (device tool, after `prepare`):
+#   run(command="bash devtools/gpu_checks.sh run $OUT", carry=[".gpu-wheels"], timeout_s=560)
+#
+# Stages (run): env (the GPU, the image's tools and libraries), install (the wheels, with --no-index, into a prefix
+# on PYTHONPATH, so that the image's packages stay visible; libOpenMMCUDA finds cuFFT and NVRTC in the CUDA toolkit
+# or the image's NVIDIA wheels), build (this plugin and its C++ tests against that OpenMM), tests (ctest -R CUDA:
+# the shared tests in each precision, the comparison with Reference, the sweep), throughput at N = 1e6 (Isoenergetic
+# steps, mixed precision, then the per-part profile and counts, GENDPDE_PROFILE), the package's benchmarks at
+# N = 1e5 (benchmark-integrator: every mode against VerletIntegrator and DPDIntegrator; benchmark-force: against
+# CustomGBForce) and, time permitting, at N = 1e6. A stage that fails or runs out of time is reported as such and
+# the run goes on with the stages that do not need it.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+root=$PWD
+openmm_version=$(sed -n 's/^openmm==\([0-9.]*\).*/\1/p' requirements.txt)
+swig_version=$(sed -n 's/^swig==\([0-9.]*\).*/\1/p' requirements.txt)
+
+download_wheels() {   # python version (3.12), folder
+    local python_version=$1 folder=$2
+    rm -rf "$folder" && mkdir -p "$folder"
+    python3 -m pip download -q --disable-pip-version-check --no-deps --only-binary=:all: \
+        --python-version "$python_version" --implementation cp --platform manylinux_2_34_x86_64 \
+        --platform manylinux_2_28_x86_64 --platform manylinux_2_17_x86_64 --platform manylinux2014_x86_64 \
+        --platform manylinux_2_12_x86_64 --platform manylinux2010_x86_64 -d "$folder" \
+        "openmm==$openmm_version" "openmm-cuda-13==$openmm_version" "swig==$swig_version" || return 1
+    local size
+    size=$(du -sm "$folder" | cut -f1)
+    ls -l "$folder"
+    echo "$folder: $size MiB (the device tool carries 64 MiB with the working tree)"
+    [ "$size" -lt 48 ] || { echo "too large to carry" >&2; return 1; }
+}
+
+case "${1:-}" in
+prepare)
+    grep -qx '.gpu-wheels/' .gitignore || { echo "add .gpu-wheels/ to .gitignore first" >&2; exit 1; }
+    download_wheels 3.12 .gpu-wheels
+    exit
+    ;;
+run|dry-run)
+    mode=$1
+    out=${2:?"usage: devtools/gpu_checks.sh $1 OUTDIR"}
+    ;;
+*)
+    echo "usage: devtools/gpu_checks.sh prepare | run OUTDIR | dry-run OUTDIR" >&2
+    exit 2
+    ;;
+esac
+
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+logs=$(mktemp -d)
+summary="$out/summary.txt"
+start=$(date +%s)
+budget=465     # seconds for the whole run: under 8 minutes, leaving the device tool time to bring the files back
+: > "$summary"
+
+note() {
+    echo "$*" | tee -a "$summary"
+}
+# stage NAME LIMIT COMMAND...: run COMMAND (a shell function or program) under a time limit cut to the budget,
+# its output in $logs/NAME.log; its status, time and, on failure, its last lines go into the summary.
+stage() {
+    local name=$1 limit=$2
+    shift 2
+    local left=$((budget - ($(date +%s) - start)))
+    if [ "$left" -lt 20 ]; then
+        note "== $name: SKIPPED (the run's time budget is spent)"
+        return 1
+    fi
+    [ "$limit" -le "$left" ] || limit=$left
+    local began=$(date +%s) status
+    # (functions and the variables they read are exported: timeout runs them in a new bash)
+    timeout --kill-after=10 "$limit" bash -c '"$@"' stage "$@" > "$logs/$name.log" 2>&1
+    status=$?
+    local took=$(($(date +%s) - began))
+    if [ $status -eq 0 ]; then
+        note "== $name: OK in ${took} s"
+    elif [ $status -eq 124 ] || [ $status -eq 137 ]; then
+        note "== $name: TIMED OUT after ${took} s (limit ${limit} s); last lines:"
+        tail -n 25 "$logs/$name.log" | sed 's/^/    /' | tee -a "$summary"
+    else
+        note "== $name: FAILED (exit $status) after ${took} s; last lines:"
+        tail -n 25 "$logs/$name.log" | sed 's/^/    /' | tee -a "$summary"
+    fi
+    return $status
+}
+finish() {
+    note "== total: $(($(date +%s) - start)) s"
+    tar -czf "$out/logs.tar.gz" -C "$logs" . 2>/dev/null
+    rm -rf "$logs"
+}
+trap finish EXIT
+
+# What runs where: the lent machine (its python3, CUDA) or, for the dry run, this one (a python like the image's,
+# made once from PyPI; OpenCL on PoCL; small systems).
+if [ "$mode" = run ]; then
+    python=python3
+    wheels=$root/.gpu-wheels
+    platform=CUDA
+    large=1000188
+    small=108000
+    ctest_filter=CUDA
+else
+    image=/tmp/gendpde-image-python
+    if [ ! -x "$image/bin/python" ]; then
+        python3 -m venv "$image" && "$image/bin/python" -m pip install -q --disable-pip-version-check numpy scipy \
+            tqdm scikit-build-core cmake ninja || exit 1
+    fi
+    python=$image/bin/python
+    wheels=/tmp/gendpde-dry-wheels
+    [ -e "$wheels/.done" ] || { download_wheels 3.11 "$wheels" > /dev/null && touch "$wheels/.done"; } || exit 1
+    platform=OpenCL
+    large=4000
+    small=500
+    ctest_filter=OpenCLGenDPDESweep
+    export POCL_CACHE_DIR=/tmp/gendpde-dry-pocl
+fi
+prefix=/tmp/gendpde-gpu-prefix
+build=/tmp/gendpde-gpu-build
+rm -rf "$prefix" "$build"
+site=$prefix/lib/python$("$python" -c 'import sys; print("%d.%d" % sys.version_info[:2])')/site-packages
+export PYTHONPATH=$site${PYTHONPATH:+:$PYTHONPATH}
+export PYTHONUNBUFFERED=1 PYTHONFAULTHANDLER=1   # (a crash prints the Python stack of every thread)
+note "gpu_checks.sh $mode at $(git rev-parse --short HEAD 2>/dev/null || echo '?'), $(date -u '+%Y-%m-%d %H:%M UTC')"
+
+environment() {
+    nvidia-smi || true
+    echo "python: $python ($("$python" --version 2>&1))"
+    "$python" -c "import numpy, scipy, tqdm, scikit_build_core; print('numpy', numpy.__version__, 'scipy', \
+scipy.__version__, 'scikit-build-core', scikit_build_core.__version__)"
+    for tool in nvcc cmake ninja g++; do
+        echo "$tool: $(command -v $tool || echo 'not found') $($tool --version 2>/dev/null | head -n 1)"
+    done
+    ldconfig -p | grep -E 'libcuda\.so|libnvrtc\.so|libcufft\.so' || true
+}
+# cuFFT 12 and NVRTC 13 for libOpenMMCUDA: the CUDA toolkit's (whose NVRTC matches nvcc and the driver) first,
+# then NVIDIA's wheels in the image's python; named in LD_LIBRARY_PATH for every later stage.
+cuda_libraries() {
+    local dirs="" found dir
+    for dir in /usr/local/cuda/lib64 /usr/local/cuda/targets/x86_64-linux/lib; do
+        [ -e "$dir/libnvrtc.so.13" ] && dirs="$dirs:$dir"
+        [ -e "$dir/libcufft.so.12" ] && dirs="$dirs:$dir"
+    done
+    for found in $("$python" -c 'import site; print(" ".join(site.getsitepackages()))' 2>/dev/null); do
+        for dir in $(find "$found/nvidia" -name 'libnvrtc.so.13*' -o -name 'libcufft.so.12*' 2>/dev/null \
+                     | xargs -r -n 1 dirname | sort -u); do
+            dirs="$dirs:$dir"
+        done
+    done
+    echo "${dirs#:}" | tr ':' '\n' | awk 'NF && !seen[$0]++' | paste -sd: -
+}
+install() {
+    "$python" -m pip install --disable-pip-version-check --no-index --no-deps --no-compile --prefix "$prefix" \
+        "$wheels"/*.whl || return 1
+    "$python" - <<'PYTHON'
+import openmm
+print("OpenMM", openmm.__version__, "from", openmm.__file__)
+print("platforms:", [openmm.Platform.getPlatform(i).getName() for i in range(openmm.Platform.getNumPlatforms())])
+print("plugin load failures:", openmm.Platform.getPluginLoadFailures())
+PYTHON
+    # The platform to test must load (the dry run has no libcuda: CUDA's failures are expected there).
+    "$python" -c "import openmm, sys; openmm.Platform.getPlatformByName('$platform'); \
+sys.exit(1 if [f for f in openmm.Platform.getPluginLoadFailures() if '$platform' in f] else 0)"
+}
+build_plugin() {
+    # The build tools of the prefix (swig) on PATH; the plugin, its CUDA kernel library and its C++ tests.
+    PATH=$prefix/bin:$PATH CMAKE_BUILD_PARALLEL_LEVEL=$(nproc) "$python" -m pip install --disable-pip-version-check \
+        --no-index --no-deps --no-build-isolation --prefix "$prefix" -C build-dir="$build" \
+        -C cmake.define.GENDPDE_BUILD_TESTS=ON . || return 1
+    "$python" -c "import openmm, openmmgendpde; print(openmmgendpde.__file__); \
+print('load failures:', openmm.Platform.getPluginLoadFailures())"
+    ls "$site/OpenMM.libs/lib/plugins" | grep GenDPDE
+}
+cpp_tests() {
+    ctest --test-dir "$build" -R "$ctest_filter" -j 4 --timeout 150 --output-on-failure
+}
+# time_steps.py: N particles, the state melted on the device itself; ms per Isoenergetic step, then the profile.
+throughput() {
+    local n=$1 state=/tmp/gendpde-state-$1.npz ms
+    ms=$("$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
+         --melt-platform "$platform" --precision mixed --what step --count 50 | tail -n 1) || return 1
+    echo "N = $n, $platform mixed: $ms ms per Isoenergetic step = $("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") \
+particle-steps/s"
+    GENDPDE_PROFILE=1 "$python" benchmarks/time_steps.py --state "$state" --platform "$platform" --precision mixed \
+        --what step --count 20
+}
+benchmarks() {
+    local n=$1
+    "$python" -m openmmgendpde benchmark-integrator --platform "$platform" --precision mixed --particles "$n" \
+        --rounds 3 || return 1
+    "$python" -m openmmgendpde benchmark-force --platform "$platform" --precision mixed --particles "$n" \
+        --cutoffs 1.6839 --rounds 3
+}
+
+export python wheels platform ctest_filter prefix build site root
+export -f environment cuda_libraries install build_plugin cpp_tests throughput benchmarks
+stage env 30 environment
+export LD_LIBRARY_PATH=$(cuda_libraries)${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
+if stage install 90 install && stage build 240 build_plugin; then
+    stage tests 150 cpp_tests
+    if stage throughput-large 100 throughput $large; then
+        grep -h "particle-steps/s\|critical path\|launches and" "$logs/throughput-large.log" | sed 's/^/    /' \
+            | tee -a "$summary"
+    fi
+    if stage benchmarks-small 150 benchmarks $small; then
+        sed -n '/^|/p' "$logs/benchmarks-small.log" | sed 's/^/    /' | tee -a "$summary"
+    fi
+    if stage throughput-small 60 throughput $small; then
+        grep -h "particle-steps/s\|critical path\|launches and" "$logs/throughput-small.log" | sed 's/^/    /' \
+            | tee -a "$summary"
+    fi
+    if stage benchmarks-large 150 benchmarks $large; then
+        sed -n '/^|/p' "$logs/benchmarks-large.log" | sed 's/^/    /' | tee -a "$summary"
+    fi
+fi

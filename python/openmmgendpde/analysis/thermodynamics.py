@@ -1,0 +1,202 @@
+"""The thermodynamic state of a simulation at one instant, in OpenMM units: the one definition of what
+GenDPDEReporter writes and what the liquid-argon studies (openmmgendpde.models.argon_runs) average.
+
+What can be measured depends on the simulation, and what cannot is reported as NaN rather than as a wrong number:
+
+- kinetic temperature: 2 K_int/(d k_B) with the kinetic energy in the frame of the centre of mass,
+  K_int = K - |P|^2/(2M), and d = 3N - 3 for the N moving particles (the momentum-conserving dynamics of GenDPDE
+  and DPD keeps P; OpenMM's setVelocitiesToTemperature does not always make it zero);
+- particle temperatures theta_i and the conserved energy K + U + sum eps_i: only with a GenDPDEIntegrator; the
+  energy is conserved (so its drift is meaningful) in the Isoenergetic and Conservative modes, not in Isothermal;
+- mean density: only if the System has a GenDPDEForce (the first one's n_i);
+- virial pressure P = (2 K_int + W)/(3V): only with periodic boundaries. W is the sum of the exact virials of the
+  GenDPDEForces and, for the force groups that hold other forces, -dU/dlambda under a uniform scaling of positions
+  and box by lambda (central difference, lambda = 1 +- 1e-5; two energy evaluations per such group; the Context's
+  positions and box are restored exactly afterwards).
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import openmm
+from openmm import unit
+
+from ..api import GenDPDEForce, GenDPDEIntegrator
+from ..units import BOLTZMANN
+from .statistics import correlated_mean
+
+_K = unit.kelvin
+_DENSITY = unit.nanometer**-3
+_PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
+_ENERGY = unit.kilojoule_per_mole
+_NAN = float("nan")
+#: Relative change of the box edge for the numerical virial of forces other than GenDPDEForce.
+VIRIAL_SCALING_STEP = 1e-5
+
+
+@dataclasses.dataclass(frozen=True)
+class ThermodynamicSample:
+    """One sample, every field an ``openmm.unit`` Quantity in OpenMM units (NaN where it cannot be measured)."""
+    time: unit.Quantity                   # ps
+    kinetic_temperature: unit.Quantity    # K: 2 K_int/(d k_B) (on-step velocities, centre-of-mass frame)
+    mean_temperature: unit.Quantity       # K: <theta_i>
+    harmonic_temperature: unit.Quantity   # K: <1/theta_i>^-1
+    density: unit.Quantity                # nm^-3: n-bar, the mean of n_i = 1/V_i
+    pressure: unit.Quantity               # kJ/mol/nm^3: the virial pressure (2 K_int + W)/(3V)
+    conserved_energy: unit.Quantity       # kJ/mol: K + U + sum eps_i
+    energy_is_conserved: bool             # whether the dynamics conserves conserved_energy (drift meaningful)
+
+
+class ThermodynamicProbe:
+    """Measures ThermodynamicSamples of the simulations of one System. It decides once, from the System, what can
+    be measured and how (see the module's docstring)."""
+
+    def __init__(self, system):
+        masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
+        self.masses = masses
+        self.degrees_of_freedom = max(1, 3 * int(np.count_nonzero(masses > 0)) - 3)
+        self.periodic = system.usesPeriodicBoundaryConditions()
+        forces = [system.getForce(i) for i in range(system.getNumForces())]
+        self.gendpde_forces = [GenDPDEForce.cast(f) for f in forces if GenDPDEForce.isinstance(f)]
+        # Forces that may carry energy (CMMotionRemover carries none), by group.
+        other_groups = {f.getForceGroup() for f in forces
+                        if not GenDPDEForce.isinstance(f) and not isinstance(f, openmm.CMMotionRemover)}
+        self.exact_virial_forces = [f for f in self.gendpde_forces if f.getForceGroup() not in other_groups]
+        self.numerical_virial_groups = sorted(other_groups)
+
+    def sample(self, state, context, integrator):
+        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
+        velocities; ``integrator`` the Context's integrator (any type)."""
+        kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
+        velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+        momentum = self.masses @ velocities
+        internal_kinetic = kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+        kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+        gendpde = _as_gendpde_integrator(integrator)
+        if gendpde is not None:
+            theta = gendpde.getParticleTemperatures().value_in_unit(_K)
+            mean, harmonic = np.mean(theta), 1 / np.mean(1 / theta)
+            conserved = gendpde.getConservedEnergy().value_in_unit(_ENERGY)
+            is_conserved = gendpde.getMode() != GenDPDEIntegrator.Isothermal
+        else:
+            mean = harmonic = conserved = _NAN
+            is_conserved = False
+        density = (np.mean(self.gendpde_forces[0].getParticleDensities(context).value_in_unit(_DENSITY))
+                   if self.gendpde_forces else _NAN)
+        return ThermodynamicSample(
+            time=state.getTime(),
+            kinetic_temperature=unit.Quantity(2 * internal_kinetic / (self.degrees_of_freedom * kb), _K),
+            mean_temperature=unit.Quantity(mean, _K),
+            harmonic_temperature=unit.Quantity(harmonic, _K),
+            density=unit.Quantity(density, _DENSITY),
+            pressure=unit.Quantity(self._pressure(state, context, internal_kinetic), _PRESSURE),
+            conserved_energy=unit.Quantity(conserved, _ENERGY),
+            energy_is_conserved=is_conserved,
+        )
+
+    def _pressure(self, state, context, internal_kinetic):
+        if not self.periodic:
+            return _NAN
+        a, b, c = state.getPeriodicBoxVectors().value_in_unit(unit.nanometer)
+        volume = a[0] * b[1] * c[2]
+        virial = sum(f.getVirial(context).value_in_unit(_ENERGY) for f in self.exact_virial_forces)
+        if self.numerical_virial_groups:
+            virial += numerical_virial(context, set(self.numerical_virial_groups))
+        return (2 * internal_kinetic + virial) / (3 * volume)
+
+
+def numerical_virial(context, groups):
+    """W = -dU/dlambda (kJ/mol) of the energy of force ``groups`` under a uniform scaling of the positions and the
+    periodic box by lambda, by a central difference at lambda = 1 +- VIRIAL_SCALING_STEP (error O(step^2)). The
+    Context's positions and box are restored exactly."""
+    state = context.getState(getPositions=True)
+    positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+    box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    energies = []
+    try:
+        for scale in (1 + VIRIAL_SCALING_STEP, 1 - VIRIAL_SCALING_STEP):
+            context.setPeriodicBoxVectors(*(box * scale))
+            context.setPositions(positions * scale)
+            energies.append(context.getState(getEnergy=True, groups=groups).getPotentialEnergy()
+                            .value_in_unit(_ENERGY))
+    finally:
+        context.setPeriodicBoxVectors(*box)
+        context.setPositions(positions)
+    return -(energies[0] - energies[1]) / (2 * VIRIAL_SCALING_STEP)
+
+
+def _as_gendpde_integrator(integrator):
+    if isinstance(integrator, GenDPDEIntegrator):
+        return integrator
+    if GenDPDEIntegrator.isinstance(integrator):
+        return GenDPDEIntegrator.cast(integrator)
+    return None
+
+
+def is_nan(quantity):
+    return math.isnan(quantity.value_in_unit(quantity.unit))
+
+
+def self_diffusion(times, positions, groups=10, lags=10):
+    """The self-diffusion coefficient D (nm^2/ps) and its standard error from unwrapped positions (frames x N x 3,
+    nm; a State's positions are unwrapped unless enforcePeriodicBox) at ``times`` (ps, evenly spaced): the slope of
+    the mean square displacement, 6 D, fitted over ``lags`` lags from a quarter to half of the run (the diffusive
+    regime, every time origin used), the system's centre of mass removed (equal masses). The error is the scatter
+    of D over ``groups`` groups of particles (each particle's displacement is nearly independent of the others')."""
+    times = np.asarray(times, dtype=float)
+    x = np.asarray(positions, dtype=float)
+    x = x - x.mean(axis=1, keepdims=True)
+    frames = len(times)
+    if frames < 8:
+        raise ValueError(f"self_diffusion: {frames} frames; at least 8 are needed")
+    steps = np.unique(np.linspace(frames // 4, frames // 2, lags).astype(int))
+    members = np.array_split(np.arange(x.shape[1]), groups)
+    msd = np.array([[np.mean(np.sum((x[lag:, m] - x[:-lag, m]) ** 2, axis=2)) for m in members] for lag in steps])
+    lag_times = times[steps] - times[0]
+    slopes = np.polyfit(lag_times, msd, 1)[0]
+    values = slopes / 6
+    return float(values.mean()), float(values.std(ddof=1) / np.sqrt(groups))
+
+
+def configurational_heat_capacity(potential_energies, temperature, bath_heat_capacity):
+    """The configurational heat capacity C_U = d<U>/dT at fixed volume (kJ/mol/K, whole system) of an Isoenergetic
+    GenDPDE run from the fluctuation of its potential energy U: (C_U, its standard error, the independent samples
+    N/g the error rests on).
+
+    ``potential_energies``: a time series of U (kJ/mol) in equilibrium; ``temperature`` (K): its harmonic-mean
+    temperature; ``bath_heat_capacity`` (kJ/mol/K): the heat capacity of what U exchanges energy with at fixed total
+    energy, the kinetic energy and the internal energies: (3N - 3) k_B/2 + N (C_V + k_B) (each eps_i/(k_B T) follows
+    a Gamma law of shape C_V/k_B + 1, docs/theory.md section 8). In the Isoenergetic mode the configurations are
+    distributed as Omega_U(U) (E - U)^(D - 1) with D k_B that heat capacity, so U fluctuates as a system in contact
+    with a finite bath: <dU^2> = k_B T^2 C_U C_B/(C_U + C_B) (Lebowitz, Percus and Verlet 1967), which this inverts:
+    C_U = X C_B/(C_B - X), X = <dU^2>/(k_B T^2). For a bath much larger than C_U this is the canonical
+    <dU^2>/(k_B T^2). The variance's error is that of the mean of the squared deviations (correlated_mean)."""
+    energies = np.asarray(potential_energies, dtype=float)
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    squares = correlated_mean((energies - energies.mean()) ** 2)
+    scale = 1 / (kb * temperature**2)
+    x, x_error = squares.mean * scale, squares.standard_error * scale
+    if not 0 <= x < bath_heat_capacity:
+        raise ValueError(f"configurational_heat_capacity: <dU^2>/(k_B T^2) = {x:.4g} kJ/mol/K is not below the bath's "
+                         f"heat capacity {bath_heat_capacity:.4g} kJ/mol/K: not an equilibrium Isoenergetic run")
+    value = x * bath_heat_capacity / (bath_heat_capacity - x)
+    error = x_error * bath_heat_capacity**2 / (bath_heat_capacity - x) ** 2
+    return value, error, squares.independent_samples
+
+
+def bath_heat_capacity(num_particles, internal_heat_capacity):
+    """(3N - 3) k_B/2 + N (C_V + k_B) (kJ/mol/K): the heat capacity of the kinetic and internal energies of N
+    particles of heat capacity C_V (``internal_heat_capacity``, kJ/mol/K) each, in the Isoenergetic mode."""
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    return (3 * num_particles - 3) * kb / 2 + num_particles * (internal_heat_capacity + kb)
+
+
+def heat_capacity_per_particle(internal_heat_capacity, configurational=0.0):
+    """The isochoric heat capacity per particle (kJ/mol/K) of a GenDPDE fluid whose conservative energy does not
+    depend on the temperatures (Tait): C_V + k_B (each eps_i/(k_B T) follows a Gamma law of shape C_V/k_B + 1,
+    docs/theory.md section 8) + 3 k_B/2 (the motion) + c_U (``configurational``, per particle: the configurations
+    follow T; configurational_heat_capacity measures it, 0.4 k_B for argon, 0.06 k_B for water as calibrate maps
+    them). ``internal_heat_capacity``: C_V (kJ/mol/K)."""
+    kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+    return internal_heat_capacity + 2.5 * kb + configurational

@@ -1,0 +1,390 @@
+"""Transport coefficients from steady non-equilibrium flows (docs/transport.md): a second, independent method for
+each of `calibrate`'s wave-decay measurements, in OpenMM units (nm, ps, amu, kJ/mol, K).
+
+- Shear viscosity eta (amu/(nm ps)) from periodic Poiseuille flow: a body force +F x-hat (kJ/mol/nm) on the particles
+  with wrapped z in [0, L/2) and -F x-hat on those in [L/2, L) (zero in total on average). The steady flow is
+  v_x(z) = (n0 F/(2 eta)) h(z), h(z) = z (L/2 - z) in the first half and antisymmetric in the second; the binned,
+  time-averaged profile is fitted to A h + c, and eta = n0 F/(2 A).
+- Thermal conductivity lambda (kJ/(mol ps nm K)) from a steady heat flux: every few steps the internal temperatures
+  of a hot slab (wrapped z in [0, w)) are reset to T0 (1 + e) and those of a cold slab ([L/2, L/2 + w)) to
+  T0 (1 - e); Q, the energy put into the hot slab (and taken from the cold one) per reset interval t, flows through
+  both halves, J = Q/(2 A t) (A the box's xy area), and lambda = J/|dT/dz| with dT/dz the slope of the temperature
+  profile (the harmonic mean of theta_i per bin) between the slabs, away from them.
+
+Both run in the Isoenergetic mode (the model being calibrated), one run per replica, through a runner
+``replicas(one) -> [one(index, model, context) for each replica]`` that equilibrates a model for each call:
+``each_replica(equilibrated, count)`` runs them one after another on ``equilibrated() -> (FluidModel, Context)``,
+and `calibrate.Calibration.replicas` side by side in processes of one thread. Run lengths are given in the relaxation
+time of the slowest mode of the half box (estimated from the target coefficient). Each result has ``value`` and
+``error`` (standard error) as `calibrate.Measured` has, and the details of the run.
+"""
+
+import dataclasses
+import math
+
+import numpy as np
+import openmm
+from openmm import unit
+
+from ..units import BOLTZMANN
+from .profiles import profile
+from .statistics import block_standard_error, statistical_inefficiency
+from .thermodynamics import heat_capacity_per_particle
+
+KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+#: The force group of the Poiseuille body force (its energy, -F x s(z), means nothing and is kept out of group 0).
+BODY_FORCE_GROUP = 31
+
+
+@dataclasses.dataclass
+class TransportResult:
+    """A transport coefficient (``value`` +- ``error``, a standard error) and how it was measured: the replicas'
+    values and errors, the binned profile (``centre`` nm, ``profile`` and its ``profile_error``), and a dict of the
+    run's other numbers (``details``: forcing, times, temperature rise ...)."""
+    value: float
+    error: float
+    replica_values: list
+    replica_errors: list
+    centre: np.ndarray
+    profile: np.ndarray
+    profile_error: np.ndarray
+    details: dict
+
+
+def each_replica(equilibrated, count):
+    """The runner of ``count`` replicas one after another in this process: run(one) calls
+    one(index, *equilibrated()) for index 0 .. count - 1 and returns the results."""
+    return lambda one: [one(index, *equilibrated()) for index in range(count)]
+
+
+# --- Poiseuille flow ------------------------------------------------------------------------------------------------
+
+def body_force(force, box_length, num_particles):
+    """An openmm.CustomExternalForce of +``force`` x-hat (kJ/mol/nm) on ``num_particles`` particles with z wrapped into
+    the periodic length ``box_length`` (nm) in [0, L/2), -``force`` x-hat in [L/2, L); in group BODY_FORCE_GROUP. OpenMM
+    differentiates step() and floor() as zero, so the force has no z component; the energy is -F x s(z) with the
+    unwrapped x (not periodic: leave the group out of energies)."""
+    external = openmm.CustomExternalForce(
+        "-poiseuille_F*x*(1 - 2*step(z - poiseuille_L*floor(z/poiseuille_L) - poiseuille_L/2))")
+    external.addGlobalParameter("poiseuille_F", force)
+    external.addGlobalParameter("poiseuille_L", box_length)
+    external.setForceGroup(BODY_FORCE_GROUP)
+    for particle in range(num_particles):
+        external.addParticle(particle, [])
+    return external
+
+
+def half_sign(z, box_length):
+    """+1 where z wrapped into [0, L) is below L/2, else -1: the direction of the body force."""
+    wrapped = np.mod(z, box_length)
+    return np.where(wrapped < box_length / 2, 1.0, -1.0)
+
+
+def poiseuille_shape(z, box_length):
+    """h(z) = z (L/2 - z) for wrapped z in [0, L/2) and -(z - L/2)(L - z) in [L/2, L) (nm^2)."""
+    wrapped = np.mod(z, box_length)
+    half = box_length / 2
+    inner = np.mod(wrapped, half)
+    return half_sign(z, box_length) * inner * (half - inner)
+
+
+def bin_shape(bins, box_length):
+    """The mean of h over each of ``bins`` equal bins of [0, L) (Simpson's rule, exact for the parabola of each
+    half: ``bins`` must be even so that no bin straddles L/2)."""
+    if bins % 2:
+        raise ValueError(f"bins = {bins} is not allowed; it must be even (no bin may straddle L/2)")
+    edges = np.linspace(0, box_length, bins + 1)
+    low, high = edges[:-1], edges[1:]
+    # Evaluate each end inside its own bin: h at the right edge of the bin below L/2 is that of the first half.
+    eps = 1e-12 * box_length
+    return (poiseuille_shape(low, box_length) + 4 * poiseuille_shape((low + high) / 2, box_length)
+            + poiseuille_shape(high - eps, box_length)) / 6
+
+
+def fit_amplitude(velocities, shape):
+    """(A, c): the least-squares fit of v_b = A s_b + c to a binned profile ``velocities`` (nm/ps) with the bins'
+    shape ``shape`` (nm^2); A in 1/(nm ps), c the uniform drift (nm/ps). ``velocities`` may be one profile or one
+    per row (frames)."""
+    design = np.column_stack([shape, np.ones_like(shape)])
+    solution = np.linalg.lstsq(design, np.asarray(velocities, float).T, rcond=None)[0]
+    return solution[0], solution[1]
+
+
+def viscosity_from_amplitude(amplitude, density, force):
+    """eta = n F/(2 A) (amu/(nm ps)) from the amplitude A (1/(nm ps)) of v_x = A h(z), n in nm^-3, F in kJ/mol/nm."""
+    return density * force / (2 * amplitude)
+
+
+def momentum_diffusion_time(mass_density, viscosity, box_length):
+    """rho (L/2)^2/(eta pi^2) (ps): the decay time of the slowest flow mode, sin(2 pi z/L), of a periodic box of
+    length L (nm); rho in amu/nm^3, eta in amu/(nm ps)."""
+    return mass_density * (box_length / 2) ** 2 / (viscosity * math.pi**2)
+
+
+def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0, measured=5.0,
+                         bins=20, samples_per_time=10, report=print):
+    """The shear viscosity (amu/(nm ps)) from periodic Poiseuille flow along z, a run on each of the equilibrated
+    models (Isoenergetic) that ``replicas`` gives (each_replica).
+
+    F is chosen so that the peak velocity, n0 F L^2/(32 eta) with the target eta, is ``peak_fraction`` of the thermal
+    velocity sqrt(k_B T0/m); every run starts from that profile laid on the equilibrium velocities, waits
+    ``developed`` and then averages over ``measured`` momentum diffusion times tau = rho (L/2)^2/(eta pi^2) (target
+    eta; the details give the waiting time in tau of the measured eta), sampling ``samples_per_time`` profiles per
+    tau. Each run's amplitude A comes from the time series of per-frame fits (their mean is the fit of the averaged
+    profile), its error from the series' statistical inefficiency; the result is the replicas' mean, its error the
+    larger of the propagated one and the replicas' scatter over sqrt(replicas).
+
+    Viscous heating: the flow dissipates n0 F <|v|> per volume, so T rises by
+    Delta T/T0 = (16/(3 pi^2)) f^2 X k_B/c over X diffusion times at f = peak_fraction (c = C_V + 3 k_B/2 per
+    particle): 0.9% for argon (c = 14 k_B) at f = 0.25 and X = 9, less for water. The details give the measured
+    rise of the harmonic mean of theta_i and of the kinetic temperature (about the bins' flow) over a run, from a
+    line through their time series; keep both below ~2% of T0 (smaller f, shorter runs, more replicas)."""
+    targets = parameters.targets()
+
+    def one(replica, model, context):
+        n = model.num_particles
+        length = model.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(unit.nanometer)
+        density = n / model.volume
+        mass_density = density * parameters.mass
+        thermal = math.sqrt(KB * parameters.temperature / parameters.mass)
+        force = 32 * targets["shear_viscosity"] * peak_fraction * thermal / (density * length**2)
+        tau = momentum_diffusion_time(mass_density, targets["shear_viscosity"], length)
+        step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
+        interval = max(1, round(tau / samples_per_time / step))
+        external = body_force(force, length, n)
+        model.system.addForce(external)
+        context.reinitialize(preserveState=True)
+        state = context.getState(getPositions=True, getVelocities=True)
+        positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+        velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
+        amplitude_guess = density * force / (2 * targets["shear_viscosity"])
+        velocities[:, 0] += amplitude_guess * poiseuille_shape(positions[:, 2], length)
+        context.setVelocities(velocities)
+        shape = bin_shape(bins, length)
+        warm = round(developed * tau / step / interval)
+        frames = warm + round(measured * tau / step / interval)
+        times, flows, kinetic, harmonic = [], [], [], []
+        for frame in range(frames + 1):
+            if frame:
+                model.integrator.step(interval)
+            sample = _sample(model, context, bins)
+            times.append(sample["time"])
+            flows.append(sample["velocity"][:, 0])
+            kinetic.append(sample["kinetic_temperature"])
+            harmonic.append(sample["harmonic_temperature"])
+        times, flows = np.array(times), np.array(flows)
+        amplitudes, drifts = fit_amplitude(flows[warm + 1:], shape)
+        amplitude, amplitude_error = _mean_and_error(amplitudes)
+        eta = viscosity_from_amplitude(amplitude, density, force)
+        error = eta * amplitude_error / amplitude
+        run_time = times[-1] - times[0]
+        rise = {name: np.polyfit(times, series, 1)[0] * run_time / parameters.temperature
+                for name, series in (("harmonic", harmonic), ("kinetic", kinetic))}
+        waited = (times[warm] - times[0]) / momentum_diffusion_time(mass_density, eta, length)
+        report(f"  Poiseuille replica {replica + 1}: eta = {eta:.4g} +- {error:.2g} amu/(nm ps) "
+               f"(F = {force:.4g} kJ/mol/nm, peak {amplitude * length**2 / 16:.3g} nm/ps = "
+               f"{amplitude * length**2 / 16 / thermal:.2f} v_th, drift {np.mean(drifts):+.2g} nm/ps); waited "
+               f"{waited:.1f} tau of this eta; heating over {run_time:.0f} ps: theta_harm "
+               f"{100 * rise['harmonic']:+.2f}%, T_kin {100 * rise['kinetic']:+.2f}% of T0")
+        extra = {"force": force, "box_length": length, "density": density, "thermal_velocity": thermal,
+                 "peak_velocity": amplitude * length**2 / 16, "sample_interval_steps": interval,
+                 "run_time": run_time, "waited_tau": waited, "drift": float(np.mean(drifts))}
+        return eta, error, flows[warm + 1:], dict(extra, temperature_rise=rise)
+
+    runs = replicas(one)
+    values, errors, profiles, details = zip(*runs)
+    rises = [detail["temperature_rise"] for detail in details]
+    return _combine(values, errors, profiles, details[-1]["box_length"], bins,
+                    dict(details[-1], temperature_rise=rises, peak_fraction=peak_fraction))
+
+
+def _sample(model, context, bins):
+    """The binned profile along z of the current state (profiles.profile) with the harmonic mean of theta_i per bin
+    ('theta_harmonic') and overall ('harmonic_temperature'), the kinetic temperature about the bins' mean velocities
+    ('kinetic_temperature', all bins together; per bin 'kinetic_profile') and the time (ps)."""
+    state = context.getState(getPositions=True, getVelocities=True)
+    theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+    box = [list(v.value_in_unit(unit.nanometer)) for v in state.getPeriodicBoxVectors()]
+    masses = np.full(model.num_particles, model.parameters.mass)
+    # One particle type for all: profile's per-type theta is the harmonic mean of theta_i per bin.
+    result = profile(state.getPositions(asNumpy=True).value_in_unit(unit.nanometer),
+                     state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond),
+                     masses, box, bins=bins, temperatures=theta, types=np.zeros(model.num_particles, int))
+    degrees = np.maximum(result["count"] - 1, 0)
+    result["theta_harmonic"] = result["type_theta"][:, 0]
+    result["harmonic_temperature"] = 1 / np.mean(1 / theta)
+    result["kinetic_profile"] = result["kinetic_temperature"]
+    result["kinetic_temperature"] = float(np.nansum(result["kinetic_profile"] * degrees) / degrees.sum())
+    result["time"] = state.getTime().value_in_unit(unit.picosecond)
+    return result
+
+
+def _mean_and_error(series):
+    """The mean of a correlated time series and its standard error, sqrt(g var/n) with g the statistical
+    inefficiency."""
+    series = np.asarray(series, float)
+    g = statistical_inefficiency(series)
+    return float(series.mean()), float(series.std(ddof=1) * math.sqrt(g / len(series)))
+
+
+def _combine(values, errors, frames, length, bins, details):
+    """A TransportResult from the replicas: the mean, and the larger of the propagated error and the replicas'
+    scatter over sqrt(replicas) (when there are at least 2)."""
+    values, errors = np.array(values), np.array(errors)
+    propagated = float(np.sqrt(np.sum(errors**2)) / len(values))
+    scatter = float(values.std(ddof=1) / math.sqrt(len(values))) if len(values) > 1 else 0.0
+    all_frames = np.concatenate(frames)
+    centre = (np.arange(bins) + 0.5) * length / bins
+    profile_error = np.array([_mean_and_error(column)[1] for column in all_frames.T])
+    details = dict(details, propagated_error=propagated, scatter_error=scatter)
+    return TransportResult(float(values.mean()), max(propagated, scatter), list(values), list(errors), centre,
+                           all_frames.mean(axis=0), profile_error, details)
+
+
+# --- Heat flux between thermostatted slabs --------------------------------------------------------------------------
+
+def thermal_diffusion_time(density, heat_capacity, conductivity, box_length):
+    """n c (L/2)^2/(lambda pi^2) (ps): the decay time of the slowest temperature mode of a periodic box of length L
+    (nm); n in nm^-3, c the heat capacity per particle at fixed density (kJ/mol/K), lambda in kJ/(mol ps nm K)."""
+    return density * heat_capacity * (box_length / 2) ** 2 / (conductivity * math.pi**2)
+
+
+def slab_profile(z, box_length, slab_width):
+    """+1 in the hot slab (wrapped z in [0, w)), -1 in the cold one ([L/2, L/2 + w)), linear in between: the shape of
+    the steady temperature profile, T0 (1 + e s(z))."""
+    z = np.mod(z, box_length)
+    half = box_length / 2
+    gap = half - slab_width
+    inner = np.mod(z, half)
+    ramp = np.where(inner < slab_width, 1.0, 1 - 2 * (inner - slab_width) / gap)
+    return np.where(z < half, ramp, -ramp)
+
+
+def _line_slopes(centre, profiles, mask):
+    """The least-squares slope (per row of ``profiles``) of the bins in ``mask`` against ``centre``."""
+    x = centre[mask] - centre[mask].mean()
+    return (np.asarray(profiles)[:, mask] @ x) / (x @ x)
+
+
+def heat_flux_conductivity(parameters, replicas, excess=0.1, slab_bins=2, bins=20, reset_steps=10,
+                           developed=2.0, measured=6.0, samples_per_time=20, margin=None, uniform=False,
+                           report=print):
+    """The thermal conductivity (kJ/(mol ps nm K)) from a steady heat flux along z between a hot and a cold slab, a
+    run on each of the equilibrated models (Isoenergetic) that ``replicas`` gives (each_replica).
+
+    The box is cut into ``bins`` bins along z; the hot slab is the first ``slab_bins`` of them (width w), the cold
+    slab as many from L/2. Every ``reset_steps`` steps theta_i of the particles in the hot slab is set to
+    T0 (1 + ``excess``) and in the cold slab to T0 (1 - ``excess``) (GenDPDEIntegrator.setParticleTemperatures; the
+    others keep theirs): by default each slab's theta_i are scaled so that their harmonic mean, the thermodynamic
+    temperature, is the slab's; with ``uniform`` every theta_i is set to it, which also takes away the equilibrium
+    spread of the eps_i, k_B T per particle (docs/integrator.md), so that the slab relaxes to a harmonic mean lower by
+    C_V/(C_V + k_B) (0.926 for argon) and the whole box cools (docs/transport.md). The change of sum eps_i
+    (getInternalEnergies) in each slab is the energy it took, Q_hot > 0 and Q_cold < 0. Every run starts with theta_i
+    scaled by 1 + excess s(z) (slab_profile: the expected steady profile, each particle keeping its place in the
+    equilibrium distribution), waits ``developed`` and averages over ``measured`` thermal diffusion times tau = n0 c
+    (L/2)^2/(lambda pi^2) (target lambda, c = C_V + 5 k_B/2, thermodynamics.heat_capacity_per_particle without the
+    configurational part).
+
+    Q = (Q_hot - Q_cold)/2 per reset interval t flows through both halves: J = Q/(2 A t), A the xy area. dT/dz: the
+    slopes of lines through the harmonic means of theta_i of the bins in [w + margin, L/2 - margin] and
+    [L/2 + w + margin, L - margin] (margin: the cutoff R unless given, nm), averaged with the sign of each half;
+    lambda = J/|dT/dz|, the errors of J (from 10 block means) and dT/dz (from the statistical inefficiency of its time
+    series) combined as relative errors; over replicas as poiseuille_viscosity. The details also give the slope of the
+    kinetic temperature profile, the mean temperature, and the energy accounting: E = K + U + sum eps_i changes only
+    through the resets, E(end) - E(start) against the sum of the injected energies ('energy_change', 'injected'; the
+    hot slab's alone 'injected_hot'), all in kJ/mol."""
+    targets = parameters.targets()
+    heat_capacity = heat_capacity_per_particle(parameters.heat_capacity)
+    margin = parameters.cutoff if margin is None else margin
+
+    def one(replica, model, context):
+        vectors = model.system.getDefaultPeriodicBoxVectors()
+        length = vectors[2][2].value_in_unit(unit.nanometer)
+        area = vectors[0][0].value_in_unit(unit.nanometer) * vectors[1][1].value_in_unit(unit.nanometer)
+        density = model.num_particles / model.volume
+        width = length * slab_bins / bins
+        centre = (np.arange(bins) + 0.5) * length / bins
+        inside = np.mod(centre, length / 2)
+        region = (inside > width + margin) & (inside < length / 2 - margin)
+        first = region & (centre < length / 2)
+        second = region & (centre > length / 2)
+        if first.sum() < 2:
+            raise ValueError(f"the box (L = {length:.3g} nm) leaves fewer than 2 of {bins} bins between the slabs "
+                             f"(w = {width:.3g} nm) at least {margin:.3g} nm from them: use a longer box or more bins")
+        tau = thermal_diffusion_time(density, heat_capacity, targets["thermal_conductivity"], length)
+        step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
+        every = max(1, round(tau / samples_per_time / (step * reset_steps)))
+        resets = round((developed + measured) * tau / (step * reset_steps))
+        warm = round(developed * tau / (step * reset_steps))
+        t0 = parameters.temperature
+        z = _positions(context)[:, 2]
+        theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+        model.integrator.setParticleTemperatures(list(theta * (1 + excess * slab_profile(z, length, width))))
+        energy_start = _total_energy(model, context)
+        injected, hot_total, fluxes, frames, kinetic_frames, means = 0.0, 0.0, [], [], [], []
+        for reset in range(resets):
+            model.integrator.step(reset_steps)
+            wrapped = np.mod(_positions(context)[:, 2], length)
+            hot = wrapped < width
+            cold = (wrapped >= length / 2) & (wrapped < length / 2 + width)
+            theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+            before = _internal_energies(model)
+            for members, target in ((hot, t0 * (1 + excess)), (cold, t0 * (1 - excess))):
+                theta[members] = target if uniform else theta[members] * target * np.mean(1 / theta[members])
+            model.integrator.setParticleTemperatures(list(theta))
+            change = _internal_energies(model) - before
+            q_hot, q_cold = change[hot].sum(), change[cold].sum()
+            injected += change.sum()
+            hot_total += q_hot
+            if reset >= warm:
+                fluxes.append((q_hot - q_cold) / 2 / (2 * area * step * reset_steps))
+                if (reset - warm) % every == 0:
+                    sample = _sample(model, context, bins)
+                    frames.append(sample["theta_harmonic"])
+                    kinetic_frames.append(sample["kinetic_profile"])
+                    means.append(sample["harmonic_temperature"])
+        energy_change = _total_energy(model, context) - energy_start
+        gradients = (_line_slopes(centre, frames, second) - _line_slopes(centre, frames, first)) / 2
+        gradient, gradient_error = _mean_and_error(gradients)
+        # The injections at successive resets are anti-correlated (each one removes the slab's fluctuation that the
+        # last one left), so that their mean converges faster than a series with g >= 1 would: its error from the
+        # scatter of 10 block means (each one the injected energy of its block over its length).
+        flux, flux_error = float(np.mean(fluxes)), block_standard_error(np.array(fluxes), 10)
+        conductivity = flux / gradient
+        error = conductivity * math.hypot(flux_error / flux, gradient_error / gradient)
+        kinetic_gradient = float(np.mean(_line_slopes(centre, kinetic_frames, second)
+                                         - _line_slopes(centre, kinetic_frames, first)) / 2)
+        measured_tau = thermal_diffusion_time(density, heat_capacity, conductivity, length)
+        report(f"  heat-flux replica {replica + 1}: lambda = {conductivity:.4g} +- {error:.2g} kJ/(mol ps nm K) "
+               f"(J = {flux:.4g} +- {flux_error:.2g} kJ/(mol ps nm^2), dT/dz = {gradient:.4g} +- "
+               f"{gradient_error:.2g} K/nm from theta, {kinetic_gradient:.4g} K/nm from T_kin); waited "
+               f"{warm * step * reset_steps / measured_tau:.1f} tau of this lambda; mean theta_harm "
+               f"{np.mean(means):.2f} K; energy: E(end) - E(start) = {energy_change:.5g} kJ/mol, injected "
+               f"{injected:.5g} kJ/mol")
+        extra = {"box_length": length, "area": area, "slab_width": width, "margin": margin, "excess": excess,
+                 "fit_bins": int(region.sum()), "flux": flux, "flux_error": flux_error, "gradient": gradient,
+                 "gradient_error": gradient_error, "kinetic_gradient": kinetic_gradient,
+                 "mean_temperature": float(np.mean(means)), "energy_change": energy_change, "injected": injected,
+                 "injected_hot": hot_total,
+                 "run_time": resets * reset_steps * step, "waited_tau": warm * step * reset_steps / measured_tau,
+                 "kinetic_profile": np.mean(kinetic_frames, axis=0)}
+        return conductivity, error, np.array(frames), extra
+
+    values, errors, profiles, details = zip(*replicas(one))
+    return _combine(values, errors, profiles, details[-1]["box_length"], bins, details[-1])
+
+
+def _positions(context):
+    return context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+
+
+def _internal_energies(model):
+    return np.asarray(model.integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole))
+
+
+def _total_energy(model, context):
+    """K + U + sum eps_i (kJ/mol), the energy that the Isoenergetic mode conserves (without the body force)."""
+    groups = {group for group in range(32) if group != BODY_FORCE_GROUP}
+    state = context.getState(getEnergy=True, groups=groups)
+    return ((state.getKineticEnergy() + state.getPotentialEnergy()).value_in_unit(unit.kilojoule_per_mole)
+            + float(_internal_energies(model).sum()))

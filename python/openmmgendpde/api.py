@@ -1,0 +1,216 @@
+"""The plugin's OpenMM classes: ``GenDPDEForce`` and ``GenDPDEIntegrator`` (the SWIG classes of the C++ API) with
+OpenMM's conventions added: arguments accept ``openmm.unit`` quantities, getters return them, per-particle results are
+Quantities holding numpy arrays, copies, pickling and ``repr``. Importing this module loads the kernel libraries.
+
+Import the classes from the package (``from openmmgendpde import GenDPDEForce``); the other modules of the package
+import them from here, so that nothing imports the package's ``__init__`` in a circle.
+"""
+
+import glob as _glob
+import os as _os
+
+import openmm as _openmm
+from openmm import unit as _unit
+from openmm import version as _openmm_version
+
+from . import gendpde as _swig
+from .internal.wrapping import (
+    DIMENSIONLESS,
+    NUMBER_DENSITY,
+    PRESSURE,
+    PRESSURE_PER_KELVIN,
+    accept_units,
+    add_cast_copy_and_pickle,
+    return_units,
+    to_openmm_value,
+)
+
+#: The kernels this plugin adds to OpenMM's platforms.
+KERNEL_NAMES = ("CalcGenDPDEForce", "IntegrateGenDPDEStep")
+
+
+def _load_kernel_libraries():
+    """`import openmm` loads the kernel libraries from OpenMM's plugin directory, where `pip install` puts them,
+    unless OPENMM_PLUGIN_DIR names another directory: then load them from OpenMM's directory by path."""
+    if _openmm.Platform.getPlatformByName("Reference").supportsKernels(KERNEL_NAMES):
+        return
+    plugins = _os.path.join(_openmm_version.openmm_library_path, "plugins")
+    for library in sorted(_glob.glob(_os.path.join(plugins, "libOpenMMGenDPDE*.so"))):
+        try:
+            _openmm.Platform.loadPluginLibrary(library)
+        except Exception:  # a GPU platform OpenMM cannot load here (e.g. no CUDA driver): as `import openmm` does
+            pass
+
+
+_load_kernel_libraries()
+
+__all__ = ["GenDPDEForce", "GenDPDEIntegrator"]
+
+
+def _units_of(arguments):
+    """The units of an argument list of accept_units, for the matching getter's return_units."""
+    return [argument_unit for _, argument_unit in arguments]
+
+
+GenDPDEForce = _swig.GenDPDEForce
+
+accept_units(GenDPDEForce, "__init__", [("cutoff", _unit.nanometer)])
+accept_units(GenDPDEForce, "setCutoffDistance", [("distance", _unit.nanometer)])
+return_units(GenDPDEForce, "getCutoffDistance", _unit.nanometer)
+accept_units(GenDPDEForce, "setCutoffScaling", [("scaling", DIMENSIONLESS)])
+_TAIT = [("referenceDensity", NUMBER_DENSITY), ("referencePressure", PRESSURE), ("bulkModulus", PRESSURE),
+         ("exponent", DIMENSIONLESS)]
+accept_units(GenDPDEForce, "setTaitParameters", _TAIT)
+return_units(GenDPDEForce, "getTaitParameters", _units_of(_TAIT))
+# Particle types are plain ints (setParticleType, getParticleType, getParticleTypes: a dict {particle: type}).
+accept_units(GenDPDEForce, "addTypeParameters", [("type", DIMENSIONLESS)] + _TAIT)
+accept_units(GenDPDEForce, "setTypeParameters", [("index", DIMENSIONLESS), ("type", DIMENSIONLESS)] + _TAIT)
+return_units(GenDPDEForce, "getTypeParameters", [DIMENSIONLESS] + _units_of(_TAIT))
+return_units(GenDPDEForce, "getReferenceDensity", NUMBER_DENSITY)
+return_units(GenDPDEForce, "getReferencePressure", PRESSURE)
+return_units(GenDPDEForce, "getBulkModulus", PRESSURE)
+accept_units(GenDPDEForce, "setBackgroundPressure", [("pressure", PRESSURE)])
+return_units(GenDPDEForce, "getBackgroundPressure", PRESSURE)
+return_units(GenDPDEForce, "getVirial", _unit.kilojoule_per_mole)
+return_units(GenDPDEForce, "getPrimitiveDensities", NUMBER_DENSITY)
+return_units(GenDPDEForce, "getParticleDensities", NUMBER_DENSITY)
+return_units(GenDPDEForce, "getParticleVolumes", _unit.nanometer**3)
+return_units(GenDPDEForce, "getParticlePressures", PRESSURE)
+
+
+def _particle_virials(original):
+    def getParticleVirials(self, context):
+        return _unit.Quantity(original(self, context).reshape(-1, 3, 3), _unit.kilojoule_per_mole)
+    getParticleVirials.__doc__ = (original.__doc__ or "") + (
+        "\n\nReturns a Quantity holding an N x 3 x 3 numpy array (kJ/mol): element [i, a, b] is W_i,ab.")
+    return getParticleVirials
+
+
+# The local equations of state (docs/theory.md section 11): each law's parameters, in order, with their units.
+_LAW_PARAMETERS = {
+    GenDPDEForce.Tait: [],
+    GenDPDEForce.TaitThermalExpansion: [("beta", PRESSURE_PER_KELVIN), ("theta0", _unit.kelvin)],
+    GenDPDEForce.VanDerWaals: [("a", _unit.kilojoule_per_mole * _unit.nanometer**3), ("b", _unit.nanometer**3),
+                               ("k", _unit.kilojoule_per_mole / _unit.kelvin)],
+}
+
+
+def _law_parameters(law, parameters, where):
+    """A law's parameters as plain numbers in OpenMM units (each may be a Quantity; a per-molecule pressure or
+    pressure per kelvin, in MPa or MPa/K, is converted per mole); a law the plugin does not know passes through, for
+    the C++ check to refuse it."""
+    names = _LAW_PARAMETERS.get(int(law))
+    values = list(parameters)
+    if names is None or len(values) != len(names):
+        return law, values   # refused by the C++ check, which names the law and the parameters it takes
+    return law, [to_openmm_value(v, u, f"{where}({name})") for v, (name, u) in zip(values, names)]
+
+
+def _with_law_units(law, parameters):
+    """A getter's parameters of ``law`` as Quantities in OpenMM units."""
+    names = _LAW_PARAMETERS.get(int(law), [])
+    return [_unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
+
+
+def _wrap_equation_of_state():
+    set_law, get_law = GenDPDEForce.setEquationOfState, GenDPDEForce.getEquationOfState
+    add_type, set_type, get_type = (GenDPDEForce.addTypeEquationOfState, GenDPDEForce.setTypeEquationOfState,
+                                    GenDPDEForce.getTypeEquationOfState)
+
+    def setEquationOfState(self, law, parameters=()):
+        return set_law(self, *_law_parameters(law, parameters, "GenDPDEForce.setEquationOfState"))
+
+    def getEquationOfState(self):
+        law, parameters = get_law(self)
+        return [law, _with_law_units(law, parameters)]
+
+    def addTypeEquationOfState(self, type, law, parameters=()):
+        return add_type(self, type, *_law_parameters(law, parameters, "GenDPDEForce.addTypeEquationOfState"))
+
+    def setTypeEquationOfState(self, index, type, law, parameters=()):
+        return set_type(self, index, type, *_law_parameters(law, parameters, "GenDPDEForce.setTypeEquationOfState"))
+
+    def getTypeEquationOfState(self, index):
+        type_, law, parameters = get_type(self, index)
+        return [type_, law, _with_law_units(law, parameters)]
+
+    for function, original in ((setEquationOfState, set_law), (getEquationOfState, get_law),
+                               (addTypeEquationOfState, add_type), (setTypeEquationOfState, set_type),
+                               (getTypeEquationOfState, get_type)):
+        function.__doc__ = (original.__doc__ or "") + (
+            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta "
+            "(kJ/mol/nm^3/K, or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. "
+            "Getters return [law, parameters] or [type, law, parameters], the parameters as Quantities.")
+        setattr(GenDPDEForce, function.__name__, function)
+
+
+_wrap_equation_of_state()
+GenDPDEForce.getParticleVirials = _particle_virials(GenDPDEForce.getParticleVirials)
+add_cast_copy_and_pickle(GenDPDEForce)
+
+GenDPDEIntegrator = _swig.GenDPDEIntegrator
+_FRICTION = _unit.amu / _unit.picosecond
+_HEAT_CONDUCTION = _unit.kilojoule_per_mole * _unit.kelvin / _unit.picosecond
+_HEAT_CAPACITY = _unit.kilojoule_per_mole / _unit.kelvin
+accept_units(GenDPDEIntegrator, "__init__", [("stepSize", _unit.picosecond), ("friction", _FRICTION),
+                                             ("heatConduction", _HEAT_CONDUCTION), ("heatCapacity", _HEAT_CAPACITY)])
+accept_units(GenDPDEIntegrator, "setStepSize", [("size", _unit.picosecond)])   # (getStepSize: openmm.Integrator's)
+accept_units(GenDPDEIntegrator, "setFriction", [("friction", _FRICTION)])
+return_units(GenDPDEIntegrator, "getFriction", _FRICTION)
+accept_units(GenDPDEIntegrator, "setHeatConduction", [("heatConduction", _HEAT_CONDUCTION)])
+return_units(GenDPDEIntegrator, "getHeatConduction", _HEAT_CONDUCTION)
+accept_units(GenDPDEIntegrator, "setHeatCapacity", [("heatCapacity", _HEAT_CAPACITY)])
+return_units(GenDPDEIntegrator, "getHeatCapacity", _HEAT_CAPACITY)
+_TYPE_HEAT_CAPACITY = [("type", DIMENSIONLESS), ("heatCapacity", _HEAT_CAPACITY)]
+accept_units(GenDPDEIntegrator, "addTypeHeatCapacity", _TYPE_HEAT_CAPACITY)
+accept_units(GenDPDEIntegrator, "setTypeHeatCapacity", [("index", DIMENSIONLESS)] + _TYPE_HEAT_CAPACITY)
+return_units(GenDPDEIntegrator, "getTypeHeatCapacity", _units_of(_TYPE_HEAT_CAPACITY))
+_TYPE_PAIR = [("type1", DIMENSIONLESS), ("type2", DIMENSIONLESS), ("friction", _FRICTION),
+              ("heatConduction", _HEAT_CONDUCTION)]
+accept_units(GenDPDEIntegrator, "addTypePair", _TYPE_PAIR)
+accept_units(GenDPDEIntegrator, "setTypePairParameters", [("index", DIMENSIONLESS)] + _TYPE_PAIR)
+return_units(GenDPDEIntegrator, "getTypePairParameters", _units_of(_TYPE_PAIR))
+accept_units(GenDPDEIntegrator, "setCutoffDistance", [("distance", _unit.nanometer)])
+return_units(GenDPDEIntegrator, "getCutoffDistance", _unit.nanometer)
+accept_units(GenDPDEIntegrator, "setTemperature", [("temperature", _unit.kelvin)])
+return_units(GenDPDEIntegrator, "getTemperature", _unit.kelvin)
+accept_units(GenDPDEIntegrator, "setParticleTemperatures", [("temperatures", _unit.kelvin)])
+accept_units(GenDPDEIntegrator, "setInternalEnergies", [("energies", _unit.kilojoule_per_mole)])
+accept_units(GenDPDEIntegrator, "setInternalEnergiesToTemperature", [("temperature", _unit.kelvin),
+                                                                    ("randomSeed", DIMENSIONLESS)])
+return_units(GenDPDEIntegrator, "getConservedEnergy", _unit.kilojoule_per_mole)
+return_units(GenDPDEIntegrator, "getParticleTemperatures", _unit.kelvin)
+return_units(GenDPDEIntegrator, "getInternalEnergies", _unit.kilojoule_per_mole)
+add_cast_copy_and_pickle(GenDPDEIntegrator)
+
+
+#: The density estimators, GenDPDEForce's enum value -> name ('VA', 'VB', ...), read from the class itself so that
+#: an estimator added to the C++ enum is known here (to the CLI's choices, repr, presets) without another list.
+ESTIMATOR_NAMES = {getattr(GenDPDEForce, name): name for name in sorted(dir(GenDPDEForce))
+                   if len(name) == 2 and name[0] == "V" and name[1].isupper()}
+
+
+def _force_repr(self):
+    estimator = ESTIMATOR_NAMES[self.getDensityEstimator()]
+    method = "CutoffPeriodic" if self.usesPeriodicBoundaryConditions() else "CutoffNonPeriodic"
+    n0, pi0, bulk, gamma = self.getTaitParameters()
+    return (f"<GenDPDEForce cutoff={self.getCutoffDistance().value_in_unit(_unit.nanometer):g} nm, {method}, "
+            f"estimator={estimator}, cutoffScaling={self.getCutoffScaling():g}, "
+            f"Tait(n0={n0.value_in_unit(NUMBER_DENSITY):g} nm^-3, pi0={pi0.value_in_unit(PRESSURE):g}, "
+            f"B_T={bulk.value_in_unit(PRESSURE):g} kJ/mol/nm^3, gamma_T={gamma:g})>")
+
+
+GenDPDEForce.__repr__ = _force_repr
+
+
+_MODE_NAMES = {GenDPDEIntegrator.Isoenergetic: "Isoenergetic", GenDPDEIntegrator.Isothermal: "Isothermal",
+               GenDPDEIntegrator.Conservative: "Conservative"}
+
+
+def _integrator_repr(self):
+    mode = _MODE_NAMES[self.getMode()]
+    return (f"<GenDPDEIntegrator {mode}, stepSize={self.getStepSize()}, friction={self.getFriction()}, "
+            f"heatConduction={self.getHeatConduction()}, heatCapacity={self.getHeatCapacity()}>")
+
+
+GenDPDEIntegrator.__repr__ = _integrator_repr

@@ -1,0 +1,63 @@
+"""The package's layout (README, "The package"): no import circles, each subpackage importing only the layers below
+it, and version 0.2's module names still importable for one version, with a warning naming the new place."""
+
+import importlib
+import importlib.util
+import pathlib
+import sys
+import warnings
+
+import pytest
+
+REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
+#: The layers, lowest first: a module may import its own layer's and those below (the package's __init__, which
+#: re-exports the API, is importable from everywhere).
+LAYERS = ["internal", "gendpde", "api", "units", "physics", "analysis", "reporter", "models", "cli", "calibration",
+          "studies", "benchmarks", "__main__"]
+
+
+def _import_graph():
+    spec = importlib.util.spec_from_file_location("import_graph", REPOSITORY / "devtools" / "import_graph.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_circle_finder_finds_a_circle():
+    graph = _import_graph()
+    assert graph.circles({"a": ["b"], "b": ["c"], "c": ["a"], "d": ["a"]}) == [["a", "b", "c"]]
+    assert graph.circles({"a": ["b"], "b": [], "d": ["a", "b"]}) == []
+
+
+def test_no_module_or_subpackage_imports_itself_in_a_circle():
+    graph = _import_graph()
+    modules = graph.graph()
+    assert len(modules) > 40 and "openmmgendpde.calibration.calibrate" in modules
+    assert graph.circles(modules) == []
+    assert graph.circles(graph.package_graph(modules)) == []
+
+
+def test_each_subpackage_imports_only_the_layers_below_it():
+    graph = _import_graph()
+    edges = graph.package_graph(graph.graph())
+    rank = {name: index for index, name in enumerate(LAYERS)}
+    wrong = []
+    for source, targets in edges.items():
+        if source == "openmmgendpde":
+            continue
+        layer = rank[source.split(".")[1]]
+        wrong += [f"{source} -> {target}" for target in targets if rank[target.split(".")[1]] > layer]
+    assert wrong == []
+
+
+@pytest.mark.parametrize("old, new", [("fluid", "models.fluid"), ("presets", "models.argon"),
+                                      ("calibrate", "calibration.calibrate"), ("thermodynamics",
+                                                                               "analysis.thermodynamics")])
+def test_version_0_2_module_names_still_import_with_a_warning(old, new):
+    sys.modules.pop(f"openmmgendpde.{old}", None)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        module = importlib.import_module(f"openmmgendpde.{old}")
+    assert module is importlib.import_module(f"openmmgendpde.{new}")
+    assert [str(w.message) for w in caught if w.category is FutureWarning] == [
+        f"openmmgendpde.{old} is now openmmgendpde.{new}; the old name works in version 0.3 and is removed in 0.4"]

@@ -1,16 +1,24 @@
 """GenDPDE (generalised energy-conserving dissipative particle dynamics) for OpenMM.
 
-``GenDPDEForce`` is the many-body conservative force U = sum_i f(n_i) with the traditional (VA) and the
-partition-of-unity (VB) density estimators and the Tait equation of state. It is an ``openmm.Force``: add it to a
-``System``, run it in a ``Context`` or an ``openmm.app.Simulation``, serialize it with ``openmm.XmlSerializer``.
+``GenDPDEForce`` is the many-body conservative force U = sum_i f(n_i) with the traditional (VA), the
+partition-of-unity (VB) and the surface-corrected (VC, for free surfaces) density estimators, the Tait equation of
+state and the local laws that depend on a particle's temperature (TaitThermalExpansion, VanDerWaals), particle types
+and a background pressure. It is an ``openmm.Force``: add it to a ``System``, run it in a ``Context`` or an
+``openmm.app.Simulation``, serialize it with ``openmm.XmlSerializer``.
 
 ``GenDPDEIntegrator`` is the energy-conserving integrator that carries each particle's internal energy, with
-dissipative and random pair forces and heat conduction (Shardlow-like splitting). It is an ``openmm.Integrator``.
+dissipative and random pair forces and heat conduction (Shardlow-like splitting; Isoenergetic, Isothermal and
+Conservative modes). It is an ``openmm.Integrator``. ``GenDPDEReporter`` reports the thermodynamic state as OpenMM's
+reporters do.
 
 Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K). Getters
 and results return quantities, as OpenMM's do; a per-particle result is one Quantity holding a numpy array (like
 ``State.getPositions(asNumpy=True)``): densities in nm^-3, volumes in nm^3, pressures in kJ/mol/nm^3, temperatures
 in K, internal energies in kJ/mol. ``.value_in_unit(unit)`` gives the plain array.
+
+The subpackages (README, "The package"): ``models`` builds models (the published argon, any fluid), ``analysis``
+measures them, ``calibration`` fits a model to a fluid, ``studies`` and ``benchmarks`` are the command line's
+(``python -m openmmgendpde``).
 """
 
 import openmm as _openmm  # first: loads OpenMM's platforms and this plugin's kernel libraries, and the SWIG types

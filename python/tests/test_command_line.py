@@ -550,3 +550,19 @@ def test_thermal_expansion_takes_a_fluid_as_every_command_does(capsys):
                         "removed in version 0.4)",
                         "warning: thermal-expansion: --fluid supercritical is now --fluid supercritical-argon (the "
                         "old name is removed in version 0.4)"]
+
+
+def test_table3_says_in_one_line_how_many_error_bars_are_too_small():
+    """The main job's output is its table and one line about sampling: the block averages that had not reached their
+    plateau are counted there (named with --verbose), not printed as warnings before the table."""
+    import warnings
+
+    from openmmgendpde.analysis.statistics import BlockAverageWarning
+    from openmmgendpde.studies.table3 import sampling_summary
+    text = "R_cut* = 1.3365 VA P*: the block-average error has not reached its plateau: blocks of 6 samples"
+    unsettled = [warnings.WarningMessage(BlockAverageWarning(text), BlockAverageWarning, "table3.py", 1)] * 2
+    assert sampling_summary([], 24) == "Sampling: every one of the 24 error bars reached its block-average plateau."
+    line = sampling_summary(unsettled, 24)
+    assert "\n" not in line and line.startswith("Sampling: 2 of the 24 error bars had not reached their block-average "
+                                                "plateau, so they are too small")
+    assert sampling_summary(unsettled, 24, verbose=True).splitlines()[1:] == [f"  {text}", f"  {text}"]

@@ -61,3 +61,14 @@ def test_version_0_2_module_names_still_import_with_a_warning(old, new):
     assert module is importlib.import_module(f"openmmgendpde.{new}")
     assert [str(w.message) for w in caught if w.category is FutureWarning] == [
         f"openmmgendpde.{old} is now openmmgendpde.{new}; the old name works in version 0.3 and is removed in 0.4"]
+
+
+def test_the_api_reference_is_generated_from_the_current_docstrings():
+    """docs/api.md is devtools/api_reference.py's output for the installed package: a docstring changed without
+    regenerating it fails here (the fix: .venv/bin/python devtools/api_reference.py > docs/api.md)."""
+    spec = importlib.util.spec_from_file_location("api_reference", REPOSITORY / "devtools" / "api_reference.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    text = module.generate()
+    assert "### class `GenDPDEForce`" in text and "## `openmmgendpde.calibration.results`" in text
+    assert text == (REPOSITORY / "docs" / "api.md").read_text()

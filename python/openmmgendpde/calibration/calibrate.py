@@ -85,6 +85,7 @@ from ..internal import forked
 from ..internal.files import atomic_write
 from ..models.fluid import CONDUCTIVITY, KB, VISCOSITY
 from ..models.fluid_files import save_parameters
+from ..models.melting import switch_after_melting
 from . import expansion
 from .results import (
     CRITERIA,
@@ -252,8 +253,7 @@ class Calibration:
         steps, stationary = self.melt(model, context, first=_box_edges(model) not in self._melted)
         self.melt_steps.append((steps, stationary))
         self._melted[_box_edges(model)] = (model_positions(context), density or self.parameters.density)
-        model.integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-        model.integrator.setInternalEnergiesToTemperature(self.parameters.temperature, self.seed)
+        switch_after_melting(model.integrator, self.parameters.temperature, self.seed)
         self._step(model.integrator, self.plan.melt // 2)
         return model, context
 

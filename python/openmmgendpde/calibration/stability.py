@@ -25,6 +25,7 @@ from openmm import unit
 from ..analysis.thermodynamics import ThermodynamicProbe
 from ..api import GenDPDEForce, GenDPDEIntegrator
 from ..models.argon import estimator_value
+from ..models.melting import melt_then_switch
 
 MODES = {"Isoenergetic": GenDPDEIntegrator.Isoenergetic, "Isothermal": GenDPDEIntegrator.Isothermal,
          "Conservative": GenDPDEIntegrator.Conservative}
@@ -36,9 +37,7 @@ def _passes(parameters, estimator, mode, time_step, steps, particles, platform, 
     context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(platform))
     context.setPositions(model.positions)
     context.setVelocitiesToTemperature(parameters.temperature, seed)
-    integrator.step(500)
-    integrator.setInternalEnergiesToTemperature(parameters.temperature, seed)
-    integrator.setMode(MODES[mode])
+    melt_then_switch(integrator, 500, parameters.temperature, seed, MODES[mode])
     integrator.setStepSize(parameters.units.to_openmm(time_step, "time"))
     probe = ThermodynamicProbe(model.system)
     try:

@@ -23,8 +23,8 @@ import numpy as np
 from openmm import app, unit
 
 from ..analysis.thermodynamics import ThermodynamicProbe
-from ..api import GenDPDEIntegrator
 from .argon import ARGON_UNITS, LiquidArgon, liquid_argon
+from .melting import melt_then_switch
 
 
 @dataclasses.dataclass(frozen=True)
@@ -94,11 +94,7 @@ def melt_then_draw(argon, thermostat_steps, seed, step=None):
     (Isothermal mode), then isoenergetic mode with the internal energies drawn from their equilibrium Gamma law at
     T0 (``setInternalEnergiesToTemperature(T0, seed)``). ``step(n)`` advances n steps: the integrator's own by
     default; pass e.g. ``Simulation.step`` (reporters, step count) or a stepper that reports progress."""
-    integrator = argon.integrator
-    integrator.setMode(GenDPDEIntegrator.Isothermal)
-    (step or integrator.step)(thermostat_steps)
-    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-    integrator.setInternalEnergiesToTemperature(argon.temperature, seed)
+    melt_then_switch(argon.integrator, thermostat_steps, argon.temperature, seed, step=step)
 
 
 def stepper(integrator, progress=None, chunk=200):

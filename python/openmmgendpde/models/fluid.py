@@ -32,6 +32,7 @@ from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
 from ..units import BOLTZMANN, ReducedUnits
 from .argon import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, estimator_value
 from .lattice import box_volume, build_liquid, fcc_box
+from .melting import melt_then_switch
 
 #: The OpenMM units of the parameters (plain floats in GenDPDEParameters).
 FRICTION = unit.amu / unit.picosecond
@@ -308,9 +309,7 @@ class FluidModel:
         context = openmm.Context(self.system, integrator, platform)
         context.setPositions(self.positions)
         context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
-        integrator.step(melt_steps)
-        integrator.setMode(mode)
-        integrator.setInternalEnergiesToTemperature(temperature, seed)
+        melt_then_switch(integrator, melt_steps, temperature, seed, mode)
         integrator.step(settle_steps)
         return context
 

@@ -43,6 +43,7 @@ from ..cli.options import NON_NEGATIVE, POSITIVE, SEED, add_output, add_platform
 from ..internal.files import atomic_write
 from ..models.argon import ARGON_UNITS, liquid_argon
 from ..models.lattice import fcc_box
+from ..models.melting import melt_then_switch
 
 NM = unit.nanometer
 
@@ -151,9 +152,7 @@ def fluid_slab(parameters, cells, estimator="VC", vacuum=None, time_step=None, m
     model.topology.setPeriodicBoxVectors(box * NM)
     context.setPeriodicBoxVectors(*box)
     context.setPositions((melted + np.array([0.0, 0.0, vacuum / 2])) * NM)
-    integrator.step(steps(thermostat_time))
-    integrator.setMode(GenDPDEIntegrator.Isoenergetic)
-    integrator.setInternalEnergiesToTemperature(parameters.temperature * unit.kelvin, seed)
+    melt_then_switch(integrator, steps(thermostat_time), parameters.temperature * unit.kelvin, seed)
     slab = Model(context, model.force, integrator, edges, parameters.temperature * unit.kelvin)
     return FluidSlab(slab, model.system, model.topology, thickness, vacuum, time_step)
 

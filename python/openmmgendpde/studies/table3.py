@@ -17,10 +17,11 @@ import os
 import pathlib
 import shutil
 import tempfile
+import warnings
 
 import numpy as np
 
-from ..analysis.statistics import block_average
+from ..analysis.statistics import BlockAverageWarning, block_average
 from ..api import ESTIMATOR_NAMES
 from ..cli.options import add_cutoffs, add_frames, add_output, chosen_cutoffs, platform_description
 from ..cli.progress import Progress
@@ -186,6 +187,16 @@ def read_frames(directory, cases):
     return frames
 
 
+def sampling_summary(unsettled, count, verbose=False):
+    """One line on the error bars (``count``) of which ``unsettled`` (BlockAverageWarnings) had not reached their
+    plateau: those bars are too small (statistics.block_average). ``verbose``: each warning on a line of its own."""
+    if not unsettled:
+        return f"Sampling: every one of the {count} error bars reached its block-average plateau."
+    line = (f"Sampling: {len(unsettled)} of the {count} error bars had not reached their block-average plateau, so "
+            f"they are too small (runs too short for them; --production for longer ones)")
+    return line + ("".join(f"\n  {w.message}" for w in unsettled) if verbose else "; --verbose names each.")
+
+
 def run(arguments):
     cutoffs = chosen_cutoffs(arguments)
     protocol = protocol_from_arguments(arguments, cutoffs=cutoffs, estimators=arguments.estimators)
@@ -199,13 +210,18 @@ def run(arguments):
           f"{platform_description(arguments)}", flush=True)
     progress = Progress(len(cases) * protocol.total_steps, "table3", always=arguments.progress)
     cells, kept = [], {}
-    for cutoff, estimator in cases:
-        progress.label = f"table3 R*={cutoff} {estimator}"
-        samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=frames, progress=progress).samples
-        cells += cells_of(cutoff, estimator, samples)
-        kept[(cutoff, estimator)] = (samples.frames, samples.box_edge)
+    with warnings.catch_warnings(record=True) as unsettled:   # (one line about them after the table)
+        warnings.simplefilter("always", BlockAverageWarning)
+        for cutoff, estimator in cases:
+            progress.label = f"table3 R*={cutoff} {estimator}"
+            samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=frames,
+                                progress=progress).samples
+            cells += cells_of(cutoff, estimator, samples)
+            kept[(cutoff, estimator)] = (samples.frames, samples.box_edge)
     progress.finish()
     print(format_table(cells))
+    print(sampling_summary([w for w in unsettled if issubclass(w.category, BlockAverageWarning)], len(cells),
+                           arguments.verbose))
     print("(!) differs from the published value by more than its error bar (0.0001 for T*, 0.001 otherwise) "
           "plus twice the standard error of the reproduction")
     for line in pairing_signature(cells):
@@ -226,4 +242,6 @@ def add_arguments(parser):
     add_output(parser, "table3.csv and the frames")
     parser.add_argument("--estimators", nargs="+", choices=list(ESTIMATOR_NAMES.values()), default=["VA", "VB"],
                         help="estimators to run (default VA VB; VC is compared with the published VB values)")
+    parser.add_argument("--verbose", action="store_true",
+                        help="each error bar that has not reached its block-average plateau, with its estimates")
     parser.set_defaults(run=run)

@@ -125,8 +125,8 @@ def iterated(parameters, history):
     of the parameters given): a secant step on the last two (beta, (dP/dT)_V) where their slopes differ by more than
     2 standard errors of the difference, else corrected() from the last. Where the structure absorbs part of a shift
     of the pi_i (a stiff liquid whose particles are under tension: docs/theory.md section 12) the slope is not
-    proportional to beta, and one proportional step missed by 2x (issue 40); the secant follows the measured response.
-    A secant step is held within a factor 3 of the last beta and positive."""
+    proportional to beta, and one proportional step missed by 2x (version 0.2, docs/thermal.md); the secant follows the
+    measured response. A secant step is held within a factor 3 of the last beta and positive."""
     last = history[-1]
     if len(history) >= 2:
         previous = history[-2]

@@ -182,3 +182,24 @@ def test_slab_box_model_and_a_temperature_field():
         parameters.liquid(cells=(1, 3, 8))
 
 
+
+
+def test_every_model_is_a_model_and_leaves_its_lattice_one_way():
+    """The published argon and a fluid's model are both models.model.Model, and equilibrate() brings either off its
+    lattice by one Equilibration protocol: after it the integrator is in the protocol's mode, and the internal
+    energies were drawn from their equilibrium law at T0, whose mean is (C_V + k_B) T0 (a Gamma law of shape
+    C_V/k_B + 1). 500 particles of C_V = 12.5 k_B (argon) or 36 k_B (water at 4 per particle): the mean has a
+    relative standard deviation below 1.3%; 5 steps after the draw move it little. Tolerance 5%."""
+    from openmmgendpde import GenDPDEIntegrator
+    from openmmgendpde.models.argon import liquid_argon
+    from openmmgendpde.models.model import Equilibration, Model
+    from openmmgendpde.units import BOLTZMANN
+    kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+    for model in (liquid_argon(500, 1.6839, "VB"), coarse_grain(WATER, 4, neighbors=20).liquid(500)):
+        assert isinstance(model, Model) and model.volume > 0
+        context = model.equilibrate("CPU", Equilibration(20, 5, GenDPDEIntegrator.Isoenergetic, seed=3))
+        assert context.getIntegrator().getMode() == GenDPDEIntegrator.Isoenergetic
+        heat_capacity = model.integrator.getHeatCapacity().value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+        energies = model.integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole)
+        expected = (heat_capacity + kb) * model.bath_temperature
+        assert abs(np.mean(energies) / expected - 1) < 0.05, (np.mean(energies), expected)

@@ -9,14 +9,14 @@ defaults come from it too); this module reads them through the bindings and adds
 import dataclasses
 import numbers
 
-import numpy as np
 import openmm
 from openmm import app, unit
 
 from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
 from ..gendpde import LiquidArgon as _Model
 from ..units import ARGON_UNITS, ReducedUnits  # noqa: F401  (ARGON_UNITS: part of this module's API)
-from .lattice import box_volume, build_liquid, fcc_positions
+from .lattice import build_liquid, fcc_positions
+from .model import Model
 
 
 @dataclasses.dataclass(frozen=True)
@@ -118,39 +118,25 @@ def fcc_lattice(num_particles, edge):
 
 
 @dataclasses.dataclass
-class LiquidArgon:
-    """A ready liquid-argon model in OpenMM units (nm, amu, kJ/mol, K)."""
-    system: openmm.System
-    force: GenDPDEForce
-    integrator: GenDPDEIntegrator
-    topology: app.Topology
-    positions: np.ndarray          # nm, num_particles x 3
-    cutoff: ArgonCutoff
+class LiquidArgon(Model):
+    """The published liquid-argon model (model.Model) with its cutoff's parameters, state and reduced units."""
+    cutoff: ArgonCutoff = None
     state: ArgonState = ARGON_STATE
     units: ReducedUnits = ARGON_UNITS
 
     @property
-    def num_particles(self):
-        return self.system.getNumParticles()
-
-    @property
     def temperature(self):
-        """T0 in K."""
+        """T0 (a Quantity in K)."""
         return self.units.to_openmm(self.state.temperature, "temperature")
 
-    def simulation(self, platform="Reference", velocity_seed=1):
-        """An openmm.app.Simulation of this model, at the lattice positions, with Maxwell-Boltzmann velocities at
-        T0 and every theta_i = T0 (set on the integrator)."""
-        simulation = app.Simulation(self.topology, self.system, self.integrator,
-                                    openmm.Platform.getPlatformByName(platform))
-        simulation.context.setPositions(self.positions)
-        simulation.context.setVelocitiesToTemperature(self.temperature, velocity_seed)
-        return simulation
+    @property
+    def bath_temperature(self):
+        return self.temperature.value_in_unit(unit.kelvin)
 
     @property
     def box_volume(self):
-        """nm^3"""
-        return box_volume(self.system)
+        """nm^3 (Model.volume)."""
+        return self.volume
 
 
 def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scaling=None, time_step=0.01, seed=0,

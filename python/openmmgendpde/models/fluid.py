@@ -26,13 +26,13 @@ import numbers
 
 import numpy as np
 import openmm
-from openmm import app, unit
+from openmm import unit
 
 from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
 from ..units import BOLTZMANN, ReducedUnits
 from .argon import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, estimator_value
-from .lattice import box_volume, build_liquid, fcc_box
-from .melting import melt_then_switch
+from .lattice import build_liquid, fcc_box
+from .model import Model
 
 #: The OpenMM units of the parameters (plain floats in GenDPDEParameters).
 FRICTION = unit.amu / unit.picosecond
@@ -282,41 +282,13 @@ class GenDPDEParameters:
 
 
 @dataclasses.dataclass
-class FluidModel:
-    """A ready model of a fluid in OpenMM units."""
-    system: openmm.System
-    force: GenDPDEForce
-    integrator: GenDPDEIntegrator
-    topology: app.Topology
-    positions: np.ndarray       # nm
-    parameters: GenDPDEParameters
+class FluidModel(Model):
+    """A ready model of a fluid (model.Model) and the parameters it was built from."""
+    parameters: GenDPDEParameters = None
 
     @property
-    def num_particles(self):
-        return self.system.getNumParticles()
-
-    def melted(self, platform, mode, melt_steps, settle_steps, temperature=None, seed=0):
-        """A Context of the model (``platform``: an openmm.Platform or its name), melted from the lattice: velocities
-        drawn at ``temperature`` (K; default T0), ``melt_steps`` Isothermal steps at it (the DPD thermostat), then the
-        integrator in ``mode`` with the internal energies drawn at that temperature and ``settle_steps`` steps (the
-        exchange between the motion and the internal energies settles)."""
-        temperature = self.parameters.temperature if temperature is None else temperature
-        if isinstance(platform, str):
-            platform = openmm.Platform.getPlatformByName(platform)
-        integrator = self.integrator
-        integrator.setMode(GenDPDEIntegrator.Isothermal)
-        integrator.setTemperature(temperature)
-        context = openmm.Context(self.system, integrator, platform)
-        context.setPositions(self.positions)
-        context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
-        melt_then_switch(integrator, melt_steps, temperature, seed, mode)
-        integrator.step(settle_steps)
-        return context
-
-    @property
-    def volume(self):
-        """nm^3"""
-        return box_volume(self.system)
+    def bath_temperature(self):
+        return self.parameters.temperature
 
 
 def set_temperature_field(integrator, positions, temperature):

@@ -15,6 +15,7 @@ in K, internal energies in kJ/mol. ``.value_in_unit(unit)`` gives the plain arra
 
 import glob as _glob
 import os as _os
+import re as _re
 
 import openmm as _openmm  # first: loads OpenMM's platforms and this plugin's kernel libraries, and the SWIG types
 from openmm import unit as _unit
@@ -97,13 +98,84 @@ def _particle_virials(original):
     return getParticleVirials
 
 
+#: The symbols of the units text of the C++ table of the equations of state (GenDPDEEquationsOfState.h).
+_UNIT_SYMBOLS = {"kJ": _unit.kilojoule, "mol": _unit.mole, "nm": _unit.nanometer, "K": _unit.kelvin,
+                 "ps": _unit.picosecond, "amu": _unit.amu}
+
+
+def _parse_units(text):
+    """The OpenMM unit that the table's units text names ("kJ/mol/nm^3/K", "kJ/mol nm^3", "kJ/(mol K)", "nm^-3"; ""
+    is DIMENSIONLESS): symbols with integer powers, read left to right, '/' dividing by the next factor and a space
+    multiplying by it, parentheses grouping. PRESSURE and PRESSURE_PER_KELVIN come back as themselves (they also
+    take per-molecule values in MPa, to_openmm_value)."""
+    tokens = _re.findall(r"[A-Za-z]+|\^-?[0-9]+|[/()]", text)
+    if "".join(tokens) != text.replace(" ", ""):
+        raise ValueError(f"units {text!r}: not understood")
+    if not tokens:
+        return DIMENSIONLESS
+    position = 0
+
+    def take():
+        nonlocal position
+        if position >= len(tokens):
+            raise ValueError(f"units {text!r}: incomplete")
+        position += 1
+        return tokens[position - 1]
+
+    def factor():
+        token = take()
+        if token == "(":
+            value = product()
+            if take() != ")":
+                raise ValueError(f"units {text!r}: unbalanced parentheses")
+        elif token in _UNIT_SYMBOLS:
+            value = _UNIT_SYMBOLS[token]
+        else:
+            raise ValueError(f"units {text!r}: unknown symbol {token!r}")
+        if position < len(tokens) and tokens[position].startswith("^"):
+            value = value ** int(take()[1:])
+        return value
+
+    def product():
+        value = factor()
+        while position < len(tokens) and tokens[position] != ")":
+            if tokens[position] == "/":
+                take()
+                value = value / factor()
+            else:
+                value = value * factor()
+        return value
+
+    result = product()
+    if position != len(tokens):
+        raise ValueError(f"units {text!r}: unbalanced parentheses")
+    for known in (PRESSURE, PRESSURE_PER_KELVIN, NUMBER_DENSITY):
+        if result == known:
+            return known
+    return result
+
+
+def _law_table():
+    """Each law's parameters, in order, with their units, as the C++ table has them (GenDPDEEquationsOfState.h):
+    {law: [(name, unit), ...]}."""
+    return {law: [(_swig.equationOfStateParameterName(law, k),
+                   _parse_units(_swig.equationOfStateParameterUnits(law, k)))
+                  for k in range(_swig.numEquationOfStateParameters(law))]
+            for law in range(_swig.numEquationsOfState())}
+
+
 # The local equations of state (docs/theory.md section 11): each law's parameters, in order, with their units.
-_LAW_PARAMETERS = {
-    GenDPDEForce.Tait: [],
-    GenDPDEForce.TaitThermalExpansion: [("beta", PRESSURE_PER_KELVIN), ("theta0", _unit.kelvin)],
-    GenDPDEForce.VanDerWaals: [("a", _unit.kilojoule_per_mole * _unit.nanometer**3), ("b", _unit.nanometer**3),
-                               ("k", _unit.kilojoule_per_mole / _unit.kelvin)],
-}
+_LAW_PARAMETERS = _law_table()
+
+
+def _describe_laws():
+    """The laws' parameters for docstrings: "Tait [], TaitThermalExpansion [beta (kJ/mol/nm^3/K, or MPa/K), ...]"."""
+    def one(law, k, unit_):
+        text = _swig.equationOfStateParameterUnits(law, k) or "dimensionless"
+        also = {PRESSURE: ", or MPa", PRESSURE_PER_KELVIN: ", or MPa/K"}.get(unit_, "")
+        return f"{_swig.equationOfStateParameterName(law, k)} ({text}{also})"
+    return ", ".join(f"{_swig.equationOfStateName(law)} [{', '.join(one(law, k, u) for k, (_, u) in enumerate(names))}]"
+                     for law, names in _LAW_PARAMETERS.items())
 
 
 def _law_parameters(law, parameters, where):
@@ -120,7 +192,7 @@ def _law_parameters(law, parameters, where):
 def _with_law_units(law, parameters):
     """A getter's parameters of ``law`` as Quantities in OpenMM units."""
     names = _LAW_PARAMETERS.get(int(law), [])
-    return [_unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
+    return [v if u is DIMENSIONLESS else _unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
 
 
 def _wrap_equation_of_state():
@@ -149,8 +221,7 @@ def _wrap_equation_of_state():
                                (addTypeEquationOfState, add_type), (setTypeEquationOfState, set_type),
                                (getTypeEquationOfState, get_type)):
         function.__doc__ = (original.__doc__ or "") + (
-            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta "
-            "(kJ/mol/nm^3/K, or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. "
+            "\n\nParameters are plain numbers in OpenMM units or Quantities: " + _describe_laws() + ". "
             "Getters return [law, parameters] or [type, law, parameters], the parameters as Quantities.")
         setattr(GenDPDEForce, function.__name__, function)
 

@@ -285,7 +285,7 @@ namespace GenDPDEPlugin {
 int numEquationsOfState() {
     return EquationsOfState::numLaws;
 }
-/** The name of an equation of state as the API spells it ("VanDerWaals"). */
+/** The name of an equation of state as the API spells it ("TaitThermalExpansion"). */
 const char* equationOfStateName(int law) {
     return requireLaw(law).name;
 }

@@ -26,7 +26,7 @@ bool lawDependsOnTemperature(GenDPDEForce::EquationOfState law) {
     return Physics::gendpdeLawDependsOnTemperature(EquationsOfState::laws[law].coreId) != 0;
 }
 
-/** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (VanDerWaals)". */
+/** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (...)". */
 std::string describeTemperatureDependence(const GenDPDEForce& force) {
     GenDPDEForce::EquationOfState law;
     std::vector<double> parameters;

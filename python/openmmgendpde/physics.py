@@ -10,8 +10,8 @@ Plain floats in any consistent units (OpenMM units where a law's parameters are 
 - ``densityWeight(r, R) -> (w, dw/dr)``
 - ``taitEquationOfState(n, n0, pi0, B_T, gamma_T) -> (pi, f)``
 - ``localEquationOfState(law, parameters, n0, pi0, B_T, gamma_T, p_b, n) -> (status, e, sigma, pi_0, pi_theta)`` for
-  any law (GenDPDEForce.Tait, TaitThermalExpansion, VanDerWaals, ...; its parameters as setEquationOfState takes
-  them), with pi = pi_0 + theta pi_theta and f = e - theta sigma + C theta (1 - ln(theta/theta0))
+  any law (a GenDPDEForce.EquationOfState value: GenDPDEForce.Tait, ...; its parameters as setEquationOfState
+  takes them), with pi = pi_0 + theta pi_theta and f = e - theta sigma + C theta (1 - ln(theta/theta0))
 - ``particleState(estimator, R, f_cut, n0, G, law, parameters, n0_T, pi0, B_T, gamma_T, p_b, isothermal, T, eps,
   sigma_stored, entropyKnown, C_V) -> (status, V, pi, u, pi dV/dn0, 2 pi dV/dG, C theta, sigma)``: everything a
   particle contributes to the force, for any estimator and law (its thermal state read only by a law that depends on

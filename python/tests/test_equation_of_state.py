@@ -165,7 +165,8 @@ def test_every_law_of_the_table_round_trips_with_the_table_s_units():
 
 def test_the_table_s_units_are_openmm_s():
     from openmmgendpde import _LAW_PARAMETERS, PRESSURE_PER_KELVIN
-    assert _LAW_PARAMETERS[GenDPDEForce.TaitThermalExpansion] == [("beta", PRESSURE_PER_KELVIN), ("theta0", unit.kelvin)]
+    thermal = _LAW_PARAMETERS[GenDPDEForce.TaitThermalExpansion]
+    assert thermal == [("beta", PRESSURE_PER_KELVIN), ("theta0", unit.kelvin)]
     (_, a), (_, b), (_, k) = _LAW_PARAMETERS[GenDPDEForce.VanDerWaals]
     assert a == unit.kilojoule_per_mole * unit.nanometer**3 and b == unit.nanometer**3
     assert k == unit.kilojoule_per_mole / unit.kelvin
@@ -226,3 +227,21 @@ def test_physics_covers_every_estimator_and_law():
     assert status == physics.PARTICLE_OUTSIDE_DOMAIN   # b n >= 1
     with pytest.raises(openmm.OpenMMException, match="van der Waals excluded volume b = -1"):
         physics.localEquationOfState(GenDPDEForce.VanDerWaals, [0.3, -1.0, 0.01], *tait, 0.0, 2.5)
+
+
+def test_a_law_is_spelt_only_in_the_core_the_table_and_the_api_enum():
+    """What a new law touches (issue 41): its formula in the physics core, its entry in the table (and its value of
+    GenDPDEForce::EquationOfState), and its oracle in the tests. The van der Waals law, the latest added, is named in
+    no other source file of the plugin: not in the checks, messages, serialization, platforms or Python wrapping."""
+    import pathlib
+    import re
+    root = pathlib.Path(__file__).resolve().parents[2]
+    pattern = re.compile(r"van ?der ?Waals|VAN_DER_WAALS", re.IGNORECASE)
+    sources = [path for folder in ("openmmapi", "platforms", "serialization", "python/openmmgendpde")
+               for path in (root / folder).rglob("*")
+               if path.suffix in (".h", ".cpp", ".cc", ".in", ".py", ".i") and "tests" not in path.parts]
+    sources.append(root / "python" / "gendpde.i")
+    assert len(sources) > 50
+    found = sorted(str(path.relative_to(root)) for path in sources if pattern.search(path.read_text()))
+    assert found == ["openmmapi/include/GenDPDEForce.h", "openmmapi/include/internal/GenDPDEEquationsOfState.h",
+                     "openmmapi/include/internal/GenDPDEPhysicsCore.h"]

@@ -25,7 +25,8 @@ constexpr int maxParameters = 8;
 struct Parameter {
     const char* name;          // short name, as Python and the documentation spell it ("beta")
     const char* description;   // for messages ("thermal pressure coefficient beta")
-    ParameterChecks::Range range;   // allowed values, with the units (OpenMM units) as text ("kJ/mol/nm^3/K")
+    ParameterChecks::Range range;   // allowed values, with the units (OpenMM units) as text ("kJ/mol/nm^3/K"):
+                                    // generous, as ParameterChecks::Ranges (their own, or a shared one)
     bool excludeMinimum = false;    // whether range.minimum itself is refused
 };
 
@@ -54,11 +55,11 @@ struct Law {
 constexpr Law laws[] = {
     {"Tait", "Tait", GENDPDE_EOS_TAIT, true, "", 0, {}},
     {"TaitThermalExpansion", "Tait", GENDPDE_EOS_TAIT_THERMAL, true, "", 2,
-        {{"beta", "thermal pressure coefficient beta", ParameterChecks::Ranges::thermalPressureCoefficient},
+        {{"beta", "thermal pressure coefficient beta", {-1e12, 1e12, "kJ/mol/nm^3/K"}},   // (dpi/dtheta)_n
          {"theta0", "reference temperature theta0", ParameterChecks::Ranges::temperature}}},
     {"VanDerWaals", "van der Waals", GENDPDE_EOS_VAN_DER_WAALS, false, "0 < n < 1/b", 3,
-        {{"a", "van der Waals attraction a", ParameterChecks::Ranges::vanDerWaalsAttraction},
-         {"b", "van der Waals excluded volume b", ParameterChecks::Ranges::vanDerWaalsExcludedVolume},
+        {{"a", "van der Waals attraction a", {0.0, 1e12, "kJ/mol nm^3"}},
+         {"b", "van der Waals excluded volume b", {1e-12, 1e12, "nm^3"}},
          {"k", "van der Waals entropy scale k", ParameterChecks::Ranges::heatCapacity}}},
 };
 

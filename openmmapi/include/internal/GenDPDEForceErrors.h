@@ -51,7 +51,7 @@ inline std::string equationOfStateOverflow(int particle, double density, const P
 
 /**
  * A particle's density n (nm^-3) is outside the domain of its law (law: its type's; the table's domain, up to
- * gendpdeLawDensityLimit), e.g. 0 < n < 1/b for van der Waals (b: excluded volume, nm^3).
+ * gendpdeLawDensityLimit), e.g. 0 < n < 1/b for a law with an excluded volume b (nm^3).
  */
 inline std::string outsideDomain(int particle, double density, const Physics::LocalEquationOfState& law,
                                  long long step) {

@@ -35,7 +35,9 @@ static int isNumpyAvailable() {
 #include "openmm/RPMDMonteCarloBarostat.h"
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEPhysics.h"
+#include "internal/GenDPDETypes.h"
 #include "internal/LiquidArgon.h"
 #include <cstring>
 %}
@@ -109,6 +111,10 @@ RELEASE_GIL(GenDPDEPlugin::GenDPDEForce::updateParametersInContext)
 %apply int& OUTPUT { int& type, int& type1, int& type2 };
 %apply double& OUTPUT { double& heatCapacity, double& friction, double& heatConduction };
 %apply double& OUTPUT { double& volume, double& derivative, double& value, double& pressure, double& freeEnergy };
+%apply double& OUTPUT { double& momentDerivative, double& energy, double& entropy, double& pressureAtZero,
+                        double& thermalPressure, double& forceCoefficient, double& momentForceScale,
+                        double& thermalEnergy, double& densityEntropy, double& minimum, double& maximum };
+%apply int& OUTPUT { int& status };
 
 /* The equation-of-state getters (getEquationOfState, getTypeEquationOfState) return the law as an int (the enum's
  * value, GenDPDEForce.TaitThermalExpansion...) and the parameters as a list of floats. */
@@ -243,3 +249,132 @@ void taitEquationOfState(double density, double referenceDensity, double referen
 }
 }
 %}
+
+/* The local equations of state, as the table of GenDPDEEquationsOfState.h describes them (openmmgendpde reads its
+ * parameters' names and units from here), and the core's per-particle functions for every estimator and law. */
+%{
+namespace {
+const GenDPDEPlugin::EquationsOfState::Law& requireLaw(int law) {
+    const GenDPDEPlugin::EquationsOfState::Law* found = GenDPDEPlugin::EquationsOfState::find(law);
+    if (found == nullptr)
+        throw OpenMM::OpenMMException("equation of state " + std::to_string(law) + " is not one; it must be "
+                                      + GenDPDEPlugin::EquationsOfState::listOfLaws());
+    return *found;
+}
+const GenDPDEPlugin::EquationsOfState::Parameter& requireParameter(int law, int index) {
+    const GenDPDEPlugin::EquationsOfState::Law& found = requireLaw(law);
+    if (index < 0 || index >= found.numParameters)
+        throw OpenMM::OpenMMException(std::string("the ") + found.name + " equation of state has no parameter "
+                                      + std::to_string(index) + " (it takes " + std::to_string(found.numParameters)
+                                      + ")");
+    return found.parameters[index];
+}
+/** Refuse what GenDPDEForce's setters refuse (a law, its parameters, the Tait parameters, p_b). */
+void checkedLaw(int law, const std::vector<double>& parameters, double referenceDensity, double referencePressure,
+                double bulkModulus, double exponent, double backgroundPressure) {
+    GenDPDEPlugin::GenDPDEForce check(1.0);
+    check.setTaitParameters(referenceDensity, referencePressure, bulkModulus, exponent);
+    check.setEquationOfState((GenDPDEPlugin::GenDPDEForce::EquationOfState) law, parameters);
+    check.setBackgroundPressure(backgroundPressure);
+}
+}
+%}
+%inline %{
+namespace GenDPDEPlugin {
+/** The number of equations of state (GenDPDEForce.EquationOfState values 0 .. n-1). */
+int numEquationsOfState() {
+    return EquationsOfState::numLaws;
+}
+/** The name of an equation of state as the API spells it ("TaitThermalExpansion"). */
+const char* equationOfStateName(int law) {
+    return requireLaw(law).name;
+}
+/** The number of parameters an equation of state takes (setEquationOfState). */
+int numEquationOfStateParameters(int law) {
+    return requireLaw(law).numParameters;
+}
+/** A parameter's short name ("beta"). */
+const char* equationOfStateParameterName(int law, int index) {
+    return requireParameter(law, index).name;
+}
+/** A parameter's description, as messages name it ("thermal pressure coefficient beta"). */
+const char* equationOfStateParameterDescription(int law, int index) {
+    return requireParameter(law, index).description;
+}
+/** A parameter's OpenMM units as text ("kJ/mol/nm^3/K"; "" if dimensionless). */
+const char* equationOfStateParameterUnits(int law, int index) {
+    return requireParameter(law, index).range.units;
+}
+/** A parameter's allowed range (in its units): returns (minimum, maximum); see also the minimum's exclusion. */
+void equationOfStateParameterRange(int law, int index, double& minimum, double& maximum) {
+    minimum = requireParameter(law, index).range.minimum;
+    maximum = requireParameter(law, index).range.maximum;
+}
+/** Whether a parameter's minimum itself is refused. */
+bool equationOfStateParameterExcludesMinimum(int law, int index) {
+    return requireParameter(law, index).excludeMinimum;
+}
+/** V, dV/dn0 and dV/dG of any estimator (GenDPDEForce.VA, VB, VC) at primitive density n0 >= 0 and squared moment G
+ *  (V-C), for cutoff R and cutoff scaling f_cut (Rt = R/f_cut): returns (V, dV/dn0, dV/dG). */
+void particleVolume(int estimator, double primitiveDensity, double squaredMoment, double cutoff,
+                    double cutoffScaling, double& volume, double& derivative, double& momentDerivative) {
+    if (estimator < GENDPDE_ESTIMATOR_VA || estimator > GENDPDE_ESTIMATOR_VC || !(primitiveDensity >= 0.0)
+            || !(squaredMoment >= 0.0) || !(cutoff > 0.0) || !(cutoffScaling >= 1.0))
+        throw OpenMM::OpenMMException("particleVolume: need an estimator (VA, VB or VC), primitive density >= 0, "
+                                      "squared moment >= 0, cutoff > 0 and cutoff scaling >= 1");
+    const Physics::ParticleVolumeAndMoment v = Physics::VolumeEstimator(estimator, cutoff, cutoff/cutoffScaling)(
+            primitiveDensity, squaredMoment);
+    volume = v.volume;
+    derivative = v.derivative;
+    momentDerivative = v.momentDerivative;
+}
+/** The law's (GenDPDEForce.EquationOfState) parts at density n: returns (status, e, sigma, pressureAtZero,
+ *  thermalPressure) with pi = pressureAtZero + theta thermalPressure (gendpdeLocalEquationOfState). parameters as
+ *  setEquationOfState takes them (checked), tait the type's n0, pi0, B_T, gamma_T, p_b the background pressure. */
+void localEquationOfState(int law, const std::vector<double>& parameters, double referenceDensity,
+                          double referencePressure, double bulkModulus, double exponent, double backgroundPressure,
+                          double density, int& status, double& energy, double& entropy, double& pressureAtZero,
+                          double& thermalPressure) {
+    checkedLaw(law, parameters, referenceDensity, referencePressure, bulkModulus, exponent, backgroundPressure);
+    const Physics::LocalEquationOfState eos = packEquationOfState((GenDPDEForce::EquationOfState) law, parameters,
+            {referenceDensity, referencePressure, bulkModulus, exponent}, backgroundPressure);
+    status = Physics::gendpdeLocalEquationOfState(eos.law, density, eos.parameter.data(), eos.integerPower, &energy,
+                                                  &entropy, &pressureAtZero, &thermalPressure);
+}
+/** Everything a particle contributes to the force (gendpdeParticleState), for any estimator and law: returns (status,
+ *  V, pi, its term of U, pi dV/dn0, 2 pi dV/dG, C theta, sigma). The law as localEquationOfState; the thermal state
+ *  (laws that depend on temperature): isothermal with temperature, else storedEnergy eps_i with storedEntropy if
+ *  entropyKnown, and heatCapacity C_V. */
+void particleState(int estimator, double cutoff, double cutoffScaling, double primitiveDensity,
+                   double squaredMoment, int law, const std::vector<double>& parameters, double referenceDensity,
+                   double referencePressure, double bulkModulus, double exponent, double backgroundPressure,
+                   bool isothermal, double temperature, double storedEnergy, double storedEntropy, bool entropyKnown,
+                   double heatCapacity, int& status, double& volume, double& pressure, double& energy,
+                   double& forceCoefficient, double& momentForceScale, double& thermalEnergy,
+                   double& densityEntropy) {
+    double ignored;
+    particleVolume(estimator, primitiveDensity, squaredMoment, cutoff, cutoffScaling, ignored, ignored, ignored);
+    checkedLaw(law, parameters, referenceDensity, referencePressure, bulkModulus, exponent, backgroundPressure);
+    const Physics::LocalEquationOfState eos = packEquationOfState((GenDPDEForce::EquationOfState) law, parameters,
+            {referenceDensity, referencePressure, bulkModulus, exponent}, backgroundPressure);
+    Physics::ParticleState state;
+    status = Physics::particleState(Physics::VolumeEstimator(estimator, cutoff, cutoff/cutoffScaling), eos,
+            primitiveDensity, squaredMoment, {isothermal, temperature, storedEnergy, storedEntropy, entropyKnown,
+            heatCapacity, false}, state);
+    volume = state.volume;
+    pressure = state.pressure;
+    energy = state.freeEnergy;
+    forceCoefficient = state.forceCoefficient;
+    momentForceScale = state.momentForceScale;
+    thermalEnergy = state.thermalEnergy;
+    densityEntropy = state.densityEntropy;
+}
+}
+%}
+
+/* What gendpdeParticleState and gendpdeLocalEquationOfState return (GENDPDE_PARTICLE_*). */
+%constant int PARTICLE_VALID = GENDPDE_PARTICLE_VALID;
+%constant int PARTICLE_NO_NEIGHBOR = GENDPDE_PARTICLE_NO_NEIGHBOR;
+%constant int PARTICLE_OVERFLOW = GENDPDE_PARTICLE_OVERFLOW;
+%constant int PARTICLE_OUTSIDE_DOMAIN = GENDPDE_PARTICLE_OUTSIDE_DOMAIN;
+%constant int PARTICLE_TEMPERATURE_JUMP = GENDPDE_PARTICLE_TEMPERATURE_JUMP;

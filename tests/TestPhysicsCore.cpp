@@ -63,8 +63,8 @@ struct LocalTerms {
 
 LocalTerms localTerms(const LocalLaw& law, double n) {
     LocalTerms t;
-    t.status = gendpdeLocalEquationOfState(law.law, n, law.p[0], law.p[1], law.p[2], law.p[3], law.p[4], law.p[5], -1,
-                                           &t.energy, &t.entropy, &t.pressureAtZero, &t.thermalPressure);
+    t.status = gendpdeLocalEquationOfState(law.law, n, law.p, -1, &t.energy, &t.entropy, &t.pressureAtZero,
+                                           &t.thermalPressure);
     return t;
 }
 

@@ -1,4 +1,5 @@
 #include "GenDPDEForce.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
@@ -172,27 +173,20 @@ void GenDPDEForce::setTypeParameters(int index, int type, double referenceDensit
 }
 
 void GenDPDEForce::checkLaw(const std::string& entry, EquationOfState law, const std::vector<double>& parameters) {
-    // The parameters each law takes, with their ranges (GenDPDEForce.h, EquationOfState).
-    std::vector<std::pair<std::string, Range>> expected;
-    if (law == TaitThermalExpansion)
-        expected = {{"thermal pressure coefficient beta", Ranges::thermalPressureCoefficient},
-                    {"reference temperature theta0", Ranges::temperature}};
-    else if (law == VanDerWaals)
-        expected = {{"van der Waals attraction a", Ranges::vanDerWaalsAttraction},
-                    {"van der Waals excluded volume b", Ranges::vanDerWaalsExcludedVolume},
-                    {"van der Waals entropy scale k", Ranges::heatCapacity}};
-    else if (law != Tait)
-        reject(entry, "equation of state", (int) law, "", "Tait (0), TaitThermalExpansion (1) or VanDerWaals (2)");
-    if (parameters.size() != expected.size()) {
-        std::string list;
-        for (const auto& parameter : expected)
-            list += (list.empty() ? "" : ", ") + parameter.first;
-        throw OpenMMException(entry + ": the " + equationOfStateName(law) + " equation of state takes " + std::to_string(expected.size())
-                              + " parameters" + (list.empty() ? "" : " (" + list + ")") + ", not "
-                              + std::to_string(parameters.size()));
+    // The parameters each law takes, with their ranges: the table of GenDPDEEquationsOfState.h.
+    const EquationsOfState::Law* description = EquationsOfState::find((int) law);
+    if (description == nullptr)
+        reject(entry, "equation of state", (int) law, "", EquationsOfState::listOfLaws());
+    if ((int) parameters.size() != description->numParameters) {
+        const std::string list = EquationsOfState::listOfParameters(*description);
+        throw OpenMMException(entry + ": the " + description->name + " equation of state takes "
+                              + std::to_string(description->numParameters) + " parameters"
+                              + (list.empty() ? "" : " (" + list + ")") + ", not " + std::to_string(parameters.size()));
     }
-    for (size_t k = 0; k < expected.size(); k++)
-        requireInRange(entry, expected[k].first, parameters[k], expected[k].second);
+    for (int k = 0; k < description->numParameters; k++) {
+        const EquationsOfState::Parameter& parameter = description->parameters[k];
+        requireInRange(entry, parameter.description, parameters[k], parameter.range, parameter.excludeMinimum);
+    }
 }
 
 void GenDPDEForce::setEquationOfState(EquationOfState law, const std::vector<double>& parameters) {
@@ -241,10 +235,10 @@ void GenDPDEForce::setTypeEquationOfState(int index, int type, EquationOfState l
 }
 
 bool GenDPDEForce::dependsOnTemperature() const {
-    if (defaultLaw.law != Tait)
+    if (Physics::gendpdeLawDependsOnTemperature(EquationsOfState::laws[defaultLaw.law].coreId))
         return true;
     for (const LawEntry& entry : typeLaws)
-        if (entry.law != Tait)
+        if (Physics::gendpdeLawDependsOnTemperature(EquationsOfState::laws[entry.law].coreId))
             return true;
     return false;
 }

@@ -1,6 +1,7 @@
 #include "internal/GenDPDEForceImpl.h"
 #include "GenDPDEIntegrator.h"
 #include "internal/BoxGeometry.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
@@ -20,17 +21,22 @@ double boxVolume(ContextImpl& context) {
     return a[0]*b[1]*c[2];
 }
 
-/** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (VanDerWaals)". */
+/** Whether a law depends on temperature (the physics core's gendpdeLawDependsOnTemperature). */
+bool lawDependsOnTemperature(GenDPDEForce::EquationOfState law) {
+    return Physics::gendpdeLawDependsOnTemperature(EquationsOfState::laws[law].coreId) != 0;
+}
+
+/** Which law makes the force depend on temperature, for messages: "the equation of state of type 2 (...)". */
 std::string describeTemperatureDependence(const GenDPDEForce& force) {
     GenDPDEForce::EquationOfState law;
     std::vector<double> parameters;
     force.getEquationOfState(law, parameters);
-    if (law != GenDPDEForce::Tait)
+    if (lawDependsOnTemperature(law))
         return std::string("the equation of state of the types without an entry (") + equationOfStateName(law) + ")";
     for (int entry = 0; entry < force.getNumTypeEquationsOfState(); entry++) {
         int type;
         force.getTypeEquationOfState(entry, type, law, parameters);
-        if (law != GenDPDEForce::Tait)
+        if (lawDependsOnTemperature(law))
             return "the equation of state of type " + std::to_string(type) + " (" + equationOfStateName(law) + ")";
     }
     return "no equation of state";

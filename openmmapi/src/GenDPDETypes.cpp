@@ -1,4 +1,5 @@
 #include "internal/GenDPDETypes.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>
@@ -69,15 +70,11 @@ std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEFor
 }
 
 const char* GenDPDEPlugin::equationOfStateName(GenDPDEForce::EquationOfState law) {
-    static const char* names[] = {"Tait", "TaitThermalExpansion", "VanDerWaals"};
-    return names[law];
+    return EquationsOfState::laws[law].name;
 }
 
 std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType(const GenDPDEForce& force,
                                                                                  const ParticleTypeIndex& types) {
-    static_assert(GenDPDEForce::Tait == GENDPDE_EOS_TAIT && GenDPDEForce::TaitThermalExpansion == GENDPDE_EOS_TAIT_THERMAL
-                  && GenDPDEForce::VanDerWaals == GENDPDE_EOS_VAN_DER_WAALS,
-                  "GenDPDEPhysicsCore.h numbers the equations of state differently");
     std::vector<GenDPDEForce::EquationOfState> law(types.getNumTypes());
     std::vector<std::vector<double>> parameters(types.getNumTypes());
     for (int t = 0; t < types.getNumTypes(); t++)
@@ -92,27 +89,30 @@ std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType
         parameters[t] = entryParameters;
     }
     const std::vector<TaitParameters> tait = taitParametersByType(force, types);
-    std::vector<Physics::LocalEquationOfState> table(types.getNumTypes());
-    for (int t = 0; t < types.getNumTypes(); t++) {
-        Physics::LocalEquationOfState& eos = table[t];
-        eos.law = (int) law[t];
-        // The background pressure p_b adds to every law's pressure (and -p_b/n to its free energy): to the Tait
-        // laws' pi0, and as the van der Waals law's fourth parameter (gendpdeLocalEquationOfState).
-        if (law[t] == GenDPDEForce::VanDerWaals) {
-            std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter);   // a, b, k
-            eos.parameter[3] = force.getBackgroundPressure();
-        }
-        else {
-            // n0, pi0 + p_b, B_T, gamma_T, then the thermal law's beta and theta0.
-            eos.parameter[0] = tait[t].referenceDensity;
-            eos.parameter[1] = tait[t].referencePressure + force.getBackgroundPressure();
-            eos.parameter[2] = tait[t].bulkModulus;
-            eos.parameter[3] = tait[t].exponent;
-            std::copy(parameters[t].begin(), parameters[t].end(), eos.parameter + 4);
-            eos.integerPower = Physics::TaitEquationOfState::integerPowerOf(tait[t].exponent);
-        }
-    }
+    std::vector<Physics::LocalEquationOfState> table;
+    for (int t = 0; t < types.getNumTypes(); t++)
+        table.push_back(packEquationOfState(law[t], parameters[t], tait[t], force.getBackgroundPressure()));
     return table;
+}
+
+Physics::LocalEquationOfState GenDPDEPlugin::packEquationOfState(GenDPDEForce::EquationOfState law,
+        const std::vector<double>& parameters, const TaitParameters& tait, double backgroundPressure) {
+    // The core's parameters as the table lays them out (GenDPDEEquationsOfState.h), every type the same number (the
+    // platforms upload them with one stride). The background pressure p_b adds to every law's pressure (and -p_b/n to
+    // its free energy): to pi0 of a law that extends Tait, as the last parameter of any other.
+    const EquationsOfState::Law& description = EquationsOfState::laws[law];
+    Physics::LocalEquationOfState eos;
+    eos.law = description.coreId;
+    std::vector<double>& core = eos.parameter;
+    if (description.extendsTait) {
+        core = {tait.referenceDensity, tait.referencePressure + backgroundPressure, tait.bulkModulus, tait.exponent};
+        eos.integerPower = Physics::TaitEquationOfState::integerPowerOf(tait.exponent);
+    }
+    core.insert(core.end(), parameters.begin(), parameters.end());
+    if (!description.extendsTait)
+        core.push_back(backgroundPressure);
+    core.resize(EquationsOfState::coreStride(), 0.0);
+    return eos;
 }
 
 TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, const ParticleTypeIndex& types) {

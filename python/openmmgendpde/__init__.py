@@ -2,7 +2,7 @@
 
 ``GenDPDEForce`` is the many-body conservative force U = sum_i f(n_i) with the traditional (VA), the
 partition-of-unity (VB) and the surface-corrected (VC, for free surfaces) density estimators, the Tait equation of
-state and the local laws that depend on a particle's temperature (TaitThermalExpansion, VanDerWaals), particle types
+state and the local laws that depend on a particle's temperature (GenDPDEForce.EquationOfState), particle types
 and a background pressure. It is an ``openmm.Force``: add it to a ``System``, run it in a ``Context`` or an
 ``openmm.app.Simulation``, serialize it with ``openmm.XmlSerializer``.
 
@@ -43,4 +43,4 @@ __all__ = ["GenDPDEForce", "GenDPDEIntegrator", "GenDPDEReporter"]
 
 from .internal import moved as _moved  # noqa: E402
 
-_moved.install()   # version 0.2's module names (openmmgendpde.fluid, .presets, ...), deprecated
+_moved.install()   # the flat package's module names (openmmgendpde.fluid, .presets, ...), deprecated

@@ -21,6 +21,7 @@ from .internal.wrapping import (
     PRESSURE_PER_KELVIN,
     accept_units,
     add_cast_copy_and_pickle,
+    parse_units,
     return_units,
     to_openmm_value,
 )
@@ -86,13 +87,27 @@ def _particle_virials(original):
     return getParticleVirials
 
 
+def _law_table():
+    """Each law's parameters, in order, with their units, as the C++ table has them (GenDPDEEquationsOfState.h):
+    {law: [(name, unit), ...]}."""
+    return {law: [(_swig.equationOfStateParameterName(law, k),
+                   parse_units(_swig.equationOfStateParameterUnits(law, k)))
+                  for k in range(_swig.numEquationOfStateParameters(law))]
+            for law in range(_swig.numEquationsOfState())}
+
+
 # The local equations of state (docs/theory.md section 11): each law's parameters, in order, with their units.
-_LAW_PARAMETERS = {
-    GenDPDEForce.Tait: [],
-    GenDPDEForce.TaitThermalExpansion: [("beta", PRESSURE_PER_KELVIN), ("theta0", _unit.kelvin)],
-    GenDPDEForce.VanDerWaals: [("a", _unit.kilojoule_per_mole * _unit.nanometer**3), ("b", _unit.nanometer**3),
-                               ("k", _unit.kilojoule_per_mole / _unit.kelvin)],
-}
+_LAW_PARAMETERS = _law_table()
+
+
+def _describe_laws():
+    """The laws' parameters for docstrings: "Tait [], TaitThermalExpansion [beta (kJ/mol/nm^3/K, or MPa/K), ...]"."""
+    def one(law, k, unit_):
+        text = _swig.equationOfStateParameterUnits(law, k) or "dimensionless"
+        also = {PRESSURE: ", or MPa", PRESSURE_PER_KELVIN: ", or MPa/K"}.get(unit_, "")
+        return f"{_swig.equationOfStateParameterName(law, k)} ({text}{also})"
+    return ", ".join(f"{_swig.equationOfStateName(law)} [{', '.join(one(law, k, u) for k, (_, u) in enumerate(names))}]"
+                     for law, names in _LAW_PARAMETERS.items())
 
 
 def _law_parameters(law, parameters, where):
@@ -109,7 +124,7 @@ def _law_parameters(law, parameters, where):
 def _with_law_units(law, parameters):
     """A getter's parameters of ``law`` as Quantities in OpenMM units."""
     names = _LAW_PARAMETERS.get(int(law), [])
-    return [_unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
+    return [v if u is DIMENSIONLESS else _unit.Quantity(v, u) for v, (_, u) in zip(parameters, names)]
 
 
 def _wrap_equation_of_state():
@@ -138,8 +153,7 @@ def _wrap_equation_of_state():
                                (addTypeEquationOfState, add_type), (setTypeEquationOfState, set_type),
                                (getTypeEquationOfState, get_type)):
         function.__doc__ = (original.__doc__ or "") + (
-            "\n\nParameters are plain numbers in OpenMM units or Quantities: TaitThermalExpansion [beta "
-            "(kJ/mol/nm^3/K, or MPa/K), theta0 (K)], VanDerWaals [a (kJ/mol nm^3), b (nm^3), k (kJ/mol/K)], Tait []. "
+            "\n\nParameters are plain numbers in OpenMM units or Quantities: " + _describe_laws() + ". "
             "Getters return [law, parameters] or [type, law, parameters], the parameters as Quantities.")
         setattr(GenDPDEForce, function.__name__, function)
 

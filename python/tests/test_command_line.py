@@ -525,7 +525,7 @@ def test_calibrates_default_coarse_graining_leaves_the_particles_heat_capacity(f
 def test_thermal_expansion_takes_a_fluid_as_every_command_does(capsys):
     """--fluid NAME|FILE as calibrate takes it: a fluid file with a thermal expansion is mapped at 20 neighbours and 5
     molecules per particle (the command's defaults), the built-in argon-expanding at the paper's R* = 1.6839; the
-    names of version 0.2 (liquid, supercritical) still work, with a warning naming the new one."""
+    names it took before (liquid, supercritical) still work, with a warning naming the new one."""
     import argparse
     import os
 
@@ -547,9 +547,9 @@ def test_thermal_expansion_takes_a_fluid_as_every_command_does(capsys):
     assert fluid_of(given("supercritical"))[1] == mapped(SUPERCRITICAL_ARGON)
     warnings = capsys.readouterr().err.splitlines()
     assert warnings == ["warning: thermal-expansion: --fluid liquid is now --fluid argon-expanding (the old name is "
-                        "removed in version 0.4)",
+                        "removed in version 0.3)",
                         "warning: thermal-expansion: --fluid supercritical is now --fluid supercritical-argon (the "
-                        "old name is removed in version 0.4)"]
+                        "old name is removed in version 0.3)"]
 
 
 def test_table3_says_in_one_line_how_many_error_bars_are_too_small():

@@ -120,3 +120,130 @@ def test_isothermal_pressure_is_the_law_at_the_bath_temperature():
     thermal.updateParametersInContext(context)
     found = thermal.getParticlePressures(context).value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
     numpy.testing.assert_allclose(found, expected + 2 * beta * (bath - theta0), rtol=1e-12)
+
+
+# The table of the laws (C++ GenDPDEEquationsOfState.h, through SWIG) is what the unit wrapping, the checks and the
+# serialization read: every law in it works from Python with nothing written here about it.
+def _table():
+    from openmmgendpde import gendpde as swig
+    return swig, range(swig.numEquationsOfState())
+
+
+def _in_range(swig, law, k):
+    """A value the table allows for parameter k of law (as the C++ test picks them)."""
+    minimum, maximum = swig.equationOfStateParameterRange(law, k)
+    value = 1.25 + k
+    if value < minimum or (swig.equationOfStateParameterExcludesMinimum(law, k) and value == minimum):
+        value = 2 * minimum if minimum > 0 else minimum + 1
+    return min(value, maximum)
+
+
+def test_every_law_of_the_table_round_trips_with_the_table_s_units():
+    from openmmgendpde.api import _LAW_PARAMETERS
+    from openmmgendpde.internal.wrapping import parse_units as _parse_units
+    swig, laws = _table()
+    assert len(laws) >= 3 and sorted(_LAW_PARAMETERS) == list(laws)
+    force = GenDPDEForce(1.0)
+    for law in laws:
+        assert getattr(GenDPDEForce, swig.equationOfStateName(law)) == law
+        names = [swig.equationOfStateParameterName(law, k) for k in range(swig.numEquationOfStateParameters(law))]
+        assert [name for name, _ in _LAW_PARAMETERS[law]] == names
+        units = [_parse_units(swig.equationOfStateParameterUnits(law, k)) for k in range(len(names))]
+        values = [_in_range(swig, law, k) for k in range(len(names))]
+        quantities = [unit.Quantity(v, u) if unit.is_unit(u) else v for v, u in zip(values, units)]
+        force.addTypeEquationOfState(10 + law, law, quantities)
+        with pytest.raises(openmm.OpenMMException, match=f"the {swig.equationOfStateName(law)} equation of state "
+                                                         f"takes {len(names)} parameters"):
+            force.setEquationOfState(law, values + [1.0])
+    copied = openmm.XmlSerializer.deserialize(openmm.XmlSerializer.serialize(force))
+    for law in laws:
+        type_, found, parameters = GenDPDEForce.cast(copied).getTypeEquationOfState(law)
+        assert (type_, found) == (10 + law, law)
+        values = [_in_range(swig, law, k) for k in range(len(parameters))]
+        assert [p.value_in_unit(u) if unit.is_unit(u) else p
+                for p, (_, u) in zip(parameters, _LAW_PARAMETERS[law])] == values
+
+
+def test_the_table_s_units_are_openmm_s():
+    from openmmgendpde.api import _LAW_PARAMETERS
+    from openmmgendpde.internal.wrapping import PRESSURE_PER_KELVIN
+    thermal = _LAW_PARAMETERS[GenDPDEForce.TaitThermalExpansion]
+    assert thermal == [("beta", PRESSURE_PER_KELVIN), ("theta0", unit.kelvin)]
+    (_, a), (_, b), (_, k) = _LAW_PARAMETERS[GenDPDEForce.VanDerWaals]
+    assert a == unit.kilojoule_per_mole * unit.nanometer**3 and b == unit.nanometer**3
+    assert k == unit.kilojoule_per_mole / unit.kelvin
+    with pytest.raises(openmm.OpenMMException, match="no parameter 3"):
+        _table()[0].equationOfStateParameterName(GenDPDEForce.VanDerWaals, 3)
+
+
+#: Parameters of each law for a liquid of 8 particles/nm^3 (the lattice of _lattice_system).
+_LIQUID_LAWS = {GenDPDEForce.Tait: [], GenDPDEForce.TaitThermalExpansion: [2.5, 300.0],
+                GenDPDEForce.VanDerWaals: [0.3, 0.02, 0.01]}
+
+
+@pytest.mark.parametrize("estimator", ["VA", "VB"])
+@pytest.mark.parametrize("law", sorted(_LIQUID_LAWS))
+def test_physics_particle_state_is_the_force_s(estimator, law):
+    """openmmgendpde.physics.particleState of each particle's primitive density gives the pressures the Reference
+    platform gives, bit for bit, for every law (Isothermal at 340 K for those that depend on temperature)."""
+    from openmmgendpde import physics
+    force = GenDPDEForce(1.0)
+    force.setDensityEstimator(getattr(GenDPDEForce, estimator))
+    force.setEquationOfState(law, _LIQUID_LAWS[law])
+    force.setBackgroundPressure(0.05)
+    system, positions = _lattice_system(force)
+    jitter = numpy.random.default_rng(4).normal(0.0, 0.03, (len(positions), 3))
+    positions = [openmm.Vec3(*(numpy.array(p) + d)) for p, d in zip(positions, jitter)]
+    integrator = GenDPDEIntegrator(0.001, 1.0, 0.0, 0.1)
+    integrator.setMode(GenDPDEIntegrator.Isothermal)
+    integrator.setTemperature(340.0)
+    context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName("Reference"))
+    context.setPositions(positions)
+    n0 = force.getPrimitiveDensities(context)._value
+    pressures = force.getParticlePressures(context)._value
+    tait = [q._value if unit.is_quantity(q) else q for q in force.getTaitParameters()]
+    for i in range(0, len(n0), 7):
+        state = physics.particleState(getattr(GenDPDEForce, estimator), 1.0, 1.0, n0[i], 0.0, law, _LIQUID_LAWS[law],
+                                      *tait, 0.05, True, 340.0, 0.0, 0.0, False, 0.1)
+        assert state[0] == physics.PARTICLE_VALID
+        assert state[2] == pressures[i]
+
+
+def test_physics_covers_every_estimator_and_law():
+    from openmmgendpde import physics
+    n0, cutoff, scaling = 6.5, 1.0, 1.2
+    assert list(physics.particleVolume(GenDPDEForce.VA, n0, 0.0, cutoff, scaling))[:2] == list(
+        physics.particleVolumeVA(n0))
+    vb = list(physics.particleVolume(GenDPDEForce.VB, n0, 0.0, cutoff, scaling))
+    assert vb[:2] == list(physics.particleVolumeVB(n0, cutoff / scaling))
+    assert list(physics.particleVolume(GenDPDEForce.VC, n0, 0.0, cutoff, scaling))[:2] == vb[:2]   # bulk: V-C is V-B
+    assert physics.particleVolume(GenDPDEForce.VC, n0, 4 * n0**2, cutoff, scaling)[0] > vb[0]   # a one-sided one
+    tait = (4.27, 0.12, 15.0, 7.0)
+    status, e, sigma, pi0, pit = physics.localEquationOfState(GenDPDEForce.Tait, [], *tait, 0.0, 5.0)
+    assert (status, sigma, pit) == (physics.PARTICLE_VALID, 0.0, 0.0)
+    assert [pi0, e] == list(physics.taitEquationOfState(5.0, *tait))
+    status, e, sigma, pi0, pit = physics.localEquationOfState(GenDPDEForce.TaitThermalExpansion, [2.5, 300.0], *tait,
+                                                              0.0, 5.0)
+    assert pit == 2.5 and pi0 + 300.0 * pit == pytest.approx(physics.taitEquationOfState(5.0, *tait)[0], rel=1e-12)
+    status = physics.localEquationOfState(GenDPDEForce.VanDerWaals, [0.3, 0.5, 0.01], *tait, 0.0, 2.5)[0]
+    assert status == physics.PARTICLE_OUTSIDE_DOMAIN   # b n >= 1
+    with pytest.raises(openmm.OpenMMException, match="van der Waals excluded volume b = -1"):
+        physics.localEquationOfState(GenDPDEForce.VanDerWaals, [0.3, -1.0, 0.01], *tait, 0.0, 2.5)
+
+
+def test_a_law_is_spelt_only_in_the_core_the_table_and_the_api_enum():
+    """What a new law touches (issue 41): its formula in the physics core, its entry in the table (and its value of
+    GenDPDEForce::EquationOfState), and its oracle in the tests. The van der Waals law, the latest added, is named in
+    no other source file of the plugin: not in the checks, messages, serialization, platforms or Python wrapping."""
+    import pathlib
+    import re
+    root = pathlib.Path(__file__).resolve().parents[2]
+    pattern = re.compile(r"van ?der ?Waals|VAN_DER_WAALS", re.IGNORECASE)
+    sources = [path for folder in ("openmmapi", "platforms", "serialization", "python/openmmgendpde")
+               for path in (root / folder).rglob("*")
+               if path.suffix in (".h", ".cpp", ".cc", ".in", ".py", ".i") and "tests" not in path.parts]
+    sources.append(root / "python" / "gendpde.i")
+    assert len(sources) > 50
+    found = sorted(str(path.relative_to(root)) for path in sources if pattern.search(path.read_text()))
+    assert found == ["openmmapi/include/GenDPDEForce.h", "openmmapi/include/internal/GenDPDEEquationsOfState.h",
+                     "openmmapi/include/internal/GenDPDEPhysicsCore.h"]

@@ -1,5 +1,5 @@
 """The package's layout (README, "The package"): no import circles, each subpackage importing only the layers below
-it, and version 0.2's module names still importable for one version, with a warning naming the new place."""
+it, and the flat package's module names still importable (until 0.3), with a warning naming the new place."""
 
 import importlib
 import importlib.util
@@ -53,14 +53,14 @@ def test_each_subpackage_imports_only_the_layers_below_it():
 @pytest.mark.parametrize("old, new", [("fluid", "models.fluid"), ("presets", "models.argon"),
                                       ("calibrate", "calibration.calibrate"), ("thermodynamics",
                                                                                "analysis.thermodynamics")])
-def test_version_0_2_module_names_still_import_with_a_warning(old, new):
+def test_the_flat_package_s_module_names_still_import_with_a_warning(old, new):
     sys.modules.pop(f"openmmgendpde.{old}", None)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         module = importlib.import_module(f"openmmgendpde.{old}")
     assert module is importlib.import_module(f"openmmgendpde.{new}")
     assert [str(w.message) for w in caught if w.category is FutureWarning] == [
-        f"openmmgendpde.{old} is now openmmgendpde.{new}; the old name works in version 0.3 and is removed in 0.4"]
+        f"openmmgendpde.{old} is now openmmgendpde.{new}; the old name is removed in version 0.3"]
 
 
 def test_the_api_reference_is_generated_from_the_current_docstrings():

@@ -1,6 +1,7 @@
 #include "GenDPDEForceProxy.h"
 #include "GenDPDEForce.h"
 #include "ParticleTypesXml.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/StrictXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
@@ -23,11 +24,17 @@ void serializeLaw(SerializationNode& node, GenDPDEForce::EquationOfState law, co
 }
 
 const char* owner = "GenDPDEForce";
-const std::string lawNames = "an integer naming a law (0 Tait, 1 TaitThermalExpansion, 2 VanDerWaals)";
+/** What a law's number may be, for messages: "an integer naming a law (0 Tait, 1 TaitThermalExpansion, ...)". */
+std::string lawNames() {
+    std::string list;
+    for (int law = 0; law < EquationsOfState::numLaws; law++)
+        list += (law == 0 ? "" : ", ") + std::to_string(law) + " " + EquationsOfState::laws[law].name;
+    return "an integer naming a law (" + list + ")";
+}
 
-/** A law's number (the setter checks that it names a law). */
+/** A law's number (the setter checks that it names a law, and its parameters against the table). */
 GenDPDEForce::EquationOfState lawOf(const SerializationNode& node) {
-    return (GenDPDEForce::EquationOfState) StrictXml::integer(node, owner, "law", lawNames);
+    return (GenDPDEForce::EquationOfState) StrictXml::integer(node, owner, "law", lawNames());
 }
 
 std::vector<double> lawParameters(const SerializationNode& node) {

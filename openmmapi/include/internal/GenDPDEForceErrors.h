@@ -4,6 +4,7 @@
 /* The errors a GenDPDEForce evaluation reports, in the same words on every platform. */
 
 #include "GenDPDEForce.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
@@ -32,16 +33,16 @@ inline std::string noNeighbor(int particle, double cutoff, long long step) {
 
 /**
  * The equation of state of a particle (law: its type's, Physics::LocalEquationOfState) overflows at density n
- * (nm^-3); a Tait law says how many times its n0 that is.
+ * (nm^-3); a law that extends Tait says how many times its n0 that is.
  */
 inline std::string equationOfStateOverflow(int particle, double density, const Physics::LocalEquationOfState& law,
                                            long long step) {
+    const EquationsOfState::Law& description = EquationsOfState::laws[law.law];
     std::ostringstream message;
     message.precision(6);
-    const bool vanDerWaals = (law.law == GENDPDE_EOS_VAN_DER_WAALS);
-    message << "GenDPDEForce: the " << (vanDerWaals ? "van der Waals" : "Tait") << " equation of state of particle "
-            << particle << " overflows at its density " << density << " nm^-3";
-    if (!vanDerWaals)
+    message << "GenDPDEForce: the " << description.description << " equation of state of particle " << particle
+            << " overflows at its density " << density << " nm^-3";
+    if (description.extendsTait)
         message << " (" << density/law.parameter[0] << " n0)";
     message << " at step " << step << ": the simulation has become unstable (reduce the step size) or the parameters "
             << "of the law are extreme";
@@ -49,16 +50,19 @@ inline std::string equationOfStateOverflow(int particle, double density, const P
 }
 
 /**
- * A particle's density n (nm^-3) is outside the domain of its van der Waals law, 0 < n < 1/b (b: excluded volume,
- * nm^3).
+ * A particle's density n (nm^-3) is outside the domain of its law (law: its type's; the table's domain, up to
+ * gendpdeLawDensityLimit), e.g. 0 < n < 1/b for a law with an excluded volume b (nm^3).
  */
-inline std::string outsideDomain(int particle, double density, double excludedVolume, long long step) {
+inline std::string outsideDomain(int particle, double density, const Physics::LocalEquationOfState& law,
+                                 long long step) {
+    const EquationsOfState::Law& description = EquationsOfState::laws[law.law];
     std::ostringstream message;
     message.precision(6);
     message << "GenDPDEForce: particle " << particle << " has the density " << density << " nm^-3 at step " << step
-            << ", outside the domain of its van der Waals equation of state (0 < n < 1/b = " << 1.0/excludedVolume
+            << ", outside the domain of its " << description.description << " equation of state ("
+            << description.domain << " = " << Physics::gendpdeLawDensityLimit(law.law, law.parameter.data())
             << " nm^-3): the simulation has become unstable (reduce the step size) or the particles are packed "
-            << "beyond their excluded volume";
+            << "beyond what the law allows";
     return message.str();
 }
 

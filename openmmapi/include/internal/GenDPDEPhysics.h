@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <vector>
 
 namespace GenDPDEPlugin {
 namespace Physics {
@@ -246,35 +247,37 @@ private:
     int integerPower;
 };
 
-/** What a particle contributes to the force (gendpdeParticleState, gendpdeThermalParticleState). */
+/** What a particle contributes to the force (gendpdeParticleState). */
 struct ParticleState {
     double volume;             // V (length^3)
     double pressure;           // pi (energy/length^3)
-    double freeEnergy;         // its term of U (energy): f(n) for the Tait law (gendpdeThermalParticleState says
-                               // what for the others)
+    double freeEnergy;         // its term of U (energy): f(n) for the Tait law (gendpdeParticleState says what for
+                               // the laws that depend on temperature)
     double forceCoefficient;   // pi dV/dn0 (energy length^3)
     double momentForceScale;   // 2 pi dV/dG (energy; VC, else 0): q = momentForceScale g
-    double thermalEnergy;      // temperature-dependent laws only: C theta now (energy)
-    double densityEntropy;     // temperature-dependent laws only: sigma(n) (energy/temperature)
+    double thermalEnergy;      // C theta now (energy); a law without temperature: ThermalInput's storedEnergy
+    double densityEntropy;     // sigma(n) (energy/temperature); 0 for a law without temperature
 };
 
 /**
- * A local equation of state of section 11 (gendpdeLocalEquationOfState): the law (GENDPDE_EOS_*) and its six
- * parameters in the core's order, with the Tait law's integer power.
+ * A local equation of state of section 11 (gendpdeLocalEquationOfState): the law (GENDPDE_EOS_*) and its parameters
+ * in the core's order (GenDPDEEquationsOfState.h packs them, equationsOfStateByType), with the Tait law's integer
+ * power.
  */
 struct LocalEquationOfState {
     int law = GENDPDE_EOS_TAIT;
-    double parameter[6] = {0, 0, 0, 0, 0, 0};
+    std::vector<double> parameter;
     int integerPower = -1;
-    /** Whether the law depends on temperature (any law but Tait). */
+    /** Whether the law depends on temperature (gendpdeLawDependsOnTemperature). */
     bool dependsOnTemperature() const {
-        return law != GENDPDE_EOS_TAIT;
+        return gendpdeLawDependsOnTemperature(law) != 0;
     }
 };
 
 /**
- * What a particle whose law depends on temperature reads of its thermal state (gendpdeThermalParticleState): the
- * Isothermal mode's temperature, or the integrator's eps_i and the sigma_i it belongs to, and C_V.
+ * What a particle reads of its thermal state (gendpdeParticleState): the Isothermal mode's temperature, or the
+ * integrator's eps_i and the sigma_i it belongs to, and C_V. A law that does not depend on temperature reads only
+ * storedEnergy (kept as it is; 0 where the force has no thermal state).
  */
 struct ThermalInput {
     bool isothermal;
@@ -283,42 +286,27 @@ struct ThermalInput {
     double storedEntropy;    // sigma at the density of eps_i (kJ/(mol K)), if entropyKnown
     bool entropyKnown;
     double heatCapacity;     // C_V (kJ/(mol K))
-    bool checkStep;          // an evaluation of a step: a temperature jump is an error (gendpdeThermalParticleState)
+    bool checkStep;          // an evaluation of a step: a temperature jump is an error (gendpdeParticleState)
 };
 
 /**
  * The state of a particle of primitive density n0 and squared moment G (estimators that read moments) under this
- * estimator and Tait law; returns GENDPDE_PARTICLE_VALID or why the state is invalid (then state is not usable).
+ * estimator and law, with its thermal state (gendpdeParticleState); returns GENDPDE_PARTICLE_VALID or why the state
+ * is invalid (then state is not usable).
  */
-inline int particleState(const VolumeEstimator& estimator, const TaitEquationOfState& tait, double primitiveDensity,
-                         double squaredMoment, ParticleState& state) {
-    return gendpdeParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment, estimator.getKPerDensity(),
-            estimator.getVolumeScale(), estimator.getDerivativeScale(), estimator.getMomentScale(),
-            estimator.getDensitySoftening(), volumePolynomials(), VolumeVBQuadrature::nodeSquared,
-            VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient, tait.getReferenceDensity(),
-            tait.getReferencePressure(), tait.getBulkModulus(), tait.getExponent(), tait.getIntegerPower(),
-            &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient, &state.momentForceScale);
-}
-
-/** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
-/**
- * The state of a particle whose law depends on temperature (gendpdeThermalParticleState): as particleState, with
- * state.thermalEnergy and state.densityEntropy set too.
- */
-inline int thermalParticleState(const VolumeEstimator& estimator, const LocalEquationOfState& law,
-                                double primitiveDensity, double squaredMoment, const ThermalInput& thermal,
-                                ParticleState& state) {
-    const double* p = law.parameter;
-    return gendpdeThermalParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment,
+inline int particleState(const VolumeEstimator& estimator, const LocalEquationOfState& law, double primitiveDensity,
+                         double squaredMoment, const ThermalInput& thermal, ParticleState& state) {
+    return gendpdeParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment,
             estimator.getKPerDensity(), estimator.getVolumeScale(), estimator.getDerivativeScale(),
             estimator.getMomentScale(), estimator.getDensitySoftening(), volumePolynomials(),
             VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient,
-            law.law, p[0], p[1], p[2], p[3], p[4], p[5], law.integerPower, thermal.isothermal ? 1 : 0,
-            thermal.temperature, thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0,
-            thermal.checkStep ? 1 : 0, thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy,
-            &state.forceCoefficient, &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
+            law.law, law.parameter.data(), law.integerPower, thermal.isothermal ? 1 : 0, thermal.temperature,
+            thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0, thermal.checkStep ? 1 : 0,
+            thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
+            &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
 }
 
+/** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
 inline double momentWeightOverDistance(double r, double inverseCutoff) {
     return gendpdeMomentWeightOverDistance(r, inverseCutoff);
 }

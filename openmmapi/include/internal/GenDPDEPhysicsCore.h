@@ -22,6 +22,10 @@
  * gendpdeParticleVolume (and gendpdeEstimatorNeedsMoments if it reads the    *
  * moments), its enum value in GenDPDEForce.h and its brute-force oracle in   *
  * tests/BruteForceGenDPDE.h: every platform then runs it.                    *
+ * A new equation of state is a GENDPDE_EOS_* constant and a branch of        *
+ * gendpdeLocalEquationOfState (gendpdeLawDependsOnTemperature and            *
+ * gendpdeLawDensityLimit if they apply), its entry in the table of           *
+ * GenDPDEEquationsOfState.h and its oracle in the tests.                     *
  * -------------------------------------------------------------------------- */
 
 #ifndef GENDPDE_CORE
@@ -307,35 +311,6 @@ GENDPDE_CORE void gendpdeTait(GENDPDE_REAL density, GENDPDE_REAL referenceDensit
                 + bulkModulus/((exponent - 1)*referenceDensity)*xPowGammaMinusOne;
 }
 
-/**
- * Everything a particle contributes to the force, from its primitive density n0, squared moment G (V-C) and its
- * type's Tait parameters (gendpdeTait), with the estimator's constants and tables (gendpdeParticleVolume): its volume
- * V, Tait pressure pi (energy/length^3) and free energy f (energy) at n = 1/V, the force coefficient pi dV/dn0
- * (energy length^3; 0 for an isolated particle, which has no pair to use it) and V-C's moment force scale 2 pi dV/dG
- * (energy; q_i = momentForceScale g_i enters the pair forces, gendpdeMomentPairForce). Returns
- * GENDPDE_PARTICLE_VALID, or why the particle's state is invalid (then the evaluation must stop and say so).
- */
-GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
-        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
-        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
-        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL referenceDensity,
-        GENDPDE_REAL referencePressure, GENDPDE_REAL bulkModulus, GENDPDE_REAL exponent, int integerPower,
-        GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* freeEnergy, GENDPDE_REAL* forceCoefficient,
-        GENDPDE_REAL* momentForceScale) {
-    GENDPDE_REAL derivative, momentDerivative;
-    int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
-                                       densitySoftening, polynomials, nodeSquared, mirrorNodeSquared,
-                                       quadratureCoefficient, volume, &derivative, &momentDerivative);
-    gendpdeTait(1/(*volume), referenceDensity, referencePressure, bulkModulus, exponent, integerPower, pressure,
-                freeEnergy);
-    if (status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*freeEnergy) && GENDPDE_ISFINITE(*pressure)))
-        status = GENDPDE_PARTICLE_OVERFLOW;
-    *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
-    *momentForceScale = 2*((*pressure)*momentDerivative);
-    return status;
-}
-
 /* ---- Temperature-dependent equations of state (section 11) ----------------------------------------------------- */
 
 /* The local equations of state of the form f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln(theta/theta0)). */
@@ -350,7 +325,9 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
  *   u = e(n) + C theta,   s = sigma(n) + C ln(theta/theta0),   pi = n^2 df/dn = pressureAtZero + theta thermalPressure,
  * with pressureAtZero = n^2 e'(n) and thermalPressure = -n^2 sigma'(n) = (dpi/dtheta) at fixed n (pressure/
  * temperature). Results through pointers: e (energy), sigma (energy/temperature, up to a constant), pressureAtZero,
- * thermalPressure. Parameters by law (pressure energy/length^3, density 1/length^3):
+ * thermalPressure. The parameters p[] by law (pressure energy/length^3, density 1/length^3), in the order that
+ * GenDPDEEquationsOfState.h packs them (a law that extends Tait: n0, pi0, B_T, gamma_T, then its own; any other: its
+ * own, then p_b):
  *   GENDPDE_EOS_TAIT:          p0..p3 = n0, pi0, B_T, gamma_T (gendpdeTait); e = f_Tait, sigma = 0;
  *   GENDPDE_EOS_TAIT_THERMAL:  p0..p5 = n0, pi0, B_T, gamma_T, beta, theta0; e = f_Tait(n) + beta theta0/n,
  *                              sigma = beta/n, so pi = pi_Tait(n) + beta (theta - theta0) and alpha = kappa_T0 beta at
@@ -362,27 +339,27 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
  * integerPower as for gendpdeTait (Tait laws only). Returns GENDPDE_PARTICLE_VALID, GENDPDE_PARTICLE_OUTSIDE_DOMAIN
  * (van der Waals: n <= 0 or b n >= 1) or GENDPDE_PARTICLE_OVERFLOW (a result not finite).
  */
-GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GENDPDE_REAL p0, GENDPDE_REAL p1,
-        GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, GENDPDE_REAL* energy,
-        GENDPDE_REAL* entropy, GENDPDE_REAL* pressureAtZero, GENDPDE_REAL* thermalPressure) {
+GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GENDPDE_GLOBAL const GENDPDE_REAL* p,
+        int integerPower, GENDPDE_REAL* energy, GENDPDE_REAL* entropy, GENDPDE_REAL* pressureAtZero,
+        GENDPDE_REAL* thermalPressure) {
     if (law == GENDPDE_EOS_VAN_DER_WAALS) {
-        const GENDPDE_REAL excluded = p1*density;
+        const GENDPDE_REAL excluded = p[1]*density;
         if (!(density > 0 && excluded < 1)) {
             *energy = *entropy = *pressureAtZero = *thermalPressure = 0;
             return GENDPDE_PARTICLE_OUTSIDE_DOMAIN;
         }
-        *energy = -p0*density - p3/density;
-        *entropy = p2*log((1 - excluded)/excluded);
-        *pressureAtZero = -p0*density*density + p3;
-        *thermalPressure = p2*density/(1 - excluded);
+        *energy = -p[0]*density - p[3]/density;
+        *entropy = p[2]*log((1 - excluded)/excluded);
+        *pressureAtZero = -p[0]*density*density + p[3];
+        *thermalPressure = p[2]*density/(1 - excluded);
     }
     else {
-        gendpdeTait(density, p0, p1, p2, p3, integerPower, pressureAtZero, energy);
+        gendpdeTait(density, p[0], p[1], p[2], p[3], integerPower, pressureAtZero, energy);
         if (law == GENDPDE_EOS_TAIT_THERMAL) {
-            *energy += p4*p5/density;
-            *pressureAtZero -= p4*p5;
-            *entropy = p4/density;
-            *thermalPressure = p4;
+            *energy += p[4]*p[5]/density;
+            *pressureAtZero -= p[4]*p[5];
+            *entropy = p[4]/density;
+            *thermalPressure = p[4];
         }
         else
             *entropy = *thermalPressure = 0;
@@ -391,6 +368,16 @@ GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GEND
           && GENDPDE_ISFINITE(*thermalPressure)))
         return GENDPDE_PARTICLE_OVERFLOW;
     return GENDPDE_PARTICLE_VALID;
+}
+
+/** Whether a law depends on temperature (sigma or pi_theta not identically 0): its particles have a thermal state. */
+GENDPDE_CORE int gendpdeLawDependsOnTemperature(int law) {
+    return law != GENDPDE_EOS_TAIT;
+}
+
+/** The largest density of a law's domain (GENDPDE_PARTICLE_OUTSIDE_DOMAIN beyond it), or 0 if it has none. */
+GENDPDE_CORE GENDPDE_REAL gendpdeLawDensityLimit(int law, GENDPDE_GLOBAL const GENDPDE_REAL* p) {
+    return law == GENDPDE_EOS_VAN_DER_WAALS ? 1/p[1] : 0;
 }
 
 /**
@@ -404,9 +391,15 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
 }
 
 /**
- * Everything a particle whose equation of state depends on temperature contributes to the force (section 11), as
- * gendpdeParticleState does for the Tait law, from its primitive density n0, squared moment G (V-C), its type's law
- * and parameters (gendpdeLocalEquationOfState) and its thermal state:
+ * Everything a particle contributes to the force, whatever its law (sections 4 and 11): from its primitive density
+ * n0, squared moment G (V-C), the estimator's constants and tables (gendpdeParticleVolume), its type's law and
+ * parameters p[] (gendpdeLocalEquationOfState) and, for a law that depends on temperature
+ * (gendpdeLawDependsOnTemperature), its thermal state: its volume V, pressure pi (energy/length^3), its term of U
+ * (*energy), the force coefficient pi dV/dn0 (energy length^3; 0 for an isolated particle, which has no pair to use
+ * it) and V-C's moment force scale 2 pi dV/dG (energy; q_i = momentForceScale g_i enters the pair forces,
+ * gendpdeMomentPairForce).
+ *  - A law that does not depend on temperature (Tait): pi = pressureAtZero, the particle contributes e(n) to U, its
+ *    thermal state is not read, and *thermalEnergy receives storedEnergy as it is (0 where there is none).
  *  - isothermal != 0 (the Isothermal mode): theta = temperature; the particle contributes f(T, n) up to a constant,
  *    e(n) - T sigma(n), to U, and *thermalEnergy receives C T;
  *  - otherwise the particle's entropy is fixed between the integrator's updates of its thermal state: it had the
@@ -418,32 +411,36 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
  *    energies were just set) takes storedEntropy = sigma(n): theta = storedEnergy/C. With checkStep != 0 (an
  *    evaluation of a step, storedEntropy of the previous step's positions) a change of theta by more than a factor
  *    GENDPDE_STEP_TEMPERATURE_FACTOR, |sigma(n) - storedEntropy| > C ln 2, is GENDPDE_PARTICLE_TEMPERATURE_JUMP.
- * The pressure is pi = pressureAtZero + theta thermalPressure, and the force coefficient pi dV/dn0 and moment scale
- * 2 pi dV/dG follow as for the Tait law. *densityEntropy receives sigma(n) (energy/temperature). Returns
- * GENDPDE_PARTICLE_VALID or why the state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW,
- * _TEMPERATURE_JUMP).
+ * A law that depends on temperature has pi = pressureAtZero + theta thermalPressure. *densityEntropy receives sigma(n)
+ * (energy/temperature; 0 for a law that does not depend on temperature). Returns GENDPDE_PARTICLE_VALID or why the
+ * state is invalid (GENDPDE_PARTICLE_NO_NEIGHBOR, _OUTSIDE_DOMAIN, _OVERFLOW, _TEMPERATURE_JUMP): then the evaluation
+ * must stop and say so.
  */
-GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
+GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
         GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
         GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
         GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_REAL p0, GENDPDE_REAL p1,
-        GENDPDE_REAL p2, GENDPDE_REAL p3, GENDPDE_REAL p4, GENDPDE_REAL p5, int integerPower, int isothermal,
-        GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy, GENDPDE_REAL storedEntropy, int entropyKnown,
-        int checkStep, GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume, GENDPDE_REAL* pressure, GENDPDE_REAL* energy,
-        GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale, GENDPDE_ENERGY* thermalEnergy,
-        GENDPDE_REAL* densityEntropy) {
+        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_GLOBAL const GENDPDE_REAL* p,
+        int integerPower, int isothermal, GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy,
+        GENDPDE_REAL storedEntropy, int entropyKnown, int checkStep, GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume,
+        GENDPDE_REAL* pressure, GENDPDE_REAL* energy, GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale,
+        GENDPDE_ENERGY* thermalEnergy, GENDPDE_REAL* densityEntropy) {
     GENDPDE_REAL derivative, momentDerivative;
     int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
                                        densitySoftening, polynomials, nodeSquared, mirrorNodeSquared,
                                        quadratureCoefficient, volume, &derivative, &momentDerivative);
     GENDPDE_REAL e, sigma, pressureAtZero, thermalPressure;
-    const int lawStatus = gendpdeLocalEquationOfState(law, 1/(*volume), p0, p1, p2, p3, p4, p5, integerPower, &e,
-                                                      &sigma, &pressureAtZero, &thermalPressure);
+    const int lawStatus = gendpdeLocalEquationOfState(law, 1/(*volume), p, integerPower, &e, &sigma, &pressureAtZero,
+                                                      &thermalPressure);
     if (status == GENDPDE_PARTICLE_VALID)
         status = lawStatus;
-    GENDPDE_REAL theta;
-    if (isothermal) {
+    const int thermal = gendpdeLawDependsOnTemperature(law);
+    GENDPDE_REAL theta = 0;
+    if (!thermal) {
+        *thermalEnergy = storedEnergy;
+        *energy = e;
+    }
+    else if (isothermal) {
         theta = temperature;
         *thermalEnergy = heatCapacity*temperature;
         *energy = e - temperature*sigma;
@@ -458,9 +455,9 @@ GENDPDE_CORE int gendpdeThermalParticleState(int estimator, GENDPDE_REAL n0, GEN
         *energy = e + (GENDPDE_REAL) (*thermalEnergy - storedEnergy);
     }
     *densityEntropy = sigma;
-    *pressure = pressureAtZero + theta*thermalPressure;
-    if (status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*pressure)
-                                              && GENDPDE_ISFINITE(*thermalEnergy)))
+    *pressure = (thermal ? pressureAtZero + theta*thermalPressure : pressureAtZero);
+    if (thermal && status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*pressure)
+                                                         && GENDPDE_ISFINITE(*thermalEnergy)))
         status = GENDPDE_PARTICLE_OVERFLOW;
     *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
     *momentForceScale = 2*((*pressure)*momentDerivative);

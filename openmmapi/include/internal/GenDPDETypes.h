@@ -66,10 +66,20 @@ const char* equationOfStateName(GenDPDEForce::EquationOfState law);
 
 /**
  * Per type index: the type's local equation of state (addTypeEquationOfState, else the force's
- * setEquationOfState) with its Tait parameters (taitParametersByType), in the physics core's order.
+ * setEquationOfState) with its Tait parameters (taitParametersByType), in the physics core's order
+ * (packEquationOfState).
  */
 std::vector<Physics::LocalEquationOfState> equationsOfStateByType(const GenDPDEForce& force,
                                                                   const ParticleTypeIndex& types);
+
+/**
+ * A law and its parameters as the API takes them (already checked, GenDPDEForce::setEquationOfState) as the physics
+ * core reads them: the core's parameters laid out as GenDPDEEquationsOfState.h says (a law that extends Tait: n0,
+ * pi0 + p_b, B_T, gamma_T of tait, then its own; any other: its own, then p_b), padded with zeros to
+ * EquationsOfState::coreStride(). backgroundPressure: p_b (kJ/mol/nm^3).
+ */
+Physics::LocalEquationOfState packEquationOfState(GenDPDEForce::EquationOfState law,
+        const std::vector<double>& parameters, const TaitParameters& tait, double backgroundPressure);
 
 /**
  * The integrator's per-type and per-type-pair parameters (OpenMM units), by class: each type named by an entry

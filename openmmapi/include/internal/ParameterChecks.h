@@ -48,9 +48,7 @@ constexpr Range heatCapacity{1e-20, 1e20, "kJ/(mol K)"};
 constexpr Range temperature{1e-50, 1e50, "K"};
 constexpr Range internalEnergy{1e-100, 1e100, "kJ/mol"};   // eps_i set, or read from checkpoints and States
 constexpr Range mass{0.0, 1e12, "amu"};
-constexpr Range thermalPressureCoefficient{-1e12, 1e12, "kJ/mol/nm^3/K"};   // beta = (dpi/dtheta)_n
-constexpr Range vanDerWaalsAttraction{0.0, 1e12, "kJ/mol nm^3"};
-constexpr Range vanDerWaalsExcludedVolume{1e-12, 1e12, "nm^3"};
+// (The parameters of the equations of state have their ranges in GenDPDEEquationsOfState.h.)
 } // namespace Ranges
 
 /** Reject a value outside range (or equal to its minimum if the minimum is excluded). */

@@ -5,6 +5,7 @@
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
+#include "internal/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEForceErrors.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
@@ -63,8 +64,8 @@ enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom,
 namespace DensityArgument {
 enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, LawParameters, TaitPower, VolumeConstants, MomentConstants,
       Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
-      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, CheckStep, LawTable, LawExtraTable,
-      StoredEnergy, StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
+      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, CheckStep, LawTable, StoredEnergy,
+      StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
 }
 namespace ForceArgument {
 enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count};
@@ -129,10 +130,9 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     typeIndex.resize(numAtoms, 0);   // padding atoms
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
     atomType.upload(typeIndex);
-    lawParameterTable.initialize(cc, numTypes, 4*realSize, "gendpdeLawParameters");
+    lawParameterTable.initialize(cc, numTypes*EquationsOfState::coreStride(), realSize, "gendpdeLawParameters");
     taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
     lawTable.initialize<int>(cc, numTypes, "gendpdeLawTable");
-    lawExtraTable.initialize(cc, numTypes, 2*realSize, "gendpdeLawExtraTable");
     const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
     const int thermalSize = dependsOnTemperature ? numAtoms : 1;
     thermalEnergyOut.initialize(cc, thermalSize, mixedSize, "gendpdeThermalEnergy");
@@ -157,8 +157,10 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
 
     uploadTypeTables();
     grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff));
+    std::map<std::string, std::string> defines = grid->defines();
+    defines["LAW_PARAMETER_STRIDE"] = std::to_string(EquationsOfState::coreStride());
     ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
-            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, grid->defines());
+            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, defines);
     grid->createKernels(program);
     checkKernel = program->createKernel("checkList");
     {
@@ -187,7 +189,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                 .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
                 .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).later(Thermal)
                 .later(Isothermal).later(Temperature).later(EntropyKnown).later(CheckStep).array(LawTable, lawTable)
-                .array(LawExtraTable, lawExtraTable).later(StoredEnergy).later(StoredEntropy).later(ParticleClass)
+                .later(StoredEnergy).later(StoredEntropy).later(ParticleClass)
                 .later(ClassHeatCapacity).array(ThermalEnergyOut, thermalEnergyOut)
                 .array(DensityEntropyOut, densityEntropyOut).done(Count);
         // Without a law that depends on temperature the thermal arguments are placeholders, never read.
@@ -251,18 +253,16 @@ void CommonCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) {
 }
 
 void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
-    // The law of each type in the physics core's order (Physics::LocalEquationOfState): p0..p3 (for Tait: n0, pi0,
-    // B_T, gamma_T), the integer power, the law and p4, p5.
-    std::vector<double> tait, extra;
+    // The law of each type (Physics::LocalEquationOfState): its core parameters, EquationsOfState::coreStride() per
+    // type (LAW_PARAMETER_STRIDE), the integer power and the law.
+    std::vector<double> parameters;
     std::vector<int> power, law;
     for (const Physics::LocalEquationOfState& p : lawByType) {
-        tait.insert(tait.end(), p.parameter, p.parameter + 4);
-        extra.insert(extra.end(), p.parameter + 4, p.parameter + 6);
+        parameters.insert(parameters.end(), p.parameter.begin(), p.parameter.end());
         power.push_back(p.integerPower);
         law.push_back(p.law);
     }
-    uploadValues(lawParameterTable, tait, cc.getUseDoublePrecision());
-    uploadValues(lawExtraTable, extra, cc.getUseDoublePrecision());
+    uploadValues(lawParameterTable, parameters, cc.getUseDoublePrecision());
     taitPowerTable.upload(power);
     lawTable.upload(law);
 }
@@ -417,7 +417,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     volume.download(volumes, true);
     const double density = 1.0/volumes[slotOf(particle)];
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
-        throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law.parameter[1], step));
+        throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law, step));
     if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
         // theta where the integrator kept the state (the last step's positions; it kept none from the failed
         // evaluation) and here

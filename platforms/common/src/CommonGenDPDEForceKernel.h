@@ -74,7 +74,7 @@ private:
     OpenMM::ComputeContext& cc;
     double cutoff, cutoffScaling;
     std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
-    std::vector<Physics::LocalEquationOfState> lawByType;   // by type index (p0..p3: lawParameterTable, p4, p5: lawExtraTable)
+    std::vector<Physics::LocalEquationOfState> lawByType;   // by type index (uploaded: lawParameterTable, lawTable)
     bool dependsOnTemperature = false;          // some type's law does (docs/theory.md section 11)
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
@@ -90,8 +90,8 @@ private:
     OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)
     OpenMM::ComputeArray momentForce;   // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
     OpenMM::ComputeArray polynomialTable, quadratureTable, errors;   // the V-B tables (real); error flags
-    OpenMM::ComputeArray atomType, lawParameterTable, taitPowerTable;   // type by original index; per type p0..p3, power
-    OpenMM::ComputeArray lawTable, lawExtraTable;   // per type: the law (GENDPDE_EOS_*, int), p4 and p5 (real2)
+    OpenMM::ComputeArray atomType, lawParameterTable, taitPowerTable;   // type by original index; per type the core's
+    OpenMM::ComputeArray lawTable;   // parameters (real, coreStride() each) and power; the law (GENDPDE_EOS_*, int)
     // Laws that depend on temperature: C_V theta_i and sigma(n_i) by original index (mixed), for the integrator; a
     // placeholder of one element (and for the integrator's arrays) when no law does.
     OpenMM::ComputeArray thermalEnergyOut, densityEntropyOut, placeholderInt;

@@ -30,8 +30,6 @@ ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCal
                                                               ContextImpl& context) :
         estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
         thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr, false}) {
-    for (const Physics::LocalEquationOfState& law : kernel.lawByType)   // (a Tait law's p0..p3: n0, pi0, B_T, gamma_T)
-        tait.emplace_back(law.parameter[0], law.parameter[1], law.parameter[2], law.parameter[3]);
     if (kernel.dependsOnTemperature)
         thermal = GenDPDEIntegratorUtilities::thermalState(context);
 }
@@ -74,7 +72,7 @@ void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, doub
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(i, 1.0/volume,
-                lawByType[types->getParticleTypeIndices()[i]].parameter[1], context.getStepCount()));
+                lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
     if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
         // theta where the integrator kept the state (the last step's positions) and here (storeParticle())
         const GenDPDEThermalState thermal = GenDPDEIntegratorUtilities::thermalState(context);

@@ -52,24 +52,22 @@ protected:
         ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel, OpenMM::ContextImpl& context);
         /**
          * Particle i's state (type index t, primitive density n0, squared moment G): the physics core's
-         * gendpdeParticleState for a Tait law, gendpdeThermalParticleState for a law that depends on temperature.
+         * gendpdeParticleState, whatever the law; a law that depends on temperature reads the thermal state, a law
+         * that does not (Tait, in a force whose other laws depend on temperature) keeps its eps_i as it is.
          */
         int particleState(int i, int t, double n0, double G, Physics::ParticleState& state) const {
             const Physics::LocalEquationOfState& law = (*laws)[t];
-            if (!law.dependsOnTemperature()) {
-                // A Tait particle in a force whose other laws depend on temperature keeps its eps_i as it is.
-                state.thermalEnergy = thermal.internalEnergies != nullptr ? thermal.internalEnergies[i] : 0.0;
-                state.densityEntropy = 0.0;
-                return Physics::particleState(estimator, tait[t], n0, G, state);
-            }
-            const Physics::ThermalInput input = {thermal.isothermal, thermal.temperature,
-                    thermal.internalEnergies[i], thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
-                    thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]],
-                    thermal.checkStep};
-            return Physics::thermalParticleState(estimator, law, n0, G, input, state);
+            Physics::ThermalInput input = {false, 0.0, 0.0, 0.0, false, 0.0, false};
+            if (thermal.internalEnergies != nullptr)
+                input.storedEnergy = thermal.internalEnergies[i];
+            if (law.dependsOnTemperature())
+                input = {thermal.isothermal, thermal.temperature, thermal.internalEnergies[i],
+                         thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
+                         thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]],
+                         thermal.checkStep};
+            return Physics::particleState(estimator, law, n0, G, input, state);
         }
         Physics::VolumeEstimator estimator;
-        std::vector<Physics::TaitEquationOfState> tait;   // by type index
         const std::vector<Physics::LocalEquationOfState>* laws;   // by type index
         GenDPDEThermalState thermal;   // if kernel.dependsOnTemperature
     };

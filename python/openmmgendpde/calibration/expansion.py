@@ -125,7 +125,7 @@ def iterated(parameters, history):
     of the parameters given): a secant step on the last two (beta, (dP/dT)_V) where their slopes differ by more than
     2 standard errors of the difference, else corrected() from the last. Where the structure absorbs part of a shift
     of the pi_i (a stiff liquid whose particles are under tension: docs/theory.md section 12) the slope is not
-    proportional to beta, and one proportional step missed by 2x (version 0.2, docs/thermal.md); the secant follows the
+    proportional to beta, and one proportional step missed by 2x (docs/thermal.md); the secant follows the
     measured response. A secant step is held within a factor 3 of the last beta and positive."""
     last = history[-1]
     if len(history) >= 2:
@@ -173,7 +173,7 @@ def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4
         thermal_pressure=parameters.thermal_pressure)
 
 
-#: The names --fluid took in version 0.2, and the names every command takes now (one version, with a warning).
+#: The names --fluid took before every command took the same ones, and those names (until 0.3, with a warning).
 OLD_FLUID_NAMES = {"liquid": "argon-expanding", "supercritical": "supercritical-argon"}
 #: The molecules per particle of thermal-expansion where --molecules-per-particle is not given.
 MOLECULES_PER_PARTICLE = 5
@@ -185,7 +185,7 @@ def fluid_of(arguments):
     name = arguments.fluid
     if name in OLD_FLUID_NAMES:
         print(f"warning: thermal-expansion: --fluid {name} is now --fluid {OLD_FLUID_NAMES[name]} (the old name is "
-              f"removed in version 0.4)", file=sys.stderr)
+              f"removed in version 0.3)", file=sys.stderr)
         name = OLD_FLUID_NAMES[name]
     try:
         fluid = fluid_named(name)

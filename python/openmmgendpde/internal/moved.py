@@ -1,5 +1,5 @@
-"""The module names of version 0.2 (one flat package), kept importable for one version: ``import
-openmmgendpde.fluid`` gives ``openmmgendpde.models.fluid`` with a FutureWarning that names the new place. Version 0.4
+"""The module names of the flat package (version 0.1 and 0.2's development), kept importable in 0.2: ``import
+openmmgendpde.fluid`` gives ``openmmgendpde.models.fluid`` with a FutureWarning that names the new place. Version 0.3
 removes them."""
 
 import importlib
@@ -38,7 +38,7 @@ class _MovedModules(importlib.abc.MetaPathFinder, importlib.abc.Loader):
 
     def create_module(self, spec):
         new = f"{PACKAGE}.{MOVED[spec.name.rpartition('.')[2]]}"
-        warnings.warn(f"{spec.name} is now {new}; the old name works in version 0.3 and is removed in 0.4",
+        warnings.warn(f"{spec.name} is now {new}; the old name is removed in version 0.3",
                       FutureWarning, stacklevel=2)
         return importlib.import_module(new)
 

@@ -10,6 +10,7 @@
 """
 
 import functools
+import re
 
 import numpy
 from openmm import XmlSerializer, unit
@@ -138,3 +139,60 @@ def add_cast_copy_and_pickle(cls):
     cls.__deepcopy__ = lambda self, memo: copy(self)
     cls.__getstate__ = getstate
     cls.__setstate__ = setstate
+
+
+#: The symbols of the units text of the C++ table of the equations of state (GenDPDEEquationsOfState.h).
+UNIT_SYMBOLS = {"kJ": unit.kilojoule, "mol": unit.mole, "nm": unit.nanometer, "K": unit.kelvin,
+                 "ps": unit.picosecond, "amu": unit.amu}
+
+
+def parse_units(text):
+    """The OpenMM unit that the table's units text names ("kJ/mol/nm^3/K", "kJ/mol nm^3", "kJ/(mol K)", "nm^-3"; ""
+    is DIMENSIONLESS): symbols with integer powers, read left to right, '/' dividing by the next factor and a space
+    multiplying by it, parentheses grouping. PRESSURE and PRESSURE_PER_KELVIN come back as themselves (they also
+    take per-molecule values in MPa, to_openmm_value)."""
+    tokens = re.findall(r"[A-Za-z]+|\^-?[0-9]+|[/()]", text)
+    if "".join(tokens) != text.replace(" ", ""):
+        raise ValueError(f"units {text!r}: not understood")
+    if not tokens:
+        return DIMENSIONLESS
+    position = 0
+
+    def take():
+        nonlocal position
+        if position >= len(tokens):
+            raise ValueError(f"units {text!r}: incomplete")
+        position += 1
+        return tokens[position - 1]
+
+    def factor():
+        token = take()
+        if token == "(":
+            value = product()
+            if take() != ")":
+                raise ValueError(f"units {text!r}: unbalanced parentheses")
+        elif token in UNIT_SYMBOLS:
+            value = UNIT_SYMBOLS[token]
+        else:
+            raise ValueError(f"units {text!r}: unknown symbol {token!r}")
+        if position < len(tokens) and tokens[position].startswith("^"):
+            value = value ** int(take()[1:])
+        return value
+
+    def product():
+        value = factor()
+        while position < len(tokens) and tokens[position] != ")":
+            if tokens[position] == "/":
+                take()
+                value = value / factor()
+            else:
+                value = value * factor()
+        return value
+
+    result = product()
+    if position != len(tokens):
+        raise ValueError(f"units {text!r}: unbalanced parentheses")
+    for known in (PRESSURE, PRESSURE_PER_KELVIN, NUMBER_DENSITY):
+        if result == known:
+            return known
+    return result

@@ -192,32 +192,31 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
 
 /**
  * Pass 1, then each particle's state. model = (cutoff, 1/cutoff, weight value scale, weight derivative scale),
- * lawParameters[t] = p0..p3 of the type's law (for a Tait law: reference density, reference pressure, bulk modulus,
- * exponent) and taitPower[t] (gamma - 1 if an integer, else -1) for particle type t = atomType[original index], volumeConstants = (k per density, volume
- * scale, derivative scale, 0) and momentConstants = (c^2, eps^2, 0, 0) of gendpdeEstimatorConstants, estimator one of
- * GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
+ * lawTable[t] (GENDPDE_EOS_*), lawParameters[LAW_PARAMETER_STRIDE t ...] (the core's parameters of the type's law,
+ * GenDPDEEquationsOfState.h: for a Tait law reference density, reference pressure, bulk modulus, exponent) and
+ * taitPower[t] (gamma - 1 if an integer, else -1) for particle type t = atomType[original index],
+ * volumeConstants = (k per density, volume scale, derivative scale, 0) and momentConstants = (c^2, eps^2, 0, 0) of
+ * gendpdeEstimatorConstants, estimator one of GENDPDE_ESTIMATOR_*; polynomials and quadrature the V-B tables (quadrature: squared nodes, mirrored squared nodes,
  * coefficients, GENDPDE_VB_QUADRATURE_PAIRS each). Results by slot; momentForce[s] receives q (estimators that read
  * moments). errors[0] gets the smallest original index of a particle whose position is not finite, errors[1] the
  * smallest GENDPDE_PARTICLE_STATUSES i + status over the particles whose state is invalid (GENDPDE_PARTICLE_*).
  * The list's rebuild mark is cleared.
- * With thermal != 0 (a law depends on temperature, docs/theory.md section 11), a type whose lawTable entry is not
- * GENDPDE_EOS_TAIT takes the law with parameters lawParameters[t] (p0..p3) and lawExtraTable[t] (p4, p5), its particles'
- * temperatures from the integrator (isothermal: every theta = temperature; otherwise storedEnergy eps_i, with
- * storedEntropy sigma_i if entropyKnown, and C_V = classHeatCapacity[particleClass[i]], all by original index;
- * checkStep: a step's evaluation, gendpdeThermalParticleState), and
- * writes C_V theta_i and sigma(n_i) by original index to thermalEnergyOut and densityEntropyOut (a Tait particle:
- * its eps_i and 0).
+ * Every particle's state is gendpdeParticleState's. With thermal != 0 (a law depends on temperature, docs/theory.md
+ * section 11) a particle whose law does takes its temperature from the integrator (isothermal: every theta =
+ * temperature; otherwise storedEnergy eps_i, with storedEntropy sigma_i if entropyKnown, and
+ * C_V = classHeatCapacity[particleClass[i]], all by original index; checkStep: a step's evaluation), and every
+ * particle writes C_V theta_i and sigma(n_i) by original index to thermalEnergyOut and densityEntropyOut (a particle
+ * whose law does not depend on temperature: its eps_i and 0). With thermal = 0 those arrays are not touched.
  */
 KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT atomIndex, real4 model,
-        GLOBAL const int* RESTRICT atomType, GLOBAL const real4* RESTRICT lawParameters,
+        GLOBAL const int* RESTRICT atomType, GLOBAL const real* RESTRICT lawParameters,
         GLOBAL const int* RESTRICT taitPowerTable, real4 volumeConstants, real4 momentConstants, int estimator,
         GLOBAL const real* RESTRICT polynomials, GLOBAL const real* RESTRICT quadrature,
         GLOBAL real* RESTRICT primitiveDensity, GLOBAL real* RESTRICT volume, GLOBAL real* RESTRICT pressure,
         GLOBAL real* RESTRICT forceCoefficient, GLOBAL real4* RESTRICT momentForce,
         GLOBAL mixed* RESTRICT energyBuffer, GLOBAL int* RESTRICT rebuild, GLOBAL int* RESTRICT errors,
         int thermal, int isothermal, real temperature, int entropyKnown, int checkStep,
-        GLOBAL const int* RESTRICT lawTable,
-        GLOBAL const real2* RESTRICT lawExtraTable, GLOBAL const mixed* RESTRICT storedEnergy,
+        GLOBAL const int* RESTRICT lawTable, GLOBAL const mixed* RESTRICT storedEnergy,
         GLOBAL const mixed* RESTRICT storedEntropy, GLOBAL const int* RESTRICT particleClass,
         GLOBAL const mixed* RESTRICT classHeatCapacity, GLOBAL mixed* RESTRICT thermalEnergyOut,
         GLOBAL mixed* RESTRICT densityEntropyOut) {
@@ -237,33 +236,20 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
         while (NEXT_NEIGHBOUR(cursor, ri, d) >= 0)
             addDensityTerms(d, model, moments, &n0, &g);
         const int type = atomType[atom];
-        const real4 tait = lawParameters[type];   // (p0..p3: for a Tait law n0, pi0, B_T, gamma_T)
         real v, pi, f, coefficient, momentForceScale;
-        int status;
-        if (thermal && lawTable[type] != GENDPDE_EOS_TAIT) {
-            // docs/theory.md section 11: the law at theta_i, with eps_i in mixed precision.
-            const real2 extra = lawExtraTable[type];
-            mixed thermalEnergy;
-            real sigma;
-            status = gendpdeThermalParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
-                    volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
-                    quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS,
-                    lawTable[type], tait.x, tait.y, tait.z, tait.w, extra.x, extra.y, taitPowerTable[type], isothermal,
-                    temperature, storedEnergy[atom], (real) storedEntropy[atom], entropyKnown, checkStep,
-                    (real) classHeatCapacity[particleClass[atom]], &v, &pi, &f, &coefficient, &momentForceScale,
-                    &thermalEnergy, &sigma);
+        mixed thermalEnergy;
+        real sigma;
+        // docs/theory.md section 11: a law that depends on temperature at theta_i, with eps_i in mixed precision.
+        const int status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
+                volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
+                quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, lawTable[type],
+                lawParameters + LAW_PARAMETER_STRIDE*type, taitPowerTable[type], isothermal, temperature,
+                thermal ? storedEnergy[atom] : 0, thermal ? (real) storedEntropy[atom] : 0, entropyKnown, checkStep,
+                thermal ? (real) classHeatCapacity[particleClass[atom]] : 1, &v, &pi, &f, &coefficient,
+                &momentForceScale, &thermalEnergy, &sigma);
+        if (thermal) {
             thermalEnergyOut[atom] = thermalEnergy;
             densityEntropyOut[atom] = sigma;
-        }
-        else {
-            status = gendpdeParticleState(estimator, n0, dot(g, g), volumeConstants.x, volumeConstants.y,
-                    volumeConstants.z, momentConstants.x, momentConstants.y, polynomials, quadrature,
-                    quadrature + GENDPDE_VB_QUADRATURE_PAIRS, quadrature + 2*GENDPDE_VB_QUADRATURE_PAIRS, tait.x, tait.y,
-                    tait.z, tait.w, taitPowerTable[type], &v, &pi, &f, &coefficient, &momentForceScale);
-            if (thermal) {   // a Tait particle in a force whose other laws depend on temperature keeps its eps_i
-                thermalEnergyOut[atom] = storedEnergy[atom];
-                densityEntropyOut[atom] = 0;
-            }
         }
         if (moments) {
             const real3 q = g*momentForceScale;

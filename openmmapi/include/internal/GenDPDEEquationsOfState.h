@@ -1,0 +1,112 @@
+#ifndef GENDPDE_EQUATIONS_OF_STATE_H_
+#define GENDPDE_EQUATIONS_OF_STATE_H_
+
+/* The one description of the local equations of state (docs/theory.md section 11): for each law its API name, its
+ * physics-core id, and its parameters with their names, units and allowed ranges. The checks and messages of
+ * GenDPDEForce, the XML serialization, the packing of the parameters for the platforms (equationsOfStateByType) and
+ * the Python unit wrapping (through SWIG) all read this table.
+ *
+ * A new law is: its formula in the physics core (a GENDPDE_EOS_* id and a branch of gendpdeLocalEquationOfState,
+ * GenDPDEPhysicsCore.h; gendpdeLawDependsOnTemperature if it does), an entry here (and its enum value in
+ * GenDPDEForce.h, which the static_asserts below tie to this table), and its oracle in the tests. */
+
+#include "GenDPDEForce.h"
+#include "internal/GenDPDEPhysics.h"
+#include "internal/ParameterChecks.h"
+#include <string>
+
+namespace GenDPDEPlugin {
+namespace EquationsOfState {
+
+/** The most parameters a law may take through the API (setEquationOfState); raise it freely. */
+constexpr int maxParameters = 8;
+
+/** One parameter of a law as the API takes it. */
+struct Parameter {
+    const char* name;          // short name, as Python and the documentation spell it ("beta")
+    const char* description;   // for messages ("thermal pressure coefficient beta")
+    ParameterChecks::Range range;   // allowed values, with the units (OpenMM units) as text ("kJ/mol/nm^3/K"):
+                                    // generous, as ParameterChecks::Ranges (their own, or a shared one)
+    bool excludeMinimum = false;    // whether range.minimum itself is refused
+};
+
+/** A law. */
+struct Law {
+    const char* name;          // as the API spells it, GenDPDEForce::EquationOfState ("VanDerWaals")
+    const char* description;   // for messages about a particle's law ("van der Waals")
+    int coreId;                // its GENDPDE_EOS_* number in the physics core
+    /**
+     * How the core's parameters are made of the API's: a law that extends the Tait law takes the type's Tait
+     * parameters n0, pi0 + p_b, B_T, gamma_T, then its own; any other takes its own, then the background pressure
+     * p_b (gendpdeLocalEquationOfState).
+     */
+    bool extendsTait;
+    /** Its domain of densities, for messages, if not every n > 0 ("0 < n < 1/b"); "" otherwise. */
+    const char* domain;
+    int numParameters;
+    Parameter parameters[maxParameters];
+    /** The number of parameters the physics core reads. */
+    constexpr int numCoreParameters() const {
+        return numParameters + (extendsTait ? 4 : 1);
+    }
+};
+
+/** Every law, at its GenDPDEForce::EquationOfState number. */
+constexpr Law laws[] = {
+    {"Tait", "Tait", GENDPDE_EOS_TAIT, true, "", 0, {}},
+    {"TaitThermalExpansion", "Tait", GENDPDE_EOS_TAIT_THERMAL, true, "", 2,
+        {{"beta", "thermal pressure coefficient beta", {-1e12, 1e12, "kJ/mol/nm^3/K"}},   // (dpi/dtheta)_n
+         {"theta0", "reference temperature theta0", ParameterChecks::Ranges::temperature}}},
+    {"VanDerWaals", "van der Waals", GENDPDE_EOS_VAN_DER_WAALS, false, "0 < n < 1/b", 3,
+        {{"a", "van der Waals attraction a", {0.0, 1e12, "kJ/mol nm^3"}},
+         {"b", "van der Waals excluded volume b", {1e-12, 1e12, "nm^3"}},
+         {"k", "van der Waals entropy scale k", ParameterChecks::Ranges::heatCapacity}}},
+};
+
+/** The number of laws. */
+constexpr int numLaws = sizeof(laws)/sizeof(laws[0]);
+
+/** The number of parameters every type has on the platforms (the most any law's core reads). */
+constexpr int coreStride() {
+    int stride = 0;
+    for (const Law& law : laws)
+        stride = (law.numCoreParameters() > stride ? law.numCoreParameters() : stride);
+    return stride;
+}
+
+constexpr bool numberedInOrder() {
+    for (int k = 0; k < numLaws; k++)
+        if (laws[k].coreId != k || laws[k].numParameters > maxParameters)
+            return false;
+    return true;
+}
+static_assert(numberedInOrder(), "each law's core id must be its place in the table");
+static_assert(GenDPDEForce::Tait == 0 && GenDPDEForce::TaitThermalExpansion == 1 && GenDPDEForce::VanDerWaals == 2
+              && numLaws == 3, "GenDPDEForce::EquationOfState must number the laws as this table does");
+
+/** The law numbered law (a GenDPDEForce::EquationOfState value), or nullptr if there is none. */
+inline const Law* find(int law) {
+    return (law >= 0 && law < numLaws) ? &laws[law] : nullptr;
+}
+
+/** The laws for messages: "Tait (0), TaitThermalExpansion (1) or VanDerWaals (2)". */
+inline std::string listOfLaws() {
+    std::string list;
+    for (int k = 0; k < numLaws; k++)
+        list += std::string(k == 0 ? "" : (k + 1 == numLaws ? " or " : ", ")) + laws[k].name + " ("
+                + std::to_string(k) + ")";
+    return list;
+}
+
+/** A law's parameters for messages: "van der Waals attraction a, van der Waals excluded volume b, ...". */
+inline std::string listOfParameters(const Law& law) {
+    std::string list;
+    for (int k = 0; k < law.numParameters; k++)
+        list += (k == 0 ? "" : ", ") + std::string(law.parameters[k].description);
+    return list;
+}
+
+} // namespace EquationsOfState
+} // namespace GenDPDEPlugin
+
+#endif /*GENDPDE_EQUATIONS_OF_STATE_H_*/

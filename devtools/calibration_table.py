@@ -15,8 +15,6 @@ import json
 import math
 import pathlib
 
-from openmmgendpde.calibration.calibrate import missed_properties
-
 #: (row of the table, the record's row as calibrated, the record's row as mapped or None)
 ROWS = [
     ("density n-bar (nm^-3)", "density n-bar (nm^-3)", None),
@@ -36,6 +34,12 @@ ROWS = [
     ("not fitted: self-diffusion (1e-9 m^2/s)", "not fitted: self-diffusion (1e-9 m^2/s)", None),
     ("not fitted: speed of sound (m/s)", "not fitted: speed of sound, from n dP/dn (m/s)", None),
 ]
+
+
+def _missed(record):
+    """The properties a record missed: its "missed_properties" (calibrate writes them), or for a record written before
+    it did, the row of each "missed" line."""
+    return record.get("missed_properties", [line.split(":")[0] for line in record["missed"]])
 
 
 def _cell(entry, compressibility, pressure):
@@ -79,7 +83,7 @@ def main():
     print()
     for name, record in zip(names, records):
         print(f"- {name}: {record['runs']} runs in {record['wall_time_s'] / 60:.1f} min; "
-              f"missed: {'; '.join(missed_properties(record['missed'])) or 'nothing'}")
+              f"missed: {'; '.join(_missed(record)) or 'nothing'}")
 
 
 if __name__ == "__main__":

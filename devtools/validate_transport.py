@@ -17,7 +17,8 @@ import time
 import openmm
 
 from openmmgendpde.analysis import transport
-from openmmgendpde.calibration.calibrate import Calibration, Plan, _mpa_s, _w_mk
+from openmmgendpde.calibration.calibrate import _mpa_s, _w_mk
+from openmmgendpde.calibration.calibration import Calibration, Plan
 from openmmgendpde.models.fluid import coarse_grain
 from openmmgendpde.models.fluid_files import FLUIDS, load_parameters
 

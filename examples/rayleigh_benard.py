@@ -41,7 +41,7 @@ from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.analysis.statistics import block_standard_error
-from openmmgendpde.calibration.calibrate import Calibration, Plan
+from openmmgendpde.calibration.calibration import Calibration, Plan
 from openmmgendpde.cli.options import (
     COUNT,
     NON_NEGATIVE,

@@ -83,7 +83,7 @@ def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
     f_cut is 'tuned' to 1.3; c_U reads 0.5 k_B; the bulk modulus and the transport coefficients read their targets;
     the thermal expansion of a fluid that has one is not measured."""
     import openmmgendpde.calibration.calibrate as calibrate
-    from openmmgendpde.calibration.calibrate import Calibration, Measured
+    from openmmgendpde.calibration.calibration import Calibration, Measured
     from openmmgendpde.models.fluid import KB
     monkeypatch.setattr(calibrate, "thermal_expansion_rows", lambda *arguments: [])   # (runs of its own)
 

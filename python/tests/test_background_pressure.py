@@ -102,7 +102,7 @@ def test_structure_measures_against_known_values():
 
 def test_responses_of_two_boxes():
     """A fluid whose n-bar follows n exactly and whose P = K ln n: response 1, n dP/dn = K."""
-    from openmmgendpde.calibration.calibrate import Measured
+    from openmmgendpde.calibration.calibration import Measured
     from openmmgendpde.studies.compression import CompressionPoint
 
     def point(c):

@@ -120,7 +120,8 @@ def test_calibrate_measures_the_thermal_expansion_and_keeps_the_corrected_beta()
     runs' spread); beta is moved by expansion.corrected from the first measurement and kept in the calibration's
     parameters."""
     from openmmgendpde.calibration import expansion
-    from openmmgendpde.calibration.calibrate import QUICK, Calibration, thermal_expansion_rows
+    from openmmgendpde.calibration.calibrate import thermal_expansion_rows
+    from openmmgendpde.calibration.calibration import QUICK, Calibration
     plan = dataclasses.replace(QUICK, melt=400, frames=40, interval=20)
     calibration = Calibration(expansion.mapped(), "VB", plan, "CPU", report=lambda _: None)
     beta = calibration.parameters.thermal_pressure
@@ -136,7 +137,7 @@ def test_calibrate_measures_the_thermal_expansion_and_keeps_the_corrected_beta()
 
 
 def _calibration(plan=None):
-    from openmmgendpde.calibration.calibrate import QUICK, Calibration
+    from openmmgendpde.calibration.calibration import QUICK, Calibration
     return Calibration(coarse_grain(WATER, 4, neighbors=20), "VB", plan or QUICK, "Reference", report=lambda _: None)
 
 
@@ -145,7 +146,7 @@ def test_transport_iteration_reaches_a_linear_response_by_secant_steps():
     mapped): the proportional first step gives gamma0/0.4 (0.85 of the target), then the secant through the two
     measurements (errors tiny) lands exactly on gamma = 3 gamma0: three measurements, the friction 3 gamma0 and the
     viscosity the target to 1e-12."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan(transport_runs=4))
     gamma0, target = calibration.parameters.friction, 1.0
 
@@ -164,7 +165,7 @@ def test_an_iteration_steps_on_a_miss_beyond_one_standard_error():
     that judges a result (3.18 standard errors for 4 replicas), but a miss of 2.7 standard errors, so the iteration
     steps (proportional: kappa / 1.74) instead of stopping there; the next reading, 1.03 +- 0.02, is within 5% and
     stops it. A reading of 1.08 +- 0.10 (within one standard error) stops it at once."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan, _reached, _settled
+    from openmmgendpde.calibration.calibration import Measured, Plan, _reached, _settled
     first = Measured(1.74, 0.27, 4)
     assert _reached(first, 1.0) and not _settled(first, 1.0)
     assert _settled(Measured(1.08, 0.10, 4), 1.0) and not _settled(Measured(1.08, 0.07, 4), 1.0)
@@ -183,7 +184,7 @@ def test_an_iteration_steps_on_a_miss_beyond_one_standard_error():
 def test_transport_iteration_stops_at_the_floor_of_the_model():
     """eta(gamma) = target (1.3 + 0.5 gamma/gamma0): no friction >= 0 reaches the target; after the proportional
     step the secant's intercept (1.3 target) is above it, and the iteration stops naming the floor."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan(transport_runs=4))
     gamma0 = calibration.parameters.friction
 
@@ -203,7 +204,7 @@ def test_bulk_modulus_iteration_stops_when_b_t_does_not_raise_it():
     A made-up response K(B_T) = 0.24 target - 0.024 target (B_T/B_T0 - 1) (falls as B_T rises): after the
     proportional step (B_T0/0.24, limited to 3 B_T0 by MAX_STEP) the measured response has the wrong sign, and the
     iteration stops saying so and naming the remedy (more neighbours), B_T back at B_T0 (the better of the two)."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan(bulk_runs=3))
     b0 = calibration.parameters.bulk_modulus
 
@@ -221,7 +222,7 @@ def test_an_iteration_out_of_runs_keeps_the_best_parameter():
     """Two runs on a flat response (K = 0.18 target +- 0.01 whatever B_T): the proportional step multiplies B_T by
     1/0.18 and moves nothing; the iteration keeps B_T0 (the measurement closest to the target, the first) and says
     that B_T did not move n dP/dn. On a response that moves but needs more runs, it keeps the best, no failure."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan())
     b0 = calibration.parameters.bulk_modulus
     values = iter([0.18, 0.17])
@@ -248,7 +249,7 @@ def test_an_iteration_out_of_runs_after_a_small_step_is_no_failure():
     """Water's friction: 8855 -> 8059 (a step of 9%) read 593 +- 52 -> 596 +- 11 (target 536): a proportional
     response would have moved it by 53, within 2 standard errors of the difference (106), so the step says nothing
     about the friction's effect and the iteration keeps the better parameter without a failure."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan())
     gamma0 = calibration.parameters.friction
     readings = iter([Measured(592.8, 52.0, 4), Measured(596.1, 11.0, 4)])
@@ -262,7 +263,7 @@ def test_a_step_on_the_steady_flow_supersedes_the_wave_iteration_s_failure():
     read 0.72 of the target and moved kappa, and both methods were measured again: the failure no longer describes
     the kappa calibrate ends with, which CRITERIA judges by both methods, so it is dropped. Where the steady flow is
     within 5% no step is taken and the iteration's failure stands."""
-    from openmmgendpde.calibration.calibrate import Measured, Plan
+    from openmmgendpde.calibration.calibration import Measured, Plan
     calibration = _calibration(Plan())
     kappa = calibration.parameters.heat_conduction
     history = [(kappa / 2, Measured(0.274, 0.034, 4)), (kappa, Measured(0.310, 0.047, 4))]
@@ -282,7 +283,7 @@ def test_a_step_on_the_steady_flow_supersedes_the_wave_iteration_s_failure():
 def test_elasticity_of_an_iteration():
     """d ln(m)/d ln(x) from the last two runs: 0.5 for m ~ sqrt(x); 1 when the difference is not measured (within 2
     standard errors) or of the wrong sign; limited to [1/3, 3]."""
-    from openmmgendpde.calibration.calibrate import Measured, _elasticity
+    from openmmgendpde.calibration.calibration import Measured, _elasticity
     assert _elasticity([(1.0, Measured(1.0, 1e-4)), (4.0, Measured(2.0, 1e-4))]) == pytest.approx(0.5)
     assert _elasticity([(1.0, Measured(1.0, 0.5)), (4.0, Measured(2.0, 0.5))]) == 1.0
     assert _elasticity([(1.0, Measured(2.0, 1e-4)), (4.0, Measured(1.0, 1e-4))]) == 1.0
@@ -291,7 +292,7 @@ def test_elasticity_of_an_iteration():
 
 
 def test_pressure_step_is_a_secant_on_measured_responses():
-    from openmmgendpde.calibration.calibrate import Measured, pressure_step
+    from openmmgendpde.calibration.calibration import Measured, pressure_step
     assert pressure_step([(-20.0, Measured(10.0, 1.0))], 0.0) == -10.0
     # A response of 0.5 measured (P moved by -5 for pi0 moved by -10), errors small: the step is (0 - 5)/0.5.
     assert pressure_step([(-20.0, Measured(10.0, 1.0)), (-30.0, Measured(5.0, 1.0))], 0.0) == pytest.approx(-10.0)
@@ -322,7 +323,7 @@ def test_a_property_that_missed_and_whose_iteration_failed_counts_once():
 def made_up_thermodynamics(pressure_offset=0.0):
     """Calibration.thermodynamics replaced by made-up measurements: every target met, but the pressure, which reads
     P0 + pressure_offset/kappa_T; c_U = 0.5 k_B."""
-    from openmmgendpde.calibration.calibrate import Measured
+    from openmmgendpde.calibration.calibration import Measured
     from openmmgendpde.models.fluid import KB
 
     def thermodynamics(self, density=None, pressure_error=None):
@@ -349,7 +350,7 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     and exits with status 1; one that does not says so and returns its results. A Poiseuille flow at 0.039 of the
     target makes calibrate take one more step on it (the friction x 3, MAX_STEP), which the made-up wave then reads
     at 3 times the target: both viscosities miss."""
-    from openmmgendpde.calibration.calibrate import Calibration, Measured
+    from openmmgendpde.calibration.calibration import Calibration, Measured
     gamma0 = coarse_grain(WATER, 4, neighbors=20).friction
 
     monkeypatch.setattr(Calibration, "tune_cutoff_scaling",
@@ -375,6 +376,7 @@ def test_calibrate_reports_a_failed_calibration_and_exits_non_zero(pressure_offs
     captured = capsys.readouterr()
     saved = json.loads(path.read_text())
     assert [line.split(":")[0] for line in saved["missed"]] == expected
+    assert saved["missed_properties"] == [name.split(" (")[0] for name in expected]
     assert [run[0] for run in saved["friction_runs"]] == pytest.approx([gamma0 * f for f in frictions], rel=1e-12)
     assert (tmp_path / "figure.png").stat().st_size > 0 and (tmp_path / "figure.pdf").stat().st_size > 0
     if expected:
@@ -393,7 +395,7 @@ def test_calibrate_iterates_the_conductivity_of_a_fluid_that_expands_on_the_heat
     that expands turns partly into sound (it read 11x the target whatever kappa was, docs/thermal.md), must not be
     called, and its rows must be absent. Everything else reads its target."""
     from openmmgendpde.calibration import calibrate as calibrate_module
-    from openmmgendpde.calibration.calibrate import Calibration, Measured
+    from openmmgendpde.calibration.calibration import Calibration, Measured
     kappa0 = coarse_grain(ARGON_EXPANDING, 5, neighbors=20).heat_conduction
 
     def wave(self):
@@ -534,7 +536,7 @@ def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
     import openmm
 
     from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-    from openmmgendpde.calibration.calibrate import _decay_rate
+    from openmmgendpde.calibration.calibration import _decay_rate
     density, temperature, heat_capacity, kappa = 8.0, 300.0, 0.3, 2.0e4
     positions, box = fcc_box(density, (4, 4, 8))
     cutoff = 0.9
@@ -578,7 +580,8 @@ def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
 def test_speed_of_sound_of_an_ideal_monatomic_gas():
     """calibrate.speed_of_sound with K_T = n k_B T and the heat capacity of the motion alone (c = 3 k_B/2): the ideal
     monatomic gas, c = sqrt(5 k_B T/(3 m)) (argon atoms at 300 K: 322.6 m/s, computed here in SI)."""
-    from openmmgendpde.calibration.calibrate import Measured, speed_of_sound
+    from openmmgendpde.calibration.calibrate import speed_of_sound
+    from openmmgendpde.calibration.calibration import Measured
     from openmmgendpde.models.fluid import KB
     gas = dataclasses.replace(coarse_grain(ARGON, 1, neighbors=20), heat_capacity=0.0, temperature=300.0,
                               mass=39.948)
@@ -598,7 +601,7 @@ def test_model_heat_capacity_from_fluctuations_equals_the_energy_it_takes():
     difference). Leaving out the k_B of the internal energies' Gamma law (6% of c) fails it."""
     from openmmgendpde.analysis.statistics import correlated_mean
     from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe
-    from openmmgendpde.calibration.calibrate import QUICK, Calibration
+    from openmmgendpde.calibration.calibration import QUICK, Calibration
     from openmmgendpde.models.fluid import KB
     u = unit
     parameters = coarse_grain(ARGON, 5, neighbors=20)
@@ -657,7 +660,8 @@ def test_beta_is_iterated_on_the_measured_slope_until_alpha_reaches_the_target(m
     beta -> 6.25 beta0 (g = 2.5), within 10% (the secant approaches it from below: 1, 2.5, 4.9, 6.0)."""
     from openmmgendpde.calibration import calibrate as calibrate_module
     from openmmgendpde.calibration import expansion
-    from openmmgendpde.calibration.calibrate import EXPANSION_RUNS, QUICK, Calibration
+    from openmmgendpde.calibration.calibrate import EXPANSION_RUNS
+    from openmmgendpde.calibration.calibration import QUICK, Calibration
     from openmmgendpde.calibration.expansion import MPA_PER_OPENMM_PRESSURE, ThermalExpansion
     parameters = expansion.mapped()
     beta0 = parameters.thermal_pressure

@@ -489,7 +489,7 @@ def test_a_simulation_failure_in_calibrate_names_its_stage(monkeypatch):
     """An OpenMMException in a stage of calibrate (a negative internal energy in the bulk-modulus runs, as argon at
     4 atoms per particle gave): one line (status 1) naming the stage, the error and the options that set the step and
     the heat capacity."""
-    from openmmgendpde.calibration.calibrate import Calibration
+    from openmmgendpde.calibration.calibration import Calibration
     _fake_water_calibration(monkeypatch)
 
     def bulk_modulus(self):

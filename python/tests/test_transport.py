@@ -11,7 +11,7 @@ from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.analysis import transport
-from openmmgendpde.calibration.calibrate import Calibration, Plan
+from openmmgendpde.calibration.calibration import Calibration, Plan
 from openmmgendpde.models.fluid import ARGON, coarse_grain
 
 ARGON_MODEL = coarse_grain(ARGON, 5, neighbors=20)

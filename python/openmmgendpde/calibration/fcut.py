@@ -74,7 +74,7 @@ def run_fluid(arguments):
     """tune-fcut --fluid: calibrate's tuning (Calibration.tune_cutoff_scaling: --max-iterations runs of its plan,
     --quick its QUICK plan, --particles and --time-step overriding it) for the coarse-grained fluid."""
     from ..cli.fluids import parameters_from_arguments
-    from .calibrate import QUICK, Calibration, Plan
+    from .calibration import QUICK, Calibration, Plan
     parameters = parameters_from_arguments(arguments, "tune-fcut")
     plan = QUICK if arguments.quick else Plan()
     overrides = {"particles": arguments.particles, "time_step": arguments.time_step}

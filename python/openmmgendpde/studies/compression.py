@@ -22,7 +22,7 @@ from openmm import unit
 from ..analysis.rdf import radial_distribution
 from ..analysis.statistics import correlated_mean
 from ..analysis.thermodynamics import ThermodynamicProbe, self_diffusion
-from ..calibration.calibrate import Calibration, Measured, Plan, model_positions
+from ..calibration.calibration import Calibration, Measured, Plan, model_positions
 from ..calibration.expansion import MPA_PER_OPENMM_PRESSURE
 from ..cli.fluids import add_fluid_arguments, parameters_from_arguments
 from ..cli.options import add_json, add_platform, command_line_error, fcc_particles, integer, number

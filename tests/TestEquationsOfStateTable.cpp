@@ -25,7 +25,7 @@ namespace {
 double allowedValue(const Table::Parameter& p, int k) {
     double value = 1.25 + k;
     if (value < p.range.minimum || (p.excludeMinimum && value == p.range.minimum))
-        value = (p.range.minimum > 0 ? 2*p.range.minimum : p.range.minimum + 1);
+        value = (p.range.minimum > 0 ? 2 * p.range.minimum : p.range.minimum + 1);
     if (value > p.range.maximum)
         value = p.range.maximum;
     return value;
@@ -77,15 +77,15 @@ void testWrongCountsAndRangesAreRefusedInTheTablesWords() {
         std::vector<double> parameters = allowedParameters(description);
         parameters.push_back(1.0);
         assertThrowsMentioning([&]() { force.setEquationOfState(eos, parameters); },
-                               {description.name, "takes " + std::to_string(description.numParameters) +
-                                " parameters", "not " + std::to_string(parameters.size())});
+                               {description.name, "takes " + std::to_string(description.numParameters) + " parameters",
+                                "not " + std::to_string(parameters.size())});
         for (int k = 0; k < description.numParameters; k++) {
             const Table::Parameter& p = description.parameters[k];
             std::vector<double> bad = allowedParameters(description);
             bad[k] = p.range.minimum - std::fabs(p.range.minimum) - 1;   // below the range
-            assertThrowsMentioning([&]() { force.addTypeEquationOfState(3, eos, bad); },
-                                   {"type equation of state", p.description, text(bad[k]), p.range.units,
-                                    text(p.range.maximum)});
+            assertThrowsMentioning(
+                    [&]() { force.addTypeEquationOfState(3, eos, bad); },
+                    {"type equation of state", p.description, text(bad[k]), p.range.units, text(p.range.maximum)});
         }
     }
     ASSERT_EQUAL(0, force.getNumTypeEquationsOfState());   // nothing was added by a refused call
@@ -103,8 +103,8 @@ void testPackingFollowsTheTable() {
     for (int law = 0; law < Table::numLaws; law++) {
         const Table::Law& description = Table::laws[law];
         const std::vector<double> parameters = allowedParameters(description);
-        const Physics::LocalEquationOfState eos = packEquationOfState((GenDPDEForce::EquationOfState) law,
-                                                                      parameters, tait, backgroundPressure);
+        const Physics::LocalEquationOfState eos =
+                packEquationOfState((GenDPDEForce::EquationOfState) law, parameters, tait, backgroundPressure);
         ASSERT_EQUAL(description.coreId, eos.law);
         ASSERT_EQUAL((size_t) Table::coreStride(), eos.parameter.size());
         ASSERT(description.numCoreParameters() <= Table::coreStride());
@@ -118,8 +118,8 @@ void testPackingFollowsTheTable() {
         ASSERT(expected == eos.parameter);
         // The core takes the law: some density gives a valid state.
         double e, sigma, pressureAtZero, thermalPressure;
-        const int status = Physics::gendpdeLocalEquationOfState(eos.law, 1e-3, eos.parameter.data(),
-                eos.integerPower, &e, &sigma, &pressureAtZero, &thermalPressure);
+        const int status = Physics::gendpdeLocalEquationOfState(eos.law, 1e-3, eos.parameter.data(), eos.integerPower,
+                                                                &e, &sigma, &pressureAtZero, &thermalPressure);
         ASSERT_EQUAL(GENDPDE_PARTICLE_VALID, status);
     }
 }

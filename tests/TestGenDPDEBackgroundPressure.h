@@ -30,12 +30,12 @@ void testBackgroundPressure() {
         double volumeSum = 0;
         for (double v : scene.force->getParticleVolumes(context))
             volumeSum += v;
-        const double boxVolume = scene.box[0][0]*scene.box[1][1]*scene.box[2][2];
+        const double boxVolume = scene.box[0][0] * scene.box[1][1] * scene.box[2][2];
         scene.force->setBackgroundPressure(0.0);
         scene.force->updateParametersInContext(context);
         const double energyWithout = context.getState(State::Energy).getPotentialEnergy();
-        assertClose(background*(boxVolume - volumeSum), energy - energyWithout,
-                    precisionTolerance(1e-10, 1e-5)*background*boxVolume, label + ": U(p_b) - U(0)");
+        assertClose(background * (boxVolume - volumeSum), energy - energyWithout,
+                    precisionTolerance(1e-10, 1e-5) * background * boxVolume, label + ": U(p_b) - U(0)");
         // The virial, box term included, is -dU/dlambda under r -> lambda r of positions and box; in double precision
         // only: with p_b the energy holds p_b sum_i V_i, whose float rounding (V-C's V to ~3e-5, docs of
         // floatErrorScale) is ~1e-2 kJ/mol here, 5 kJ/mol (0.2%) of W once the central difference divides it by
@@ -46,8 +46,8 @@ void testBackgroundPressure() {
         scene.force->updateParametersInContext(context);
         const double virial = scene.force->getVirial(context);
         const double epsilon = 1e-6;
-        const double derivative = (scaledEnergy(context, scene, 1 + epsilon)
-                                   - scaledEnergy(context, scene, 1 - epsilon))/(2*epsilon);
+        const double derivative =
+                (scaledEnergy(context, scene, 1 + epsilon) - scaledEnergy(context, scene, 1 - epsilon)) / (2 * epsilon);
         assertRelative(-derivative, virial, 1e-7, label + ": virial = -3V dU/dV");
     }
 }

@@ -33,7 +33,7 @@ double rmsForce(const std::vector<Vec3>& forces) {
     double sum = 0;
     for (const Vec3& f : forces)
         sum += f.dot(f);
-    return std::sqrt(sum/forces.size());
+    return std::sqrt(sum / forces.size());
 }
 
 /**
@@ -50,8 +50,8 @@ inline double floatErrorScale(GenDPDEForce::DensityEstimator estimator) {
 inline double rmsElement(const std::vector<double>& tensors) {
     double sum = 0.0;
     for (double w : tensors)
-        sum += w*w;
-    return std::sqrt(sum/std::max<size_t>(1, tensors.size()));
+        sum += w * w;
+    return std::sqrt(sum / std::max<size_t>(1, tensors.size()));
 }
 
 /**
@@ -72,27 +72,28 @@ void checkAgainstBruteForce(Scene& scene, const std::string& label) {
     State state = context.getState(State::Energy | State::Forces);
     BruteForce::Result expected = BruteForce::evaluate(bruteForceModel(scene), scene.positions);
     const double scale = floatErrorScale(scene.force->getDensityEstimator());
-    const double relative = precisionTolerance(1e-10, 1e-5*scale), forceTolerance = precisionTolerance(1e-9, 1e-4*scale);
+    const double relative = precisionTolerance(1e-10, 1e-5 * scale),
+                 forceTolerance = precisionTolerance(1e-9, 1e-4 * scale);
     assertRelative(expected.energy, state.getPotentialEnergy(), relative, label + " energy");
     double forceScale = rmsForce(expected.forces);
     for (size_t i = 0; i < scene.positions.size(); i++)
-        assertVectorClose(expected.forces[i], state.getForces()[i], forceTolerance*forceScale, label + " force");
+        assertVectorClose(expected.forces[i], state.getForces()[i], forceTolerance * forceScale, label + " force");
     std::vector<double> n0 = scene.force->getPrimitiveDensities(context);
     std::vector<double> volumes = scene.force->getParticleVolumes(context);
     std::vector<double> densities = scene.force->getParticleDensities(context);
     std::vector<double> pressures = scene.force->getParticlePressures(context);
     double pressureScale = scene.force->getBulkModulus();
     for (size_t i = 0; i < scene.positions.size(); i++) {
-        assertClose(expected.primitiveDensity[i], n0[i], relative*referenceDensity, label + " n0_i");
+        assertClose(expected.primitiveDensity[i], n0[i], relative * referenceDensity, label + " n0_i");
         assertRelative(expected.volume[i], volumes[i], relative, label + " V_i");
-        assertRelative(1.0/expected.volume[i], densities[i], relative, label + " n_i");
-        assertClose(expected.pressure[i], pressures[i], relative*std::max(pressureScale, std::abs(expected.pressure[i])),
-                    label + " pi_i");
+        assertRelative(1.0 / expected.volume[i], densities[i], relative, label + " n_i");
+        assertClose(expected.pressure[i], pressures[i],
+                    relative * std::max(pressureScale, std::abs(expected.pressure[i])), label + " pi_i");
     }
-    assertClose(expected.virial, scene.force->getVirial(context), 10*relative*std::max(1.0, std::abs(expected.virial)),
-                label + " virial");
+    assertClose(expected.virial, scene.force->getVirial(context),
+                10 * relative * std::max(1.0, std::abs(expected.virial)), label + " virial");
     const std::vector<double> tensors = scene.force->getParticleVirials(context);
-    ASSERT_EQUAL(9*scene.positions.size(), tensors.size());
+    ASSERT_EQUAL(9 * scene.positions.size(), tensors.size());
     std::vector<double> expectedTensors;
     for (const BruteForce::Matrix& w : expected.particleVirial)
         for (int a = 0; a < 3; a++)
@@ -100,8 +101,9 @@ void checkAgainstBruteForce(Scene& scene, const std::string& label) {
                 expectedTensors.push_back(w.element[a][b]);
     const double tensorScale = std::max(1e-300, rmsElement(expectedTensors));
     for (size_t k = 0; k < tensors.size(); k++)
-        assertClose(expectedTensors[k], tensors[k], forceTolerance*tensorScale,
-                    label + " virial tensor of particle " + std::to_string(k/9) + ", element " + std::to_string(k%9));
+        assertClose(expectedTensors[k], tensors[k], forceTolerance * tensorScale,
+                    label + " virial tensor of particle " + std::to_string(k / 9) + ", element "
+                            + std::to_string(k % 9));
 }
 
 void testAgainstBruteForce() {
@@ -111,7 +113,7 @@ void testAgainstBruteForce() {
 /** Both ways of raising (n/n0) to gamma_T - 1: multiplications for integer exponents, pow() otherwise. */
 void testTaitExponents() {
     for (double exponent : {2.0, 6.5, 7.0, 12.0}) {
-        Scene scene = makeLatticeLiquid(6, 1.3*referenceDensity, 0.2, GenDPDEForce::VB, true, 6);
+        Scene scene = makeLatticeLiquid(6, 1.3 * referenceDensity, 0.2, GenDPDEForce::VB, true, 6);
         scene.force->setTaitParameters(referenceDensity, 40.0, 70.0, exponent);
         checkAgainstBruteForce(scene, "gamma_T = " + std::to_string(exponent));
     }
@@ -121,7 +123,7 @@ void testTriclinicBox() {
     for (GenDPDEForce::DensityEstimator estimator : testEstimators()) {
         Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 5);
         double edge = scene.box[0][0];
-        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
         checkAgainstBruteForce(scene, estimatorLabel(estimator) + " triclinic");
     }
 }
@@ -138,14 +140,14 @@ void checkFiniteDifferences(Scene& scene, const std::string& label, double h = 1
     std::vector<Vec3> forces = context.getState(State::Forces).getForces();
     double scale = rmsForce(forces);
     int numParticles = scene.positions.size();
-    for (int i = 0; i < numParticles; i += std::max(1, numParticles/12))
+    for (int i = 0; i < numParticles; i += std::max(1, numParticles / 12))
         for (int k = 0; k < 3; k++) {
             std::vector<Vec3> moved = scene.positions;
             moved[i][k] += h;
             double plus = energyAt(context, moved);
-            moved[i][k] -= 2*h;
+            moved[i][k] -= 2 * h;
             double minus = energyAt(context, moved);
-            assertClose(-(plus - minus)/(2*h), forces[i][k], 1e-5*scale, label + " finite difference");
+            assertClose(-(plus - minus) / (2 * h), forces[i][k], 1e-5 * scale, label + " finite difference");
         }
 }
 
@@ -190,9 +192,9 @@ void testSymmetries() {
             // V-C's floatErrorScale).
             const double floatScale = floatErrorScale(estimator);
             const double sumTolerance = precisionTolerance(1e-12, 1e-7),
-                         energyTolerance = precisionTolerance(1e-12, 1e-5*floatScale),
-                         forceTolerance = precisionTolerance(1e-10, 1e-4*floatScale);
-            assertVectorClose(Vec3(), total, sumTolerance*scale*scene.positions.size(), "sum of forces");
+                         energyTolerance = precisionTolerance(1e-12, 1e-5 * floatScale),
+                         forceTolerance = precisionTolerance(1e-10, 1e-4 * floatScale);
+            assertVectorClose(Vec3(), total, sumTolerance * scale * scene.positions.size(), "sum of forces");
 
             std::vector<Vec3> shifted = scene.positions;
             for (Vec3& r : shifted)
@@ -200,26 +202,25 @@ void testSymmetries() {
             assertRelative(energy, energyAt(context, shifted), energyTolerance, "translation");
             if (periodic) {
                 std::vector<Vec3> imaged = scene.positions;
-                imaged[3] += scene.box[0]*2 - scene.box[1] + scene.box[2]*3;
+                imaged[3] += scene.box[0] * 2 - scene.box[1] + scene.box[2] * 3;
                 imaged[17] -= scene.box[2];
                 assertRelative(energy, energyAt(context, imaged), energyTolerance, "periodic image");
                 State imagedState = context.getState(State::Forces);
                 for (size_t i = 0; i < imaged.size(); i++)
-                    assertVectorClose(state.getForces()[i], imagedState.getForces()[i], forceTolerance*scale,
+                    assertVectorClose(state.getForces()[i], imagedState.getForces()[i], forceTolerance * scale,
                                       "image forces");
-            }
-            else {
+            } else {
                 // Rotation by 0.7 rad about the axis (1, 2, 2)/3 through an arbitrary point.
-                Vec3 u(1.0/3, 2.0/3, 2.0/3), centre(1.0, -2.0, 0.5);
+                Vec3 u(1.0 / 3, 2.0 / 3, 2.0 / 3), centre(1.0, -2.0, 0.5);
                 double c = std::cos(0.7), s = std::sin(0.7);
-                auto rotate = [&](Vec3 v) { return v*c + u.cross(v)*s + u*(u.dot(v)*(1 - c)); };
+                auto rotate = [&](Vec3 v) { return v * c + u.cross(v) * s + u * (u.dot(v) * (1 - c)); };
                 std::vector<Vec3> rotated = scene.positions;
                 for (Vec3& r : rotated)
                     r = centre + rotate(r - centre);
                 assertRelative(energy, energyAt(context, rotated), energyTolerance, "rotation");
                 State rotatedState = context.getState(State::Forces);
                 for (size_t i = 0; i < rotated.size(); i++)
-                    assertVectorClose(rotate(state.getForces()[i]), rotatedState.getForces()[i], forceTolerance*scale,
+                    assertVectorClose(rotate(state.getForces()[i]), rotatedState.getForces()[i], forceTolerance * scale,
                                       "rotated forces");
             }
         }
@@ -255,11 +256,11 @@ void testIsolatedParticle() {
         if (!BruteForce::allowsIsolatedParticles(estimator))
             continue;
         Scene scene = makeScene(3, estimator, false, 1.3);
-        scene.positions = {Vec3(0, 0, 0), Vec3(0.5*cutoff, 0, 0), Vec3(10*cutoff, 0, 0)};
+        scene.positions = {Vec3(0, 0, 0), Vec3(0.5 * cutoff, 0, 0), Vec3(10 * cutoff, 0, 0)};
         VerletIntegrator integrator(0.001);
         Context context(scene.system, integrator, *platform);
         context.setPositions(scene.positions);
-        double Rt = cutoff/1.3, expectedVolume = 4.0*M_PI/3.0*Rt*Rt*Rt;
+        double Rt = cutoff / 1.3, expectedVolume = 4.0 * M_PI / 3.0 * Rt * Rt * Rt;
         assertRelative(expectedVolume, scene.force->getParticleVolumes(context)[2], precisionTolerance(1e-15, 1e-6),
                        estimatorLabel(estimator) + " isolated volume");
         State state = context.getState(State::Energy | State::Forces);
@@ -267,7 +268,7 @@ void testIsolatedParticle() {
         ASSERT(std::isfinite(state.getPotentialEnergy()));
     }
     Scene scene = makeScene(3, GenDPDEForce::VA, false, 1.3);
-    scene.positions = {Vec3(0, 0, 0), Vec3(0.5*cutoff, 0, 0), Vec3(10*cutoff, 0, 0)};
+    scene.positions = {Vec3(0, 0, 0), Vec3(0.5 * cutoff, 0, 0), Vec3(10 * cutoff, 0, 0)};
     VerletIntegrator integrator(0.001);
     Context context(scene.system, integrator, *platform);
     context.setPositions(scene.positions);
@@ -285,9 +286,9 @@ void testEnergyOnlyAndForceGroups() {
     double both = context.getState(State::Energy | State::Forces).getPotentialEnergy();
     double energyOnly = context.getState(State::Energy).getPotentialEnergy();
     ASSERT_EQUAL(both, energyOnly);
-    ASSERT_EQUAL(both, context.getState(State::Energy, false, 1<<3).getPotentialEnergy());
-    ASSERT_EQUAL(0.0, context.getState(State::Energy, false, 1<<2).getPotentialEnergy());
-    State otherGroup = context.getState(State::Forces, false, 1<<2);
+    ASSERT_EQUAL(both, context.getState(State::Energy, false, 1 << 3).getPotentialEnergy());
+    ASSERT_EQUAL(0.0, context.getState(State::Energy, false, 1 << 2).getPotentialEnergy());
+    State otherGroup = context.getState(State::Forces, false, 1 << 2);
     for (const Vec3& f : otherGroup.getForces())
         ASSERT_EQUAL_VEC(Vec3(), f, 0.0);
 }
@@ -301,8 +302,8 @@ void testUpdateParametersInContext() {
     double before = context.getState(State::Energy).getPotentialEnergy();
     scene.force->setDensityEstimator(GenDPDEForce::VB);
     scene.force->setCutoffScaling(1.41);
-    scene.force->setTaitParameters(1.1*referenceDensity, 20.0, 80.0, 7.0);
-    ASSERT_EQUAL(before, context.getState(State::Energy).getPotentialEnergy());   // not applied yet
+    scene.force->setTaitParameters(1.1 * referenceDensity, 20.0, 80.0, 7.0);
+    ASSERT_EQUAL(before, context.getState(State::Energy).getPotentialEnergy()); // not applied yet
     scene.force->updateParametersInContext(context);
     double updated = context.getState(State::Energy).getPotentialEnergy();
     VerletIntegrator integrator2(0.001);
@@ -314,7 +315,7 @@ void testUpdateParametersInContext() {
     for (size_t i = 0; i < freshDensities.size(); i++)
         ASSERT_EQUAL_TOL(freshDensities[i], updatedDensities[i], 1e-14);
     // The cutoff and the boundary conditions are fixed for the lifetime of a Context.
-    scene.force->setCutoffDistance(1.1*cutoff);
+    scene.force->setCutoffDistance(1.1 * cutoff);
     assertThrowsMentioning([&]() { scene.force->updateParametersInContext(context); }, {"cutoff", "reinitialize"});
     scene.force->setCutoffDistance(cutoff);
     scene.force->setNonbondedMethod(GenDPDEForce::CutoffNonPeriodic);
@@ -327,15 +328,15 @@ void testMovingParticles() {
     VerletIntegrator integrator(0.001);
     Context context(scene.system, integrator, *platform);
     std::mt19937 random(72);
-    std::normal_distribution<double> gauss(0.0, 0.04*cutoff);
+    std::normal_distribution<double> gauss(0.0, 0.04 * cutoff);
     BruteForce::Model model = bruteForceModel(scene);
     for (int step = 0; step < 40; step++) {
         for (Vec3& r : scene.positions)
             r += Vec3(gauss(random), gauss(random), gauss(random));
         double energy = energyAt(context, scene.positions);
         if (step % 8 == 7)
-            assertRelative(BruteForce::evaluate(model, scene.positions).energy, energy,
-                           precisionTolerance(1e-10, 1e-5), "moving particles");   // as checkAgainstBruteForce
+            assertRelative(BruteForce::evaluate(model, scene.positions).energy, energy, precisionTolerance(1e-10, 1e-5),
+                           "moving particles"); // as checkAgainstBruteForce
     }
 }
 
@@ -349,15 +350,15 @@ void testHistoryIndependence() {
         // Lattice planes 0.01 nm inside the faces of the box, so that the small move below takes many particles
         // across the periodic boundary between the two list builds.
         Scene scene = makeLatticeLiquid(6, referenceDensity, 0.02, GenDPDEForce::VB, periodic, 75);
-        double spacing = scene.box[0][0]/6;
+        double spacing = scene.box[0][0] / 6;
         for (Vec3& r : scene.positions)
-            r -= Vec3(1, 1, 1)*(0.5*spacing - 0.01);
+            r -= Vec3(1, 1, 1) * (0.5 * spacing - 0.01);
         VerletIntegrator integrator1(0.001), integrator2(0.001);
         Context fresh(scene.system, integrator1, *platform), aged(scene.system, integrator2, *platform);
         std::vector<Vec3> earlier = scene.positions;
         for (Vec3& r : earlier)
-            r -= Vec3(0.03, 0.03, 0.03);             // within half the Verlet skin: no rebuild when moved back
-        energyAt(aged, earlier);                     // the aged Context builds its list here
+            r -= Vec3(0.03, 0.03, 0.03); // within half the Verlet skin: no rebuild when moved back
+        energyAt(aged, earlier); // the aged Context builds its list here
         double agedEnergy = energyAt(aged, scene.positions);
         double freshEnergy = energyAt(fresh, scene.positions);
         ASSERT_EQUAL(freshEnergy, agedEnergy);
@@ -382,7 +383,7 @@ void testVCSurfaceCorrection() {
     open.force->updateParametersInContext(context);
     const std::vector<double> vc = open.force->getParticleVolumes(context);
     // Particle 0 is a corner of the lattice (three faces empty), particle 3*36 + 3*6 + 3 near the centre.
-    ASSERT(vc[0]/vb[0] > 2.0);
+    ASSERT(vc[0] / vb[0] > 2.0);
     ASSERT_EQUAL_TOL(vb[129], vc[129], precisionTolerance(1e-15, 1e-6));
 }
 

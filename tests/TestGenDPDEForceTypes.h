@@ -11,7 +11,7 @@ void testMixtureAgainstBruteForce() {
             Scene liquid = makeLatticeLiquid(6, referenceDensity, 0.15, estimator, periodic, 101);
             setMixtureTypes(liquid, false);
             checkAgainstBruteForce(liquid, label);
-            Scene compressed = makeLatticeLiquid(7, 2.0*referenceDensity, 0.15, estimator, periodic, 102);
+            Scene compressed = makeLatticeLiquid(7, 2.0 * referenceDensity, 0.15, estimator, periodic, 102);
             setMixtureTypes(compressed, false);
             checkAgainstBruteForce(compressed, label + " compressed");
         }
@@ -38,10 +38,10 @@ void testIdenticalTypesAreBitwiseNoTypes() {
         ASSERT(plain.force->getParticlePressures(a) == typed.force->getParticlePressures(b));
         ASSERT_EQUAL(plain.force->getVirial(a), typed.force->getVirial(b));
         // The same types with different parameters: a different energy.
-        typed.force->setTypeParameters(0, 7, 1.3*referenceDensity, 10.0, 50.0, 7.0);
+        typed.force->setTypeParameters(0, 7, 1.3 * referenceDensity, 10.0, 50.0, 7.0);
         typed.force->updateParametersInContext(b);
         ASSERT(std::abs(b.getState(State::Energy).getPotentialEnergy() - sa.getPotentialEnergy())
-               > 1e-3*std::abs(sa.getPotentialEnergy()));
+               > 1e-3 * std::abs(sa.getPotentialEnergy()));
     }
 }
 
@@ -56,7 +56,7 @@ void testTypesInContext() {
     VerletIntegrator integrator(0.001);
     Context context(scene.system, integrator, *platform);
     context.setPositions(scene.positions);
-    scene.force->setTypeParameters(1, -3, 0.9*referenceDensity, 5.0, 90.0, 6.0);
+    scene.force->setTypeParameters(1, -3, 0.9 * referenceDensity, 5.0, 90.0, 6.0);
     scene.force->updateParametersInContext(context);
     const double updated = context.getState(State::Energy).getPotentialEnergy();
     VerletIntegrator integrator2(0.001);

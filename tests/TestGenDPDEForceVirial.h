@@ -5,7 +5,7 @@ namespace ForceTests {
 
 /** U at the scene's positions and box scaled uniformly by lambda (r -> lambda r), in a periodic Context. */
 double scaledEnergy(Context& context, const Scene& scene, double lambda) {
-    context.setPeriodicBoxVectors(scene.box[0]*lambda, scene.box[1]*lambda, scene.box[2]*lambda);
+    context.setPeriodicBoxVectors(scene.box[0] * lambda, scene.box[1] * lambda, scene.box[2] * lambda);
     std::vector<Vec3> scaled = scene.positions;
     for (Vec3& r : scaled)
         r *= lambda;
@@ -31,7 +31,7 @@ void testVirial() {
         // magnitudes summing to ~100 |W|) carry that: 1e-5.
         assertRelative(sum, open.force->getVirial(context), precisionTolerance(1e-10, 1e-5), "open virial");
 
-        for (double density : {referenceDensity, 3.0*referenceDensity}) {
+        for (double density : {referenceDensity, 3.0 * referenceDensity}) {
             Scene periodic = makeLatticeLiquid(6, density, 0.2, estimator, true, 32);
             VerletIntegrator integrator2(0.001);
             Context context2(periodic.system, integrator2, *platform);
@@ -40,8 +40,9 @@ void testVirial() {
             // Float forces: the energy's ~1e-7 relative rounding over 2 epsilon needs epsilon = 1e-3 (rounding
             // ~1e-4 of U/W, truncation ~1e-6): 1e-3.
             const double epsilon = precisionTolerance(1e-6, 1e-3);
-            double derivative = (scaledEnergy(context2, periodic, 1 + epsilon)
-                                 - scaledEnergy(context2, periodic, 1 - epsilon))/(2*epsilon);
+            double derivative =
+                    (scaledEnergy(context2, periodic, 1 + epsilon) - scaledEnergy(context2, periodic, 1 - epsilon))
+                    / (2 * epsilon);
             assertRelative(-derivative, virial, precisionTolerance(1e-7, 1e-3), "virial = -3V dU/dV");
         }
     }
@@ -50,7 +51,7 @@ void testVirial() {
 /** U at positions (and, if periodic, box vectors) mapped by the strain r_a -> r_a + epsilon r_b. */
 double strainedEnergy(Context& context, const Scene& scene, int a, int b, double epsilon) {
     auto strain = [&](Vec3 v) {
-        v[a] += epsilon*v[b];
+        v[a] += epsilon * v[b];
         return v;
     };
     if (scene.force->usesPeriodicBoundaryConditions())
@@ -80,16 +81,16 @@ void checkVirialTensor(Scene& scene, const std::string& label) {
     context.setPositions(scene.positions);
     const std::vector<double> particles = scene.force->getParticleVirials(context);
     double W[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, traceScale = 0.0, largest = 0.0;
-    for (size_t i = 0; i < particles.size()/9; i++) {
+    for (size_t i = 0; i < particles.size() / 9; i++) {
         for (int a = 0; a < 3; a++)
             for (int b = 0; b < 3; b++)
-                W[a][b] += particles[9*i + 3*a + b];
-        traceScale += std::abs(particles[9*i] + particles[9*i + 4] + particles[9*i + 8]);
+                W[a][b] += particles[9 * i + 3 * a + b];
+        traceScale += std::abs(particles[9 * i] + particles[9 * i + 4] + particles[9 * i + 8]);
     }
     for (int a = 0; a < 3; a++)
         for (int b = 0; b < 3; b++)
             largest = std::max(largest, std::abs(W[a][b]));
-    const double sumTolerance = precisionTolerance(1e-12, 1e-5)*traceScale;
+    const double sumTolerance = precisionTolerance(1e-12, 1e-5) * traceScale;
     assertClose(scene.force->getVirial(context), W[0][0] + W[1][1] + W[2][2], sumTolerance, label + ": trace W");
     for (int a = 0; a < 3; a++)
         for (int b = a + 1; b < 3; b++)
@@ -102,9 +103,10 @@ void checkVirialTensor(Scene& scene, const std::string& label) {
     const bool rectangular = scene.box[1][0] == 0.0 && scene.box[2][0] == 0.0 && scene.box[2][1] == 0.0;
     for (int a = 0; a < 3; a++)
         for (int b = (periodic ? a : 0); b < (periodic && rectangular ? a + 1 : 3); b++) {
-            const double derivative = (strainedEnergy(context, scene, a, b, epsilon)
-                                       - strainedEnergy(context, scene, a, b, -epsilon))/(2*epsilon);
-            assertClose(-derivative, W[a][b], 1e-6*largest,
+            const double derivative =
+                    (strainedEnergy(context, scene, a, b, epsilon) - strainedEnergy(context, scene, a, b, -epsilon))
+                    / (2 * epsilon);
+            assertClose(-derivative, W[a][b], 1e-6 * largest,
                         label + ": W_" + std::to_string(a) + std::to_string(b) + " = -dU/d epsilon");
         }
 }
@@ -117,9 +119,9 @@ void testVirialTensor() {
         checkVirialTensor(bulk, label + " bulk");
         Scene triclinic = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, true, 132);
         const double edge = triclinic.box[0][0];
-        setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
         checkVirialTensor(triclinic, label + " triclinic");
-        Scene slab = makeSlab(6, 0.82*referenceDensity, 0.2, estimator, 133);
+        Scene slab = makeSlab(6, 0.82 * referenceDensity, 0.2, estimator, 133);
         checkVirialTensor(slab, label + " slab");
         Scene cluster = makeLatticeLiquid(6, referenceDensity, 0.2, estimator, false, 134);
         checkVirialTensor(cluster, label + " open cluster");

@@ -51,7 +51,8 @@ double totalInternalEnergy(const GenDPDEIntegrator& integrator) {
     return sum;
 }
 
-void assertStatesIdentical(Context& a, Context& b, GenDPDEIntegrator& ia, GenDPDEIntegrator& ib, const std::string& what) {
+void assertStatesIdentical(Context& a, Context& b, GenDPDEIntegrator& ia, GenDPDEIntegrator& ib,
+                           const std::string& what) {
     State sa = a.getState(State::Positions | State::Velocities), sb = b.getState(State::Positions | State::Velocities);
     for (size_t i = 0; i < sa.getPositions().size(); i++) {
         if (!(sa.getPositions()[i] == sb.getPositions()[i]) || !(sa.getVelocities()[i] == sb.getVelocities()[i]))
@@ -66,18 +67,20 @@ void testPairUpdateConservation() {
     std::mt19937 random(5);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     for (int trial = 0; trial < 1000; trial++) {
-        double mi = 1.0 + 300.0*(uniform(random) + 1), mj = 1.0 + 300.0*(uniform(random) + 1);
-        Vec3 vi(uniform(random), uniform(random), uniform(random)), vj(uniform(random), uniform(random), uniform(random));
+        double mi = 1.0 + 300.0 * (uniform(random) + 1), mj = 1.0 + 300.0 * (uniform(random) + 1);
+        Vec3 vi(uniform(random), uniform(random), uniform(random)),
+                vj(uniform(random), uniform(random), uniform(random));
         Vec3 e(uniform(random), uniform(random), uniform(random));
         e /= std::sqrt(e.dot(e));
-        Vec3 momentum = vi*mi + vj*mj;
-        double kinetic = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
-        double change = Physics::dissipativePairUpdate(e, 0.3 + 0.5*(uniform(random) + 1), 2000.0,
-                                                       std::sqrt(4000.0*(1.0 + uniform(random))), 0.01, 0.1, 1/mi,
-                                                       1/mj, vi, vj, 3*uniform(random));
-        double kineticAfter = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj);
-        assertVectorClose(momentum, vi*mi + vj*mj, 1e-13*(std::sqrt(momentum.dot(momentum)) + mi + mj), "pair momentum");
-        assertClose(kineticAfter - kinetic, change, 1e-13*kinetic, "pair kinetic energy change");
+        Vec3 momentum = vi * mi + vj * mj;
+        double kinetic = 0.5 * mi * vi.dot(vi) + 0.5 * mj * vj.dot(vj);
+        double change = Physics::dissipativePairUpdate(e, 0.3 + 0.5 * (uniform(random) + 1), 2000.0,
+                                                       std::sqrt(4000.0 * (1.0 + uniform(random))), 0.01, 0.1, 1 / mi,
+                                                       1 / mj, vi, vj, 3 * uniform(random));
+        double kineticAfter = 0.5 * mi * vi.dot(vi) + 0.5 * mj * vj.dot(vj);
+        assertVectorClose(momentum, vi * mi + vj * mj, 1e-13 * (std::sqrt(momentum.dot(momentum)) + mi + mj),
+                          "pair momentum");
+        assertClose(kineticAfter - kinetic, change, 1e-13 * kinetic, "pair kinetic energy change");
     }
 }
 
@@ -94,7 +97,7 @@ void testConservationLaws() {
         Vec3 total;
         double scale = 0;
         for (size_t i = 0; i < state.getVelocities().size(); i++) {
-            Vec3 p = state.getVelocities()[i]*run.scene.system.getParticleMass(i);
+            Vec3 p = state.getVelocities()[i] * run.scene.system.getParticleMass(i);
             total += p;
             scale += std::sqrt(p.dot(p));
         }
@@ -109,12 +112,12 @@ void testConservationLaws() {
     for (const Vec3& f : forces)
         squaredForce += f.dot(f);
     const int steps = 10000, numParticles = forces.size();
-    const double roundingWalk = 3*std::sqrt((double) steps*numParticles)*std::pow(2.0, -24)
-                                *std::sqrt(squaredForce/numParticles)*stepSize;
+    const double roundingWalk = 3 * std::sqrt((double) steps * numParticles) * std::pow(2.0, -24)
+            * std::sqrt(squaredForce / numParticles) * stepSize;
     run.integrator.step(steps);
     auto after = momentumAndScale();
     assertVectorClose(before.first, after.first,
-                      precisionTolerance(1e-10*before.second, std::max(1e-10*before.second, roundingWalk)),
+                      precisionTolerance(1e-10 * before.second, std::max(1e-10 * before.second, roundingWalk)),
                       "total momentum over 10^4 steps");
 
     // No conservative force: K + sum eps is conserved by every step to rounding error.
@@ -125,10 +128,10 @@ void testConservationLaws() {
     GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
     integrator.setTemperature(temperature);
     integrator.setCutoffDistance(cutoff);
-    integrator.setRandomNumberSeed(5);   // fixed: with a seed drawn per run, 1 run in ~80 met an eps <= 0
+    integrator.setRandomNumberSeed(5); // fixed: with a seed drawn per run, 1 run in ~80 met an eps <= 0
     Context freeContext(free, integrator, *platform);
     freeContext.setPositions(run.scene.positions);
-    freeContext.setVelocitiesToTemperature(3*temperature, 7);
+    freeContext.setVelocitiesToTemperature(3 * temperature, 7);
     double initial = integrator.getConservedEnergy();
     integrator.step(1000);
     assertRelative(initial, integrator.getConservedEnergy(), 1e-12, "K + sum eps without conservative forces");
@@ -150,7 +153,7 @@ void testReproducibility() {
     State middle = b.context->getState(State::Positions);
     std::vector<Vec3> far = middle.getPositions();
     for (size_t i = 0; i < far.size(); i++)
-        far[i] += Vec3(0.3*(i % 5), -0.2*(i % 3), 0.5);
+        far[i] += Vec3(0.3 * (i % 5), -0.2 * (i % 3), 0.5);
     b.context->setPositions(far);
     b.context->getState(State::Energy);
     b.context->setPositions(middle.getPositions());
@@ -172,14 +175,14 @@ void testCheckpointContinuation() {
     State state = a.context->getState(State::Positions | State::Velocities | State::IntegratorParameters);
     a.integrator.step(150);
 
-    b.integrator.setRandomNumberSeed(0);      // the checkpoint carries the seed in use
-    b.integrator.setTemperature(3*temperature);
+    b.integrator.setRandomNumberSeed(0); // the checkpoint carries the seed in use
+    b.integrator.setTemperature(3 * temperature);
     b.start();
     b.context->loadCheckpoint(checkpoint);
     b.integrator.step(150);
     assertStatesIdentical(*a.context, *b.context, a.integrator, b.integrator, "continued from a checkpoint");
 
-    c.integrator.setTemperature(2*temperature);
+    c.integrator.setTemperature(2 * temperature);
     c.start();
     c.context->setState(state);
     c.integrator.step(150);
@@ -203,8 +206,7 @@ void testNonPositiveInternalEnergy() {
     std::string message;
     try {
         run.integrator.step(1);
-    }
-    catch (const OpenMMException& e) {
+    } catch (const OpenMMException& e) {
         message = e.what();
     }
     ASSERT(message.find("step 3") != std::string::npos && message.find("not applied") != std::string::npos);
@@ -214,7 +216,7 @@ void testNonPositiveInternalEnergy() {
     int named = std::stoi(message.substr(at + prefix.size()));
     Vec3 d = before.getPositions()[named] - before.getPositions()[17];
     for (int k = 0; k < 3; k++)
-        d[k] -= run.scene.box[k][k]*std::round(d[k]/run.scene.box[k][k]);
+        d[k] -= run.scene.box[k][k] * std::round(d[k] / run.scene.box[k][k]);
     ASSERT(named == 17 || std::sqrt(d.dot(d)) < cutoff);
     State after = context.getState(State::Positions | State::Velocities);
     for (size_t i = 0; i < before.getPositions().size(); i++) {
@@ -247,7 +249,7 @@ void testConservativeMode() {
     // No heat moves without conduction or friction, even between particles at different temperatures.
     std::vector<double> temperatures(run.scene.system.getNumParticles());
     for (size_t i = 0; i < temperatures.size(); i++)
-        temperatures[i] = temperature*(1 + 0.01*i);
+        temperatures[i] = temperature * (1 + 0.01 * i);
     none.integrator.setParticleTemperatures(temperatures);
     std::vector<double> initial = none.integrator.getInternalEnergies();
     none.integrator.step(50);
@@ -282,12 +284,12 @@ void testHeatConduction() {
     for (int i = 0; i < scene.system.getNumParticles(); i++)
         free.addParticle(particleMass);
     free.setDefaultPeriodicBoxVectors(scene.box[0], scene.box[1], scene.box[2]);
-    const double capacity = 1000*boltzmann;
-    GenDPDEIntegrator integrator(stepSize, 0.0, capacity*150.0*150.0/0.15, capacity);
+    const double capacity = 1000 * boltzmann;
+    GenDPDEIntegrator integrator(stepSize, 0.0, capacity * 150.0 * 150.0 / 0.15, capacity);
     integrator.setCutoffDistance(cutoff);
     integrator.setRandomNumberSeed(31);
     std::vector<double> temperatures;
-    double half = 0.5*scene.box[0][0];
+    double half = 0.5 * scene.box[0][0];
     for (const Vec3& r : scene.positions)
         temperatures.push_back(r[0] < half ? 100.0 : 200.0);
     integrator.setParticleTemperatures(temperatures);
@@ -300,14 +302,14 @@ void testHeatConduction() {
         int numCold = 0, numHot = 0;
         for (size_t i = 0; i < theta.size(); i++)
             (scene.positions[i][0] < half ? (numCold++, cold) : (numHot++, hot)) += theta[i];
-        return hot/numHot - cold/numCold;
+        return hot / numHot - cold / numCold;
     };
     assertClose(100.0, halfDifference(), 1e-9, "initial difference");
     integrator.step(2000);
     double difference = 0;
     for (int sample = 0; sample < 20; sample++) {
         integrator.step(50);
-        difference += halfDifference()/20;
+        difference += halfDifference() / 20;
     }
     assertRelative(initial, totalInternalEnergy(integrator), 1e-13, "sum eps under conduction");
     assertClose(0.0, difference, 1.5, "temperature difference of the two halves");
@@ -322,26 +324,26 @@ void testBadInput() {
         std::vector<std::string> fragments;
     };
     const std::vector<Case> cases = {
-        {[]() { GenDPDEIntegrator(0.0, 1, 1, 1); }, {"step size", "= 0 ps", "(0, 1000] ps"}},
-        {[]() { GenDPDEIntegrator(0.001, -1, 1, 1); }, {"friction", "-1", "[0, 1e+12] amu/ps"}},
-        {[]() { GenDPDEIntegrator(0.001, 1, -2, 1); }, {"heat conduction", "-2"}},
-        {[]() { GenDPDEIntegrator(0.001, 1, 1, 0); }, {"heat capacity", "= 0 kJ/(mol K)", "[1e-20, 1e+20]"}},
-        {[]() { GenDPDEIntegrator(0.001, NAN, 1, 1); }, {"friction", "nan"}},
-        {[&]() { integrator.setStepSize(-0.1); }, {"step size", "-0.1"}},
-        {[&]() { integrator.setStepSize(1e6); }, {"step size", "1000000"}},
-        {[&]() { integrator.setFriction(1e300); }, {"friction", "1e+300"}},
-        {[&]() { integrator.setHeatConduction(INFINITY); }, {"heat conduction", "inf"}},
-        {[&]() { integrator.setHeatCapacity(1e-30); }, {"heat capacity", "1e-30"}},
-        {[&]() { integrator.setTemperature(0.0); }, {"temperature", "= 0 K", "[1e-50, 1e+50] K"}},
-        {[&]() { integrator.setTemperature(INFINITY); }, {"temperature", "inf"}},
-        {[&]() { integrator.setTemperature(1e-200); }, {"temperature", "1e-200"}},
-        {[&]() { integrator.setParticleTemperatures({300, -1}); }, {"temperature of particle 1", "-1"}},
-        {[&]() { integrator.setParticleTemperatures({300, 1e153}); }, {"temperature of particle 1", "1e+153"}},
-        {[&]() { integrator.setParticleTemperatures({}); }, {"number of particle temperatures", "= 0"}},
-        {[&]() { integrator.setInternalEnergiesToTemperature(-3, 1); }, {"temperature", "-3"}},
-        {[&]() { integrator.setMode((GenDPDEIntegrator::Mode) 3); }, {"mode", "3"}},
-        {[&]() { integrator.setCutoffDistance(-1); }, {"cutoff", "-1"}},
-        {[&]() { integrator.setCutoffDistance(1e-320); }, {"cutoff", "e-321"}},
+            {[]() { GenDPDEIntegrator(0.0, 1, 1, 1); }, {"step size", "= 0 ps", "(0, 1000] ps"}},
+            {[]() { GenDPDEIntegrator(0.001, -1, 1, 1); }, {"friction", "-1", "[0, 1e+12] amu/ps"}},
+            {[]() { GenDPDEIntegrator(0.001, 1, -2, 1); }, {"heat conduction", "-2"}},
+            {[]() { GenDPDEIntegrator(0.001, 1, 1, 0); }, {"heat capacity", "= 0 kJ/(mol K)", "[1e-20, 1e+20]"}},
+            {[]() { GenDPDEIntegrator(0.001, NAN, 1, 1); }, {"friction", "nan"}},
+            {[&]() { integrator.setStepSize(-0.1); }, {"step size", "-0.1"}},
+            {[&]() { integrator.setStepSize(1e6); }, {"step size", "1000000"}},
+            {[&]() { integrator.setFriction(1e300); }, {"friction", "1e+300"}},
+            {[&]() { integrator.setHeatConduction(INFINITY); }, {"heat conduction", "inf"}},
+            {[&]() { integrator.setHeatCapacity(1e-30); }, {"heat capacity", "1e-30"}},
+            {[&]() { integrator.setTemperature(0.0); }, {"temperature", "= 0 K", "[1e-50, 1e+50] K"}},
+            {[&]() { integrator.setTemperature(INFINITY); }, {"temperature", "inf"}},
+            {[&]() { integrator.setTemperature(1e-200); }, {"temperature", "1e-200"}},
+            {[&]() { integrator.setParticleTemperatures({300, -1}); }, {"temperature of particle 1", "-1"}},
+            {[&]() { integrator.setParticleTemperatures({300, 1e153}); }, {"temperature of particle 1", "1e+153"}},
+            {[&]() { integrator.setParticleTemperatures({}); }, {"number of particle temperatures", "= 0"}},
+            {[&]() { integrator.setInternalEnergiesToTemperature(-3, 1); }, {"temperature", "-3"}},
+            {[&]() { integrator.setMode((GenDPDEIntegrator::Mode) 3); }, {"mode", "3"}},
+            {[&]() { integrator.setCutoffDistance(-1); }, {"cutoff", "-1"}},
+            {[&]() { integrator.setCutoffDistance(1e-320); }, {"cutoff", "e-321"}},
     };
     for (const Case& c : cases)
         assertThrowsMentioning(c.call, c.fragments);
@@ -359,7 +361,8 @@ void testBadInput() {
     assertThrowsMentioning([&]() { unset.step(1); }, {"temperatures are not set"});
     unset.setMode(GenDPDEIntegrator::Isothermal);
     assertThrowsMentioning([&]() { unset.step(1); }, {"Isothermal", "temperature"});
-    assertThrowsMentioning([&]() { unset.setParticleTemperatures({300, 300}); }, {"number of particle temperatures", "64"});
+    assertThrowsMentioning([&]() { unset.setParticleTemperatures({300, 300}); },
+                           {"number of particle temperatures", "64"});
     System noForce;
     noForce.addParticle(1.0);
     noForce.addParticle(1.0);
@@ -411,12 +414,12 @@ inline void assertTrajectoriesClose(const Trajectory& expected, const Trajectory
     double speed2 = 0.0;
     for (const Vec3& v : expected.velocities)
         speed2 += v.dot(v);
-    const double speedScale = std::sqrt(speed2/expected.velocities.size());
+    const double speedScale = std::sqrt(speed2 / expected.velocities.size());
     for (size_t i = 0; i < expected.positions.size(); i++) {
         const std::string particle = " of particle " + std::to_string(i);
         assertVectorClose(expected.positions[i], found.positions[i], positionTolerance,
                           label + ": position" + particle);
-        assertVectorClose(expected.velocities[i], found.velocities[i], relativeTolerance*speedScale,
+        assertVectorClose(expected.velocities[i], found.velocities[i], relativeTolerance * speedScale,
                           label + ": velocity" + particle);
         assertRelative(expected.energies[i], found.energies[i], relativeTolerance,
                        label + ": internal energy" + particle);
@@ -439,7 +442,7 @@ inline Trajectory runLatticeLiquid(int cellsPerSide, bool periodic, GenDPDEInteg
         setMixtureTypes(scene, false);
         setMixtureTypes(integrator, scene.system.getNumParticles(), false);
     }
-    integrator.setCutoffDistance(ownPairs ? 0.9*cutoff : 0.0);
+    integrator.setCutoffDistance(ownPairs ? 0.9 * cutoff : 0.0);
     integrator.setTemperature(temperature);
     integrator.setRandomNumberSeed(77);
     integrator.setMode(mode);

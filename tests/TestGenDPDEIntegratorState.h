@@ -33,12 +33,13 @@ void testBathTemperatureKeepsTheParticlesState() {
     Context& context = run.start();
     run.integrator.step(5);
     const std::vector<double> energies = run.integrator.getInternalEnergies();
-    run.integrator.setTemperature(2.0*temperature);
+    run.integrator.setTemperature(2.0 * temperature);
     ASSERT(energies == run.integrator.getInternalEnergies());
-    ASSERT_EQUAL(2.0*temperature, run.integrator.getTemperature());
-    std::vector<double> temperatures(context.getSystem().getNumParticles(), 1.5*temperature);
+    ASSERT_EQUAL(2.0 * temperature, run.integrator.getTemperature());
+    std::vector<double> temperatures(context.getSystem().getNumParticles(), 1.5 * temperature);
     run.integrator.setParticleTemperatures(temperatures);
-    assertRelative(1.5*temperature*heatCapacity, run.integrator.getInternalEnergies()[7], 1e-15, "eps after setting");
+    assertRelative(1.5 * temperature * heatCapacity, run.integrator.getInternalEnergies()[7], 1e-15,
+                   "eps after setting");
 
     // Before a Context: the configured temperatures are reported; the uniform start is explained, not invented.
     GenDPDEIntegrator unbound(stepSize, friction, heatConduction, heatCapacity);
@@ -47,7 +48,7 @@ void testBathTemperatureKeepsTheParticlesState() {
     assertThrowsMentioning([&]() { unbound.getParticleTemperatures(); }, {"bath temperature", "300 K"});
     unbound.setParticleTemperatures({310.0, 320.0});
     ASSERT(unbound.getParticleTemperatures() == std::vector<double>({310.0, 320.0}));
-    assertRelative(320.0*heatCapacity, unbound.getInternalEnergies()[1], 1e-15, "eps before a Context");
+    assertRelative(320.0 * heatCapacity, unbound.getInternalEnergies()[1], 1e-15, "eps before a Context");
 }
 
 /** The integrator's XML holds its parameters and the configured initial temperatures, never a Context's state. */
@@ -56,7 +57,7 @@ void testSerializationHoldsNoLiveState() {
     run.integrator.setParticleTemperatures(std::vector<double>(run.scene.system.getNumParticles(), temperature));
     run.start();
     run.integrator.step(3);
-    std::vector<double> live(run.scene.system.getNumParticles(), 3.0*temperature);
+    std::vector<double> live(run.scene.system.getNumParticles(), 3.0 * temperature);
     run.integrator.setParticleTemperatures(live);
     std::stringstream buffer;
     XmlSerializer::serialize<GenDPDEIntegrator>(&run.integrator, "Integrator", buffer);
@@ -73,19 +74,14 @@ void testSerializationHoldsNoLiveState() {
  * well formed but say something else.
  */
 struct CheckpointTail {
-    static const size_t header = 4*sizeof(std::int32_t);   // magic, version, seed, count
+    static const size_t header = 4 * sizeof(std::int32_t);   // magic, version, seed, count
     static const size_t trailer = sizeof(std::int32_t) + sizeof(std::uint64_t) + sizeof(std::int32_t);
     size_t start;   // where the integrator's data begins
     int numParticles;
     CheckpointTail(const std::string& bytes, int numParticles) :
-            start(bytes.size() - header - numParticles*sizeof(double) - trailer), numParticles(numParticles) {
-    }
-    size_t energiesAt() const {
-        return start + header;
-    }
-    size_t coverageAt() const {
-        return energiesAt() + numParticles*sizeof(double);
-    }
+            start(bytes.size() - header - numParticles * sizeof(double) - trailer), numParticles(numParticles) {}
+    size_t energiesAt() const { return start + header; }
+    size_t coverageAt() const { return energiesAt() + numParticles * sizeof(double); }
     /** The checkpoint with its checksum computed again over what it now holds (its coverage word must be 0 or 1). */
     std::string resealed(std::string bytes) const {
         std::int32_t coverage;
@@ -98,7 +94,7 @@ struct CheckpointTail {
             }
         };
         if (coverage == 1)
-            add(0, start);   // OpenMM's part: the whole stream before the integrator's data
+            add(0, start); // OpenMM's part: the whole stream before the integrator's data
         add(start, coverageAt() + sizeof(std::int32_t));
         std::memcpy(&bytes[coverageAt() + sizeof(std::int32_t)], &hash, sizeof(hash));
         return bytes;
@@ -119,7 +115,7 @@ void testCheckpointsAreValidated() {
     const std::string bytes = good.str();
     const int numParticles = context.getSystem().getNumParticles();
     const CheckpointTail tail(bytes, numParticles);
-    ASSERT_EQUAL(1, *(const std::int32_t*) &bytes[tail.coverageAt()]);   // a string stream: OpenMM's part covered
+    ASSERT_EQUAL(1, *(const std::int32_t*) &bytes[tail.coverageAt()]); // a string stream: OpenMM's part covered
     run.integrator.step(2);
     const std::vector<double> energies = run.integrator.getInternalEnergies();
     const int seed = run.integrator.getSeedInUse();
@@ -147,8 +143,7 @@ void testCheckpointsAreValidated() {
         bool threw = false;
         try {
             context.loadCheckpoint(stream);
-        }
-        catch (const std::exception&) {   // (OpenMM's own part may fail otherwise, e.g. a garbage string length)
+        } catch (const std::exception&) { // (OpenMM's own part may fail otherwise, e.g. a garbage string length)
             threw = true;
         }
         if (!threw)
@@ -159,7 +154,7 @@ void testCheckpointsAreValidated() {
     // Well formed, checksum and all, but with a bad internal energy.
     for (double bad : {std::nan(""), -1.0, 0.0, 1e300}) {
         std::string corrupt = bytes;
-        std::memcpy(&corrupt[tail.energiesAt() + 5*sizeof(double)], &bad, sizeof(double));
+        std::memcpy(&corrupt[tail.energiesAt() + 5 * sizeof(double)], &bad, sizeof(double));
         refused(tail.resealed(corrupt), {"corrupt", "particle 5"}, "corrupt internal energy");
     }
     {
@@ -178,7 +173,7 @@ void testCheckpointsAreValidated() {
     // Version 2 (magic, version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a
     // flag byte, count, energies) are still read.
     const std::string openmmPart = bytes.substr(0, tail.start);
-    const std::string energyBytes = bytes.substr(tail.energiesAt(), numParticles*sizeof(double));
+    const std::string energyBytes = bytes.substr(tail.energiesAt(), numParticles * sizeof(double));
     const std::int32_t magic = *(const std::int32_t*) &bytes[tail.start], count = numParticles;
     for (std::int32_t version : {1, 2}) {
         const std::int32_t olderSeed = 4240 + version;
@@ -227,12 +222,12 @@ void testStatesAreValidated() {
     const size_t start = xml.find("internalEnergies=\"") + 18;
     const std::string firstValue = xml.substr(start, xml.find(' ', start) - start);
     const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
-        {replaced("GenDPDEIntegratorVersion=\"2\"", "GenDPDEIntegratorVersion=\"9\""), {"version 9"}},
-        {replaced(firstValue + " ", firstValue + " garbage "), {"'garbage'", "not a number"}},
-        {replaced(firstValue + " ", "nan "), {"corrupt", "particle 0"}},
-        {replaced(firstValue + " ", "-0x1p+0 "), {"corrupt", "particle 0", "-1"}},
-        {replaced(firstValue + " ", ""), {"internal energies", "System has 64"}},
-        {replaced("seedInUse", "seedNotUsed"), {"does not hold GenDPDEIntegrator parameters"}},
+            {replaced("GenDPDEIntegratorVersion=\"2\"", "GenDPDEIntegratorVersion=\"9\""), {"version 9"}},
+            {replaced(firstValue + " ", firstValue + " garbage "), {"'garbage'", "not a number"}},
+            {replaced(firstValue + " ", "nan "), {"corrupt", "particle 0"}},
+            {replaced(firstValue + " ", "-0x1p+0 "), {"corrupt", "particle 0", "-1"}},
+            {replaced(firstValue + " ", ""), {"internal energies", "System has 64"}},
+            {replaced("seedInUse", "seedNotUsed"), {"does not hold GenDPDEIntegrator parameters"}},
     };
     for (const auto& c : cases) {
         assertThrowsMentioning([&]() { load(c.first); }, c.second);
@@ -244,13 +239,13 @@ void testStatesAreValidated() {
 /** A step size far too large blows a simulation up: the step that would move a particle farther than the pair range
  *  is refused before anything changes, naming the particle and the step, in every mode. */
 void testBlownUpStepIsRefused() {
-    for (GenDPDEIntegrator::Mode mode : {GenDPDEIntegrator::Isothermal, GenDPDEIntegrator::Conservative,
-                                         GenDPDEIntegrator::Isoenergetic}) {
+    for (GenDPDEIntegrator::Mode mode :
+         {GenDPDEIntegrator::Isothermal, GenDPDEIntegrator::Conservative, GenDPDEIntegrator::Isoenergetic}) {
         Run run(4, 36);
         run.integrator.setMode(mode);
         Context& context = run.start();
         std::vector<Vec3> velocities = context.getState(State::Velocities).getVelocities();
-        velocities[21] = Vec3(2.0*cutoff/stepSize, 0, 0);   // a particle that has been kicked out of control
+        velocities[21] = Vec3(2.0 * cutoff / stepSize, 0, 0); // a particle that has been kicked out of control
         context.setVelocities(velocities);
         const State before = context.getState(State::Positions | State::Velocities);
         assertThrowsMentioning([&]() { run.integrator.step(1); }, {"particle 21", "step 0", "unstable"});
@@ -288,9 +283,10 @@ void testNonFiniteValuesAreNamedAlike() {
         std::vector<Vec3> positions = run.scene.positions;
         positions[5] = Vec3(std::nan(""), 0, 0);
         context.setPositions(positions);
-        assertThrowsMentioning([&]() { run.integrator.step(1); }, {"GenDPDEIntegrator: the position of particle 5 is "
-                                                                   "not finite (nan, 0, 0) at step 0; the step was not "
-                                                                   "applied"});
+        assertThrowsMentioning([&]() { run.integrator.step(1); },
+                               {"GenDPDEIntegrator: the position of particle 5 is "
+                                "not finite (nan, 0, 0) at step 0; the step was not "
+                                "applied"});
     }
 }
 
@@ -312,14 +308,14 @@ void testOwnCutoffCheckedWhenTheBoxChanges() {
     for (int i = 0; i < run.scene.system.getNumParticles(); i++)
         free.addParticle(particleMass);
     free.setDefaultPeriodicBoxVectors(run.scene.box[0], run.scene.box[1], run.scene.box[2]);
-    free.addForce(new CustomExternalForce("0*periodicdistance(x, y, z, 0, 0, 0)"));   // makes the System periodic
+    free.addForce(new CustomExternalForce("0*periodicdistance(x, y, z, 0, 0, 0)")); // makes the System periodic
     GenDPDEIntegrator integrator(stepSize, friction, heatConduction, heatCapacity);
     integrator.setCutoffDistance(cutoff);
     integrator.setTemperature(temperature);
     Context context(free, integrator, *platform);
     context.setPositions(run.scene.positions);
     integrator.step(1);
-    context.setPeriodicBoxVectors(Vec3(1.5*cutoff, 0, 0), Vec3(0, 1.5*cutoff, 0), Vec3(0, 0, 1.5*cutoff));
+    context.setPeriodicBoxVectors(Vec3(1.5 * cutoff, 0, 0), Vec3(0, 1.5 * cutoff, 0), Vec3(0, 0, 1.5 * cutoff));
     assertThrowsMentioning([&]() { integrator.step(1); }, {"GenDPDEIntegrator", "cutoff distance", "half"});
 }
 
@@ -331,13 +327,13 @@ void testCutoffChangeAfterTheContext() {
     Run run(5, 41);
     run.start();
     run.integrator.step(1);
-    run.integrator.setCutoffDistance(0.9*cutoff);
-    assertThrowsMentioning([&]() { run.integrator.step(1); }, {"cutoff distance was changed to", "after the Context",
-                                                                "reinitialize"});
+    run.integrator.setCutoffDistance(0.9 * cutoff);
+    assertThrowsMentioning([&]() { run.integrator.step(1); },
+                           {"cutoff distance was changed to", "after the Context", "reinitialize"});
     ASSERT_EQUAL(1, (int) run.context->getStepCount());
-    run.integrator.setCutoffDistance(0.0);   // back to the Context's (the force's)
+    run.integrator.setCutoffDistance(0.0); // back to the Context's (the force's)
     run.integrator.step(1);
-    run.integrator.setCutoffDistance(0.9*cutoff);
+    run.integrator.setCutoffDistance(0.9 * cutoff);
     run.context->reinitialize(true);
     run.integrator.step(1);
     ASSERT_EQUAL(3, (int) run.context->getStepCount());
@@ -353,15 +349,15 @@ void testInternalEnergyDrawIsReproducible() {
     ASSERT(first == run.integrator.getInternalEnergies());
     // Particle 3's value is that of its own stream, whatever the number of particles.
     CounterRandom::ParticleStream stream(17, 3);
-    const double shape = heatCapacity/Physics::Boltzmann + 1.0;
-    ASSERT_EQUAL(Physics::Boltzmann*temperature*stream.gamma(shape), first[3]);
+    const double shape = heatCapacity / Physics::Boltzmann + 1.0;
+    ASSERT_EQUAL(Physics::Boltzmann * temperature * stream.gamma(shape), first[3]);
     run.integrator.setInternalEnergiesToTemperature(temperature, 18);
     ASSERT(first != run.integrator.getInternalEnergies());
 }
 
 /** C_V of particle i under setMixtureTypes (type 7: 3 C_V, type -3: C_V/2, type 0: C_V), written out here. */
 double mixtureHeatCapacity(int i) {
-    return i % 3 == 0 ? 3.0*heatCapacity : (i % 3 == 1 ? 0.5*heatCapacity : heatCapacity);
+    return i % 3 == 0 ? 3.0 * heatCapacity : (i % 3 == 1 ? 0.5 * heatCapacity : heatCapacity);
 }
 
 /**
@@ -381,8 +377,8 @@ void testSetInternalEnergiesLikeTemperatures() {
     }
     std::vector<double> temperatures(n), energies(n);
     for (int i = 0; i < n; i++) {
-        temperatures[i] = temperature*(0.8 + 0.4*std::sin(0.37*i)*std::sin(0.37*i));
-        energies[i] = mixtureHeatCapacity(i)*temperatures[i];
+        temperatures[i] = temperature * (0.8 + 0.4 * std::sin(0.37 * i) * std::sin(0.37 * i));
+        energies[i] = mixtureHeatCapacity(i) * temperatures[i];
     }
     byTemperature.integrator.setParticleTemperatures(temperatures);
     byEnergy.integrator.setInternalEnergies(energies);
@@ -415,13 +411,13 @@ void testSetInternalEnergiesBeforeTheContext() {
     const int n = run.scene.system.getNumParticles();
     std::vector<double> energies(n);
     for (int i = 0; i < n; i++)
-        energies[i] = heatCapacity*temperature*(1.0 + 0.01*i) + 1e-3/3.0;
-    run.integrator.setParticleTemperatures(std::vector<double>(n, 2.0*temperature));
+        energies[i] = heatCapacity * temperature * (1.0 + 0.01 * i) + 1e-3 / 3.0;
+    run.integrator.setParticleTemperatures(std::vector<double>(n, 2.0 * temperature));
     run.integrator.setInternalEnergies(energies);
     ASSERT(run.integrator.getInternalEnergies() == energies);
     const std::vector<double> theta = run.integrator.getParticleTemperatures();
     for (int i = 0; i < n; i++)
-        assertRelative(energies[i]/heatCapacity, theta[i], 1e-15, "configured theta_i");
+        assertRelative(energies[i] / heatCapacity, theta[i], 1e-15, "configured theta_i");
     std::stringstream buffer;
     XmlSerializer::serialize<GenDPDEIntegrator>(&run.integrator, "Integrator", buffer);
     std::unique_ptr<GenDPDEIntegrator> copy(XmlSerializer::deserialize<GenDPDEIntegrator>(buffer));
@@ -434,10 +430,10 @@ void testSetInternalEnergiesBeforeTheContext() {
     // Temperatures set last replace the energies.
     GenDPDEIntegrator unbound(stepSize, friction, heatConduction, heatCapacity);
     unbound.setInternalEnergies(energies);
-    unbound.setParticleTemperatures(std::vector<double>(n, 2.0*temperature));
+    unbound.setParticleTemperatures(std::vector<double>(n, 2.0 * temperature));
     Context context(run.scene.system, unbound, *platform);
     for (double e : unbound.getInternalEnergies())
-        assertRelative(2.0*temperature*heatCapacity, e, 1e-15, "eps_i after temperatures replaced energies");
+        assertRelative(2.0 * temperature * heatCapacity, e, 1e-15, "eps_i after temperatures replaced energies");
 }
 
 /**
@@ -448,22 +444,22 @@ void testSetInternalEnergiesBeforeTheContext() {
 void testSetInternalEnergiesRefusesBadInput() {
     Run run(4, 43);
     const int n = run.scene.system.getNumParticles();
-    const std::vector<double> configured(n, heatCapacity*temperature);
+    const std::vector<double> configured(n, heatCapacity * temperature);
     run.integrator.setInternalEnergies(configured);
     const std::string range = "[1e-100, 1e+100] kJ/mol";
     auto withLast = [&](double value) {
-        std::vector<double> energies(n, 2.0*heatCapacity*temperature);
+        std::vector<double> energies(n, 2.0 * heatCapacity * temperature);
         energies[n - 1] = value;
         return energies;
     };
     const std::string last = "internal energy of particle " + std::to_string(n - 1);
     const std::vector<std::pair<std::vector<double>, std::vector<std::string>>> cases = {
-        {withLast(0.0), {last, "= 0 kJ/mol", range}},
-        {withLast(-1.5), {last, "= -1.5 kJ/mol", range}},
-        {withLast(std::nan("")), {last, "nan", range}},
-        {withLast(INFINITY), {last, "inf", range}},
-        {withLast(1e300), {last, "1e+300", range}},
-        {{}, {"number of internal energies", "= 0", "one per particle"}},
+            {withLast(0.0), {last, "= 0 kJ/mol", range}},
+            {withLast(-1.5), {last, "= -1.5 kJ/mol", range}},
+            {withLast(std::nan("")), {last, "nan", range}},
+            {withLast(INFINITY), {last, "inf", range}},
+            {withLast(1e300), {last, "1e+300", range}},
+            {{}, {"number of internal energies", "= 0", "one per particle"}},
     };
     for (bool bound : {false, true}) {
         if (bound) {

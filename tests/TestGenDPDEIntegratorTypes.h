@@ -14,11 +14,11 @@ inline void setMixtureTypes(GenDPDEIntegrator& integrator, int numParticles, boo
         if (i % 3 != 2)
             integrator.setParticleType(i, i % 3 == 0 ? 7 : -3);
     const double c = integrator.getHeatCapacity(), g = integrator.getFriction(), k = integrator.getHeatConduction();
-    integrator.addTypeHeatCapacity(7, sameAsDefaults ? c : 3*c);
-    integrator.addTypeHeatCapacity(-3, sameAsDefaults ? c : 0.5*c);
-    integrator.addTypePair(7, -3, sameAsDefaults ? g : 2*g, sameAsDefaults ? k : 0.5*k);
-    integrator.addTypePair(7, 7, sameAsDefaults ? g : 0.5*g, sameAsDefaults ? k : 3*k);
-    integrator.addTypePair(-3, 0, sameAsDefaults ? g : 0.0, sameAsDefaults ? k : 2*k);
+    integrator.addTypeHeatCapacity(7, sameAsDefaults ? c : 3 * c);
+    integrator.addTypeHeatCapacity(-3, sameAsDefaults ? c : 0.5 * c);
+    integrator.addTypePair(7, -3, sameAsDefaults ? g : 2 * g, sameAsDefaults ? k : 0.5 * k);
+    integrator.addTypePair(7, 7, sameAsDefaults ? g : 0.5 * g, sameAsDefaults ? k : 3 * k);
+    integrator.addTypePair(-3, 0, sameAsDefaults ? g : 0.0, sameAsDefaults ? k : 2 * k);
 }
 
 /**
@@ -56,26 +56,26 @@ void testMixtureConservation() {
     setMixtureTypes(run.integrator, n, false);
     std::vector<double> temperatures(n);
     for (int i = 0; i < n; i++)
-        temperatures[i] = temperature*(0.8 + 0.4*((i*37) % n)/n);
+        temperatures[i] = temperature * (0.8 + 0.4 * ((i * 37) % n) / n);
     run.integrator.setParticleTemperatures(temperatures);
     Context& context = run.start();
     const std::vector<double> energies = run.integrator.getInternalEnergies();
     for (int i : {0, 1, 2, 30, 31, 32}) {
-        const double capacity = heatCapacity*(i % 3 == 0 ? 3.0 : i % 3 == 1 ? 0.5 : 1.0);
-        assertRelative(capacity*temperatures[i], energies[i], 1e-15, "eps_i = C_V(type) theta_i");
+        const double capacity = heatCapacity * (i % 3 == 0 ? 3.0 : i % 3 == 1 ? 0.5 : 1.0);
+        assertRelative(capacity * temperatures[i], energies[i], 1e-15, "eps_i = C_V(type) theta_i");
     }
     Vec3 before;
     for (int i = 0; i < n; i++)
-        before += context.getState(State::Velocities).getVelocities()[i]*particleMass;
+        before += context.getState(State::Velocities).getVelocities()[i] * particleMass;
     run.integrator.step(1000);
     Vec3 after;
     State state = context.getState(State::Velocities);
     double scale = 0;
     for (int i = 0; i < n; i++) {
-        after += state.getVelocities()[i]*particleMass;
-        scale += particleMass*std::sqrt(state.getVelocities()[i].dot(state.getVelocities()[i]));
+        after += state.getVelocities()[i] * particleMass;
+        scale += particleMass * std::sqrt(state.getVelocities()[i].dot(state.getVelocities()[i]));
     }
-    assertVectorClose(before, after, precisionTolerance(1e-10, 1e-6)*scale, "mixture: total momentum");
+    assertVectorClose(before, after, precisionTolerance(1e-10, 1e-6) * scale, "mixture: total momentum");
 
     System free;
     for (int i = 0; i < n; i++)
@@ -87,7 +87,7 @@ void testMixtureConservation() {
     integrator.setParticleTemperatures(temperatures);
     Context freeContext(free, integrator, *platform);
     freeContext.setPositions(run.scene.positions);
-    freeContext.setVelocitiesToTemperature(3*temperature, 7);
+    freeContext.setVelocitiesToTemperature(3 * temperature, 7);
     const double initial = integrator.getConservedEnergy();
     integrator.step(1000);
     assertRelative(initial, integrator.getConservedEnergy(), 1e-12, "mixture: K + sum eps without forces");
@@ -109,7 +109,7 @@ void testMixtureConservation() {
  */
 void testTwoMaterialConduction() {
     const int side = 6;
-    const double spacing = std::cbrt(1.0/referenceDensity);
+    const double spacing = std::cbrt(1.0 / referenceDensity);
     System system;
     std::vector<Vec3> positions;
     std::vector<int> material;
@@ -117,13 +117,13 @@ void testTwoMaterialConduction() {
         for (int y = 0; y < side; y++)
             for (int z = 0; z < side; z++) {
                 system.addParticle(particleMass);
-                positions.push_back(Vec3((x - side/2 + 0.5)*spacing, y*spacing, z*spacing));
-                material.push_back(x < side/2 ? 1 : 2);
+                positions.push_back(Vec3((x - side / 2 + 0.5) * spacing, y * spacing, z * spacing));
+                material.push_back(x < side / 2 ? 1 : 2);
             }
     const int n = positions.size();
-    const double kappa = 40.0/stepSize;   // kappa dt = 40 kJ K/mol
-    const double capacityA = 4000*boltzmann, capacityB = 1000*boltzmann;
-    GenDPDEIntegrator integrator(stepSize, 0.0, 0.25*kappa, capacityB);
+    const double kappa = 40.0 / stepSize;   // kappa dt = 40 kJ K/mol
+    const double capacityA = 4000 * boltzmann, capacityB = 1000 * boltzmann;
+    GenDPDEIntegrator integrator(stepSize, 0.0, 0.25 * kappa, capacityB);
     integrator.setCutoffDistance(cutoff);
     integrator.setRandomNumberSeed(41);
     std::vector<double> initialTemperatures;
@@ -133,7 +133,7 @@ void testTwoMaterialConduction() {
     }
     integrator.addTypeHeatCapacity(1, capacityA);
     integrator.addTypePair(1, 2, 0.0, kappa);
-    integrator.addTypePair(1, 1, 0.0, 3*kappa);
+    integrator.addTypePair(1, 1, 0.0, 3 * kappa);
     integrator.setParticleTemperatures(initialTemperatures);
     Context context(system, integrator, *platform);
     context.setPositions(positions);
@@ -147,7 +147,7 @@ void testTwoMaterialConduction() {
                 const double r = std::sqrt(d.dot(d));
                 if (r < cutoff) {
                     pairs.emplace_back(i, j);
-                    omega2.push_back((1 - r/cutoff)*(1 - r/cutoff));
+                    omega2.push_back((1 - r / cutoff) * (1 - r / cutoff));
                 }
             }
     auto energyOfA = [&]() {
@@ -163,14 +163,14 @@ void testTwoMaterialConduction() {
         const std::vector<double> e = integrator.getInternalEnergies();
         for (size_t p = 0; p < pairs.size(); p++) {
             const int i = pairs[p].first, j = pairs[p].second;
-            expected += kappa*omega2[p]*(capacityA/e[i] - capacityB/e[j])*stepSize;
-            variance += 2*boltzmann*kappa*omega2[p]*stepSize;
+            expected += kappa * omega2[p] * (capacityA / e[i] - capacityB / e[j]) * stepSize;
+            variance += 2 * boltzmann * kappa * omega2[p] * stepSize;
         }
         integrator.step(1);
     }
     const double measured = energyOfA() - initialA;
-    ASSERT(expected < -20*std::sqrt(variance));   // the test is sensitive: the flux is far above the noise
-    assertClose(expected, measured, 4*std::sqrt(variance), "heat gained by material A over 400 steps");
+    ASSERT(expected < -20 * std::sqrt(variance));   // the test is sensitive: the flux is far above the noise
+    assertClose(expected, measured, 4 * std::sqrt(variance), "heat gained by material A over 400 steps");
     assertRelative(initialTotal, totalInternalEnergy(integrator), 1e-13, "sum eps of the two materials");
 }
 
@@ -208,7 +208,7 @@ void testTablesByClass() {
     const int numParticles = 4000;
     std::map<int, int> typeOfParticle;
     for (int i = 0; i < numParticles; i++)
-        typeOfParticle[i] = 10*i - 3;   // 4000 distinct types
+        typeOfParticle[i] = 10 * i - 3;   // 4000 distinct types
     const ParticleTypeIndex types(typeOfParticle, numParticles, "GenDPDEIntegrator");
     GenDPDEIntegrator integrator(0.001, 2.0, 3.0, 4.0);
     TypePairTable table = typePairTable(integrator, types);
@@ -222,7 +222,7 @@ void testTablesByClass() {
     ASSERT_EQUAL(9, (int) table.friction.size());
     const std::vector<int>& index = types.getParticleTypeIndices();
     auto pairValue = [&](const std::vector<double>& values, int i, int j) {
-        return values[table.classOf(index[i])*table.numClasses + table.classOf(index[j])];
+        return values[table.classOf(index[i]) * table.numClasses + table.classOf(index[j])];
     };
     for (int i : {0, 5, 10, 3999})
         for (int j : {0, 5, 10, 3999}) {
@@ -261,17 +261,17 @@ void testTypeChangesAfterTheContext() {
     later.integrator.step(1);
     later.integrator.setParticleType(5, 3);
     later.context->reinitialize(true);        // applied: the entry for type 3 is now one the Context has
-    later.integrator.addTypeHeatCapacity(3, 2*heatCapacity);
+    later.integrator.addTypeHeatCapacity(3, 2 * heatCapacity);
     later.integrator.step(1);
 
     // An entry for types the Context has, added after it was created, against the same entry from the start.
     Run first(4, 16), added(4, 16);
     for (Run* run : {&first, &added})
         setMixtureTypes(run->scene, false);   // types 7, -3, 0 on the force, which the integrator takes
-    first.integrator.addTypePair(7, -3, 3*friction, 0.25*heatConduction);
+    first.integrator.addTypePair(7, -3, 3 * friction, 0.25 * heatConduction);
     first.start();
     added.start();
-    added.integrator.addTypePair(7, -3, 3*friction, 0.25*heatConduction);
+    added.integrator.addTypePair(7, -3, 3 * friction, 0.25 * heatConduction);
     added.integrator.setParticleType(0, 7);   // the type particle 0 runs with (the force's): not a change
     first.integrator.step(30);
     added.integrator.step(30);
@@ -291,18 +291,21 @@ void testParticleTypesFromTheForce() {
     setMixtureTypes(both.integrator, both.scene.system.getNumParticles(), false);
     // The same entries, but the types only on the force.
     setMixtureTypes(taken.scene, false);
-    taken.integrator.addTypeHeatCapacity(7, 3*heatCapacity);
-    taken.integrator.addTypeHeatCapacity(-3, 0.5*heatCapacity);
-    taken.integrator.addTypePair(7, -3, 2*friction, 0.5*heatConduction);
-    taken.integrator.addTypePair(7, 7, 0.5*friction, 3*heatConduction);
-    taken.integrator.addTypePair(-3, 0, 0.0, 2*heatConduction);
+    taken.integrator.addTypeHeatCapacity(7, 3 * heatCapacity);
+    taken.integrator.addTypeHeatCapacity(-3, 0.5 * heatCapacity);
+    taken.integrator.addTypePair(7, -3, 2 * friction, 0.5 * heatConduction);
+    taken.integrator.addTypePair(7, 7, 0.5 * friction, 3 * heatConduction);
+    taken.integrator.addTypePair(-3, 0, 0.0, 2 * heatConduction);
     both.start();
     taken.start();
     // Every particle starts at the bath temperature: eps_i = C_V(type) T with the force's types.
     const std::vector<double> eps = taken.integrator.getInternalEnergies();
     for (int i : {0, 1, 2, 30, 31, 32})
-        assertRelative((i % 3 == 0 ? 3.0 : i % 3 == 1 ? 0.5 : 1.0)*heatCapacity*temperature, eps[i], 1e-15,
-                       "the force's types select the integrator's heat capacities");
+        assertRelative((i % 3 == 0           ? 3.0
+                                : i % 3 == 1 ? 0.5
+                                             : 1.0)
+                               * heatCapacity * temperature,
+                       eps[i], 1e-15, "the force's types select the integrator's heat capacities");
     both.integrator.step(50);
     taken.integrator.step(50);
     assertStatesIdentical(*both.context, *taken.context, both.integrator, taken.integrator,

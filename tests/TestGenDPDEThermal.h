@@ -45,32 +45,32 @@ struct Laws {
     Laws() {
         GenDPDEForce force(cutoff);
         force.getTaitParameters(n0, pi0, bulkModulus, gammaT);
-        beta = 2.64e-3*gammaT*bulkModulus;
+        beta = 2.64e-3 * gammaT * bulkModulus;
         theta0 = temperature;
         // pi = k T n y - a n^2 with y = 1/(1 - b n): matching pi0 and dpi/dn = gamma_T B_T/n0 at n0 gives
         // k T (y^2 - 2 y) = (gamma_T B_T - 2 pi0)/n0.
-        k = heatCapacity/10;
-        const double kT = k*temperature;
-        const double y = 1 + std::sqrt(1 + (gammaT*bulkModulus - 2*pi0)/(n0*kT));
-        b = (1 - 1/y)/n0;
-        a = (kT*y*n0 - pi0)/(n0*n0);
-        if (!(a > 0 && b > 0 && b*n0 < 1))
+        k = heatCapacity / 10;
+        const double kT = k * temperature;
+        const double y = 1 + std::sqrt(1 + (gammaT * bulkModulus - 2 * pi0) / (n0 * kT));
+        b = (1 - 1 / y) / n0;
+        a = (kT * y * n0 - pi0) / (n0 * n0);
+        if (!(a > 0 && b > 0 && b * n0 < 1))
             throw std::runtime_error("ThermalTests::Laws: no van der Waals law matches the Tait law");
     }
     /** e(n) and sigma(n) of a law (written out from the free energy, independently of the physics core). */
     void parts(bool vanDerWaals, double n, double& e, double& sigma, double& pressureAtZero,
                double& thermalPressure) const {
         if (vanDerWaals) {
-            e = -a*n;
-            sigma = k*std::log((1 - b*n)/(b*n));
-            pressureAtZero = -a*n*n;
-            thermalPressure = k*n/(1 - b*n);
-        }
-        else {
-            const double x = n/n0;
-            e = (bulkModulus - pi0)/n + bulkModulus/((gammaT - 1)*n0)*std::pow(x, gammaT - 1) + beta*theta0/n;
-            sigma = beta/n;
-            pressureAtZero = pi0 + bulkModulus*(std::pow(x, gammaT) - 1) - beta*theta0;
+            e = -a * n;
+            sigma = k * std::log((1 - b * n) / (b * n));
+            pressureAtZero = -a * n * n;
+            thermalPressure = k * n / (1 - b * n);
+        } else {
+            const double x = n / n0;
+            e = (bulkModulus - pi0) / n + bulkModulus / ((gammaT - 1) * n0) * std::pow(x, gammaT - 1)
+                    + beta * theta0 / n;
+            sigma = beta / n;
+            pressureAtZero = pi0 + bulkModulus * (std::pow(x, gammaT) - 1) - beta * theta0;
             thermalPressure = beta;
         }
     }
@@ -100,7 +100,7 @@ inline std::vector<double> oracleDensities(const Scene& scene, const std::vector
     const BruteForce::Result result = BruteForce::evaluate(model, positions);
     std::vector<double> density;
     for (double v : result.volume)
-        density.push_back(1/v);
+        density.push_back(1 / v);
     return density;
 }
 
@@ -125,7 +125,7 @@ struct Run {
         std::mt19937 random(seed);
         std::uniform_real_distribution<double> uniform(-0.1, 0.1);
         for (int i = 0; i < scene.system.getNumParticles(); i++)
-            temperatures.push_back(temperature*(1 + uniform(random)));
+            temperatures.push_back(temperature * (1 + uniform(random)));
         integrator.setParticleTemperatures(temperatures);
     }
     Context& start() {
@@ -134,34 +134,32 @@ struct Run {
         context->setVelocitiesToTemperature(temperature, 99);
         return *context;
     }
-    std::vector<Vec3> positions() const {
-        return context->getState(State::Positions).getPositions();
-    }
+    std::vector<Vec3> positions() const { return context->getState(State::Positions).getPositions(); }
 };
 
 /** The oracle's U and forces at positions, with each particle's theta given by thetaOf(i, n_i, e, sigma). */
 struct OracleLaw {
     const Laws& laws;
     bool isothermal;
-    std::vector<double> storedEnergy, storedEntropy;   // eps_i and the sigma_i it belongs to (not isothermal)
+    std::vector<double> storedEnergy, storedEntropy; // eps_i and the sigma_i it belongs to (not isothermal)
     void operator()(int i, double n, double& pressure, double& energy) const {
         double e, sigma, pressureAtZero, thermalPressure;
         laws.parts(isVanDerWaals(i), n, e, sigma, pressureAtZero, thermalPressure);
         if (isothermal) {
-            pressure = pressureAtZero + temperature*thermalPressure;
-            energy = e - temperature*sigma;
+            pressure = pressureAtZero + temperature * thermalPressure;
+            energy = e - temperature * sigma;
             return;
         }
         // s fixed: C theta = eps exp(-(sigma(n) - sigma_i)/C); the particle's term of U is e + C theta - eps.
         const double thermal = thermalEnergy(i, n);
-        pressure = pressureAtZero + thermal/heatCapacity*thermalPressure;
+        pressure = pressureAtZero + thermal / heatCapacity * thermalPressure;
         energy = e + thermal - storedEnergy[i];
     }
     /** C theta_i of particle i at density n, its entropy fixed (not isothermal). */
     double thermalEnergy(int i, double n) const {
         double e, sigma, pressureAtZero, thermalPressure;
         laws.parts(isVanDerWaals(i), n, e, sigma, pressureAtZero, thermalPressure);
-        return storedEnergy[i]*std::exp(-(sigma - storedEntropy[i])/heatCapacity);
+        return storedEnergy[i] * std::exp(-(sigma - storedEntropy[i]) / heatCapacity);
     }
 };
 
@@ -176,76 +174,77 @@ struct OracleLaw {
  */
 void testAgainstOracle() {
     for (bool isothermal : {true, false})
-    for (double background : {0.0, 60.0}) {   // (the background pressure adds to both laws: the oracle adds it too)
-        const std::string mode = std::string(isothermal ? "Isothermal" : "Conservative")
-                                 + (background != 0 ? ", background pressure" : "");
-        Run run(isothermal ? GenDPDEIntegrator::Isothermal : GenDPDEIntegrator::Conservative);
-        run.scene.force->setBackgroundPressure(background);
-        Context& context = run.start();
-        run.integrator.step(2);
-        OracleLaw law{run.laws, isothermal, {}, {}};
-        if (!isothermal) {
-            // eps_i and sigma(n_i) at these positions: the state the next step carries isentropically.
-            law.storedEnergy = run.integrator.getInternalEnergies();
-            const std::vector<double> density = oracleDensities(run.scene, run.positions());
-            for (int i = 0; i < (int) density.size(); i++) {
-                double e, sigma, p0, pt;
-                run.laws.parts(isVanDerWaals(i), density[i], e, sigma, p0, pt);
-                law.storedEntropy.push_back(sigma);
+        for (double background : {0.0, 60.0}) { // (the background pressure adds to both laws: the oracle adds it too)
+            const std::string mode = std::string(isothermal ? "Isothermal" : "Conservative")
+                    + (background != 0 ? ", background pressure" : "");
+            Run run(isothermal ? GenDPDEIntegrator::Isothermal : GenDPDEIntegrator::Conservative);
+            run.scene.force->setBackgroundPressure(background);
+            Context& context = run.start();
+            run.integrator.step(2);
+            OracleLaw law{run.laws, isothermal, {}, {}};
+            if (!isothermal) {
+                // eps_i and sigma(n_i) at these positions: the state the next step carries isentropically.
+                law.storedEnergy = run.integrator.getInternalEnergies();
+                const std::vector<double> density = oracleDensities(run.scene, run.positions());
+                for (int i = 0; i < (int) density.size(); i++) {
+                    double e, sigma, p0, pt;
+                    run.laws.parts(isVanDerWaals(i), density[i], e, sigma, p0, pt);
+                    law.storedEntropy.push_back(sigma);
+                }
             }
+            run.integrator.step(1);
+            const std::vector<Vec3> positions = run.positions();
+            BruteForce::Model model = bruteForceModel(run.scene);
+            model.particleLaw = law;
+            const BruteForce::Result expected = BruteForce::evaluate(model, positions);
+            double work = 0; // sum_i (C theta_i - eps_i): now in the platform's internal energies, not in its U
+            if (!isothermal) {
+                const std::vector<double> energies = run.integrator.getInternalEnergies();
+                double largestEnergy = 0, largestChange = 0;
+                for (double e : law.storedEnergy)
+                    largestEnergy = std::max(largestEnergy, e);
+                for (int i = 0; i < (int) energies.size(); i++) {
+                    const double thermal = law.thermalEnergy(i, 1 / expected.volume[i]);
+                    // (float forces: the float densities' rounding enters exp(-sigma(n)/C), sigma/C ~ 2: 1e-5 as above)
+                    assertClose(thermal, energies[i], precisionTolerance(1e-12, 1e-5) * largestEnergy,
+                                mode + ": eps_i after the step (C theta_i at the positions reached)");
+                    work += thermal - law.storedEnergy[i];
+                    largestChange = std::max(largestChange, std::fabs(thermal - law.storedEnergy[i]));
+                }
+                if (!(largestChange > 1e-4 * largestEnergy)) // (else the comparison would not see a stale state)
+                    throw std::runtime_error(mode + ": the step compressed the particles too little to test");
+            }
+            const State state = context.getState(State::Energy | State::Forces);
+            // (float forces, the GPU platforms' single and mixed precision: rounding of float densities and pressures)
+            assertRelative(expected.energy - work, state.getPotentialEnergy(), precisionTolerance(1e-9, 2e-6),
+                           mode + ": U");
+            double largest = 0;
+            for (const Vec3& f : expected.forces)
+                largest = std::max(largest, std::sqrt(f.dot(f)));
+            for (size_t i = 0; i < positions.size(); i++)
+                assertVectorClose(expected.forces[i], state.getForces()[i], precisionTolerance(1e-9, 1e-5) * largest,
+                                  mode + ": force");
+            const std::vector<double> pressures = run.scene.force->getParticlePressures(context);
+            double pressureScale = 0; // (relative to the largest: a pressure may be near 0)
+            for (double p : expected.pressure)
+                pressureScale = std::max(pressureScale, std::fabs(p));
+            for (size_t i = 0; i < positions.size(); i++)
+                assertClose(expected.pressure[i], pressures[i], precisionTolerance(1e-9, 1e-5) * pressureScale,
+                            mode + ": pressure");
+            // -dU/dr by central differences of the oracle's U (h = 1e-5 nm: truncation ~h^2 U''' ~1e-8 of the force).
+            const double h = 1e-5;
+            for (int i : {0, 2, 29, 47})
+                for (int c = 0; c < 3; c++) {
+                    std::vector<Vec3> plus = positions, minus = positions;
+                    plus[i][c] += h;
+                    minus[i][c] -= h;
+                    const double derivative =
+                            (BruteForce::evaluate(model, plus).energy - BruteForce::evaluate(model, minus).energy)
+                            / (2 * h);
+                    assertClose(-derivative, state.getForces()[i][c], precisionTolerance(1e-6, 1e-5) * largest,
+                                mode + ": -dU/dr");
+                }
         }
-        run.integrator.step(1);
-        const std::vector<Vec3> positions = run.positions();
-        BruteForce::Model model = bruteForceModel(run.scene);
-        model.particleLaw = law;
-        const BruteForce::Result expected = BruteForce::evaluate(model, positions);
-        double work = 0;   // sum_i (C theta_i - eps_i): now in the platform's internal energies, not in its U
-        if (!isothermal) {
-            const std::vector<double> energies = run.integrator.getInternalEnergies();
-            double largestEnergy = 0, largestChange = 0;
-            for (double e : law.storedEnergy)
-                largestEnergy = std::max(largestEnergy, e);
-            for (int i = 0; i < (int) energies.size(); i++) {
-                const double thermal = law.thermalEnergy(i, 1/expected.volume[i]);
-                // (float forces: the float densities' rounding enters exp(-sigma(n)/C), sigma/C ~ 2: 1e-5 as above)
-                assertClose(thermal, energies[i], precisionTolerance(1e-12, 1e-5)*largestEnergy,
-                            mode + ": eps_i after the step (C theta_i at the positions reached)");
-                work += thermal - law.storedEnergy[i];
-                largestChange = std::max(largestChange, std::fabs(thermal - law.storedEnergy[i]));
-            }
-            if (!(largestChange > 1e-4*largestEnergy))   // (else the comparison would not see a stale state)
-                throw std::runtime_error(mode + ": the step compressed the particles too little to test");
-        }
-        const State state = context.getState(State::Energy | State::Forces);
-        // (float forces, the GPU platforms' single and mixed precision: rounding of float densities and pressures)
-        assertRelative(expected.energy - work, state.getPotentialEnergy(), precisionTolerance(1e-9, 2e-6),
-                       mode + ": U");
-        double largest = 0;
-        for (const Vec3& f : expected.forces)
-            largest = std::max(largest, std::sqrt(f.dot(f)));
-        for (size_t i = 0; i < positions.size(); i++)
-            assertVectorClose(expected.forces[i], state.getForces()[i], precisionTolerance(1e-9, 1e-5)*largest,
-                              mode + ": force");
-        const std::vector<double> pressures = run.scene.force->getParticlePressures(context);
-        double pressureScale = 0;   // (relative to the largest: a pressure may be near 0)
-        for (double p : expected.pressure)
-            pressureScale = std::max(pressureScale, std::fabs(p));
-        for (size_t i = 0; i < positions.size(); i++)
-            assertClose(expected.pressure[i], pressures[i], precisionTolerance(1e-9, 1e-5)*pressureScale,
-                        mode + ": pressure");
-        // -dU/dr by central differences of the oracle's U (h = 1e-5 nm: truncation ~h^2 U''' ~1e-8 of the force).
-        const double h = 1e-5;
-        for (int i : {0, 2, 29, 47})
-            for (int c = 0; c < 3; c++) {
-                std::vector<Vec3> plus = positions, minus = positions;
-                plus[i][c] += h;
-                minus[i][c] -= h;
-                const double derivative = (BruteForce::evaluate(model, plus).energy
-                                           - BruteForce::evaluate(model, minus).energy)/(2*h);
-                assertClose(-derivative, state.getForces()[i][c], precisionTolerance(1e-6, 1e-5)*largest,
-                            mode + ": -dU/dr");
-            }
-    }
 }
 
 /**
@@ -256,10 +255,10 @@ void testAgainstOracle() {
  */
 void testConservation() {
     if (floatForces())
-        return;   // float forces: rounding, not the step, sets the excursion (the double precision runs it)
+        return; // float forces: rounding, not the step, sets the excursion (the double precision runs it)
     double excursion[2];
     for (int halving = 0; halving < 2; halving++) {
-        const double dt = stepSize/(1 << halving);
+        const double dt = stepSize / (1 << halving);
         Run run(GenDPDEIntegrator::Conservative, dt);
         run.start();
         auto entropies = [&]() {
@@ -269,7 +268,7 @@ void testConservation() {
             for (size_t i = 0; i < theta.size(); i++) {
                 double e, sigma, p0, pt;
                 run.laws.parts(isVanDerWaals(i), density[i], e, sigma, p0, pt);
-                s.push_back(sigma + heatCapacity*std::log(theta[i]));
+                s.push_back(sigma + heatCapacity * std::log(theta[i]));
             }
             return s;
         };
@@ -283,9 +282,9 @@ void testConservation() {
         excursion[halving] = largest;
         const std::vector<double> s1 = entropies();
         for (size_t i = 0; i < s0.size(); i++)
-            assertClose(s0[i], s1[i], 1e-9*heatCapacity, "the entropy of particle " + std::to_string(i));
+            assertClose(s0[i], s1[i], 1e-9 * heatCapacity, "the entropy of particle " + std::to_string(i));
     }
-    const double ratio = excursion[0]/excursion[1];
+    const double ratio = excursion[0] / excursion[1];
     std::ostringstream what;
     what << "energy excursion ratio dt/(dt/2) = " << ratio << " (" << excursion[0] << ", " << excursion[1]
          << " kJ/mol)";
@@ -312,9 +311,9 @@ void testCompressionHeats() {
         double e, sigma0, sigma1, p0, pt;
         run.laws.parts(isVanDerWaals(i), n0[i], e, sigma0, p0, pt);
         run.laws.parts(isVanDerWaals(i), n1[i], e, sigma1, p0, pt);
-        assertRelative(std::exp(-(sigma1 - sigma0)/heatCapacity), theta1[i]/theta0[i], precisionTolerance(1e-9, 1e-5),
-                       "isentropic temperature of particle " + std::to_string(i));
-        largestChange = std::max(largestChange, std::fabs(theta1[i]/theta0[i] - 1));
+        assertRelative(std::exp(-(sigma1 - sigma0) / heatCapacity), theta1[i] / theta0[i],
+                       precisionTolerance(1e-9, 1e-5), "isentropic temperature of particle " + std::to_string(i));
+        largestChange = std::max(largestChange, std::fabs(theta1[i] / theta0[i] - 1));
     }
     ASSERT(largestChange > 1e-4);
 }
@@ -336,7 +335,7 @@ void assertSameState(Run& a, Run& b, const std::string& what) {
  */
 void testStateHandling() {
     Run a(GenDPDEIntegrator::Isoenergetic, stepSize, true), b(GenDPDEIntegrator::Isoenergetic, stepSize, true),
-        c(GenDPDEIntegrator::Isoenergetic, stepSize, true), d(GenDPDEIntegrator::Isoenergetic, stepSize, true);
+            c(GenDPDEIntegrator::Isoenergetic, stepSize, true), d(GenDPDEIntegrator::Isoenergetic, stepSize, true);
     a.start();
     a.integrator.step(30);
     std::stringstream checkpoint;
@@ -379,9 +378,9 @@ void testStateHandling() {
         double e, sigma0, sigma1, p0, pt;
         d.laws.parts(isVanDerWaals(i), densityBefore[i], e, sigma0, p0, pt);
         d.laws.parts(isVanDerWaals(i), densityAfter[i], e, sigma1, p0, pt);
-        assertRelative(std::exp(-(sigma1 - sigma0)/heatCapacity), thetaAfter[i]/thetaBefore[i],
+        assertRelative(std::exp(-(sigma1 - sigma0) / heatCapacity), thetaAfter[i] / thetaBefore[i],
                        precisionTolerance(1e-9, 1e-5), "adiabatic move, particle " + std::to_string(i));
-        largest = std::max(largest, std::fabs(thetaAfter[i]/thetaBefore[i] - 1));
+        largest = std::max(largest, std::fabs(thetaAfter[i] / thetaBefore[i] - 1));
     }
     ASSERT(largest > 1e-4);
 }
@@ -404,7 +403,7 @@ void testErrors() {
     GenDPDEForce::EquationOfState law;
     std::vector<double> parameters;
     force.getEquationOfState(law, parameters);
-    ASSERT(law == GenDPDEForce::Tait && parameters.empty());   // the refused calls changed nothing
+    ASSERT(law == GenDPDEForce::Tait && parameters.empty()); // the refused calls changed nothing
 
     // A temperature-dependent law needs a GenDPDEIntegrator, and temperatures.
     {
@@ -428,7 +427,7 @@ void testErrors() {
     {
         Run run(GenDPDEIntegrator::Conservative);
         run.scene.force->setForceGroup(3);
-        run.integrator.setIntegrationForceGroups(1<<0);
+        run.integrator.setIntegrationForceGroups(1 << 0);
         assertThrowsMentioning([&]() { run.start(); }, {"force group 3", "integration force groups"});
     }
     // A van der Waals particle packed beyond its excluded volume stops the evaluation, naming it and the step.
@@ -490,11 +489,10 @@ void testTaitParticlesInAThermalForce() {
     const std::vector<double> after = run.integrator.getInternalEnergies();
     double thermalChange = 0;
     for (size_t i = 0; i < before.size(); i++) {
-        if (isVanDerWaals(i)) {   // (type 1, Tait here)
+        if (isVanDerWaals(i)) { // (type 1, Tait here)
             ASSERT(after[i] == before[i]);
-        }
-        else
-            thermalChange = std::max(thermalChange, std::fabs(after[i]/before[i] - 1));
+        } else
+            thermalChange = std::max(thermalChange, std::fabs(after[i] / before[i] - 1));
     }
     ASSERT(thermalChange > 1e-5);
 }

@@ -28,7 +28,7 @@ inline std::vector<double> isentropicRatios(const Run& run, const std::vector<Ve
         double e, sigma0, sigma1, p0, pt;
         run.laws.parts(isVanDerWaals(i), n0[i], e, sigma0, p0, pt);
         run.laws.parts(isVanDerWaals(i), n1[i], e, sigma1, p0, pt);
-        ratio.push_back(std::exp(-(sigma1 - sigma0)/heatCapacity));
+        ratio.push_back(std::exp(-(sigma1 - sigma0) / heatCapacity));
     }
     return ratio;
 }
@@ -41,7 +41,7 @@ inline void assertTemperatureRatios(const std::vector<double>& before, const std
                                     const std::vector<double>& ratio, const std::string& what) {
     double largest = 0;
     for (size_t i = 0; i < before.size(); i++) {
-        assertRelative(ratio[i], after[i]/before[i], precisionTolerance(1e-9, 1e-5),
+        assertRelative(ratio[i], after[i] / before[i], precisionTolerance(1e-9, 1e-5),
                        what + ": particle " + std::to_string(i));
         largest = std::max(largest, std::fabs(ratio[i] - 1));
     }
@@ -71,14 +71,20 @@ inline void assertSameTemperatures(const std::vector<double>& expected, const st
  */
 void testParameterUpdatesKeepTemperatures() {
     const std::vector<std::pair<std::string, std::function<void(GenDPDEForce&, const Laws&)>>> changes = {
-        {"beta x2", [](GenDPDEForce& f, const Laws& l) {
-            f.setEquationOfState(GenDPDEForce::TaitThermalExpansion, {2*l.beta, l.theta0}); }},
-        {"van der Waals a", [](GenDPDEForce& f, const Laws& l) {
-            f.setTypeEquationOfState(0, 1, GenDPDEForce::VanDerWaals, {1.1*l.a, l.b, l.k}); }},
-        {"Tait parameters", [](GenDPDEForce& f, const Laws& l) {
-            f.setTaitParameters(l.n0, 0.9*l.pi0, 1.2*l.bulkModulus, l.gammaT); }},
-        {"f_cut", [](GenDPDEForce& f, const Laws& l) { f.setCutoffScaling(1.1); }},
-        {"estimator", [](GenDPDEForce& f, const Laws& l) { f.setDensityEstimator(GenDPDEForce::VA); }}};
+            {"beta x2",
+             [](GenDPDEForce& f, const Laws& l) {
+                 f.setEquationOfState(GenDPDEForce::TaitThermalExpansion, {2 * l.beta, l.theta0});
+             }},
+            {"van der Waals a",
+             [](GenDPDEForce& f, const Laws& l) {
+                 f.setTypeEquationOfState(0, 1, GenDPDEForce::VanDerWaals, {1.1 * l.a, l.b, l.k});
+             }},
+            {"Tait parameters",
+             [](GenDPDEForce& f, const Laws& l) {
+                 f.setTaitParameters(l.n0, 0.9 * l.pi0, 1.2 * l.bulkModulus, l.gammaT);
+             }},
+            {"f_cut", [](GenDPDEForce& f, const Laws& l) { f.setCutoffScaling(1.1); }},
+            {"estimator", [](GenDPDEForce& f, const Laws& l) { f.setDensityEstimator(GenDPDEForce::VA); }}};
     for (bool adiabatic : {false, true})
         for (const auto& change : changes) {
             const std::string what = "updateParametersInContext (" + change.first + (adiabatic ? ", adiabatic)" : ")");
@@ -121,7 +127,7 @@ void testAdiabaticMovesAfterSettingTemperatures() {
             else
                 run.integrator.setInternalEnergies(energies);
             for (size_t i = 0; i < energies.size(); i++)
-                before[i] = energies[i]/heatCapacity;
+                before[i] = energies[i] / heatCapacity;
         }
         const std::vector<Vec3> from = run.positions(), to = scaled(from, 0.99);
         context.setPositions(to);
@@ -144,9 +150,9 @@ void testReadingChangesNothing() {
             run.integrator.getInternalEnergies();
             run.integrator.getParticleTemperatures();
             run.integrator.getConservedEnergy();
-            context.getState(State::Positions | State::Velocities | State::Forces | State::Energy
-                             | State::Parameters | State::IntegratorParameters);
-            context.getState(State::Energy, false, 1<<5);   // another force group
+            context.getState(State::Positions | State::Velocities | State::Forces | State::Energy | State::Parameters
+                             | State::IntegratorParameters);
+            context.getState(State::Energy, false, 1 << 5);   // another force group
             run.scene.force->getParticleDensities(context);
             run.scene.force->getParticlePressures(context);
             run.scene.force->getParticleVirials(context);
@@ -174,7 +180,7 @@ void testReadingChangesNothing() {
         context.setPositions(scaled(run.positions(), 0.997));   // adiabatic, from the loaded state
         readEverything();
         run.integrator.step(2);
-        run.scene.force->setEquationOfState(GenDPDEForce::TaitThermalExpansion, {1.3*run.laws.beta, run.laws.theta0});
+        run.scene.force->setEquationOfState(GenDPDEForce::TaitThermalExpansion, {1.3 * run.laws.beta, run.laws.theta0});
         run.scene.force->updateParametersInContext(context);
         readEverything();
         context.setPositions(scaled(run.positions(), 1.002));   // adiabatic, under the new law
@@ -203,7 +209,7 @@ void testReadingChangesNothing() {
  */
 void testSplitRunsAreTheSameRun() {
     Run whole(GenDPDEIntegrator::Isoenergetic, stepSize, true), split(GenDPDEIntegrator::Isoenergetic, stepSize, true),
-        read(GenDPDEIntegrator::Isoenergetic, stepSize, true);
+            read(GenDPDEIntegrator::Isoenergetic, stepSize, true);
     whole.start();
     split.start();
     read.start();
@@ -241,7 +247,8 @@ void testBarostatMovesFollowTheRule() {
         context.getState(0).getPeriodicBoxVectors(fromBox[0], fromBox[1], fromBox[2]);
         run.integrator.step(20);
         context.getState(0).getPeriodicBoxVectors(toBox[0], toBox[1], toBox[2]);
-        const double changed = toBox[0][0]*toBox[1][1]*toBox[2][2]/(fromBox[0][0]*fromBox[1][1]*fromBox[2][2]) - 1;
+        const double changed =
+                toBox[0][0] * toBox[1][1] * toBox[2][2] / (fromBox[0][0] * fromBox[1][1] * fromBox[2][2]) - 1;
         if (!(std::fabs(changed) > 1e-4))
             throw std::runtime_error("the barostat moved too little to test: V/V0 - 1 = " + std::to_string(changed));
         const std::vector<double> after = run.integrator.getParticleTemperatures();
@@ -305,7 +312,7 @@ void testObservablesFollowTheState() {
         double e, sigma, pressureAtZero, thermalPressure;
         run.laws.parts(isVanDerWaals(i), density[i], e, sigma, pressureAtZero, thermalPressure);
         // pi = pi_0(n) + theta pi_theta(n): doubling theta adds theta pi_theta.
-        assertClose(cold[i] + 0.5*hot[i]*thermalPressure, pressures[i], precisionTolerance(1e-9, 1e-5)*scale,
+        assertClose(cold[i] + 0.5 * hot[i] * thermalPressure, pressures[i], precisionTolerance(1e-9, 1e-5) * scale,
                     "pressure of particle " + std::to_string(i) + " after heating it");
     }
 }
@@ -320,14 +327,14 @@ void testObservablesFollowTheState() {
  */
 void testTemperatureJumpStopsTheRun() {
     Run run(GenDPDEIntegrator::Conservative);
-    run.integrator.setHeatCapacity(heatCapacity/1000);
+    run.integrator.setHeatCapacity(heatCapacity / 1000);
     std::vector<double> temperatures = run.integrator.getParticleTemperatures();
     run.integrator.setParticleTemperatures(temperatures);   // (the same temperatures with the new C_V)
     Context& context = run.start();
     const std::vector<double> before = run.integrator.getInternalEnergies();
     const std::vector<Vec3> from = run.positions();
-    assertThrowsMentioning([&]() { run.integrator.step(2); }, {"GenDPDEForce: the temperature of particle",
-                                                                  "more than a factor 2", "at step 1"});
+    assertThrowsMentioning([&]() { run.integrator.step(2); },
+                           {"GenDPDEForce: the temperature of particle", "more than a factor 2", "at step 1"});
     ASSERT_EQUAL(1, (int) context.getStepCount());
     if (run.integrator.getInternalEnergies() != before)
         throw std::runtime_error("the failed evaluation changed the internal energies");
@@ -338,12 +345,12 @@ void testTemperatureJumpStopsTheRun() {
         double e, sigma0, sigma1, p0, pt;
         run.laws.parts(isVanDerWaals(i), n0[i], e, sigma0, p0, pt);
         run.laws.parts(isVanDerWaals(i), n1[i], e, sigma1, p0, pt);
-        if (std::fabs(sigma1 - sigma0) > std::log(2.0)*heatCapacity/1000)
+        if (std::fabs(sigma1 - sigma0) > std::log(2.0) * heatCapacity / 1000)
             first = i;
     }
     ASSERT(first >= 0);
-    assertThrowsMentioning([&]() { run.integrator.step(1); }, {"temperature of particle " + std::to_string(first)
-                                                                   + " went from"});
+    assertThrowsMentioning([&]() { run.integrator.step(1); },
+                           {"temperature of particle " + std::to_string(first) + " went from"});
 }
 
 void runThermalStateTests() {

@@ -35,12 +35,12 @@ void testEveryIndexOnce() {
 
 /** A loop inside a loop runs (on the thread that meets it) and covers its range. */
 void testNestedLoops() {
-    std::vector<std::atomic<int>> visits(64*100);
+    std::vector<std::atomic<int>> visits(64 * 100);
     parallelFor(4, 64, 1, [&visits](int begin, int end) {
         for (int outer = begin; outer < end; outer++)
             parallelFor(4, 100, 10, [&visits, outer](int b, int e) {
                 for (int inner = b; inner < e; inner++)
-                    visits[outer*100 + inner]++;
+                    visits[outer * 100 + inner]++;
             });
     });
     for (auto& v : visits)
@@ -55,15 +55,12 @@ void testExceptions() {
             if (begin <= 500 && 500 < end)
                 throw std::runtime_error("range with 500");
         });
-    }
-    catch (const std::runtime_error& e) {
+    } catch (const std::runtime_error& e) {
         caught = std::string(e.what()) == "range with 500";
     }
     ASSERT(caught);
     std::atomic<int> sum{0};
-    parallelFor(3, 1000, 1, [&sum](int begin, int end) {
-        sum += end - begin;
-    });
+    parallelFor(3, 1000, 1, [&sum](int begin, int end) { sum += end - begin; });
     ASSERT_EQUAL(1000, sum.load());
 }
 
@@ -72,14 +69,12 @@ void testTwoCallers() {
     std::atomic<long long> total{0};
     auto caller = [&total]() {
         for (int repeat = 0; repeat < 200; repeat++)
-            parallelFor(2, 1000, 10, [&total](int begin, int end) {
-                total += end - begin;
-            });
+            parallelFor(2, 1000, 10, [&total](int begin, int end) { total += end - begin; });
     };
     std::thread a(caller), b(caller);
     a.join();
     b.join();
-    ASSERT_EQUAL(2LL*200*1000, total.load());
+    ASSERT_EQUAL(2LL * 200 * 1000, total.load());
 }
 
 /** A child process of fork() (multiprocessing does this) runs loops: its teams are made anew. */
@@ -89,9 +84,7 @@ void testFork() {
     if (child == 0) {
         alarm(20);   // a child that hangs is killed, and fails
         std::atomic<int> sum{0};
-        parallelFor(2, 100, 1, [&sum](int begin, int end) {
-            sum += end - begin;
-        });
+        parallelFor(2, 100, 1, [&sum](int begin, int end) { sum += end - begin; });
         _exit(sum.load() == 100 ? 0 : 1);
     }
     int status = 0;
@@ -102,7 +95,7 @@ void testFork() {
 double processCpuSeconds() {
     timespec t;
     clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return t.tv_sec + 1e-9*t.tv_nsec;
+    return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
 /**
@@ -118,7 +111,7 @@ void testIdleWorkersSleep() {
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     const double used = processCpuSeconds() - start;
     if (!(used < 0.030))
-        throw std::runtime_error("idle workers used " + std::to_string(1e3*used) + " ms of processor time in 300 ms");
+        throw std::runtime_error("idle workers used " + std::to_string(1e3 * used) + " ms of processor time in 300 ms");
 }
 
 int main() {

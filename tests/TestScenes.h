@@ -22,21 +22,21 @@ using namespace OpenMM;
 
 // Liquid argon (internal/LiquidArgon.h) at R* = 1.6839 in OpenMM units.
 const double lengthUnit = LiquidArgon::length;                                   // nm
-const double cutoff = LiquidArgon::getCutoff(1).cutoff*lengthUnit;               // nm
-const double referenceDensity = LiquidArgon::density/(lengthUnit*lengthUnit*lengthUnit);   // nm^-3
-const double particleMass = LiquidArgon::particleMass*6.02214076e23*1000.0;     // amu
+const double cutoff = LiquidArgon::getCutoff(1).cutoff * lengthUnit;               // nm
+const double referenceDensity = LiquidArgon::density / (lengthUnit * lengthUnit * lengthUnit);   // nm^-3
+const double particleMass = LiquidArgon::particleMass * 6.02214076e23 * 1000.0;     // amu
 
 // The integrator tests' liquid argon: units, transport coefficients at R* = 1.6839, C_V, T0 and dt* = 0.01.
 const double boltzmann = Physics::Boltzmann;                                           // kJ/(mol K)
-const double energyUnit = LiquidArgon::energy*6.02214076e23/1000.0;                    // u (kJ/mol)
-const double timeUnit = lengthUnit*std::sqrt(particleMass/energyUnit);                 // L sqrt(m/u) (ps)
-const double temperatureUnit = energyUnit/boltzmann;                                   // u/k_B (K)
+const double energyUnit = LiquidArgon::energy * 6.02214076e23 / 1000.0;                    // u (kJ/mol)
+const double timeUnit = lengthUnit * std::sqrt(particleMass / energyUnit);                 // L sqrt(m/u) (ps)
+const double temperatureUnit = energyUnit / boltzmann;                                   // u/k_B (K)
 const LiquidArgonCutoff argonCutoff = LiquidArgon::getCutoff(1);                       // R* = 1.6839
-const double friction = argonCutoff.friction*particleMass/timeUnit;                    // gamma (amu/ps)
-const double heatConduction = argonCutoff.heatConduction*energyUnit*temperatureUnit/timeUnit;   // kJ K/(mol ps)
-const double heatCapacity = LiquidArgon::heatCapacity*boltzmann;                       // C_V (kJ/(mol K))
-const double temperature = LiquidArgon::temperature*temperatureUnit;                   // T0 (K)
-const double stepSize = 0.01*timeUnit;                                                 // dt* = 0.01 (ps)
+const double friction = argonCutoff.friction * particleMass / timeUnit;                    // gamma (amu/ps)
+const double heatConduction = argonCutoff.heatConduction * energyUnit * temperatureUnit / timeUnit;   // kJ K/(mol ps)
+const double heatCapacity = LiquidArgon::heatCapacity * boltzmann;                       // C_V (kJ/(mol K))
+const double temperature = LiquidArgon::temperature * temperatureUnit;                   // T0 (K)
+const double stepSize = 0.01 * timeUnit;                                                 // dt* = 0.01 (ps)
 
 /** A System with only a GenDPDEForce, and positions. */
 struct Scene {
@@ -46,7 +46,8 @@ struct Scene {
     Vec3 box[3];
 };
 
-inline Scene makeScene(int numParticles, GenDPDEForce::DensityEstimator estimator, bool periodic, double cutoffScaling = 1.2) {
+inline Scene makeScene(int numParticles, GenDPDEForce::DensityEstimator estimator, bool periodic,
+                       double cutoffScaling = 1.2) {
     Scene scene;
     scene.force = new GenDPDEForce(cutoff);
     scene.force->setDensityEstimator(estimator);
@@ -66,45 +67,48 @@ inline void setBox(Scene& scene, Vec3 a, Vec3 b, Vec3 c) {
 }
 
 /** A cubic box at `density` (nm^-3) filled by a simple-cubic lattice with Gaussian jitter. */
-inline Scene makeLatticeLiquid(int cellsPerSide, double density, double jitter, GenDPDEForce::DensityEstimator estimator,
-                        bool periodic, unsigned seed) {
-    int n = cellsPerSide*cellsPerSide*cellsPerSide;
+inline Scene makeLatticeLiquid(int cellsPerSide, double density, double jitter,
+                               GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+    int n = cellsPerSide * cellsPerSide * cellsPerSide;
     Scene scene = makeScene(n, estimator, periodic);
-    double edge = std::cbrt(n/density), spacing = edge/cellsPerSide;
+    double edge = std::cbrt(n / density), spacing = edge / cellsPerSide;
     setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
     std::mt19937 random(seed);
-    std::normal_distribution<double> gauss(0.0, jitter*spacing);
+    std::normal_distribution<double> gauss(0.0, jitter * spacing);
     for (int x = 0; x < cellsPerSide; x++)
         for (int y = 0; y < cellsPerSide; y++)
             for (int z = 0; z < cellsPerSide; z++)
-                scene.positions.push_back(Vec3((x + 0.5)*spacing + gauss(random), (y + 0.5)*spacing + gauss(random),
-                                               (z + 0.5)*spacing + gauss(random)));
+                scene.positions.push_back(Vec3((x + 0.5) * spacing + gauss(random), (y + 0.5) * spacing + gauss(random),
+                                               (z + 0.5) * spacing + gauss(random)));
     return scene;
 }
 
 /** Far-apart dimers of random length < cutoff: a dilute gas in which every particle still has a neighbor. */
 inline Scene makeDimerGas(int numDimers, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
-    Scene scene = makeScene(2*numDimers, estimator, periodic);
+    Scene scene = makeScene(2 * numDimers, estimator, periodic);
     int side = (int) std::ceil(std::cbrt((double) numDimers));
-    double spacing = 2.5*cutoff, edge = side*spacing;
+    double spacing = 2.5 * cutoff, edge = side * spacing;
     setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> uniform(0.0, 1.0);
     for (int d = 0; d < numDimers; d++) {
-        Vec3 centre((d % side + 0.5)*spacing, ((d/side) % side + 0.5)*spacing, (d/(side*side) + 0.5)*spacing);
-        double cosTheta = 2*uniform(random) - 1, phi = 2*M_PI*uniform(random), half = 0.5*cutoff*(0.1 + 0.85*uniform(random));
-        double sinTheta = std::sqrt(1 - cosTheta*cosTheta);
-        Vec3 axis(sinTheta*std::cos(phi), sinTheta*std::sin(phi), cosTheta);
-        scene.positions.push_back(centre + axis*half);
-        scene.positions.push_back(centre - axis*half);
+        Vec3 centre((d % side + 0.5) * spacing, ((d / side) % side + 0.5) * spacing,
+                    (d / (side * side) + 0.5) * spacing);
+        double cosTheta = 2 * uniform(random) - 1, phi = 2 * M_PI * uniform(random),
+               half = 0.5 * cutoff * (0.1 + 0.85 * uniform(random));
+        double sinTheta = std::sqrt(1 - cosTheta * cosTheta);
+        Vec3 axis(sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta);
+        scene.positions.push_back(centre + axis * half);
+        scene.positions.push_back(centre - axis * half);
     }
     return scene;
 }
 
 /** Uniformly random positions at `density` (nm^-3): with VB some particles may have no neighbor at all. */
-inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::DensityEstimator estimator, bool periodic, unsigned seed) {
+inline Scene makeRandomGas(int numParticles, double density, GenDPDEForce::DensityEstimator estimator, bool periodic,
+                           unsigned seed) {
     Scene scene = makeScene(numParticles, estimator, periodic);
-    double edge = std::cbrt(numParticles/density);
+    double edge = std::cbrt(numParticles / density);
     setBox(scene, Vec3(edge, 0, 0), Vec3(0, edge, 0), Vec3(0, 0, edge));
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> uniform(0.0, edge);
@@ -154,10 +158,9 @@ inline void setMixtureTypes(Scene& scene, bool sameAsForce) {
     if (sameAsForce) {
         scene.force->addTypeParameters(7, n0, pi0, bulkModulus, gammaT);
         scene.force->addTypeParameters(-3, n0, pi0, bulkModulus, gammaT);
-    }
-    else {
-        scene.force->addTypeParameters(7, 1.3*n0, 0.5*pi0, 0.6*bulkModulus, 7.0);
-        scene.force->addTypeParameters(-3, 0.8*n0, -0.3*pi0, 1.5*bulkModulus, 5.5);
+    } else {
+        scene.force->addTypeParameters(7, 1.3 * n0, 0.5 * pi0, 0.6 * bulkModulus, 7.0);
+        scene.force->addTypeParameters(-3, 0.8 * n0, -0.3 * pi0, 1.5 * bulkModulus, 5.5);
     }
 }
 
@@ -182,7 +185,7 @@ inline Scene makeSlab(int cellsPerSide, double density, double jitter, GenDPDEFo
                       unsigned seed) {
     Scene scene = makeLatticeLiquid(cellsPerSide, density, jitter, estimator, true, seed);
     const double edge = scene.box[0][0];
-    setBox(scene, scene.box[0], scene.box[1], Vec3(0, 0, 3*edge));
+    setBox(scene, scene.box[0], scene.box[1], Vec3(0, 0, 3 * edge));
     for (Vec3& r : scene.positions)
         r[2] += edge;
     return scene;
@@ -202,12 +205,12 @@ inline void forEachStandardScene(double jitter, unsigned firstSeed,
             std::string label = estimatorLabel(estimator) + (periodic ? " periodic" : " open");
             Scene liquid = makeLatticeLiquid(6, referenceDensity, jitter, estimator, periodic, firstSeed);
             check(liquid, label + " liquid");
-            Scene compressed = makeLatticeLiquid(7, 5.0*referenceDensity, jitter, estimator, periodic, firstSeed + 1);
+            Scene compressed = makeLatticeLiquid(7, 5.0 * referenceDensity, jitter, estimator, periodic, firstSeed + 1);
             check(compressed, label + " compressed");
             Scene dimers = makeDimerGas(27, estimator, periodic, firstSeed + 2);
             check(dimers, label + " dimers");
             if (BruteForce::allowsIsolatedParticles(estimator)) {
-                Scene gas = makeRandomGas(100, 0.1*referenceDensity, estimator, periodic, firstSeed + 3);
+                Scene gas = makeRandomGas(100, 0.1 * referenceDensity, estimator, periodic, firstSeed + 3);
                 check(gas, label + " dilute");
             }
         }

@@ -23,9 +23,7 @@ using namespace TestScenes;
 
 struct Pairs {
     std::vector<int> ij;   // i0, j0, i1, j1, ...
-    int size() const {
-        return ij.size()/2;
-    }
+    int size() const { return ij.size() / 2; }
 };
 
 /** All pairs closer than range, sorted by (i, j), by brute force (nearest image in a reduced box if periodic). */
@@ -35,11 +33,11 @@ Pairs findPairs(const std::vector<Vec3>& positions, const Vec3 box[3], bool peri
         for (size_t j = i + 1; j < positions.size(); j++) {
             Vec3 d = positions[i] - positions[j];
             if (periodic) {
-                d -= box[2]*std::round(d[2]/box[2][2]);
-                d -= box[1]*std::round(d[1]/box[1][1]);
-                d -= box[0]*std::round(d[0]/box[0][0]);
+                d -= box[2] * std::round(d[2] / box[2][2]);
+                d -= box[1] * std::round(d[1] / box[1][1]);
+                d -= box[0] * std::round(d[0] / box[0][0]);
             }
-            if (d.dot(d) < range*range) {
+            if (d.dot(d) < range * range) {
                 pairs.ij.push_back(i);
                 pairs.ij.push_back(j);
             }
@@ -77,14 +75,14 @@ void checkProperties(const Scene& scene, const std::string& label) {
             std::vector<int> lastPartner(scene.positions.size(), -1);
             for (int n = blocks[b]; n < blocks[b + 1]; n++) {
                 const int k = order.getOrder()[n];
-                for (int particle : {pairs.ij[2*k], pairs.ij[2*k + 1]}) {
+                for (int particle : {pairs.ij[2 * k], pairs.ij[2 * k + 1]}) {
                     if (owner[particle] != -1 && owner[particle] != b)
                         throw std::runtime_error(label + ": particle " + std::to_string(particle) + " is in blocks "
                                                  + std::to_string(owner[particle]) + " and " + std::to_string(b)
                                                  + " of group " + std::to_string(g));
                     owner[particle] = b;
                 }
-                const int i = pairs.ij[2*k], j = pairs.ij[2*k + 1];
+                const int i = pairs.ij[2 * k], j = pairs.ij[2 * k + 1];
                 if (j <= lastPartner[i])
                     throw std::runtime_error(label + ": the pairs of particle " + std::to_string(i)
                                              + " are out of order in block " + std::to_string(b));
@@ -106,11 +104,11 @@ void testProperties() {
         // would break the parity across the boundary, so the periodic box gets 8 cells, the open one 11.
         checkProperties(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 1), label + " liquid");
         checkProperties(makeLatticeLiquid(20, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 2), label + " large");
-        checkProperties(makeRandomGas(2000, 0.3*referenceDensity, GenDPDEForce::VB, periodic, 3), label + " gas");
+        checkProperties(makeRandomGas(2000, 0.3 * referenceDensity, GenDPDEForce::VB, periodic, 3), label + " gas");
     }
     Scene triclinic = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 4);
     const double edge = triclinic.box[0][0];
-    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
     checkProperties(triclinic, "triclinic");
 }
 
@@ -121,7 +119,7 @@ void testPureFunction() {
     const std::vector<int> reference = buildOrder(scene, scene.positions, pairs).getOrder();
     std::vector<Vec3> shifted = scene.positions;
     for (size_t i = 0; i < shifted.size(); i++)
-        shifted[i] += scene.box[i % 3]*((int) (i % 5) - 2);
+        shifted[i] += scene.box[i % 3] * ((int) (i % 5) - 2);
     ASSERT(reference == buildOrder(scene, shifted, pairs).getOrder());
     for (int numThreads : {1, 2, 3})
         ASSERT(reference == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
@@ -139,17 +137,17 @@ void testSmallBoxIsTheSequentialOrder() {
     // rank by rank.
     std::vector<int> expected, firsts;
     for (int k = 0; k < pairs.size(); k++)
-        if (firsts.empty() || firsts.back() != pairs.ij[2*k])
-            firsts.push_back(pairs.ij[2*k]);
+        if (firsts.empty() || firsts.back() != pairs.ij[2 * k])
+            firsts.push_back(pairs.ij[2 * k]);
     for (size_t g = 0; g < firsts.size(); g += 4) {
         std::vector<std::vector<int>> lists;
         for (size_t f = g; f < std::min(firsts.size(), g + 4); f++) {
             lists.emplace_back();
             for (int k = 0; k < pairs.size(); k++)
-                if (pairs.ij[2*k] == firsts[f])
+                if (pairs.ij[2 * k] == firsts[f])
                     lists.back().push_back(k);
         }
-        for (size_t rank = 0; ; rank++) {
+        for (size_t rank = 0;; rank++) {
             bool any = false;
             for (const std::vector<int>& list : lists)
                 if (rank < list.size()) {
@@ -179,8 +177,8 @@ std::vector<std::array<int, 3>> definedCells(const std::vector<Vec3>& positions,
         const Vec3 s = BoxGeometry::fractionalCoordinates(r, box);
         std::array<int, 3> c;
         for (int k = 0; k < 3; k++) {
-            const double unit = periodic ? s[k] - std::floor(s[k]) : (r[k] - low[k])/extent[k];
-            c[k] = std::max(0, std::min(numCells[k] - 1, (int) (unit*numCells[k])));
+            const double unit = periodic ? s[k] - std::floor(s[k]) : (r[k] - low[k]) / extent[k];
+            c[k] = std::max(0, std::min(numCells[k] - 1, (int) (unit * numCells[k])));
         }
         cells.push_back(c);
     }
@@ -196,11 +194,11 @@ std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box
                               const Pairs& pairs) {
     std::array<int, 3> n;
     const std::vector<std::array<int, 3>> cells = definedCells(positions, box, periodic, range, n);
-    const int numBlocks[3] = {(n[0] + 1)/2, (n[1] + 1)/2, (n[2] + 1)/2};
+    const int numBlocks[3] = {(n[0] + 1) / 2, (n[1] + 1) / 2, (n[2] + 1) / 2};
     std::vector<long long> key(pairs.size());
     for (int k = 0; k < pairs.size(); k++) {
-        const std::array<int, 3>& ci = cells[pairs.ij[2*k]];
-        const std::array<int, 3>& cj = cells[pairs.ij[2*k + 1]];
+        const std::array<int, 3>& ci = cells[pairs.ij[2 * k]];
+        const std::array<int, 3>& cj = cells[pairs.ij[2 * k + 1]];
         int block[3];
         bool adjacent = true;
         for (int dim = 0; dim < 3; dim++) {
@@ -211,32 +209,32 @@ std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box
                 d += n[dim];
             adjacent = adjacent && std::abs(d) <= 1;
             if (d == -1)
-                block[dim] = cj[dim]/2;   // the home cell is the one the other follows, across the boundary too
+                block[dim] = cj[dim] / 2; // the home cell is the one the other follows, across the boundary too
             else
-                block[dim] = ci[dim]/2;
+                block[dim] = ci[dim] / 2;
         }
-        const long long colour = (block[0] % 2) + 2*(block[1] % 2) + 4*(block[2] % 2);
-        const long long index = ((long long) block[2]*numBlocks[1] + block[1])*numBlocks[0] + block[0];
-        key[k] = adjacent ? colour*(1LL << 40) + index : 8LL*(1LL << 40);
+        const long long colour = (block[0] % 2) + 2 * (block[1] % 2) + 4 * (block[2] % 2);
+        const long long index = ((long long) block[2] * numBlocks[1] + block[1]) * numBlocks[0] + block[0];
+        key[k] = adjacent ? colour * (1LL << 40) + index : 8LL * (1LL << 40);
     }
     std::vector<int> sorted(pairs.size());
     for (int k = 0; k < pairs.size(); k++)
         sorted[k] = k;
     std::stable_sort(sorted.begin(), sorted.end(), [&](int a, int b) { return key[a] < key[b]; });
     std::vector<int> order;
-    for (size_t start = 0; start < sorted.size(); ) {
+    for (size_t start = 0; start < sorted.size();) {
         size_t end = start;
         while (end < sorted.size() && key[sorted[end]] == key[sorted[start]])
             end++;
         // One block: its first particles' lists, four at a time, rank by rank.
         std::vector<std::vector<int>> lists;
         for (size_t m = start; m < end; m++) {
-            if (m == start || pairs.ij[2*sorted[m]] != pairs.ij[2*sorted[m - 1]])
+            if (m == start || pairs.ij[2 * sorted[m]] != pairs.ij[2 * sorted[m - 1]])
                 lists.emplace_back();
             lists.back().push_back(sorted[m]);
         }
         for (size_t g = 0; g < lists.size(); g += 4)
-            for (size_t rank = 0; ; rank++) {
+            for (size_t rank = 0;; rank++) {
                 bool any = false;
                 for (size_t f = g; f < std::min(lists.size(), g + 4); f++)
                     if (rank < lists[f].size()) {
@@ -264,16 +262,16 @@ std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs
     std::vector<int> rowOf(numParticles), rowPairStart(numParticles + 1, 0);
     for (int row = 0; row < numParticles; row++)
         rowOf[particleOfRow[row]] = row;
-    std::vector<std::vector<int>> pairsOfParticle(numParticles);   // indices into the (i, j) list
+    std::vector<std::vector<int>> pairsOfParticle(numParticles); // indices into the (i, j) list
     for (int k = 0; k < pairs.size(); k++)
-        pairsOfParticle[pairs.ij[2*k]].push_back(k);
+        pairsOfParticle[pairs.ij[2 * k]].push_back(k);
     Pairs stored;
-    std::vector<int> listIndex;   // of each stored pair
+    std::vector<int> listIndex; // of each stored pair
     for (int row = 0; row < numParticles; row++) {
         rowPairStart[row] = listIndex.size();
         for (int k : pairsOfParticle[particleOfRow[row]]) {
-            stored.ij.push_back(pairs.ij[2*k]);
-            stored.ij.push_back(pairs.ij[2*k + 1]);
+            stored.ij.push_back(pairs.ij[2 * k]);
+            stored.ij.push_back(pairs.ij[2 * k + 1]);
             listIndex.push_back(k);
         }
     }
@@ -300,11 +298,11 @@ void testOrderIsTheDefinition() {
     };
     for (bool periodic : {true, false}) {
         check(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 7));
-        check(makeRandomGas(2000, 0.3*referenceDensity, GenDPDEForce::VB, periodic, 8));
+        check(makeRandomGas(2000, 0.3 * referenceDensity, GenDPDEForce::VB, periodic, 8));
     }
     Scene triclinic = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 9);
     const double edge = triclinic.box[0][0];
-    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+    setBox(triclinic, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
     check(triclinic);
 }
 

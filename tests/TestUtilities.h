@@ -49,7 +49,7 @@ inline void assertClose(double expected, double found, double tolerance, const s
 }
 
 inline void assertRelative(double expected, double found, double relativeTolerance, const std::string& what) {
-    assertClose(expected, found, relativeTolerance*std::abs(expected), what);
+    assertClose(expected, found, relativeTolerance * std::abs(expected), what);
 }
 
 inline void assertVectorClose(const OpenMM::Vec3& expected, const OpenMM::Vec3& found, double tolerance,
@@ -62,8 +62,7 @@ inline void assertVectorClose(const OpenMM::Vec3& expected, const OpenMM::Vec3& 
 inline void assertThrowsMentioning(const std::function<void()>& call, const std::vector<std::string>& fragments) {
     try {
         call();
-    }
-    catch (const OpenMM::OpenMMException& e) {
+    } catch (const OpenMM::OpenMMException& e) {
         std::string message = e.what();
         for (const std::string& fragment : fragments)
             if (message.find(fragment) == std::string::npos)
@@ -84,15 +83,14 @@ public:
         for (const auto& value : values)
             unsetenv(value.first.c_str());
     }
-    std::string label() const {
-        return describe(values);
-    }
+    std::string label() const { return describe(values); }
     static std::string describe(const std::vector<std::pair<std::string, std::string>>& values) {
         std::string text;
         for (const auto& value : values)
             text += " " + value.first + "=" + value.second;
         return text.empty() ? " (defaults)" : text;
     }
+
 private:
     std::vector<std::pair<std::string, std::string>> values;
 };
@@ -101,8 +99,7 @@ private:
 inline int runTestProgram(const std::function<void()>& tests) {
     try {
         tests();
-    }
-    catch (const std::exception& e) {
+    } catch (const std::exception& e) {
         std::cout << "FAILED: " << e.what() << std::endl;
         return 1;
     }

@@ -143,7 +143,8 @@ public:
      * @param[out] bulkModulus          B_T (in kJ/mol/nm^3)
      * @param[out] exponent             gamma_T (dimensionless)
      */
-    void getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent) const;
+    void getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus,
+                           double& exponent) const;
     /** Get the Tait reference density n0 (in nm^-3). */
     double getReferenceDensity() const;
     /** Get the Tait reference pressure pi0 (in kJ/mol/nm^3). */
@@ -193,8 +194,8 @@ public:
     void getTypeParameters(int index, int& type, double& referenceDensity, double& referencePressure,
                            double& bulkModulus, double& exponent) const;
     /** Change an entry of addTypeParameters() (same units and checks). */
-    void setTypeParameters(int index, int type, double referenceDensity, double referencePressure,
-                           double bulkModulus, double exponent);
+    void setTypeParameters(int index, int type, double referenceDensity, double referencePressure, double bulkModulus,
+                           double exponent);
     /**
      * Set the local equation of state of every type without an entry of addTypeEquationOfState(): the law and its
      * parameters (see EquationOfState for their number, units and ranges). The Tait parameters of the law are the
@@ -256,8 +257,10 @@ public:
      * P_ab = (sum_i m_i v_i,a v_i,b + W_ab)/V_box. Computed on request only, by the platform's own kernels.
      */
     std::vector<double> getParticleVirials(OpenMM::Context& context) const;
+
 protected:
     OpenMM::ForceImpl* createImpl() const override;
+
 private:
     GenDPDEForceImpl& getImpl(OpenMM::Context& context) const;
     const GenDPDEObservables& observablesInContext(OpenMM::Context& context, bool particleVirials = false) const;
@@ -276,7 +279,7 @@ private:
         EquationOfState law;
         std::vector<double> parameters;
     };
-    LawEntry defaultLaw;                // type ignored
+    LawEntry defaultLaw; // type ignored
     std::vector<LawEntry> typeLaws;
     /** Refuse a law or parameters outside the allowed ranges; entry names what is checked. */
     static void checkLaw(const std::string& entry, EquationOfState law, const std::vector<double>& parameters);

@@ -257,17 +257,14 @@ public:
     void step(int steps) override;
     /** The seed actually used by the Context (the chosen one if the seed is 0); throws if there is no Context. */
     int getSeedInUse() const;
+
 protected:
     void initialize(OpenMM::ContextImpl& context) override;
     void cleanup() override;
     std::vector<std::string> getKernelNames() override;
     double computeKineticEnergy() override;
-    bool kineticEnergyRequiresForce() const override {
-        return true;
-    }
-    double getVelocityTimeOffset() const override {
-        return 0.5*getStepSize();
-    }
+    bool kineticEnergyRequiresForce() const override { return true; }
+    double getVelocityTimeOffset() const override { return 0.5 * getStepSize(); }
     void createCheckpoint(std::ostream& stream) const override;
     void loadCheckpoint(std::istream& stream) override;
     void serializeParameters(OpenMM::SerializationNode& node) const override;
@@ -277,30 +274,31 @@ protected:
      */
     void stateChanged(OpenMM::State::DataType changed) override;
     void deserializeParameters(const OpenMM::SerializationNode& node) override;
+
 private:
-    friend class GenDPDEIntegratorProxy;   // serializes initialTemperatures and initialEnergies, the initial condition
-    friend class GenDPDEIntegratorUtilities;   // lends the kernel's thermal state to a GenDPDEForce's kernel
+    friend class GenDPDEIntegratorProxy; // serializes initialTemperatures and initialEnergies, the initial condition
+    friend class GenDPDEIntegratorUtilities; // lends the kernel's thermal state to a GenDPDEForce's kernel
     // ---- The particles' thermal state with a law that depends on temperature (GenDPDEIntegratorThermalState.cpp;
     // docs/theory.md section 11, docs/integrator.md "The particles' thermal state: one rule"). Outside step(), every
     // particle's eps_i is C_V theta_i at the Context's current positions; with adiabatic position changes its entropy
     // is also kept (sigma_i of those positions), so that a move can keep it.
     /** What happened to the Context, for applyThermalRule(). */
     enum class ThermalEvent {
-        EnergiesSet,            // setInternalEnergies(), setParticleTemperatures(), ...ToTemperature(), checkpoints,
-                                // States
-        PositionsSet,           // Context.setPositions(), setState(), loadCheckpoint(), a refused checkpoint's
-                                // positions
-        PositionsMovedByForce,  // a Force's updateContextState() in step() (a barostat's move)
-        LawChanged,             // updateParametersInContext() of the GenDPDEForce whose laws depend on temperature
-        AdiabaticChanged,       // setAdiabaticPositionChanges()
-        ModeChanged,            // setMode()
-        ParametersChanged       // heat capacities, bath temperature: the forces change, the particles' state does not
+        EnergiesSet, // setInternalEnergies(), setParticleTemperatures(), ...ToTemperature(), checkpoints,
+        // States
+        PositionsSet, // Context.setPositions(), setState(), loadCheckpoint(), a refused checkpoint's
+        // positions
+        PositionsMovedByForce, // a Force's updateContextState() in step() (a barostat's move)
+        LawChanged, // updateParametersInContext() of the GenDPDEForce whose laws depend on temperature
+        AdiabaticChanged, // setAdiabaticPositionChanges()
+        ModeChanged, // setMode()
+        ParametersChanged // heat capacities, bath temperature: the forces change, the particles' state does not
     };
     /** Which positions the kernel's eps_i and sigma_i belong to. */
     enum class EntropyState {
-        Unknown,   // eps_i = C_V theta_i at the current positions, sigma_i not kept: the entropies are not fixed
-        Current,   // eps_i and sigma_i of the current positions
-        Earlier    // eps_i and sigma_i of earlier positions (inside step(), after its drift; or an evaluation failed)
+        Unknown, // eps_i = C_V theta_i at the current positions, sigma_i not kept: the entropies are not fixed
+        Current, // eps_i and sigma_i of the current positions
+        Earlier // eps_i and sigma_i of earlier positions (inside step(), after its drift; or an evaluation failed)
     };
     /** The one rule: what each event does to the particles' thermal state (docs/integrator.md). */
     void applyThermalRule(ThermalEvent event);
@@ -329,12 +327,12 @@ private:
     const GenDPDEForceImpl* thermalForce = nullptr;
     bool adiabaticPositionChanges = false;
     EntropyState entropyState = EntropyState::Unknown;
-    bool positionsSet = false;           // the bound Context's positions were set (its initial ones are not positions)
-    bool checkingStepTemperatures = false;   // inside evaluateStepForces(true)
-    long long lawUpdatesSeen = 0;        // thermalForce's parameter updates the rule has applied
+    bool positionsSet = false; // the bound Context's positions were set (its initial ones are not positions)
+    bool checkingStepTemperatures = false; // inside evaluateStepForces(true)
+    long long lawUpdatesSeen = 0; // thermalForce's parameter updates the rule has applied
     // The forces the last step() left (with a thermal force), reused by the next step() if nothing changed since.
     bool forcesCurrent = false;
-    long long forcesEvaluation = 0;      // thermalForce's evaluation count then
+    long long forcesEvaluation = 0; // thermalForce's evaluation count then
     OpenMM::Vec3 forcesBox[3];
     IntegrateGenDPDEStepKernel& boundKernel() const;
     /** Refuse what the integrator cannot run: constraints, virtual sites, negative or absurd masses. */
@@ -362,8 +360,8 @@ private:
     void checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const;
     void requireTemperatures() const;
     double friction, heatConduction, heatCapacity, cutoff, temperature;
-    double pairRange = 0.0;   // the range of the pair terms in the bound Context (nm); 0 if unknown
-    double boundCutoff = 0.0;   // the cutoff setting when the Context was created (a step refuses another)
+    double pairRange = 0.0; // the range of the pair terms in the bound Context (nm); 0 if unknown
+    double boundCutoff = 0.0; // the cutoff setting when the Context was created (a step refuses another)
     int randomSeed;
     Mode mode;
     // The per-particle state lives in the kernel once a Context exists (eps_i; all zero until set). Before that,
@@ -372,9 +370,9 @@ private:
     std::vector<double> initialEnergies;
     std::vector<double> initialTemperatures;
     std::map<int, int> particleTypes;
-    std::map<int, int> contextParticleTypes;   // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)
-    std::vector<int> contextTypes;             // the distinct types of the bound Context, ascending
-    bool typesChangedWhileBound = false;       // setParticleType() was called since then
+    std::map<int, int> contextParticleTypes; // the bound Context's types (GenDPDEIntegratorUtilities::particleTypes)
+    std::vector<int> contextTypes; // the distinct types of the bound Context, ascending
+    bool typesChangedWhileBound = false; // setParticleType() was called since then
     /** Refuse an entry naming a type that no particle of the bound Context has (it could never take effect). */
     void requireContextType(const std::string& entry, int type) const;
     /** Refuse a step if setParticleType() changed a type since the Context was created (docs/types.md). */

@@ -45,35 +45,25 @@ class GenDPDEPairSource {
 public:
     virtual ~GenDPDEPairSource() {}
     /** The range within which the source holds every pair (nm); 0 before any evaluation. */
-    double getCutoff() const {
-        return foundCutoff;
-    }
+    double getCutoff() const { return foundCutoff; }
     /** The Context's step count at the evaluation that found the pairs: they are those of that step's positions. */
-    long long getStepCount() const {
-        return foundStep;
-    }
+    long long getStepCount() const { return foundStep; }
     /** Whether the source holds the pairs within this range (nm) found at this step, which a sweep may then reuse. */
-    bool holdsPairsFor(double cutoff, long long step) const {
-        return foundCutoff == cutoff && foundStep == step;
-    }
+    bool holdsPairsFor(double cutoff, long long step) const { return foundCutoff == cutoff && foundStep == step; }
     /** The pairs as a list on the host (Reference, CPU), or null. */
-    virtual GenDPDEHostPairList* getHostPairList() {
-        return nullptr;
-    }
+    virtual GenDPDEHostPairList* getHostPairList() { return nullptr; }
     /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
-    virtual CommonGenDPDECellGrid* getDeviceCellGrid() {
-        return nullptr;
-    }
+    virtual CommonGenDPDECellGrid* getDeviceCellGrid() { return nullptr; }
     /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */
-    virtual CommonGenDPDEForceChecks* getDeviceChecks() {
-        return nullptr;
-    }
+    virtual CommonGenDPDEForceChecks* getDeviceChecks() { return nullptr; }
+
 protected:
     /** An evaluation has just found every pair closer than cutoff (nm) at the positions of this step. */
     void pairsFound(double cutoff, long long step) {
         foundCutoff = cutoff;
         foundStep = step;
     }
+
 private:
     double foundCutoff = 0.0;
     long long foundStep = -1;
@@ -85,25 +75,22 @@ private:
  * the integrator's state next changes.
  */
 struct GenDPDEThermalState {
-    bool isothermal;                 // Isothermal mode: every particle at temperature
-    double temperature;              // the bath temperature T (K)
-    const double* internalEnergies;  // eps_i = C_V theta_i (kJ/mol) at the densities where sigma was densityEntropies
-    const double* densityEntropies;  // sigma(n_i) of those densities (kJ/(mol K)), or null if not known (positions or
-                                     // energies set since): then eps_i belongs to the current positions
-    const int* particleClass;        // the class of each particle (IntegratorTypeTables)
+    bool isothermal; // Isothermal mode: every particle at temperature
+    double temperature; // the bath temperature T (K)
+    const double* internalEnergies; // eps_i = C_V theta_i (kJ/mol) at the densities where sigma was densityEntropies
+    const double* densityEntropies; // sigma(n_i) of those densities (kJ/(mol K)), or null if not known (positions or
+            // energies set since): then eps_i belongs to the current positions
+    const int* particleClass; // the class of each particle (IntegratorTypeTables)
     const double* classHeatCapacity; // C_V of each class (kJ/(mol K))
-    bool checkStep;                  // an evaluation of a step: a particle whose temperature the step's motion
-                                     // changed by more than GENDPDE_STEP_TEMPERATURE_FACTOR is an error
+    bool checkStep; // an evaluation of a step: a particle whose temperature the step's motion
+            // changed by more than GENDPDE_STEP_TEMPERATURE_FACTOR is an error
 };
 
 /** The kernel that evaluates a GenDPDEForce. */
 class CalcGenDPDEForceKernel : public OpenMM::KernelImpl {
 public:
-    static std::string Name() {
-        return "CalcGenDPDEForce";
-    }
-    CalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) : OpenMM::KernelImpl(name, platform) {
-    }
+    static std::string Name() { return "CalcGenDPDEForce"; }
+    CalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) : OpenMM::KernelImpl(name, platform) {}
     /** Prepare the kernel for a Context holding this System and force. */
     virtual void initialize(const OpenMM::System& system, const GenDPDEForce& force) = 0;
     /** Add the forces to the Context's force array and return the energy (kJ/mol). */
@@ -119,28 +106,22 @@ public:
      * The pairs of the last evaluation, for an integrator kernel of the same platform (valid until the next
      * evaluation), or null if this kernel lends none.
      */
-    virtual GenDPDEPairSource* getPairSource() {
-        return nullptr;
-    }
+    virtual GenDPDEPairSource* getPairSource() { return nullptr; }
     /**
      * A force whose laws depend on temperature (docs/theory.md section 11): give the integrator kernel of the same
      * platform each particle's C_V theta_i and sigma(n_i) at the positions of the last evaluation, to keep as its
      * state (IntegrateGenDPDEStepKernel::keepThermalState, or its device counterpart). Returns false if this kernel's
      * laws do not depend on temperature.
      */
-    virtual bool giveThermalState(class IntegrateGenDPDEStepKernel& integratorKernel) {
-        return false;
-    }
+    virtual bool giveThermalState(class IntegrateGenDPDEStepKernel& integratorKernel) { return false; }
 };
 
 /** The kernel that advances a GenDPDEIntegrator by one step and owns the internal energies. */
 class IntegrateGenDPDEStepKernel : public OpenMM::KernelImpl {
 public:
-    static std::string Name() {
-        return "IntegrateGenDPDEStep";
-    }
-    IntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform) : OpenMM::KernelImpl(name, platform) {
-    }
+    static std::string Name() { return "IntegrateGenDPDEStep"; }
+    IntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform) :
+            OpenMM::KernelImpl(name, platform) {}
     /**
      * Prepare the kernel for a Context.
      *
@@ -167,14 +148,12 @@ public:
      * may then defer its checks to finishSteps(), so that a step need not wait for the device.
      */
     virtual void beginSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                            const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
-    }
+                            const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {}
     /**
      * After a run of steps, or when it was interrupted: throws the first failure of the run (naming the particle and
      * the step; the Context is left at that step, in the state of before it), if any.
      */
-    virtual void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) {
-    }
+    virtual void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) {}
     /** Whether the internal energies were ever set (all zero means never: docs/integrator.md). */
     virtual bool hasInternalEnergies() const {
         const std::vector<double>& energies = getInternalEnergies();
@@ -191,26 +170,23 @@ public:
      * 11); the GPU platforms hold it on the device instead (getDeviceThermalState) and throw here.
      */
     virtual GenDPDEThermalState getThermalState(const GenDPDEIntegrator& integrator) {
-        throw OpenMM::OpenMMException("GenDPDEIntegrator: the " + getPlatform().getName() + " platform holds the "
-                                      "particles' thermal state on the device, not on the host");
+        throw OpenMM::OpenMMException("GenDPDEIntegrator: the " + getPlatform().getName()
+                                      + " platform holds the "
+                                        "particles' thermal state on the device, not on the host");
     }
     /**
      * Keep the particles' thermal state found by a force evaluation at the current positions: eps_i = thermalEnergies
      * (C_V theta_i, kJ/mol) and the sigma(n_i) they belong to (kJ/(mol K)).
      */
     virtual void keepThermalState(const std::vector<double>& thermalEnergies,
-                                  const std::vector<double>& densityEntropies) {
-    }
+                                  const std::vector<double>& densityEntropies) {}
     /** Forget the sigma_i of keepThermalState(): eps_i now belongs to the current positions (they were set). */
-    virtual void forgetDensityEntropies() {
-    }
+    virtual void forgetDensityEntropies() {}
     /**
      * The GPU platforms' counterpart of getThermalState(): the device arrays of the thermal state (null on the host
      * platforms). The force kernel of the same platform reads them.
      */
-    virtual CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) {
-        return nullptr;
-    }
+    virtual CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) { return nullptr; }
     /** The GPU platforms' counterpart of keepThermalState(): device arrays by original index (mixed precision). */
     virtual void keepDeviceThermalState(OpenMM::ComputeArray& thermalEnergies, OpenMM::ComputeArray& densityEntropies) {
     }

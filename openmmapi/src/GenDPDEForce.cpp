@@ -15,22 +15,25 @@ using namespace ParameterChecks;
 
 // The physics core numbers the estimators as the API does.
 static_assert(GenDPDEForce::VA == GENDPDE_ESTIMATOR_VA && GenDPDEForce::VB == GENDPDE_ESTIMATOR_VB
-              && GenDPDEForce::VC == GENDPDE_ESTIMATOR_VC, "GenDPDEPhysicsCore.h numbers the estimators differently");
+                      && GenDPDEForce::VC == GENDPDE_ESTIMATOR_VC,
+              "GenDPDEPhysicsCore.h numbers the estimators differently");
 
 namespace {
 // Default Tait parameters: liquid argon (internal/LiquidArgon.h) converted to OpenMM units.
 const double argonLength = LiquidArgon::length;                                        // L (nm)
-const double argonEnergy = LiquidArgon::energy*6.02214076e23/1000.0;                   // u (kJ/mol)
-const double argonPressureUnit = argonEnergy/(argonLength*argonLength*argonLength);   // u/L^3 (kJ/mol/nm^3)
+const double argonEnergy = LiquidArgon::energy * 6.02214076e23 / 1000.0;                   // u (kJ/mol)
+const double argonPressureUnit = argonEnergy / (argonLength * argonLength * argonLength);   // u/L^3 (kJ/mol/nm^3)
 }
 
-GenDPDEForce::GenDPDEForce(double cutoff) : cutoffScaling(1.0), backgroundPressure(0.0),
-        referenceDensity(LiquidArgon::density/(argonLength*argonLength*argonLength)),
+GenDPDEForce::GenDPDEForce(double cutoff) :
+        cutoffScaling(1.0), backgroundPressure(0.0),
+        referenceDensity(LiquidArgon::density / (argonLength * argonLength * argonLength)),
         // pi0* = P0* - n0* T0*
-        referencePressure((LiquidArgon::pressure - LiquidArgon::density*LiquidArgon::temperature)*argonPressureUnit),
-        bulkModulus(argonPressureUnit/(LiquidArgon::taitExponent*LiquidArgon::compressibility)),   // 1/(gamma_T kappa_T0)
-        exponent(LiquidArgon::taitExponent),
-        nonbondedMethod(CutoffPeriodic), estimator(VB), defaultLaw{0, Tait, {}} {
+        referencePressure((LiquidArgon::pressure - LiquidArgon::density * LiquidArgon::temperature)
+                          * argonPressureUnit),
+        bulkModulus(argonPressureUnit
+                    / (LiquidArgon::taitExponent * LiquidArgon::compressibility)),   // 1/(gamma_T kappa_T0)
+        exponent(LiquidArgon::taitExponent), nonbondedMethod(CutoffPeriodic), estimator(VB), defaultLaw{0, Tait, {}} {
     setCutoffDistance(cutoff);
 }
 
@@ -49,8 +52,7 @@ GenDPDEForce::NonbondedMethod GenDPDEForce::getNonbondedMethod() const {
 
 void GenDPDEForce::setNonbondedMethod(NonbondedMethod method) {
     if (method != CutoffNonPeriodic && method != CutoffPeriodic)
-        reject("GenDPDEForce", "nonbonded method", (int) method, "",
-               "CutoffNonPeriodic (0) or CutoffPeriodic (1)");
+        reject("GenDPDEForce", "nonbonded method", (int) method, "", "CutoffNonPeriodic (0) or CutoffPeriodic (1)");
     nonbondedMethod = method;
 }
 
@@ -82,7 +84,8 @@ void GenDPDEForce::setBackgroundPressure(double pressure) {
     backgroundPressure = pressure;
 }
 
-void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus, double exponent) {
+void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePressure, double bulkModulus,
+                                     double exponent) {
     // Check all four before changing any.
     requireInRange("GenDPDEForce", "Tait reference density n0", referenceDensity, Ranges::referenceDensity);
     requireInRange("GenDPDEForce", "Tait reference pressure pi0", referencePressure, Ranges::referencePressure);
@@ -94,7 +97,8 @@ void GenDPDEForce::setTaitParameters(double referenceDensity, double referencePr
     this->exponent = exponent;
 }
 
-void GenDPDEForce::getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus, double& exponent) const {
+void GenDPDEForce::getTaitParameters(double& referenceDensity, double& referencePressure, double& bulkModulus,
+                                     double& exponent) const {
     referenceDensity = this->referenceDensity;
     referencePressure = this->referencePressure;
     bulkModulus = this->bulkModulus;
@@ -131,8 +135,8 @@ const std::map<int, int>& GenDPDEForce::getParticleTypes() const {
 
 void GenDPDEForce::checkTypeEntry(int index, int type, double referenceDensity, double referencePressure,
                                   double bulkModulus, double exponent) const {
-    const std::string entry = "GenDPDEForce type parameters " + std::to_string(index) + " (type "
-                              + std::to_string(type) + ")";
+    const std::string entry =
+            "GenDPDEForce type parameters " + std::to_string(index) + " (type " + std::to_string(type) + ")";
     requireInRange(entry, "Tait reference density n0", referenceDensity, Ranges::referenceDensity);
     requireInRange(entry, "Tait reference pressure pi0", referencePressure, Ranges::referencePressure);
     requireInRange(entry, "Tait bulk modulus B_T", bulkModulus, Ranges::bulkModulus);
@@ -200,8 +204,8 @@ void GenDPDEForce::getEquationOfState(EquationOfState& law, std::vector<double>&
 }
 
 void GenDPDEForce::checkTypeLaw(int index, int type, EquationOfState law, const std::vector<double>& parameters) const {
-    const std::string entry = "GenDPDEForce type equation of state " + std::to_string(index) + " (type "
-                              + std::to_string(type) + ")";
+    const std::string entry =
+            "GenDPDEForce type equation of state " + std::to_string(index) + " (type " + std::to_string(type) + ")";
     checkLaw(entry, law, parameters);
     for (int other = 0; other < (int) typeLaws.size(); other++)
         if (other != index && typeLaws[other].type == type)
@@ -287,15 +291,15 @@ double GenDPDEForce::getVirial(Context& context) const {
 
 std::vector<double> GenDPDEForce::getParticleVirials(Context& context) const {
     std::vector<double> virials = observablesInContext(context, true).particleVirials;
-    const int numParticles = virials.size()/9;
+    const int numParticles = virials.size() / 9;
     if (numParticles > 0) {
         // The box term -p_b V_box on the diagonal of the system's tensor, shared equally.
         ContextImpl& impl = const_cast<GenDPDEForce*>(this)->getContextImpl(context);
-        const double share = getImpl(context).backgroundVirial(impl)/(3.0*numParticles);
+        const double share = getImpl(context).backgroundVirial(impl) / (3.0 * numParticles);
         if (share != 0)
             for (int i = 0; i < numParticles; i++)
                 for (int a = 0; a < 3; a++)
-                    virials[9*i + 4*a] += share;
+                    virials[9 * i + 4 * a] += share;
     }
     return virials;
 }

@@ -10,15 +10,14 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {
-}
+GenDPDEForceImpl::GenDPDEForceImpl(const GenDPDEForce& owner) : owner(owner) {}
 
 namespace {
 /** The volume of the Context's periodic box (nm^3). */
 double boxVolume(ContextImpl& context) {
     Vec3 a, b, c;
     context.getPeriodicBoxVectors(a, b, c);
-    return a[0]*b[1]*c[2];
+    return a[0] * b[1] * c[2];
 }
 
 /** Whether a law depends on temperature (the physics core's gendpdeLawDependsOnTemperature). */
@@ -51,9 +50,10 @@ void GenDPDEForceImpl::initialize(ContextImpl& context) {
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", owner.getCutoffDistance(), box);
     }
     if (owner.dependsOnTemperature() && dynamic_cast<GenDPDEIntegrator*>(&context.getIntegrator()) == nullptr)
-        throw OpenMMException("GenDPDEForce: " + describeTemperatureDependence(owner) + " depends on temperature and "
-                              "needs a GenDPDEIntegrator, which holds the particles' temperatures; the Context's "
-                              "integrator is another");
+        throw OpenMMException("GenDPDEForce: " + describeTemperatureDependence(owner)
+                              + " depends on temperature and "
+                                "needs a GenDPDEIntegrator, which holds the particles' temperatures; the Context's "
+                                "integrator is another");
     checkBackgroundPressure();
     dependsOnTemperature = owner.dependsOnTemperature();
     backgroundPressure = owner.getBackgroundPressure();
@@ -62,17 +62,17 @@ void GenDPDEForceImpl::initialize(ContextImpl& context) {
 }
 
 double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeForces, bool includeEnergy, int groups) {
-    if ((groups & (1<<owner.getForceGroup())) == 0)
+    if ((groups & (1 << owner.getForceGroup())) == 0)
         return 0.0;
     numEvaluations++;
     double energy = kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
     if (includeEnergy && backgroundPressure != 0)
-        energy += backgroundPressure*boxVolume(context);
+        energy += backgroundPressure * boxVolume(context);
     return energy;
 }
 
 double GenDPDEForceImpl::backgroundVirial(ContextImpl& context) const {
-    return backgroundPressure == 0 ? 0.0 : -3*backgroundPressure*boxVolume(context);
+    return backgroundPressure == 0 ? 0.0 : -3 * backgroundPressure * boxVolume(context);
 }
 
 void GenDPDEForceImpl::checkBackgroundPressure() const {

@@ -114,10 +114,14 @@ void GenDPDEIntegrator::requireBoundTypes() {
     for (const auto& entry : particleTypes) {
         const int running = particleTypeIn(contextParticleTypes, entry.first);
         if (entry.second != running)
-            throw OpenMMException("GenDPDEIntegrator: the type of particle " + std::to_string(entry.first)
-                    + " was changed to " + std::to_string(entry.second) + " after the Context was created (it runs "
-                    "with type " + std::to_string(running) + "); particle types are read when the Context is "
-                    "created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
+            throw OpenMMException(
+                    "GenDPDEIntegrator: the type of particle " + std::to_string(entry.first) + " was changed to "
+                    + std::to_string(entry.second)
+                    + " after the Context was created (it runs "
+                      "with type "
+                    + std::to_string(running)
+                    + "); particle types are read when the Context is "
+                      "created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
     }
     typesChangedWhileBound = false;   // every change gave a particle the type it runs with
 }
@@ -129,9 +133,10 @@ void GenDPDEIntegrator::requireContextType(const std::string& entry, int type) c
     for (int t : contextTypes)
         known += (known.empty() ? "" : ", ") + std::to_string(t);
     throw OpenMMException(entry + ": no particle of the Context has type " + std::to_string(type) + " (its types are "
-                          + known + "), so the entry could never take effect; particle types are read when the "
-                          "Context is created: set them, call Context.reinitialize(preserveState=True), then add "
-                          "the entry");
+                          + known
+                          + "), so the entry could never take effect; particle types are read when the "
+                            "Context is created: set them, call Context.reinitialize(preserveState=True), then add "
+                            "the entry");
 }
 
 int GenDPDEIntegrator::getParticleType(int index) const {
@@ -144,7 +149,7 @@ const std::map<int, int>& GenDPDEIntegrator::getParticleTypes() const {
 
 void GenDPDEIntegrator::checkTypeHeatCapacity(int index, int type, double heatCapacity) const {
     const std::string entry = std::string(integratorName) + " type heat capacity " + std::to_string(index) + " (type "
-                              + std::to_string(type) + ")";
+            + std::to_string(type) + ")";
     requireInRange(entry, "heat capacity", heatCapacity, Ranges::heatCapacity);
     requireContextType(entry, type);
     for (int other = 0; other < (int) typeHeatCapacities.size(); other++)
@@ -179,7 +184,7 @@ void GenDPDEIntegrator::setTypeHeatCapacity(int index, int type, double heatCapa
 
 void GenDPDEIntegrator::checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const {
     const std::string entry = std::string(integratorName) + " type pair " + std::to_string(index) + " (types "
-                              + std::to_string(type1) + ", " + std::to_string(type2) + ")";
+            + std::to_string(type1) + ", " + std::to_string(type2) + ")";
     requireInRange(entry, "friction", friction, Ranges::friction);
     requireInRange(entry, "heat conduction", heatConduction, Ranges::heatConduction);
     requireContextType(entry, type1);
@@ -219,7 +224,7 @@ void GenDPDEIntegrator::setTypePairParameters(int index, int type1, int type2, d
 }
 
 std::vector<double> GenDPDEIntegrator::particleHeatCapacities(const System& system,
-                                                               const std::map<int, int>& typeOfParticle) const {
+                                                              const std::map<int, int>& typeOfParticle) const {
     const ParticleTypeIndex types(typeOfParticle, system.getNumParticles(), integratorName);
     return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
 }
@@ -268,7 +273,7 @@ void GenDPDEIntegrator::setParticleTemperatures(const std::vector<double>& tempe
     const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
     std::vector<double> energies(temperatures.size());
     for (size_t i = 0; i < energies.size(); i++)
-        energies[i] = capacity[i]*temperatures[i];
+        energies[i] = capacity[i] * temperatures[i];
     boundKernel().setInternalEnergies(energies);
     applyThermalRule(ThermalEvent::EnergiesSet);
 }
@@ -291,11 +296,11 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
         throw OpenMMException("GenDPDEIntegrator: setInternalEnergiesToTemperature() needs a Context");
     // eps_i ~ Gamma(C_i/k_B + 1, k_B T), each a pure function of (randomSeed, i): the same on every machine.
     const std::vector<double> capacity = particleHeatCapacities(context->getSystem(), contextParticleTypes);
-    const double scale = Physics::Boltzmann*temperature;
+    const double scale = Physics::Boltzmann * temperature;
     std::vector<double> energies(capacity.size());
     for (size_t i = 0; i < energies.size(); i++) {
         CounterRandom::ParticleStream random((std::uint32_t) randomSeed, (std::uint32_t) i);
-        energies[i] = scale*random.gamma(capacity[i]/Physics::Boltzmann + 1.0);
+        energies[i] = scale * random.gamma(capacity[i] / Physics::Boltzmann + 1.0);
     }
     boundKernel().setInternalEnergies(energies);
     applyThermalRule(ThermalEvent::EnergiesSet);
@@ -303,8 +308,9 @@ void GenDPDEIntegrator::setInternalEnergiesToTemperature(double temperature, int
 
 std::vector<double> GenDPDEIntegrator::configuredHeatCapacities(int numParticles) const {
     // Types refer to particles not known yet: every particle with a type set is looked up.
-    const ParticleTypeIndex types(particleTypes, std::max<int>(numParticles, particleTypes.empty() ? 0
-                                  : particleTypes.rbegin()->first + 1), integratorName);
+    const ParticleTypeIndex types(
+            particleTypes, std::max<int>(numParticles, particleTypes.empty() ? 0 : particleTypes.rbegin()->first + 1),
+            integratorName);
     return GenDPDEPlugin::particleHeatCapacities(typePairTable(*this, types), types);
 }
 
@@ -364,14 +370,14 @@ void GenDPDEIntegrator::checkSystem(const System& system) const {
         if (system.isVirtualSite(i))
             throw OpenMMException("GenDPDEIntegrator: virtual sites are not supported; particle " + std::to_string(i)
                                   + " is one (the pair forces of a massless site cannot be distributed to its "
-                                  "parents without breaking the conservation of momentum and energy)");
+                                    "parents without breaking the conservation of momentum and energy)");
         requireInRange(integratorName, "mass of particle " + std::to_string(i), system.getParticleMass(i),
                        Ranges::mass);
     }
 }
 
 std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& system,
-                                                                const std::map<int, int>& types) const {
+                                                               const std::map<int, int>& types) const {
     // docs/integrator.md, "Temperatures and internal energies": the internal energies or temperatures set before the
     // Context, else the bath temperature for every particle, else none (all zero: an Isoenergetic step then asks for
     // them).
@@ -385,7 +391,7 @@ std::vector<double> GenDPDEIntegrator::initialInternalEnergies(const System& sys
     const std::vector<double> capacity = particleHeatCapacities(system, types);
     std::vector<double> energies(numParticles);
     for (int i = 0; i < numParticles; i++)
-        energies[i] = capacity[i]*(initialTemperatures.empty() ? temperature : initialTemperatures[i]);
+        energies[i] = capacity[i] * (initialTemperatures.empty() ? temperature : initialTemperatures[i]);
     return energies;
 }
 
@@ -422,7 +428,8 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     contextTypes = typeIndex.getTypes();
     // (the Forces' Impls are made and initialized before the integrator, in the order of the System's Forces)
     thermalForce = thermalForceIndex >= 0
-            ? dynamic_cast<const GenDPDEForceImpl*>(contextRef.getForceImpls()[thermalForceIndex]) : nullptr;
+            ? dynamic_cast<const GenDPDEForceImpl*>(contextRef.getForceImpls()[thermalForceIndex])
+            : nullptr;
     entropyState = EntropyState::Unknown;
     positionsSet = false;
     lawUpdatesSeen = 0;
@@ -432,7 +439,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
 }
 
 void GenDPDEIntegrator::cleanup() {
-    kernel = Kernel();   // the internal energies belong to the Context; what the user set is kept
+    kernel = Kernel(); // the internal energies belong to the Context; what the user set is kept
 }
 
 std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
@@ -440,7 +447,7 @@ std::vector<std::string> GenDPDEIntegrator::getKernelNames() {
 }
 
 void GenDPDEIntegrator::requireTemperatures() const {
-    if (mode == Isoenergetic && !boundKernel().hasInternalEnergies())   // all zero: never set (see the header)
+    if (mode == Isoenergetic && !boundKernel().hasInternalEnergies()) // all zero: never set (see the header)
         throw OpenMMException("GenDPDEIntegrator: the particle temperatures are not set; call setTemperature() "
                               "before creating the Context, or setParticleTemperatures(), setInternalEnergies() or "
                               "setInternalEnergiesToTemperature(), before stepping in Isoenergetic mode");
@@ -468,8 +475,8 @@ void GenDPDEIntegrator::step(int steps) {
                               "GenDPDEForce; call setCutoffDistance()");
     // The forces of the integration groups are evaluated right before each step: a GenDPDEForce among them has
     // the pairs of that step.
-    GenDPDEPairSource* pairSource = terms.pairSweep
-            ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
+    GenDPDEPairSource* pairSource =
+            terms.pairSweep ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
     IntegrateGenDPDEStepKernel& stepKernel = boundKernel();
     stepKernel.beginSteps(*context, *this, terms, pairSource);
     // With a law that depends on temperature, every step starts from the thermal state of its positions, fixed before
@@ -480,21 +487,20 @@ void GenDPDEIntegrator::step(int steps) {
         try {
             for (int i = 0; i < steps; i++) {
                 if (keepsThermalState && !forcesAreCurrent()) {
-                    evaluateStepForces(entropyState == EntropyState::Earlier);   // (the drift of the step before)
+                    evaluateStepForces(entropyState == EntropyState::Earlier); // (the drift of the step before)
                     rememberForces();
                 }
-                if (context->updateContextState())   // a Force moved the particles (a barostat) or its parameters
+                if (context->updateContextState()) // a Force moved the particles (a barostat) or its parameters
                     applyThermalRule(ThermalEvent::PositionsMovedByForce);
                 if (!forcesAreCurrent())
                     evaluateStepForces(entropyState == EntropyState::Earlier);
                 forcesCurrent = false;
                 stepKernel.execute(*context, *this, terms, pairSource);
                 if (entropyState == EntropyState::Current)
-                    entropyState = EntropyState::Earlier;   // the drift: the entropies belong to the last positions
+                    entropyState = EntropyState::Earlier; // the drift: the entropies belong to the last positions
             }
-        }
-        catch (...) {
-            stepKernel.finishSteps(*context, *this);   // a failure the device found earlier is the one to report
+        } catch (...) {
+            stepKernel.finishSteps(*context, *this); // a failure the device found earlier is the one to report
             throw;
         }
         stepKernel.finishSteps(*context, *this);
@@ -504,8 +510,7 @@ void GenDPDEIntegrator::step(int steps) {
             evaluateStepForces(true);
             rememberForces();
         }
-    }
-    catch (const OpenMMException&) {
+    } catch (const OpenMMException&) {
         requireFinitePositions();
         throw;
     }
@@ -521,7 +526,7 @@ double GenDPDEIntegrator::getConservedEnergy() {
     const bool forcesWereCurrent = forcesAreCurrent();
     double potential = context->calcForcesAndEnergy(true, true, getIntegrationForceGroups());
     if (forcesWereCurrent)
-        rememberForces();   // the same forces again: the next step still needs no evaluation
+        rememberForces(); // the same forces again: the next step still needs no evaluation
     double kinetic = computeKineticEnergy();
     double internal = 0.0;
     for (double e : boundKernel().getInternalEnergies())
@@ -538,8 +543,8 @@ void GenDPDEIntegrator::checkInternalEnergies(const std::vector<double>& energie
                               + " internal energies, the System has " + std::to_string(numParticles) + " particles");
     const bool unset = !energies.empty() && energies[0] == 0.0;
     for (int i = 0; i < numParticles; i++)
-        if (unset ? energies[i] != 0.0 : !(energies[i] >= Ranges::internalEnergy.minimum
-                                            && energies[i] <= Ranges::internalEnergy.maximum)) {
+        if (unset ? energies[i] != 0.0
+                  : !(energies[i] >= Ranges::internalEnergy.minimum && energies[i] <= Ranges::internalEnergy.maximum)) {
             std::ostringstream message;
             message.precision(17);
             message << "GenDPDEIntegrator: " << source << " is corrupt: the internal energy of particle " << i << " is "

@@ -55,7 +55,7 @@ std::uint64_t checkpointChecksum(const std::string* openmm, std::int32_t version
     const std::int32_t count = energies.size();
     for (std::int32_t word : {checkpointMagic, version, seed, count})
         hash = fnv1a(&word, sizeof(word), hash);
-    hash = fnv1a(energies.data(), energies.size()*sizeof(double), hash);
+    hash = fnv1a(energies.data(), energies.size() * sizeof(double), hash);
     return fnv1a(&coverage, sizeof(coverage), hash);
 }
 
@@ -87,7 +87,7 @@ void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
     stream.write((const char*) &version, sizeof(version));
     stream.write((const char*) &seed, sizeof(seed));
     stream.write((const char*) &count, sizeof(count));
-    stream.write((const char*) energies.data(), sizeof(double)*count);
+    stream.write((const char*) energies.data(), sizeof(double) * count);
     stream.write((const char*) &coverage, sizeof(coverage));
     stream.write((const char*) &checksum, sizeof(checksum));
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
@@ -120,7 +120,7 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
                               + " internal energies, the System has " + std::to_string(numParticles) + " particles");
     energies.assign(count, 0.0);
     if (count > 0) {
-        stream.read((char*) energies.data(), sizeof(double)*count);
+        stream.read((char*) energies.data(), sizeof(double) * count);
         if (!stream)
             throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its internal energies (truncated)");
     }
@@ -152,12 +152,15 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
                                       "cannot be read back from this stream (a checkpoint is read from a string or a "
                                       "file holding it alone)");
         }
-        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies,
-                               coverage) != checksum)
+        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies, coverage)
+            != checksum)
             throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint is corrupt: its checksum does not "
-                                  "match its contents (") + (coverage == coversWholeCheckpoint ? "OpenMM's part and "
-                                  "the integrator's data" : "the integrator's data") + "); it was changed or damaged "
-                                  "since it was written");
+                                              "match its contents (")
+                                  + (coverage == coversWholeCheckpoint ? "OpenMM's part and "
+                                                                         "the integrator's data"
+                                                                       : "the integrator's data")
+                                  + "); it was changed or damaged "
+                                    "since it was written");
     }
     if (version >= 2) {
         std::int32_t end;
@@ -177,8 +180,7 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     std::vector<double> energies;
     try {
         readCheckpoint(stream, seed, energies);   // everything read and checked before anything changes
-    }
-    catch (...) {
+    } catch (...) {
         // OpenMM restored the checkpoint's positions, velocities and parameters before asking for this part, and
         // says nothing of it once this part is refused: for the particles' thermal state that is a move of the
         // particles (applyThermalRule); the integrator's own state is unchanged.
@@ -209,7 +211,7 @@ void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
 void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
     // Everything is read and checked before the integrator's state changes.
     if (!node.hasProperty("internalEnergies") || !node.hasProperty("GenDPDEIntegratorVersion")
-            || !node.hasProperty("seedInUse"))
+        || !node.hasProperty("seedInUse"))
         throw OpenMMException("GenDPDEIntegrator: the State does not hold GenDPDEIntegrator parameters (it was saved "
                               "with another integrator, or without getIntegratorParameters=True)");
     const int version = StrictXml::integer(node, "GenDPDEIntegrator State", "GenDPDEIntegratorVersion");

@@ -37,11 +37,11 @@ void GenDPDEIntegrator::stateChanged(State::DataType changed) {
 }
 
 void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
-    forcesCurrent = false;   // every event changes the forces or what they act on
+    forcesCurrent = false; // every event changes the forces or what they act on
     if (context == nullptr || thermalForce == nullptr || event == ThermalEvent::ParametersChanged)
         return;
     IntegrateGenDPDEStepKernel& k = boundKernel();
-    auto forget = [&]() {   // eps_i stays: C_V theta_i at the current positions, the entropies not fixed
+    auto forget = [&]() { // eps_i stays: C_V theta_i at the current positions, the entropies not fixed
         k.forgetDensityEntropies();
         entropyState = EntropyState::Unknown;
     };
@@ -54,52 +54,51 @@ void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
     }
     const bool keepEntropies = adiabaticPositionChanges;
     switch (event) {
-    case ThermalEvent::PositionsSet:
-        positionsSet = true;
-        if (!keepEntropies)
-            forget();               // each particle keeps its temperature at the new positions
-        else {
-            // each keeps its entropy (or, never fixed, its temperature: the first positions)
-            if (entropyState == EntropyState::Current)
+        case ThermalEvent::PositionsSet:
+            positionsSet = true;
+            if (!keepEntropies)
+                forget(); // each particle keeps its temperature at the new positions
+            else {
+                // each keeps its entropy (or, never fixed, its temperature: the first positions)
+                if (entropyState == EntropyState::Current)
+                    entropyState = EntropyState::Earlier;
+                settleThermalState();
+            }
+            break;
+        case ThermalEvent::PositionsMovedByForce:
+            // Inside step(), right before the step's evaluation, which fixes the state at the new positions.
+            if (!keepEntropies)
+                forget();
+            else if (entropyState == EntropyState::Current)
                 entropyState = EntropyState::Earlier;
-            settleThermalState();
-        }
-        break;
-    case ThermalEvent::PositionsMovedByForce:
-        // Inside step(), right before the step's evaluation, which fixes the state at the new positions.
-        if (!keepEntropies)
+            break;
+        case ThermalEvent::EnergiesSet:
+        case ThermalEvent::LawChanged:
+            // Temperatures just set, or a new law at the same positions: each particle has its temperature here (eps_i
+            // is C_V theta_i at the current positions); with adiabatic moves its entropy is fixed now.
             forget();
-        else if (entropyState == EntropyState::Current)
-            entropyState = EntropyState::Earlier;
-        break;
-    case ThermalEvent::EnergiesSet:
-    case ThermalEvent::LawChanged:
-        // Temperatures just set, or a new law at the same positions: each particle has its temperature here (eps_i
-        // is C_V theta_i at the current positions); with adiabatic moves its entropy is fixed now.
-        forget();
-        if (keepEntropies)
-            settleThermalState();
-        break;
-    case ThermalEvent::AdiabaticChanged:
-    case ThermalEvent::ModeChanged:
-        // Adiabatic moves need the entropies fixed at the current positions (from now on, or since the Isothermal
-        // mode froze the state); otherwise nothing changes.
-        if (keepEntropies && entropyState == EntropyState::Unknown)
-            settleThermalState();
-        break;
-    case ThermalEvent::ParametersChanged:
-        break;
+            if (keepEntropies)
+                settleThermalState();
+            break;
+        case ThermalEvent::AdiabaticChanged:
+        case ThermalEvent::ModeChanged:
+            // Adiabatic moves need the entropies fixed at the current positions (from now on, or since the Isothermal
+            // mode froze the state); otherwise nothing changes.
+            if (keepEntropies && entropyState == EntropyState::Unknown)
+                settleThermalState();
+            break;
+        case ThermalEvent::ParametersChanged:
+            break;
     }
 }
 
 void GenDPDEIntegrator::settleThermalState() {
     if (!positionsSet || !boundKernel().hasInternalEnergies())
-        return;   // nothing to fix the entropies at yet: the temperatures hold at the first positions set
+        return; // nothing to fix the entropies at yet: the temperatures hold at the first positions set
     try {
-        evaluateStepForces(false);   // (a move from outside the dynamics may change the temperatures by any factor)
-    }
-    catch (const OpenMMException&) {
-        return;   // positions where the force cannot be evaluated: the state stays, and the next step says why
+        evaluateStepForces(false); // (a move from outside the dynamics may change the temperatures by any factor)
+    } catch (const OpenMMException&) {
+        return; // positions where the force cannot be evaluated: the state stays, and the next step says why
     }
     rememberForces();
 }
@@ -108,8 +107,7 @@ void GenDPDEIntegrator::evaluateStepForces(bool checkStep) {
     checkingStepTemperatures = checkStep && thermalForce != nullptr;
     try {
         context->calcForcesAndEnergy(true, false, getIntegrationForceGroups());
-    }
-    catch (...) {
+    } catch (...) {
         checkingStepTemperatures = false;
         throw;
     }
@@ -125,9 +123,9 @@ bool GenDPDEIntegrator::forcesAreCurrent() const {
     if (!forcesCurrent || context->getLastForceGroups() != getIntegrationForceGroups())
         return false;
     if (thermalForce == nullptr || thermalForce->getNumEvaluations() != forcesEvaluation)
-        return false;   // another evaluation (a barostat's trial) replaced the force's pairs and thermal state
+        return false; // another evaluation (a barostat's trial) replaced the force's pairs and thermal state
     Vec3 box[3];
-    context->getPeriodicBoxVectors(box[0], box[1], box[2]);   // (setting the box alone tells no integrator)
+    context->getPeriodicBoxVectors(box[0], box[1], box[2]); // (setting the box alone tells no integrator)
     return box[0] == forcesBox[0] && box[1] == forcesBox[1] && box[2] == forcesBox[2];
 }
 
@@ -149,8 +147,8 @@ void GenDPDEIntegrator::requireFinitePositions() const {
     context->getPositions(positions);
     for (size_t i = 0; i < positions.size(); i++)
         if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
-            throw OpenMMException(GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i],
-                                                                                      context->getStepCount()));
+            throw OpenMMException(
+                    GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i], context->getStepCount()));
 }
 
 bool GenDPDEIntegrator::getAdiabaticPositionChanges() const {

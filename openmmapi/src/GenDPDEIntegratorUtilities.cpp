@@ -56,7 +56,7 @@ GenDPDEPairSource* GenDPDEIntegratorUtilities::findPairSource(ContextImpl& conte
             continue;
         const GenDPDEForce& force = forceImpl->getOwner();
         if (force.getCutoffDistance() == pairRange && force.usesPeriodicBoundaryConditions() == periodic
-                && (integrator.getIntegrationForceGroups() & (1<<force.getForceGroup())) != 0)
+            && (integrator.getIntegrationForceGroups() & (1 << force.getForceGroup())) != 0)
             return forceImpl->getPairSource();
     }
     return nullptr;
@@ -71,19 +71,21 @@ int GenDPDEIntegratorUtilities::checkThermalForces(const System& system, const G
         if (found >= 0)
             throw OpenMMException("GenDPDEIntegrator: forces " + std::to_string(found) + " and " + std::to_string(i)
                                   + " of the System are GenDPDEForces whose equations of state depend on temperature; "
-                                  "at most one may (the particles have one temperature each)");
+                                    "at most one may (the particles have one temperature each)");
         found = i;
-        if ((integrator.getIntegrationForceGroups() & (1<<force->getForceGroup())) == 0)
-            throw OpenMMException("GenDPDEIntegrator: the GenDPDEForce (force " + std::to_string(i) + " of the System) "
-                                  "has an equation of state that depends on temperature, and its force group "
-                                  + std::to_string(force->getForceGroup()) + " is not among the integration force "
-                                  "groups; the integrator updates the temperatures from its evaluations");
+        if ((integrator.getIntegrationForceGroups() & (1 << force->getForceGroup())) == 0)
+            throw OpenMMException("GenDPDEIntegrator: the GenDPDEForce (force " + std::to_string(i)
+                                  + " of the System) "
+                                    "has an equation of state that depends on temperature, and its force group "
+                                  + std::to_string(force->getForceGroup())
+                                  + " is not among the integration force "
+                                    "groups; the integrator updates the temperatures from its evaluations");
     }
     return found;
 }
 
 IntegrateGenDPDEStepKernel& GenDPDEIntegratorUtilities::thermalStateHolder(ContextImpl& context,
-                                                                         const GenDPDEIntegrator*& integrator) {
+                                                                           const GenDPDEIntegrator*& integrator) {
     integrator = dynamic_cast<const GenDPDEIntegrator*>(&context.getIntegrator());
     if (integrator == nullptr)
         throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs a "
@@ -91,13 +93,15 @@ IntegrateGenDPDEStepKernel& GenDPDEIntegratorUtilities::thermalStateHolder(Conte
     IntegrateGenDPDEStepKernel& kernel = integrator->boundKernel();
     const bool isothermal = (integrator->getMode() == GenDPDEIntegrator::Isothermal);
     if (isothermal && !(integrator->getTemperature() > 0.0))
-        throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature, with the "
-                              "GenDPDEIntegrator in Isothermal mode, needs the bath temperature; call setTemperature()");
+        throw OpenMMException(
+                "GenDPDEForce: an equation of state that depends on temperature, with the "
+                "GenDPDEIntegrator in Isothermal mode, needs the bath temperature; call setTemperature()");
     if (!isothermal && !kernel.hasInternalEnergies())
-        throw OpenMMException("GenDPDEForce: an equation of state that depends on temperature needs the particles' "
-                              "temperatures; call the GenDPDEIntegrator's setTemperature() before creating the Context, "
-                              "or setParticleTemperatures(), setInternalEnergies() or "
-                              "setInternalEnergiesToTemperature()");
+        throw OpenMMException(
+                "GenDPDEForce: an equation of state that depends on temperature needs the particles' "
+                "temperatures; call the GenDPDEIntegrator's setTemperature() before creating the Context, "
+                "or setParticleTemperatures(), setInternalEnergies() or "
+                "setInternalEnergiesToTemperature()");
     return kernel;
 }
 
@@ -123,8 +127,8 @@ void GenDPDEIntegratorUtilities::keepThermalState(ContextImpl& context, const Ge
 namespace {
 
 /** Throw, naming the first particle (in index order) whose type differs between two settings of the types. */
-void requireSameTypes(const std::map<int, int>& first, const std::string& firstName,
-                      const std::map<int, int>& second, const std::string& secondName, int numParticles) {
+void requireSameTypes(const std::map<int, int>& first, const std::string& firstName, const std::map<int, int>& second,
+                      const std::string& secondName, int numParticles) {
     auto typeOf = [](const std::map<int, int>& types, int particle) {
         const auto entry = types.find(particle);
         return entry == types.end() ? 0 : entry->second;
@@ -137,11 +141,13 @@ void requireSameTypes(const std::map<int, int>& first, const std::string& firstN
     std::sort(named.begin(), named.end());
     for (int particle : named)
         if (particle < numParticles && typeOf(first, particle) != typeOf(second, particle))
-            throw OpenMMException("GenDPDEIntegrator: particle " + std::to_string(particle) + " has type "
+            throw OpenMMException(
+                    "GenDPDEIntegrator: particle " + std::to_string(particle) + " has type "
                     + std::to_string(typeOf(first, particle)) + " on " + firstName + " but type "
-                    + std::to_string(typeOf(second, particle)) + " on " + secondName + ". A particle's type is one "
-                    "setting: set the types on the GenDPDEForce (the integrator then takes them), or the same types "
-                    "on both (docs/types.md)");
+                    + std::to_string(typeOf(second, particle)) + " on " + secondName
+                    + ". A particle's type is one "
+                      "setting: set the types on the GenDPDEForce (the integrator then takes them), or the same types "
+                      "on both (docs/types.md)");
 }
 
 } // namespace
@@ -158,8 +164,7 @@ std::map<int, int> GenDPDEIntegratorUtilities::particleTypes(const System& syste
         if (forceTypes == nullptr) {
             forceTypes = &force->getParticleTypes();
             forceName = name;
-        }
-        else
+        } else
             requireSameTypes(*forceTypes, forceName, force->getParticleTypes(), name, system.getNumParticles());
     }
     const std::map<int, int>& own = integrator.getParticleTypes();
@@ -205,10 +210,10 @@ std::string GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(int particle, d
 }
 
 std::string GenDPDEIntegratorUtilities::unstableParticleMessage(int particle, const Vec3& velocity, const Vec3& force,
-                                                               double inverseMass, double stepSize,
-                                                               double maxDisplacement, long long step) {
+                                                                double inverseMass, double stepSize,
+                                                                double maxDisplacement, long long step) {
     if (!(std::isfinite(force[0]) && std::isfinite(force[1]) && std::isfinite(force[2])))
         return nonFiniteForceMessage(particle, force, step);
-    const Vec3 displacement = (velocity + force*(stepSize*inverseMass))*stepSize;
+    const Vec3 displacement = (velocity + force * (stepSize * inverseMass)) * stepSize;
     return unstableStepMessage(particle, std::sqrt(displacement.dot(displacement)), maxDisplacement, step);
 }

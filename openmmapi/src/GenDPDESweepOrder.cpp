@@ -46,10 +46,10 @@ void interleaveRuns(const int* listed, const int* first, int count, int* output)
 std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double range, bool periodic) {
     std::array<int, 3> cells;
     for (int k = 0; k < 3; k++) {
-        const double fit = std::floor(extent[k]/(cellMargin*range));
+        const double fit = std::floor(extent[k] / (cellMargin * range));
         const int m = (int) std::min(fit, 1e6);
         if (periodic)
-            cells[k] = (m >= 4 ? 4*(m/4) : (m >= 2 ? 2 : 1));
+            cells[k] = (m >= 4 ? 4 * (m / 4) : (m >= 2 ? 2 : 1));
         else
             cells[k] = std::max(1, m);
     }
@@ -58,15 +58,15 @@ std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double rang
 
 int GenDPDESweepOrder::blockRanks(const std::array<int, 3>& numBlocks, std::vector<int>& rankOfBlock,
                                   std::vector<int>& groupStart) {
-    const int totalBlocks = numBlocks[0]*numBlocks[1]*numBlocks[2];
+    const int totalBlocks = numBlocks[0] * numBlocks[1] * numBlocks[2];
     rankOfBlock.resize(totalBlocks);
     groupStart.assign(1, 0);
     int rank = 0;
     for (int colour = 0; colour < numColours; colour++) {
         for (int block = 0; block < totalBlocks; block++) {
-            const int bx = block % numBlocks[0], by = (block/numBlocks[0]) % numBlocks[1];
-            const int bz = block/(numBlocks[0]*numBlocks[1]);
-            if ((bx % 2) + 2*(by % 2) + 4*(bz % 2) == colour)
+            const int bx = block % numBlocks[0], by = (block / numBlocks[0]) % numBlocks[1];
+            const int bz = block / (numBlocks[0] * numBlocks[1]);
+            if ((bx % 2) + 2 * (by % 2) + 4 * (bz % 2) == colour)
                 rankOfBlock[block] = rank++;
         }
         groupStart.push_back(rank);
@@ -93,7 +93,7 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
     }
     numCells = cellCounts(extent, range, periodic);
     for (int k = 0; k < 3; k++)
-        numBlocks[k] = (numCells[k] + 1)/2;
+        numBlocks[k] = (numCells[k] + 1) / 2;
     particleCell.resize(numParticles);
     const Vec3* position = positions.data();
     const Vec3 box[3] = {boxVectors[0], boxVectors[1], boxVectors[2]};
@@ -107,8 +107,8 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
                 if (periodic)
                     unit = s[k] - BoxGeometry::floorToInteger(s[k]);
                 else
-                    unit = extent[k] > 0.0 ? (position[i][k] - low[k])/extent[k] : 0.0;
-                cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit*cells[k])));
+                    unit = extent[k] > 0.0 ? (position[i][k] - low[k]) / extent[k] : 0.0;
+                cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit * cells[k])));
             }
         }
     });
@@ -117,8 +117,8 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
 void GenDPDESweepOrder::sortParticlesByCell() {
     // A counting sort by cell, stable: within a cell by index.
     const int numParticles = particleCell.size();
-    cellCount.assign((size_t) numCells[0]*numCells[1]*numCells[2] + 1, 0);
-    auto cellIndex = [&](const std::array<int, 3>& c) { return (c[2]*numCells[1] + c[1])*numCells[0] + c[0]; };
+    cellCount.assign((size_t) numCells[0] * numCells[1] * numCells[2] + 1, 0);
+    auto cellIndex = [&](const std::array<int, 3>& c) { return (c[2] * numCells[1] + c[1]) * numCells[0] + c[0]; };
     for (const std::array<int, 3>& c : particleCell)
         cellCount[cellIndex(c) + 1]++;
     for (size_t c = 1; c < cellCount.size(); c++)
@@ -132,9 +132,9 @@ void GenDPDESweepOrder::sortParticlesByCell() {
     }
 }
 
-void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic,
-                              double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-                              int numThreads, const int* rowOfParticle, const int* rowPairStart) {
+void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic, double range,
+                              int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads,
+                              const int* rowOfParticle, const int* rowPairStart) {
     computeCells(positions, boxVectors, periodic, range, numThreads);
     sortParticlesByCell();
 
@@ -142,20 +142,19 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     // first particle if the pairs are stored by rows, else runs of 4096 consecutive pairs).
     if (rowOfParticle != nullptr) {
         const int numParticles = positions.size();
-        runBound.resize(2*(size_t) numParticles);
+        runBound.resize(2 * (size_t) numParticles);
         for (int i = 0; i < numParticles; i++) {
-            runBound[2*i] = rowPairStart[rowOfParticle[i]];
-            runBound[2*i + 1] = rowPairStart[rowOfParticle[i] + 1];
+            runBound[2 * i] = rowPairStart[rowOfParticle[i]];
+            runBound[2 * i + 1] = rowPairStart[rowOfParticle[i] + 1];
+        }
+    } else {
+        runBound.resize(2 * (size_t) numRanges(numPairs, 4096));
+        for (size_t r = 0; 2 * r < runBound.size(); r++) {
+            runBound[2 * r] = r * 4096;
+            runBound[2 * r + 1] = std::min(numPairs, (int) (r + 1) * 4096);
         }
     }
-    else {
-        runBound.resize(2*(size_t) numRanges(numPairs, 4096));
-        for (size_t r = 0; 2*r < runBound.size(); r++) {
-            runBound[2*r] = r*4096;
-            runBound[2*r + 1] = std::min(numPairs, (int) (r + 1)*4096);
-        }
-    }
-    const int numRuns = runBound.size()/2;
+    const int numRuns = runBound.size() / 2;
 
     // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
     // pairs whose cells are not adjacent.
@@ -172,8 +171,8 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     const std::array<int, 3> cells = numCells, blocks = numBlocks;
     parallelFor(numThreads, numPairs, 4096, [=](int begin, int end) {
         for (int k = begin; k < end; k++) {
-            const std::array<int, 3>& ci = cell[pairI[(size_t) k*stride]];
-            const std::array<int, 3>& cj = cell[pairJ[(size_t) k*stride]];
+            const std::array<int, 3>& ci = cell[pairI[(size_t) k * stride]];
+            const std::array<int, 3>& cj = cell[pairJ[(size_t) k * stride]];
             int block[3];
             bool adjacent = true;
             for (int dim = 0; dim < 3; dim++) {
@@ -183,7 +182,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
                 adjacent = adjacent & ((unsigned) (d + 1) <= 2u);
                 block[dim] = (d == -1 ? cj[dim] : ci[dim]) >> 1;
             }
-            rankOfPair[k] = adjacent ? blockRank[(block[2]*blocks[1] + block[1])*blocks[0] + block[0]] : extraRank;
+            rankOfPair[k] = adjacent ? blockRank[(block[2] * blocks[1] + block[1]) * blocks[0] + block[0]] : extraRank;
         }
     });
 
@@ -193,22 +192,22 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     const int numRanks = rank;
     const int numRunRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
     const int runsPerRange = numRanges(numRuns, numRunRanges);
-    rangeCount.assign((size_t) numRunRanges*numRanks, 0);
+    rangeCount.assign((size_t) numRunRanges * numRanks, 0);
     int* count = rangeCount.data();
     const int* bound = runBound.data();
     parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int run = r*runsPerRange; run < std::min(numRuns, (r + 1)*runsPerRange); run++)
-                for (int k = bound[2*run]; k < bound[2*run + 1]; k++)
-                    count[(size_t) r*numRanks + rankOfPair[k]]++;
+            for (int run = r * runsPerRange; run < std::min(numRuns, (r + 1) * runsPerRange); run++)
+                for (int k = bound[2 * run]; k < bound[2 * run + 1]; k++)
+                    count[(size_t) r * numRanks + rankOfPair[k]]++;
     });
     blockStart.assign(numRanks + 1, 0);
     int total = 0;
     for (int s = 0; s < numRanks; s++) {
         blockStart[s] = total;
         for (int r = 0; r < numRunRanges; r++) {
-            const int n = count[(size_t) r*numRanks + s];
-            count[(size_t) r*numRanks + s] = total;   // now the range's first position in rank s
+            const int n = count[(size_t) r * numRanks + s];
+            count[(size_t) r * numRanks + s] = total; // now the range's first position in rank s
             total += n;
         }
     }
@@ -216,15 +215,15 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     sorted.resize(numPairs);
     sortedFirst.resize(numPairs);
     int* sortedPairs = sorted.data();
-    int* firstOfSorted = sortedFirst.data();   // their first particles, for the interleaving to read in order
-    const bool byRows = (rowOfParticle != nullptr);   // then run i holds the pairs of particle i
+    int* firstOfSorted = sortedFirst.data(); // their first particles, for the interleaving to read in order
+    const bool byRows = (rowOfParticle != nullptr); // then run i holds the pairs of particle i
     parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int run = r*runsPerRange; run < std::min(numRuns, (r + 1)*runsPerRange); run++)
-                for (int k = bound[2*run]; k < bound[2*run + 1]; k++) {
-                    const int position = count[(size_t) r*numRanks + rankOfPair[k]]++;
+            for (int run = r * runsPerRange; run < std::min(numRuns, (r + 1) * runsPerRange); run++)
+                for (int k = bound[2 * run]; k < bound[2 * run + 1]; k++) {
+                    const int position = count[(size_t) r * numRanks + rankOfPair[k]]++;
                     sortedPairs[position] = k;
-                    firstOfSorted[position] = byRows ? run : pairI[(size_t) k*stride];
+                    firstOfSorted[position] = byRows ? run : pairI[(size_t) k * stride];
                 }
     });
 

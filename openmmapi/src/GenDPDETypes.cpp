@@ -11,8 +11,9 @@ using namespace OpenMM;
 ParticleTypeIndex::ParticleTypeIndex(const std::map<int, int>& particleTypes, int numParticles,
                                      const std::string& owner) : owner(owner) {
     if (!particleTypes.empty() && particleTypes.rbegin()->first >= numParticles)
-        throw OpenMMException(owner + ": setParticleType() was given particle " + std::to_string(
-                particleTypes.rbegin()->first) + ", but the System has " + std::to_string(numParticles) + " particles");
+        throw OpenMMException(owner + ": setParticleType() was given particle "
+                              + std::to_string(particleTypes.rbegin()->first) + ", but the System has "
+                              + std::to_string(numParticles) + " particles");
     std::set<int> distinct;
     if ((int) particleTypes.size() < numParticles)
         distinct.insert(0);   // some particle was never given a type
@@ -35,9 +36,12 @@ int ParticleTypeIndex::requireIndexOf(int type, const std::string& entry) const 
         std::string known;
         for (int t : types)
             known += (known.empty() ? "" : ", ") + std::to_string(t);
-        throw OpenMMException(owner + ": " + entry + " names type " + std::to_string(type) + ", which no particle "
-                              "has (the particles' types are " + known + "); set the particle types with "
-                              "setParticleType() or remove the entry");
+        throw OpenMMException(owner + ": " + entry + " names type " + std::to_string(type)
+                              + ", which no particle "
+                                "has (the particles' types are "
+                              + known
+                              + "); set the particle types with "
+                                "setParticleType() or remove the entry");
     }
     return index;
 }
@@ -55,7 +59,7 @@ int GenDPDEPlugin::particleTypeIn(const std::map<int, int>& particleTypes, int i
 }
 
 std::vector<TaitParameters> GenDPDEPlugin::taitParametersByType(const GenDPDEForce& force,
-                                                               const ParticleTypeIndex& types) {
+                                                                const ParticleTypeIndex& types) {
     TaitParameters defaults;
     force.getTaitParameters(defaults.referenceDensity, defaults.referencePressure, defaults.bulkModulus,
                             defaults.exponent);
@@ -96,7 +100,9 @@ std::vector<Physics::LocalEquationOfState> GenDPDEPlugin::equationsOfStateByType
 }
 
 Physics::LocalEquationOfState GenDPDEPlugin::packEquationOfState(GenDPDEForce::EquationOfState law,
-        const std::vector<double>& parameters, const TaitParameters& tait, double backgroundPressure) {
+                                                                 const std::vector<double>& parameters,
+                                                                 const TaitParameters& tait,
+                                                                 double backgroundPressure) {
     // The core's parameters as the table lays them out (GenDPDEEquationsOfState.h), every type the same number (the
     // platforms upload them with one stride). The background pressure p_b adds to every law's pressure (and -p_b/n to
     // its free energy): to pi0 of a law that extends Tait, as the last parameter of any other.
@@ -144,8 +150,8 @@ TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, 
     // The values: the integrator's everywhere, then the entries'.
     const int n = table.numClasses = typeOfClass.size();
     table.heatCapacity.assign(n, integrator.getHeatCapacity());
-    table.friction.assign(n*n, integrator.getFriction());
-    table.heatConduction.assign(n*n, integrator.getHeatConduction());
+    table.friction.assign(n * n, integrator.getFriction());
+    table.heatConduction.assign(n * n, integrator.getHeatConduction());
     for (int entry = 0; entry < integrator.getNumTypeHeatCapacities(); entry++) {
         int type;
         double heatCapacity;
@@ -157,8 +163,8 @@ TypePairTable GenDPDEPlugin::typePairTable(const GenDPDEIntegrator& integrator, 
         double friction, heatConduction;
         integrator.getTypePairParameters(entry, type1, type2, friction, heatConduction);
         const int a = table.classOf(types.indexOf(type1)), b = table.classOf(types.indexOf(type2));
-        table.friction[a*n + b] = table.friction[b*n + a] = friction;
-        table.heatConduction[a*n + b] = table.heatConduction[b*n + a] = heatConduction;
+        table.friction[a * n + b] = table.friction[b * n + a] = friction;
+        table.heatConduction[a * n + b] = table.heatConduction[b * n + a] = heatConduction;
     }
     return table;
 }

@@ -84,7 +84,7 @@ void ThreadTeam::await(Ready ready, std::condition_variable& wake) {
     const int spin = spinMicroseconds();
     if (spin > 0) {
         const auto deadline = std::chrono::steady_clock::now() + std::chrono::microseconds(spin);
-        for (int k = 1; ; k++) {
+        for (int k = 1;; k++) {
             spinPause();
             if (ready())
                 return;

@@ -47,8 +47,7 @@ std::vector<double> lawParameters(const SerializationNode& node) {
 }
 }
 
-GenDPDEForceProxy::GenDPDEForceProxy() : SerializationProxy("GenDPDEForce") {
-}
+GenDPDEForceProxy::GenDPDEForceProxy() : SerializationProxy("GenDPDEForce") {}
 
 void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) const {
     node.setIntProperty("version", currentVersion);
@@ -71,8 +70,11 @@ void GenDPDEForceProxy::serialize(const void* object, SerializationNode& node) c
     for (int index = 0; index < force.getNumTypeParameters(); index++) {
         int type;
         force.getTypeParameters(index, type, n0, pi0, bulkModulus, exponent);
-        typeParameters.createChildNode("Type").setIntProperty("type", type).setDoubleProperty("n0", n0)
-                .setDoubleProperty("pi0", pi0).setDoubleProperty("bulkModulus", bulkModulus)
+        typeParameters.createChildNode("Type")
+                .setIntProperty("type", type)
+                .setDoubleProperty("n0", n0)
+                .setDoubleProperty("pi0", pi0)
+                .setDoubleProperty("bulkModulus", bulkModulus)
                 .setDoubleProperty("gammaT", exponent);
     }
     GenDPDEForce::EquationOfState law;
@@ -105,8 +107,8 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
         children.insert(children.end(), {"ParticleTypes", "TypeParameters"});
     if (version >= 3)
         children.insert(children.end(), {"EquationOfState", "TypeEquationsOfState"});
-    std::vector<std::string> properties = {"version", "name", "forceGroup", "cutoff", "method", "estimator",
-                                           "cutoffScaling", "n0", "pi0", "bulkModulus", "gammaT"};
+    std::vector<std::string> properties = {"version",       "name", "forceGroup", "cutoff",      "method", "estimator",
+                                           "cutoffScaling", "n0",   "pi0",        "bulkModulus", "gammaT"};
     if (version >= 4)
         properties.push_back("backgroundPressure");
     requireOnly(node, owner, version, properties, children);

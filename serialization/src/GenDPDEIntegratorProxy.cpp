@@ -27,8 +27,7 @@ std::vector<double> particleValues(const SerializationNode& list, const std::str
 }
 }
 
-GenDPDEIntegratorProxy::GenDPDEIntegratorProxy() : SerializationProxy("GenDPDEIntegrator") {
-}
+GenDPDEIntegratorProxy::GenDPDEIntegratorProxy() : SerializationProxy("GenDPDEIntegrator") {}
 
 void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& node) const {
     node.setIntProperty("version", currentVersion);
@@ -59,16 +58,20 @@ void GenDPDEIntegratorProxy::serialize(const void* object, SerializationNode& no
         int type;
         double heatCapacity;
         integrator.getTypeHeatCapacity(index, type, heatCapacity);
-        heatCapacities.createChildNode("Type").setIntProperty("type", type).setDoubleProperty("heatCapacity",
-                                                                                            heatCapacity);
+        heatCapacities.createChildNode("Type")
+                .setIntProperty("type", type)
+                .setDoubleProperty("heatCapacity", heatCapacity);
     }
     SerializationNode& typePairs = node.createChildNode("TypePairs");
     for (int index = 0; index < integrator.getNumTypePairs(); index++) {
         int type1, type2;
         double friction, heatConduction;
         integrator.getTypePairParameters(index, type1, type2, friction, heatConduction);
-        typePairs.createChildNode("Pair").setIntProperty("type1", type1).setIntProperty("type2", type2)
-                .setDoubleProperty("friction", friction).setDoubleProperty("heatConduction", heatConduction);
+        typePairs.createChildNode("Pair")
+                .setIntProperty("type1", type1)
+                .setIntProperty("type2", type2)
+                .setDoubleProperty("friction", friction)
+                .setDoubleProperty("heatConduction", heatConduction);
     }
 }
 
@@ -80,9 +83,10 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
                               + "; this build reads versions 1 to " + std::to_string(currentVersion));
     // Every value is read whole (StrictXml), the node may hold only what its version defines, and the constructor and
     // setters validate every value: a corrupted file is refused, never read in part.
-    std::vector<std::string> properties = {"version", "stepSize", "constraintTolerance", "integrationForceGroups",
-                                           "friction", "heatConduction", "heatCapacity", "cutoff", "randomSeed",
-                                           "mode", "temperature"};
+    std::vector<std::string> properties = {
+            "version",    "stepSize",       "constraintTolerance", "integrationForceGroups",
+            "friction",   "heatConduction", "heatCapacity",        "cutoff",
+            "randomSeed", "mode",           "temperature"};
     std::vector<std::string> children = {"ParticleTemperatures"};
     if (version >= 2)
         children.insert(children.end(), {"ParticleTypes", "TypeHeatCapacities", "TypePairs"});
@@ -91,9 +95,9 @@ void* GenDPDEIntegratorProxy::deserialize(const SerializationNode& node) const {
     if (version >= 4)
         properties.push_back("adiabaticPositionChanges");
     requireOnly(node, owner, version, properties, children);
-    std::unique_ptr<GenDPDEIntegrator> integrator(new GenDPDEIntegrator(number(node, owner, "stepSize"),
-            number(node, owner, "friction"), number(node, owner, "heatConduction"),
-            number(node, owner, "heatCapacity")));
+    std::unique_ptr<GenDPDEIntegrator> integrator(
+            new GenDPDEIntegrator(number(node, owner, "stepSize"), number(node, owner, "friction"),
+                                  number(node, owner, "heatConduction"), number(node, owner, "heatCapacity")));
     integrator->setConstraintTolerance(number(node, owner, "constraintTolerance"));
     integrator->setIntegrationForceGroups(integer(node, owner, "integrationForceGroups"));
     integrator->setCutoffDistance(number(node, owner, "cutoff"));

@@ -65,9 +65,10 @@ void testTypesRoundTrip() {
 
 /** A version-1 file (written before particle types) is still read: no types, its own Tait parameters. */
 void testVersion1() {
-    std::stringstream v1("<?xml version=\"1.0\" ?>\n<Force bulkModulus=\"67.5\" cutoff=\"1.234\" cutoffScaling=\"1.41\" "
-                         "estimator=\"0\" forceGroup=\"5\" gammaT=\"6.5\" method=\"0\" n0=\"4.5\" name=\"argon\" "
-                         "pi0=\"47.25\" type=\"GenDPDEForce\" version=\"1\"/>\n");
+    std::stringstream v1(
+            "<?xml version=\"1.0\" ?>\n<Force bulkModulus=\"67.5\" cutoff=\"1.234\" cutoffScaling=\"1.41\" "
+            "estimator=\"0\" forceGroup=\"5\" gammaT=\"6.5\" method=\"0\" n0=\"4.5\" name=\"argon\" "
+            "pi0=\"47.25\" type=\"GenDPDEForce\" version=\"1\"/>\n");
     std::unique_ptr<GenDPDEForce> force(XmlSerializer::deserialize<GenDPDEForce>(v1));
     ASSERT_EQUAL(1.234, force->getCutoffDistance());
     ASSERT_EQUAL(GenDPDEForce::VA, force->getDensityEstimator());
@@ -84,7 +85,7 @@ void testSystemRoundTrip() {
     std::vector<Vec3> positions;
     for (int i = 0; i < 64; i++) {
         system.addParticle(200.0);
-        positions.push_back(Vec3(0.75*(i % 4) + 0.01*i, 0.75*((i/4) % 4), 0.75*(i/16) - 0.02*(i % 3)));
+        positions.push_back(Vec3(0.75 * (i % 4) + 0.01 * i, 0.75 * ((i / 4) % 4), 0.75 * (i / 16) - 0.02 * (i % 3)));
     }
     GenDPDEForce* force = new GenDPDEForce(1.0);
     force->setCutoffScaling(1.3);
@@ -98,7 +99,8 @@ void testSystemRoundTrip() {
     Context original(system, integrator1, platform), restored(*copy, integrator2, platform);
     original.setPositions(positions);
     restored.setPositions(positions);
-    ASSERT_EQUAL(original.getState(State::Energy).getPotentialEnergy(), restored.getState(State::Energy).getPotentialEnergy());
+    ASSERT_EQUAL(original.getState(State::Energy).getPotentialEnergy(),
+                 restored.getState(State::Energy).getPotentialEnergy());
     delete copy;
 }
 

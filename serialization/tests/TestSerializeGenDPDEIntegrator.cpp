@@ -44,7 +44,7 @@ void testSerialization() {
  *  temperatures; temperatures set after them replace them in the copy too. */
 void testInternalEnergiesRoundTrip() {
     GenDPDEIntegrator integrator(0.01, 1000.0, 2000.0, 0.1);
-    const std::vector<double> energies = {0.1/3.0, 12.5*(1.0 + 1e-15), 1e-90, 7e90};
+    const std::vector<double> energies = {0.1 / 3.0, 12.5 * (1.0 + 1e-15), 1e-90, 7e90};
     integrator.setInternalEnergies(energies);
     std::stringstream buffer;
     XmlSerializer::serialize<Integrator>(&integrator, "Integrator", buffer);

@@ -31,11 +31,11 @@ inline double floorToInteger(double x) {
 
 /** The distances between opposite faces of the box, along each lattice direction (nm). */
 inline OpenMM::Vec3 perpendicularWidths(const OpenMM::Vec3 box[3]) {
-    double volume = box[0][0]*box[1][1]*box[2][2];
+    double volume = box[0][0] * box[1][1] * box[2][2];
     OpenMM::Vec3 widths;
     for (int k = 0; k < 3; k++) {
-        OpenMM::Vec3 normal = box[(k+1)%3].cross(box[(k+2)%3]);
-        widths[k] = volume/std::sqrt(normal.dot(normal));
+        OpenMM::Vec3 normal = box[(k + 1) % 3].cross(box[(k + 2) % 3]);
+        widths[k] = volume / std::sqrt(normal.dot(normal));
     }
     return widths;
 }
@@ -46,7 +46,7 @@ inline OpenMM::Vec3 perpendicularWidths(const OpenMM::Vec3 box[3]) {
  */
 inline double halfSmallestWidth(const OpenMM::Vec3 box[3]) {
     OpenMM::Vec3 widths = perpendicularWidths(box);
-    return 0.5*std::min(widths[0], std::min(widths[1], widths[2]));
+    return 0.5 * std::min(widths[0], std::min(widths[1], widths[2]));
 }
 
 /**
@@ -69,9 +69,9 @@ inline void checkCutoffAgainstBox(const std::string& owner, double cutoff, const
 /** Fractional coordinates s with r = s0 a + s1 b + s2 c (not wrapped). */
 inline OpenMM::Vec3 fractionalCoordinates(const OpenMM::Vec3& r, const OpenMM::Vec3 box[3]) {
     OpenMM::Vec3 s;
-    s[2] = r[2]/box[2][2];
-    s[1] = (r[1] - s[2]*box[2][1])/box[1][1];
-    s[0] = (r[0] - s[2]*box[2][0] - s[1]*box[1][0])/box[0][0];
+    s[2] = r[2] / box[2][2];
+    s[1] = (r[1] - s[2] * box[2][1]) / box[1][1];
+    s[0] = (r[0] - s[2] * box[2][0] - s[1] * box[1][0]) / box[0][0];
     return s;
 }
 

@@ -26,8 +26,8 @@ inline void philox4x32(const std::uint32_t counter[4], const std::uint32_t key[2
     std::uint32_t c0 = counter[0], c1 = counter[1], c2 = counter[2], c3 = counter[3];
     std::uint32_t k0 = key[0], k1 = key[1];
     for (int round = 0; round < 10; round++) {
-        const std::uint64_t product0 = (std::uint64_t) multiplier0*c0;
-        const std::uint64_t product1 = (std::uint64_t) multiplier1*c2;
+        const std::uint64_t product0 = (std::uint64_t) multiplier0 * c0;
+        const std::uint64_t product1 = (std::uint64_t) multiplier1 * c2;
         const std::uint32_t high0 = (std::uint32_t) (product0 >> 32), low0 = (std::uint32_t) product0;
         const std::uint32_t high1 = (std::uint32_t) (product1 >> 32), low1 = (std::uint32_t) product1;
         c0 = high1 ^ c1 ^ k0;
@@ -48,17 +48,17 @@ struct ZigguratTable {
     double x[257], f[257], ratio[256];
     ZigguratTable() {
         const double tailStart = 3.6541528853610088;   // R: the layers close at the top for 256 layers
-        const double layerArea = tailStart*std::exp(-0.5*tailStart*tailStart)
-                               + std::sqrt(M_PI/2.0)*std::erfc(tailStart/std::sqrt(2.0));
-        x[0] = layerArea/std::exp(-0.5*tailStart*tailStart);
+        const double layerArea = tailStart * std::exp(-0.5 * tailStart * tailStart)
+                + std::sqrt(M_PI / 2.0) * std::erfc(tailStart / std::sqrt(2.0));
+        x[0] = layerArea / std::exp(-0.5 * tailStart * tailStart);
         x[1] = tailStart;
         for (int i = 1; i < 255; i++)
-            x[i + 1] = std::sqrt(-2.0*std::log(layerArea/x[i] + std::exp(-0.5*x[i]*x[i])));
+            x[i + 1] = std::sqrt(-2.0 * std::log(layerArea / x[i] + std::exp(-0.5 * x[i] * x[i])));
         x[256] = 0.0;
         for (int i = 0; i <= 256; i++)
-            f[i] = std::exp(-0.5*x[i]*x[i]);
+            f[i] = std::exp(-0.5 * x[i] * x[i]);
         for (int i = 0; i < 256; i++)
-            ratio[i] = x[i + 1]/x[i];
+            ratio[i] = x[i + 1] / x[i];
     }
     static const ZigguratTable& get() {
         static const ZigguratTable table;
@@ -90,17 +90,15 @@ public:
         return result;
     }
     /** Uniform in (0, 1], 53 bits. */
-    double uniformPositive() {
-        return ((bits64() >> 11) + 1)*(1.0/9007199254740992.0);
-    }
+    double uniformPositive() { return ((bits64() >> 11) + 1) * (1.0 / 9007199254740992.0); }
     /** A standard normal variate. */
     double normal() {
         const ZigguratTable& table = ZigguratTable::get();
         const std::uint64_t bits = bits64();
         const int layer = (int) (bits & 0xFF);
-        const double u = 2.0*((bits >> 11)*(1.0/9007199254740992.0)) - 1.0;   // [-1, 1)
+        const double u = 2.0 * ((bits >> 11) * (1.0 / 9007199254740992.0)) - 1.0;   // [-1, 1)
         if (std::abs(u) < table.ratio[layer])
-            return u*table.x[layer];          // inside the layer's rectangle: 98.8% of draws
+            return u * table.x[layer];          // inside the layer's rectangle: 98.8% of draws
         return normalSlowPath(layer, u);
     }
     /**
@@ -109,18 +107,19 @@ public:
      * resolution of the uniforms; 1-2% of proposals are rejected for shape >= 2.
      */
     double gamma(double shape) {
-        const double d = shape - 1.0/3.0, c = 1.0/std::sqrt(9.0*d);
+        const double d = shape - 1.0 / 3.0, c = 1.0 / std::sqrt(9.0 * d);
         while (true) {
             const double x = normal();
-            double v = 1.0 + c*x;
+            double v = 1.0 + c * x;
             if (v <= 0.0)
                 continue;
-            v = v*v*v;
-            const double u = uniformPositive(), x2 = x*x;
-            if (u < 1.0 - 0.0331*x2*x2 || std::log(u) < 0.5*x2 + d*(1.0 - v + std::log(v)))
-                return d*v;
+            v = v * v * v;
+            const double u = uniformPositive(), x2 = x * x;
+            if (u < 1.0 - 0.0331 * x2 * x2 || std::log(u) < 0.5 * x2 + d * (1.0 - v + std::log(v)))
+                return d * v;
         }
     }
+
 private:
     /** The tail beyond R and the wedges, then new draws until one is accepted. */
     __attribute__((noinline)) double normalSlowPath(int layer, double u) {
@@ -130,23 +129,24 @@ private:
                 // The tail beyond R (Marsaglia 1964): exponential proposals accepted against the normal density.
                 double a, b;
                 do {
-                    a = -std::log(uniformPositive())/table.x[1];
+                    a = -std::log(uniformPositive()) / table.x[1];
                     b = -std::log(uniformPositive());
-                } while (2.0*b <= a*a);
+                } while (2.0 * b <= a * a);
                 return u < 0.0 ? -(table.x[1] + a) : table.x[1] + a;
             }
             // The wedge between the rectangle and the density.
-            const double x = u*table.x[layer];
-            const double height = table.f[layer] + uniformPositive()*(table.f[layer + 1] - table.f[layer]);
-            if (height < std::exp(-0.5*x*x))
+            const double x = u * table.x[layer];
+            const double height = table.f[layer] + uniformPositive() * (table.f[layer + 1] - table.f[layer]);
+            if (height < std::exp(-0.5 * x * x))
                 return x;
             const std::uint64_t bits = bits64();
             layer = (int) (bits & 0xFF);
-            u = 2.0*((bits >> 11)*(1.0/9007199254740992.0)) - 1.0;
+            u = 2.0 * ((bits >> 11) * (1.0 / 9007199254740992.0)) - 1.0;
             if (std::abs(u) < table.ratio[layer])
-                return u*table.x[layer];
+                return u * table.x[layer];
         }
     }
+
 private:
     std::uint32_t counter[4], key[2], words[4];
     int used;
@@ -156,8 +156,7 @@ private:
 class PairStream : public Stream {
 public:
     PairStream(std::uint32_t seed, std::uint64_t step, std::uint32_t i, std::uint32_t j) :
-            Stream(seed, i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)) {
-    }
+            Stream(seed, i, j, (std::uint32_t) step, (std::uint32_t) (step >> 32)) {}
 };
 
 /**
@@ -166,8 +165,7 @@ public:
  */
 class ParticleStream : public Stream {
 public:
-    ParticleStream(std::uint32_t seed, std::uint32_t i) : Stream(seed, i, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu) {
-    }
+    ParticleStream(std::uint32_t seed, std::uint32_t i) : Stream(seed, i, 0xFFFFFFFFu, 0xFFFFFFFFu, 0xFFFFFFFFu) {}
 };
 
 } // namespace CounterRandom

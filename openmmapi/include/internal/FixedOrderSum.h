@@ -18,7 +18,7 @@ constexpr int chunkSize = 1024;
 
 /** The number of chunks for count terms. */
 inline int numChunks(int count) {
-    return (count + chunkSize - 1)/chunkSize;
+    return (count + chunkSize - 1) / chunkSize;
 }
 
 /** Accumulates terms one by one in the fixed order (the sequential form). */
@@ -32,9 +32,8 @@ public:
             inChunk = 0;
         }
     }
-    double sum() const {
-        return inChunk == 0 ? total : total + partial;
-    }
+    double sum() const { return inChunk == 0 ? total : total + partial; }
+
 private:
     double total = 0.0, partial = 0.0;
     int inChunk = 0;
@@ -60,8 +59,8 @@ double parallelSum(int numThreads, int count, Term term, std::vector<double>& ch
     parallelFor(numThreads, chunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             double partial = 0.0;
-            const int last = std::min(count, (c + 1)*chunkSize);
-            for (int i = c*chunkSize; i < last; i++)
+            const int last = std::min(count, (c + 1) * chunkSize);
+            for (int i = c * chunkSize; i < last; i++)
                 partial += term(i);
             sums[c] = partial;
         }

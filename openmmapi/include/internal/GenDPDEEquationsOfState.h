@@ -46,25 +46,33 @@ struct Law {
     int numParameters;
     Parameter parameters[maxParameters];
     /** The number of parameters the physics core reads. */
-    constexpr int numCoreParameters() const {
-        return numParameters + (extendsTait ? 4 : 1);
-    }
+    constexpr int numCoreParameters() const { return numParameters + (extendsTait ? 4 : 1); }
 };
 
 /** Every law, at its GenDPDEForce::EquationOfState number. */
 constexpr Law laws[] = {
-    {"Tait", "Tait", GENDPDE_EOS_TAIT, true, "", 0, {}},
-    {"TaitThermalExpansion", "Tait", GENDPDE_EOS_TAIT_THERMAL, true, "", 2,
-        {{"beta", "thermal pressure coefficient beta", {-1e12, 1e12, "kJ/mol/nm^3/K"}},   // (dpi/dtheta)_n
-         {"theta0", "reference temperature theta0", ParameterChecks::Ranges::temperature}}},
-    {"VanDerWaals", "van der Waals", GENDPDE_EOS_VAN_DER_WAALS, false, "0 < n < 1/b", 3,
-        {{"a", "van der Waals attraction a", {0.0, 1e12, "kJ/mol nm^3"}},
-         {"b", "van der Waals excluded volume b", {1e-12, 1e12, "nm^3"}},
-         {"k", "van der Waals entropy scale k", ParameterChecks::Ranges::heatCapacity}}},
+        {"Tait", "Tait", GENDPDE_EOS_TAIT, true, "", 0, {}},
+        {"TaitThermalExpansion",
+         "Tait",
+         GENDPDE_EOS_TAIT_THERMAL,
+         true,
+         "",
+         2,
+         {{"beta", "thermal pressure coefficient beta", {-1e12, 1e12, "kJ/mol/nm^3/K"}},   // (dpi/dtheta)_n
+          {"theta0", "reference temperature theta0", ParameterChecks::Ranges::temperature}}},
+        {"VanDerWaals",
+         "van der Waals",
+         GENDPDE_EOS_VAN_DER_WAALS,
+         false,
+         "0 < n < 1/b",
+         3,
+         {{"a", "van der Waals attraction a", {0.0, 1e12, "kJ/mol nm^3"}},
+          {"b", "van der Waals excluded volume b", {1e-12, 1e12, "nm^3"}},
+          {"k", "van der Waals entropy scale k", ParameterChecks::Ranges::heatCapacity}}},
 };
 
 /** The number of laws. */
-constexpr int numLaws = sizeof(laws)/sizeof(laws[0]);
+constexpr int numLaws = sizeof(laws) / sizeof(laws[0]);
 
 /** The number of parameters every type has on the platforms (the most any law's core reads). */
 constexpr int coreStride() {
@@ -82,7 +90,8 @@ constexpr bool numberedInOrder() {
 }
 static_assert(numberedInOrder(), "each law's core id must be its place in the table");
 static_assert(GenDPDEForce::Tait == 0 && GenDPDEForce::TaitThermalExpansion == 1 && GenDPDEForce::VanDerWaals == 2
-              && numLaws == 3, "GenDPDEForce::EquationOfState must number the laws as this table does");
+                      && numLaws == 3,
+              "GenDPDEForce::EquationOfState must number the laws as this table does");
 
 /** The law numbered law (a GenDPDEForce::EquationOfState value), or nullptr if there is none. */
 inline const Law* find(int law) {
@@ -93,8 +102,8 @@ inline const Law* find(int law) {
 inline std::string listOfLaws() {
     std::string list;
     for (int k = 0; k < numLaws; k++)
-        list += std::string(k == 0 ? "" : (k + 1 == numLaws ? " or " : ", ")) + laws[k].name + " ("
-                + std::to_string(k) + ")";
+        list += std::string(k == 0 ? "" : (k + 1 == numLaws ? " or " : ", ")) + laws[k].name + " (" + std::to_string(k)
+                + ")";
     return list;
 }
 

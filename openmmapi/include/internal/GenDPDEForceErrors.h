@@ -43,7 +43,7 @@ inline std::string equationOfStateOverflow(int particle, double density, const P
     message << "GenDPDEForce: the " << description.description << " equation of state of particle " << particle
             << " overflows at its density " << density << " nm^-3";
     if (description.extendsTait)
-        message << " (" << density/law.parameter[0] << " n0)";
+        message << " (" << density / law.parameter[0] << " n0)";
     message << " at step " << step << ": the simulation has become unstable (reduce the step size) or the parameters "
             << "of the law are extreme";
     return message.str();
@@ -59,8 +59,8 @@ inline std::string outsideDomain(int particle, double density, const Physics::Lo
     std::ostringstream message;
     message.precision(6);
     message << "GenDPDEForce: particle " << particle << " has the density " << density << " nm^-3 at step " << step
-            << ", outside the domain of its " << description.description << " equation of state ("
-            << description.domain << " = " << Physics::gendpdeLawDensityLimit(law.law, law.parameter.data())
+            << ", outside the domain of its " << description.description << " equation of state (" << description.domain
+            << " = " << Physics::gendpdeLawDensityLimit(law.law, law.parameter.data())
             << " nm^-3): the simulation has become unstable (reduce the step size) or the particles are packed "
             << "beyond what the law allows";
     return message.str();

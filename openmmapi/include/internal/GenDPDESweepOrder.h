@@ -41,24 +41,16 @@ public:
      * the work; the result is the same for any number.
      */
     void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
-               double range, int numPairs, const int* pairI, const int* pairJ, int stride,
-               int numThreads = 1, const int* rowOfParticle = nullptr, const int* rowPairStart = nullptr);
+               double range, int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads = 1,
+               const int* rowOfParticle = nullptr, const int* rowPairStart = nullptr);
     /** The number of groups run one after another: the colours, then possibly the group of non-adjacent pairs. */
-    int getNumGroups() const {
-        return groupStart.size() - 1;
-    }
+    int getNumGroups() const { return groupStart.size() - 1; }
     /** The blocks of group g are blocks groupStart[g] .. groupStart[g + 1] - 1 (in this numbering). */
-    const std::vector<int>& getGroupStart() const {
-        return groupStart;
-    }
+    const std::vector<int>& getGroupStart() const { return groupStart; }
     /** The pairs of block b are order[blockStart[b]] ... order[blockStart[b + 1] - 1], in sweep order. */
-    const std::vector<int>& getBlockStart() const {
-        return blockStart;
-    }
+    const std::vector<int>& getBlockStart() const { return blockStart; }
     /** Pair indices (into the pair list given to build()) in sweep order. */
-    const std::vector<int>& getOrder() const {
-        return order;
-    }
+    const std::vector<int>& getOrder() const { return order; }
     /**
      * The number of cells along each direction for a region of these widths (nm: the perpendicular widths of a
      * periodic box, or the extent of the particles' bounding box) and pair range (nm), as build() chooses them.
@@ -72,20 +64,15 @@ public:
     static int blockRanks(const std::array<int, 3>& numBlocks, std::vector<int>& rankOfBlock,
                           std::vector<int>& groupStart);
     /** The number of cells along each direction chosen by the last build(). */
-    const std::array<int, 3>& getNumCells() const {
-        return numCells;
-    }
+    const std::array<int, 3>& getNumCells() const { return numCells; }
     /**
      * A memory layout for the sweep, not part of the order: the particles of the last build() sorted by cell (cells
      * numbered (c_z n_y + c_y) n_x + c_x as the blocks are; by index within a cell). getSlots()[i] is particle i's
      * place in getParticlesByCell(), so that particles that share pairs share cache lines whatever their indices.
      */
-    const std::vector<int>& getParticlesByCell() const {
-        return particlesByCell;
-    }
-    const std::vector<int>& getSlots() const {
-        return slotOfParticle;
-    }
+    const std::vector<int>& getParticlesByCell() const { return particlesByCell; }
+    const std::vector<int>& getSlots() const { return slotOfParticle; }
+
 private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                       double range, int numThreads);

@@ -24,17 +24,11 @@ public:
      */
     ParticleTypeIndex(const std::map<int, int>& particleTypes, int numParticles, const std::string& owner);
     /** The number T of distinct types the particles have. */
-    int getNumTypes() const {
-        return types.size();
-    }
+    int getNumTypes() const { return types.size(); }
     /** The distinct types, ascending: type index t stands for getTypes()[t]. */
-    const std::vector<int>& getTypes() const {
-        return types;
-    }
+    const std::vector<int>& getTypes() const { return types; }
     /** Each particle's type index, in [0, T). */
-    const std::vector<int>& getParticleTypeIndices() const {
-        return particleTypeIndex;
-    }
+    const std::vector<int>& getParticleTypeIndices() const { return particleTypeIndex; }
     /** The type index of type, or -1 if no particle has it. */
     int indexOf(int type) const;
     /** The type index of type named by entry (e.g. "type pair 2"); refused if no particle has that type. */
@@ -42,6 +36,7 @@ public:
     bool operator==(const ParticleTypeIndex& other) const {
         return types == other.types && particleTypeIndex == other.particleTypeIndex;
     }
+
 private:
     std::string owner;
     std::vector<int> types, particleTypeIndex;
@@ -79,7 +74,8 @@ std::vector<Physics::LocalEquationOfState> equationsOfStateByType(const GenDPDEF
  * EquationsOfState::coreStride(). backgroundPressure: p_b (kJ/mol/nm^3).
  */
 Physics::LocalEquationOfState packEquationOfState(GenDPDEForce::EquationOfState law,
-        const std::vector<double>& parameters, const TaitParameters& tait, double backgroundPressure);
+                                                  const std::vector<double>& parameters, const TaitParameters& tait,
+                                                  double backgroundPressure);
 
 /**
  * The integrator's per-type and per-type-pair parameters (OpenMM units), by class: each type named by an entry
@@ -92,11 +88,9 @@ struct TypePairTable {
     std::vector<int> classOfType;         // the class of type index t, T entries
     std::vector<double> heatCapacity;     // C_V of class c (kJ/(mol K)), numClasses entries
     std::vector<double> friction;         // gamma of the classes (c, d) at c*numClasses + d (amu/ps), symmetric
-    std::vector<double> heatConduction;   // kappa of the classes (c, d) at c*numClasses + d (kJ K/(mol ps)), symmetric
+    std::vector<double> heatConduction; // kappa of the classes (c, d) at c*numClasses + d (kJ K/(mol ps)), symmetric
     /** The class of type index typeIndex. */
-    int classOf(int typeIndex) const {
-        return classOfType[typeIndex];
-    }
+    int classOf(int typeIndex) const { return classOfType[typeIndex]; }
 };
 
 /**
@@ -115,21 +109,15 @@ std::vector<double> particleHeatCapacities(const TypePairTable& table, const Par
  */
 class IntegratorTypeTables {
 public:
-    explicit IntegratorTypeTables(const ParticleTypeIndex& types) : types(types) {
-    }
+    explicit IntegratorTypeTables(const ParticleTypeIndex& types) : types(types) {}
     /** Re-read the integrator's entries and parameters. Returns true if some particle's class changed. */
     bool update(const GenDPDEIntegrator& integrator);
-    const ParticleTypeIndex& getTypes() const {
-        return types;
-    }
+    const ParticleTypeIndex& getTypes() const { return types; }
     /** The tables as of the last update(). */
-    const TypePairTable& getTable() const {
-        return table;
-    }
+    const TypePairTable& getTable() const { return table; }
     /** The class of every particle as of the last update() (empty before the first). */
-    const std::vector<int>& getParticleClasses() const {
-        return particleClass;
-    }
+    const std::vector<int>& getParticleClasses() const { return particleClass; }
+
 private:
     ParticleTypeIndex types;
     TypePairTable table;

@@ -36,15 +36,15 @@ struct LiquidArgon {
     static constexpr double density = 1.0;               // n0*
     static constexpr double taitExponent = 6.0;          // gamma_T
     static constexpr double compressibility = 1.0;       // kappa_T0* (u sets the energy unit so that it is 1)
-    static constexpr double bulkModulus = 1.0/(taitExponent*compressibility);   // B_T* = 1/(gamma_T kappa_T0*)
+    static constexpr double bulkModulus = 1.0 / (taitExponent * compressibility);   // B_T* = 1/(gamma_T kappa_T0*)
     static constexpr double heatCapacity = 12.51;        // C_V* per particle (units of k_B)
     // The three published cutoffs.
     static constexpr int numCutoffs = 3;
     static LiquidArgonCutoff getCutoff(int index) {
         constexpr LiquidArgonCutoff cutoffs[numCutoffs] = {
-            {1.3365, 10, 23.42, 0.0079, 1.41, 0.0},
-            {1.6839, 20, 7.37, 0.0025, 1.35, 1.3525},
-            {2.1564, 42, 2.14, 0.0007, 1.33, 0.0},
+                {1.3365, 10, 23.42, 0.0079, 1.41, 0.0},
+                {1.6839, 20, 7.37, 0.0025, 1.35, 1.3525},
+                {2.1564, 42, 2.14, 0.0007, 1.33, 0.0},
         };
         if (index < 0 || index >= numCutoffs)
             throw OpenMM::OpenMMException("LiquidArgon: cutoff index = " + std::to_string(index)

@@ -32,8 +32,7 @@ void parallelFor(int numThreads, int count, int chunk, Body body) {
         return;
     }
     struct Shared {
-        Shared(const Body& body, int count, int chunk) : body(body), count(count), chunk(chunk) {
-        }
+        Shared(const Body& body, int count, int chunk) : body(body), count(count), chunk(chunk) {}
         const Body& body;
         const int count, chunk;
         alignas(64) std::atomic<int> next{0};   // a cache line of its own: every thread writes it
@@ -48,8 +47,7 @@ void parallelFor(int numThreads, int count, int chunk, Body body) {
             Body local = s.body;
             for (int begin = s.next.fetch_add(s.chunk); begin < s.count; begin = s.next.fetch_add(s.chunk))
                 local(begin, std::min(s.count, begin + s.chunk));
-        }
-        catch (...) {
+        } catch (...) {
             std::lock_guard<std::mutex> guard(s.failureLock);
             if (!s.failure)
                 s.failure = std::current_exception();
@@ -62,7 +60,7 @@ void parallelFor(int numThreads, int count, int chunk, Body body) {
 
 /** The number of ranges of `chunk` indices that cover [0, count). */
 inline int numRanges(int count, int chunk) {
-    return (count + chunk - 1)/chunk;
+    return (count + chunk - 1) / chunk;
 }
 
 } // namespace GenDPDEPlugin

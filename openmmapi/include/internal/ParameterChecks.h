@@ -67,8 +67,9 @@ inline void requireInRange(const std::string& owner, const std::string& paramete
 /** Reject an index outside [0, count) into a list of entries (type parameters, type pairs). */
 inline void requireIndex(const std::string& owner, const std::string& parameter, int index, int count) {
     if (index < 0 || index >= count)
-        reject(owner, parameter, index, "", count == 0 ? std::string("an existing entry, and there are none")
-                                                       : "in [0, " + std::to_string(count - 1) + "]");
+        reject(owner, parameter, index, "",
+               count == 0 ? std::string("an existing entry, and there are none")
+                          : "in [0, " + std::to_string(count - 1) + "]");
 }
 
 } // namespace ParameterChecks

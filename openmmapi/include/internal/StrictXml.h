@@ -67,7 +67,7 @@ inline int integer(const OpenMM::SerializationNode& node, const std::string& own
     long long result;
     stream >> std::noskipws >> result;
     if (value.empty() || !stream || stream.peek() != std::char_traits<char>::eof() || result < INT_MIN
-            || result > INT_MAX)
+        || result > INT_MAX)
         refuse(node, owner, name, value, allowed);
     return (int) result;
 }
@@ -89,17 +89,19 @@ inline bool boolean(const OpenMM::SerializationNode& node, const std::string& ow
  */
 inline void requireOnly(const OpenMM::SerializationNode& node, const std::string& owner, int version,
                         const std::vector<std::string>& properties, const std::vector<std::string>& children) {
-    const std::string where = owner + " XML (version " + std::to_string(version) + "): the <" + node.getName()
-                              + "> element";
+    const std::string where =
+            owner + " XML (version " + std::to_string(version) + "): the <" + node.getName() + "> element";
     for (const auto& property : node.getProperties())
         if (property.first != "type"
-                && std::find(properties.begin(), properties.end(), property.first) == properties.end())
-            throw OpenMM::OpenMMException(where + " has a property '" + property.first + "' that this version does "
-                                          "not define (corrupt, mislabelled, or written by a later version)");
+            && std::find(properties.begin(), properties.end(), property.first) == properties.end())
+            throw OpenMM::OpenMMException(where + " has a property '" + property.first
+                                          + "' that this version does "
+                                            "not define (corrupt, mislabelled, or written by a later version)");
     for (const OpenMM::SerializationNode& child : node.getChildren())
         if (std::find(children.begin(), children.end(), child.getName()) == children.end())
-            throw OpenMM::OpenMMException(where + " has a child <" + child.getName() + "> that this version does "
-                                          "not define (corrupt, mislabelled, or written by a later version)");
+            throw OpenMM::OpenMMException(where + " has a child <" + child.getName()
+                                          + "> that this version does "
+                                            "not define (corrupt, mislabelled, or written by a later version)");
 }
 
 /** The child element of this name, or an error naming it if the node has none. */

@@ -40,6 +40,7 @@ public:
      */
     static int spinMicroseconds();
     ~ThreadTeam();
+
 private:
     explicit ThreadTeam(int numWorkers);
     void workerLoop(int worker);

@@ -22,8 +22,7 @@ namespace GenDPDEPlugin {
  */
 class KernelArguments {
 public:
-    KernelArguments(OpenMM::ComputeKernel& kernel, const std::string& name) : kernel(kernel), name(name) {
-    }
+    KernelArguments(OpenMM::ComputeKernel& kernel, const std::string& name) : kernel(kernel), name(name) {}
     /** An array argument. */
     KernelArguments& array(int index, OpenMM::ArrayInterface& value) {
         next(index);
@@ -49,6 +48,7 @@ public:
             throw OpenMM::OpenMMException("GenDPDE: kernel " + name + " got " + std::to_string(added)
                                           + " arguments, its enum lists " + std::to_string(count));
     }
+
 private:
     void next(int index) {
         if (index != added)
@@ -65,15 +65,16 @@ inline bool mixedIsDouble(OpenMM::ComputeContext& cc) {
     return cc.getUseDoublePrecision() || cc.getUseMixedPrecision();
 }
 
-inline void setVector4(OpenMM::ComputeKernel& kernel, int index, bool asDouble, double x, double y, double z, double w) {
+inline void setVector4(OpenMM::ComputeKernel& kernel, int index, bool asDouble, double x, double y, double z,
+                       double w) {
     if (asDouble)
         kernel->setArg(index, OpenMM::mm_double4(x, y, z, w));
     else
         kernel->setArg(index, OpenMM::mm_float4((float) x, (float) y, (float) z, (float) w));
 }
 
-inline void setReal4(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double x, double y,
-                     double z, double w) {
+inline void setReal4(OpenMM::ComputeContext& cc, OpenMM::ComputeKernel& kernel, int index, double x, double y, double z,
+                     double w) {
     setVector4(kernel, index, cc.getUseDoublePrecision(), x, y, z, w);
 }
 

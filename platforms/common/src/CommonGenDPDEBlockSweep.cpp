@@ -16,18 +16,73 @@ namespace {
 
 /** The arguments of kernels/gendpdeSweep.cc's kernels, in the order of their parameters. */
 namespace OrderArgument {
-enum {Cells, Blocks, CellStart, SortedAtom, SortedSlot, Posq, PosqCorrection, BoxA, BoxB, BoxC, Cutoff, PairCapacity,
-      Status, Header, BlockAtoms, BlockSlots, PairScratch, BlockPairs, LevelStart, Count};
+enum {
+    Cells,
+    Blocks,
+    CellStart,
+    SortedAtom,
+    SortedSlot,
+    Posq,
+    PosqCorrection,
+    BoxA,
+    BoxB,
+    BoxC,
+    Cutoff,
+    PairCapacity,
+    Status,
+    Header,
+    BlockAtoms,
+    BlockSlots,
+    PairScratch,
+    BlockPairs,
+    LevelStart,
+    Count
+};
 }
 namespace SweepArgument {
-enum {FirstRank, NumRanks, Cells, Blocks, Header, BlockAtoms, BlockSlots, LevelStart, BlockPairs, PairCapacity,
-      CellStart, SortedAtom, SortedSlot, Posq, PosqCorrection, Velm, Energies, BoxA, BoxB, BoxC, Parameters, AtomType,
-      PairTable, HeatCapacityTable, NumClasses, Terms, Seed, StepLow, StepHigh, StepIndex, ZigguratX, ZigguratF,
-      ZigguratRatio, Status, Failure, FailureEnergy, Count};
+enum {
+    FirstRank,
+    NumRanks,
+    Cells,
+    Blocks,
+    Header,
+    BlockAtoms,
+    BlockSlots,
+    LevelStart,
+    BlockPairs,
+    PairCapacity,
+    CellStart,
+    SortedAtom,
+    SortedSlot,
+    Posq,
+    PosqCorrection,
+    Velm,
+    Energies,
+    BoxA,
+    BoxB,
+    BoxC,
+    Parameters,
+    AtomType,
+    PairTable,
+    HeatCapacityTable,
+    NumClasses,
+    Terms,
+    Seed,
+    StepLow,
+    StepHigh,
+    StepIndex,
+    ZigguratX,
+    ZigguratF,
+    ZigguratRatio,
+    Status,
+    Failure,
+    FailureEnergy,
+    Count
+};
 }
 
 int roundUp(double value, int multiple) {
-    return multiple*(int) std::ceil(value/multiple);
+    return multiple * (int) std::ceil(value / multiple);
 }
 
 /** A developer's setting from the environment (tests force small capacities and several blocks per group). */
@@ -67,12 +122,12 @@ CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDP
 int CommonGenDPDEBlockSweep::bytesPerParticle() const {
     // orderBlocks: six ints and a mixed4 per particle; sweepBlocks: a mixed4, a mixed and three ints.
     const int mixedSize = mixedIsDouble(cc) ? 8 : 4;
-    return std::max(6*4 + 4*mixedSize, 3*4 + 5*mixedSize);
+    return std::max(6 * 4 + 4 * mixedSize, 3 * 4 + 5 * mixedSize);
 }
 
 int CommonGenDPDEBlockSweep::particleLimit() const {
     // The group's other local arrays take under 1 kB.
-    return std::min(65535, 32*((localMemory - 1024)/bytesPerParticle()/32));
+    return std::min(65535, 32 * ((localMemory - 1024) / bytesPerParticle() / 32));
 }
 
 void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* box, double range) {
@@ -80,19 +135,19 @@ void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* b
     // room for fluctuations; open boundaries (the occupied cells are not known yet): room for a dense liquid.
     int particles = 256, pairs = 1024;
     if (box != nullptr) {
-        const std::array<int, 3> cells = GenDPDESweepOrder::cellCounts(BoxGeometry::perpendicularWidths(box), range,
-                                                                         true);
-        const double perCell = numParticles/(double) (cells[0]*cells[1]*cells[2]);
-        const double density = numParticles/(box[0][0]*box[1][1]*box[2][2]);
+        const std::array<int, 3> cells =
+                GenDPDESweepOrder::cellCounts(BoxGeometry::perpendicularWidths(box), range, true);
+        const double perCell = numParticles / (double) (cells[0] * cells[1] * cells[2]);
+        const double density = numParticles / (box[0][0] * box[1][1] * box[2][2]);
         int regionCells = 1, blockCells = 1;
         for (int k = 0; k < 3; k++) {
             regionCells *= std::min(3, cells[k]);
             blockCells *= std::min(2, cells[k]);
         }
-        const double region = regionCells*perCell;
-        const double blockPairs = blockCells*perCell*(2.0*M_PI/3.0)*range*range*range*density;
-        particles = roundUp(1.2*region + 5*std::sqrt(region) + 16, 32);
-        pairs = roundUp(1.3*blockPairs + 8*std::sqrt(blockPairs) + 64, 64);
+        const double region = regionCells * perCell;
+        const double blockPairs = blockCells * perCell * (2.0 * M_PI / 3.0) * range * range * range * density;
+        particles = roundUp(1.2 * region + 5 * std::sqrt(region) + 16, 32);
+        pairs = roundUp(1.3 * blockPairs + 8 * std::sqrt(blockPairs) + 64, 64);
     }
     maxParticles = std::max(32, std::min(setting("GENDPDE_SWEEP_MAX_PARTICLES", particles), particleLimit()));
     pairCapacity = std::max(1, setting("GENDPDE_SWEEP_PAIR_CAPACITY", pairs));
@@ -102,13 +157,13 @@ void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* b
 bool CommonGenDPDEBlockSweep::adjustCapacities(int mostParticles, int mostPairs) {
     bool changed = false;
     if (mostPairs > pairCapacity && std::getenv("GENDPDE_SWEEP_PAIR_CAPACITY") == nullptr) {
-        pairCapacity = roundUp(1.25*mostPairs, 64);
-        allocatedRanks = -1;   // reallocate the slabs
+        pairCapacity = roundUp(1.25 * mostPairs, 64);
+        allocatedRanks = -1; // reallocate the slabs
         changed = true;
     }
-    const int particles = std::min(particleLimit(), roundUp(1.25*mostParticles, 32));
+    const int particles = std::min(particleLimit(), roundUp(1.25 * mostParticles, 32));
     if (mostParticles > maxParticles && particles > maxParticles
-            && std::getenv("GENDPDE_SWEEP_MAX_PARTICLES") == nullptr) {
+        && std::getenv("GENDPDE_SWEEP_MAX_PARTICLES") == nullptr) {
         maxParticles = particles;
         allocatedRanks = -1;
         compile();
@@ -118,8 +173,9 @@ bool CommonGenDPDEBlockSweep::adjustCapacities(int mostParticles, int mostPairs)
 }
 
 void CommonGenDPDEBlockSweep::compile() {
-    blocksPerGroup = std::max(1, std::min(setting("GENDPDE_SWEEP_BLOCKS_PER_GROUP",
-            cc.getSIMDWidth() >= 32 ? 4 : 1), (localMemory - 1024)/(bytesPerParticle()*maxParticles)));
+    blocksPerGroup = std::max(1,
+                              std::min(setting("GENDPDE_SWEEP_BLOCKS_PER_GROUP", cc.getSIMDWidth() >= 32 ? 4 : 1),
+                                       (localMemory - 1024) / (bytesPerParticle() * maxParticles)));
     std::map<std::string, std::string> programDefines = defines;
     programDefines["SWEEP_MAX_PARTICLES"] = cc.intToString(maxParticles);
     programDefines["SWEEP_BLOCKS_PER_GROUP"] = cc.intToString(blocksPerGroup);
@@ -128,23 +184,69 @@ void CommonGenDPDEBlockSweep::compile() {
     orderKernel = program->createKernel("orderBlocks");
     {
         using namespace OrderArgument;
-        KernelArguments(orderKernel, "orderBlocks").later(Cells).later(Blocks).later(CellStart).later(SortedAtom)
-                .later(SortedSlot).array(Posq, cc.getPosq()).array(PosqCorrection, cc.getPosqCorrection()).later(BoxA)
-                .later(BoxB).later(BoxC).later(Cutoff).later(PairCapacity).later(Status).later(Header)
-                .later(BlockAtoms).later(BlockSlots).later(PairScratch).later(BlockPairs).later(LevelStart)
+        KernelArguments(orderKernel, "orderBlocks")
+                .later(Cells)
+                .later(Blocks)
+                .later(CellStart)
+                .later(SortedAtom)
+                .later(SortedSlot)
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Cutoff)
+                .later(PairCapacity)
+                .later(Status)
+                .later(Header)
+                .later(BlockAtoms)
+                .later(BlockSlots)
+                .later(PairScratch)
+                .later(BlockPairs)
+                .later(LevelStart)
                 .done(Count);
     }
     sweepKernel = program->createKernel("sweepBlocks");
     {
         using namespace SweepArgument;
-        KernelArguments(sweepKernel, "sweepBlocks").later(FirstRank).later(NumRanks).later(Cells).later(Blocks)
-                .later(Header).later(BlockAtoms).later(BlockSlots).later(LevelStart).later(BlockPairs)
-                .later(PairCapacity).later(CellStart).later(SortedAtom).later(SortedSlot).array(Posq, cc.getPosq())
-                .array(PosqCorrection, cc.getPosqCorrection()).array(Velm, cc.getVelm()).later(Energies).later(BoxA)
-                .later(BoxB).later(BoxC).later(Parameters).later(AtomType).later(PairTable).later(HeatCapacityTable)
-                .later(NumClasses).later(Terms).later(Seed).later(StepLow).later(StepHigh).later(StepIndex)
-                .array(ZigguratX, zigguratX).array(ZigguratF, zigguratF).array(ZigguratRatio, zigguratRatio)
-                .later(Status).later(Failure).later(FailureEnergy).done(Count);
+        KernelArguments(sweepKernel, "sweepBlocks")
+                .later(FirstRank)
+                .later(NumRanks)
+                .later(Cells)
+                .later(Blocks)
+                .later(Header)
+                .later(BlockAtoms)
+                .later(BlockSlots)
+                .later(LevelStart)
+                .later(BlockPairs)
+                .later(PairCapacity)
+                .later(CellStart)
+                .later(SortedAtom)
+                .later(SortedSlot)
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .array(Velm, cc.getVelm())
+                .later(Energies)
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Parameters)
+                .later(AtomType)
+                .later(PairTable)
+                .later(HeatCapacityTable)
+                .later(NumClasses)
+                .later(Terms)
+                .later(Seed)
+                .later(StepLow)
+                .later(StepHigh)
+                .later(StepIndex)
+                .array(ZigguratX, zigguratX)
+                .array(ZigguratF, zigguratF)
+                .array(ZigguratRatio, zigguratRatio)
+                .later(Status)
+                .later(Failure)
+                .later(FailureEnergy)
+                .done(Count);
     }
     allocatedRanks = -1;
 }
@@ -153,11 +255,11 @@ void CommonGenDPDEBlockSweep::allocate() {
     // The slabs of every block: its region's particles, its pairs (twice: the sequence, then by level), its levels.
     const size_t ranks = std::max(1, numRanks);
     header.resize(ranks);
-    blockAtoms.resize(ranks*maxParticles);
-    blockSlots.resize(ranks*maxParticles);
-    pairScratch.resize(ranks*pairCapacity);
-    blockPairs.resize(ranks*pairCapacity);
-    levelStart.resize(ranks*(pairCapacity + 1));
+    blockAtoms.resize(ranks * maxParticles);
+    blockSlots.resize(ranks * maxParticles);
+    pairScratch.resize(ranks * pairCapacity);
+    blockPairs.resize(ranks * pairCapacity);
+    levelStart.resize(ranks * (pairCapacity + 1));
     failureParticle.resize(ranks);
     failureEnergy.resize(ranks);
     allocatedRanks = numRanks;
@@ -169,7 +271,7 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
     const std::array<int, 3>& cells = grid.getNumCells();
     if (cells != gridCells) {
         gridCells = cells;
-        blocks = {(cells[0] + 1)/2, (cells[1] + 1)/2, (cells[2] + 1)/2};
+        blocks = {(cells[0] + 1) / 2, (cells[1] + 1) / 2, (cells[2] + 1) / 2};
         numRanks = GenDPDESweepOrder::blockRanks(blocks, rankOfBlock, groupStart);
     }
     if (allocatedRanks != numRanks)
@@ -223,9 +325,9 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
         sweepKernel->setArg(Failure, failureParticle);
         sweepKernel->setArg(FailureEnergy, failureEnergy);
     }
-    const int groupSize = blocksPerGroup*blockThreads;
-    const int groups = (numRanks + blocksPerGroup - 1)/blocksPerGroup;
-    profiler.time("sweep order (all blocks)", [&]() { profiler.launch(orderKernel, groups*groupSize, groupSize); });
+    const int groupSize = blocksPerGroup * blockThreads;
+    const int groups = (numRanks + blocksPerGroup - 1) / blocksPerGroup;
+    profiler.time("sweep order (all blocks)", [&]() { profiler.launch(orderKernel, groups * groupSize, groupSize); });
     profiler.time("sweep (8 colours)", [&]() {
         for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
             const int ranks = groupStart[colour + 1] - groupStart[colour];
@@ -233,7 +335,7 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
                 continue;
             sweepKernel->setArg(SweepArgument::FirstRank, groupStart[colour]);
             sweepKernel->setArg(SweepArgument::NumRanks, ranks);
-            profiler.launch(sweepKernel, groupSize*((ranks + blocksPerGroup - 1)/blocksPerGroup), groupSize);
+            profiler.launch(sweepKernel, groupSize * ((ranks + blocksPerGroup - 1) / blocksPerGroup), groupSize);
         }
     });
 }

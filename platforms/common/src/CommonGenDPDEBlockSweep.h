@@ -63,25 +63,16 @@ public:
              OpenMM::ArrayInterface& heatCapacityTable, int numClasses, OpenMM::ArrayInterface& status);
     /** The particle and internal energy reported by the failed block of this rank. */
     void failure(int rank, int& particle, double& energy);
-    int getMaxParticles() const {
-        return maxParticles;
-    }
-    int getPairCapacity() const {
-        return pairCapacity;
-    }
+    int getMaxParticles() const { return maxParticles; }
+    int getPairCapacity() const { return pairCapacity; }
     /** The number of blocks (ranks) of the last run. */
-    int getNumRanks() const {
-        return numRanks;
-    }
+    int getNumRanks() const { return numRanks; }
     /** The blocks one work group sweeps at once, and the threads of each. */
-    int getBlocksPerGroup() const {
-        return blocksPerGroup;
-    }
-    int getBlockThreads() const {
-        return blockThreads;
-    }
+    int getBlocksPerGroup() const { return blocksPerGroup; }
+    int getBlockThreads() const { return blockThreads; }
     /** The largest region the local memory of one work group can hold (particles). */
     int particleLimit() const;
+
 private:
     int bytesPerParticle() const;
     void compile();
@@ -95,7 +86,7 @@ private:
     std::array<int, 3> gridCells = {0, 0, 0}, blocks = {0, 0, 0};
     std::vector<int> rankOfBlock, groupStart;   // GenDPDESweepOrder::blockRanks of the current grid
     OpenMM::ComputeArray header, blockAtoms, blockSlots, pairScratch, blockPairs, levelStart, failureParticle,
-                         failureEnergy;
+            failureEnergy;
     OpenMM::ComputeKernel orderKernel, sweepKernel;
     OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
 };

@@ -15,13 +15,13 @@ const int boundsGroupSize = 128;
 
 /** The arguments of kernels/gendpdeCells.cc's kernels, in the order of their parameters. */
 namespace AssignArgument {
-enum {Posq, PosqCorrection, BoxA, BoxB, BoxC, Low, Extent, Cells, SlotCell, CellCount, Count};
+enum { Posq, PosqCorrection, BoxA, BoxB, BoxC, Low, Extent, Cells, SlotCell, CellCount, Count };
 }
 namespace ScanArgument {
-enum {Counts, Starts, Size, TotalOut, TotalIndex, Count};
+enum { Counts, Starts, Size, TotalOut, TotalIndex, Count };
 }
 namespace SortArgument {
-enum {Cells, CellStart, CellFill, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count};
+enum { Cells, CellStart, CellFill, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count };
 }
 
 } // namespace
@@ -61,15 +61,29 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     assignKernel = program->createKernel("assignCells");
     {
         using namespace AssignArgument;
-        KernelArguments(assignKernel, "assignCells").array(Posq, cc.getPosq())
-                .array(PosqCorrection, cc.getPosqCorrection()).later(BoxA).later(BoxB).later(BoxC).later(Low)
-                .later(Extent).later(Cells).array(SlotCell, slotCell).array(CellCount, cellCount).done(Count);
+        KernelArguments(assignKernel, "assignCells")
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Low)
+                .later(Extent)
+                .later(Cells)
+                .array(SlotCell, slotCell)
+                .array(CellCount, cellCount)
+                .done(Count);
     }
     scanKernel = program->createKernel("exclusiveScan");
     {
         using namespace ScanArgument;
-        KernelArguments(scanKernel, "exclusiveScan").later(Counts).later(Starts).later(Size).later(TotalOut)
-                .later(TotalIndex).done(Count);
+        KernelArguments(scanKernel, "exclusiveScan")
+                .later(Counts)
+                .later(Starts)
+                .later(Size)
+                .later(TotalOut)
+                .later(TotalIndex)
+                .done(Count);
     }
     fillKernel = program->createKernel("fillCells");
     fillKernel->addArg(slotCell);
@@ -79,10 +93,17 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     sortKernel = program->createKernel("sortCells");
     {
         using namespace SortArgument;
-        KernelArguments(sortKernel, "sortCells").later(Cells).array(CellStart, cellStart).array(CellFill, cellFill)
-                .array(SortedSlot, sortedSlot).array(AtomIndex, cc.getAtomIndexArray())
-                .array(SortedAtom, sortedAtom).array(SortedCell, sortedCell).array(Posq, cc.getPosq())
-                .array(SortedPos, sortedPos).done(Count);
+        KernelArguments(sortKernel, "sortCells")
+                .later(Cells)
+                .array(CellStart, cellStart)
+                .array(CellFill, cellFill)
+                .array(SortedSlot, sortedSlot)
+                .array(AtomIndex, cc.getAtomIndexArray())
+                .array(SortedAtom, sortedAtom)
+                .array(SortedCell, sortedCell)
+                .array(Posq, cc.getPosq())
+                .array(SortedPos, sortedPos)
+                .done(Count);
     }
 }
 
@@ -91,7 +112,7 @@ void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bo
     cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
     const bool asDouble = asMixed ? mixedIsDouble(cc) : cc.getUseDoublePrecision();
     for (int k = 0; k < 3; k++)   // w: the inverse of the diagonal element, for the nearest image
-        setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 1.0/box[k][k]);
+        setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 1.0 / box[k][k]);
 }
 
 void CommonGenDPDECellGrid::build() {
@@ -101,20 +122,21 @@ void CommonGenDPDECellGrid::build() {
         Vec3 box[3];
         cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
         extent = BoxGeometry::perpendicularWidths(box);
-    }
-    else {
+    } else {
         profiler.launch(findBoundsKernel, boundsGroupSize, boundsGroupSize);
         std::vector<double> corners;
-        profiler.transfer();   // the cells depend on the bounds: the one wait of open boundaries
+        profiler.transfer(); // the cells depend on the bounds: the one wait of open boundaries
         bounds.download(corners, true);
         low = Vec3(corners[0], corners[1], corners[2]);
         extent = Vec3(corners[3], corners[4], corners[5]) - low;
     }
     numCells = GenDPDESweepOrder::cellCounts(extent, range, periodic);
-    const long long total = (long long) numCells[0]*numCells[1]*numCells[2];
+    const long long total = (long long) numCells[0] * numCells[1] * numCells[2];
     if (total > 100000000)
-        throw OpenMMException("GenDPDE: the particles span " + std::to_string(total) + " cells of the pair range; "
-                              "more than 1e8 cells are not supported on this platform (is the system blowing apart?)");
+        throw OpenMMException(
+                "GenDPDE: the particles span " + std::to_string(total)
+                + " cells of the pair range; "
+                  "more than 1e8 cells are not supported on this platform (is the system blowing apart?)");
     if ((long long) cellCount.getSize() < total || !cleared) {
         // The counters start at zero; afterwards the scan and the sort leave them zero (no clearing launches).
         if ((long long) cellCount.getSize() < total) {

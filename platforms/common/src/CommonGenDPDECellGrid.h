@@ -31,11 +31,9 @@ public:
     void build();
     /** (n_x, n_y, n_z, n_x n_y n_z) of the last build, as a kernel argument. */
     OpenMM::mm_int4 getCellsArgument() const {
-        return OpenMM::mm_int4(numCells[0], numCells[1], numCells[2], numCells[0]*numCells[1]*numCells[2]);
+        return OpenMM::mm_int4(numCells[0], numCells[1], numCells[2], numCells[0] * numCells[1] * numCells[2]);
     }
-    const std::array<int, 3>& getNumCells() const {
-        return numCells;
-    }
+    const std::array<int, 3>& getNumCells() const { return numCells; }
     /**
      * Set three consecutive kernel arguments to the box vectors a, b, c (mixed precision when asMixed, else real),
      * each with w = the inverse of its diagonal element (1/a_x, 1/b_y, 1/c_z).

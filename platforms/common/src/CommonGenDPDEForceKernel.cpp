@@ -23,11 +23,11 @@ using namespace OpenMM;
 /** Particles of the same type interact alike: OpenMM may exchange them when it reorders the atoms. */
 class CommonCalcGenDPDEForceKernel::ForceInfo : public ComputeForceInfo {
 public:
-    explicit ForceInfo(const std::vector<int>& typeIndex) : typeIndex(typeIndex) {
-    }
+    explicit ForceInfo(const std::vector<int>& typeIndex) : typeIndex(typeIndex) {}
     bool areParticlesIdentical(int particle1, int particle2) override {
         return typeIndex[particle1] == typeIndex[particle2];
     }
+
 private:
     std::vector<int> typeIndex;
 };
@@ -35,11 +35,9 @@ private:
 /** Marks the neighbour list for a rebuild when OpenMM reorders the atoms (the list holds slots). */
 class CommonCalcGenDPDEForceKernel::ReorderListener : public ComputeContext::ReorderListener {
 public:
-    explicit ReorderListener(std::shared_ptr<bool> needsRebuild) : needsRebuild(needsRebuild) {
-    }
-    void execute() override {
-        *needsRebuild = true;
-    }
+    explicit ReorderListener(std::shared_ptr<bool> needsRebuild) : needsRebuild(needsRebuild) {}
+    void execute() override { *needsRebuild = true; }
+
 private:
     std::shared_ptr<bool> needsRebuild;
 };
@@ -50,36 +48,105 @@ const int noValue = INT_MAX;
 
 /** The arguments of kernels/gendpdeForce.cc's kernels, in the order of their parameters. */
 namespace CheckArgument {
-enum {Posq, BuildPosition, MaxDrift, ForceRebuild, Rebuild, Errors, Count};
+enum { Posq, BuildPosition, MaxDrift, ForceRebuild, Rebuild, Errors, Count };
 }
 namespace BuildArgument {
-enum {Cells, CellStart, SortedCell, SortedSlot, SortedPos, AtomIndex, BoxA, BoxB, BoxC, Cutoff, ListRange, Capacity,
-      Rebuild, BuildPosition, ListCount, Neighbours, Errors, Count};
+enum {
+    Cells,
+    CellStart,
+    SortedCell,
+    SortedSlot,
+    SortedPos,
+    AtomIndex,
+    BoxA,
+    BoxB,
+    BoxC,
+    Cutoff,
+    ListRange,
+    Capacity,
+    Rebuild,
+    BuildPosition,
+    ListCount,
+    Neighbours,
+    Errors,
+    Count
+};
 }
 /** The leading arguments of every pass (NEIGHBOUR_ARGUMENTS). */
 namespace NeighbourArgument {
-enum {ListCount, Neighbours, Capacity, Cells, CellStart, SortedCell, SortedAtom, SortedSlot, SortedPos, Posq, BoxA,
-      BoxB, BoxC, Count};
+enum {
+    ListCount,
+    Neighbours,
+    Capacity,
+    Cells,
+    CellStart,
+    SortedCell,
+    SortedAtom,
+    SortedSlot,
+    SortedPos,
+    Posq,
+    BoxA,
+    BoxB,
+    BoxC,
+    Count
+};
 }
 namespace DensityArgument {
-enum {AtomIndex = NeighbourArgument::Count, Model, AtomType, LawParameters, TaitPower, VolumeConstants, MomentConstants,
-      Estimator, Polynomials, Quadrature, PrimitiveDensity, Volume, Pressure, ForceCoefficient, MomentForce, Energy,
-      Rebuild, Errors, Thermal, Isothermal, Temperature, EntropyKnown, CheckStep, LawTable, StoredEnergy,
-      StoredEntropy, ParticleClass, ClassHeatCapacity, ThermalEnergyOut, DensityEntropyOut, Count};
+enum {
+    AtomIndex = NeighbourArgument::Count,
+    Model,
+    AtomType,
+    LawParameters,
+    TaitPower,
+    VolumeConstants,
+    MomentConstants,
+    Estimator,
+    Polynomials,
+    Quadrature,
+    PrimitiveDensity,
+    Volume,
+    Pressure,
+    ForceCoefficient,
+    MomentForce,
+    Energy,
+    Rebuild,
+    Errors,
+    Thermal,
+    Isothermal,
+    Temperature,
+    EntropyKnown,
+    CheckStep,
+    LawTable,
+    StoredEnergy,
+    StoredEntropy,
+    ParticleClass,
+    ClassHeatCapacity,
+    ThermalEnergyOut,
+    DensityEntropyOut,
+    Count
+};
 }
 namespace ForceArgument {
-enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count};
+enum { Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, ForceBuffers, Count };
 }
 namespace VirialArgument {
-enum {Model = NeighbourArgument::Count, ForceCoefficient, Moments, MomentForce, Tensors, ParticleVirial,
-      ParticleVirialTensor, Count};
+enum {
+    Model = NeighbourArgument::Count,
+    ForceCoefficient,
+    Moments,
+    MomentForce,
+    Tensors,
+    ParticleVirial,
+    ParticleVirialTensor,
+    Count
+};
 }
 
 /** The list's skin, as a fraction of the cutoff (the Reference platform's neighbour list uses the same). */
 const double listSkin = 0.1;
 
 int roundUp(double value, int multiple) {
-    return multiple*(int) std::ceil(value/multiple);
+    return multiple * (int) std::ceil(value / multiple);
 }
 
 } // namespace
@@ -98,8 +165,8 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     pressure.initialize(cc, numAtoms, realSize, "gendpdePressure");
     forceCoefficient.initialize(cc, numAtoms, realSize, "gendpdeForceCoefficient");
     particleVirial.initialize(cc, numAtoms, realSize, "gendpdeParticleVirial");
-    particleVirialTensor.initialize(cc, 9*numAtoms, realSize, "gendpdeParticleVirialTensor");
-    momentForce.initialize(cc, numAtoms, 4*realSize, "gendpdeMomentForce");   // (used only by V-C)
+    particleVirialTensor.initialize(cc, 9 * numAtoms, realSize, "gendpdeParticleVirialTensor");
+    momentForce.initialize(cc, numAtoms, 4 * realSize, "gendpdeMomentForce");   // (used only by V-C)
     errors.initialize<int>(cc, 6, "gendpdeForceErrors");   // two flags, then the list's counters
     errors.upload(std::vector<int>({noValue, noValue, 0, 0, 0, 0}));
     // The neighbour list (rows by slot), marked for a rebuild at the first evaluation.
@@ -110,11 +177,10 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     if (periodic) {
         Vec3 box[3];
         system.getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
-        const double density = system.getNumParticles()/(box[0][0]*box[1][1]*box[2][2]);
-        const double range = (1 + listSkin)*cutoff;
-        listCapacity = roundUp(1.4*(4*M_PI/3)*range*range*range*density + 16, 8);
-    }
-    else
+        const double density = system.getNumParticles() / (box[0][0] * box[1][1] * box[2][2]);
+        const double range = (1 + listSkin) * cutoff;
+        listCapacity = roundUp(1.4 * (4 * M_PI / 3) * range * range * range * density + 16, 8);
+    } else
         listCapacity = 64;   // grows when exceeded (particles beyond it meanwhile use the cells)
     // A developer's setting (the tests force the cells' path with it): a fixed capacity.
     const char* fixedCapacity = std::getenv("GENDPDE_LIST_CAPACITY");
@@ -122,7 +188,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
         listCapacity = std::max(1, std::atoi(fixedCapacity));
         wantedCapacity = INT_MIN;   // never grows
     }
-    neighbours.initialize<int>(cc, (size_t) numAtoms*listCapacity, "gendpdeListNeighbours");
+    neighbours.initialize<int>(cc, (size_t) numAtoms * listCapacity, "gendpdeListNeighbours");
     needsRebuild = std::make_shared<bool>(true);
     // Per-type parameters (GenDPDETypes.h): each particle's type index by original index, the Tait table by type.
     const int numTypes = types->getNumTypes();
@@ -130,7 +196,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     typeIndex.resize(numAtoms, 0);   // padding atoms
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
     atomType.upload(typeIndex);
-    lawParameterTable.initialize(cc, numTypes*EquationsOfState::coreStride(), realSize, "gendpdeLawParameters");
+    lawParameterTable.initialize(cc, numTypes * EquationsOfState::coreStride(), realSize, "gendpdeLawParameters");
     taitPowerTable.initialize<int>(cc, numTypes, "gendpdeTaitPowerTable");
     lawTable.initialize<int>(cc, numTypes, "gendpdeLawTable");
     const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
@@ -143,13 +209,13 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     // physics core reads them (gendpdeVolumeIntegralsVB).
     using namespace Physics;
     const int numPieces = (VolumeVBPolynomials::lastOctave - VolumeVBPolynomials::firstOctave + 1)
-                          *VolumeVBPolynomials::subintervals;
-    const int numCoefficients = numPieces*(VolumeVBPolynomials::degree + 1)*2;
+            * VolumeVBPolynomials::subintervals;
+    const int numCoefficients = numPieces * (VolumeVBPolynomials::degree + 1) * 2;
     const std::vector<double> polynomials(Physics::volumePolynomials(), Physics::volumePolynomials() + numCoefficients);
     polynomialTable.initialize(cc, numCoefficients, realSize, "gendpdeVolumePolynomials");
     std::vector<double> quadrature;
-    for (const double* table : {VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared,
-                                VolumeVBQuadrature::coefficient})
+    for (const double* table :
+         {VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient})
         quadrature.insert(quadrature.end(), table, table + VolumeVBQuadrature::numPairs);
     quadratureTable.initialize(cc, quadrature.size(), realSize, "gendpdeVolumeQuadrature");
     uploadValues(polynomialTable, polynomials, useDouble);
@@ -159,39 +225,81 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff));
     std::map<std::string, std::string> defines = grid->defines();
     defines["LAW_PARAMETER_STRIDE"] = std::to_string(EquationsOfState::coreStride());
-    ComputeProgram program = cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real")
-            + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeForce, defines);
+    ComputeProgram program =
+            cc.compileProgram(CommonGenDPDEKernelSources::physicsCore("real") + CommonGenDPDEKernelSources::gendpdeCells
+                                      + CommonGenDPDEKernelSources::gendpdeForce,
+                              defines);
     grid->createKernels(program);
     checkKernel = program->createKernel("checkList");
     {
         using namespace CheckArgument;
-        KernelArguments(checkKernel, "checkList").array(Posq, cc.getPosq()).array(BuildPosition, buildPosition)
-                .later(MaxDrift).later(ForceRebuild).array(Rebuild, rebuild)
-                .array(Errors, errors).done(Count);
+        KernelArguments(checkKernel, "checkList")
+                .array(Posq, cc.getPosq())
+                .array(BuildPosition, buildPosition)
+                .later(MaxDrift)
+                .later(ForceRebuild)
+                .array(Rebuild, rebuild)
+                .array(Errors, errors)
+                .done(Count);
     }
     buildKernel = program->createKernel("buildList");
     {
         using namespace BuildArgument;
-        KernelArguments(buildKernel, "buildList").later(Cells).array(CellStart, grid->cellStart)
-                .array(SortedCell, grid->sortedCell).array(SortedSlot, grid->sortedSlot)
-                .array(SortedPos, grid->sortedPos).array(AtomIndex, cc.getAtomIndexArray()).later(BoxA).later(BoxB)
-                .later(BoxC).later(Cutoff).later(ListRange).later(Capacity)
-                .array(Rebuild, rebuild).array(BuildPosition, buildPosition).array(ListCount, listCount)
-                .later(Neighbours).array(Errors, errors).done(Count);
+        KernelArguments(buildKernel, "buildList")
+                .later(Cells)
+                .array(CellStart, grid->cellStart)
+                .array(SortedCell, grid->sortedCell)
+                .array(SortedSlot, grid->sortedSlot)
+                .array(SortedPos, grid->sortedPos)
+                .array(AtomIndex, cc.getAtomIndexArray())
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Cutoff)
+                .later(ListRange)
+                .later(Capacity)
+                .array(Rebuild, rebuild)
+                .array(BuildPosition, buildPosition)
+                .array(ListCount, listCount)
+                .later(Neighbours)
+                .array(Errors, errors)
+                .done(Count);
     }
     densityKernel = program->createKernel("computeDensities");
     {
         using namespace DensityArgument;
-        addNeighbourArguments(densityKernel, "computeDensities").array(AtomIndex, cc.getAtomIndexArray()).later(Model)
-                .array(AtomType, atomType).array(LawParameters, lawParameterTable).array(TaitPower, taitPowerTable)
-                .later(VolumeConstants).later(MomentConstants).later(Estimator).array(Polynomials, polynomialTable)
-                .array(Quadrature, quadratureTable).array(PrimitiveDensity, primitiveDensity).array(Volume, volume)
-                .array(Pressure, pressure).array(ForceCoefficient, forceCoefficient).array(MomentForce, momentForce)
-                .array(Energy, cc.getEnergyBuffer()).array(Rebuild, rebuild).array(Errors, errors).later(Thermal)
-                .later(Isothermal).later(Temperature).later(EntropyKnown).later(CheckStep).array(LawTable, lawTable)
-                .later(StoredEnergy).later(StoredEntropy).later(ParticleClass)
-                .later(ClassHeatCapacity).array(ThermalEnergyOut, thermalEnergyOut)
-                .array(DensityEntropyOut, densityEntropyOut).done(Count);
+        addNeighbourArguments(densityKernel, "computeDensities")
+                .array(AtomIndex, cc.getAtomIndexArray())
+                .later(Model)
+                .array(AtomType, atomType)
+                .array(LawParameters, lawParameterTable)
+                .array(TaitPower, taitPowerTable)
+                .later(VolumeConstants)
+                .later(MomentConstants)
+                .later(Estimator)
+                .array(Polynomials, polynomialTable)
+                .array(Quadrature, quadratureTable)
+                .array(PrimitiveDensity, primitiveDensity)
+                .array(Volume, volume)
+                .array(Pressure, pressure)
+                .array(ForceCoefficient, forceCoefficient)
+                .array(MomentForce, momentForce)
+                .array(Energy, cc.getEnergyBuffer())
+                .array(Rebuild, rebuild)
+                .array(Errors, errors)
+                .later(Thermal)
+                .later(Isothermal)
+                .later(Temperature)
+                .later(EntropyKnown)
+                .later(CheckStep)
+                .array(LawTable, lawTable)
+                .later(StoredEnergy)
+                .later(StoredEntropy)
+                .later(ParticleClass)
+                .later(ClassHeatCapacity)
+                .array(ThermalEnergyOut, thermalEnergyOut)
+                .array(DensityEntropyOut, densityEntropyOut)
+                .done(Count);
         // Without a law that depends on temperature the thermal arguments are placeholders, never read.
         densityKernel->setArg(Thermal, 0);
         densityKernel->setArg(Isothermal, 0);
@@ -205,16 +313,26 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
     forceKernel = program->createKernel("computeForces");
     {
         using namespace ForceArgument;
-        addNeighbourArguments(forceKernel, "computeForces").later(Model).array(ForceCoefficient, forceCoefficient)
-                .later(Moments).array(MomentForce, momentForce).array(ForceBuffers, cc.getLongForceBuffer())
+        addNeighbourArguments(forceKernel, "computeForces")
+                .later(Model)
+                .array(ForceCoefficient, forceCoefficient)
+                .later(Moments)
+                .array(MomentForce, momentForce)
+                .array(ForceBuffers, cc.getLongForceBuffer())
                 .done(Count);
     }
     virialKernel = program->createKernel("computeVirials");
     {
         using namespace VirialArgument;
-        addNeighbourArguments(virialKernel, "computeVirials").later(Model).array(ForceCoefficient, forceCoefficient)
-                .later(Moments).array(MomentForce, momentForce).later(Tensors).array(ParticleVirial, particleVirial)
-                .array(ParticleVirialTensor, particleVirialTensor).done(Count);
+        addNeighbourArguments(virialKernel, "computeVirials")
+                .later(Model)
+                .array(ForceCoefficient, forceCoefficient)
+                .later(Moments)
+                .array(MomentForce, momentForce)
+                .later(Tensors)
+                .array(ParticleVirial, particleVirial)
+                .array(ParticleVirialTensor, particleVirialTensor)
+                .done(Count);
     }
     // Atom reordering moves particles between slots, which the list holds: it is rebuilt after.
     cc.addReorderListener(new ReorderListener(needsRebuild));
@@ -231,9 +349,10 @@ CommonCalcGenDPDEForceKernel::~CommonCalcGenDPDEForceKernel() {
     const double particles = cc.getNumAtoms();
     profiler.note("neighbour list: " + std::to_string(found[5]) + " builds, skin " + std::to_string(listSkin)
                   + " R, capacity " + std::to_string(listCapacity) + "; at the last build "
-                  + std::to_string(found[3]/particles) + " entries and " + std::to_string(found[4]/particles)
-                  + " neighbours closer than R per particle: " + std::to_string(found[4] > 0 ? 2.0*found[3]/found[4]
-                  : 0.0) + " distances per pair in range and pass");
+                  + std::to_string(found[3] / particles) + " entries and " + std::to_string(found[4] / particles)
+                  + " neighbours closer than R per particle: "
+                  + std::to_string(found[4] > 0 ? 2.0 * found[3] / found[4] : 0.0)
+                  + " distances per pair in range and pass");
 }
 
 void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context, const GenDPDEForce& force) {
@@ -270,17 +389,26 @@ void CommonCalcGenDPDEForceKernel::uploadTypeTables() {
 KernelArguments CommonCalcGenDPDEForceKernel::addNeighbourArguments(ComputeKernel& kernel, const std::string& name) {
     using namespace NeighbourArgument;
     KernelArguments arguments(kernel, name);
-    arguments.array(ListCount, listCount).later(Neighbours).later(Capacity).later(Cells)
-            .array(CellStart, grid->cellStart).array(SortedCell, grid->sortedCell).array(SortedAtom, grid->sortedAtom)
-            .array(SortedSlot, grid->sortedSlot).array(SortedPos, grid->sortedPos).array(Posq, cc.getPosq())
-            .later(BoxA).later(BoxB).later(BoxC);
+    arguments.array(ListCount, listCount)
+            .later(Neighbours)
+            .later(Capacity)
+            .later(Cells)
+            .array(CellStart, grid->cellStart)
+            .array(SortedCell, grid->sortedCell)
+            .array(SortedAtom, grid->sortedAtom)
+            .array(SortedSlot, grid->sortedSlot)
+            .array(SortedPos, grid->sortedPos)
+            .array(Posq, cc.getPosq())
+            .later(BoxA)
+            .later(BoxB)
+            .later(BoxC);
     return arguments;
 }
 
 void CommonCalcGenDPDEForceKernel::setModelArguments() {
     // The constants of the physics core (gendpdeDensityWeightScales, gendpdeEstimatorConstants), computed on the host.
     const Physics::DensityWeight weight(cutoff);
-    const Physics::VolumeEstimator constants(estimator, cutoff, cutoff/cutoffScaling);
+    const Physics::VolumeEstimator constants(estimator, cutoff, cutoff / cutoffScaling);
     const mm_int4 cells = grid->getCellsArgument();
     for (ComputeKernel* kernel : {&densityKernel, &forceKernel, &virialKernel}) {
         using namespace NeighbourArgument;
@@ -292,10 +420,10 @@ void CommonCalcGenDPDEForceKernel::setModelArguments() {
     buildKernel->setArg(BuildArgument::Cells, cells);
     grid->setBoxArguments(buildKernel, BuildArgument::BoxA, false);
     setReal(cc, buildKernel, BuildArgument::Cutoff, cutoff);
-    setReal(cc, buildKernel, BuildArgument::ListRange, (1 + listSkin)*cutoff);
+    setReal(cc, buildKernel, BuildArgument::ListRange, (1 + listSkin) * cutoff);
     buildKernel->setArg(BuildArgument::Capacity, listCapacity);
     buildKernel->setArg(BuildArgument::Neighbours, neighbours);
-    setReal(cc, checkKernel, CheckArgument::MaxDrift, 0.5*listSkin*cutoff);
+    setReal(cc, checkKernel, CheckArgument::MaxDrift, 0.5 * listSkin * cutoff);
     for (auto kernelAndIndex : {std::make_pair(&densityKernel, (int) DensityArgument::Model),
                                 std::make_pair(&forceKernel, (int) ForceArgument::Model),
                                 std::make_pair(&virialKernel, (int) VirialArgument::Model)})
@@ -340,7 +468,7 @@ void CommonCalcGenDPDEForceKernel::computeDensities(ContextImpl& context) {
         setThermalArguments(context);
     densityPass();
     if (deferred)
-        return;   // the integrator's run checks the flags on the device
+        return; // the integrator's run checks the flags on the device
     std::vector<int> found;
     profiler.transfer();
     errors.download(found);
@@ -355,11 +483,11 @@ void CommonCalcGenDPDEForceKernel::densityPass() {
     if (periodic) {
         BoxGeometry::checkCutoffAgainstBox("GenDPDEForce", cutoff, box);
         if (box[0] != listBox[0] || box[1] != listBox[1] || box[2] != listBox[2])
-            *needsRebuild = true;   // (a barostat) the list's positions and images belong to another box
+            *needsRebuild = true; // (a barostat) the list's positions and images belong to another box
     }
     if (wantedCapacity > listCapacity) {
         listCapacity = wantedCapacity;
-        neighbours.resize((size_t) cc.getNumAtoms()*listCapacity);
+        neighbours.resize((size_t) cc.getNumAtoms() * listCapacity);
         *needsRebuild = true;
     }
     profiler.countStep();
@@ -393,7 +521,7 @@ void CommonCalcGenDPDEForceKernel::growList(int mostNeighbours) {
     // Some particles had more neighbours than the list holds (they used the cells): room for them at the start of
     // the next evaluation (this one's passes may still read the list).
     if (mostNeighbours > listCapacity && wantedCapacity != INT_MIN)
-        wantedCapacity = std::max(wantedCapacity, roundUp(1.25*mostNeighbours, 8));
+        wantedCapacity = std::max(wantedCapacity, roundUp(1.25 * mostNeighbours, 8));
 }
 
 void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFinite, int invalid, long long step) {
@@ -406,7 +534,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     if (invalid == noValue)
         throw OpenMMException("GenDPDEForce: a particle's position is not finite at step " + std::to_string(step)
                               + " (particle " + std::to_string(nonFinite) + ")");
-    const int particle = invalid/GENDPDE_PARTICLE_STATUSES, status = invalid%GENDPDE_PARTICLE_STATUSES;
+    const int particle = invalid / GENDPDE_PARTICLE_STATUSES, status = invalid % GENDPDE_PARTICLE_STATUSES;
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
     const Physics::LocalEquationOfState& law = lawByType[types->getParticleTypeIndices()[particle]];
@@ -415,15 +543,15 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     densityPass();
     std::vector<double> volumes;
     volume.download(volumes, true);
-    const double density = 1.0/volumes[slotOf(particle)];
+    const double density = 1.0 / volumes[slotOf(particle)];
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
         throw OpenMMException(GenDPDEForceErrors::outsideDomain(particle, density, law, step));
     if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
         // theta where the integrator kept the state (the last step's positions; it kept none from the failed
         // evaluation) and here
         const GenDPDEIntegrator* integrator;
-        CommonGenDPDEThermalArrays* state = GenDPDEIntegratorUtilities::thermalStateHolder(context, integrator)
-                .getDeviceThermalState(*integrator);
+        CommonGenDPDEThermalArrays* state =
+                GenDPDEIntegratorUtilities::thermalStateHolder(context, integrator).getDeviceThermalState(*integrator);
         std::vector<double> stored, found, capacity;
         std::vector<int> particleClass;
         state->internalEnergies->download(stored, true);
@@ -431,7 +559,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
         state->classHeatCapacity->download(capacity, true);
         state->particleClass->download(particleClass);
         const double c = capacity[particleClass[particle]];
-        throw OpenMMException(GenDPDEForceErrors::temperatureJump(particle, stored[particle]/c, found[particle]/c,
+        throw OpenMMException(GenDPDEForceErrors::temperatureJump(particle, stored[particle] / c, found[particle] / c,
                                                                   density, step));
     }
     throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(particle, density, law, step));
@@ -447,7 +575,7 @@ double CommonCalcGenDPDEForceKernel::execute(ContextImpl& context, bool includeF
     computeDensities(context);
     if (includeForces)
         profiler.time("forces", [&]() { profiler.launch(forceKernel, cc.getNumAtoms()); });
-    return 0.0;   // the energy is in the context's energy buffer
+    return 0.0; // the energy is in the context's energy buffer
 }
 
 const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextImpl& context, bool particleVirials) {
@@ -467,18 +595,18 @@ const GenDPDEObservables& CommonCalcGenDPDEForceKernel::getObservables(ContextIm
     observables.volumes.resize(numAtoms);
     observables.densities.resize(numAtoms);
     observables.pressures.resize(numAtoms);
-    observables.particleVirials.assign(particleVirials ? 9*numAtoms : 0, 0.0);
+    observables.particleVirials.assign(particleVirials ? 9 * numAtoms : 0, 0.0);
     std::vector<double> virial(numAtoms);
-    const std::vector<int>& atomIndex = cc.getAtomIndex();   // the values are by slot
+    const std::vector<int>& atomIndex = cc.getAtomIndex(); // the values are by slot
     for (int slot = 0; slot < numAtoms; slot++) {
         const int i = atomIndex[slot];
         observables.primitiveDensities[i] = n0[slot];
         observables.volumes[i] = v[slot];
-        observables.densities[i] = 1.0/v[slot];
+        observables.densities[i] = 1.0 / v[slot];
         observables.pressures[i] = pi[slot];
         virial[i] = w[slot];
         if (particleVirials)
-            std::copy(&tensors[9*slot], &tensors[9*slot] + 9, &observables.particleVirials[9*i]);
+            std::copy(&tensors[9 * slot], &tensors[9 * slot] + 9, &observables.particleVirials[9 * i]);
     }
     FixedOrderSum::Accumulator sum;
     for (double value : virial)

@@ -21,34 +21,27 @@ namespace GenDPDEPlugin {
  * GenDPDEIntegrator's run of steps defers these checks (CommonGenDPDEForceChecks), stops that run on the device. It
  * lends its cell grid and its checks to the integrator kernel (GenDPDEPairSource).
  */
-class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource,
+class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel,
+                                     public GenDPDEPairSource,
                                      public CommonGenDPDEForceChecks {
 public:
     CommonCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc) :
-            CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {
-    }
+            CalcGenDPDEForceKernel(name, platform), cc(cc), profiler(cc, "GenDPDEForce") {}
     ~CommonCalcGenDPDEForceKernel();
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
-    GenDPDEPairSource* getPairSource() override {
-        return this;
-    }
+    GenDPDEPairSource* getPairSource() override { return this; }
     // GenDPDEPairSource: the cell grid of the last evaluation (the integrator's sweep reuses it at the same positions).
-    CommonGenDPDECellGrid* getDeviceCellGrid() override {
-        return grid.get();
-    }
-    CommonGenDPDEForceChecks* getDeviceChecks() override {
-        return this;
-    }
+    CommonGenDPDECellGrid* getDeviceCellGrid() override { return grid.get(); }
+    CommonGenDPDEForceChecks* getDeviceChecks() override { return this; }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override;
     // CommonGenDPDEForceChecks
     void setDeferred(bool deferred) override;
-    OpenMM::ArrayInterface& getErrorFlags() override {
-        return errors;
-    }
+    OpenMM::ArrayInterface& getErrorFlags() override { return errors; }
     void throwErrors(OpenMM::ContextImpl& context, int nonFinite, int invalid, long long step) override;
+
 private:
     class ForceInfo;
     class ReorderListener;
@@ -73,25 +66,25 @@ private:
     void uploadTypeTables();
     OpenMM::ComputeContext& cc;
     double cutoff, cutoffScaling;
-    std::unique_ptr<ParticleTypeIndex> types;   // the particle types, fixed when the Context is created
-    std::vector<Physics::LocalEquationOfState> lawByType;   // by type index (uploaded: lawParameterTable, lawTable)
-    bool dependsOnTemperature = false;          // some type's law does (docs/theory.md section 11)
-    int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
+    std::unique_ptr<ParticleTypeIndex> types; // the particle types, fixed when the Context is created
+    std::vector<Physics::LocalEquationOfState> lawByType; // by type index (uploaded: lawParameterTable, lawTable)
+    bool dependsOnTemperature = false; // some type's law does (docs/theory.md section 11)
+    int estimator; // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
-    bool deferred = false;   // the checks are made by an integrator's run of steps (CommonGenDPDEForceChecks)
+    bool deferred = false; // the checks are made by an integrator's run of steps (CommonGenDPDEForceChecks)
     std::unique_ptr<CommonGenDPDECellGrid> grid;
     // The neighbour list: each particle's neighbours (slots) within (1 + listSkin) R at its last build, by original
     // index, kept while no particle has moved half the skin; rows by slot.
     OpenMM::ComputeArray listCount, buildPosition, neighbours, rebuild;
-    int listCapacity = 0, wantedCapacity = 0;   // neighbours held per particle; what the next evaluation makes room for
-    std::shared_ptr<bool> needsRebuild;     // set by the host: first evaluation, atom reordering, new box or capacity
+    int listCapacity = 0, wantedCapacity = 0; // neighbours held per particle; what the next evaluation makes room for
+    std::shared_ptr<bool> needsRebuild; // set by the host: first evaluation, atom reordering, new box or capacity
     OpenMM::Vec3 listBox[3];
-    OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial;   // real, cell order
-    OpenMM::ComputeArray particleVirialTensor;   // real, 9 per particle in cell order (observables only)
-    OpenMM::ComputeArray momentForce;   // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
-    OpenMM::ComputeArray polynomialTable, quadratureTable, errors;   // the V-B tables (real); error flags
-    OpenMM::ComputeArray atomType, lawParameterTable, taitPowerTable;   // type by original index; per type the core's
-    OpenMM::ComputeArray lawTable;   // parameters (real, coreStride() each) and power; the law (GENDPDE_EOS_*, int)
+    OpenMM::ComputeArray primitiveDensity, volume, pressure, forceCoefficient, particleVirial; // real, cell order
+    OpenMM::ComputeArray particleVirialTensor; // real, 9 per particle in cell order (observables only)
+    OpenMM::ComputeArray momentForce; // q = 2 pi dV/dG g per particle (real4, cell order; estimators with moments)
+    OpenMM::ComputeArray polynomialTable, quadratureTable, errors; // the V-B tables (real); error flags
+    OpenMM::ComputeArray atomType, lawParameterTable, taitPowerTable; // type by original index; per type the core's
+    OpenMM::ComputeArray lawTable; // parameters (real, coreStride() each) and power; the law (GENDPDE_EOS_*, int)
     // Laws that depend on temperature: C_V theta_i and sigma(n_i) by original index (mixed), for the integrator; a
     // placeholder of one element (and for the integrator's arrays) when no law does.
     OpenMM::ComputeArray thermalEnergyOut, densityEntropyOut, placeholderInt;

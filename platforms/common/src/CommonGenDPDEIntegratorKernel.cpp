@@ -19,18 +19,45 @@ namespace {
 
 /** The arguments of kernels/gendpdeIntegrator.cc's kernels, in the order of their parameters. */
 namespace StartArgument {
-enum {Velm, ForceBuffers, AtomIndex, StepSize, MaxDisplacement, KickStep, StepIndex, Status, CheckForce, ForceErrors,
-      SavedVelm, SaveEnergies, Energies, SavedEnergies, Count};
+enum {
+    Velm,
+    ForceBuffers,
+    AtomIndex,
+    StepSize,
+    MaxDisplacement,
+    KickStep,
+    StepIndex,
+    Status,
+    CheckForce,
+    ForceErrors,
+    SavedVelm,
+    SaveEnergies,
+    Energies,
+    SavedEnergies,
+    Count
+};
 }
 namespace FinishArgument {
-enum {Velm, ForceBuffers, Posq, PosqCorrection, KickStep, DriftStep, Status, SavedVelm, RestoreEnergies, Energies,
-      SavedEnergies, Count};
+enum {
+    Velm,
+    ForceBuffers,
+    Posq,
+    PosqCorrection,
+    KickStep,
+    DriftStep,
+    Status,
+    SavedVelm,
+    RestoreEnergies,
+    Energies,
+    SavedEnergies,
+    Count
+};
 }
 namespace KineticArgument {
-enum {Velm, ForceBuffers, HalfStep, Energy, Count};
+enum { Velm, ForceBuffers, HalfStep, Energy, Count };
 }
 namespace KeepArgument {
-enum {ThermalEnergy, DensityEntropy, Energies, Entropies, Status, CheckForce, ForceErrors, Count};
+enum { ThermalEnergy, DensityEntropy, Energies, Entropies, Status, CheckForce, ForceErrors, Count };
 }
 
 /** The status words as a run starts: nothing failed (the counters are kept). */
@@ -71,10 +98,10 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
 
     // Per-type parameters (GenDPDETypes.h): each particle's class by original index, the tables by class, all
     // uploaded by uploadTypeTables() (their sizes follow the integrator's entries).
-    typeTables.reset(new IntegratorTypeTables(ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(),
-                                                                "GenDPDEIntegrator")));
+    typeTables.reset(new IntegratorTypeTables(
+            ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(), "GenDPDEIntegrator")));
     atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
-    pairTable.initialize(cc, 1, 4*mixedSize, "gendpdePairTable");
+    pairTable.initialize(cc, 1, 4 * mixedSize, "gendpdePairTable");
     heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
 
     grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff > 0.0 ? cutoff : 1.0));
@@ -91,30 +118,57 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     startKernel = program->createKernel("startStep");
     {
         using namespace StartArgument;
-        KernelArguments(startKernel, "startStep").array(Velm, cc.getVelm()).array(ForceBuffers, cc.getLongForceBuffer())
-                .array(AtomIndex, cc.getAtomIndexArray()).later(StepSize).later(MaxDisplacement).later(KickStep)
-                .later(StepIndex).array(Status, status).later(CheckForce).later(ForceErrors)
-                .array(SavedVelm, savedVelm).later(SaveEnergies).array(Energies, energies)
-                .array(SavedEnergies, savedEnergies).done(Count);
+        KernelArguments(startKernel, "startStep")
+                .array(Velm, cc.getVelm())
+                .array(ForceBuffers, cc.getLongForceBuffer())
+                .array(AtomIndex, cc.getAtomIndexArray())
+                .later(StepSize)
+                .later(MaxDisplacement)
+                .later(KickStep)
+                .later(StepIndex)
+                .array(Status, status)
+                .later(CheckForce)
+                .later(ForceErrors)
+                .array(SavedVelm, savedVelm)
+                .later(SaveEnergies)
+                .array(Energies, energies)
+                .array(SavedEnergies, savedEnergies)
+                .done(Count);
     }
     finishKernel = program->createKernel("finishStep");
     {
         using namespace FinishArgument;
-        KernelArguments(finishKernel, "finishStep").array(Velm, cc.getVelm())
-                .array(ForceBuffers, cc.getLongForceBuffer()).array(Posq, cc.getPosq())
-                .array(PosqCorrection, cc.getPosqCorrection()).later(KickStep).later(DriftStep)
-                .array(Status, status).array(SavedVelm, savedVelm).later(RestoreEnergies).array(Energies, energies)
-                .array(SavedEnergies, savedEnergies).done(Count);
+        KernelArguments(finishKernel, "finishStep")
+                .array(Velm, cc.getVelm())
+                .array(ForceBuffers, cc.getLongForceBuffer())
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .later(KickStep)
+                .later(DriftStep)
+                .array(Status, status)
+                .array(SavedVelm, savedVelm)
+                .later(RestoreEnergies)
+                .array(Energies, energies)
+                .array(SavedEnergies, savedEnergies)
+                .done(Count);
     }
     keepKernel = program->createKernel("keepThermalState");
-    KernelArguments(keepKernel, "keepThermalState").later(KeepArgument::ThermalEnergy)
-            .later(KeepArgument::DensityEntropy).array(KeepArgument::Energies, energies)
-            .array(KeepArgument::Entropies, densityEntropies).array(KeepArgument::Status, status)
-            .later(KeepArgument::CheckForce).later(KeepArgument::ForceErrors).done(KeepArgument::Count);
+    KernelArguments(keepKernel, "keepThermalState")
+            .later(KeepArgument::ThermalEnergy)
+            .later(KeepArgument::DensityEntropy)
+            .array(KeepArgument::Energies, energies)
+            .array(KeepArgument::Entropies, densityEntropies)
+            .array(KeepArgument::Status, status)
+            .later(KeepArgument::CheckForce)
+            .later(KeepArgument::ForceErrors)
+            .done(KeepArgument::Count);
     kineticKernel = program->createKernel("kineticEnergies");
-    KernelArguments(kineticKernel, "kineticEnergies").array(KineticArgument::Velm, cc.getVelm())
-            .array(KineticArgument::ForceBuffers, cc.getLongForceBuffer()).later(KineticArgument::HalfStep)
-            .array(KineticArgument::Energy, kinetic).done(KineticArgument::Count);
+    KernelArguments(kineticKernel, "kineticEnergies")
+            .array(KineticArgument::Velm, cc.getVelm())
+            .array(KineticArgument::ForceBuffers, cc.getLongForceBuffer())
+            .later(KineticArgument::HalfStep)
+            .array(KineticArgument::Energy, kinetic)
+            .done(KineticArgument::Count);
     if (cutoff > 0.0) {
         sweep.reset(new CommonGenDPDEBlockSweep(cc, profiler, defines, sources, localMemory));
         Vec3 box[3];
@@ -132,31 +186,37 @@ const std::vector<double>& CommonIntegrateGenDPDEStepKernel::getInternalEnergies
 void CommonIntegrateGenDPDEStepKernel::setInternalEnergies(const std::vector<double>& internalEnergies) {
     ContextSelector selector(cc);
     if ((int) internalEnergies.size() != cc.getNumAtoms())
-        throw OpenMMException("GenDPDEIntegrator: " + std::to_string(internalEnergies.size()) + " internal energies "
-                              "for " + std::to_string(cc.getNumAtoms()) + " particles");
+        throw OpenMMException("GenDPDEIntegrator: " + std::to_string(internalEnergies.size())
+                              + " internal energies "
+                                "for "
+                              + std::to_string(cc.getNumAtoms()) + " particles");
     energies.upload(internalEnergies, true);
     energiesSet = !internalEnergies.empty() && internalEnergies[0] != 0.0;
     entropiesKnown = false;
 }
 
-CommonGenDPDEThermalArrays* CommonIntegrateGenDPDEStepKernel::getDeviceThermalState(const GenDPDEIntegrator& integrator) {
+CommonGenDPDEThermalArrays* CommonIntegrateGenDPDEStepKernel::getDeviceThermalState(
+        const GenDPDEIntegrator& integrator) {
     ContextSelector selector(cc);
     // The classes and heat capacities as the sweep reads them (they may have changed since the last run of steps).
     uploadTypeTables(integrator, GenDPDEIntegratorUtilities::stepTerms(integrator, cutoff));
-    thermalArrays = {integrator.getMode() == GenDPDEIntegrator::Isothermal, integrator.getTemperature(), &energies,
-                     &densityEntropies, entropiesKnown, &atomType, &heatCapacityTable,
+    thermalArrays = {integrator.getMode() == GenDPDEIntegrator::Isothermal,
+                     integrator.getTemperature(),
+                     &energies,
+                     &densityEntropies,
+                     entropiesKnown,
+                     &atomType,
+                     &heatCapacityTable,
                      GenDPDEIntegratorUtilities::checksStepTemperatures(integrator)};
     return &thermalArrays;
 }
 
-void CommonIntegrateGenDPDEStepKernel::keepDeviceThermalState(ComputeArray& thermalEnergies,
-                                                              ComputeArray& entropies) {
+void CommonIntegrateGenDPDEStepKernel::keepDeviceThermalState(ComputeArray& thermalEnergies, ComputeArray& entropies) {
     ContextSelector selector(cc);
     if (!inRun) {   // (outside a run the force has checked its evaluation already)
         thermalEnergies.copyTo(energies);
         entropies.copyTo(densityEntropies);
-    }
-    else {
+    } else {
         using namespace KeepArgument;
         keepKernel->setArg(ThermalEnergy, thermalEnergies);
         keepKernel->setArg(DensityEntropy, entropies);
@@ -179,9 +239,9 @@ void CommonIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int p
     for (int c = 0; c < 3; c++)
         if (std::fabs(forces[particle][c]) > 2147483648.0 - 16777216.0)
             forces[particle][c] = std::nan("");
-    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(particle, velocities[particle],
-            forces[particle], 1.0/context.getSystem().getParticleMass(particle), stepSize,
-            runTerms.maxDisplacement, step));
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(
+            particle, velocities[particle], forces[particle], 1.0 / context.getSystem().getParticleMass(particle),
+            stepSize, runTerms.maxDisplacement, step));
 }
 
 void CommonIntegrateGenDPDEStepKernel::uploadTypeTables(const GenDPDEIntegrator& integrator,
@@ -189,17 +249,17 @@ void CommonIntegrateGenDPDEStepKernel::uploadTypeTables(const GenDPDEIntegrator&
     // The integrator's parameters may change between runs of steps; the tables are uploaded when they do.
     if (typeTables->update(integrator)) {
         std::vector<int> particleClass = typeTables->getParticleClasses();
-        particleClass.resize(cc.getNumAtoms(), 0);   // padding atoms
+        particleClass.resize(cc.getNumAtoms(), 0); // padding atoms
         atomType.upload(particleClass);
     }
-    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *typeTables);   // as the host platforms' sweep
+    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *typeTables); // as the host platforms' sweep
     std::vector<double> pairParameters;
-    for (int ab = 0; ab < p.numClasses*p.numClasses; ab++)
-        pairParameters.insert(pairParameters.end(), {p.table->friction[ab], p.table->heatConduction[ab],
-                                                     p.heatNoise[ab], p.bathNoise[ab]});
+    for (int ab = 0; ab < p.numClasses * p.numClasses; ab++)
+        pairParameters.insert(pairParameters.end(),
+                              {p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.bathNoise[ab]});
     const std::vector<double>& capacity = p.table->heatCapacity;
     if (pairParameters != uploadedPairTable || capacity != uploadedHeatCapacities) {
-        pairTable.resize(p.numClasses*p.numClasses);
+        pairTable.resize(p.numClasses * p.numClasses);
         heatCapacityTable.resize(p.numClasses);
         uploadValues(pairTable, pairParameters, mixedIsDouble(cc));
         uploadValues(heatCapacityTable, capacity, mixedIsDouble(cc));
@@ -236,8 +296,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         beginSteps(context, integrator, terms, pairSource);
         try {
             execute(context, integrator, terms, pairSource);
-        }
-        catch (...) {
+        } catch (...) {
             finishSteps(context, integrator);
             throw;
         }
@@ -253,7 +312,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         using namespace StartArgument;
         setMixed(cc, startKernel, StepSize, dt);
         setMixed(cc, startKernel, MaxDisplacement, terms.maxDisplacement);
-        setMixed(cc, startKernel, KickStep, terms.pairSweep ? 0.5*dt : dt);
+        setMixed(cc, startKernel, KickStep, terms.pairSweep ? 0.5 * dt : dt);
         startKernel->setArg(StepIndex, stepIndex);
         startKernel->setArg(CheckForce, deferredChecks != nullptr ? 1 : 0);
         startKernel->setArg(ForceErrors, forceErrors);
@@ -264,7 +323,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         if (periodic) {
             Vec3 box[3];
             cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
-            BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
+            BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box); // a barostat may have shrunk it
         }
         // The cells of the force just evaluated at these positions with this range, if its source lends them (the
         // same grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
@@ -281,12 +340,12 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         step.seed = (unsigned int) seed;
         step.step = cc.getStepCount();
         step.stepIndex = stepIndex;
-        sweep->run(*cellGrid, step, energies, atomType, pairTable, heatCapacityTable,
-                   typeTables->getTable().numClasses, status);
+        sweep->run(*cellGrid, step, energies, atomType, pairTable, heatCapacityTable, typeTables->getTable().numClasses,
+                   status);
     }
     {
         using namespace FinishArgument;
-        setMixed(cc, finishKernel, KickStep, terms.pairSweep ? 0.5*dt : 0.0);
+        setMixed(cc, finishKernel, KickStep, terms.pairSweep ? 0.5 * dt : 0.0);
         setMixed(cc, finishKernel, DriftStep, dt);
         finishKernel->setArg(RestoreEnergies, saveEnergies ? 1 : 0);
     }
@@ -337,12 +396,12 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     const long long step = runStartStep + found[HaltStep];
     double time = runStartTime;
     for (int k = 0; k < found[HaltStep]; k++)
-        time += runStepSize;   // as the steps added it
+        time += runStepSize; // as the steps added it
     cc.setStepCount(step);
     cc.setTime(time);
-    endRun();   // (a no-op when the run has ended already)
+    endRun(); // (a no-op when the run has ended already)
     if (found[Halted] == HaltForce && found[HaltStep] == 0)
-        entropiesKnown = runStartEntropiesKnown;   // the run's first evaluation failed: its state was not kept
+        entropiesKnown = runStartEntropiesKnown; // the run's first evaluation failed: its state was not kept
     if (found[Halted] == HaltForce)
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)
@@ -356,7 +415,7 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
 double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
                                                               const GenDPDEIntegrator& integrator) {
     ContextSelector selector(cc);
-    setMixed(cc, kineticKernel, KineticArgument::HalfStep, 0.5*integrator.getStepSize());
+    setMixed(cc, kineticKernel, KineticArgument::HalfStep, 0.5 * integrator.getStepSize());
     profiler.launch(kineticKernel, cc.getNumAtoms());
     std::vector<double> perSlot;
     kinetic.download(perSlot, true);
@@ -364,7 +423,7 @@ double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& conte
     std::vector<double> perAtom(perSlot.size());
     for (size_t slot = 0; slot < perSlot.size(); slot++)
         perAtom[atomIndex[slot]] = perSlot[slot];
-    FixedOrderSum::Accumulator sum;   // summed in particle order, as the host platforms sum it
+    FixedOrderSum::Accumulator sum; // summed in particle order, as the host platforms sum it
     for (double e : perAtom)
         sum.add(e);
     return sum.sum();

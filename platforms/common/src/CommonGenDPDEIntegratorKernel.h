@@ -34,8 +34,7 @@ public:
     CommonIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc,
                                      int localMemory) :
             IntegrateGenDPDEStepKernel(name, platform), cc(cc), localMemory(localMemory),
-            profiler(cc, "GenDPDEIntegrator") {
-    }
+            profiler(cc, "GenDPDEIntegrator") {}
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                     const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) override;
     void beginSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
@@ -43,25 +42,18 @@ public:
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
                  GenDPDEPairSource* pairSource) override;
     void finishSteps(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
-    bool hasInternalEnergies() const override {
-        return energiesSet;
-    }
+    bool hasInternalEnergies() const override { return energiesSet; }
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
     const std::vector<double>& getInternalEnergies() const override;
     void setInternalEnergies(const std::vector<double>& internalEnergies) override;
     CommonGenDPDEThermalArrays* getDeviceThermalState(const GenDPDEIntegrator& integrator) override;
     void keepDeviceThermalState(OpenMM::ComputeArray& thermalEnergies, OpenMM::ComputeArray& densityEntropies) override;
-    void forgetDensityEntropies() override {
-        entropiesKnown = false;
-    }
-    int getSeed() const override {
-        return seed;
-    }
-    void setSeed(int seed) override {
-        this->seed = seed;
-    }
+    void forgetDensityEntropies() override { entropiesKnown = false; }
+    int getSeed() const override { return seed; }
+    void setSeed(int seed) override { this->seed = seed; }
     /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
     static const int pollInterval = 256;
+
 private:
     /** The sweep's tables by class (and each particle's class), uploaded when the integrator's entries changed. */
     void uploadTypeTables(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);

@@ -21,23 +21,27 @@ template <class PlatformType>
 class CommonGenDPDEKernelFactory : public OpenMM::KernelFactory {
 public:
     typedef int (*LocalMemory)(OpenMM::ComputeContext& cc);
-    explicit CommonGenDPDEKernelFactory(LocalMemory localMemory) : localMemory(localMemory) {
-    }
+    explicit CommonGenDPDEKernelFactory(LocalMemory localMemory) : localMemory(localMemory) {}
     OpenMM::KernelImpl* createKernelImpl(std::string name, const OpenMM::Platform& platform,
                                          OpenMM::ContextImpl& context) const override {
         auto& data = *static_cast<typename PlatformType::PlatformData*>(context.getPlatformData());
         const auto& contexts = data.contexts;
         if (contexts.size() != 1)
-            throw OpenMM::OpenMMException("GenDPDE plugin: the " + platform.getName() + " kernels run on one device, "
-                    "and this Context uses " + std::to_string(contexts.size()) + " (DeviceIndex '"
-                    + data.propertyValues["DeviceIndex"] + "'); create the Context with one DeviceIndex");
+            throw OpenMM::OpenMMException("GenDPDE plugin: the " + platform.getName()
+                                          + " kernels run on one device, "
+                                            "and this Context uses "
+                                          + std::to_string(contexts.size()) + " (DeviceIndex '"
+                                          + data.propertyValues["DeviceIndex"]
+                                          + "'); create the Context with one DeviceIndex");
         OpenMM::ComputeContext& cc = *contexts[0];
         if (name == CalcGenDPDEForceKernel::Name())
             return new CommonCalcGenDPDEForceKernel(name, platform, cc);
         if (name == IntegrateGenDPDEStepKernel::Name())
             return new CommonIntegrateGenDPDEStepKernel(name, platform, cc, localMemory(cc));
-        throw OpenMM::OpenMMException("GenDPDE plugin: the " + platform.getName() + " kernel factory cannot create "
-                                      "kernel '" + name + "'");
+        throw OpenMM::OpenMMException("GenDPDE plugin: the " + platform.getName()
+                                      + " kernel factory cannot create "
+                                        "kernel '"
+                                      + name + "'");
     }
     /** Register on the platform of this name, if OpenMM has it. */
     static void registerOn(const std::string& platformName, LocalMemory localMemory) {
@@ -50,6 +54,7 @@ public:
             platform.registerKernelFactory(IntegrateGenDPDEStepKernel::Name(), factory);
         }
     }
+
 private:
     LocalMemory localMemory;
 };

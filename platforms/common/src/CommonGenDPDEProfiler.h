@@ -36,16 +36,18 @@ public:
                      owner.c_str());
         for (const auto& part : parts)
             std::fprintf(stderr, "  %-28s %8ld %10.3f %10.2f\n", part.first.c_str(), part.second.calls,
-                         1e3*part.second.seconds, 1e6*part.second.seconds/part.second.calls);
+                         1e3 * part.second.seconds, 1e6 * part.second.seconds / part.second.calls);
         if (steps > 0)
-            std::fprintf(stderr, "GenDPDE %s, counts: %ld calls (steps or evaluations), %.3f launches and %.4f host "
-                         "transfers per call\n", owner.c_str(), steps, launches/(double) steps,
-                         transfers/(double) steps);
+            std::fprintf(stderr,
+                         "GenDPDE %s, counts: %ld calls (steps or evaluations), %.3f launches and %.4f host "
+                         "transfers per call\n",
+                         owner.c_str(), steps, launches / (double) steps, transfers / (double) steps);
         if (!levels.empty()) {
             int total = 0;
-            std::fprintf(stderr, "GenDPDE %s, sweep: %d blocks, most particles in a region %d, most pairs in a block "
-                         "%d, blocks streamed %d; most levels of a block per colour:", owner.c_str(), blocks,
-                         mostParticles, mostPairs, streamed);
+            std::fprintf(stderr,
+                         "GenDPDE %s, sweep: %d blocks, most particles in a region %d, most pairs in a block "
+                         "%d, blocks streamed %d; most levels of a block per colour:",
+                         owner.c_str(), blocks, mostParticles, mostPairs, streamed);
             for (int count : levels) {
                 std::fprintf(stderr, " %d", count);
                 total += count;
@@ -55,13 +57,9 @@ public:
         for (const std::string& line : notes)
             std::fprintf(stderr, "GenDPDE %s, %s\n", owner.c_str(), line.c_str());
     }
-    bool isEnabled() const {
-        return enabled;
-    }
+    bool isEnabled() const { return enabled; }
     /** A line for the profile (printed with the totals). */
-    void note(const std::string& line) {
-        notes.push_back(line);
-    }
+    void note(const std::string& line) { notes.push_back(line); }
     /** Run body (which launches kernels) and, when profiling, add its device time to the part's total. */
     template <class Body>
     void time(const std::string& part, Body body) {
@@ -83,17 +81,11 @@ public:
         launches++;
     }
     /** A launch made by OpenMM on the plugin's behalf (clearing a buffer). */
-    void launched() {
-        launches++;
-    }
+    void launched() { launches++; }
     /** A transfer between host and device made by a step or evaluation. */
-    void transfer() {
-        transfers++;
-    }
+    void transfer() { transfers++; }
     /** One more step (integrator) or evaluation (force). */
-    void countStep() {
-        steps++;
-    }
+    void countStep() { steps++; }
     /** The sweep's counters, as the status words give them. */
     void setCounters(int mostParticles, int mostPairs, int streamed, const std::vector<int>& levels, int blocks) {
         this->mostParticles = mostParticles;
@@ -102,6 +94,7 @@ public:
         this->levels = levels;
         this->blocks = blocks;
     }
+
 private:
     struct Total {
         double seconds = 0.0;

@@ -27,25 +27,26 @@ enum Word {
     Levels,           // 8 words: per colour, the most levels of a block in the last step (counters)
     Size = Levels + 8
 };
-enum Reason {
-    Running = 0,
-    HaltUnstable = 1,
-    HaltSweep = 2,
-    HaltForce = 3
-};
+enum Reason { Running = 0, HaltUnstable = 1, HaltSweep = 2, HaltForce = 3 };
 /** "None yet" for the words set by an atomic minimum. */
 const int NoValue = 0x7FFFFFFF;
 
 /** The layout as device defines. */
 inline std::map<std::string, std::string> defines() {
-    return {{"STATUS_HALTED", std::to_string(Halted)}, {"STATUS_HALT_STEP", std::to_string(HaltStep)},
-            {"STATUS_UNSTABLE", std::to_string(Unstable)}, {"STATUS_FAILED_RANK", std::to_string(FailedRank)},
+    return {{"STATUS_HALTED", std::to_string(Halted)},
+            {"STATUS_HALT_STEP", std::to_string(HaltStep)},
+            {"STATUS_UNSTABLE", std::to_string(Unstable)},
+            {"STATUS_FAILED_RANK", std::to_string(FailedRank)},
             {"STATUS_FORCE_NON_FINITE", std::to_string(ForceNonFinite)},
-            {"STATUS_FORCE_INVALID", std::to_string(ForceInvalid)}, {"STATUS_STREAMED", std::to_string(Streamed)},
+            {"STATUS_FORCE_INVALID", std::to_string(ForceInvalid)},
+            {"STATUS_STREAMED", std::to_string(Streamed)},
             {"STATUS_MOST_PARTICLES", std::to_string(MostParticles)},
-            {"STATUS_MOST_PAIRS", std::to_string(MostPairs)}, {"STATUS_LEVELS", std::to_string(Levels)},
-            {"HALT_UNSTABLE", std::to_string(HaltUnstable)}, {"HALT_SWEEP", std::to_string(HaltSweep)},
-            {"HALT_FORCE", std::to_string(HaltForce)}, {"NO_VALUE", std::to_string(NoValue)}};
+            {"STATUS_MOST_PAIRS", std::to_string(MostPairs)},
+            {"STATUS_LEVELS", std::to_string(Levels)},
+            {"HALT_UNSTABLE", std::to_string(HaltUnstable)},
+            {"HALT_SWEEP", std::to_string(HaltSweep)},
+            {"HALT_FORCE", std::to_string(HaltForce)},
+            {"NO_VALUE", std::to_string(NoValue)}};
 }
 } // namespace DeviceStatus
 

@@ -31,7 +31,7 @@ struct Tolerances {
 /** The tolerances of the comparison; V-C's surface factor carries 5 times V-B's float rounding (TestGenDPDEForce.h). */
 Tolerances tolerancesFor(const std::string& precision, GenDPDEForce::DensityEstimator estimator) {
     const double scale = (estimator == GenDPDEForce::VC ? 5.0 : 1.0);
-    return precision == "double" ? Tolerances{1e-10, 1e-9} : Tolerances{1e-5*scale, 1e-5*scale};
+    return precision == "double" ? Tolerances{1e-10, 1e-9} : Tolerances{1e-5 * scale, 1e-5 * scale};
 }
 
 Context* makeContext(System& system, Integrator& integrator, const std::string& precision) {
@@ -64,53 +64,54 @@ void compareScene(Scene& scene, const std::string& label, const std::string& pre
         const Vec3 d = a.getForces()[i] - b.getForces()[i];
         squaredDifference += d.dot(d);
     }
-    assertClose(0.0, std::sqrt(squaredDifference), tolerance.force*std::sqrt(squaredForce), what + ": rms force");
+    assertClose(0.0, std::sqrt(squaredDifference), tolerance.force * std::sqrt(squaredForce), what + ": rms force");
     assertAllRelative(scene.force->getParticleVolumes(*expected), scene.force->getParticleVolumes(*context),
                       tolerance.relative, what + ": volume");
     assertAllRelative(scene.force->getParticleDensities(*expected), scene.force->getParticleDensities(*context),
                       tolerance.relative, what + ": density");
     const std::vector<double> pa = scene.force->getParticlePressures(*expected);
     const std::vector<double> pb = scene.force->getParticlePressures(*context);
-    double pressureScale = 0.0;   // pressures pass through zero: relative to the largest
+    double pressureScale = 0.0; // pressures pass through zero: relative to the largest
     for (double p : pa)
         pressureScale = std::max(pressureScale, std::abs(p));
     for (size_t i = 0; i < pa.size(); i++)
-        assertClose(pa[i], pb[i], tolerance.relative*pressureScale, what + ": pressure of particle " + std::to_string(i));
-    assertRelative(scene.force->getVirial(*expected), scene.force->getVirial(*context), 10*tolerance.relative,
+        assertClose(pa[i], pb[i], tolerance.relative * pressureScale,
+                    what + ": pressure of particle " + std::to_string(i));
+    assertRelative(scene.force->getVirial(*expected), scene.force->getVirial(*context), 10 * tolerance.relative,
                    what + ": virial");
     const std::vector<double> wa = scene.force->getParticleVirials(*expected);
     const std::vector<double> wb = scene.force->getParticleVirials(*context);
     double squaredElement = 0.0, squaredElementDifference = 0.0;
     for (size_t k = 0; k < wa.size(); k++) {
-        squaredElement += wa[k]*wa[k];
-        squaredElementDifference += (wa[k] - wb[k])*(wa[k] - wb[k]);
+        squaredElement += wa[k] * wa[k];
+        squaredElementDifference += (wa[k] - wb[k]) * (wa[k] - wb[k]);
     }
-    assertClose(0.0, std::sqrt(squaredElementDifference), tolerance.force*std::sqrt(squaredElement),
+    assertClose(0.0, std::sqrt(squaredElementDifference), tolerance.force * std::sqrt(squaredElement),
                 what + ": rms virial tensor element");
 }
 
 void testForcesAndObservables(const std::string& precision) {
-    TestScenes::forEachStandardScene(0.2, 51, [&](Scene& scene, const std::string& label) {
-        compareScene(scene, label, precision);
-    });
+    TestScenes::forEachStandardScene(
+            0.2, 51, [&](Scene& scene, const std::string& label) { compareScene(scene, label, precision); });
     for (GenDPDEForce::DensityEstimator estimator : testEstimators()) {
         Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 57);
         const double edge = scene.box[0][0];
-        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
         compareScene(scene, estimatorLabel(estimator) + " triclinic", precision);
     }
     Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
     setMixtureTypes(mixture, false);
     compareScene(mixture, "VB three-type mixture", precision);
-    Scene slab = makeSlab(6, 0.82*referenceDensity, 0.2, GenDPDEForce::VC, 59);
+    Scene slab = makeSlab(6, 0.82 * referenceDensity, 0.2, GenDPDEForce::VC, 59);
     compareScene(slab, "VC slab", precision);
 }
 
 Trajectory run(const std::string& precision, GenDPDEIntegrator::Mode mode, int steps, bool periodic, bool ownPairs,
                bool mixture) {
-    return runLatticeLiquid(8, periodic, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
-        return makeContext(system, integrator, precision);
-    }, mixture);
+    return runLatticeLiquid(
+            8, periodic, mode, steps, ownPairs,
+            [&](System& system, Integrator& integrator) { return makeContext(system, integrator, precision); },
+            mixture);
 }
 
 void compareTrajectories(GenDPDEIntegrator::Mode mode, bool periodic, bool ownPairs, const std::string& label,
@@ -136,8 +137,7 @@ void testSameFailure() {
         const State before = context->getState(State::Velocities);
         try {
             integrator.step(1);
-        }
-        catch (const OpenMMException& e) {
+        } catch (const OpenMMException& e) {
             messages.push_back(e.what());
         }
         // Rolled back: the velocities and internal energies of before the step.
@@ -149,8 +149,8 @@ void testSameFailure() {
     ASSERT_EQUAL(3, (int) messages.size());
     for (int k = 1; k < 3; k++)
         if (messages[0] != messages[k])
-            throw std::runtime_error("different failures: Reference '" + messages[0] + "', "
-                                     GENDPDE_TEST_PLATFORM " '" + messages[k] + "'");
+            throw std::runtime_error("different failures: Reference '" + messages[0] + "', " GENDPDE_TEST_PLATFORM " '"
+                                     + messages[k] + "'");
 }
 
 /**
@@ -163,13 +163,14 @@ void testListOverflowIsExact() {
         for (GenDPDEForce::DensityEstimator estimator : testEstimators())
             for (bool periodic : {true, false}) {
                 Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, periodic, 63);
-                const std::string label = estimatorLabel(estimator) + (periodic ? " periodic" : " open") + " ("
-                                          + precision + ")";
+                const std::string label =
+                        estimatorLabel(estimator) + (periodic ? " periodic" : " open") + " (" + precision + ")";
                 std::vector<State> states;
                 std::vector<std::vector<double>> densities;
                 for (const std::string capacity : {"", "3"}) {
                     ScopedEnvironment settings(capacity.empty() ? std::vector<std::pair<std::string, std::string>>()
-                            : std::vector<std::pair<std::string, std::string>>{{"GENDPDE_LIST_CAPACITY", capacity}});
+                                                                : std::vector<std::pair<std::string, std::string>>{
+                                                                          {"GENDPDE_LIST_CAPACITY", capacity}});
                     VerletIntegrator integrator(0.001);
                     std::unique_ptr<Context> context(makeContext(scene.system, integrator, precision));
                     context->setPositions(scene.positions);

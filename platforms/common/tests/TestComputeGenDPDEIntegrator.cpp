@@ -4,5 +4,6 @@
 OpenMM::Platform* platform;
 
 int main(int argc, char** argv) {
-    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform, []() { IntegratorTests::runIntegratorTests(); });
+    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform,
+                                 []() { IntegratorTests::runIntegratorTests(); });
 }

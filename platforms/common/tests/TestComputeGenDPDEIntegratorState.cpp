@@ -4,5 +4,6 @@
 OpenMM::Platform* platform;
 
 int main(int argc, char** argv) {
-    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform, []() { IntegratorStateTests::runIntegratorStateTests(); });
+    return runComputeTestProgram(argc, argv, GENDPDE_TEST_PLATFORM, platform,
+                                 []() { IntegratorStateTests::runIntegratorStateTests(); });
 }

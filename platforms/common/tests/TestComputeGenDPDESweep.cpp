@@ -32,7 +32,7 @@ Scene forceFreeLiquid(int side, bool periodic, unsigned seed) {
     if (periodic) {
         CustomNonbondedForce* zero = new CustomNonbondedForce("0");
         zero->setNonbondedMethod(CustomNonbondedForce::CutoffPeriodic);
-        zero->setCutoffDistance(0.5*cutoff);
+        zero->setCutoffDistance(0.5 * cutoff);
         for (int i = 0; i < scene.system.getNumParticles(); i++)
             zero->addParticle();
         scene.system.addForce(zero);
@@ -50,8 +50,8 @@ Trajectory runSweeps(Scene& scene, GenDPDEIntegrator::Mode mode, int steps, cons
     if (mixture)
         setMixtureTypes(integrator, scene.system.getNumParticles(), false);
     Context context(scene.system, integrator, precision.empty() ? Platform::getPlatformByName("Reference") : *platform,
-                    precision.empty() ? std::map<std::string, std::string>() : std::map<std::string, std::string>{
-                            {"Precision", precision}});
+                    precision.empty() ? std::map<std::string, std::string>()
+                                      : std::map<std::string, std::string>{{"Precision", precision}});
     context.setPositions(scene.positions);
     context.setVelocitiesToTemperature(temperature, 92);
     integrator.setInternalEnergiesToTemperature(temperature, 93);
@@ -69,12 +69,13 @@ void testSweepIsTheHostSequence() {
     Scene scene = forceFreeLiquid(20, true, 81);
     const Trajectory expected = runSweeps(scene, GenDPDEIntegrator::Isoenergetic, 3, "");
     const std::vector<std::vector<std::pair<std::string, std::string>>> layouts = {
-        {},
-        {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "3"}, {"GENDPDE_SWEEP_BLOCK_THREADS", "5"}},
-        {{"GENDPDE_SWEEP_MAX_PARTICLES", "160"}},    // about half the regions are streamed
-        {{"GENDPDE_SWEEP_PAIR_CAPACITY", "400"}},    // about half the blocks are streamed
-        {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "2"}, {"GENDPDE_SWEEP_BLOCK_THREADS", "2"},
-         {"GENDPDE_SWEEP_PAIR_CAPACITY", "420"}}};
+            {},
+            {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "3"}, {"GENDPDE_SWEEP_BLOCK_THREADS", "5"}},
+            {{"GENDPDE_SWEEP_MAX_PARTICLES", "160"}},    // about half the regions are streamed
+            {{"GENDPDE_SWEEP_PAIR_CAPACITY", "400"}},    // about half the blocks are streamed
+            {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "2"},
+             {"GENDPDE_SWEEP_BLOCK_THREADS", "2"},
+             {"GENDPDE_SWEEP_PAIR_CAPACITY", "420"}}};
     for (const auto& values : layouts) {
         ScopedEnvironment settings(values);
         compare(expected, runSweeps(scene, GenDPDEIntegrator::Isoenergetic, 3, "double"),
@@ -100,8 +101,7 @@ Stop stopOf(Context& context, GenDPDEIntegrator& integrator, int steps) {
     Stop stop;
     try {
         integrator.step(steps);
-    }
-    catch (const OpenMMException& e) {
+    } catch (const OpenMMException& e) {
         stop.message = e.what();
     }
     const State state = context.getState(State::Positions | State::Velocities);
@@ -115,14 +115,14 @@ Stop stopOf(Context& context, GenDPDEIntegrator& integrator, int steps) {
 
 void compareStops(const Stop& expected, const Stop& found, double tolerance, const std::string& label) {
     if (expected.message.empty() || found.message != expected.message)
-        throw std::runtime_error(label + ": Reference stopped with '" + expected.message + "', " GENDPDE_TEST_PLATFORM
-                                 " with '" + found.message + "'");
+        throw std::runtime_error(label + ": Reference stopped with '" + expected.message
+                                 + "', " GENDPDE_TEST_PLATFORM " with '" + found.message + "'");
     ASSERT_EQUAL(expected.step, found.step);
     ASSERT_EQUAL(expected.time, found.time);
     for (size_t i = 0; i < expected.positions.size(); i++) {
         assertVectorClose(expected.positions[i], found.positions[i], tolerance, label + ": position");
         assertVectorClose(expected.velocities[i], found.velocities[i], tolerance, label + ": velocity");
-        assertClose(expected.energies[i], found.energies[i], tolerance*std::abs(expected.energies[i]),
+        assertClose(expected.energies[i], found.energies[i], tolerance * std::abs(expected.energies[i]),
                     label + ": internal energy");
     }
 }
@@ -136,8 +136,8 @@ void compareStops(const Stop& expected, const Stop& found, double tolerance, con
 void testSweepFailure() {
     for (const std::string precision : {"double", "mixed"})
         for (const std::vector<std::pair<std::string, std::string>>& values :
-                 std::vector<std::vector<std::pair<std::string, std::string>>>{
-                         {}, {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
+             std::vector<std::vector<std::pair<std::string, std::string>>>{{},
+                                                                           {{"GENDPDE_SWEEP_PAIR_CAPACITY", "64"}}}) {
             std::vector<Stop> stops;
             for (const std::string& on : {std::string(), precision}) {
                 ScopedEnvironment settings(values);
@@ -149,9 +149,10 @@ void testSweepFailure() {
                 for (int i : {7000, 2500, 4321, 6100})
                     temperatures[i] = 1e-9;
                 integrator.setParticleTemperatures(temperatures);
-                Context context(scene.system, integrator, on.empty() ? Platform::getPlatformByName("Reference")
-                                : *platform, on.empty() ? std::map<std::string, std::string>()
-                                : std::map<std::string, std::string>{{"Precision", on}});
+                Context context(scene.system, integrator,
+                                on.empty() ? Platform::getPlatformByName("Reference") : *platform,
+                                on.empty() ? std::map<std::string, std::string>()
+                                           : std::map<std::string, std::string>{{"Precision", on}});
                 context.setPositions(scene.positions);
                 context.setVelocitiesToTemperature(temperature, 95);
                 stops.push_back(stopOf(context, integrator, 5));
@@ -181,7 +182,7 @@ void testUnstableStepInARun() {
         integrator.setRandomNumberSeed(96);
         Context context(scene.system, integrator, on.empty() ? Platform::getPlatformByName("Reference") : *platform,
                         on.empty() ? std::map<std::string, std::string>()
-                        : std::map<std::string, std::string>{{"Precision", on}});
+                                   : std::map<std::string, std::string>{{"Precision", on}});
         context.setPositions(scene.positions);
         context.setVelocitiesToTemperature(temperature, 97);
         stops.push_back(stopOf(context, integrator, 60));
@@ -191,7 +192,7 @@ void testUnstableStepInARun() {
     double speed = 0.0;
     for (const Vec3& v : stops[0].velocities)
         speed = std::max(speed, std::sqrt(v.dot(v)));
-    compareStops(stops[0], stops[1], 1e-9*std::max(1.0, speed), "an accelerated particle");
+    compareStops(stops[0], stops[1], 1e-9 * std::max(1.0, speed), "an accelerated particle");
 }
 
 /**
@@ -207,10 +208,10 @@ void testForceErrorInARun() {
         integrator.setTemperature(temperature);
         Context context(scene.system, integrator, on.empty() ? Platform::getPlatformByName("Reference") : *platform,
                         on.empty() ? std::map<std::string, std::string>()
-                        : std::map<std::string, std::string>{{"Precision", on}});
+                                   : std::map<std::string, std::string>{{"Precision", on}});
         context.setPositions(scene.positions);
         std::vector<Vec3> velocities(scene.system.getNumParticles(), Vec3());
-        velocities[0] = Vec3(-0.35*cutoff/stepSize, 0, 0);   // corner particle, leaving the cluster outwards
+        velocities[0] = Vec3(-0.35 * cutoff / stepSize, 0, 0);   // corner particle, leaving the cluster outwards
         context.setVelocities(velocities);
         stops.push_back(stopOf(context, integrator, 40));
     }

@@ -25,36 +25,23 @@ class CellOrderedCandidates {
 public:
     /** Follow the list after its refresh(): new rows if it was rebuilt, the current positions in row order. */
     void update(const NeighborList& list, int numThreads);
-    int getNumRows() const {
-        return particle.size();
-    }
+    int getNumRows() const { return particle.size(); }
     /** The particle of each row. */
-    const std::vector<int>& getParticle() const {
-        return particle;
-    }
+    const std::vector<int>& getParticle() const { return particle; }
     /** The row of each particle. */
-    const std::vector<int>& getRow() const {
-        return row;
-    }
+    const std::vector<int>& getRow() const { return row; }
     /** Row s is getNeighbors()[getRowStart()[s]] ... [getRowStart()[s + 1] - 1]. */
-    const std::vector<int>& getRowStart() const {
-        return rowStart;
-    }
+    const std::vector<int>& getRowStart() const { return rowStart; }
     /** Where the neighbors of larger index begin in each row. */
-    const std::vector<int>& getUpperStart() const {
-        return upperStart;
-    }
+    const std::vector<int>& getUpperStart() const { return upperStart; }
     /** The neighbors' rows, row after row. */
-    const std::vector<int>& getNeighbors() const {
-        return neighbors;
-    }
+    const std::vector<int>& getNeighbors() const { return neighbors; }
     /** The positions of the list's last refresh() (wrapped if periodic), in row order (nm), and one padding Vec3. */
-    const std::vector<OpenMM::Vec3>& getPositions() const {
-        return positions;
-    }
+    const std::vector<OpenMM::Vec3>& getPositions() const { return positions; }
+
 private:
     void buildRows(const NeighborList& list, int numThreads);
-    const NeighborList* followedList = nullptr;   // the list and its build count when the rows were derived
+    const NeighborList* followedList = nullptr; // the list and its build count when the rows were derived
     long long followedBuild = -1;
     std::vector<int> particle, row, rowStart, upperStart, neighbors, fill;
     std::vector<OpenMM::Vec3> positions;

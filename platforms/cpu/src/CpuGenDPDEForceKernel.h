@@ -31,8 +31,7 @@ namespace GenDPDEPlugin {
 class CpuCalcGenDPDEForceKernel : public ReferenceCalcGenDPDEForceKernel {
 public:
     CpuCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
-            ReferenceCalcGenDPDEForceKernel(name, platform) {
-    }
+            ReferenceCalcGenDPDEForceKernel(name, platform) {}
     /**
      * GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()); on one
      * thread, Reference's list.
@@ -46,10 +45,12 @@ public:
      * particle with larger ones, in increasing order of the other particle.
      */
     PairView collectPairs(int threads);
+
 protected:
     double computeDensitiesAndEnergy(OpenMM::ContextImpl& context) override;
     double computePairForces(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>* forces,
                              std::vector<double>* particleVirials) override;
+
 private:
     /** body(gather) with the RowGather (CpuGenDPDEForceKernel.cpp) for this box: open, rectangular or triclinic. */
     template <class Body>
@@ -57,16 +58,16 @@ private:
     /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box, VC). */
     const RowGatherAvx2::Rows* vectorRowsOrNull();
     std::unique_ptr<RowGatherAvx2::Rows> vectorRows{new RowGatherAvx2::Rows()};
-    bool sequential = false;                    // whether the last evaluation ran Reference's passes (one thread)
-    CellOrderedCandidates layout;               // the neighbor list's candidates as full rows in cell order
+    bool sequential = false; // whether the last evaluation ran Reference's passes (one thread)
+    CellOrderedCandidates layout; // the neighbor list's candidates as full rows in cell order
     // Per row: what the passes find, before it is copied to the particle arrays.
     std::vector<double> rowDensity, rowCoefficient, rowVirial;
-    std::vector<OpenMM::Vec3> rowMoment, rowMomentForce;   // VC: g and q = 2 pi dV/dG g per row
+    std::vector<OpenMM::Vec3> rowMoment, rowMomentForce; // VC: g and q = 2 pi dV/dG g per row
     std::vector<Physics::ParticleState> rowState;
     std::vector<OpenMM::Vec3> rowForce;
-    std::vector<Physics::Tensor> rowVirialTensor;   // each row's virial tensor, when the observables ask for them
-    std::vector<double> chunkSums;              // partial sums of the energy or the virial (FixedOrderSum chunks)
-    std::vector<char> listedFlags;              // per row entry: a pair closer than the cutoff (upper parts only)
+    std::vector<Physics::Tensor> rowVirialTensor; // each row's virial tensor, when the observables ask for them
+    std::vector<double> chunkSums; // partial sums of the energy or the virial (FixedOrderSum chunks)
+    std::vector<char> listedFlags; // per row entry: a pair closer than the cutoff (upper parts only)
     // collectPairs(): the first pair of each range of rows and of each row (and the end); the pairs.
     std::vector<int> pairOffset, rowPairStart;
     std::vector<ParticlePair> pairs;

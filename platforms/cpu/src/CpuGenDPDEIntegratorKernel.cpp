@@ -22,7 +22,7 @@ void CpuIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, doub
     const int numParticles = inverseMasses.size();
     std::vector<int> firstUnstable(numRanges(numParticles, particleChunk), -1);
     parallelFor(extractNumThreads(context), numParticles, particleChunk, [&](int begin, int end) {
-        firstUnstable[begin/particleChunk] = firstUnstableParticle(context, stepSize, maxDisplacement, begin, end);
+        firstUnstable[begin / particleChunk] = firstUnstableParticle(context, stepSize, maxDisplacement, begin, end);
     });
     for (int i : firstUnstable)
         if (i >= 0)
@@ -37,7 +37,7 @@ void CpuIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>
     parallelFor(extractNumThreads(context), velocities.size(), particleChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++)
             if (inverseMass[i] != 0.0)
-                v[i] += f[i]*(timeStep*inverseMass[i]);
+                v[i] += f[i] * (timeStep * inverseMass[i]);
     });
 }
 
@@ -49,7 +49,7 @@ void CpuIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vector<Vec3
     parallelFor(extractNumThreads(context), positions.size(), particleChunk, [=](int begin, int end) {
         for (int i = begin; i < end; i++)
             if (inverseMass[i] != 0.0)
-                x[i] += v[i]*timeStep;
+                x[i] += v[i] * timeStep;
     });
 }
 
@@ -86,8 +86,8 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
                 if (!parameters.terms.internalEnergies)
                     sweepIsothermal(pair, blockOrder, count, parameters, slot, inverseMass, v);
                 else {
-                    const int failed = sweepIsoenergetic(pair, blockOrder, count, parameters, slot, inverseMass, v,
-                                                         energy);
+                    const int failed =
+                            sweepIsoenergetic(pair, blockOrder, count, parameters, slot, inverseMass, v, energy);
                     if (failed >= 0)
                         failure[b - firstBlock] = blockStart[b] + failed;
                 }
@@ -104,7 +104,8 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
 double CpuIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {
     const std::vector<Vec3>& velocities = extractVelocities(context);
     const std::vector<Vec3>& forces = extractForces(context);
-    const double halfStep = 0.5*integrator.getStepSize();
-    return FixedOrderSum::parallelSum(extractNumThreads(context), velocities.size(),
+    const double halfStep = 0.5 * integrator.getStepSize();
+    return FixedOrderSum::parallelSum(
+            extractNumThreads(context), velocities.size(),
             [&](int i) { return kineticEnergy(i, velocities, forces, halfStep); }, chunkSums);
 }

@@ -15,9 +15,9 @@ namespace GenDPDEPlugin {
 class CpuIntegrateGenDPDEStepKernel : public ReferenceIntegrateGenDPDEStepKernel {
 public:
     CpuIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform) :
-            ReferenceIntegrateGenDPDEStepKernel(name, platform) {
-    }
+            ReferenceIntegrateGenDPDEStepKernel(name, platform) {}
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
+
 protected:
     int numThreads(OpenMM::ContextImpl& context) const override;
     void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement) override;
@@ -27,6 +27,7 @@ protected:
               const std::vector<OpenMM::Vec3>& forces, double timeStep) override;
     void drift(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& positions,
                const std::vector<OpenMM::Vec3>& velocities, double timeStep) override;
+
 private:
     std::vector<int> blockFailure;   // per block of the running colour: position of the failing pair, or -1
     std::vector<double> chunkSums;

@@ -25,8 +25,7 @@ public:
 } // namespace
 
 // The entry points OpenMM calls when it loads this library from its plugin directory: the CPU platform only.
-extern "C" OPENMM_EXPORT void registerPlatforms() {
-}
+extern "C" OPENMM_EXPORT void registerPlatforms() {}
 
 extern "C" OPENMM_EXPORT void registerKernelFactories() {
     for (int i = 0; i < Platform::getNumPlatforms(); i++) {

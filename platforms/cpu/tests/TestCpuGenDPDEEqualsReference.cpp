@@ -71,21 +71,24 @@ void testForcesAndObservables() {
     for (GenDPDEForce::DensityEstimator estimator : testEstimators()) {
         Scene scene = makeLatticeLiquid(6, referenceDensity, 0.3, estimator, true, 57);
         const double edge = scene.box[0][0];
-        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3*edge, edge, 0), Vec3(-0.4*edge, 0.2*edge, edge));
+        setBox(scene, Vec3(edge, 0, 0), Vec3(0.3 * edge, edge, 0), Vec3(-0.4 * edge, 0.2 * edge, edge));
         checkForcesAndObservables(scene, estimatorLabel(estimator) + " triclinic");
     }
     Scene mixture = makeLatticeLiquid(6, referenceDensity, 0.2, GenDPDEForce::VB, true, 58);
     setMixtureTypes(mixture, false);
     checkForcesAndObservables(mixture, "VB three-type mixture");
-    Scene slab = makeSlab(6, 0.82*referenceDensity, 0.2, GenDPDEForce::VC, 59);
+    Scene slab = makeSlab(6, 0.82 * referenceDensity, 0.2, GenDPDEForce::VC, 59);
     checkForcesAndObservables(slab, "VC slab");
 }
 
 Trajectory run(const std::string& platformName, const std::string& threads, GenDPDEIntegrator::Mode mode, int steps,
                bool ownPairs, bool mixture) {
-    return runLatticeLiquid(14, true, mode, steps, ownPairs, [&](System& system, Integrator& integrator) {
-        return makeContext(system, integrator, platformName, threads);
-    }, mixture);
+    return runLatticeLiquid(
+            14, true, mode, steps, ownPairs,
+            [&](System& system, Integrator& integrator) {
+                return makeContext(system, integrator, platformName, threads);
+            },
+            mixture);
 }
 
 void compareTrajectories(GenDPDEIntegrator::Mode mode, int steps, bool ownPairs, const std::string& label,
@@ -116,8 +119,7 @@ void testSameFailure() {
         context->setVelocitiesToTemperature(temperature, 5);
         try {
             integrator.step(1);
-        }
-        catch (const OpenMMException& e) {
+        } catch (const OpenMMException& e) {
             messages.push_back(e.what());
         }
     }

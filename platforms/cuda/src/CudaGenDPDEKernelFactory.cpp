@@ -6,14 +6,13 @@ namespace {
 
 /** The static shared memory one CUDA thread block may use: 48 kB on every GPU OpenMM supports. */
 int localMemory(OpenMM::ComputeContext& cc) {
-    return 48*1024;
+    return 48 * 1024;
 }
 
 } // namespace
 
 // The entry points OpenMM calls when it loads this library from its plugin directory: the CUDA platform only.
-extern "C" OPENMM_EXPORT void registerPlatforms() {
-}
+extern "C" OPENMM_EXPORT void registerPlatforms() {}
 
 extern "C" OPENMM_EXPORT void registerKernelFactories() {
     GenDPDEPlugin::CommonGenDPDEKernelFactory<OpenMM::CudaPlatform>::registerOn("CUDA", localMemory);

@@ -13,8 +13,7 @@ int localMemory(OpenMM::ComputeContext& cc) {
 } // namespace
 
 // The entry points OpenMM calls when it loads this library from its plugin directory: the OpenCL platform only.
-extern "C" OPENMM_EXPORT void registerPlatforms() {
-}
+extern "C" OPENMM_EXPORT void registerPlatforms() {}
 
 extern "C" OPENMM_EXPORT void registerKernelFactories() {
     GenDPDEPlugin::CommonGenDPDEKernelFactory<OpenMM::OpenCLPlatform>::registerOn("OpenCL", localMemory);

@@ -12,20 +12,20 @@ using namespace OpenMM;
 PeriodicBox::PeriodicBox(const Vec3 boxVectors[3]) {
     for (int k = 0; k < 3; k++) {
         vectors[k] = boxVectors[k];
-        inverseDiagonal[k] = 1.0/boxVectors[k][k];
+        inverseDiagonal[k] = 1.0 / boxVectors[k][k];
     }
     triclinic = (vectors[1][0] != 0.0 || vectors[2][0] != 0.0 || vectors[2][1] != 0.0);
 }
 
-NeighborList::NeighborList(double cutoff, double skin, bool periodic) : cutoff(cutoff), skin(skin), periodic(periodic) {
-}
+NeighborList::NeighborList(double cutoff, double skin, bool periodic) :
+        cutoff(cutoff), skin(skin), periodic(periodic) {}
 
 bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], int numThreads) const {
     if (!built || positions.size() != builtPositions.size())
         return true;
     if (periodic && !(boxVectors[0] == builtBox[0] && boxVectors[1] == builtBox[1] && boxVectors[2] == builtBox[2]))
         return true;
-    const double limit = 0.25*skin*skin;   // (skin/2)^2: two particles approach each other by at most skin
+    const double limit = 0.25 * skin * skin;   // (skin/2)^2: two particles approach each other by at most skin
     const Vec3* now = positions.data();
     const Vec3* then = builtPositions.data();
     std::atomic<bool> moved(false);
@@ -85,7 +85,7 @@ std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& pos
         extent[k] = high[k] - low[k];
     for (int i = 0; i < numParticles; i++)
         for (int k = 0; k < 3; k++)
-            unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k])/extent[k] : 0.0;
+            unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k]) / extent[k] : 0.0;
     return unit;
 }
 
@@ -94,12 +94,12 @@ void NeighborList::sortIntoCells(const std::vector<Vec3>& unit, const Vec3& exte
     // Cells at least cutoff + skin wide; no more cells than are useful for this many particles.
     const double listCutoff = cutoff + skin;
     for (int k = 0; k < 3; k++)
-        numCells[k] = std::max(1, (int) std::min(1.0e4, std::floor(extent[k]/listCutoff)));
-    const double maxCells = std::max(27.0, 2.0*numParticles);
-    while ((double) numCells[0]*numCells[1]*numCells[2] > maxCells)
+        numCells[k] = std::max(1, (int) std::min(1.0e4, std::floor(extent[k] / listCutoff)));
+    const double maxCells = std::max(27.0, 2.0 * numParticles);
+    while ((double) numCells[0] * numCells[1] * numCells[2] > maxCells)
         for (int k = 0; k < 3; k++)
-            numCells[k] = std::max(1, numCells[k]/2);
-    const int totalCells = numCells[0]*numCells[1]*numCells[2];
+            numCells[k] = std::max(1, numCells[k] / 2);
+    const int totalCells = numCells[0] * numCells[1] * numCells[2];
 
     // Counting sort of the particles into cells; within a cell they stay in ascending index order.
     particleCell.resize(numParticles);
@@ -107,7 +107,7 @@ void NeighborList::sortIntoCells(const std::vector<Vec3>& unit, const Vec3& exte
     for (int i = 0; i < numParticles; i++) {
         int cell = 0;
         for (int k = 0; k < 3; k++)
-            cell = cell*numCells[k] + std::max(0, std::min(numCells[k] - 1, (int) (unit[i][k]*numCells[k])));
+            cell = cell * numCells[k] + std::max(0, std::min(numCells[k] - 1, (int) (unit[i][k] * numCells[k])));
         particleCell[i] = cell;
         cellStart[cell + 1]++;
     }
@@ -144,19 +144,19 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
                                   std::vector<int>& found) {
     // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted. Every particle of
     // the surrounding cells is written and kept only if it is one (no branch: which are is close to random).
-    const double listCutoff = cutoff + skin, listCutoff2 = listCutoff*listCutoff;
+    const double listCutoff = cutoff + skin, listCutoff2 = listCutoff * listCutoff;
     size_t size = found.size();
     for (int i = begin; i < end; i++) {
         int cell = particleCell[i];
-        int cz = cell % numCells[2], cy = (cell/numCells[2]) % numCells[1], cx = cell/(numCells[2]*numCells[1]);
+        int cz = cell % numCells[2], cy = (cell / numCells[2]) % numCells[1], cx = cell / (numCells[2] * numCells[1]);
         const size_t first = size;
         for (int nx : neighborCells[0][cx])
             for (int ny : neighborCells[1][cy])
                 for (int nz : neighborCells[2][cz]) {
-                    const int neighborCell = (nx*numCells[1] + ny)*numCells[2] + nz;
+                    const int neighborCell = (nx * numCells[1] + ny) * numCells[2] + nz;
                     const int cellBegin = cellStart[neighborCell], cellEnd = cellStart[neighborCell + 1];
                     if (found.size() < size + (cellEnd - cellBegin))
-                        found.resize(2*(size + (cellEnd - cellBegin)));
+                        found.resize(2 * (size + (cellEnd - cellBegin)));
                     int* out = found.data();
                     for (int m = cellBegin; m < cellEnd; m++) {
                         const int j = cellParticles[m];
@@ -185,7 +185,7 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads)
     parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             chunkCandidates[c].clear();
-            findCandidates(r, c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), neighborCells,
+            findCandidates(r, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk), neighborCells,
                            chunkCandidates[c]);
         }
     });
@@ -195,13 +195,13 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads)
     parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++)
             std::copy(chunkCandidates[c].begin(), chunkCandidates[c].end(),
-                      candidates.begin() + candidateStart[c*particleChunk]);
+                      candidates.begin() + candidateStart[c * particleChunk]);
     });
 }
 
 template <class Displacement>
 void NeighborList::findPairs(int begin, int end, Displacement displacement, std::vector<ParticlePair>& found) const {
-    const double cutoff2 = cutoff*cutoff;
+    const double cutoff2 = cutoff * cutoff;
     for (int i = begin; i < end; i++)
         for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
             const int j = candidates[m];
@@ -226,7 +226,7 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
             pairs.resize(candidates.size());
         size_t found = 0;
         ParticlePair* pair = pairs.data();
-        const double cutoff2 = cutoff*cutoff;
+        const double cutoff2 = cutoff * cutoff;
         for (int i = 0; i < numParticles; i++)
             for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
                 const int j = candidates[m];
@@ -237,15 +237,15 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
                 found += (d.dot(d) < cutoff2);
             }
         numPairs = found;
-    }
-    else {
+    } else {
         // Each range of particles finds its pairs, then the ranges are copied in order: the same list.
         const int numChunks = numRanges(numParticles, particleChunk);
         chunkPairs.resize(numChunks);
         parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
             for (int c = chunkBegin; c < chunkEnd; c++) {
                 chunkPairs[c].clear();
-                findPairs(c*particleChunk, std::min(numParticles, (c + 1)*particleChunk), displacement, chunkPairs[c]);
+                findPairs(c * particleChunk, std::min(numParticles, (c + 1) * particleChunk), displacement,
+                          chunkPairs[c]);
             }
         });
         std::vector<size_t> offset(numChunks + 1, 0);
@@ -290,10 +290,14 @@ PairView NeighborList::update(const std::vector<Vec3>& positions, const Vec3 box
     if (!periodic)
         collectPairs(numParticles, [&](int i, int j) { return positions[i] - positions[j]; }, numThreads);
     else if (box.isTriclinic())
-        collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); }, numThreads);
+        collectPairs(
+                numParticles,
+                [&](int i, int j) { return box.nearestImageTriclinic(wrappedPositions[i] - wrappedPositions[j]); },
+                numThreads);
     else
-        collectPairs(numParticles, [&](int i, int j) {
-            return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); }, numThreads);
+        collectPairs(
+                numParticles,
+                [&](int i, int j) { return box.nearestImageRectangular(wrappedPositions[i] - wrappedPositions[j]); },
+                numThreads);
     return getPairs();
 }

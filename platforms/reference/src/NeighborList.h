@@ -19,39 +19,34 @@ class PeriodicBox {
 public:
     PeriodicBox() = default;
     explicit PeriodicBox(const OpenMM::Vec3 vectors[3]);
-    bool isTriclinic() const {
-        return triclinic;
-    }
+    bool isTriclinic() const { return triclinic; }
     /** r moved by a lattice vector into [0, ax) x [0, by) x [0, cz). */
     OpenMM::Vec3 wrap(OpenMM::Vec3 r) const {
-        r -= vectors[2]*BoxGeometry::floorToInteger(r[2]*inverseDiagonal[2]);
-        r -= vectors[1]*BoxGeometry::floorToInteger(r[1]*inverseDiagonal[1]);
-        r -= vectors[0]*BoxGeometry::floorToInteger(r[0]*inverseDiagonal[0]);
+        r -= vectors[2] * BoxGeometry::floorToInteger(r[2] * inverseDiagonal[2]);
+        r -= vectors[1] * BoxGeometry::floorToInteger(r[1] * inverseDiagonal[1]);
+        r -= vectors[0] * BoxGeometry::floorToInteger(r[0] * inverseDiagonal[0]);
         return r;
     }
     /** The nearest image of a difference d in a rectangular box. */
     OpenMM::Vec3 nearestImageRectangular(OpenMM::Vec3 d) const {
         for (int k = 0; k < 3; k++)
-            d[k] -= vectors[k][k]*BoxGeometry::roundToInteger(d[k]*inverseDiagonal[k]);
+            d[k] -= vectors[k][k] * BoxGeometry::roundToInteger(d[k] * inverseDiagonal[k]);
         return d;
     }
     /** The nearest image of a difference d in a reduced triclinic box (OpenMM's convention). */
     OpenMM::Vec3 nearestImageTriclinic(OpenMM::Vec3 d) const {
-        d -= vectors[2]*BoxGeometry::roundToInteger(d[2]*inverseDiagonal[2]);
-        d -= vectors[1]*BoxGeometry::roundToInteger(d[1]*inverseDiagonal[1]);
-        d -= vectors[0]*BoxGeometry::roundToInteger(d[0]*inverseDiagonal[0]);
+        d -= vectors[2] * BoxGeometry::roundToInteger(d[2] * inverseDiagonal[2]);
+        d -= vectors[1] * BoxGeometry::roundToInteger(d[1] * inverseDiagonal[1]);
+        d -= vectors[0] * BoxGeometry::roundToInteger(d[0] * inverseDiagonal[0]);
         return d;
     }
     OpenMM::Vec3 nearestImage(const OpenMM::Vec3& d) const {
         return triclinic ? nearestImageTriclinic(d) : nearestImageRectangular(d);
     }
-    const OpenMM::Vec3* getVectors() const {
-        return vectors;
-    }
+    const OpenMM::Vec3* getVectors() const { return vectors; }
     /** 1/ax, 1/by, 1/cz (1/nm). */
-    const OpenMM::Vec3& getInverseDiagonal() const {
-        return inverseDiagonal;
-    }
+    const OpenMM::Vec3& getInverseDiagonal() const { return inverseDiagonal; }
+
 private:
     OpenMM::Vec3 vectors[3], inverseDiagonal;
     bool triclinic = false;
@@ -73,28 +68,16 @@ class PairView {
 public:
     PairView(const ParticlePair* first, size_t count, const int* rowOfParticle = nullptr,
              const int* rowPairStart = nullptr) :
-            first(first), count(count), rowOfParticle(rowOfParticle), rowPairStart(rowPairStart) {
-    }
+            first(first), count(count), rowOfParticle(rowOfParticle), rowPairStart(rowPairStart) {}
     /** Null if the pairs are in (i, j) order, else each particle's row (see above). */
-    const int* getRowOfParticle() const {
-        return rowOfParticle;
-    }
+    const int* getRowOfParticle() const { return rowOfParticle; }
     /** Null if the pairs are in (i, j) order, else where each row's pairs begin (one more than the rows). */
-    const int* getRowPairStart() const {
-        return rowPairStart;
-    }
-    const ParticlePair* begin() const {
-        return first;
-    }
-    const ParticlePair* end() const {
-        return first + count;
-    }
-    size_t size() const {
-        return count;
-    }
-    const ParticlePair& operator[](size_t index) const {
-        return first[index];
-    }
+    const int* getRowPairStart() const { return rowPairStart; }
+    const ParticlePair* begin() const { return first; }
+    const ParticlePair* end() const { return first + count; }
+    size_t size() const { return count; }
+    const ParticlePair& operator[](size_t index) const { return first[index]; }
+
 private:
     const ParticlePair* first;
     size_t count;
@@ -135,47 +118,30 @@ public:
     static constexpr double defaultSkinFraction = 0.1;
     NeighborList(double cutoff, double skin, bool periodic);
     /** The pairs at these positions (box ignored unless periodic). Rebuilds the candidate list only when needed. */
-    PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
-                    int numThreads = 1);
+    PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], int numThreads = 1);
     /**
      * Wrap these positions and rebuild the candidates if needed, without collecting the pairs: for a caller that
      * evaluates the candidates itself (displacement()).
      */
-    void refresh(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
-                 int numThreads = 1);
-    bool isPeriodic() const {
-        return periodic;
-    }
+    void refresh(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], int numThreads = 1);
+    bool isPeriodic() const { return periodic; }
     /** The box of the last refresh() (periodic only). */
-    const PeriodicBox& getBox() const {
-        return box;
-    }
+    const PeriodicBox& getBox() const { return box; }
     /** The positions of the last refresh(), wrapped into the box if periodic (nm). */
     const std::vector<OpenMM::Vec3>& getRefreshedPositions() const {
         return periodic ? wrappedPositions : *currentPositions;
     }
     /** The candidates j > i of particle i are candidates[candidateStart[i]] ... [candidateStart[i + 1] - 1]. */
-    const std::vector<int>& getCandidateStart() const {
-        return candidateStart;
-    }
-    const std::vector<int>& getCandidates() const {
-        return candidates;
-    }
+    const std::vector<int>& getCandidateStart() const { return candidateStart; }
+    const std::vector<int>& getCandidates() const { return candidates; }
     /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
-    const std::vector<int>& getCellOrder() const {
-        return cellParticles;
-    }
+    const std::vector<int>& getCellOrder() const { return cellParticles; }
     /** How many times the candidates have been built: a change means new candidates. */
-    long long getBuildCount() const {
-        return buildCount;
-    }
-    double getCutoff() const {
-        return cutoff;
-    }
+    long long getBuildCount() const { return buildCount; }
+    double getCutoff() const { return cutoff; }
     /** The pairs found by the last update(). */
-    PairView getPairs() const {
-        return PairView(pairs.data(), numPairs);
-    }
+    PairView getPairs() const { return PairView(pairs.data(), numPairs); }
+
 private:
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
                       int numThreads) const;
@@ -201,19 +167,19 @@ private:
     double cutoff, skin;
     bool periodic, built = false;
     long long buildCount = 0;
-    PeriodicBox box;                               // the current box
-    OpenMM::Vec3 builtBox[3];                      // the box when the candidates were built
+    PeriodicBox box; // the current box
+    OpenMM::Vec3 builtBox[3]; // the box when the candidates were built
     std::vector<OpenMM::Vec3> builtPositions;
-    std::vector<OpenMM::Vec3> wrappedPositions;    // positions wrapped into the box (periodic only)
-    std::vector<int> candidateStart;               // candidates of i in candidates[candidateStart[i]..[i+1])
+    std::vector<OpenMM::Vec3> wrappedPositions; // positions wrapped into the box (periodic only)
+    std::vector<int> candidateStart; // candidates of i in candidates[candidateStart[i]..[i+1])
     std::vector<int> candidates;
-    std::array<int, 3> numCells;                   // the cell grid of the last build
+    std::array<int, 3> numCells; // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
-    std::vector<OpenMM::Vec3> cellPositions;       // the positions of cellParticles, during a build
-    const std::vector<OpenMM::Vec3>* currentPositions = nullptr;   // those of the last refresh (not periodic)
-    std::vector<ParticlePair> pairs;               // a buffer with room for every candidate; numPairs are in use
+    std::vector<OpenMM::Vec3> cellPositions; // the positions of cellParticles, during a build
+    const std::vector<OpenMM::Vec3>* currentPositions = nullptr; // those of the last refresh (not periodic)
+    std::vector<ParticlePair> pairs; // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;
-    std::vector<std::vector<int>> chunkCandidates;           // per range of particles, when threads share the work
+    std::vector<std::vector<int>> chunkCandidates; // per range of particles, when threads share the work
     std::vector<std::vector<ParticlePair>> chunkPairs;
 };
 

@@ -17,32 +17,27 @@ namespace GenDPDEPlugin {
  * pass over the particles for their states (the physics core's gendpdeParticleState), and one sweep over the pairs
  * for the forces and the virial. It lends its pairs to the integrator kernel (GenDPDEPairSource, as a host list).
  */
-class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource,
+class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel,
+                                        public GenDPDEPairSource,
                                         public GenDPDEHostPairList {
 public:
     ReferenceCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
-            CalcGenDPDEForceKernel(name, platform) {
-    }
+            CalcGenDPDEForceKernel(name, platform) {}
     void initialize(const OpenMM::System& system, const GenDPDEForce& force) override;
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
-    GenDPDEPairSource* getPairSource() override {
-        return this;
-    }
+    GenDPDEPairSource* getPairSource() override { return this; }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override {
         if (dependsOnTemperature)
             integratorKernel.keepThermalState(thermalEnergy, densityEntropy);
         return dependsOnTemperature;
     }
     // GenDPDEPairSource: the neighbor list of the last evaluation.
-    GenDPDEHostPairList* getHostPairList() override {
-        return this;
-    }
+    GenDPDEHostPairList* getHostPairList() override { return this; }
     // GenDPDEHostPairList: the pairs of the neighbor list's most recent evaluation.
-    PairView getPairs(int numThreads) override {
-        return neighborList->getPairs();
-    }
+    PairView getPairs(int numThreads) override { return neighborList->getPairs(); }
+
 protected:
     /**
      * What the particle pass needs per evaluation: the estimator, the equation of state of each type and, if a law
@@ -61,9 +56,12 @@ protected:
             if (thermal.internalEnergies != nullptr)
                 input.storedEnergy = thermal.internalEnergies[i];
             if (law.dependsOnTemperature())
-                input = {thermal.isothermal, thermal.temperature, thermal.internalEnergies[i],
+                input = {thermal.isothermal,
+                         thermal.temperature,
+                         thermal.internalEnergies[i],
                          thermal.densityEntropies != nullptr ? thermal.densityEntropies[i] : 0.0,
-                         thermal.densityEntropies != nullptr, thermal.classHeatCapacity[thermal.particleClass[i]],
+                         thermal.densityEntropies != nullptr,
+                         thermal.classHeatCapacity[thermal.particleClass[i]],
                          thermal.checkStep};
             return Physics::particleState(estimator, law, n0, G, input, state);
         }
@@ -78,16 +76,14 @@ protected:
     /** The first particle in [begin, end) whose position is not finite, or -1. */
     static int firstNonFinitePosition(const std::vector<OpenMM::Vec3>& positions, int begin, int end);
     /** Whether the estimator needs the first moments of the neighbourhoods (VC). */
-    bool usesMoments() const {
-        return Physics::gendpdeEstimatorNeedsMoments(estimator) != 0;
-    }
+    bool usesMoments() const { return Physics::gendpdeEstimatorNeedsMoments(estimator) != 0; }
     /** Store particle i's state in the per-particle arrays. */
     void storeParticle(int i, const Physics::ParticleState& state) {
         volume[i] = state.volume;
         pressure[i] = state.pressure;
         forceCoefficient[i] = state.forceCoefficient;
         if (usesMoments())
-            momentForce[i] = moment[i]*state.momentForceScale;
+            momentForce[i] = moment[i] * state.momentForceScale;
         if (dependsOnTemperature) {
             thermalEnergy[i] = state.thermalEnergy;
             densityEntropy[i] = state.densityEntropy;
@@ -118,9 +114,9 @@ protected:
     std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
     // Laws that depend on temperature: C_V theta_i (kJ/mol) and sigma(n_i) (kJ/(mol K)); eps_i and 0 for Tait particles.
     std::vector<double> thermalEnergy, densityEntropy;
-    std::vector<double> particleVirial;     // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
-    std::vector<OpenMM::Vec3> moment;        // VC: g_i = sum_j phi(r_ij) e_ij (dimensionless)
-    std::vector<OpenMM::Vec3> momentForce;   // VC: q_i = 2 pi_i dV_i/dG_i g_i (kJ/mol)
+    std::vector<double> particleVirial; // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)
+    std::vector<OpenMM::Vec3> moment; // VC: g_i = sum_j phi(r_ij) e_ij (dimensionless)
+    std::vector<OpenMM::Vec3> momentForce; // VC: q_i = 2 pi_i dV_i/dG_i g_i (kJ/mol)
     // Observables and the configuration they belong to.
     GenDPDEObservables observables;
     std::vector<OpenMM::Vec3> observedPositions;

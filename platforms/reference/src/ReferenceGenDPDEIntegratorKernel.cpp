@@ -20,15 +20,16 @@ void ReferenceIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const
     this->cutoff = cutoff;
     this->seed = seed;
     internalEnergies = energies;
-    typeTables.reset(new IntegratorTypeTables(ParticleTypeIndex(particleTypes, system.getNumParticles(),
-                                                                "GenDPDEIntegrator")));
+    typeTables.reset(
+            new IntegratorTypeTables(ParticleTypeIndex(particleTypes, system.getNumParticles(), "GenDPDEIntegrator")));
     inverseMasses.resize(system.getNumParticles());
     for (int i = 0; i < system.getNumParticles(); i++) {
         double mass = system.getParticleMass(i);
-        inverseMasses[i] = (mass == 0.0 ? 0.0 : 1.0/mass);
+        inverseMasses[i] = (mass == 0.0 ? 0.0 : 1.0 / mass);
     }
     if (cutoff > 0.0)
-        neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, system.usesPeriodicBoundaryConditions()));
+        neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction * cutoff,
+                                            system.usesPeriodicBoundaryConditions()));
 }
 
 GenDPDEThermalState ReferenceIntegrateGenDPDEStepKernel::getThermalState(const GenDPDEIntegrator& integrator) {
@@ -60,7 +61,7 @@ void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector
                                                const std::vector<Vec3>& forces, double timeStep) {
     for (size_t i = 0; i < velocities.size(); i++)
         if (inverseMasses[i] != 0.0)
-            velocities[i] += forces[i]*(timeStep*inverseMasses[i]);
+            velocities[i] += forces[i] * (timeStep * inverseMasses[i]);
 }
 
 int ReferenceIntegrateGenDPDEStepKernel::firstUnstableParticle(ContextImpl& context, double stepSize,
@@ -69,11 +70,11 @@ int ReferenceIntegrateGenDPDEStepKernel::firstUnstableParticle(ContextImpl& cont
     // (GenDPDEStepTerms) with its velocity after the kicks.
     const std::vector<Vec3>& forces = extractForces(context);
     const std::vector<Vec3>& velocities = extractVelocities(context);
-    const double limit2 = maxDisplacement*maxDisplacement;
+    const double limit2 = maxDisplacement * maxDisplacement;
     for (int i = begin; i < end; i++) {
         if (!(std::isfinite(forces[i][0]) && std::isfinite(forces[i][1]) && std::isfinite(forces[i][2])))
             return i;
-        const Vec3 displacement = (velocities[i] + forces[i]*(stepSize*inverseMasses[i]))*stepSize;
+        const Vec3 displacement = (velocities[i] + forces[i] * (stepSize * inverseMasses[i])) * stepSize;
         if (inverseMasses[i] != 0.0 && !(displacement.dot(displacement) <= limit2))
             return i;
     }
@@ -82,8 +83,9 @@ int ReferenceIntegrateGenDPDEStepKernel::firstUnstableParticle(ContextImpl& cont
 
 void ReferenceIntegrateGenDPDEStepKernel::throwUnstable(ContextImpl& context, int i, double stepSize,
                                                         double maxDisplacement) const {
-    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(i, extractVelocities(context)[i],
-            extractForces(context)[i], inverseMasses[i], stepSize, maxDisplacement, context.getStepCount()));
+    throw OpenMMException(GenDPDEIntegratorUtilities::unstableParticleMessage(
+            i, extractVelocities(context)[i], extractForces(context)[i], inverseMasses[i], stepSize, maxDisplacement,
+            context.getStepCount()));
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize,
@@ -95,7 +97,7 @@ void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
-        const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
+                                                const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
     // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows.
     const long long step = context.getStepCount();
     buildSweepOrder(context, pairs, 1);
@@ -121,12 +123,12 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
 
 void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, PairView pairs, int numThreads) {
     static_assert(sizeof(ParticlePair) % sizeof(int) == 0, "the sweep order reads i and j with an int stride");
-    const int stride = sizeof(ParticlePair)/sizeof(int);
+    const int stride = sizeof(ParticlePair) / sizeof(int);
     const bool anyPairs = pairs.size() > 0;
     sweepOrder.build(extractPositions(context), extractBoxVectors(context),
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
-                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride,
-                     numThreads, pairs.getRowOfParticle(), pairs.getRowPairStart());
+                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, numThreads,
+                     pairs.getRowOfParticle(), pairs.getRowPairStart());
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& parameters,
@@ -140,8 +142,7 @@ void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& 
 
 void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
                                                     std::vector<Vec3>& velocities, long long step) {
-    const int particle = failedParticle(pairs.begin(), order.data(), failed, layout.slots,
-                                        layout.slotEnergies.data());
+    const int particle = failedParticle(pairs.begin(), order.data(), failed, layout.slots, layout.slotEnergies.data());
     const double value = layout.slotEnergies[layout.slots[particle]];
     velocities = savedVelocities;
     internalEnergies = savedInternalEnergies;
@@ -152,7 +153,7 @@ void ReferenceIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vecto
                                                 const std::vector<Vec3>& velocities, double timeStep) {
     for (size_t i = 0; i < positions.size(); i++)
         if (inverseMasses[i] != 0.0)
-            positions[i] += velocities[i]*timeStep;
+            positions[i] += velocities[i] * timeStep;
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
@@ -170,9 +171,9 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
             savedVelocities = velocities;
             savedInternalEnergies = internalEnergies;
         }
-        kick(context, velocities, forces, 0.5*dt);
+        kick(context, velocities, forces, 0.5 * dt);
         sweep(context, currentPairs(context, pairSource, numThreads(context)), velocities, integrator, terms);
-        kick(context, velocities, forces, 0.5*dt);
+        kick(context, velocities, forces, 0.5 * dt);
     }
     drift(context, extractPositions(context), velocities, dt);
     ReferencePlatform::PlatformData& data = platformData(context);
@@ -185,15 +186,16 @@ double ReferenceIntegrateGenDPDEStepKernel::kineticEnergy(int i, const std::vect
     // Velocities are half a step behind the positions: K at the current time uses v + (dt/2) F/m.
     if (inverseMasses[i] == 0.0)
         return 0.0;
-    const Vec3 v = velocities[i] + forces[i]*(halfStep*inverseMasses[i]);
-    return 0.5*v.dot(v)/inverseMasses[i];
+    const Vec3 v = velocities[i] + forces[i] * (halfStep * inverseMasses[i]);
+    return 0.5 * v.dot(v) / inverseMasses[i];
 }
 
-double ReferenceIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context, const GenDPDEIntegrator& integrator) {
+double ReferenceIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& context,
+                                                                 const GenDPDEIntegrator& integrator) {
     const std::vector<Vec3>& velocities = extractVelocities(context);
     const std::vector<Vec3>& forces = extractForces(context);
-    const double halfStep = 0.5*integrator.getStepSize();
-    FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
+    const double halfStep = 0.5 * integrator.getStepSize();
+    FixedOrderSum::Accumulator energy; // summed as the CPU platform sums it, for the same bits
     for (size_t i = 0; i < velocities.size(); i++)
         energy.add(kineticEnergy(i, velocities, forces, halfStep));
     return energy.sum();

@@ -21,16 +21,13 @@ namespace GenDPDEPlugin {
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
     ReferenceIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform) :
-            IntegrateGenDPDEStepKernel(name, platform) {
-    }
+            IntegrateGenDPDEStepKernel(name, platform) {}
     void initialize(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, double cutoff, int seed,
                     const std::vector<double>& internalEnergies, const std::map<int, int>& particleTypes) override;
     void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
                  GenDPDEPairSource* pairSource) override;
     double computeKineticEnergy(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator) override;
-    const std::vector<double>& getInternalEnergies() const override {
-        return internalEnergies;
-    }
+    const std::vector<double>& getInternalEnergies() const override { return internalEnergies; }
     void setInternalEnergies(const std::vector<double>& energies) override {
         internalEnergies = energies;
         forgetDensityEntropies();
@@ -42,15 +39,10 @@ public:
         this->densityEntropies = densityEntropies;
         densityEntropiesKnown = true;
     }
-    void forgetDensityEntropies() override {
-        densityEntropiesKnown = false;
-    }
-    int getSeed() const override {
-        return seed;
-    }
-    void setSeed(int seed) override {
-        this->seed = seed;
-    }
+    void forgetDensityEntropies() override { densityEntropiesKnown = false; }
+    int getSeed() const override { return seed; }
+    void setSeed(int seed) override { this->seed = seed; }
+
 protected:
     // The stages of a step (execute() is the one home of their sequence); a parallel platform overrides them.
     /**
@@ -59,9 +51,7 @@ protected:
      */
     PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEPairSource* pairSource, int numThreads);
     /** The threads each stage may use (1; the CPU platform's "Threads"). */
-    virtual int numThreads(OpenMM::ContextImpl& context) const {
-        return 1;
-    }
+    virtual int numThreads(OpenMM::ContextImpl& context) const { return 1; }
     /**
      * Throw, naming the particle and the step, before anything changes, if a force is not finite or a particle
      * would move farther than maxDisplacement (nm) in this step (a blown-up simulation).
@@ -93,8 +83,7 @@ protected:
      * Copy what the sweep reads into layout (the order's cell order), and point parameters at the copied classes.
      * The sweep then works on layout's arrays; layout.scatter() copies its results back.
      */
-    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities,
-                          int numThreads);
+    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities, int numThreads);
     /**
      * The sweep's failure at position failed of the order (the sweep's state still in layout): restore the saved
      * state and throw.

@@ -34,8 +34,7 @@ void ReferenceGenDPDEKernelFactory::registerOn(const std::string& platformName) 
 
 // The entry points OpenMM calls when it loads this library from its plugin directory: the Reference platform only
 // (registering on every ReferencePlatform subclass would also claim the CPU platform, which has its own library).
-extern "C" OPENMM_EXPORT void registerPlatforms() {
-}
+extern "C" OPENMM_EXPORT void registerPlatforms() {}
 
 extern "C" OPENMM_EXPORT void registerKernelFactories() {
     ReferenceGenDPDEKernelFactory::registerOn("Reference");

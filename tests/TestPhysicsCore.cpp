@@ -6,7 +6,9 @@
  *    a piece chosen from the bits of k and a Horner evaluation in long double, within 2 ulp;
  *  - the temperature-dependent local equations of state (docs/theory.md section 11): every derivative against
  *    central finite differences of the free energy f(theta, n) assembled here from the core's e and sigma, the
- *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain.
+ *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain;
+ *  - the sweep's pair update (gendpdePairUpdate): momentum and K + eps_i + eps_j conserved, each term alone, the
+ *    positivity flag.
  * (The accuracy of I and J against 40-digit quadrature is tested in python/tests/test_volume_estimators.py.) */
 
 #include "TestUtilities.h"
@@ -164,6 +166,42 @@ void testLocalEquationsOfState() {
 
 } // namespace
 
+void testPairUpdate() {
+    std::mt19937_64 random(17);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const double boltzmann = 0.0083144626, dt = 0.01;
+    for (int trial = 0; trial < 4000; trial++) {
+        const int dissipation = (trial%4 != 1), conduction = (trial%4 != 2);
+        const double mi = 1 + 40*uniform(random), mj = 1 + 40*uniform(random);
+        const Vec3 e0(uniform(random) - 0.5, uniform(random) - 0.5, uniform(random) - 0.5);
+        const Vec3 e = e0/std::sqrt(e0.dot(e0));
+        Vec3 vi(uniform(random) - 0.5, uniform(random) - 0.5, uniform(random) - 0.5), vj(-vi[1], vi[2], 0.3);
+        const double ci = 0.1 + uniform(random), cj = 0.1 + uniform(random);
+        double ei = ci*(50 + 100*uniform(random)), ej = cj*(50 + 100*uniform(random));
+        const double kappa = 5*uniform(random), omegaR = uniform(random);
+        const double momentum0[3] = {mi*vi[0] + mj*vj[0], mi*vi[1] + mj*vj[1], mi*vi[2] + mj*vj[2]};
+        const double total0 = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj) + ei + ej;
+        const double ei0 = ei, ej0 = ej;
+        double impulse;
+        const int failed = gendpdePairUpdate(dissipation, conduction, e.dot(vi - vj), omegaR, 1/mi, 1/mj, 3.0, kappa,
+                std::sqrt(2*boltzmann*kappa), ci, cj, boltzmann, dt, std::sqrt(dt), 2*uniform(random) - 1,
+                2*uniform(random) - 1, &ei, &ej, &impulse);
+        ASSERT(failed == 0);
+        if (!dissipation)
+            ASSERT(impulse == 0.0);
+        if (!conduction)   // the kinetic change alone, in equal halves
+            assertClose(ei - ei0, ej - ej0, 1e-13*(ei0 + ej0), "equal halves of the kinetic change");
+        applyPairImpulse(e, impulse, 1/mi, 1/mj, vi, vj);
+        for (int k = 0; k < 3; k++)
+            assertClose(momentum0[k], mi*vi[k] + mj*vj[k], 1e-13*(mi + mj), "pair update momentum");
+        assertClose(total0, 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj) + ei + ej, 1e-12*total0, "pair update energy");
+    }
+    // An internal energy that the heat drives below zero is reported (i hot, j nearly at 0 K: heat flows to j).
+    double ei = 10.0, ej = 1e-6, impulse;
+    ASSERT(gendpdePairUpdate(0, 1, 0.0, 1.0, 1.0, 1.0, 0.0, 1000.0, 0.0, 1.0, 1.0, 0.0083144626, 0.01, 0.1, 0.0, -3.0,
+                             &ei, &ej, &impulse) != 0);
+}
+
 void testNoContraction() {
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("fma")) {
@@ -228,6 +266,7 @@ int main() {
     return runTestProgram([]() {
         testNoContraction();
         testPolynomialBranch();
+        testPairUpdate();
         testLocalEquationsOfState();
     });
 }

@@ -8,7 +8,8 @@
  *    central finite differences of the free energy f(theta, n) assembled here from the core's e and sigma, the
  *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain;
  *  - the sweep's pair update (gendpdePairUpdate): momentum and K + eps_i + eps_j conserved, each term alone, the
- *    positivity flag.
+ *    positivity flag;
+ *  - the pair force (gendpdePairForce): the central force alone, and V-C's moment term against gendpdeMomentPairForce.
  * (The accuracy of I and J against 40-digit quadrature is tested in python/tests/test_volume_estimators.py.) */
 
 #include "TestUtilities.h"
@@ -202,6 +203,28 @@ void testPairUpdate() {
                              &ei, &ej, &impulse) != 0);
 }
 
+void testPairForce() {
+    const double cutoff = 1.3, inverseCutoff = 1/cutoff;
+    const DensityWeight weight(cutoff);
+    const Vec3 d(0.3, -0.5, 0.4), qi(0.2, 0.1, -0.3), qj(-0.1, 0.4, 0.05);
+    const double r = std::sqrt(d.dot(d)), w = weight.derivative(r), scale = gendpdePairForceScale(-2.5, w, r);
+    double virial;
+    const Vec3 central = pairForce(d, r, -2.5, w, inverseCutoff, false, qi, qj, virial);
+    for (int k = 0; k < 3; k++)
+        ASSERT(sameBits(central[k], d[k]*scale));
+    ASSERT(sameBits(virial, scale*r*r));
+    ASSERT(sameBits(pairForce(d, r, -2.5, w, inverseCutoff, true, Vec3(), Vec3(), virial)[0], central[0]));
+    const Vec3 full = pairForce(d, r, -2.5, w, inverseCutoff, true, qi, qj, virial);
+    double moment[3];
+    const Vec3 dq = qi - qj;
+    const double momentVirial = gendpdeMomentPairForce(d[0]/r, d[1]/r, d[2]/r, r, inverseCutoff, dq[0], dq[1], dq[2],
+                                                       moment);
+    for (int k = 0; k < 3; k++)
+        assertClose(central[k] + moment[k], full[k], 1e-13, "moment pair force");
+    assertClose(scale*r*r + momentVirial, virial, 1e-13, "moment pair virial");
+    assertClose(d.dot(full), virial, 1e-14, "pair virial is d . F");
+}
+
 void testNoContraction() {
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("fma")) {
@@ -267,6 +290,7 @@ int main() {
         testNoContraction();
         testPolynomialBranch();
         testPairUpdate();
+        testPairForce();
         testLocalEquationsOfState();
     });
 }

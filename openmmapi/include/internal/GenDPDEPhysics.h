@@ -324,13 +324,16 @@ inline double momentWeightOverDistance(double r, double inverseCutoff) {
 }
 
 /**
- * V-C's pair force H(d) (q_i - q_j) for the pair vector d of length 0 < r < R, as a Vec3 (gendpdeMomentPairForce);
- * virial receives its d . F.
+ * The force on i from j of a pair d = r_i - r_j of length r > 0 (gendpdePairForce), as a Vec3 (energy/length):
+ * coefficientSum c_i + c_j, weightDerivative w'(r), q_i and q_j V-C's moment forces (read only if moments); virial
+ * receives its d . F (energy).
  */
-inline OpenMM::Vec3 momentPairForce(const OpenMM::Vec3& e, double r, double inverseCutoff, const OpenMM::Vec3& dq,
-                                    double& virial) {
+inline OpenMM::Vec3 pairForce(const OpenMM::Vec3& d, double r, double coefficientSum, double weightDerivative,
+                              double inverseCutoff, bool moments, const OpenMM::Vec3& qi, const OpenMM::Vec3& qj,
+                              double& virial) {
     double force[3];
-    virial = gendpdeMomentPairForce(e[0], e[1], e[2], r, inverseCutoff, dq[0], dq[1], dq[2], force);
+    virial = gendpdePairForce(d[0], d[1], d[2], r, coefficientSum, weightDerivative, inverseCutoff, moments ? 1 : 0,
+                              qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
     return OpenMM::Vec3(force[0], force[1], force[2]);
 }
 

@@ -198,7 +198,8 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  * Rt^3 at n0 = 0, where dV/dn0 is its limit -infinity, and V -> 1/n0 as n0 -> infinity.
  */
 inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
-    const ParticleVolumeAndMoment v = VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange, reducedRange)(primitiveDensity);
+    const ParticleVolumeAndMoment v = VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange,
+                                                      reducedRange)(primitiveDensity);
     return {v.volume, primitiveDensity == 0.0 ? -std::numeric_limits<double>::infinity() : v.derivative};
 }
 
@@ -300,7 +301,6 @@ inline int particleState(const VolumeEstimator& estimator, const TaitEquationOfS
             &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient, &state.momentForceScale);
 }
 
-/** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
 /**
  * The state of a particle whose law depends on temperature (gendpdeThermalParticleState): as particleState, with
  * state.thermalEnergy and state.densityEntropy set too.
@@ -319,6 +319,7 @@ inline int thermalParticleState(const VolumeEstimator& estimator, const LocalEqu
             &state.forceCoefficient, &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
 }
 
+/** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
 inline double momentWeightOverDistance(double r, double inverseCutoff) {
     return gendpdeMomentWeightOverDistance(r, inverseCutoff);
 }

@@ -155,17 +155,19 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
         const int i = slot[pair.i], j = slot[pair.j];
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
+        const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
+        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
+                p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const double xi = p.terms.dissipation ? random.normal() : 0.0;   // the stream's order: impulse, then heat
         const double xiQ = p.terms.conduction ? random.normal() : 0.0;
-        const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
         const OpenMM::Vec3 e = pair.delta*(1.0/pair.r);
         double impulse;
         const int failed = Physics::gendpdePairUpdate(p.terms.dissipation, p.terms.conduction,
+                temperatures.pairThermalEnergy, temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
                 e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(pair.r, p.cutoff), inverseMasses[i],
-                inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab],
-                p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann, p.stepSize, p.sqrtStepSize, xi,
-                xiQ, &energies[i], &energies[j], &impulse);
+                inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.stepSize,
+                p.sqrtStepSize, xi, xiQ, &energies[i], &energies[j], &impulse);
         if (p.terms.dissipation)
             Physics::applyPairImpulse(e, impulse, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j]);
         if (failed)

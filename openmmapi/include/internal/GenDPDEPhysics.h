@@ -374,7 +374,7 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
 
 /**
  * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type;
- * gendpdePairTemperatures, which the core's gendpdePairUpdate calls).
+ * gendpdePairTemperatures, whose results the sweeps pass to the core's gendpdePairUpdate).
  *
  * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
  * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2,

@@ -622,27 +622,26 @@ GENDPDE_CORE GENDPDE_REAL gendpdeConductiveHeat(GENDPDE_REAL omegaR, GENDPDE_REA
 
 /**
  * One pair update of the sweep with internal energies (sections 5-7), at the temperatures theta = eps/C the two
- * particles have when the pair is reached (gendpdePairTemperatures), as every platform performs it:
+ * particles have when the pair is reached, as every platform performs it:
  *  - dissipation != 0: the impulse of gendpdePairImpulse with the friction gamma (1 + the Ito factor) and the noise
  *    sigma = sqrt(2 gamma k_B Theta_ij); the change of the pair's kinetic energy is taken from the two internal
  *    energies in equal halves;
  *  - conduction != 0: then the heat of gendpdeConductiveHeat flows from j to i.
- * u0 = e . (v_i - v_j) before the update (length/time; e the unit vector from j to i), omegaR = omega_R(r),
- * inverseMassI, inverseMassJ (1/mass), friction gamma (mass/time) and heatConduction kappa (energy temperature/time)
- * of the pair's classes, heatNoise alpha = sqrt(2 k_B kappa), heatCapacityI, heatCapacityJ (energy/temperature),
- * xi and xiQ standard normal variates of the impulse and of the heat (each read only where its term runs; a pair's
- * random stream gives xi first). *energyI, *energyJ hold eps_i, eps_j (energy) and receive their new values;
- * *impulse receives P (mass length/time; 0 without dissipation): the caller adds P e/m_i to v_i and -P e/m_j to v_j.
- * Returns nonzero if an internal energy is now <= 0 (or not a number): the sweep stops at this pair.
+ * pairThermalEnergy, inverseTemperatureDifference and frictionFactor are gendpdePairTemperatures of the internal
+ * energies *energyI, *energyJ before the update (the caller computes them first: their divisions then run while it
+ * draws the random variates). u0 = e . (v_i - v_j) before the update (length/time; e the unit vector from j to i),
+ * omegaR = omega_R(r), inverseMassI, inverseMassJ (1/mass), friction gamma (mass/time) and heatConduction kappa
+ * (energy temperature/time) of the pair's classes, heatNoise alpha = sqrt(2 k_B kappa), xi and xiQ standard normal
+ * variates of the impulse and of the heat (each read only where its term runs; a pair's random stream gives xi
+ * first). *energyI, *energyJ hold eps_i, eps_j (energy) and receive their new values; *impulse receives P (mass
+ * length/time; 0 without dissipation): the caller adds P e/m_i to v_i and -P e/m_j to v_j. Returns nonzero if an
+ * internal energy is now <= 0 (or not a number): the sweep stops at this pair.
  */
-GENDPDE_CORE int gendpdePairUpdate(int dissipation, int conduction, GENDPDE_REAL u0, GENDPDE_REAL omegaR,
+GENDPDE_CORE int gendpdePairUpdate(int dissipation, int conduction, GENDPDE_REAL pairThermalEnergy,
+        GENDPDE_REAL inverseTemperatureDifference, GENDPDE_REAL frictionFactor, GENDPDE_REAL u0, GENDPDE_REAL omegaR,
         GENDPDE_REAL inverseMassI, GENDPDE_REAL inverseMassJ, GENDPDE_REAL friction, GENDPDE_REAL heatConduction,
-        GENDPDE_REAL heatNoise, GENDPDE_REAL heatCapacityI, GENDPDE_REAL heatCapacityJ, GENDPDE_REAL boltzmann,
-        GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xi, GENDPDE_REAL xiQ, GENDPDE_REAL* energyI,
-        GENDPDE_REAL* energyJ, GENDPDE_REAL* impulse) {
-    GENDPDE_REAL pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
-    gendpdePairTemperatures(*energyI, *energyJ, heatCapacityI, heatCapacityJ, boltzmann, &pairThermalEnergy,
-                            &inverseTemperatureDifference, &frictionFactor);
+        GENDPDE_REAL heatNoise, GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xi, GENDPDE_REAL xiQ,
+        GENDPDE_REAL* energyI, GENDPDE_REAL* energyJ, GENDPDE_REAL* impulse) {
     *impulse = 0;
     if (dissipation) {
         GENDPDE_REAL kineticChange;

@@ -370,13 +370,16 @@ inline DEVICE bool pairUpdate(int i, int j, mixed3 d, int typeI, int typeJ, mixe
                               (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
         return false;
     }
+    mixed pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
+    gendpdePairTemperatures(*ei, *ej, heatCapacityTable[typeI], heatCapacityTable[typeJ], c.boltzmann,
+                            &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
     // The stream's order: the impulse's variate, then the heat's.
     const mixed xi = (c.dissipation ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
     const mixed xiQ = (c.conduction ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
     mixed impulse;
-    const int failed = gendpdePairUpdate(c.dissipation, c.conduction, relativeVelocityAlong(e, vi, vj), omegaR,
-            vi->w, vj->w, friction, pairParameters.y, pairParameters.z, heatCapacityTable[typeI],
-            heatCapacityTable[typeJ], c.boltzmann, c.stepSize, c.sqrtStepSize, xi, xiQ, ei, ej, &impulse);
+    const int failed = gendpdePairUpdate(c.dissipation, c.conduction, pairThermalEnergy, inverseTemperatureDifference,
+            frictionFactor, relativeVelocityAlong(e, vi, vj), omegaR, vi->w, vj->w, friction, pairParameters.y,
+            pairParameters.z, c.stepSize, c.sqrtStepSize, xi, xiQ, ei, ej, &impulse);
     if (c.dissipation)
         applyPairImpulse(e, impulse, vi, vj);
     return failed != 0;

@@ -6,7 +6,10 @@
  *    a piece chosen from the bits of k and a Horner evaluation in long double, within 2 ulp;
  *  - the temperature-dependent local equations of state (docs/theory.md section 11): every derivative against
  *    central finite differences of the free energy f(theta, n) assembled here from the core's e and sigma, the
- *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain.
+ *    closed forms, the work and entropy of an isentropic compression, the Tait law's bits and the domain;
+ *  - the sweep's pair update (gendpdePairUpdate): momentum and K + eps_i + eps_j conserved, each term alone, the
+ *    positivity flag;
+ *  - the pair force (gendpdePairForce): the central force alone, and V-C's moment term against gendpdeMomentPairForce.
  * (The accuracy of I and J against 40-digit quadrature is tested in python/tests/test_volume_estimators.py.) */
 
 #include "TestUtilities.h"
@@ -164,6 +167,67 @@ void testLocalEquationsOfState() {
 
 } // namespace
 
+void testPairUpdate() {
+    std::mt19937_64 random(17);
+    std::uniform_real_distribution<double> uniform(0.0, 1.0);
+    const double boltzmann = 0.0083144626, dt = 0.01;
+    for (int trial = 0; trial < 4000; trial++) {
+        const int dissipation = (trial%4 != 1), conduction = (trial%4 != 2);
+        const double mi = 1 + 40*uniform(random), mj = 1 + 40*uniform(random);
+        const Vec3 e0(uniform(random) - 0.5, uniform(random) - 0.5, uniform(random) - 0.5);
+        const Vec3 e = e0/std::sqrt(e0.dot(e0));
+        Vec3 vi(uniform(random) - 0.5, uniform(random) - 0.5, uniform(random) - 0.5), vj(-vi[1], vi[2], 0.3);
+        const double ci = 0.1 + uniform(random), cj = 0.1 + uniform(random);
+        double ei = ci*(50 + 100*uniform(random)), ej = cj*(50 + 100*uniform(random));
+        const double kappa = 5*uniform(random), omegaR = uniform(random);
+        const double momentum0[3] = {mi*vi[0] + mj*vj[0], mi*vi[1] + mj*vj[1], mi*vi[2] + mj*vj[2]};
+        const double total0 = 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj) + ei + ej;
+        const double ei0 = ei, ej0 = ej;
+        double impulse;
+        const PairTemperatures t = pairTemperatures(ei, ej, ci, cj, boltzmann);
+        const int failed = gendpdePairUpdate(dissipation, conduction, t.pairThermalEnergy,
+                t.inverseTemperatureDifference, t.frictionFactor, e.dot(vi - vj), omegaR, 1/mi, 1/mj, 3.0, kappa,
+                std::sqrt(2*boltzmann*kappa), dt, std::sqrt(dt), 2*uniform(random) - 1, 2*uniform(random) - 1, &ei,
+                &ej, &impulse);
+        ASSERT(failed == 0);
+        if (!dissipation)
+            ASSERT(impulse == 0.0);
+        if (!conduction)   // the kinetic change alone, in equal halves
+            assertClose(ei - ei0, ej - ej0, 1e-13*(ei0 + ej0), "equal halves of the kinetic change");
+        applyPairImpulse(e, impulse, 1/mi, 1/mj, vi, vj);
+        for (int k = 0; k < 3; k++)
+            assertClose(momentum0[k], mi*vi[k] + mj*vj[k], 1e-13*(mi + mj), "pair update momentum");
+        assertClose(total0, 0.5*mi*vi.dot(vi) + 0.5*mj*vj.dot(vj) + ei + ej, 1e-12*total0, "pair update energy");
+    }
+    // An internal energy that the heat drives below zero is reported (i hot, j nearly at 0 K: heat flows to j).
+    double ei = 10.0, ej = 1e-6, impulse;
+    const PairTemperatures t = pairTemperatures(ei, ej, 1.0, 1.0, 0.0083144626);
+    ASSERT(gendpdePairUpdate(0, 1, t.pairThermalEnergy, t.inverseTemperatureDifference, t.frictionFactor, 0.0, 1.0,
+                             1.0, 1.0, 0.0, 1000.0, 0.0, 0.01, 0.1, 0.0, -3.0, &ei, &ej, &impulse) != 0);
+}
+
+void testPairForce() {
+    const double cutoff = 1.3, inverseCutoff = 1/cutoff;
+    const DensityWeight weight(cutoff);
+    const Vec3 d(0.3, -0.5, 0.4), qi(0.2, 0.1, -0.3), qj(-0.1, 0.4, 0.05);
+    const double r = std::sqrt(d.dot(d)), w = weight.derivative(r), scale = gendpdePairForceScale(-2.5, w, r);
+    double virial;
+    const Vec3 central = pairForce(d, r, -2.5, w, inverseCutoff, false, qi, qj, virial);
+    for (int k = 0; k < 3; k++)
+        ASSERT(sameBits(central[k], d[k]*scale));
+    ASSERT(sameBits(virial, scale*r*r));
+    ASSERT(sameBits(pairForce(d, r, -2.5, w, inverseCutoff, true, Vec3(), Vec3(), virial)[0], central[0]));
+    const Vec3 full = pairForce(d, r, -2.5, w, inverseCutoff, true, qi, qj, virial);
+    double moment[3];
+    const Vec3 dq = qi - qj;
+    const double momentVirial = gendpdeMomentPairForce(d[0]/r, d[1]/r, d[2]/r, r, inverseCutoff, dq[0], dq[1], dq[2],
+                                                       moment);
+    for (int k = 0; k < 3; k++)
+        assertClose(central[k] + moment[k], full[k], 1e-13, "moment pair force");
+    assertClose(scale*r*r + momentVirial, virial, 1e-13, "moment pair virial");
+    assertClose(d.dot(full), virial, 1e-14, "pair virial is d . F");
+}
+
 void testNoContraction() {
     __builtin_cpu_init();
     if (!__builtin_cpu_supports("fma")) {
@@ -228,6 +292,8 @@ int main() {
     return runTestProgram([]() {
         testNoContraction();
         testPolynomialBranch();
+        testPairUpdate();
+        testPairForce();
         testLocalEquationsOfState();
     });
 }

@@ -138,9 +138,10 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
 }
 
 /**
- * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r): dissipative
- * and random momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split
- * equally, heat conduction, all with the temperatures the particles have when the pair is reached. Particle i's data
+ * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r), each pair
+ * updated by the physics core's gendpdePairUpdate (as on the device, gendpdeSweep.cc): dissipative and random
+ * momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split equally,
+ * heat conduction, all with the temperatures the particles have when the pair is reached. Particle i's data
  * is at slot[i] of inverseMasses, velocities, energies and p's classes (SweepLayout); the random stream is keyed on
  * (i, j). Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops
  * there; the caller restores the state), or -1.
@@ -154,27 +155,22 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
         const int i = slot[pair.i], j = slot[pair.j];
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
-        const double omegaR = Physics::gendpdeRandomWeight(pair.r, p.cutoff);
-        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
                 p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
-        if (p.terms.dissipation) {
-            const double friction = p.table->friction[ab];
-            const double kineticChange = Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), omegaR,
-                    friction*(1.0 + temperatures.frictionFactor),
-                    std::sqrt(2.0*friction*temperatures.pairThermalEnergy), p.stepSize, p.sqrtStepSize,
-                    inverseMasses[i], inverseMasses[j], velocities[i], velocities[j], random.normal());
-            energies[i] -= 0.5*kineticChange;
-            energies[j] -= 0.5*kineticChange;
-        }
-        if (p.terms.conduction) {
-            const double heat = Physics::gendpdeConductiveHeat(omegaR, p.table->heatConduction[ab], p.heatNoise[ab],
-                    temperatures.inverseTemperatureDifference, p.stepSize, p.sqrtStepSize, random.normal());
-            energies[i] += heat;
-            energies[j] -= heat;
-        }
-        if (!(energies[i] > 0.0) || !(energies[j] > 0.0))
+        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
+        const double xi = p.terms.dissipation ? random.normal() : 0.0;   // the stream's order: impulse, then heat
+        const double xiQ = p.terms.conduction ? random.normal() : 0.0;
+        const OpenMM::Vec3 e = pair.delta*(1.0/pair.r);
+        double impulse;
+        const int failed = Physics::gendpdePairUpdate(p.terms.dissipation, p.terms.conduction,
+                temperatures.pairThermalEnergy, temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
+                e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(pair.r, p.cutoff), inverseMasses[i],
+                inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.stepSize,
+                p.sqrtStepSize, xi, xiQ, &energies[i], &energies[j], &impulse);
+        if (p.terms.dissipation)
+            Physics::applyPairImpulse(e, impulse, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j]);
+        if (failed)
             return n;
     }
     return -1;
@@ -196,8 +192,9 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int ab = p.classOf(i)*p.numClasses + p.classOf(j);
         Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
-                                       p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize, inverseMasses[i], inverseMasses[j],
-                                       velocities[i], velocities[j], random.normal());
+                                       p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize,
+                                       inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
+                                       random.normal());
     }
 }
 

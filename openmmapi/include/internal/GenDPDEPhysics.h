@@ -199,7 +199,8 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  * Rt^3 at n0 = 0, where dV/dn0 is its limit -infinity, and V -> 1/n0 as n0 -> infinity.
  */
 inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
-    const ParticleVolumeAndMoment v = VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange, reducedRange)(primitiveDensity);
+    const ParticleVolumeAndMoment v = VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange,
+                                                      reducedRange)(primitiveDensity);
     return {v.volume, primitiveDensity == 0.0 ? -std::numeric_limits<double>::infinity() : v.derivative};
 }
 
@@ -312,13 +313,16 @@ inline double momentWeightOverDistance(double r, double inverseCutoff) {
 }
 
 /**
- * V-C's pair force H(d) (q_i - q_j) for the pair vector d of length 0 < r < R, as a Vec3 (gendpdeMomentPairForce);
- * virial receives its d . F.
+ * The force on i from j of a pair d = r_i - r_j of length r > 0 (gendpdePairForce), as a Vec3 (energy/length):
+ * coefficientSum c_i + c_j, weightDerivative w'(r), q_i and q_j V-C's moment forces (read only if moments); virial
+ * receives its d . F (energy).
  */
-inline OpenMM::Vec3 momentPairForce(const OpenMM::Vec3& e, double r, double inverseCutoff, const OpenMM::Vec3& dq,
-                                    double& virial) {
+inline OpenMM::Vec3 pairForce(const OpenMM::Vec3& d, double r, double coefficientSum, double weightDerivative,
+                              double inverseCutoff, bool moments, const OpenMM::Vec3& qi, const OpenMM::Vec3& qj,
+                              double& virial) {
     double force[3];
-    virial = gendpdeMomentPairForce(e[0], e[1], e[2], r, inverseCutoff, dq[0], dq[1], dq[2], force);
+    virial = gendpdePairForce(d[0], d[1], d[2], r, coefficientSum, weightDerivative, inverseCutoff, moments ? 1 : 0,
+                              qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
     return OpenMM::Vec3(force[0], force[1], force[2]);
 }
 
@@ -330,6 +334,13 @@ struct Tensor {
 /** Half of a pair's virial tensor, (F_a/2) d_b, added to a particle's (gendpdeAddHalfPairVirial). */
 inline void addHalfPairVirial(const OpenMM::Vec3& force, const OpenMM::Vec3& d, Tensor& virial) {
     gendpdeAddHalfPairVirial(force[0], force[1], force[2], d[0], d[1], d[2], virial.element);
+}
+
+/** A pair's impulse P along e (mass length/time): v_i += P e/m_i, v_j -= P e/m_j. */
+inline void applyPairImpulse(const OpenMM::Vec3& e, double impulse, double inverseMassI, double inverseMassJ,
+                             OpenMM::Vec3& vi, OpenMM::Vec3& vj) {
+    vi += e*(impulse*inverseMassI);
+    vj -= e*(impulse*inverseMassJ);
 }
 
 /**
@@ -345,25 +356,26 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
     double kineticChange;
     const double impulse = gendpdePairImpulse(e.dot(vi - vj), omegaR, friction, noiseAmplitude, stepSize,
                                               sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
-    vi += e*(impulse*inverseMassI);
-    vj -= e*(impulse*inverseMassJ);
+    applyPairImpulse(e, impulse, inverseMassI, inverseMassJ, vi, vj);
     return kineticChange;
 }
 
 /**
- * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type).
+ * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type;
+ * gendpdePairTemperatures, whose results the sweeps pass to the core's gendpdePairUpdate).
  *
  * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
- * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2, beta = 1/theta
- * ((k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 when both particles have the same C_V).
+ * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2,
+ * beta = 1/theta ((k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 when both particles have the same C_V).
  * Why (derivation: docs/theory.md section 7): Theta_ij depends on eps_i and eps_j, which every random kick changes
  * (mechanical heating), so the noise of the momentum equation is multiplicative. Its equilibrium, the microcanonical
  * density prod_i eps_i^(C_i/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i
  * follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise
  * with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the
- * relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it the kinetic temperature exceeds the
- * harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's C_V = 12.51 k_B, as measured
- * (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it vanishes.
+ * relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it
+ * the kinetic temperature exceeds the harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's
+ * C_V = 12.51 k_B, as measured (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it
+ * vanishes.
  */
 struct PairTemperatures {
     double pairThermalEnergy;              // k_B Theta_ij, 1/Theta_ij = (1/theta_i + 1/theta_j)/2 (energy)

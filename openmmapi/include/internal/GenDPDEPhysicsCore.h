@@ -18,6 +18,12 @@
  * (VolumeVBTables.h), and on the device GENDPDE_CORE (inline DEVICE) and     *
  * GENDPDE_GLOBAL (GLOBAL).                                                   *
  *                                                                            *
+ * With GENDPDE_CORE_ARITHMETIC_ONLY defined, only the functions written with *
+ * +, -, * and / alone are compiled (the density weight and its derivative,   *
+ * the pair force scale, the central pair force), so that GENDPDE_REAL may be *
+ * a vector type: the CPU platform's AVX2 gathers (RowGatherAvx2.cpp) include *
+ * the core that way with __m256d, four pairs per call.                       *
+ *                                                                            *
  * A new density estimator is a new constant below, a branch in               *
  * gendpdeParticleVolume (and gendpdeEstimatorNeedsMoments if it reads the    *
  * moments), its enum value in GenDPDEForce.h and its brute-force oracle in   *
@@ -73,6 +79,8 @@ GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeightDerivative(GENDPDE_REAL r, GENDPDE
                                                          GENDPDE_REAL derivativeScale) {
     return derivativeScale*(1 - r*inverseCutoff);
 }
+
+#ifndef GENDPDE_CORE_ARITHMETIC_ONLY
 
 /** The scales of w and w' for cutoff R: 15/(2 pi R^3) (1/length^3) and -15/(pi R^4) (1/length^4). */
 GENDPDE_CORE void gendpdeDensityWeightScales(GENDPDE_REAL cutoff, GENDPDE_REAL* valueScale,
@@ -464,16 +472,33 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
     return status;
 }
 
+#endif /* GENDPDE_CORE_ARITHMETIC_ONLY */
+
 /* ---- Pair forces and virials (section 4) ------------------------------------------------------------------------ */
 
 /**
- * The scale s of the central pair force F_ij = s d_ij (d_ij = r_i - r_j, r = |d_ij| > 0): s = (c_i + c_j) w'(r)/r,
- * with coefficientSum = c_i + c_j the particles' force coefficients pi dV/dn0 and weightDerivative = w'(r).
+ * The scale s of the central pair force F_ij = s d_ij (d_ij = r_i - r_j, r = |d_ij| > 0): s = (c_i + c_j) w'(r)/r
+ * (1/length: energy/length^2 over length), with coefficientSum = c_i + c_j the particles' force coefficients
+ * pi dV/dn0 (energy length^3) and weightDerivative = w'(r) (1/length^4).
  */
 GENDPDE_CORE GENDPDE_REAL gendpdePairForceScale(GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative,
                                                 GENDPDE_REAL r) {
     return coefficientSum*weightDerivative/r;
 }
+
+/**
+ * The central pair force F = s d for the scale s of gendpdePairForceScale and d = r_i - r_j (length) of length r:
+ * stores F in force[0..2] (energy/length) and returns its virial d . F = s r^2 (energy).
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdeCentralPairForce(GENDPDE_REAL scale, GENDPDE_REAL dx, GENDPDE_REAL dy,
+                                                  GENDPDE_REAL dz, GENDPDE_REAL r, GENDPDE_REAL* force) {
+    force[0] = dx*scale;
+    force[1] = dy*scale;
+    force[2] = dz*scale;
+    return scale*r*r;
+}
+
+#ifndef GENDPDE_CORE_ARITHMETIC_ONLY
 
 /**
  * V-C's pair force from the moments: H(d) (q_i - q_j) with H = phi'(r) e e^T + (phi(r)/r)(I - e e^T), the gradient of
@@ -490,6 +515,34 @@ GENDPDE_CORE GENDPDE_REAL gendpdeMomentPairForce(GENDPDE_REAL ex, GENDPDE_REAL e
     force[1] = ey*alongScale + (dqy - ey*along)*phiOverR;
     force[2] = ez*alongScale + (dqz - ez*along)*phiOverR;
     return r*phiPrime*along;
+}
+
+/**
+ * The force on i from j of a pair closer than the cutoff (section 4), as every platform computes it: the central
+ * force (gendpdeCentralPairForce) of scale (c_i + c_j) w'(r)/r, plus V-C's moment force H(d) (q_i - q_j)
+ * (gendpdeMomentPairForce) where moments != 0 and q_i or q_j is not zero (q vanishes for the particles below V-C's
+ * threshold, nearly all of a bulk liquid: their pairs skip it). d = r_i - r_j (length) of length r > 0,
+ * coefficientSum = c_i + c_j the force coefficients pi dV/dn0 (energy length^3), weightDerivative = w'(r)
+ * (1/length^4; gendpdeDensityWeightDerivative, or 0 for a pair the caller counts as out of range), q_i, q_j the
+ * moment forces q = 2 pi (dV/dG) g (energy; read only if moments != 0). Stores F in force[0..2] (energy/length) and
+ * returns its virial d . F (energy).
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdePairForce(GENDPDE_REAL dx, GENDPDE_REAL dy, GENDPDE_REAL dz, GENDPDE_REAL r,
+        GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative, GENDPDE_REAL inverseCutoff, int moments,
+        GENDPDE_REAL qix, GENDPDE_REAL qiy, GENDPDE_REAL qiz, GENDPDE_REAL qjx, GENDPDE_REAL qjy, GENDPDE_REAL qjz,
+        GENDPDE_REAL* force) {
+    GENDPDE_REAL virial = gendpdeCentralPairForce(gendpdePairForceScale(coefficientSum, weightDerivative, r), dx, dy,
+                                                  dz, r, force);
+    if (moments && !(qix == 0 && qiy == 0 && qiz == 0 && qjx == 0 && qjy == 0 && qjz == 0)) {
+        const GENDPDE_REAL inverseDistance = 1/r;
+        GENDPDE_REAL momentForce[3];
+        virial += gendpdeMomentPairForce(dx*inverseDistance, dy*inverseDistance, dz*inverseDistance, r, inverseCutoff,
+                                         qix - qjx, qiy - qjy, qiz - qjz, momentForce);
+        force[0] += momentForce[0];
+        force[1] += momentForce[1];
+        force[2] += momentForce[2];
+    }
+    return virial;
 }
 
 /**
@@ -563,5 +616,46 @@ GENDPDE_CORE GENDPDE_REAL gendpdeConductiveHeat(GENDPDE_REAL omegaR, GENDPDE_REA
     return heatConduction*omegaR*omegaR*inverseTemperatureDifference*stepSize
          + randomAmplitude*omegaR*sqrtStepSize*xiQ;
 }
+
+/**
+ * One pair update of the sweep with internal energies (sections 5-7), at the temperatures theta = eps/C the two
+ * particles have when the pair is reached, as every platform performs it:
+ *  - dissipation != 0: the impulse of gendpdePairImpulse with the friction gamma (1 + the Ito factor) and the noise
+ *    sigma = sqrt(2 gamma k_B Theta_ij); the change of the pair's kinetic energy is taken from the two internal
+ *    energies in equal halves;
+ *  - conduction != 0: then the heat of gendpdeConductiveHeat flows from j to i.
+ * pairThermalEnergy, inverseTemperatureDifference and frictionFactor are gendpdePairTemperatures of the internal
+ * energies *energyI, *energyJ before the update (the caller computes them first: their divisions then run while it
+ * draws the random variates). u0 = e . (v_i - v_j) before the update (length/time; e the unit vector from j to i),
+ * omegaR = omega_R(r), inverseMassI, inverseMassJ (1/mass), friction gamma (mass/time) and heatConduction kappa
+ * (energy temperature/time) of the pair's classes, heatNoise alpha = sqrt(2 k_B kappa), xi and xiQ standard normal
+ * variates of the impulse and of the heat (each read only where its term runs; a pair's random stream gives xi
+ * first). *energyI, *energyJ hold eps_i, eps_j (energy) and receive their new values; *impulse receives P (mass
+ * length/time; 0 without dissipation): the caller adds P e/m_i to v_i and -P e/m_j to v_j. Returns nonzero if an
+ * internal energy is now <= 0 (or not a number): the sweep stops at this pair.
+ */
+GENDPDE_CORE int gendpdePairUpdate(int dissipation, int conduction, GENDPDE_REAL pairThermalEnergy,
+        GENDPDE_REAL inverseTemperatureDifference, GENDPDE_REAL frictionFactor, GENDPDE_REAL u0, GENDPDE_REAL omegaR,
+        GENDPDE_REAL inverseMassI, GENDPDE_REAL inverseMassJ, GENDPDE_REAL friction, GENDPDE_REAL heatConduction,
+        GENDPDE_REAL heatNoise, GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xi, GENDPDE_REAL xiQ,
+        GENDPDE_REAL* energyI, GENDPDE_REAL* energyJ, GENDPDE_REAL* impulse) {
+    *impulse = 0;
+    if (dissipation) {
+        GENDPDE_REAL kineticChange;
+        *impulse = gendpdePairImpulse(u0, omegaR, friction*(1 + frictionFactor), sqrt(2*friction*pairThermalEnergy),
+                                      stepSize, sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
+        *energyI -= (GENDPDE_REAL) 0.5*kineticChange;
+        *energyJ -= (GENDPDE_REAL) 0.5*kineticChange;
+    }
+    if (conduction) {
+        const GENDPDE_REAL heat = gendpdeConductiveHeat(omegaR, heatConduction, heatNoise, inverseTemperatureDifference,
+                                                        stepSize, sqrtStepSize, xiQ);
+        *energyI += heat;
+        *energyJ -= heat;
+    }
+    return !(*energyI > 0) || !(*energyJ > 0);
+}
+
+#endif /* GENDPDE_CORE_ARITHMETIC_ONLY */
 
 #endif /*GENDPDE_PHYSICS_CORE_H_*/

@@ -53,23 +53,20 @@ struct RowGather {
         const double positive = (double) (r > 0.0);
         return d*((in*positive)*Physics::momentWeightOverDistance(r, weight.getInverseCutoff()));
     }
-    /**
-     * VC: the pair's force H(d) (q_s - q_t) as Reference computes it (Physics::momentPairForce), masked; virial
-     * receives its d . F, masked.
-     */
-    Vec3 momentForce(const Vec3& d, double r, double in, const Vec3& dq, double& virial) const {
-        const double positive = (double) (r > 0.0), safe = r + (1.0 - positive);
-        const Vec3 force = Physics::momentPairForce(d*(1.0/safe), r, weight.getInverseCutoff(), dq, virial);
-        virial *= in*positive;
-        return force*(in*positive);
+    /** 1 where Reference computes the pair's force (listed, r < R and r > 0), else 0 (in: mask()). */
+    double forceMask(double r, double in) const {
+        return in*(double) (r > 0.0);
     }
     /**
-     * The pair's force scale (c_s + c_t) w'(r)/r, masked, 0 beyond range or at r = 0 (where Reference skips the
-     * pair); r = 0 is replaced by 1 in the division so that the product stays finite.
+     * The pair's force on s (Physics::pairForce, the core's gendpdePairForce, as Reference calls it) with the mask
+     * of forceMask on w'(r), and V-C's moment term (qs, qt; when moments) only where the mask is 1: zero beyond range
+     * or at r = 0, where Reference skips the pair (r = 0 is replaced by 1 there, so that the arithmetic stays
+     * finite). virial receives its d . F.
      */
-    double forceScale(double r, double in, double coefficientSum) const {
-        const double positive = (double) (r > 0.0);
-        return (in*positive)*Physics::gendpdePairForceScale(coefficientSum, weight.derivativeInside(r), r + (1.0 - positive));
+    Vec3 pairForce(const Vec3& d, double r, double mask, double coefficientSum, bool moments, const Vec3& qs,
+                   const Vec3& qt, double& virial) const {
+        return Physics::pairForce(d, r + (1.0 - (double) (r > 0.0)), coefficientSum, mask*weight.derivativeInside(r),
+                                  weight.getInverseCutoff(), moments && mask != 0.0, qs, qt, virial);
     }
 };
 
@@ -241,26 +238,22 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
             Physics::Tensor tensor;
             // The pairs (j, i), then (i, j): the virial counts the second kind only. VC adds H(d) (q_s - q_t) to
             // each pair's force before it is added, as Reference does.
+            const Vec3 noMoment;
+            const Vec3& qs = moments ? momentForce[s] : noMoment;
             for (int m = gather.rowStart[s]; m < gather.rowStart[s + 1]; m++) {
                 const int t = gather.neighbors[m];
                 double r2;
                 const Vec3 d = gather.displacement(s, t, r2);
                 const double r = std::sqrt(r2);
-                const double in = gather.mask(r2, r);
-                const double scale = gather.forceScale(r, in, coefficient[s] + coefficient[t]);
-                Vec3 term = d*scale;
-                double virial = scale*r*r;
-                // (q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.)
-                if (moments && !(momentForce[s] == Vec3() && momentForce[t] == Vec3())) {
-                    double momentVirial;
-                    term += gather.momentForce(d, r, in, momentForce[s] - momentForce[t], momentVirial);
-                    virial += momentVirial;
-                }
+                const double mask = gather.forceMask(r, gather.mask(r2, r));
+                double virial;
+                const Vec3 term = gather.pairForce(d, r, mask, coefficient[s] + coefficient[t], moments, qs,
+                                                   moments ? momentForce[t] : noMoment, virial);
                 f += term;
                 if (m >= gather.upperStart[s])
                     sum += virial;
                 if constexpr (decltype(withTensors)::value)
-                    if (in*(double) (r > 0.0) != 0.0)   // the pairs Reference visits
+                    if (mask != 0.0)   // the pairs Reference visits
                         Physics::addHalfPairVirial(term, d, tensor);
             }
             rowF[s] = f;

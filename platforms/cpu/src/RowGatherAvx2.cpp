@@ -10,6 +10,22 @@ namespace {
 
 #define GENDPDE_AVX2 __attribute__((target("avx2")))
 
+/**
+ * The physics core's pair arithmetic (GenDPDEPhysicsCore.h, GENDPDE_CORE_ARITHMETIC_ONLY) on four pairs at once:
+ * with GCC's vector extensions +, -, * and / of __m256d are the lanes' IEEE operations, in the order the scalar
+ * core writes them, and a scalar operand (the 1 of 1 - r/R) is broadcast. Each lane therefore has the scalar core's
+ * bits (no contraction: compiled for AVX2 without FMA, and -ffp-contract=off).
+ */
+namespace Lanes4 {
+#define GENDPDE_REAL __m256d
+#define GENDPDE_CORE GENDPDE_AVX2 inline
+#define GENDPDE_CORE_ARITHMETIC_ONLY
+#include "internal/GenDPDEPhysicsCore.h"
+#undef GENDPDE_REAL
+#undef GENDPDE_CORE
+#undef GENDPDE_CORE_ARITHMETIC_ONLY
+} // namespace Lanes4
+
 /** Four pairs (s, t_k) of one row: displacement r_s - r_t (nearest image), r^2 and r, as the scalar kernel. */
 struct Lanes {
     __m256d dx, dy, dz, r2, r;
@@ -69,11 +85,6 @@ GENDPDE_AVX2 inline __m256d inRangeMask(const RowGatherAvx2::Rows& rows, const L
     return _mm256_and_pd(listedMask(rows, lanes), _mm256_cmp_pd(lanes.r, _mm256_set1_pd(rows.cutoff), _CMP_LT_OQ));
 }
 
-/** 1 - r/R, as gendpdeDensityWeight computes it: 1 - r (1/R). */
-GENDPDE_AVX2 inline __m256d oneMinusReduced(const RowGatherAvx2::Rows& rows, const Lanes& lanes) {
-    return _mm256_sub_pd(_mm256_set1_pd(1.0), _mm256_mul_pd(lanes.r, _mm256_set1_pd(rows.inverseCutoff)));
-}
-
 GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int end, double* density,
                                 char* listed) {
     alignas(32) double weight[4];
@@ -82,9 +93,9 @@ GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int 
         for (int m = rows.rowStart[s]; m < rows.rowStart[s + 1]; m += 4) {
             const int count = rows.rowStart[s + 1] - m < 4 ? rows.rowStart[s + 1] - m : 4;
             const Lanes lanes = pairLanes(rows, s, laneRows(rows.neighbors, m, count, s));
-            // w = (c x) x with x = 1 - r/R, masked (gendpdeDensityWeight).
-            const __m256d x = oneMinusReduced(rows, lanes);
-            const __m256d w = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(rows.valueScale), x), x);
+            // w(r), masked.
+            const __m256d w = Lanes4::gendpdeDensityWeight(lanes.r, _mm256_set1_pd(rows.inverseCutoff),
+                                                           _mm256_set1_pd(rows.valueScale));
             _mm256_store_pd(weight, _mm256_and_pd(inRangeMask(rows, lanes), w));
             const int listedBits = _mm256_movemask_pd(listedMask(rows, lanes));
             for (int k = 0; k < count; k++) {
@@ -99,6 +110,8 @@ GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int 
 GENDPDE_AVX2 void forcesAvx2(const RowGatherAvx2::Rows& rows, const double* coefficient, int begin, int end,
                              Vec3* force, double* virial) {
     alignas(32) double fx[4], fy[4], fz[4], w[4];
+    const __m256d inverseCutoff = _mm256_set1_pd(rows.inverseCutoff);
+    const __m256d derivativeScale = _mm256_set1_pd(rows.derivativeScale);
     const double* coefficientBase = coefficient;
     for (int s = begin; s < end; s++) {
         Vec3 f = force[s];
@@ -115,15 +128,16 @@ GENDPDE_AVX2 void forcesAvx2(const RowGatherAvx2::Rows& rows, const double* coef
             const __m256d sumOfCoefficients = _mm256_add_pd(_mm256_set1_pd(coefficient[s]),
                     _mm256_set_pd(coefficientBase[t[3]], coefficientBase[t[2]], coefficientBase[t[1]],
                                   coefficientBase[t[0]]));
-            const __m256d derivative = _mm256_mul_pd(_mm256_set1_pd(rows.derivativeScale),
-                                                     oneMinusReduced(rows, lanes));
+            const __m256d derivative = Lanes4::gendpdeDensityWeightDerivative(lanes.r, inverseCutoff,
+                                                                              derivativeScale);
             const __m256d divisor = _mm256_blendv_pd(_mm256_set1_pd(1.0), lanes.r, positive);
             const __m256d scale = _mm256_and_pd(_mm256_and_pd(inRangeMask(rows, lanes), positive),
-                    _mm256_div_pd(_mm256_mul_pd(sumOfCoefficients, derivative), divisor));
-            _mm256_store_pd(fx, _mm256_mul_pd(lanes.dx, scale));
-            _mm256_store_pd(fy, _mm256_mul_pd(lanes.dy, scale));
-            _mm256_store_pd(fz, _mm256_mul_pd(lanes.dz, scale));
-            _mm256_store_pd(w, _mm256_mul_pd(_mm256_mul_pd(scale, lanes.r), lanes.r));
+                    Lanes4::gendpdePairForceScale(sumOfCoefficients, derivative, divisor));
+            __m256d term[3];
+            _mm256_store_pd(w, Lanes4::gendpdeCentralPairForce(scale, lanes.dx, lanes.dy, lanes.dz, lanes.r, term));
+            _mm256_store_pd(fx, term[0]);
+            _mm256_store_pd(fy, term[1]);
+            _mm256_store_pd(fz, term[2]);
             for (int k = 0; k < count; k++) {
                 f[0] += fx[k];
                 f[1] += fy[k];

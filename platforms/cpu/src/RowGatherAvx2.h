@@ -7,13 +7,13 @@ namespace GenDPDEPlugin {
 
 /**
  * The row gathers of the CPU force kernel (CpuGenDPDEForceKernel.cpp) four pairs at a time with AVX2, for open and
- * rectangular periodic boxes: a four-lane transcription of the physics core's gendpdeDensityWeight,
- * gendpdeDensityWeightDerivative and gendpdePairForceScale (the one place outside GenDPDEPhysicsCore.h where those
- * formulas are written, because the core is scalar). Each lane performs the scalar kernel's IEEE operations in the
- * same order (no fused multiply-add: these functions are compiled for AVX2 without FMA, and the build forbids
- * contractions, -ffp-contract=off), and the lanes are added to the particle's sums
- * one after another in row order, so the results are the scalar kernel's, hence Reference's, to the last bit
- * (platforms/cpu/tests/TestCpuGenDPDEEqualsReference.cpp runs both kernels).
+ * rectangular periodic boxes and the estimators that read no moments: the physics core's gendpdeDensityWeight,
+ * gendpdeDensityWeightDerivative, gendpdePairForceScale and gendpdeCentralPairForce compiled with __m256d operands
+ * (GENDPDE_CORE_ARITHMETIC_ONLY), with the masks of the scalar kernel's range tests in place of its branches. Each
+ * lane performs the scalar kernel's IEEE operations in the same order (no fused multiply-add: these functions are
+ * compiled for AVX2 without FMA, and the build forbids contractions, -ffp-contract=off), and the lanes are added to
+ * the particle's sums one after another in row order, so the results are the scalar kernel's, hence Reference's, to
+ * the last bit (platforms/cpu/tests/TestCpuGenDPDEEqualsReference.cpp runs both kernels).
  */
 namespace RowGatherAvx2 {
 

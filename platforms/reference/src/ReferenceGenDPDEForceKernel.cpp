@@ -134,20 +134,12 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
     // own (a step does not pay for them).
     const Physics::DensityWeight weight(cutoff);
     const bool moments = usesMoments();
-    // The force on pair.i from pair.j (pair.r > 0); virial receives pair.delta . F.
+    // The force on pair.i from pair.j (pair.r > 0; the core's gendpdePairForce); virial receives pair.delta . F. A
+    // pair whose r^2 < R^2 rounds to r = R has w'(r) = 0 (DensityWeight::derivative) and no moment term.
     auto pairForce = [&](const ParticlePair& pair, double& virial) {
-        const double scale = Physics::gendpdePairForceScale(forceCoefficient[pair.i] + forceCoefficient[pair.j],
-                                                            weight.derivative(pair.r), pair.r);
-        Vec3 force = pair.delta*scale;
-        virial = scale*pair.r*pair.r;
-        // (q vanishes for the particles below V-C's threshold, nearly all of a bulk liquid: their pairs add nothing.)
-        if (moments && pair.r < cutoff && !(momentForce[pair.i] == Vec3() && momentForce[pair.j] == Vec3())) {
-            double momentVirial;
-            force += Physics::momentPairForce(pair.delta*(1.0/pair.r), pair.r, weight.getInverseCutoff(),
-                                              momentForce[pair.i] - momentForce[pair.j], momentVirial);
-            virial += momentVirial;
-        }
-        return force;
+        return Physics::pairForce(pair.delta, pair.r, forceCoefficient[pair.i] + forceCoefficient[pair.j],
+                                  weight.derivative(pair.r), weight.getInverseCutoff(), moments && pair.r < cutoff,
+                                  momentForce[pair.i], momentForce[pair.j], virial);
     };
     std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {

@@ -107,27 +107,20 @@ inline DEVICE void addDensityTerms(real3 d, real4 model, int moments, real* n0, 
 }
 
 /**
- * The force on particle i from its neighbour j, d = r_i - r_j, with their force coefficients ci, cj and moment
- * forces qi, qj (zero unless the estimator reads moments): the central force gendpdePairForceScale d plus V-C's
- * gendpdeMomentPairForce, for 0 < r < R (else zero: beyond the cutoff, or coincident); *virial receives d . F.
+ * The force on particle i from its neighbour j, d = r_i - r_j, with their force coefficients ci, cj and, if moments,
+ * moment forces qi, qj: the physics core's gendpdePairForce for 0 < r < R (else zero: beyond the cutoff, or
+ * coincident); *virial receives d . F.
  */
-inline DEVICE real3 pairForce(real3 d, real ci, real cj, real3 qi, real3 qj, real4 model, real* virial) {
+inline DEVICE real3 pairForce(real3 d, real ci, real cj, int moments, real3 qi, real3 qj, real4 model, real* virial) {
     const real r2 = dot(d, d);
     *virial = 0;
     if (!(r2 < model.x*model.x && r2 > 0))
         return make_real3(0, 0, 0);
     const real r = sqrt(r2);
-    const real scale = gendpdePairForceScale(ci + cj, gendpdeDensityWeightDerivative(r, model.y, model.w), r);
-    real3 force = d*scale;
-    *virial = scale*r*r;
-    // q vanishes below V-C's threshold, for nearly all of a bulk liquid: nothing to add then.
-    if (qi.x != 0 || qi.y != 0 || qi.z != 0 || qj.x != 0 || qj.y != 0 || qj.z != 0) {
-        const real3 e = d*(1/r), dq = qi - qj;
-        real momentTerm[3];
-        *virial += gendpdeMomentPairForce(e.x, e.y, e.z, r, model.y, dq.x, dq.y, dq.z, momentTerm);
-        force += make_real3(momentTerm[0], momentTerm[1], momentTerm[2]);
-    }
-    return force;
+    real force[3];
+    *virial = gendpdePairForce(d.x, d.y, d.z, r, ci + cj, gendpdeDensityWeightDerivative(r, model.y, model.w),
+                               model.y, moments, qi.x, qi.y, qi.z, qj.x, qj.y, qj.z, force);
+    return make_real3(force[0], force[1], force[2]);
 }
 
 /**
@@ -291,7 +284,7 @@ KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* R
         int t;
         while ((t = NEXT_NEIGHBOUR(cursor, ri, d)) >= 0) {
             real virial;
-            const real3 f = pairForce(d, ci, forceCoefficient[t], qi,
+            const real3 f = pairForce(d, ci, forceCoefficient[t], moments, qi,
                                       (moments ? trimTo3(momentForce[t]) : make_real3(0, 0, 0)), model, &virial);
 #ifdef USE_DOUBLE_PRECISION
             force += f;
@@ -332,7 +325,7 @@ KERNEL void computeVirials(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* 
         int t;
         while ((t = NEXT_NEIGHBOUR(cursor, ri, d)) >= 0) {
             real virial;
-            const real3 f = pairForce(d, ci, forceCoefficient[t], qi,
+            const real3 f = pairForce(d, ci, forceCoefficient[t], moments, qi,
                                       (moments ? trimTo3(momentForce[t]) : make_real3(0, 0, 0)), model, &virial);
             sum += virial;
             const real r2 = dot(d, d);

@@ -320,25 +320,34 @@ typedef struct {
     unsigned int seed, stepLow, stepHigh;
 } SweepConstants;
 
-/** Physics::dissipativePairUpdate: the impulse of the shared core applied along e. */
-inline DEVICE mixed dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction, mixed noiseAmplitude,
-        mixed stepSize, mixed sqrtStepSize, mixed4* vi, mixed4* vj, mixed xi) {
+/** e . (v_i - v_j), the relative velocity along e (velocities with the inverse mass in w, as velm). */
+inline DEVICE mixed relativeVelocityAlong(mixed3 e, const mixed4* vi, const mixed4* vj) {
+    return e.x*(vi->x - vj->x) + e.y*(vi->y - vj->y) + e.z*(vi->z - vj->z);
+}
+
+/** Physics::applyPairImpulse: the impulse P along e, P e/m_i to i and -P e/m_j to j. */
+inline DEVICE void applyPairImpulse(mixed3 e, mixed impulse, mixed4* vi, mixed4* vj) {
     const mixed inverseMassI = vi->w, inverseMassJ = vj->w;
-    const mixed u0 = e.x*(vi->x - vj->x) + e.y*(vi->y - vj->y) + e.z*(vi->z - vj->z);
-    mixed kineticChange;
-    const mixed impulse = gendpdePairImpulse(u0, omegaR, friction, noiseAmplitude, stepSize, sqrtStepSize,
-                                             inverseMassI + inverseMassJ, xi, &kineticChange);
     vi->x += e.x*(impulse*inverseMassI);
     vi->y += e.y*(impulse*inverseMassI);
     vi->z += e.z*(impulse*inverseMassI);
     vj->x -= e.x*(impulse*inverseMassJ);
     vj->y -= e.y*(impulse*inverseMassJ);
     vj->z -= e.z*(impulse*inverseMassJ);
-    return kineticChange;
+}
+
+/** Physics::dissipativePairUpdate (the Isothermal mode's pair update): the core's impulse applied along e. */
+inline DEVICE void dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction, mixed noiseAmplitude,
+        mixed stepSize, mixed sqrtStepSize, mixed4* vi, mixed4* vj, mixed xi) {
+    mixed kineticChange;
+    const mixed impulse = gendpdePairImpulse(relativeVelocityAlong(e, vi, vj), omegaR, friction, noiseAmplitude,
+                                             stepSize, sqrtStepSize, vi->w + vj->w, xi, &kineticChange);
+    applyPairImpulse(e, impulse, vi, vj);
 }
 
 /**
- * One pair update of the sweep (GenDPDEPairSweep.h) on copies of the two particles' velocities and internal energies:
+ * One pair update of the sweep on copies of the two particles' velocities and internal energies, as the host's
+ * (GenDPDEPairSweep.h): the physics core's gendpdePairUpdate, or the Isothermal mode's dissipativePairUpdate.
  * i < j original indices, d = r_i - r_j. Returns whether an internal energy is now <= 0 (Isoenergetic mode).
  * typeI, typeJ: the particles' classes (GenDPDETypes.h); pairTable[c_i numClasses + c_j] = (friction, heat conduction,
  * alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath), heatCapacityTable[c] = C_V of class c.
@@ -361,27 +370,19 @@ inline DEVICE bool pairUpdate(int i, int j, mixed3 d, int typeI, int typeJ, mixe
                               (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
         return false;
     }
-    mixed energyI = *ei, energyJ = *ej;
     mixed pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
-    gendpdePairTemperatures(energyI, energyJ, heatCapacityTable[typeI], heatCapacityTable[typeJ], c.boltzmann,
+    gendpdePairTemperatures(*ei, *ej, heatCapacityTable[typeI], heatCapacityTable[typeJ], c.boltzmann,
                             &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
-    if (c.dissipation) {
-        const mixed kineticChange = dissipativePairUpdate(e, omegaR, friction*(1 + frictionFactor),
-                sqrt(2*friction*pairThermalEnergy), c.stepSize, c.sqrtStepSize, vi, vj,
-                (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
-        energyI -= (mixed) 0.5*kineticChange;
-        energyJ -= (mixed) 0.5*kineticChange;
-    }
-    if (c.conduction) {
-        const mixed flow = gendpdeConductiveHeat(omegaR, pairParameters.y, pairParameters.z,
-                inverseTemperatureDifference, c.stepSize, c.sqrtStepSize,
-                (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
-        energyI += flow;
-        energyJ -= flow;
-    }
-    *ei = energyI;
-    *ej = energyJ;
-    return !(energyI > 0) || !(energyJ > 0);
+    // The stream's order: the impulse's variate, then the heat's.
+    const mixed xi = (c.dissipation ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
+    const mixed xiQ = (c.conduction ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
+    mixed impulse;
+    const int failed = gendpdePairUpdate(c.dissipation, c.conduction, pairThermalEnergy, inverseTemperatureDifference,
+            frictionFactor, relativeVelocityAlong(e, vi, vj), omegaR, vi->w, vj->w, friction, pairParameters.y,
+            pairParameters.z, c.stepSize, c.sqrtStepSize, xi, xiQ, ei, ej, &impulse);
+    if (c.dissipation)
+        applyPairImpulse(e, impulse, vi, vj);
+    return failed != 0;
 }
 
 /** The cells of a streamed block's region: each with its offsets' code and the end of its particles. */

@@ -6,8 +6,9 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 # PoCL (OpenCL on the CPU) compiles kernels slowly: both test suites share one cache of compiled kernels.
 export POCL_CACHE_DIR="${POCL_CACHE_DIR:-$PWD/build/pocl-cache}"
-echo "== Style (ruff, pyproject.toml)"
+echo "== Style (ruff, pyproject.toml; clang-format, .clang-format)"
 .venv/bin/ruff check --no-cache .
+devtools/cpp_files.sh | xargs .venv/bin/clang-format --dry-run --Werror
 echo "== C++ tests (ctest)"
 # The C++ tests are separate processes that share nothing but the kernel cache: run them two (or one per core) at a
 # time (cold cache, 2 cores: 223 s against 314 s one at a time, measured back to back).

@@ -29,18 +29,16 @@ struct PairSweepParameters {
     PairSweepParameters(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, double cutoff, int seed,
                         long long step, const IntegratorTypeTables& tables) :
             terms(terms), cutoff(cutoff), stepSize(integrator.getStepSize()), sqrtStepSize(std::sqrt(stepSize)),
-            table(&tables.getTable()), numClasses(table->numClasses),
-            particleClass(tables.getParticleClasses().data()), seed((std::uint32_t) seed),
-            step((std::uint64_t) step) {
-        for (int ab = 0; ab < numClasses*numClasses; ab++) {
-            heatNoise.push_back(std::sqrt(2.0*Physics::Boltzmann*table->heatConduction[ab]));
-            bathNoise.push_back(std::sqrt(2.0*table->friction[ab]*Physics::Boltzmann*integrator.getTemperature()));
+            table(&tables.getTable()), numClasses(table->numClasses), particleClass(tables.getParticleClasses().data()),
+            seed((std::uint32_t) seed), step((std::uint64_t) step) {
+        for (int ab = 0; ab < numClasses * numClasses; ab++) {
+            heatNoise.push_back(std::sqrt(2.0 * Physics::Boltzmann * table->heatConduction[ab]));
+            bathNoise.push_back(
+                    std::sqrt(2.0 * table->friction[ab] * Physics::Boltzmann * integrator.getTemperature()));
         }
     }
     /** The class of particle i. */
-    int classOf(int i) const {
-        return numClasses == 1 ? 0 : particleClass[i];
-    }
+    int classOf(int i) const { return numClasses == 1 ? 0 : particleClass[i]; }
     GenDPDEStepTerms terms;
     double cutoff, stepSize, sqrtStepSize;
     const TypePairTable* table;      // C_V per class, gamma and kappa per pair of classes (index a*numClasses + b)
@@ -155,16 +153,17 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
         const int i = slot[pair.i], j = slot[pair.j];
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
-        const int a = p.classOf(i), b = p.classOf(j), ab = a*p.numClasses + b;
-        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(energies[i], energies[j],
-                p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
+        const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
+        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(
+                energies[i], energies[j], p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const double xi = p.terms.dissipation ? random.normal() : 0.0;   // the stream's order: impulse, then heat
         const double xiQ = p.terms.conduction ? random.normal() : 0.0;
-        const OpenMM::Vec3 e = pair.delta*(1.0/pair.r);
+        const OpenMM::Vec3 e = pair.delta * (1.0 / pair.r);
         double impulse;
-        const int failed = Physics::gendpdePairUpdate(p.terms.dissipation, p.terms.conduction,
-                temperatures.pairThermalEnergy, temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
+        const int failed = Physics::gendpdePairUpdate(
+                p.terms.dissipation, p.terms.conduction, temperatures.pairThermalEnergy,
+                temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
                 e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(pair.r, p.cutoff), inverseMasses[i],
                 inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.stepSize,
                 p.sqrtStepSize, xi, xiQ, &energies[i], &energies[j], &impulse);
@@ -190,8 +189,8 @@ void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairS
         if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
-        const int ab = p.classOf(i)*p.numClasses + p.classOf(j);
-        Physics::dissipativePairUpdate(pair.delta*(1.0/pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
+        const int ab = p.classOf(i) * p.numClasses + p.classOf(j);
+        Physics::dissipativePairUpdate(pair.delta * (1.0 / pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
                                        p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize,
                                        inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
                                        random.normal());

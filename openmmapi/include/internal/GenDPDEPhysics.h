@@ -59,7 +59,7 @@ static_assert(VolumeVBPolynomials::subintervals == 4 && VolumeVBPolynomials::deg
               "gendpdeVolumeIntegralsVB reads 4 pieces per octave of 14 coefficients each");
 
 /** Boltzmann's constant in OpenMM units, kJ/(mol K): k_B N_A (exact SI values), as OpenMM defines it. */
-constexpr double Boltzmann = 1.380649e-23*6.02214076e23/1000.0;
+constexpr double Boltzmann = 1.380649e-23 * 6.02214076e23 / 1000.0;
 
 /** The V-B polynomial coefficients as the core reads them (gendpdeVolumeIntegralsVB). */
 inline const double* volumePolynomials() {
@@ -72,36 +72,23 @@ inline const double* volumePolynomials() {
  */
 class DensityWeight {
 public:
-    explicit DensityWeight(double cutoff) : cutoff(cutoff), inverseCutoff(1.0/cutoff) {
+    explicit DensityWeight(double cutoff) : cutoff(cutoff), inverseCutoff(1.0 / cutoff) {
         gendpdeDensityWeightScales(cutoff, &valueScale, &derivativeScale);
     }
     /** w(r) (1/length^3) */
-    double value(double r) const {
-        return r < cutoff ? valueInside(r) : 0.0;
-    }
+    double value(double r) const { return r < cutoff ? valueInside(r) : 0.0; }
     /** dw/dr (1/length^4) */
-    double derivative(double r) const {
-        return r < cutoff ? derivativeInside(r) : 0.0;
-    }
+    double derivative(double r) const { return r < cutoff ? derivativeInside(r) : 0.0; }
     /** The formulas without the test r < R, for branch-free loops that mask the terms themselves. */
-    double valueInside(double r) const {
-        return gendpdeDensityWeight(r, inverseCutoff, valueScale);
-    }
+    double valueInside(double r) const { return gendpdeDensityWeight(r, inverseCutoff, valueScale); }
     double derivativeInside(double r) const {
         return gendpdeDensityWeightDerivative(r, inverseCutoff, derivativeScale);
     }
-    double getCutoff() const {
-        return cutoff;
-    }
-    double getInverseCutoff() const {
-        return inverseCutoff;
-    }
-    double getValueScale() const {
-        return valueScale;
-    }
-    double getDerivativeScale() const {
-        return derivativeScale;
-    }
+    double getCutoff() const { return cutoff; }
+    double getInverseCutoff() const { return inverseCutoff; }
+    double getValueScale() const { return valueScale; }
+    double getDerivativeScale() const { return derivativeScale; }
+
 private:
     double cutoff, inverseCutoff, valueScale, derivativeScale;
 };
@@ -127,7 +114,7 @@ struct VolumeIntegralsVB {
 /** I(k) and J(k) at any k >= 0: at k = 0 (no neighbour in range) I = 1/3 exactly and J = +infinity. */
 inline VolumeIntegralsVB volumeIntegralsVB(double k) {
     if (k == 0.0)
-        return {1.0/3.0, std::numeric_limits<double>::infinity()};
+        return {1.0 / 3.0, std::numeric_limits<double>::infinity()};
     VolumeIntegralsVB integrals;
     gendpdeVolumeIntegralsVB(k, volumePolynomials(), VolumeVBQuadrature::nodeSquared,
                              VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient, &integrals.I,
@@ -157,29 +144,16 @@ public:
                               &v.derivative, &v.momentDerivative);
         return v;
     }
-    int getEstimator() const {
-        return estimator;
-    }
+    int getEstimator() const { return estimator; }
     /** Whether the estimator reads the first moments of the neighbourhoods. */
-    bool needsMoments() const {
-        return gendpdeEstimatorNeedsMoments(estimator) != 0;
-    }
+    bool needsMoments() const { return gendpdeEstimatorNeedsMoments(estimator) != 0; }
     /** The constants of gendpdeEstimatorConstants, for platforms that pass them to the core themselves. */
-    double getKPerDensity() const {
-        return kPerDensity;
-    }
-    double getVolumeScale() const {
-        return volumeScale;
-    }
-    double getDerivativeScale() const {
-        return derivativeScale;
-    }
-    double getMomentScale() const {
-        return momentScale;
-    }
-    double getDensitySoftening() const {
-        return densitySoftening;
-    }
+    double getKPerDensity() const { return kPerDensity; }
+    double getVolumeScale() const { return volumeScale; }
+    double getDerivativeScale() const { return derivativeScale; }
+    double getMomentScale() const { return momentScale; }
+    double getDensitySoftening() const { return densitySoftening; }
+
 private:
     int estimator;
     double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;
@@ -199,8 +173,8 @@ inline ParticleVolume volumeVA(double primitiveDensity) {
  * Rt^3 at n0 = 0, where dV/dn0 is its limit -infinity, and V -> 1/n0 as n0 -> infinity.
  */
 inline ParticleVolume volumeVB(double primitiveDensity, double reducedRange) {
-    const ParticleVolumeAndMoment v = VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange,
-                                                      reducedRange)(primitiveDensity);
+    const ParticleVolumeAndMoment v =
+            VolumeEstimator(GENDPDE_ESTIMATOR_VB, reducedRange, reducedRange)(primitiveDensity);
     return {v.volume, primitiveDensity == 0.0 ? -std::numeric_limits<double>::infinity() : v.derivative};
 }
 
@@ -214,8 +188,7 @@ class TaitEquationOfState {
 public:
     TaitEquationOfState(double referenceDensity, double referencePressure, double bulkModulus, double exponent) :
             referenceDensity(referenceDensity), referencePressure(referencePressure), bulkModulus(bulkModulus),
-            exponent(exponent), integerPower(integerPowerOf(exponent)) {
-    }
+            exponent(exponent), integerPower(integerPowerOf(exponent)) {}
     /**
      * gamma_T - 1 when gamma_T is an integer in [2, 33], else -1. gamma_T is usually an integer (6 for argon, 7 for
      * water): then x^(gamma_T - 1) by multiplications, exact to a few ulp and several times cheaper than pow().
@@ -228,21 +201,12 @@ public:
         gendpdeTait(density, referenceDensity, referencePressure, bulkModulus, exponent, integerPower, &pressure,
                     &freeEnergy);
     }
-    double getReferenceDensity() const {
-        return referenceDensity;
-    }
-    double getReferencePressure() const {
-        return referencePressure;
-    }
-    double getBulkModulus() const {
-        return bulkModulus;
-    }
-    double getExponent() const {
-        return exponent;
-    }
-    int getIntegerPower() const {
-        return integerPower;
-    }
+    double getReferenceDensity() const { return referenceDensity; }
+    double getReferencePressure() const { return referencePressure; }
+    double getBulkModulus() const { return bulkModulus; }
+    double getExponent() const { return exponent; }
+    int getIntegerPower() const { return integerPower; }
+
 private:
     double referenceDensity, referencePressure, bulkModulus, exponent;
     int integerPower;
@@ -270,9 +234,7 @@ struct LocalEquationOfState {
     std::vector<double> parameter;
     int integerPower = -1;
     /** Whether the law depends on temperature (gendpdeLawDependsOnTemperature). */
-    bool dependsOnTemperature() const {
-        return gendpdeLawDependsOnTemperature(law) != 0;
-    }
+    bool dependsOnTemperature() const { return gendpdeLawDependsOnTemperature(law) != 0; }
 };
 
 /**
@@ -297,14 +259,15 @@ struct ThermalInput {
  */
 inline int particleState(const VolumeEstimator& estimator, const LocalEquationOfState& law, double primitiveDensity,
                          double squaredMoment, const ThermalInput& thermal, ParticleState& state) {
-    return gendpdeParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment,
-            estimator.getKPerDensity(), estimator.getVolumeScale(), estimator.getDerivativeScale(),
-            estimator.getMomentScale(), estimator.getDensitySoftening(), volumePolynomials(),
-            VolumeVBQuadrature::nodeSquared, VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient,
-            law.law, law.parameter.data(), law.integerPower, thermal.isothermal ? 1 : 0, thermal.temperature,
-            thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0, thermal.checkStep ? 1 : 0,
-            thermal.heatCapacity, &state.volume, &state.pressure, &state.freeEnergy, &state.forceCoefficient,
-            &state.momentForceScale, &state.thermalEnergy, &state.densityEntropy);
+    return gendpdeParticleState(estimator.getEstimator(), primitiveDensity, squaredMoment, estimator.getKPerDensity(),
+                                estimator.getVolumeScale(), estimator.getDerivativeScale(), estimator.getMomentScale(),
+                                estimator.getDensitySoftening(), volumePolynomials(), VolumeVBQuadrature::nodeSquared,
+                                VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient, law.law,
+                                law.parameter.data(), law.integerPower, thermal.isothermal ? 1 : 0, thermal.temperature,
+                                thermal.storedEnergy, thermal.storedEntropy, thermal.entropyKnown ? 1 : 0,
+                                thermal.checkStep ? 1 : 0, thermal.heatCapacity, &state.volume, &state.pressure,
+                                &state.freeEnergy, &state.forceCoefficient, &state.momentForceScale,
+                                &state.thermalEnergy, &state.densityEntropy);
 }
 
 /** V-C's moment weight phi(r)/r (gendpdeMomentWeightOverDistance) for r < R: g_i = sum_j (phi/r) d_ij. */
@@ -339,8 +302,8 @@ inline void addHalfPairVirial(const OpenMM::Vec3& force, const OpenMM::Vec3& d, 
 /** A pair's impulse P along e (mass length/time): v_i += P e/m_i, v_j -= P e/m_j. */
 inline void applyPairImpulse(const OpenMM::Vec3& e, double impulse, double inverseMassI, double inverseMassJ,
                              OpenMM::Vec3& vi, OpenMM::Vec3& vj) {
-    vi += e*(impulse*inverseMassI);
-    vj -= e*(impulse*inverseMassJ);
+    vi += e * (impulse * inverseMassI);
+    vj -= e * (impulse * inverseMassJ);
 }
 
 /**
@@ -354,8 +317,8 @@ inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double
                                     double stepSize, double sqrtStepSize, double inverseMassI, double inverseMassJ,
                                     OpenMM::Vec3& vi, OpenMM::Vec3& vj, double xi) {
     double kineticChange;
-    const double impulse = gendpdePairImpulse(e.dot(vi - vj), omegaR, friction, noiseAmplitude, stepSize,
-                                              sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
+    const double impulse = gendpdePairImpulse(e.dot(vi - vj), omegaR, friction, noiseAmplitude, stepSize, sqrtStepSize,
+                                              inverseMassI + inverseMassJ, xi, &kineticChange);
     applyPairImpulse(e, impulse, inverseMassI, inverseMassJ, vi, vj);
     return kineticChange;
 }

@@ -55,7 +55,8 @@
 #define GENDPDE_PARTICLE_NO_NEIGHBOR 1   /* V-A and n0 = 0: the volume 1/n0 is undefined */
 #define GENDPDE_PARTICLE_OVERFLOW 2      /* the equation of state is not finite at the particle's density */
 #define GENDPDE_PARTICLE_OUTSIDE_DOMAIN 3 /* the density is outside the equation of state's domain (0 < n < 1/b) */
-#define GENDPDE_PARTICLE_TEMPERATURE_JUMP 4 /* one step's motion changed its temperature by more than a factor
+#define GENDPDE_PARTICLE_TEMPERATURE_JUMP                                                                              \
+    4 /* one step's motion changed its temperature by more than a factor
                                                GENDPDE_STEP_TEMPERATURE_FACTOR (section 11): not integrated */
 /* The number of statuses: the GPU platforms flag an invalid particle i as GENDPDE_PARTICLE_STATUSES i + status. */
 #define GENDPDE_PARTICLE_STATUSES 8
@@ -70,14 +71,14 @@
 
 /** The density weight w(r) = valueScale (1 - r/R)^2 for r < R (the caller tests r < R), valueScale = 15/(2 pi R^3). */
 GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeight(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff, GENDPDE_REAL valueScale) {
-    const GENDPDE_REAL x = 1 - r*inverseCutoff;
-    return valueScale*x*x;
+    const GENDPDE_REAL x = 1 - r * inverseCutoff;
+    return valueScale * x * x;
 }
 
 /** w'(r) = derivativeScale (1 - r/R) for r < R, derivativeScale = -15/(pi R^4). */
 GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeightDerivative(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff,
                                                          GENDPDE_REAL derivativeScale) {
-    return derivativeScale*(1 - r*inverseCutoff);
+    return derivativeScale * (1 - r * inverseCutoff);
 }
 
 #ifndef GENDPDE_CORE_ARITHMETIC_ONLY
@@ -86,8 +87,8 @@ GENDPDE_CORE GENDPDE_REAL gendpdeDensityWeightDerivative(GENDPDE_REAL r, GENDPDE
 GENDPDE_CORE void gendpdeDensityWeightScales(GENDPDE_REAL cutoff, GENDPDE_REAL* valueScale,
                                              GENDPDE_REAL* derivativeScale) {
     const GENDPDE_REAL pi = (GENDPDE_REAL) 3.14159265358979323846;
-    *valueScale = 15/(2*pi*cutoff*cutoff*cutoff);
-    *derivativeScale = -15/(pi*cutoff*cutoff*cutoff*cutoff);
+    *valueScale = 15 / (2 * pi * cutoff * cutoff * cutoff);
+    *derivativeScale = -15 / (pi * cutoff * cutoff * cutoff * cutoff);
 }
 
 /**
@@ -95,19 +96,19 @@ GENDPDE_CORE void gendpdeDensityWeightScales(GENDPDE_REAL cutoff, GENDPDE_REAL* 
  * phi(r) = (r/R)(1 - r/R)^2: the first moment of a neighbourhood is g_i = sum_j phi(r_ij) e_ij = sum_j (phi/r) d_ij.
  */
 GENDPDE_CORE GENDPDE_REAL gendpdeMomentWeightOverDistance(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff) {
-    const GENDPDE_REAL y = 1 - r*inverseCutoff;
-    return inverseCutoff*y*y;
+    const GENDPDE_REAL y = 1 - r * inverseCutoff;
+    return inverseCutoff * y * y;
 }
 
 /** phi'(r) = (1/R)(1 - r/R)(1 - 3 r/R) for r < R (1/length). */
 GENDPDE_CORE GENDPDE_REAL gendpdeMomentWeightDerivative(GENDPDE_REAL r, GENDPDE_REAL inverseCutoff) {
-    const GENDPDE_REAL x = r*inverseCutoff;
-    return inverseCutoff*(1 - x)*(1 - 3*x);
+    const GENDPDE_REAL x = r * inverseCutoff;
+    return inverseCutoff * (1 - x) * (1 - 3 * x);
 }
 
 /** The weight of the random forces and heat flux, omega_R(r) = 1 - r/R for r < R (section 5). */
 GENDPDE_CORE GENDPDE_REAL gendpdeRandomWeight(GENDPDE_REAL r, GENDPDE_REAL cutoff) {
-    return 1 - r/cutoff;
+    return 1 - r / cutoff;
 }
 
 /* ---- Volume estimators (section 3; V-C: section 3 and docs/interfaces.md) ---------------------------------------- */
@@ -124,16 +125,16 @@ GENDPDE_CORE int gendpdeEstimatorNeedsMoments(int estimator) {
  * c = 30/(pi R^3) and densitySoftening = eps^2 with eps = 3/(4 pi R^3) (both 1/length^6).
  */
 GENDPDE_CORE void gendpdeEstimatorConstants(GENDPDE_REAL cutoff, GENDPDE_REAL reducedRange, GENDPDE_REAL* kPerDensity,
-        GENDPDE_REAL* volumeScale, GENDPDE_REAL* derivativeScale, GENDPDE_REAL* momentScale,
-        GENDPDE_REAL* densitySoftening) {
+                                            GENDPDE_REAL* volumeScale, GENDPDE_REAL* derivativeScale,
+                                            GENDPDE_REAL* momentScale, GENDPDE_REAL* densitySoftening) {
     const GENDPDE_REAL pi = (GENDPDE_REAL) 3.14159265358979323846;
-    const GENDPDE_REAL rt3 = reducedRange*reducedRange*reducedRange, r3 = cutoff*cutoff*cutoff;
-    *kPerDensity = (2*pi/15)*rt3;
-    *volumeScale = 4*pi*rt3;
-    *derivativeScale = -(8*pi*pi/15)*rt3*rt3;
-    const GENDPDE_REAL c = 30/(pi*r3), eps = 3/(4*pi*r3);
-    *momentScale = c*c;
-    *densitySoftening = eps*eps;
+    const GENDPDE_REAL rt3 = reducedRange * reducedRange * reducedRange, r3 = cutoff * cutoff * cutoff;
+    *kPerDensity = (2 * pi / 15) * rt3;
+    *volumeScale = 4 * pi * rt3;
+    *derivativeScale = -(8 * pi * pi / 15) * rt3 * rt3;
+    const GENDPDE_REAL c = 30 / (pi * r3), eps = 3 / (4 * pi * r3);
+    *momentScale = c * c;
+    *densitySoftening = eps * eps;
 }
 
 /**
@@ -142,10 +143,10 @@ GENDPDE_CORE void gendpdeEstimatorConstants(GENDPDE_REAL cutoff, GENDPDE_REAL re
  */
 GENDPDE_CORE void gendpdeVolumeIntegralsClosedForm(GENDPDE_REAL k, GENDPDE_REAL* I, GENDPDE_REAL* J) {
     const GENDPDE_REAL s = sqrt(k);
-    const GENDPDE_REAL arctangent = atan(1/s);
+    const GENDPDE_REAL arctangent = atan(1 / s);
     const GENDPDE_REAL logarithm = log1p(k) - log(k);
-    *I = (GENDPDE_REAL) 1/3 - k - (1 - k)*s*arctangent + k*logarithm;
-    *J = (GENDPDE_REAL) 1.5 - logarithm + (1 - 3*k)/(2*s)*arctangent;
+    *I = (GENDPDE_REAL) 1 / 3 - k - (1 - k) * s * arctangent + k * logarithm;
+    *J = (GENDPDE_REAL) 1.5 - logarithm + (1 - 3 * k) / (2 * s) * arctangent;
 }
 
 /**
@@ -153,14 +154,15 @@ GENDPDE_CORE void gendpdeVolumeIntegralsClosedForm(GENDPDE_REAL k, GENDPDE_REAL*
  * of nodes y, 1 - y (squares nodeSquared, mirrorNodeSquared; one coefficient per pair; VolumeVBTables.h).
  */
 GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* coefficient,
-        GENDPDE_REAL* I, GENDPDE_REAL* J) {
+                                                   GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+                                                   GENDPDE_GLOBAL const GENDPDE_REAL* coefficient, GENDPDE_REAL* I,
+                                                   GENDPDE_REAL* J) {
     GENDPDE_REAL sumI = 0, sumJ = 0;
     for (int m = 0; m < GENDPDE_VB_QUADRATURE_PAIRS; m++) {
-        const GENDPDE_REAL a = 1/(nodeSquared[m] + k);
-        const GENDPDE_REAL b = 1/(mirrorNodeSquared[m] + k);
-        sumI += coefficient[m]*(a + b);
-        sumJ += coefficient[m]*(a*a + b*b);
+        const GENDPDE_REAL a = 1 / (nodeSquared[m] + k);
+        const GENDPDE_REAL b = 1 / (mirrorNodeSquared[m] + k);
+        sumI += coefficient[m] * (a + b);
+        sumJ += coefficient[m] * (a * a + b * b);
     }
     *I = sumI;
     *J = sumJ;
@@ -173,21 +175,21 @@ GENDPDE_CORE void gendpdeVolumeIntegralsQuadrature(GENDPDE_REAL k, GENDPDE_GLOBA
  */
 GENDPDE_CORE void gendpdeEstrin13Pair(GENDPDE_GLOBAL const GENDPDE_REAL* c, GENDPDE_REAL t, GENDPDE_REAL* I,
                                       GENDPDE_REAL* J) {
-    const GENDPDE_REAL t2 = t*t, t4 = t2*t2, t8 = t4*t4;
+    const GENDPDE_REAL t2 = t * t, t4 = t2 * t2, t8 = t4 * t4;
     // Written out, I's and J's operations side by side: the pairs of adjacent coefficients are the two lanes.
-    const GENDPDE_REAL aI0 = c[0] + c[2]*t, aJ0 = c[1] + c[3]*t;
-    const GENDPDE_REAL aI1 = c[4] + c[6]*t, aJ1 = c[5] + c[7]*t;
-    const GENDPDE_REAL aI2 = c[8] + c[10]*t, aJ2 = c[9] + c[11]*t;
-    const GENDPDE_REAL aI3 = c[12] + c[14]*t, aJ3 = c[13] + c[15]*t;
-    const GENDPDE_REAL aI4 = c[16] + c[18]*t, aJ4 = c[17] + c[19]*t;
-    const GENDPDE_REAL aI5 = c[20] + c[22]*t, aJ5 = c[21] + c[23]*t;
-    const GENDPDE_REAL aI6 = c[24] + c[26]*t, aJ6 = c[25] + c[27]*t;
-    const GENDPDE_REAL bI0 = aI0 + aI1*t2, bJ0 = aJ0 + aJ1*t2;
-    const GENDPDE_REAL bI1 = aI2 + aI3*t2, bJ1 = aJ2 + aJ3*t2;
-    const GENDPDE_REAL bI2 = aI4 + aI5*t2, bJ2 = aJ4 + aJ5*t2;
-    const GENDPDE_REAL dI = bI2 + aI6*t4, dJ = bJ2 + aJ6*t4;
-    *I = (bI0 + bI1*t4) + dI*t8;
-    *J = (bJ0 + bJ1*t4) + dJ*t8;
+    const GENDPDE_REAL aI0 = c[0] + c[2] * t, aJ0 = c[1] + c[3] * t;
+    const GENDPDE_REAL aI1 = c[4] + c[6] * t, aJ1 = c[5] + c[7] * t;
+    const GENDPDE_REAL aI2 = c[8] + c[10] * t, aJ2 = c[9] + c[11] * t;
+    const GENDPDE_REAL aI3 = c[12] + c[14] * t, aJ3 = c[13] + c[15] * t;
+    const GENDPDE_REAL aI4 = c[16] + c[18] * t, aJ4 = c[17] + c[19] * t;
+    const GENDPDE_REAL aI5 = c[20] + c[22] * t, aJ5 = c[21] + c[23] * t;
+    const GENDPDE_REAL aI6 = c[24] + c[26] * t, aJ6 = c[25] + c[27] * t;
+    const GENDPDE_REAL bI0 = aI0 + aI1 * t2, bJ0 = aJ0 + aJ1 * t2;
+    const GENDPDE_REAL bI1 = aI2 + aI3 * t2, bJ1 = aJ2 + aJ3 * t2;
+    const GENDPDE_REAL bI2 = aI4 + aI5 * t2, bJ2 = aJ4 + aJ5 * t2;
+    const GENDPDE_REAL dI = bI2 + aI6 * t4, dJ = bJ2 + aJ6 * t4;
+    *I = (bI0 + bI1 * t4) + dI * t8;
+    *J = (bJ0 + bJ1 * t4) + dJ * t8;
 }
 
 /**
@@ -202,18 +204,19 @@ GENDPDE_CORE void gendpdeEstrin13Pair(GENDPDE_GLOBAL const GENDPDE_REAL* c, GEND
  * At k = 0 (an isolated particle) I = 1/3 and J diverges; callers handle it (gendpdeParticleVolume).
  */
 GENDPDE_CORE void gendpdeVolumeIntegralsVB(GENDPDE_REAL k, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
-        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* I, GENDPDE_REAL* J) {
+                                           GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
+                                           GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+                                           GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* I,
+                                           GENDPDE_REAL* J) {
     int exponent;
-    const GENDPDE_REAL fraction = GENDPDE_FREXP(k, &exponent);   // k = fraction 2^exponent, fraction in [1/2, 1)
+    const GENDPDE_REAL fraction = GENDPDE_FREXP(k, &exponent); // k = fraction 2^exponent, fraction in [1/2, 1)
     const int octave = exponent - 1;
     if (octave >= GENDPDE_VB_FIRST_OCTAVE && octave <= GENDPDE_VB_LAST_OCTAVE) {
-        const GENDPDE_REAL m = 2*fraction;
-        const int piece = (int) ((m - 1)*4);
-        const GENDPDE_REAL t = 8*(m - 1) - (2*piece + 1);
-        gendpdeEstrin13Pair(polynomials + ((octave - GENDPDE_VB_FIRST_OCTAVE)*4 + piece)*28, t, I, J);
-    }
-    else if (k < 1)
+        const GENDPDE_REAL m = 2 * fraction;
+        const int piece = (int) ((m - 1) * 4);
+        const GENDPDE_REAL t = 8 * (m - 1) - (2 * piece + 1);
+        gendpdeEstrin13Pair(polynomials + ((octave - GENDPDE_VB_FIRST_OCTAVE) * 4 + piece) * 28, t, I, J);
+    } else if (k < 1)
         gendpdeVolumeIntegralsClosedForm(k, I, J);
     else
         gendpdeVolumeIntegralsQuadrature(k, nodeSquared, mirrorNodeSquared, quadratureCoefficient, I, J);
@@ -226,15 +229,15 @@ GENDPDE_CORE void gendpdeVolumeIntegralsVB(GENDPDE_REAL k, GENDPDE_GLOBAL const 
  * (both continuous at the threshold, where the factor is 1 and its slope 0).
  */
 GENDPDE_CORE void gendpdeSurfaceFactor(GENDPDE_REAL a2, GENDPDE_REAL* factor, GENDPDE_REAL* slope) {
-    const GENDPDE_REAL alpha = 3, threshold = (GENDPDE_REAL) 0.4, inverseWidth = 1/(GENDPDE_REAL) 0.3;
+    const GENDPDE_REAL alpha = 3, threshold = (GENDPDE_REAL) 0.4, inverseWidth = 1 / (GENDPDE_REAL) 0.3;
     if (!(a2 > threshold)) {
         *factor = 1;
         *slope = 0;
         return;
     }
-    const GENDPDE_REAL x = (a2 - threshold)*inverseWidth, denominator = 1/(1 + x*x);
-    *factor = 1 + alpha*x*x*denominator;
-    *slope = alpha*2*x*denominator*denominator*inverseWidth;
+    const GENDPDE_REAL x = (a2 - threshold) * inverseWidth, denominator = 1 / (1 + x * x);
+    *factor = 1 + alpha * x * x * denominator;
+    *slope = alpha * 2 * x * denominator * denominator * inverseWidth;
 }
 
 /**
@@ -251,39 +254,39 @@ GENDPDE_CORE void gendpdeSurfaceFactor(GENDPDE_REAL a2, GENDPDE_REAL* factor, GE
  * Returns GENDPDE_PARTICLE_VALID otherwise.
  */
 GENDPDE_CORE int gendpdeParticleVolume(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
-        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
-        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
-        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* volume, GENDPDE_REAL* derivative,
-        GENDPDE_REAL* momentDerivative) {
+                                       GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
+                                       GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+                                       GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
+                                       GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+                                       GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, GENDPDE_REAL* volume,
+                                       GENDPDE_REAL* derivative, GENDPDE_REAL* momentDerivative) {
     *momentDerivative = 0;
     if (estimator == GENDPDE_ESTIMATOR_VA) {
-        const GENDPDE_REAL v = 1/n0;
+        const GENDPDE_REAL v = 1 / n0;
         *volume = v;
-        *derivative = -v*v;
+        *derivative = -v * v;
         return n0 == 0 ? GENDPDE_PARTICLE_NO_NEIGHBOR : GENDPDE_PARTICLE_VALID;
     }
     if (n0 == 0) {
-        *volume = volumeScale*((GENDPDE_REAL) 1/3);
+        *volume = volumeScale * ((GENDPDE_REAL) 1 / 3);
         *derivative = 0;
-    }
-    else {
+    } else {
         GENDPDE_REAL I, J;
-        gendpdeVolumeIntegralsVB(kPerDensity*n0, polynomials, nodeSquared, mirrorNodeSquared, quadratureCoefficient,
+        gendpdeVolumeIntegralsVB(kPerDensity * n0, polynomials, nodeSquared, mirrorNodeSquared, quadratureCoefficient,
                                  &I, &J);
-        *volume = volumeScale*I;
-        *derivative = derivativeScale*J;
+        *volume = volumeScale * I;
+        *derivative = derivativeScale * J;
     }
     if (estimator == GENDPDE_ESTIMATOR_VC) {
-        const GENDPDE_REAL inverse = 1/(n0*n0 + densitySoftening);
-        const GENDPDE_REAL a2 = momentScale*G*inverse;
-        GENDPDE_REAL factor, slope;   // the factor and its derivative with respect to a^2
+        const GENDPDE_REAL inverse = 1 / (n0 * n0 + densitySoftening);
+        const GENDPDE_REAL a2 = momentScale * G * inverse;
+        GENDPDE_REAL factor, slope; // the factor and its derivative with respect to a^2
         gendpdeSurfaceFactor(a2, &factor, &slope);
         if (slope != 0) {
             const GENDPDE_REAL v = *volume;
-            *derivative = *derivative*factor - v*slope*2*a2*n0*inverse;
-            *momentDerivative = v*slope*momentScale*inverse;
-            *volume = v*factor;
+            *derivative = *derivative * factor - v * slope * 2 * a2 * n0 * inverse;
+            *momentDerivative = v * slope * momentScale * inverse;
+            *volume = v * factor;
         }
     }
     return GENDPDE_PARTICLE_VALID;
@@ -309,22 +312,22 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIntegerPower(GENDPDE_REAL x, int p) {
  * integerPower is gamma_T - 1 when gamma_T is an integer in [2, 33] (then by multiplications), else -1 (pow).
  */
 GENDPDE_CORE void gendpdeTait(GENDPDE_REAL density, GENDPDE_REAL referenceDensity, GENDPDE_REAL referencePressure,
-                              GENDPDE_REAL bulkModulus, GENDPDE_REAL exponent, int integerPower,
-                              GENDPDE_REAL* pressure, GENDPDE_REAL* freeEnergy) {
-    const GENDPDE_REAL x = density/referenceDensity;
-    const GENDPDE_REAL xPowGammaMinusOne = (integerPower >= 0 ? gendpdeIntegerPower(x, integerPower)
-                                                              : pow(x, exponent - 1));
-    *pressure = referencePressure + bulkModulus*(xPowGammaMinusOne*x - 1);
-    *freeEnergy = (bulkModulus - referencePressure)/density
-                + bulkModulus/((exponent - 1)*referenceDensity)*xPowGammaMinusOne;
+                              GENDPDE_REAL bulkModulus, GENDPDE_REAL exponent, int integerPower, GENDPDE_REAL* pressure,
+                              GENDPDE_REAL* freeEnergy) {
+    const GENDPDE_REAL x = density / referenceDensity;
+    const GENDPDE_REAL xPowGammaMinusOne =
+            (integerPower >= 0 ? gendpdeIntegerPower(x, integerPower) : pow(x, exponent - 1));
+    *pressure = referencePressure + bulkModulus * (xPowGammaMinusOne * x - 1);
+    *freeEnergy = (bulkModulus - referencePressure) / density
+            + bulkModulus / ((exponent - 1) * referenceDensity) * xPowGammaMinusOne;
 }
 
 /* ---- Temperature-dependent equations of state (section 11) ----------------------------------------------------- */
 
 /* The local equations of state of the form f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln(theta/theta0)). */
-#define GENDPDE_EOS_TAIT 0           /* sigma = 0: today's Tait law, pi(n) */
-#define GENDPDE_EOS_TAIT_THERMAL 1   /* pi = pi_Tait(n) + beta (theta - theta0) */
-#define GENDPDE_EOS_VAN_DER_WAALS 2  /* pi = k theta n/(1 - b n) - a n^2 */
+#define GENDPDE_EOS_TAIT 0 /* sigma = 0: today's Tait law, pi(n) */
+#define GENDPDE_EOS_TAIT_THERMAL 1 /* pi = pi_Tait(n) + beta (theta - theta0) */
+#define GENDPDE_EOS_VAN_DER_WAALS 2 /* pi = k theta n/(1 - b n) - a n^2 */
 
 /**
  * The density-dependent parts of a free energy per particle
@@ -348,28 +351,26 @@ GENDPDE_CORE void gendpdeTait(GENDPDE_REAL density, GENDPDE_REAL referenceDensit
  * (van der Waals: n <= 0 or b n >= 1) or GENDPDE_PARTICLE_OVERFLOW (a result not finite).
  */
 GENDPDE_CORE int gendpdeLocalEquationOfState(int law, GENDPDE_REAL density, GENDPDE_GLOBAL const GENDPDE_REAL* p,
-        int integerPower, GENDPDE_REAL* energy, GENDPDE_REAL* entropy, GENDPDE_REAL* pressureAtZero,
-        GENDPDE_REAL* thermalPressure) {
+                                             int integerPower, GENDPDE_REAL* energy, GENDPDE_REAL* entropy,
+                                             GENDPDE_REAL* pressureAtZero, GENDPDE_REAL* thermalPressure) {
     if (law == GENDPDE_EOS_VAN_DER_WAALS) {
-        const GENDPDE_REAL excluded = p[1]*density;
+        const GENDPDE_REAL excluded = p[1] * density;
         if (!(density > 0 && excluded < 1)) {
             *energy = *entropy = *pressureAtZero = *thermalPressure = 0;
             return GENDPDE_PARTICLE_OUTSIDE_DOMAIN;
         }
-        *energy = -p[0]*density - p[3]/density;
-        *entropy = p[2]*log((1 - excluded)/excluded);
-        *pressureAtZero = -p[0]*density*density + p[3];
-        *thermalPressure = p[2]*density/(1 - excluded);
-    }
-    else {
+        *energy = -p[0] * density - p[3] / density;
+        *entropy = p[2] * log((1 - excluded) / excluded);
+        *pressureAtZero = -p[0] * density * density + p[3];
+        *thermalPressure = p[2] * density / (1 - excluded);
+    } else {
         gendpdeTait(density, p[0], p[1], p[2], p[3], integerPower, pressureAtZero, energy);
         if (law == GENDPDE_EOS_TAIT_THERMAL) {
-            *energy += p[4]*p[5]/density;
-            *pressureAtZero -= p[4]*p[5];
-            *entropy = p[4]/density;
+            *energy += p[4] * p[5] / density;
+            *pressureAtZero -= p[4] * p[5];
+            *entropy = p[4] / density;
             *thermalPressure = p[4];
-        }
-        else
+        } else
             *entropy = *thermalPressure = 0;
     }
     if (!(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*entropy) && GENDPDE_ISFINITE(*pressureAtZero)
@@ -385,7 +386,7 @@ GENDPDE_CORE int gendpdeLawDependsOnTemperature(int law) {
 
 /** The largest density of a law's domain (GENDPDE_PARTICLE_OUTSIDE_DOMAIN beyond it), or 0 if it has none. */
 GENDPDE_CORE GENDPDE_REAL gendpdeLawDensityLimit(int law, GENDPDE_GLOBAL const GENDPDE_REAL* p) {
-    return law == GENDPDE_EOS_VAN_DER_WAALS ? 1/p[1] : 0;
+    return law == GENDPDE_EOS_VAN_DER_WAALS ? 1 / p[1] : 0;
 }
 
 /**
@@ -395,7 +396,7 @@ GENDPDE_CORE GENDPDE_REAL gendpdeLawDensityLimit(int law, GENDPDE_GLOBAL const G
  */
 GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEnergy, GENDPDE_REAL entropyChange,
                                                          GENDPDE_REAL heatCapacity) {
-    return thermalEnergy*exp(-entropyChange/heatCapacity);
+    return thermalEnergy * exp(-entropyChange / heatCapacity);
 }
 
 /**
@@ -425,20 +426,23 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIsentropicThermalEnergy(GENDPDE_REAL thermalEne
  * must stop and say so.
  */
 GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_REAL G, GENDPDE_REAL kPerDensity,
-        GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
-        GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
-        GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared, GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
-        GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law, GENDPDE_GLOBAL const GENDPDE_REAL* p,
-        int integerPower, int isothermal, GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy,
-        GENDPDE_REAL storedEntropy, int entropyKnown, int checkStep, GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume,
-        GENDPDE_REAL* pressure, GENDPDE_REAL* energy, GENDPDE_REAL* forceCoefficient, GENDPDE_REAL* momentForceScale,
-        GENDPDE_ENERGY* thermalEnergy, GENDPDE_REAL* densityEntropy) {
+                                      GENDPDE_REAL volumeScale, GENDPDE_REAL derivativeScale, GENDPDE_REAL momentScale,
+                                      GENDPDE_REAL densitySoftening, GENDPDE_GLOBAL const GENDPDE_REAL* polynomials,
+                                      GENDPDE_GLOBAL const GENDPDE_REAL* nodeSquared,
+                                      GENDPDE_GLOBAL const GENDPDE_REAL* mirrorNodeSquared,
+                                      GENDPDE_GLOBAL const GENDPDE_REAL* quadratureCoefficient, int law,
+                                      GENDPDE_GLOBAL const GENDPDE_REAL* p, int integerPower, int isothermal,
+                                      GENDPDE_REAL temperature, GENDPDE_ENERGY storedEnergy, GENDPDE_REAL storedEntropy,
+                                      int entropyKnown, int checkStep, GENDPDE_REAL heatCapacity, GENDPDE_REAL* volume,
+                                      GENDPDE_REAL* pressure, GENDPDE_REAL* energy, GENDPDE_REAL* forceCoefficient,
+                                      GENDPDE_REAL* momentForceScale, GENDPDE_ENERGY* thermalEnergy,
+                                      GENDPDE_REAL* densityEntropy) {
     GENDPDE_REAL derivative, momentDerivative;
     int status = gendpdeParticleVolume(estimator, n0, G, kPerDensity, volumeScale, derivativeScale, momentScale,
                                        densitySoftening, polynomials, nodeSquared, mirrorNodeSquared,
                                        quadratureCoefficient, volume, &derivative, &momentDerivative);
     GENDPDE_REAL e, sigma, pressureAtZero, thermalPressure;
-    const int lawStatus = gendpdeLocalEquationOfState(law, 1/(*volume), p, integerPower, &e, &sigma, &pressureAtZero,
+    const int lawStatus = gendpdeLocalEquationOfState(law, 1 / (*volume), p, integerPower, &e, &sigma, &pressureAtZero,
                                                       &thermalPressure);
     if (status == GENDPDE_PARTICLE_VALID)
         status = lawStatus;
@@ -447,28 +451,26 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
     if (!thermal) {
         *thermalEnergy = storedEnergy;
         *energy = e;
-    }
-    else if (isothermal) {
+    } else if (isothermal) {
         theta = temperature;
-        *thermalEnergy = heatCapacity*temperature;
-        *energy = e - temperature*sigma;
-    }
-    else {
+        *thermalEnergy = heatCapacity * temperature;
+        *energy = e - temperature * sigma;
+    } else {
         const GENDPDE_REAL entropyChange = entropyKnown ? sigma - storedEntropy : 0;
         if (checkStep && status == GENDPDE_PARTICLE_VALID
-                && !(fabs(entropyChange) <= GENDPDE_LOG_STEP_TEMPERATURE_FACTOR*heatCapacity))
+            && !(fabs(entropyChange) <= GENDPDE_LOG_STEP_TEMPERATURE_FACTOR * heatCapacity))
             status = GENDPDE_PARTICLE_TEMPERATURE_JUMP;
-        *thermalEnergy = storedEnergy*gendpdeIsentropicThermalEnergy(1, entropyChange, heatCapacity);
-        theta = (GENDPDE_REAL) (*thermalEnergy/heatCapacity);
+        *thermalEnergy = storedEnergy * gendpdeIsentropicThermalEnergy(1, entropyChange, heatCapacity);
+        theta = (GENDPDE_REAL) (*thermalEnergy / heatCapacity);
         *energy = e + (GENDPDE_REAL) (*thermalEnergy - storedEnergy);
     }
     *densityEntropy = sigma;
-    *pressure = (thermal ? pressureAtZero + theta*thermalPressure : pressureAtZero);
-    if (thermal && status == GENDPDE_PARTICLE_VALID && !(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*pressure)
-                                                         && GENDPDE_ISFINITE(*thermalEnergy)))
+    *pressure = (thermal ? pressureAtZero + theta * thermalPressure : pressureAtZero);
+    if (thermal && status == GENDPDE_PARTICLE_VALID
+        && !(GENDPDE_ISFINITE(*energy) && GENDPDE_ISFINITE(*pressure) && GENDPDE_ISFINITE(*thermalEnergy)))
         status = GENDPDE_PARTICLE_OVERFLOW;
-    *forceCoefficient = (n0 > 0 ? (*pressure)*derivative : 0);
-    *momentForceScale = 2*((*pressure)*momentDerivative);
+    *forceCoefficient = (n0 > 0 ? (*pressure) * derivative : 0);
+    *momentForceScale = 2 * ((*pressure) * momentDerivative);
     return status;
 }
 
@@ -483,19 +485,19 @@ GENDPDE_CORE int gendpdeParticleState(int estimator, GENDPDE_REAL n0, GENDPDE_RE
  */
 GENDPDE_CORE GENDPDE_REAL gendpdePairForceScale(GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative,
                                                 GENDPDE_REAL r) {
-    return coefficientSum*weightDerivative/r;
+    return coefficientSum * weightDerivative / r;
 }
 
 /**
  * The central pair force F = s d for the scale s of gendpdePairForceScale and d = r_i - r_j (length) of length r:
  * stores F in force[0..2] (energy/length) and returns its virial d . F = s r^2 (energy).
  */
-GENDPDE_CORE GENDPDE_REAL gendpdeCentralPairForce(GENDPDE_REAL scale, GENDPDE_REAL dx, GENDPDE_REAL dy,
-                                                  GENDPDE_REAL dz, GENDPDE_REAL r, GENDPDE_REAL* force) {
-    force[0] = dx*scale;
-    force[1] = dy*scale;
-    force[2] = dz*scale;
-    return scale*r*r;
+GENDPDE_CORE GENDPDE_REAL gendpdeCentralPairForce(GENDPDE_REAL scale, GENDPDE_REAL dx, GENDPDE_REAL dy, GENDPDE_REAL dz,
+                                                  GENDPDE_REAL r, GENDPDE_REAL* force) {
+    force[0] = dx * scale;
+    force[1] = dy * scale;
+    force[2] = dz * scale;
+    return scale * r * r;
 }
 
 #ifndef GENDPDE_CORE_ARITHMETIC_ONLY
@@ -506,15 +508,16 @@ GENDPDE_CORE GENDPDE_REAL gendpdeCentralPairForce(GENDPDE_REAL scale, GENDPDE_RE
  * dq = q_i - q_j (energy). Stores it in force[0..2] (energy/length) and returns its virial d . H dq = r phi' (e . dq).
  */
 GENDPDE_CORE GENDPDE_REAL gendpdeMomentPairForce(GENDPDE_REAL ex, GENDPDE_REAL ey, GENDPDE_REAL ez, GENDPDE_REAL r,
-        GENDPDE_REAL inverseCutoff, GENDPDE_REAL dqx, GENDPDE_REAL dqy, GENDPDE_REAL dqz, GENDPDE_REAL* force) {
-    const GENDPDE_REAL along = ex*dqx + ey*dqy + ez*dqz;
+                                                 GENDPDE_REAL inverseCutoff, GENDPDE_REAL dqx, GENDPDE_REAL dqy,
+                                                 GENDPDE_REAL dqz, GENDPDE_REAL* force) {
+    const GENDPDE_REAL along = ex * dqx + ey * dqy + ez * dqz;
     const GENDPDE_REAL phiPrime = gendpdeMomentWeightDerivative(r, inverseCutoff);
     const GENDPDE_REAL phiOverR = gendpdeMomentWeightOverDistance(r, inverseCutoff);
-    const GENDPDE_REAL alongScale = phiPrime*along;
-    force[0] = ex*alongScale + (dqx - ex*along)*phiOverR;
-    force[1] = ey*alongScale + (dqy - ey*along)*phiOverR;
-    force[2] = ez*alongScale + (dqz - ez*along)*phiOverR;
-    return r*phiPrime*along;
+    const GENDPDE_REAL alongScale = phiPrime * along;
+    force[0] = ex * alongScale + (dqx - ex * along) * phiOverR;
+    force[1] = ey * alongScale + (dqy - ey * along) * phiOverR;
+    force[2] = ez * alongScale + (dqz - ez * along) * phiOverR;
+    return r * phiPrime * along;
 }
 
 /**
@@ -528,16 +531,17 @@ GENDPDE_CORE GENDPDE_REAL gendpdeMomentPairForce(GENDPDE_REAL ex, GENDPDE_REAL e
  * returns its virial d . F (energy).
  */
 GENDPDE_CORE GENDPDE_REAL gendpdePairForce(GENDPDE_REAL dx, GENDPDE_REAL dy, GENDPDE_REAL dz, GENDPDE_REAL r,
-        GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative, GENDPDE_REAL inverseCutoff, int moments,
-        GENDPDE_REAL qix, GENDPDE_REAL qiy, GENDPDE_REAL qiz, GENDPDE_REAL qjx, GENDPDE_REAL qjy, GENDPDE_REAL qjz,
-        GENDPDE_REAL* force) {
-    GENDPDE_REAL virial = gendpdeCentralPairForce(gendpdePairForceScale(coefficientSum, weightDerivative, r), dx, dy,
-                                                  dz, r, force);
+                                           GENDPDE_REAL coefficientSum, GENDPDE_REAL weightDerivative,
+                                           GENDPDE_REAL inverseCutoff, int moments, GENDPDE_REAL qix, GENDPDE_REAL qiy,
+                                           GENDPDE_REAL qiz, GENDPDE_REAL qjx, GENDPDE_REAL qjy, GENDPDE_REAL qjz,
+                                           GENDPDE_REAL* force) {
+    GENDPDE_REAL virial =
+            gendpdeCentralPairForce(gendpdePairForceScale(coefficientSum, weightDerivative, r), dx, dy, dz, r, force);
     if (moments && !(qix == 0 && qiy == 0 && qiz == 0 && qjx == 0 && qjy == 0 && qjz == 0)) {
-        const GENDPDE_REAL inverseDistance = 1/r;
+        const GENDPDE_REAL inverseDistance = 1 / r;
         GENDPDE_REAL momentForce[3];
-        virial += gendpdeMomentPairForce(dx*inverseDistance, dy*inverseDistance, dz*inverseDistance, r, inverseCutoff,
-                                         qix - qjx, qiy - qjy, qiz - qjz, momentForce);
+        virial += gendpdeMomentPairForce(dx * inverseDistance, dy * inverseDistance, dz * inverseDistance, r,
+                                         inverseCutoff, qix - qjx, qiy - qjy, qiz - qjz, momentForce);
         force[0] += momentForce[0];
         force[1] += momentForce[1];
         force[2] += momentForce[2];
@@ -552,16 +556,16 @@ GENDPDE_CORE GENDPDE_REAL gendpdePairForce(GENDPDE_REAL dx, GENDPDE_REAL dy, GEN
  */
 GENDPDE_CORE void gendpdeAddHalfPairVirial(GENDPDE_REAL fx, GENDPDE_REAL fy, GENDPDE_REAL fz, GENDPDE_REAL dx,
                                            GENDPDE_REAL dy, GENDPDE_REAL dz, GENDPDE_REAL* virial) {
-    const GENDPDE_REAL hx = fx/2, hy = fy/2, hz = fz/2;
-    virial[0] += hx*dx;
-    virial[1] += hx*dy;
-    virial[2] += hx*dz;
-    virial[3] += hy*dx;
-    virial[4] += hy*dy;
-    virial[5] += hy*dz;
-    virial[6] += hz*dx;
-    virial[7] += hz*dy;
-    virial[8] += hz*dz;
+    const GENDPDE_REAL hx = fx / 2, hy = fy / 2, hz = fz / 2;
+    virial[0] += hx * dx;
+    virial[1] += hx * dy;
+    virial[2] += hx * dz;
+    virial[3] += hy * dx;
+    virial[4] += hy * dy;
+    virial[5] += hy * dz;
+    virial[6] += hz * dx;
+    virial[7] += hz * dy;
+    virial[8] += hz * dz;
 }
 
 /* ---- The integrator's pair updates (sections 5-7) --------------------------------------------------------------- */
@@ -577,11 +581,11 @@ GENDPDE_CORE void gendpdePairTemperatures(GENDPDE_REAL energyI, GENDPDE_REAL ene
                                           GENDPDE_REAL heatCapacityJ, GENDPDE_REAL boltzmann,
                                           GENDPDE_REAL* pairThermalEnergy, GENDPDE_REAL* inverseTemperatureDifference,
                                           GENDPDE_REAL* frictionFactor) {
-    const GENDPDE_REAL betaI = heatCapacityI/energyI, betaJ = heatCapacityJ/energyJ;
-    const GENDPDE_REAL inverseSum = 1/(betaI + betaJ);
-    *pairThermalEnergy = 2*boltzmann*inverseSum;
+    const GENDPDE_REAL betaI = heatCapacityI / energyI, betaJ = heatCapacityJ / energyJ;
+    const GENDPDE_REAL inverseSum = 1 / (betaI + betaJ);
+    *pairThermalEnergy = 2 * boltzmann * inverseSum;
     *inverseTemperatureDifference = betaI - betaJ;
-    *frictionFactor = boltzmann*(betaI/energyI + betaJ/energyJ)*inverseSum*inverseSum;
+    *frictionFactor = boltzmann * (betaI / energyI + betaJ / energyJ) * inverseSum * inverseSum;
 }
 
 /**
@@ -593,16 +597,17 @@ GENDPDE_CORE void gendpdePairTemperatures(GENDPDE_REAL energyI, GENDPDE_REAL ene
  * -P e to j; *kineticChange receives the change of the pair's kinetic energy, P (u0 + P (1/m_i + 1/m_j)/2).
  */
 GENDPDE_CORE GENDPDE_REAL gendpdePairImpulse(GENDPDE_REAL u0, GENDPDE_REAL omegaR, GENDPDE_REAL friction,
-        GENDPDE_REAL noiseAmplitude, GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL inverseReducedMass,
-        GENDPDE_REAL xi, GENDPDE_REAL* kineticChange) {
-    const GENDPDE_REAL frictionHalf = (GENDPDE_REAL) 0.5*friction*omegaR*omegaR*stepSize;
-    const GENDPDE_REAL implicitFactor = 1/(1 + inverseReducedMass*frictionHalf);
-    const GENDPDE_REAL randomHalf = (GENDPDE_REAL) 0.5*noiseAmplitude*omegaR*sqrtStepSize*xi;
-    const GENDPDE_REAL explicitHalf = randomHalf - frictionHalf*u0;
-    const GENDPDE_REAL u1 = u0 + inverseReducedMass*explicitHalf;
-    const GENDPDE_REAL implicitHalf = (randomHalf - frictionHalf*u1)*implicitFactor;
+                                             GENDPDE_REAL noiseAmplitude, GENDPDE_REAL stepSize,
+                                             GENDPDE_REAL sqrtStepSize, GENDPDE_REAL inverseReducedMass,
+                                             GENDPDE_REAL xi, GENDPDE_REAL* kineticChange) {
+    const GENDPDE_REAL frictionHalf = (GENDPDE_REAL) 0.5 * friction * omegaR * omegaR * stepSize;
+    const GENDPDE_REAL implicitFactor = 1 / (1 + inverseReducedMass * frictionHalf);
+    const GENDPDE_REAL randomHalf = (GENDPDE_REAL) 0.5 * noiseAmplitude * omegaR * sqrtStepSize * xi;
+    const GENDPDE_REAL explicitHalf = randomHalf - frictionHalf * u0;
+    const GENDPDE_REAL u1 = u0 + inverseReducedMass * explicitHalf;
+    const GENDPDE_REAL implicitHalf = (randomHalf - frictionHalf * u1) * implicitFactor;
     const GENDPDE_REAL impulse = explicitHalf + implicitHalf;
-    *kineticChange = impulse*(u0 + (GENDPDE_REAL) 0.5*inverseReducedMass*impulse);
+    *kineticChange = impulse * (u0 + (GENDPDE_REAL) 0.5 * inverseReducedMass * impulse);
     return impulse;
 }
 
@@ -611,10 +616,10 @@ GENDPDE_CORE GENDPDE_REAL gendpdePairImpulse(GENDPDE_REAL u0, GENDPDE_REAL omega
  * + alpha omega_R sqrt(dt) xi_q, with omega_q = omega_R^2 and randomAmplitude alpha = sqrt(2 k_B kappa).
  */
 GENDPDE_CORE GENDPDE_REAL gendpdeConductiveHeat(GENDPDE_REAL omegaR, GENDPDE_REAL heatConduction,
-        GENDPDE_REAL randomAmplitude, GENDPDE_REAL inverseTemperatureDifference, GENDPDE_REAL stepSize,
-        GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xiQ) {
-    return heatConduction*omegaR*omegaR*inverseTemperatureDifference*stepSize
-         + randomAmplitude*omegaR*sqrtStepSize*xiQ;
+                                                GENDPDE_REAL randomAmplitude, GENDPDE_REAL inverseTemperatureDifference,
+                                                GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xiQ) {
+    return heatConduction * omegaR * omegaR * inverseTemperatureDifference * stepSize
+            + randomAmplitude * omegaR * sqrtStepSize * xiQ;
 }
 
 /**
@@ -635,17 +640,20 @@ GENDPDE_CORE GENDPDE_REAL gendpdeConductiveHeat(GENDPDE_REAL omegaR, GENDPDE_REA
  * internal energy is now <= 0 (or not a number): the sweep stops at this pair.
  */
 GENDPDE_CORE int gendpdePairUpdate(int dissipation, int conduction, GENDPDE_REAL pairThermalEnergy,
-        GENDPDE_REAL inverseTemperatureDifference, GENDPDE_REAL frictionFactor, GENDPDE_REAL u0, GENDPDE_REAL omegaR,
-        GENDPDE_REAL inverseMassI, GENDPDE_REAL inverseMassJ, GENDPDE_REAL friction, GENDPDE_REAL heatConduction,
-        GENDPDE_REAL heatNoise, GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize, GENDPDE_REAL xi, GENDPDE_REAL xiQ,
-        GENDPDE_REAL* energyI, GENDPDE_REAL* energyJ, GENDPDE_REAL* impulse) {
+                                   GENDPDE_REAL inverseTemperatureDifference, GENDPDE_REAL frictionFactor,
+                                   GENDPDE_REAL u0, GENDPDE_REAL omegaR, GENDPDE_REAL inverseMassI,
+                                   GENDPDE_REAL inverseMassJ, GENDPDE_REAL friction, GENDPDE_REAL heatConduction,
+                                   GENDPDE_REAL heatNoise, GENDPDE_REAL stepSize, GENDPDE_REAL sqrtStepSize,
+                                   GENDPDE_REAL xi, GENDPDE_REAL xiQ, GENDPDE_REAL* energyI, GENDPDE_REAL* energyJ,
+                                   GENDPDE_REAL* impulse) {
     *impulse = 0;
     if (dissipation) {
         GENDPDE_REAL kineticChange;
-        *impulse = gendpdePairImpulse(u0, omegaR, friction*(1 + frictionFactor), sqrt(2*friction*pairThermalEnergy),
-                                      stepSize, sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
-        *energyI -= (GENDPDE_REAL) 0.5*kineticChange;
-        *energyJ -= (GENDPDE_REAL) 0.5*kineticChange;
+        *impulse =
+                gendpdePairImpulse(u0, omegaR, friction * (1 + frictionFactor), sqrt(2 * friction * pairThermalEnergy),
+                                   stepSize, sqrtStepSize, inverseMassI + inverseMassJ, xi, &kineticChange);
+        *energyI -= (GENDPDE_REAL) 0.5 * kineticChange;
+        *energyJ -= (GENDPDE_REAL) 0.5 * kineticChange;
     }
     if (conduction) {
         const GENDPDE_REAL heat = gendpdeConductiveHeat(omegaR, heatConduction, heatNoise, inverseTemperatureDifference,

@@ -37,26 +37,18 @@ struct RowGather {
         return d;
     }
     /** Whether Reference lists the pair (r^2 < R^2). */
-    bool listed(double r2) const {
-        return r2 < cutoff2;
-    }
+    bool listed(double r2) const { return r2 < cutoff2; }
     /** 1 where a listed pair's weight and its derivative are nonzero (r < R too), else 0: a mask, not a branch. */
-    double mask(double r2, double r) const {
-        return (double) (listed(r2) & (r < weight.getCutoff()));
-    }
+    double mask(double r2, double r) const { return (double) (listed(r2) & (r < weight.getCutoff())); }
     /** The pair's w(r), masked: Reference's bits in range, 0 beyond (a product by 1 or 0, no branch). */
-    double weightTerm(double r, double in) const {
-        return in*weight.valueInside(r);
-    }
+    double weightTerm(double r, double in) const { return in * weight.valueInside(r); }
     /** VC: the pair's moment term phi(r) d/r as Reference adds it, masked, 0 beyond range or at r = 0. */
     Vec3 momentTerm(const Vec3& d, double r, double in) const {
         const double positive = (double) (r > 0.0);
-        return d*((in*positive)*Physics::momentWeightOverDistance(r, weight.getInverseCutoff()));
+        return d * ((in * positive) * Physics::momentWeightOverDistance(r, weight.getInverseCutoff()));
     }
     /** 1 where Reference computes the pair's force (listed, r < R and r > 0), else 0 (in: mask()). */
-    double forceMask(double r, double in) const {
-        return in*(double) (r > 0.0);
-    }
+    double forceMask(double r, double in) const { return in * (double) (r > 0.0); }
     /**
      * The pair's force on s (Physics::pairForce, the core's gendpdePairForce, as Reference calls it) with the mask
      * of forceMask on w'(r), and V-C's moment term (qs, qt; when moments) only where the mask is 1: zero beyond range
@@ -65,15 +57,20 @@ struct RowGather {
      */
     Vec3 pairForce(const Vec3& d, double r, double mask, double coefficientSum, bool moments, const Vec3& qs,
                    const Vec3& qt, double& virial) const {
-        return Physics::pairForce(d, r + (1.0 - (double) (r > 0.0)), coefficientSum, mask*weight.derivativeInside(r),
+        return Physics::pairForce(d, r + (1.0 - (double) (r > 0.0)), coefficientSum, mask * weight.derivativeInside(r),
                                   weight.getInverseCutoff(), moments && mask != 0.0, qs, qt, virial);
     }
 };
 
 template <class NearestImage>
 RowGather<NearestImage> rowGather(const CellOrderedCandidates& layout, NearestImage nearestImage, double cutoff) {
-    return {layout.getPositions().data(), layout.getRowStart().data(), layout.getUpperStart().data(),
-            layout.getNeighbors().data(), nearestImage, cutoff*cutoff, Physics::DensityWeight(cutoff)};
+    return {layout.getPositions().data(),
+            layout.getRowStart().data(),
+            layout.getUpperStart().data(),
+            layout.getNeighbors().data(),
+            nearestImage,
+            cutoff * cutoff,
+            Physics::DensityWeight(cutoff)};
 }
 
 } // namespace
@@ -106,7 +103,7 @@ const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
         rows.inverseBoxLength[k] = rows.periodic ? box.getInverseDiagonal()[k] : 0.0;
     }
     rows.cutoff = cutoff;
-    rows.cutoff2 = cutoff*cutoff;
+    rows.cutoff2 = cutoff * cutoff;
     rows.inverseCutoff = weight.getInverseCutoff();
     rows.valueScale = weight.getValueScale();
     rows.derivativeScale = weight.getDerivativeScale();
@@ -122,7 +119,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     const int numParticles = positions.size();
     std::vector<int> firstBad(numRanges(numParticles, rowChunk), -1);
     parallelFor(threads, numParticles, rowChunk, [&](int begin, int end) {
-        firstBad[begin/rowChunk] = firstNonFinitePosition(positions, begin, end);
+        firstBad[begin / rowChunk] = firstNonFinitePosition(positions, begin, end);
     });
     const auto bad = std::find_if(firstBad.begin(), firstBad.end(), [](int i) { return i >= 0; });
     checkConfiguration(context, bad == firstBad.end() ? -1 : *bad);
@@ -169,7 +166,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                         n0 += gather.weightTerm(r, in);
                         if (moments)
                             g += gather.momentTerm(d, r, in);
-                        listed[m] = gather.listed(r2);   // read by collectPairs()
+                        listed[m] = gather.listed(r2); // read by collectPairs()
                     }
                     density[s] = n0;
                     if (moments)
@@ -180,10 +177,10 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                 const double G = moments ? momentOf[s].dot(momentOf[s]) : 0.0;
                 const int particleStatus = model.particleState(i, typeOf[i], density[s], G, state[s]);
                 if (moments)
-                    momentForceOf[s] = momentOf[s]*state[s].momentForceScale;   // as storeParticle()
-                if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin/rowChunk]) {
-                    failed[begin/rowChunk] = i;
-                    status[begin/rowChunk] = particleStatus;
+                    momentForceOf[s] = momentOf[s] * state[s].momentForceScale; // as storeParticle()
+                if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin / rowChunk]) {
+                    failed[begin / rowChunk] = i;
+                    status[begin / rowChunk] = particleStatus;
                 }
                 coefficient[s] = state[s].forceCoefficient;
             }
@@ -203,8 +200,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     if (*lowest != INT_MAX)
         throwParticleError(failedStatus[lowest - failedParticle.begin()], *lowest, volume[*lowest], context);
     // U = sum_i f(n_i)
-    return FixedOrderSum::parallelSum(threads, numParticles,
-                                      [state, rowOf](int i) { return state[rowOf[i]].freeEnergy; }, chunkSums);
+    return FixedOrderSum::parallelSum(
+            threads, numParticles, [state, rowOf](int i) { return state[rowOf[i]].freeEnergy; }, chunkSums);
 }
 
 double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,
@@ -253,7 +250,7 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
                 if (m >= gather.upperStart[s])
                     sum += virial;
                 if constexpr (decltype(withTensors)::value)
-                    if (mask != 0.0)   // the pairs Reference visits
+                    if (mask != 0.0) // the pairs Reference visits
                         Physics::addHalfPairVirial(term, d, tensor);
             }
             rowF[s] = f;
@@ -287,11 +284,11 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
         }
     });
     if (particleVirials != nullptr) {
-        particleVirials->resize(9*numRows);
+        particleVirials->resize(9 * numRows);
         double* tensorOut = particleVirials->data();
         parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
             for (int i = begin; i < end; i++)
-                std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9*i);
+                std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9 * i);
         });
     }
     return FixedOrderSum::parallelSum(threads, numRows, [virial](int i) { return virial[i]; }, chunkSums);
@@ -315,7 +312,7 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int total = 0;
-            for (int s = c*rowChunk; s < std::min(numRows, (c + 1)*rowChunk); s++) {
+            for (int s = c * rowChunk; s < std::min(numRows, (c + 1) * rowChunk); s++) {
                 int count = 0;
                 for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
                     count += listed[m];
@@ -330,7 +327,7 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++) {
             int next = offset[c];
-            for (int s = c*rowChunk; s < std::min(numRows, (c + 1)*rowChunk); s++) {
+            for (int s = c * rowChunk; s < std::min(numRows, (c + 1) * rowChunk); s++) {
                 const int count = pairStart[s];
                 pairStart[s] = next;
                 next += count;

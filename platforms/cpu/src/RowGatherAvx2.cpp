@@ -36,15 +36,15 @@ GENDPDE_AVX2 inline __m128i laneRows(const int* neighbors, int m, int count, int
     if (count == 4)
         return _mm_loadu_si128(reinterpret_cast<const __m128i*>(neighbors + m));
     int rows[4] = {s, s, s, s};
-    std::memcpy(rows, neighbors + m, sizeof(int)*count);
+    std::memcpy(rows, neighbors + m, sizeof(int) * count);
     return _mm_loadu_si128(reinterpret_cast<const __m128i*>(rows));
 }
 
 /** x - L round(x/L) with round(v) = (v + 1.5 2^52) - 1.5 2^52, as PeriodicBox::nearestImageRectangular. */
 GENDPDE_AVX2 inline __m256d nearestImage(__m256d x, double length, double inverseLength) {
     const __m256d shifter = _mm256_set1_pd(6755399441055744.0);
-    const __m256d rounded = _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(x, _mm256_set1_pd(inverseLength)), shifter),
-                                          shifter);
+    const __m256d rounded =
+            _mm256_sub_pd(_mm256_add_pd(_mm256_mul_pd(x, _mm256_set1_pd(inverseLength)), shifter), shifter);
     return _mm256_sub_pd(x, _mm256_mul_pd(_mm256_set1_pd(length), rounded));
 }
 
@@ -53,8 +53,8 @@ GENDPDE_AVX2 inline Lanes pairLanes(const RowGatherAvx2::Rows& rows, int s, __m1
     alignas(16) int t[4];
     _mm_store_si128(reinterpret_cast<__m128i*>(t), neighbors);
     const double* base = reinterpret_cast<const double*>(rows.position);   // Vec3 is double[3]
-    const __m256d p0 = _mm256_loadu_pd(base + 3*t[0]), p1 = _mm256_loadu_pd(base + 3*t[1]);
-    const __m256d p2 = _mm256_loadu_pd(base + 3*t[2]), p3 = _mm256_loadu_pd(base + 3*t[3]);
+    const __m256d p0 = _mm256_loadu_pd(base + 3 * t[0]), p1 = _mm256_loadu_pd(base + 3 * t[1]);
+    const __m256d p2 = _mm256_loadu_pd(base + 3 * t[2]), p3 = _mm256_loadu_pd(base + 3 * t[3]);
     const __m256d low01 = _mm256_unpacklo_pd(p0, p1), high01 = _mm256_unpackhi_pd(p0, p1);   // x0 x1 z0 z1, y0 y1 ..
     const __m256d low23 = _mm256_unpacklo_pd(p2, p3), high23 = _mm256_unpackhi_pd(p2, p3);
     const __m256d x = _mm256_permute2f128_pd(low01, low23, 0x20), z = _mm256_permute2f128_pd(low01, low23, 0x31);
@@ -85,8 +85,7 @@ GENDPDE_AVX2 inline __m256d inRangeMask(const RowGatherAvx2::Rows& rows, const L
     return _mm256_and_pd(listedMask(rows, lanes), _mm256_cmp_pd(lanes.r, _mm256_set1_pd(rows.cutoff), _CMP_LT_OQ));
 }
 
-GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int end, double* density,
-                                char* listed) {
+GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int end, double* density, char* listed) {
     alignas(32) double weight[4];
     for (int s = begin; s < end; s++) {
         double n0 = 0.0;
@@ -125,14 +124,14 @@ GENDPDE_AVX2 void forcesAvx2(const RowGatherAvx2::Rows& rows, const double* coef
             const __m256d positive = _mm256_cmp_pd(lanes.r, _mm256_setzero_pd(), _CMP_GT_OQ);
             alignas(16) int t[4];
             _mm_store_si128(reinterpret_cast<__m128i*>(t), neighbors);
-            const __m256d sumOfCoefficients = _mm256_add_pd(_mm256_set1_pd(coefficient[s]),
-                    _mm256_set_pd(coefficientBase[t[3]], coefficientBase[t[2]], coefficientBase[t[1]],
-                                  coefficientBase[t[0]]));
-            const __m256d derivative = Lanes4::gendpdeDensityWeightDerivative(lanes.r, inverseCutoff,
-                                                                              derivativeScale);
+            const __m256d sumOfCoefficients =
+                    _mm256_add_pd(_mm256_set1_pd(coefficient[s]),
+                                  _mm256_set_pd(coefficientBase[t[3]], coefficientBase[t[2]], coefficientBase[t[1]],
+                                                coefficientBase[t[0]]));
+            const __m256d derivative = Lanes4::gendpdeDensityWeightDerivative(lanes.r, inverseCutoff, derivativeScale);
             const __m256d divisor = _mm256_blendv_pd(_mm256_set1_pd(1.0), lanes.r, positive);
             const __m256d scale = _mm256_and_pd(_mm256_and_pd(inRangeMask(rows, lanes), positive),
-                    Lanes4::gendpdePairForceScale(sumOfCoefficients, derivative, divisor));
+                                                Lanes4::gendpdePairForceScale(sumOfCoefficients, derivative, divisor));
             __m256d term[3];
             _mm256_store_pd(w, Lanes4::gendpdeCentralPairForce(scale, lanes.dx, lanes.dy, lanes.dz, lanes.r, term));
             _mm256_store_pd(fx, term[0]);

@@ -13,7 +13,7 @@ using namespace OpenMM;
 void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const GenDPDEForce& force) {
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();
-    neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction*cutoff, periodic));
+    neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction * cutoff, periodic));
     int numParticles = system.getNumParticles();
     primitiveDensity.resize(numParticles);
     volume.resize(numParticles);
@@ -28,7 +28,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
 
 ReferenceCalcGenDPDEForceKernel::ParticleModel::ParticleModel(const ReferenceCalcGenDPDEForceKernel& kernel,
                                                               ContextImpl& context) :
-        estimator(kernel.estimator, kernel.cutoff, kernel.cutoff/kernel.cutoffScaling), laws(&kernel.lawByType),
+        estimator(kernel.estimator, kernel.cutoff, kernel.cutoff / kernel.cutoffScaling), laws(&kernel.lawByType),
         thermal({false, 0.0, nullptr, nullptr, nullptr, nullptr, false}) {
     if (kernel.dependsOnTemperature)
         thermal = GenDPDEIntegratorUtilities::thermalState(context);
@@ -66,22 +66,22 @@ int ReferenceCalcGenDPDEForceKernel::firstNonFinitePosition(const std::vector<Ve
     return -1;
 }
 
-void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, double volume,
-                                                         ContextImpl& context) const {
+void ReferenceCalcGenDPDEForceKernel::throwParticleError(int status, int i, double volume, ContextImpl& context) const {
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(i, cutoff, context.getStepCount()));
     if (status == GENDPDE_PARTICLE_OUTSIDE_DOMAIN)
-        throw OpenMMException(GenDPDEForceErrors::outsideDomain(i, 1.0/volume,
-                lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
+        throw OpenMMException(GenDPDEForceErrors::outsideDomain(
+                i, 1.0 / volume, lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
     if (status == GENDPDE_PARTICLE_TEMPERATURE_JUMP) {
         // theta where the integrator kept the state (the last step's positions) and here (storeParticle())
         const GenDPDEThermalState thermal = GenDPDEIntegratorUtilities::thermalState(context);
         const double capacity = thermal.classHeatCapacity[thermal.particleClass[i]];
-        throw OpenMMException(GenDPDEForceErrors::temperatureJump(i, thermal.internalEnergies[i]/capacity,
-                thermalEnergy[i]/capacity, 1.0/volume, context.getStepCount()));
+        throw OpenMMException(GenDPDEForceErrors::temperatureJump(i, thermal.internalEnergies[i] / capacity,
+                                                                  thermalEnergy[i] / capacity, 1.0 / volume,
+                                                                  context.getStepCount()));
     }
-    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(i, 1.0/volume,
-            lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
+    throw OpenMMException(GenDPDEForceErrors::equationOfStateOverflow(
+            i, 1.0 / volume, lawByType[types->getParticleTypeIndices()[i]], context.getStepCount()));
 }
 
 double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
@@ -103,7 +103,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
         std::fill(moment.begin(), moment.end(), Vec3());
         for (const ParticlePair& pair : pairs)
             if (pair.r > 0.0 && pair.r < cutoff) {
-                const Vec3 term = pair.delta*Physics::momentWeightOverDistance(pair.r, weight.getInverseCutoff());
+                const Vec3 term = pair.delta * Physics::momentWeightOverDistance(pair.r, weight.getInverseCutoff());
                 moment[pair.i] += term;
                 moment[pair.j] -= term;
             }
@@ -116,8 +116,8 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
     FixedOrderSum::Accumulator energy;   // summed as the CPU platform sums it, for the same bits
     for (int i = 0; i < numParticles; i++) {
         Physics::ParticleState state;
-        const int status = model.particleState(i, type[i], primitiveDensity[i],
-                                               moments ? moment[i].dot(moment[i]) : 0.0, state);
+        const int status =
+                model.particleState(i, type[i], primitiveDensity[i], moments ? moment[i].dot(moment[i]) : 0.0, state);
         storeParticle(i, state);
         if (status != GENDPDE_PARTICLE_VALID)
             throwParticleError(status, i, state.volume, context);
@@ -144,7 +144,7 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
     std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {
         if (pair.r == 0.0)
-            continue;   // coincident particles: counted in the density, no direction, no force
+            continue; // coincident particles: counted in the density, no direction, no force
         double virial;
         const Vec3 force = pairForce(pair, virial);
         if (forces != nullptr) {
@@ -163,9 +163,9 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
             Physics::addHalfPairVirial(force, pair.delta, tensors[pair.i]);
             Physics::addHalfPairVirial(force, pair.delta, tensors[pair.j]);
         }
-        particleVirials->resize(9*tensors.size());
+        particleVirials->resize(9 * tensors.size());
         for (size_t i = 0; i < tensors.size(); i++)
-            std::copy(tensors[i].element, tensors[i].element + 9, particleVirials->data() + 9*i);
+            std::copy(tensors[i].element, tensors[i].element + 9, particleVirials->data() + 9 * i);
     }
     FixedOrderSum::Accumulator virial;
     for (double w : particleVirial)
@@ -186,7 +186,8 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
     Vec3* box = extractBoxVectors(context);
     // (With a law that depends on temperature they also depend on the integrator's state: always computed.)
     if (observablesValid && !dependsOnTemperature && (observedVirials || !particleVirials)
-            && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1] && box[2] == observedBox[2])
+        && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1]
+        && box[2] == observedBox[2])
         return observables;
     computeDensitiesAndEnergy(context);
     observables.virial = computePairForces(context, nullptr, particleVirials ? &observables.particleVirials : nullptr);
@@ -198,7 +199,7 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
     observables.pressures = pressure;
     observables.densities.resize(volume.size());
     for (size_t i = 0; i < volume.size(); i++)
-        observables.densities[i] = 1.0/volume[i];
+        observables.densities[i] = 1.0 / volume[i];
     observedPositions = positions;
     for (int k = 0; k < 3; k++)
         observedBox[k] = box[k];

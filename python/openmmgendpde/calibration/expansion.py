@@ -98,9 +98,10 @@ def run_at(parameters, num_particles, temperature, melt_steps, steps, sample_eve
                           density=model.num_particles / model.volume)
 
 
-def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=5, neighbors=None, cutoff=None):
+def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=None, neighbors=None, cutoff=None):
     """The GenDPDEParameters of ``fluid`` at this coarse-graining level (`fluid.coarse_grain`; default: the paper's
-    R* = 1.6839 for argon); ValueError if the fluid has no thermal expansion."""
+    R* = 1.6839 for argon; MOLECULES_PER_PARTICLE); ValueError if the fluid has no thermal expansion."""
+    molecules_per_particle = molecules_per_particle or MOLECULES_PER_PARTICLE
     if cutoff is None and neighbors is None:
         cutoff = ARGON_UNITS.to_openmm(1.6839, "length") if fluid is ARGON_EXPANDING else None
         neighbors = None if cutoff is not None else 20
@@ -180,8 +181,9 @@ MOLECULES_PER_PARTICLE = 5
 
 
 def fluid_of(arguments):
-    """The Fluid of --fluid (a built-in name or a fluid or model file, as every command takes it); a fluid without a
-    thermal expansion, or a bad name, ends in a one-line error."""
+    """(Fluid, its mapped GenDPDEParameters) of --fluid (a built-in name or a fluid or model file, as every command
+    takes it) and the coarse-graining options; a fluid without a thermal expansion, or a bad name, ends in a one-line
+    error."""
     name = arguments.fluid
     if name in OLD_FLUID_NAMES:
         print(f"warning: thermal-expansion: --fluid {name} is now --fluid {OLD_FLUID_NAMES[name]} (the old name is "
@@ -189,7 +191,7 @@ def fluid_of(arguments):
         name = OLD_FLUID_NAMES[name]
     try:
         fluid = fluid_named(name)
-        return fluid, mapped(fluid, arguments.molecules_per_particle or MOLECULES_PER_PARTICLE,
+        return fluid, mapped(fluid, arguments.molecules_per_particle,
                              neighbors=arguments.neighbors,
                              cutoff=None if arguments.cutoff is None else arguments.cutoff * unit.nanometer)
     except ValueError as error:

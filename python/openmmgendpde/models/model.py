@@ -46,7 +46,8 @@ class Model:
 
     @property
     def bath_temperature(self):
-        """T0 (K, a float): the integrator's bath temperature, at which the model was built."""
+        """T0 (K, a float), at which the model was built: the integrator's bath temperature here; the argon and fluid
+        models give their own T0 (equilibrate() may move the bath)."""
         return self.integrator.getTemperature().value_in_unit(unit.kelvin)
 
     def context(self, platform="Reference", temperature=None, seed=1):
@@ -55,9 +56,7 @@ class Model:
         if isinstance(platform, str):
             platform = openmm.Platform.getPlatformByName(platform)
         context = openmm.Context(self.system, self.integrator, platform)
-        context.setPositions(self.positions)
-        temperature = self.bath_temperature if temperature is None else temperature
-        context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
+        self._place(context, self.bath_temperature if temperature is None else temperature, seed)
         return context
 
     def simulation(self, platform="Reference", velocity_seed=1):
@@ -65,9 +64,13 @@ class Model:
         (``platform``: its name)."""
         simulation = app.Simulation(self.topology, self.system, self.integrator,
                                     openmm.Platform.getPlatformByName(platform))
-        simulation.context.setPositions(self.positions)
-        simulation.context.setVelocitiesToTemperature(self.bath_temperature * unit.kelvin, velocity_seed)
+        self._place(simulation.context, self.bath_temperature, velocity_seed)
         return simulation
+
+    def _place(self, context, temperature, seed):
+        """The lattice positions, and Maxwell-Boltzmann velocities at ``temperature`` (K) drawn with ``seed``."""
+        context.setPositions(self.positions)
+        context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
 
     def equilibrate(self, platform, protocol):
         """A Context of the model brought off its lattice by ``protocol`` (an Equilibration): the integrator's bath at

@@ -76,7 +76,7 @@ def main():
     with tempfile.TemporaryDirectory() as directory:
         data = os.path.join(directory, "perf.data")
         run = subprocess.run(["perf", "record", "-q", "-F", str(arguments.frequency), "-o", data, sys.executable,
-                              os.path.join(ROOT, "tools", "time_steps.py")] + timing,
+                              os.path.join(ROOT, "benchmarks", "time_steps.py")] + timing,
                              capture_output=True, text=True)
         if run.returncode != 0:
             sys.exit(run.stderr)

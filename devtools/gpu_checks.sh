@@ -19,7 +19,8 @@
 # Stages (run): env (the GPU, the image's tools and libraries), install (the wheels, with --no-index, into a prefix
 # on PYTHONPATH, so that the image's packages stay visible; libOpenMMCUDA finds cuFFT and NVRTC in the CUDA toolkit
 # or the image's NVIDIA wheels), build (this plugin and its C++ tests against that OpenMM), tests (ctest -R CUDA:
-# the shared tests in each precision, the comparison with Reference, the sweep), throughput at N = 1e6 (Isoenergetic
+# the shared tests in each precision, the comparison with Reference, the sweep), python-tests (pytest's GPU tier of
+# test_gpu_platforms.py for the platform, with the image's pytest), throughput at N = 1e6 (Isoenergetic
 # steps, mixed precision, then the per-part profile and counts, GENDPDE_PROFILE), the package's benchmarks at
 # N = 1e5 (benchmark-integrator: every mode against VerletIntegrator and DPDIntegrator; benchmark-force: against
 # CustomGBForce) and, time permitting, at N = 1e6. A stage that fails or runs out of time is reported as such and
@@ -118,7 +119,7 @@ if [ "$mode" = run ]; then
 else
     image=/tmp/gendpde-image-python
     if [ ! -x "$image/bin/python" ]; then
-        python3 -m venv "$image" && "$image/bin/python" -m pip install -q --disable-pip-version-check numpy scipy \
+        python3 -m venv "$image" && "$image/bin/python" -m pip install -q --disable-pip-version-check numpy scipy pytest \
             tqdm scikit-build-core cmake ninja || exit 1
     fi
     python=$image/bin/python
@@ -187,7 +188,13 @@ print('load failures:', openmm.Platform.getPluginLoadFailures())"
     ls "$site/OpenMM.libs/lib/plugins" | grep GenDPDE
 }
 cpp_tests() {
-    ctest --test-dir "$build" -R "$ctest_filter" -j 4 --timeout 150 --output-on-failure
+    # (all at once: on the H200 each CUDA test spends most of its time compiling kernels on the CPU; with 4 at a time
+    # 7 of 11 had finished after 150 s)
+    ctest --test-dir "$build" -R "$ctest_filter" -j 12 --timeout 170 --output-on-failure
+}
+# The Python side on the device: the GPU tier's platform comparisons (test_gpu_platforms.py) for this platform.
+python_tests() {
+    "$python" -m pytest -m gpu -q -k "$platform" "$root/python/tests/test_gpu_platforms.py"
 }
 # time_steps.py: N particles, the state melted on the device itself; ms per Isoenergetic step, then the profile.
 throughput() {
@@ -208,12 +215,13 @@ benchmarks() {
 }
 
 export python wheels platform ctest_filter prefix build site root
-export -f environment cuda_libraries install build_plugin cpp_tests throughput benchmarks
+export -f environment cuda_libraries install build_plugin cpp_tests python_tests throughput benchmarks
 stage env 30 environment
 export LD_LIBRARY_PATH=$(cuda_libraries)${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
 if stage install 90 install && stage build 240 build_plugin; then
-    stage tests 150 cpp_tests
+    stage tests 180 cpp_tests
+    stage python-tests 90 python_tests
     if stage throughput-large 100 throughput $large; then
         grep -h "particle-steps/s\|critical path\|launches and" "$logs/throughput-large.log" | sed 's/^/    /' \
             | tee -a "$summary"

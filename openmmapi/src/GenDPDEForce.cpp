@@ -6,7 +6,6 @@
 #include "internal/LiquidArgon.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
-#include <sstream>
 #include <string>
 
 using namespace GenDPDEPlugin;

@@ -5,7 +5,7 @@
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
-#include <sstream>
+#include "internal/MessageText.h"
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -77,7 +77,7 @@ double GenDPDEForceImpl::backgroundVirial(ContextImpl& context) const {
 
 void GenDPDEForceImpl::checkBackgroundPressure() const {
     if (owner.getBackgroundPressure() != 0 && !owner.usesPeriodicBoundaryConditions()) {
-        std::ostringstream message;
+        MessageText message;
         message << "GenDPDEForce: background pressure p_b = " << owner.getBackgroundPressure() << " kJ/mol/nm^3 "
                 << "needs periodic boundaries (its energy is p_b V_box); the nonbonded method is CutoffNonPeriodic: "
                 << "set p_b = 0 or use CutoffPeriodic";

@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <random>
-#include <sstream>
+#include "internal/MessageText.h"
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -338,7 +338,7 @@ std::vector<double> GenDPDEIntegrator::getParticleTemperatures() const {
                 temperatures[i] /= capacity[i];
             return temperatures;
         }
-        std::ostringstream message;
+        MessageText message;
         message.precision(12);
         message << "GenDPDEIntegrator: the particle temperatures are not known one by one before a Context exists "
                 << "(the number of particles is not known yet): ";
@@ -461,7 +461,7 @@ void GenDPDEIntegrator::step(int steps) {
     requireTemperatures();
     requireBoundTypes();
     if (cutoff != boundCutoff) {
-        std::ostringstream message;
+        MessageText message;
         message.precision(12);
         message << "GenDPDEIntegrator: the cutoff distance was changed to " << cutoff << " nm after the Context was "
                 << "created (it runs with " << boundCutoff << (boundCutoff == 0.0 ? ", the GenDPDEForce's" : " nm")
@@ -545,7 +545,7 @@ void GenDPDEIntegrator::checkInternalEnergies(const std::vector<double>& energie
     for (int i = 0; i < numParticles; i++)
         if (unset ? energies[i] != 0.0
                   : !(energies[i] >= Ranges::internalEnergy.minimum && energies[i] <= Ranges::internalEnergy.maximum)) {
-            std::ostringstream message;
+            MessageText message;
             message.precision(17);
             message << "GenDPDEIntegrator: " << source << " is corrupt: the internal energy of particle " << i << " is "
                     << energies[i] << " kJ/mol; each must be finite and in [" << Ranges::internalEnergy.minimum << ", "

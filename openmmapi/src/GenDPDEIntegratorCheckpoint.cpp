@@ -7,10 +7,10 @@
 #include "internal/StrictXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <locale>
 #include <sstream>
 #include <string>
 
@@ -218,17 +218,20 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
     if (version < 1 || version > 2)
         throw OpenMMException("GenDPDEIntegrator: the State holds integrator parameters of version "
                               + std::to_string(version) + "; this build reads versions 1 to 2");
+    // The energies: hex floats ("%a") separated by spaces, read without streams (StrictXml::parseWhole says why).
     std::vector<double> energies;
-    std::istringstream text(node.getStringProperty("internalEnergies"));
-    text.imbue(std::locale::classic());
-    std::string token;
-    while (text >> token) {
-        char* end;
-        const double value = std::strtod(token.c_str(), &end);
-        if (end == token.c_str() || *end != '\0')
+    const std::string& text = node.getStringProperty("internalEnergies");
+    for (size_t start = text.find_first_not_of(" \t\n\r"); start != std::string::npos;
+         start = text.find_first_not_of(" \t\n\r", start)) {
+        const size_t end = std::min(text.size(), text.find_first_of(" \t\n\r", start));
+        const std::string token = text.substr(start, end - start);
+        char* parsedEnd;
+        const double value = std::strtod(token.c_str(), &parsedEnd);
+        if (parsedEnd == token.c_str() || *parsedEnd != '\0')
             throw OpenMMException("GenDPDEIntegrator: the State's internal energies are corrupt: '" + token
                                   + "' (entry " + std::to_string(energies.size()) + ") is not a number");
         energies.push_back(value);
+        start = end;
     }
     const int seed = StrictXml::integer(node, "GenDPDEIntegrator State", "seedInUse");
     checkInternalEnergies(energies, "the State");

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
+#include "internal/MessageText.h"
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -177,14 +177,14 @@ std::map<int, int> GenDPDEIntegratorUtilities::particleTypes(const System& syste
 }
 
 std::string GenDPDEIntegratorUtilities::nonFinitePositionMessage(int particle, const Vec3& position, long long step) {
-    std::ostringstream message;
+    MessageText message;
     message << "GenDPDEIntegrator: the position of particle " << particle << " is not finite (" << position[0] << ", "
             << position[1] << ", " << position[2] << ") at step " << step << "; the step was not applied";
     return message.str();
 }
 
 std::string GenDPDEIntegratorUtilities::nonFiniteForceMessage(int particle, const Vec3& force, long long step) {
-    std::ostringstream message;
+    MessageText message;
     message << "GenDPDEIntegrator: the force on particle " << particle << " is not finite (" << force[0] << ", "
             << force[1] << ", " << force[2] << ") at step " << step << "; the step was not applied";
     return message.str();
@@ -192,7 +192,7 @@ std::string GenDPDEIntegratorUtilities::nonFiniteForceMessage(int particle, cons
 
 std::string GenDPDEIntegratorUtilities::unstableStepMessage(int particle, double distance, double maxDisplacement,
                                                             long long step) {
-    std::ostringstream message;
+    MessageText message;
     message.precision(6);
     message << "GenDPDEIntegrator: particle " << particle << " would move " << distance << " nm in one step, more "
             << "than the pair range " << maxDisplacement << " nm, at step " << step << ": the simulation has become "
@@ -201,7 +201,7 @@ std::string GenDPDEIntegratorUtilities::unstableStepMessage(int particle, double
 }
 
 std::string GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(int particle, double energy, long long step) {
-    std::ostringstream message;
+    MessageText message;
     message.precision(6);
     message << "GenDPDEIntegrator: the internal energy of particle " << particle << " would become " << energy
             << " kJ/mol (<= 0) at step " << step << "; the step was not applied. Reduce the step size or increase "

@@ -6,7 +6,7 @@
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <memory>
-#include <sstream>
+#include "internal/MessageText.h"
 #include <vector>
 
 using namespace GenDPDEPlugin;
@@ -95,7 +95,7 @@ void* GenDPDEForceProxy::deserialize(const SerializationNode& node) const {
     using namespace StrictXml;
     const int version = integer(node, owner, "version");
     if (version < 1 || version > currentVersion) {
-        std::ostringstream message;
+        MessageText message;
         message << "GenDPDEForce: cannot read serialization version " << version << "; this build reads versions 1 to "
                 << currentVersion;
         throw OpenMMException(message.str());

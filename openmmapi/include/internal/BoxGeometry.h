@@ -7,7 +7,7 @@
 #include "openmm/Vec3.h"
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include "internal/MessageText.h"
 #include <string>
 
 namespace GenDPDEPlugin {
@@ -57,7 +57,7 @@ inline double halfSmallestWidth(const OpenMM::Vec3 box[3]) {
 inline void checkCutoffAgainstBox(const std::string& owner, double cutoff, const OpenMM::Vec3 box[3]) {
     const double limit = halfSmallestWidth(box);
     if (cutoff > limit) {
-        std::ostringstream message;
+        MessageText message;
         message.precision(12);
         message << owner << ": cutoff distance = " << cutoff << " nm is not allowed with this periodic box; "
                 << "it must be <= half the smallest box width (" << limit << " nm; for a rectangular box the "

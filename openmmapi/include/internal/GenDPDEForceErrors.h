@@ -9,21 +9,21 @@
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/Vec3.h"
-#include <sstream>
+#include "internal/MessageText.h"
 #include <string>
 
 namespace GenDPDEPlugin {
 namespace GenDPDEForceErrors {
 
 inline std::string nonFinitePosition(int particle, const OpenMM::Vec3& r, long long step) {
-    std::ostringstream message;
+    MessageText message;
     message << "GenDPDEForce: the position of particle " << particle << " is not finite (" << r[0] << ", " << r[1]
             << ", " << r[2] << ") at step " << step;
     return message.str();
 }
 
 inline std::string noNeighbor(int particle, double cutoff, long long step) {
-    std::ostringstream message;
+    MessageText message;
     message.precision(12);
     message << "GenDPDEForce: particle " << particle << " has no neighbor within the cutoff (" << cutoff
             << " nm) at step " << step << ", so its VA volume 1/n0 is undefined. "
@@ -38,7 +38,7 @@ inline std::string noNeighbor(int particle, double cutoff, long long step) {
 inline std::string equationOfStateOverflow(int particle, double density, const Physics::LocalEquationOfState& law,
                                            long long step) {
     const EquationsOfState::Law& description = EquationsOfState::laws[law.law];
-    std::ostringstream message;
+    MessageText message;
     message.precision(6);
     message << "GenDPDEForce: the " << description.description << " equation of state of particle " << particle
             << " overflows at its density " << density << " nm^-3";
@@ -56,7 +56,7 @@ inline std::string equationOfStateOverflow(int particle, double density, const P
 inline std::string outsideDomain(int particle, double density, const Physics::LocalEquationOfState& law,
                                  long long step) {
     const EquationsOfState::Law& description = EquationsOfState::laws[law.law];
-    std::ostringstream message;
+    MessageText message;
     message.precision(6);
     message << "GenDPDEForce: particle " << particle << " has the density " << density << " nm^-3 at step " << step
             << ", outside the domain of its " << description.description << " equation of state (" << description.domain
@@ -72,7 +72,7 @@ inline std::string outsideDomain(int particle, double density, const Physics::Lo
  */
 inline std::string temperatureJump(int particle, double thetaBefore, double thetaAfter, double density,
                                    long long step) {
-    std::ostringstream message;
+    MessageText message;
     message.precision(6);
     message << "GenDPDEForce: the temperature of particle " << particle << " went from " << thetaBefore << " K to "
             << thetaAfter << " K in one step (by its compression or expansion alone, to the density " << density

@@ -6,7 +6,7 @@
 
 #include "openmm/OpenMMException.h"
 #include <cmath>
-#include <sstream>
+#include "internal/MessageText.h"
 #include <string>
 
 namespace GenDPDEPlugin {
@@ -14,7 +14,7 @@ namespace ParameterChecks {
 
 [[noreturn]] inline void reject(const std::string& owner, const std::string& parameter, double value,
                                 const std::string& units, const std::string& allowed) {
-    std::ostringstream message;
+    MessageText message;
     message.precision(12);
     message << owner << ": " << parameter << " = " << value << (units.empty() ? "" : " ") << units
             << " is not allowed; it must be " << allowed;
@@ -56,7 +56,7 @@ inline void requireInRange(const std::string& owner, const std::string& paramete
                            bool excludeMinimum = false) {
     const bool below = excludeMinimum ? !(value > range.minimum) : !(value >= range.minimum);
     if (!std::isfinite(value) || below || !(value <= range.maximum)) {
-        std::ostringstream allowed;
+        MessageText allowed;
         allowed.precision(12);
         allowed << "finite and in " << (excludeMinimum ? "(" : "[") << range.minimum << ", " << range.maximum << "]"
                 << (range.units[0] == '\0' ? "" : " ") << range.units;

@@ -13,8 +13,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
-#include <locale>
-#include <sstream>
+#include <charconv>
 #include <string>
 #include <vector>
 
@@ -27,6 +26,24 @@ inline std::string text(const OpenMM::SerializationNode& node, const std::string
         throw OpenMM::OpenMMException(owner + " XML: the <" + node.getName() + "> element has no property '" + name
                                       + "' (corrupt, or not written by this plugin)");
     return node.getStringProperty(name);
+}
+
+/**
+ * Whether the whole of text is one number of type T (double: decimal, in the C locale's format; long long: decimal
+ * digits), with an optional sign, and it fits in T; result receives it. std::from_chars reads no locale and allocates
+ * nothing: formatted stream input (std::istream >> value) crashed inside Python processes on a CUDA machine (a setState
+ * from Python; docs/performance.md, "On a GPU"), where the C++ tests that read the same text did not.
+ */
+template <class T>
+bool parseWhole(const std::string& text, T& result) {
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    if (begin != end && *begin == '+' && end - begin > 1 && begin[1] != '-')
+        begin++;   // from_chars takes a '-' only; a leading '+' is allowed as the C library allows it
+    if (begin == end)
+        return false;
+    const std::from_chars_result parsed = std::from_chars(begin, end, result);
+    return parsed.ec == std::errc() && parsed.ptr == end;
 }
 
 [[noreturn]] inline void refuse(const OpenMM::SerializationNode& node, const std::string& owner,
@@ -49,11 +66,8 @@ inline double number(const OpenMM::SerializationNode& node, const std::string& o
         return negative ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
     if (word == "nan")
         return std::numeric_limits<double>::quiet_NaN();
-    std::istringstream stream(value);
-    stream.imbue(std::locale::classic());
     double result;
-    stream >> std::noskipws >> result;
-    if (value.empty() || !stream || stream.peek() != std::char_traits<char>::eof())
+    if (!parseWhole(value, result))
         refuse(node, owner, name, value, "a number");
     return result;
 }
@@ -62,12 +76,8 @@ inline double number(const OpenMM::SerializationNode& node, const std::string& o
 inline int integer(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name,
                    const std::string& allowed = "an integer") {
     const std::string value = text(node, owner, name);
-    std::istringstream stream(value);
-    stream.imbue(std::locale::classic());
     long long result;
-    stream >> std::noskipws >> result;
-    if (value.empty() || !stream || stream.peek() != std::char_traits<char>::eof() || result < INT_MIN
-        || result > INT_MAX)
+    if (!parseWhole(value, result) || result < INT_MIN || result > INT_MAX)
         refuse(node, owner, name, value, allowed);
     return (int) result;
 }

@@ -8,7 +8,6 @@
 #include "openmm/internal/ContextImpl.h"
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;

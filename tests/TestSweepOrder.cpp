@@ -254,14 +254,13 @@ std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box
  * The order of pairs stored by rows (the CPU platform's list): the rows in a shuffled order, each row the pairs of
  * its particle with larger ones in increasing order; mapped back to the (i, j) list's indices.
  */
-std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs, int numThreads, int seed) {
+std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs, int numThreads, int seed,
+                                          GenDPDESweepOrder::RowReading reading) {
     const int numParticles = scene.positions.size();
     std::vector<int> particleOfRow(numParticles);
     std::iota(particleOfRow.begin(), particleOfRow.end(), 0);
     std::shuffle(particleOfRow.begin(), particleOfRow.end(), std::mt19937(seed));
-    std::vector<int> rowOf(numParticles), rowPairStart(numParticles + 1, 0);
-    for (int row = 0; row < numParticles; row++)
-        rowOf[particleOfRow[row]] = row;
+    std::vector<int> rowPairStart(numParticles + 1, 0);
     std::vector<std::vector<int>> pairsOfParticle(numParticles); // indices into the (i, j) list
     for (int k = 0; k < pairs.size(); k++)
         pairsOfParticle[pairs.ij[2 * k]].push_back(k);
@@ -277,8 +276,9 @@ std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs
     }
     rowPairStart[numParticles] = listIndex.size();
     GenDPDESweepOrder order;
+    order.setRowReading(reading);
     order.build(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff, stored.size(),
-                stored.ij.data(), stored.ij.data() + 1, 2, numThreads, rowOf.data(), rowPairStart.data());
+                stored.ij.data(), stored.ij.data() + 1, 2, numThreads, rowPairStart.data());
     std::vector<int> result;
     for (int k : order.getOrder())
         result.push_back(listIndex[k]);
@@ -293,7 +293,9 @@ void testOrderIsTheDefinition() {
         ASSERT_EQUAL((int) expected.size(), pairs.size());
         for (int numThreads : {1, 2}) {
             ASSERT(expected == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
-            ASSERT(expected == orderOfPairsStoredByRows(scene, pairs, numThreads, 10 + numThreads));
+            for (auto reading : {GenDPDESweepOrder::RowReading::ParticleOrder,
+                                 GenDPDESweepOrder::RowReading::StorageOrder, GenDPDESweepOrder::RowReading::BySize})
+                ASSERT(expected == orderOfPairsStoredByRows(scene, pairs, numThreads, 10 + numThreads, reading));
         }
     };
     for (bool periodic : {true, false}) {

@@ -134,19 +134,33 @@ void GenDPDESweepOrder::sortParticlesByCell() {
 
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic, double range,
                               int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads,
-                              const int* rowOfParticle, const int* rowPairStart) {
+                              const int* rowPairStart) {
     computeCells(positions, boxVectors, periodic, range, numThreads);
     sortParticlesByCell();
 
-    // The pairs in (i, j) order as runs of stored pairs: run r is runBound[2r] ... runBound[2r + 1] - 1 (one run per
-    // first particle if the pairs are stored by rows, else runs of 4096 consecutive pairs).
-    if (rowOfParticle != nullptr) {
-        const int numParticles = positions.size();
-        runBound.resize(2 * (size_t) numParticles);
-        for (int i = 0; i < numParticles; i++) {
-            runBound[2 * i] = rowPairStart[rowOfParticle[i]];
-            runBound[2 * i + 1] = rowPairStart[rowOfParticle[i] + 1];
+    // The pairs as runs: runs of 4096 consecutive pairs of an (i, j)-ordered list; or, stored by rows, one run per row,
+    // read in storage order (then each block's runs are put in order of their first particles below) or in particle
+    // order (each run then the pairs of particle `run`, and the blocks come out in (i, j) order).
+    const bool byRows = (rowPairStart != nullptr);
+    const bool storageOrder = byRows
+            && (rowReading == RowReading::StorageOrder
+                || (rowReading == RowReading::BySize && numPairs >= storageOrderFromPairs));
+    if (storageOrder) {
+        const int numRows = positions.size();
+        runBound.resize(2 * (size_t) numRows);
+        for (int r = 0; r < numRows; r++) {
+            runBound[2 * r] = rowPairStart[r];
+            runBound[2 * r + 1] = rowPairStart[r + 1];
         }
+    } else if (byRows) {
+        const int numParticles = positions.size();
+        runBound.assign(2 * (size_t) numParticles, 0); // (a particle without pairs: an empty run)
+        for (int r = 0; r < numParticles; r++)
+            if (rowPairStart[r + 1] > rowPairStart[r]) {
+                const int i = pairI[(size_t) rowPairStart[r] * stride];
+                runBound[2 * i] = rowPairStart[r];
+                runBound[2 * i + 1] = rowPairStart[r + 1];
+            }
     } else {
         runBound.resize(2 * (size_t) numRanges(numPairs, 4096));
         for (size_t r = 0; 2 * r < runBound.size(); r++) {
@@ -154,6 +168,7 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
             runBound[2 * r + 1] = std::min(numPairs, (int) (r + 1) * 4096);
         }
     }
+    const bool runIsParticle = byRows && !storageOrder;
     const int numRuns = runBound.size() / 2;
 
     // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
@@ -186,9 +201,10 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
         }
     });
 
-    // A stable counting sort by rank, reading the pairs in (i, j) order (run after run), keeps each block's pairs in
-    // (i, j) order: counts per range of runs, then each range writes its pairs from its own offsets (the result does
-    // not depend on the ranges).
+    // A stable counting sort by rank, reading the runs one after another: counts per range of runs, then each range
+    // writes its pairs from its own offsets (the result does not depend on the ranges). Each block then holds its
+    // pairs in (i, j) order, or, rows read in storage order, as runs of one first particle each (increasing j within a
+    // run, the runs in storage order), which the last pass puts in order of i.
     const int numRanks = rank;
     const int numRunRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
     const int runsPerRange = numRanges(numRuns, numRunRanges);
@@ -216,22 +232,43 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     sortedFirst.resize(numPairs);
     int* sortedPairs = sorted.data();
     int* firstOfSorted = sortedFirst.data(); // their first particles, for the interleaving to read in order
-    const bool byRows = (rowOfParticle != nullptr); // then run i holds the pairs of particle i
     parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
             for (int run = r * runsPerRange; run < std::min(numRuns, (r + 1) * runsPerRange); run++)
                 for (int k = bound[2 * run]; k < bound[2 * run + 1]; k++) {
                     const int position = count[(size_t) r * numRanks + rankOfPair[k]]++;
                     sortedPairs[position] = k;
-                    firstOfSorted[position] = byRows ? run : pairI[(size_t) k * stride];
+                    firstOfSorted[position] = runIsParticle ? run : pairI[(size_t) k * stride];
                 }
     });
 
-    // Within each block, the lists of four consecutive first particles interleaved.
+    // Within each block, the runs of one first particle in increasing order of it (pairs stored by rows) and the
+    // lists of four consecutive first particles interleaved.
     order.resize(numPairs);
     parallelFor(numThreads, numRanks, 8, [&](int begin, int end) {
-        for (int s = begin; s < end; s++)
-            interleaveRuns(&sorted[blockStart[s]], &sortedFirst[blockStart[s]], blockStart[s + 1] - blockStart[s],
-                           &order[blockStart[s]]);
+        std::vector<std::pair<int, int>> runs; // (first particle, start) of each run of a block
+        std::vector<int> listed, first;
+        for (int s = begin; s < end; s++) {
+            const int start = blockStart[s], count = blockStart[s + 1] - start;
+            const int* blockPairs = &sorted[start];
+            const int* blockFirst = &sortedFirst[start];
+            if (std::is_sorted(blockFirst, blockFirst + count)) {
+                interleaveRuns(blockPairs, blockFirst, count, &order[start]);
+                continue;
+            }
+            runs.clear();
+            for (int k = 0; k < count; k++)
+                if (k == 0 || blockFirst[k] != blockFirst[k - 1])
+                    runs.emplace_back(blockFirst[k], k);
+            std::sort(runs.begin(), runs.end());
+            listed.clear();
+            first.clear();
+            for (const std::pair<int, int>& run : runs)
+                for (int k = run.second; k < count && blockFirst[k] == run.first; k++) {
+                    listed.push_back(blockPairs[k]);
+                    first.push_back(run.first);
+                }
+            interleaveRuns(listed.data(), first.data(), count, &order[start]);
+        }
     });
 }

@@ -35,14 +35,25 @@ public:
     /**
      * Build the order for the pairs (pairI[k stride], pairJ[k stride]), k < numPairs, i < j, all closer than range
      * (nm), at these positions (nm) and box vectors (used only if periodic). The pairs are in (i, j) order, or, if
-     * rowOfParticle is given, stored by rows: the pairs whose first particle is i are rowPairStart[rowOfParticle[i]]
-     * ... rowPairStart[rowOfParticle[i] + 1] - 1, in increasing j, the rows in any order (the CPU platform's cell
-     * order); the order is the same either way and holds indices into the pairs as stored. numThreads threads share
-     * the work; the result is the same for any number.
+     * rowPairStart is given, stored by rows: row r holds pairs rowPairStart[r] ... rowPairStart[r + 1] - 1, all of
+     * one first particle, in increasing j; one row per particle, the rows in any order (the CPU platform's cell
+     * order; read as getRowReading() says). The order is the same either way and holds indices into the pairs as
+     * stored. numThreads threads share the work; the result is the same for any number.
      */
     void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                double range, int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads = 1,
-               const int* rowOfParticle = nullptr, const int* rowPairStart = nullptr);
+               const int* rowPairStart = nullptr);
+    /**
+     * How build() reads pairs stored by rows (the order is the same; only the speed differs): in particle order, the
+     * rows at random in memory when the particles are numbered at random in space, each block's pairs then in (i, j)
+     * order; or in storage order (cell order), each block's runs of one first particle then sorted by it. BySize (the
+     * default): storage order from storageOrderFromPairs pairs, where reading rows at random costs more than the sort
+     * (docs/performance.md, "Where a step's time goes").
+     */
+    enum class RowReading { BySize, ParticleOrder, StorageOrder };
+    static const int storageOrderFromPairs = 1000000;
+    void setRowReading(RowReading reading) { rowReading = reading; }
+    RowReading getRowReading() const { return rowReading; }
     /** The number of groups run one after another: the colours, then possibly the group of non-adjacent pairs. */
     int getNumGroups() const { return groupStart.size() - 1; }
     /** The blocks of group g are blocks groupStart[g] .. groupStart[g + 1] - 1 (in this numbering). */
@@ -79,6 +90,7 @@ private:
     void sortParticlesByCell();
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
+    RowReading rowReading = RowReading::BySize;
     std::vector<std::array<int, 3>> particleCell;
     std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order, sorted, sortedFirst;
     std::vector<int> cellCount, particlesByCell, slotOfParticle, runBound;

@@ -5,6 +5,8 @@
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <climits>
+#include <cstdlib>
+#include <cstring>
 #include <type_traits>
 
 using namespace GenDPDEPlugin;
@@ -14,6 +16,26 @@ namespace {
 
 /** Rows per range of work (fixed: the ranges do not depend on the number of threads). */
 const int rowChunk = 256;
+
+/**
+ * From this many particles one thread runs the gathers in cell order too (docs/performance.md, "One thread"): below
+ * it, Reference's passes over its (i, j) list are faster (each pair evaluated once, the particles in cache); above
+ * it, the particles that list reaches in index order miss the caches (a long run numbers its particles at random in
+ * space), and the gathers, which read them in cell order, are faster.
+ */
+const int oneThreadGathersFrom = 131072;
+
+/**
+ * Whether one thread runs the gathers for this many particles: by size, or as GENDPDE_CPU_ONE_THREAD_GATHERS says (1:
+ * always, 0: never; read once per process), so that the tests can compare both paths with Reference at any size.
+ */
+bool oneThreadGathers(size_t numParticles) {
+    static const int setting = []() {
+        const char* value = std::getenv("GENDPDE_CPU_ONE_THREAD_GATHERS");
+        return value == nullptr ? -1 : (std::strcmp(value, "1") == 0 ? 1 : 0);
+    }();
+    return setting < 0 ? numParticles >= (size_t) oneThreadGathersFrom : setting == 1;
+}
 
 /**
  * What a gather along a row needs: the row positions, the rows and Reference's pair arithmetic (the physics core's
@@ -112,7 +134,7 @@ const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {
 
 double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context) {
     const int threads = extractNumThreads(context);
-    sequential = (threads == 1);
+    sequential = (threads == 1) && !oneThreadGathers(extractPositions(context).size());
     if (sequential)
         return ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(context);
     const std::vector<Vec3>& positions = extractPositions(context);
@@ -350,5 +372,5 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
             }
         });
     });
-    return PairView(pairs.data(), pairs.size(), layout.getRow().data(), rowPairStart.data());
+    return PairView(pairs.data(), pairs.size(), rowPairStart.data());
 }

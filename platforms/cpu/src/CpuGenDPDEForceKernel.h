@@ -24,17 +24,18 @@ namespace GenDPDEPlugin {
  *
  * It lends the integrator its pairs (collectPairs()), collected on the platform's threads.
  *
- * On one thread it runs Reference's passes instead (the same results by construction): the gathers evaluate each
- * pair from both of its particles and the integrator then needs the pairs collected from the rows, which pays only
- * when threads share the work (docs/performance.md, "One thread").
+ * On one thread and below 131,072 particles it runs Reference's passes instead (the same results by construction):
+ * the gathers evaluate each pair from both of its particles and the integrator then needs the pairs collected from the
+ * rows, which pays only when threads share the work or when the particles no longer fit in the caches
+ * (docs/performance.md, "One thread").
  */
 class CpuCalcGenDPDEForceKernel : public ReferenceCalcGenDPDEForceKernel {
 public:
     CpuCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             ReferenceCalcGenDPDEForceKernel(name, platform) {}
     /**
-     * GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()); on one
-     * thread, Reference's list.
+     * GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()), or
+     * Reference's list where the evaluation ran Reference's passes.
      */
     PairView getPairs(int numThreads) override {
         return sequential ? neighborList->getPairs() : collectPairs(numThreads);
@@ -58,7 +59,7 @@ private:
     /** The AVX2 gathers' input for this evaluation, or null where they do not apply (no AVX2, triclinic box, VC). */
     const RowGatherAvx2::Rows* vectorRowsOrNull();
     std::unique_ptr<RowGatherAvx2::Rows> vectorRows{new RowGatherAvx2::Rows()};
-    bool sequential = false; // whether the last evaluation ran Reference's passes (one thread)
+    bool sequential = false; // whether the last evaluation ran Reference's passes (one thread, small systems)
     CellOrderedCandidates layout; // the neighbor list's candidates as full rows in cell order
     // Per row: what the passes find, before it is copied to the particle arrays.
     std::vector<double> rowDensity, rowCoefficient, rowVirial;

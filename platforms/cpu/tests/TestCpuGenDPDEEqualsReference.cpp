@@ -2,7 +2,9 @@
  * observables, virials and virial tensors of the force tests' scenes (every estimator), and trajectories (positions, velocities, internal energies)
  * after 1000 isoenergetic steps of a liquid large enough for the sweep to run many blocks of a colour at once
  * (14^3 particles: 8 cells and 4 blocks per direction, 8 blocks per colour). Compared bit for bit. With one thread
- * the CPU platform runs Reference's force passes (CpuGenDPDEForceKernel.h), so 2 and 3 threads test its gathers. */
+ * and these sizes the CPU platform runs Reference's force passes (CpuGenDPDEForceKernel.h), so 2 and 3 threads test
+ * its gathers; ctest runs this program again with GENDPDE_CPU_ONE_THREAD_GATHERS=1, where one thread runs them too
+ * (as it does from 131,072 particles), and with GENDPDE_CPU_VECTOR=0 (the scalar gathers). */
 
 #include "TestGenDPDEIntegrator.h"
 #include "TestPlugins.h"

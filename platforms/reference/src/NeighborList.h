@@ -61,16 +61,13 @@ struct ParticlePair {
 
 /**
  * A read-only view of the pairs found by NeighborList::update() (in (i, j) order) or a force kernel's (maybe stored by
- * rows: then the pairs whose first particle is i are rowPairStart[rowOfParticle[i]] ... rowPairStart[rowOfParticle[i]
- * + 1] - 1, in increasing j, the rows in any order), valid until the next update.
+ * rows: row r holds the pairs rowPairStart[r] ... rowPairStart[r + 1] - 1, those of one first particle, in increasing
+ * j; one row per particle, the rows in any order), valid until the next update.
  */
 class PairView {
 public:
-    PairView(const ParticlePair* first, size_t count, const int* rowOfParticle = nullptr,
-             const int* rowPairStart = nullptr) :
-            first(first), count(count), rowOfParticle(rowOfParticle), rowPairStart(rowPairStart) {}
-    /** Null if the pairs are in (i, j) order, else each particle's row (see above). */
-    const int* getRowOfParticle() const { return rowOfParticle; }
+    PairView(const ParticlePair* first, size_t count, const int* rowPairStart = nullptr) :
+            first(first), count(count), rowPairStart(rowPairStart) {}
     /** Null if the pairs are in (i, j) order, else where each row's pairs begin (one more than the rows). */
     const int* getRowPairStart() const { return rowPairStart; }
     const ParticlePair* begin() const { return first; }
@@ -81,7 +78,6 @@ public:
 private:
     const ParticlePair* first;
     size_t count;
-    const int* rowOfParticle;
     const int* rowPairStart;
 };
 

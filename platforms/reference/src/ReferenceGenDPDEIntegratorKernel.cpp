@@ -127,7 +127,7 @@ void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, 
     sweepOrder.build(extractPositions(context), extractBoxVectors(context),
                      context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
                      anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, numThreads,
-                     pairs.getRowOfParticle(), pairs.getRowPairStart());
+                     pairs.getRowPairStart());
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& parameters,

@@ -76,10 +76,22 @@ def write_setfl(path, model, max_density):
 
 
 def add_layout_argument(parser):
-    """--cell-order, for both comparison tools."""
+    """--cell-order and --state, for both comparison tools."""
     parser.add_argument("--cell-order", action="store_true",
                         help="number the plugin's particles cell by cell, as LAMMPS sorts its own atoms (default: at "
                              "random, the layout a long run has mixed its particles into)")
+    parser.add_argument("--state", help="a saved liquid (.npz of positions and velocities, nm and nm/ps, as "
+                                        "benchmarks/time_steps.py writes; its particle count replaces --particles) "
+                                        "instead of melting one: for 1,000,000 particles, whose melting takes minutes")
+
+
+def liquid(arguments, cutoff):
+    """(number of particles, positions, velocities) of the liquid the tools compare: --state's, or
+    openmmgendpde.benchmarks.cpu.mixed_liquid (melted, numbered at random) of --particles."""
+    if arguments.state is None:
+        return (arguments.particles, *mixed_liquid(arguments.particles, cutoff))
+    saved = np.load(arguments.state)
+    return len(saved["positions"]), saved["positions"], saved["velocities"]
 
 
 def laid_out(positions, velocities, edge, cutoff, cell_order):
@@ -153,8 +165,8 @@ def main():
     if shutil.which("lmp") is None or shutil.which("mpirun") is None:
         sys.exit("needs LAMMPS and MPI: apt install lammps openmpi-bin")
 
+    arguments.particles, positions, velocities = liquid(arguments, CUTOFF)
     model = liquid_argon(arguments.particles, CUTOFF, "VB", seed=1)
-    positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
     positions, velocities = laid_out(positions, velocities, edge, cutoff, arguments.cell_order)

@@ -38,11 +38,11 @@ import time
 import numpy as np
 
 # (this directory: run as a script)
-from compare_lammps import KJ_PER_MOL_PER_EV, add_layout_argument, laid_out, write_data
+from compare_lammps import KJ_PER_MOL_PER_EV, add_layout_argument, laid_out, liquid, write_data
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
-from openmmgendpde.benchmarks.cpu import context_at, mixed_liquid
+from openmmgendpde.benchmarks.cpu import context_at
 from openmmgendpde.models.argon import liquid_argon
 
 CUTOFF = 1.6839
@@ -127,8 +127,8 @@ def main():
     if "DPD-REACT" not in help_text:
         parser.error(f"{arguments.lmp} has no DPD-REACT package (build it: devtools/build_lammps_dpd_react.sh)")
 
+    arguments.particles, positions, velocities = liquid(arguments, CUTOFF)
     model = liquid_argon(arguments.particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
-    positions, velocities = mixed_liquid(arguments.particles, CUTOFF)
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
     positions, velocities = laid_out(positions, velocities, edge, cutoff, arguments.cell_order)

@@ -33,7 +33,7 @@ void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) 
     const std::vector<int>& candidates = list.getCandidates();
 
     // Row sizes: the candidates (j, i) of each particle i, then its own candidates (i, j).
-    std::vector<int> lowerCount(numRows, 0);
+    lowerCount.assign(numRows, 0);
     for (int j : candidates)
         lowerCount[j]++;
     rowStart.assign(numRows + 1, 0);

@@ -49,8 +49,8 @@ const int particleChunk = 256;
 
 void NeighborList::build(const std::vector<Vec3>& positions, int numThreads) {
     Vec3 extent;
-    const std::vector<Vec3> unit = unitCellCoordinates(positions, extent, numThreads);
-    sortIntoCells(unit, extent);
+    unitCellCoordinates(positions, extent, numThreads, unitCoordinates);
+    sortIntoCells(unitCoordinates, extent);
     collectCandidates(periodic ? wrappedPositions : positions, numThreads);
     builtPositions = positions;
     for (int k = 0; k < 3; k++)
@@ -59,11 +59,11 @@ void NeighborList::build(const std::vector<Vec3>& positions, int numThreads) {
     buildCount++;
 }
 
-std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent,
-                                                    int numThreads) const {
+void NeighborList::unitCellCoordinates(const std::vector<Vec3>& positions, Vec3& extent, int numThreads,
+                                       std::vector<Vec3>& unit) const {
     // Coordinates in [0, 1)^3: fractional coordinates if periodic, the bounding box otherwise.
     const int numParticles = positions.size();
-    std::vector<Vec3> unit(numParticles);
+    unit.resize(numParticles);
     if (periodic) {
         extent = BoxGeometry::perpendicularWidths(box.getVectors());
         parallelFor(numThreads, numParticles, 4096, [&](int begin, int end) {
@@ -73,7 +73,7 @@ std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& pos
                     unit[i][k] = s[k] - BoxGeometry::floorToInteger(s[k]);
             }
         });
-        return unit;
+        return;
     }
     Vec3 low = numParticles > 0 ? positions[0] : Vec3(), high = low;
     for (const Vec3& r : positions)
@@ -86,7 +86,6 @@ std::vector<Vec3> NeighborList::unitCellCoordinates(const std::vector<Vec3>& pos
     for (int i = 0; i < numParticles; i++)
         for (int k = 0; k < 3; k++)
             unit[i][k] = extent[k] > 0.0 ? (positions[i][k] - low[k]) / extent[k] : 0.0;
-    return unit;
 }
 
 void NeighborList::sortIntoCells(const std::vector<Vec3>& unit, const Vec3& extent) {
@@ -114,9 +113,9 @@ void NeighborList::sortIntoCells(const std::vector<Vec3>& unit, const Vec3& exte
     for (int c = 0; c < totalCells; c++)
         cellStart[c + 1] += cellStart[c];
     cellParticles.resize(numParticles);
-    std::vector<int> fill(cellStart.begin(), cellStart.end() - 1);
+    cellFill.assign(cellStart.begin(), cellStart.end() - 1);
     for (int i = 0; i < numParticles; i++)
-        cellParticles[fill[particleCell[i]]++] = i;
+        cellParticles[cellFill[particleCell[i]]++] = i;
 }
 
 std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimension() const {

@@ -142,9 +142,12 @@ private:
     bool needsRebuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
                       int numThreads) const;
     void build(const std::vector<OpenMM::Vec3>& positions, int numThreads);
-    /** Positions mapped into [0, 1)^3 (fractional if periodic, else the bounding box); extent: its widths (nm). */
-    std::vector<OpenMM::Vec3> unitCellCoordinates(const std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3& extent,
-                                                  int numThreads) const;
+    /**
+     * Positions mapped into [0, 1)^3 (fractional if periodic, else the bounding box) into `unit`; extent: its widths
+     * (nm).
+     */
+    void unitCellCoordinates(const std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3& extent, int numThreads,
+                             std::vector<OpenMM::Vec3>& unit) const;
     /** Choose the cell grid for this extent and sort the particles into it (cellStart, cellParticles). */
     void sortIntoCells(const std::vector<OpenMM::Vec3>& unit, const OpenMM::Vec3& extent);
     /** For each dimension and cell coordinate, the distinct cell coordinates within one step. */
@@ -172,6 +175,9 @@ private:
     std::array<int, 3> numCells; // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
     std::vector<OpenMM::Vec3> cellPositions; // the positions of cellParticles, during a build
+    // Scratch of a build, kept so that a rebuild allocates nothing: unit-cell coordinates, each cell's next place.
+    std::vector<OpenMM::Vec3> unitCoordinates;
+    std::vector<int> cellFill;
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr; // those of the last refresh (not periodic)
     std::vector<ParticlePair> pairs; // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;

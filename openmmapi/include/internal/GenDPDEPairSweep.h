@@ -60,11 +60,12 @@ struct PairSweepParameters {
 class SweepLayout {
 public:
     /**
-     * Copy velocities, internal energies (null: none), inverse masses and classes (null: one class) into cell order,
-     * on this many threads.
+     * Copy velocities, internal energies (null: none), inverse masses, classes (null: one class) and positions (null:
+     * none; the pairs carry their geometry) into cell order, on this many threads.
      */
     void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& velocities, const double* energies,
-                const double* inverseMasses, const int* classes, int numThreads) {
+                const double* inverseMasses, const int* classes, int numThreads,
+                const OpenMM::Vec3* positions = nullptr) {
         slots = order.getSlots().data();
         particles = order.getParticlesByCell().data();
         const int n = order.getParticlesByCell().size();
@@ -72,6 +73,8 @@ public:
         slotInverseMasses.resize(n);
         slotEnergies.resize(energies != nullptr ? n : 0);
         slotClasses.resize(classes != nullptr ? n : 0);
+        slotPositions.resize(positions != nullptr ? n : 0);
+        OpenMM::Vec3* sx = slotPositions.data();
         const int* particle = particles;
         const OpenMM::Vec3* v = velocities.data();
         OpenMM::Vec3* sv = slotVelocities.data();
@@ -87,6 +90,8 @@ public:
                     se[s] = energies[i];
                 if (classes != nullptr)
                     sc[s] = classes[i];
+                if (positions != nullptr)
+                    sx[s] = positions[i];
             }
         });
     }
@@ -106,9 +111,36 @@ public:
     }
     const int* slots = nullptr;       // particle i is at slots[i]
     const int* particles = nullptr;   // slot s holds particle particles[s]
-    std::vector<OpenMM::Vec3> slotVelocities;
+    std::vector<OpenMM::Vec3> slotVelocities, slotPositions;
     std::vector<double> slotEnergies, slotInverseMasses;
     std::vector<int> slotClasses;
+};
+
+/** The geometry of pairs that carry it (Reference's ParticlePair: delta = r_i - r_j and r). */
+struct StoredPairGeometry {
+    template <class Pair>
+    void operator()(const Pair& pair, int, int, OpenMM::Vec3& delta, double& r) const {
+        delta = pair.delta;
+        r = pair.r;
+    }
+    const OpenMM::Vec3* positions() const { return nullptr; }
+};
+
+/**
+ * The geometry of pairs that carry only their particles (the CPU platform's IndexPair), recomputed from positions in
+ * slot order (SweepLayout::slotPositions) as the pairs were found: delta = nearestImage(r_i - r_j), r = sqrt(delta .
+ * delta), the same operations on the same values, so the same bits.
+ */
+template <class NearestImage>
+struct SlotPositionGeometry {
+    const OpenMM::Vec3* slotPosition;
+    NearestImage nearestImage;
+    template <class Pair>
+    void operator()(const Pair&, int si, int sj, OpenMM::Vec3& delta, double& r) const {
+        delta = nearestImage(slotPosition[si] - slotPosition[sj]);
+        r = std::sqrt(delta.dot(delta));
+    }
+    const OpenMM::Vec3* positions() const { return slotPosition; }
 };
 
 /**
@@ -120,7 +152,7 @@ public:
 template <class Pair>
 __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, const int* order, int n, int count,
                                                          const int* slot, const OpenMM::Vec3* velocities,
-                                                         const double* energies) {
+                                                         const double* energies, const OpenMM::Vec3* positions) {
     if (n + 16 < count)
         __builtin_prefetch(&pairs[order[n + 16]]);
     if (n + 8 < count) {
@@ -132,11 +164,16 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
             __builtin_prefetch(&energies[si]);
             __builtin_prefetch(&energies[sj]);
         }
+        if (positions != nullptr) {
+            __builtin_prefetch(&positions[si]);
+            __builtin_prefetch(&positions[sj]);
+        }
     }
 }
 
 /**
- * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i, j, delta and r), each pair
+ * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i and j; their delta and r come
+ * from geometry: StoredPairGeometry or SlotPositionGeometry), each pair
  * updated by the physics core's gendpdePairUpdate (as on the device, gendpdeSweep.cc): dissipative and random
  * momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split equally,
  * heat conduction, all with the temperatures the particles have when the pair is reached. Particle i's data
@@ -144,14 +181,18 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
  * (i, j). Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops
  * there; the caller restores the state), or -1.
  */
-template <class Pair>
-int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const PairSweepParameters& p, const int* slot,
-                      const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
+template <class Pair, class Geometry>
+int sweepIsoenergetic(const Pair* pairs, const Geometry& geometry, const int* order, int count,
+                      const PairSweepParameters& p, const int* slot, const double* inverseMasses,
+                      OpenMM::Vec3* velocities, double* energies) {
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, slot, velocities, energies);
+        prefetchAhead(pairs, order, n, count, slot, velocities, energies, geometry.positions());
         const Pair& pair = pairs[order[n]];
         const int i = slot[pair.i], j = slot[pair.j];
-        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+        OpenMM::Vec3 delta;
+        double r;
+        geometry(pair, i, j, delta, r);
+        if (r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
         const Physics::PairTemperatures temperatures = Physics::pairTemperatures(
@@ -159,12 +200,12 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const double xi = p.terms.dissipation ? random.normal() : 0.0;   // the stream's order: impulse, then heat
         const double xiQ = p.terms.conduction ? random.normal() : 0.0;
-        const OpenMM::Vec3 e = pair.delta * (1.0 / pair.r);
+        const OpenMM::Vec3 e = delta * (1.0 / r);
         double impulse;
         const int failed = Physics::gendpdePairUpdate(
                 p.terms.dissipation, p.terms.conduction, temperatures.pairThermalEnergy,
                 temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
-                e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(pair.r, p.cutoff), inverseMasses[i],
+                e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(r, p.cutoff), inverseMasses[i],
                 inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.stepSize,
                 p.sqrtStepSize, xi, xiQ, &energies[i], &energies[j], &impulse);
         if (p.terms.dissipation)
@@ -179,18 +220,22 @@ int sweepIsoenergetic(const Pair* pairs, const int* order, int count, const Pair
  * The classic DPD thermostat (Isothermal mode) on the pairs order[0..count): the heat goes to the bath. Particle i's
  * data at slot[i], as in sweepIsoenergetic.
  */
-template <class Pair>
-void sweepIsothermal(const Pair* pairs, const int* order, int count, const PairSweepParameters& p, const int* slot,
-                     const double* inverseMasses, OpenMM::Vec3* velocities) {
+template <class Pair, class Geometry>
+void sweepIsothermal(const Pair* pairs, const Geometry& geometry, const int* order, int count,
+                     const PairSweepParameters& p, const int* slot, const double* inverseMasses,
+                     OpenMM::Vec3* velocities) {
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, slot, velocities, nullptr);
+        prefetchAhead(pairs, order, n, count, slot, velocities, nullptr, geometry.positions());
         const Pair& pair = pairs[order[n]];
         const int i = slot[pair.i], j = slot[pair.j];
-        if (pair.r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
+        OpenMM::Vec3 delta;
+        double r;
+        geometry(pair, i, j, delta, r);
+        if (r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
             continue;
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int ab = p.classOf(i) * p.numClasses + p.classOf(j);
-        Physics::dissipativePairUpdate(pair.delta * (1.0 / pair.r), Physics::gendpdeRandomWeight(pair.r, p.cutoff),
+        Physics::dissipativePairUpdate(delta * (1.0 / r), Physics::gendpdeRandomWeight(r, p.cutoff),
                                        p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize,
                                        inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
                                        random.normal());

@@ -320,7 +320,8 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     // The entries the last density pass marked in the upper parts of the rows, stored by rows in row (cell) order,
     // so that the sweep, which reaches the pairs block by block, reads nearby memory (the pairs of a particle with
     // larger ones, in increasing order of the other particle, as Reference's list has them): each row's count, each
-    // range of rows' total, then each row writes its pairs from its first position.
+    // range of rows' total, then each row writes its pairs from its first position: two indices each (IndexPair),
+    // whose geometry the sweep recomputes.
     const int numRows = layout.getNumRows();
     const int numChunks = numRanges(numRows, rowChunk);
     const int* particleOf = layout.getParticle().data();
@@ -358,19 +359,18 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
     });
     rowPairStart[numRows] = pairOffset[numChunks];
     pairs.resize(pairOffset[numChunks]);
-    ParticlePair* pair = pairs.data();
-    withRowGather([&](auto gather) {
-        parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
-            for (int s = begin; s < end; s++) {
-                ParticlePair* next = pair + pairStart[s];
-                for (int m = gather.upperStart[s]; m < gather.rowStart[s + 1]; m++)
-                    if (listed[m]) {
-                        double r2;
-                        const Vec3 d = gather.displacement(s, gather.neighbors[m], r2);
-                        *next++ = {particleOf[s], particleOf[gather.neighbors[m]], d, std::sqrt(r2)};
-                    }
-            }
-        });
+    IndexPair* pair = pairs.data();
+    const int* neighbors = layout.getNeighbors().data();
+    parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
+        for (int s = begin; s < end; s++) {
+            IndexPair* next = pair + pairStart[s];
+            for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
+                if (listed[m])
+                    *next++ = {particleOf[s], particleOf[neighbors[m]]};
+        }
     });
-    return PairView(pairs.data(), pairs.size(), rowPairStart.data());
+    // The sweep recomputes each pair's geometry from the positions the rows were read from (the layout's are copies
+    // of these) with the nearest-image rule of the gathers (withRowGather).
+    return PairView(pairs.data(), pairs.size(), rowPairStart.data(), neighborList->getRefreshedPositions().data(),
+                    neighborList->isPeriodic() ? &neighborList->getBox() : nullptr);
 }

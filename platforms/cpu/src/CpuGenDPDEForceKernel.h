@@ -43,7 +43,8 @@ public:
     /**
      * The pairs closer than the cutoff at the positions of the last evaluation (the pair list the integrator
      * sweeps), on this many threads: stored by rows in the rows' cell order (PairView), each row's pairs those of its
-     * particle with larger ones, in increasing order of the other particle.
+     * particle with larger ones, in increasing order of the other particle; IndexPairs, with the positions and box of
+     * their geometry.
      */
     PairView collectPairs(int threads);
 
@@ -71,7 +72,7 @@ private:
     std::vector<char> listedFlags; // per row entry: a pair closer than the cutoff (upper parts only)
     // collectPairs(): the first pair of each range of rows and of each row (and the end); the pairs.
     std::vector<int> pairOffset, rowPairStart;
-    std::vector<ParticlePair> pairs;
+    std::vector<IndexPair> pairs;
 };
 
 } // namespace GenDPDEPlugin

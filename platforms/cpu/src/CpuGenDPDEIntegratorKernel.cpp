@@ -5,6 +5,7 @@
 #include "internal/GenDPDEPairSweep.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
+#include <type_traits>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -55,13 +56,37 @@ void CpuIntegrateGenDPDEStepKernel::drift(ContextImpl& context, std::vector<Vec3
 
 void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
                                           const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
-    // docs/theory.md section 6: the colours one after another, the blocks of a colour in parallel; on one thread,
-    // Reference's sweep (the same sequence in one loop, whose prefetches run on across the blocks).
+    // docs/theory.md section 6: the colours one after another, the blocks of a colour in parallel; on one thread with
+    // Reference's list, Reference's sweep (the same sequence in one loop, whose prefetches run on across the blocks).
     const int threads = extractNumThreads(context);
-    if (threads == 1) {
-        ReferenceIntegrateGenDPDEStepKernel::sweep(context, pairs, velocities, integrator, terms);
+    if (!pairs.holdsIndexPairs()) {
+        if (threads == 1) {
+            ReferenceIntegrateGenDPDEStepKernel::sweep(context, pairs, velocities, integrator, terms);
+            return;
+        }
+        sweepBlocks(context, pairs, pairs.begin(), StoredPairGeometry(), velocities, integrator, terms, threads);
         return;
     }
+    // The force's IndexPairs: their geometry from the positions they were found at, with the same nearest image.
+    const PeriodicBox* box = pairs.getBox();
+    auto withGeometry = [&](auto nearestImage) {
+        sweepBlocks(context, pairs, pairs.getIndexPairs(),
+                    SlotPositionGeometry<decltype(nearestImage)>{nullptr, nearestImage}, velocities, integrator, terms,
+                    threads);
+    };
+    if (box == nullptr)
+        withGeometry([](const Vec3& d) { return d; });
+    else if (box->isTriclinic())
+        withGeometry([box = *box](const Vec3& d) { return box.nearestImageTriclinic(d); });
+    else
+        withGeometry([box = *box](const Vec3& d) { return box.nearestImageRectangular(d); });
+}
+
+template <class Pair, class Geometry>
+void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView pairs, const Pair* pair,
+                                                Geometry geometry, std::vector<Vec3>& velocities,
+                                                const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
+                                                int threads) {
     const long long step = context.getStepCount();
     buildSweepOrder(context, pairs, threads);
     const int* order = sweepOrder.getOrder().data();
@@ -69,8 +94,9 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
     const int* blockStart = sweepOrder.getBlockStart().data();
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
-    gatherSweepState(parameters, velocities, threads);
-    const ParticlePair* pair = pairs.begin();
+    gatherSweepState(parameters, velocities, threads, pairs.getPositions());
+    if constexpr (!std::is_same<Geometry, StoredPairGeometry>::value)
+        geometry.slotPosition = layout.slotPositions.data();
     const int* slot = layout.slots;
     const double* inverseMass = layout.slotInverseMasses.data();
     Vec3* v = layout.slotVelocities.data();
@@ -84,10 +110,10 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
                 const int* blockOrder = order + blockStart[b];
                 const int count = blockStart[b + 1] - blockStart[b];
                 if (!parameters.terms.internalEnergies)
-                    sweepIsothermal(pair, blockOrder, count, parameters, slot, inverseMass, v);
+                    sweepIsothermal(pair, geometry, blockOrder, count, parameters, slot, inverseMass, v);
                 else {
-                    const int failed =
-                            sweepIsoenergetic(pair, blockOrder, count, parameters, slot, inverseMass, v, energy);
+                    const int failed = sweepIsoenergetic(pair, geometry, blockOrder, count, parameters, slot,
+                                                         inverseMass, v, energy);
                     if (failed >= 0)
                         failure[b - firstBlock] = blockStart[b] + failed;
                 }

@@ -29,7 +29,12 @@ protected:
                const std::vector<OpenMM::Vec3>& velocities, double timeStep) override;
 
 private:
-    std::vector<int> blockFailure;   // per block of the running colour: position of the failing pair, or -1
+    /** The sweep of these pairs (pair: their first element; geometry: StoredPairGeometry or SlotPositionGeometry). */
+    template <class Pair, class Geometry>
+    void sweepBlocks(OpenMM::ContextImpl& context, PairView pairs, const Pair* pair, Geometry geometry,
+                     std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
+                     const GenDPDEStepTerms& terms, int threads);
+    std::vector<int> blockFailure; // per block of the running colour: position of the failing pair, or -1
     std::vector<double> chunkSums;
 };
 

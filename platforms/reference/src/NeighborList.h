@@ -60,25 +60,55 @@ struct ParticlePair {
 };
 
 /**
+ * A pair of the CPU platform's sweep list: its two particles (i < j) only, 8 bytes where a ParticlePair takes 40. The
+ * sweep recomputes delta = r_i - r_j and r from the positions the pair was found at (PairView::getPositions()), with
+ * the arithmetic that found it, so the values are the same to the last bit.
+ */
+struct IndexPair {
+    int i, j;
+};
+
+/**
  * A read-only view of the pairs found by NeighborList::update() (in (i, j) order) or a force kernel's (maybe stored by
  * rows: row r holds the pairs rowPairStart[r] ... rowPairStart[r + 1] - 1, those of one first particle, in increasing
- * j; one row per particle, the rows in any order), valid until the next update.
+ * j; one row per particle, the rows in any order), valid until the next update. The pairs are ParticlePairs, or
+ * IndexPairs with the positions (by particle index) and the box (null: not periodic) their geometry comes from.
  */
 class PairView {
 public:
     PairView(const ParticlePair* first, size_t count, const int* rowPairStart = nullptr) :
             first(first), count(count), rowPairStart(rowPairStart) {}
+    PairView(const IndexPair* first, size_t count, const int* rowPairStart, const OpenMM::Vec3* positions,
+             const PeriodicBox* box) :
+            first(nullptr), indexPairs(first), count(count), rowPairStart(rowPairStart), positions(positions),
+            box(box) {}
     /** Null if the pairs are in (i, j) order, else where each row's pairs begin (one more than the rows). */
     const int* getRowPairStart() const { return rowPairStart; }
+    /** Whether the pairs are IndexPairs (getIndexPairs()) rather than ParticlePairs (begin()). */
+    bool holdsIndexPairs() const { return indexPairs != nullptr; }
     const ParticlePair* begin() const { return first; }
     const ParticlePair* end() const { return first + count; }
+    const IndexPair* getIndexPairs() const { return indexPairs; }
+    /** IndexPairs: the positions (nm, by particle index) and the box (null if not periodic) of their geometry. */
+    const OpenMM::Vec3* getPositions() const { return positions; }
+    const PeriodicBox* getBox() const { return box; }
     size_t size() const { return count; }
     const ParticlePair& operator[](size_t index) const { return first[index]; }
+    /** The first particle of the first pair, and the ints from one pair's i to the next's (its j follows its i). */
+    const int* firstIndices() const { return indexPairs != nullptr ? &indexPairs->i : &first->i; }
+    int indexStride() const {
+        static_assert(sizeof(ParticlePair) % sizeof(int) == 0 && sizeof(IndexPair) == 2 * sizeof(int),
+                      "pairs are read with an int stride");
+        return indexPairs != nullptr ? 2 : (int) (sizeof(ParticlePair) / sizeof(int));
+    }
 
 private:
     const ParticlePair* first;
+    const IndexPair* indexPairs = nullptr;
     size_t count;
     const int* rowPairStart;
+    const OpenMM::Vec3* positions = nullptr;
+    const PeriodicBox* box = nullptr;
 };
 
 /**

@@ -98,6 +98,8 @@ void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context
 void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
                                                 const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
     // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows.
+    if (pairs.holdsIndexPairs())   // (the CPU platform sweeps its IndexPairs itself)
+        throw OpenMMException("GenDPDEIntegrator: internal error: Reference's sweep was given pairs without geometry");
     const long long step = context.getStepCount();
     buildSweepOrder(context, pairs, 1);
     const std::vector<int>& order = sweepOrder.getOrder();
@@ -106,14 +108,14 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
     gatherSweepState(parameters, velocities, 1);
     const int* slot = layout.slots;
     if (!terms.internalEnergies)
-        sweepIsothermal(pairs.begin(), order.data(), order.size(), parameters, slot, layout.slotInverseMasses.data(),
-                        layout.slotVelocities.data());
+        sweepIsothermal(pairs.begin(), StoredPairGeometry(), order.data(), order.size(), parameters, slot,
+                        layout.slotInverseMasses.data(), layout.slotVelocities.data());
     else {
         // If an internal energy would become <= 0, the velocities and internal energies go back to what execute()
         // saved before the step (positions have not moved yet), and the error names the particle and the step.
-        const int failed = sweepIsoenergetic(pairs.begin(), order.data(), order.size(), parameters, slot,
-                                             layout.slotInverseMasses.data(), layout.slotVelocities.data(),
-                                             layout.slotEnergies.data());
+        const int failed = sweepIsoenergetic(pairs.begin(), StoredPairGeometry(), order.data(), order.size(),
+                                             parameters, slot, layout.slotInverseMasses.data(),
+                                             layout.slotVelocities.data(), layout.slotEnergies.data());
         if (failed >= 0)
             failSweep(pairs, order, failed, velocities, step);
     }
@@ -121,27 +123,28 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, PairView pairs, int numThreads) {
-    static_assert(sizeof(ParticlePair) % sizeof(int) == 0, "the sweep order reads i and j with an int stride");
-    const int stride = sizeof(ParticlePair) / sizeof(int);
-    const bool anyPairs = pairs.size() > 0;
+    const int stride = pairs.indexStride();
+    const int* first = pairs.size() > 0 ? pairs.firstIndices() : nullptr; // (each pair's j follows its i)
     sweepOrder.build(extractPositions(context), extractBoxVectors(context),
-                     context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(),
-                     anyPairs ? &pairs.begin()->i : nullptr, anyPairs ? &pairs.begin()->j : nullptr, stride, numThreads,
-                     pairs.getRowPairStart());
+                     context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(), first,
+                     first != nullptr ? first + 1 : nullptr, stride, numThreads, pairs.getRowPairStart());
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& parameters,
-                                                           const std::vector<Vec3>& velocities, int numThreads) {
+                                                           const std::vector<Vec3>& velocities, int numThreads,
+                                                           const Vec3* positions) {
     const bool classes = parameters.numClasses > 1;
     layout.gather(sweepOrder, velocities, parameters.terms.internalEnergies ? internalEnergies.data() : nullptr,
-                  inverseMasses.data(), classes ? parameters.particleClass : nullptr, numThreads);
+                  inverseMasses.data(), classes ? parameters.particleClass : nullptr, numThreads, positions);
     if (classes)
         parameters.particleClass = layout.slotClasses.data();
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
                                                     std::vector<Vec3>& velocities, long long step) {
-    const int particle = failedParticle(pairs.begin(), order.data(), failed, layout.slots, layout.slotEnergies.data());
+    const int particle = pairs.holdsIndexPairs()
+            ? failedParticle(pairs.getIndexPairs(), order.data(), failed, layout.slots, layout.slotEnergies.data())
+            : failedParticle(pairs.begin(), order.data(), failed, layout.slots, layout.slotEnergies.data());
     const double value = layout.slotEnergies[layout.slots[particle]];
     velocities = savedVelocities;
     internalEnergies = savedInternalEnergies;

@@ -81,9 +81,11 @@ protected:
     void buildSweepOrder(OpenMM::ContextImpl& context, PairView pairs, int numThreads);
     /**
      * Copy what the sweep reads into layout (the order's cell order), and point parameters at the copied classes.
-     * The sweep then works on layout's arrays; layout.scatter() copies its results back.
+     * The sweep then works on layout's arrays; layout.scatter() copies its results back. positions (by particle
+     * index): the geometry of pairs that do not carry it (PairView::getPositions()), or null.
      */
-    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities, int numThreads);
+    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities, int numThreads,
+                          const OpenMM::Vec3* positions = nullptr);
     /**
      * The sweep's failure at position failed of the order (the sweep's state still in layout): restore the saved
      * state and throw.

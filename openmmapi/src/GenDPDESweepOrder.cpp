@@ -246,8 +246,10 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     // lists of four consecutive first particles interleaved.
     order.resize(numPairs);
     parallelFor(numThreads, numRanks, 8, [&](int begin, int end) {
-        std::vector<std::pair<int, int>> runs; // (first particle, start) of each run of a block
-        std::vector<int> listed, first;
+        // (first particle, start) of each run of a block, and the block's pairs with their runs in order: scratch kept
+        // by each thread, so that a step allocates nothing
+        thread_local std::vector<std::pair<int, int>> runs;
+        thread_local std::vector<int> listed, first;
         for (int s = begin; s < end; s++) {
             const int start = blockStart[s], count = blockStart[s + 1] - start;
             const int* blockPairs = &sorted[start];

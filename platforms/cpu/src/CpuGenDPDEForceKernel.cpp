@@ -99,14 +99,8 @@ RowGather<NearestImage> rowGather(const CellOrderedCandidates& layout, NearestIm
 
 template <class Body>
 void CpuCalcGenDPDEForceKernel::withRowGather(Body body) {
-    // The nearest-image rule chosen once per pass, not once per pair.
-    const PeriodicBox box = neighborList->getBox();
-    if (!neighborList->isPeriodic())
-        body(rowGather(layout, [](const Vec3& d) { return d; }, cutoff));
-    else if (box.isTriclinic())
-        body(rowGather(layout, [box](const Vec3& d) { return box.nearestImageTriclinic(d); }, cutoff));
-    else
-        body(rowGather(layout, [box](const Vec3& d) { return box.nearestImageRectangular(d); }, cutoff));
+    withNearestImage(neighborList->isPeriodic() ? &neighborList->getBox() : nullptr,
+                     [&](auto nearestImage) { body(rowGather(layout, nearestImage, cutoff)); });
 }
 
 const RowGatherAvx2::Rows* CpuCalcGenDPDEForceKernel::vectorRowsOrNull() {

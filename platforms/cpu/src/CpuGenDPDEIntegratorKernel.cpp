@@ -67,19 +67,12 @@ void CpuIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, 
         sweepBlocks(context, pairs, pairs.begin(), StoredPairGeometry(), velocities, integrator, terms, threads);
         return;
     }
-    // The force's IndexPairs: their geometry from the positions they were found at, with the same nearest image.
-    const PeriodicBox* box = pairs.getBox();
-    auto withGeometry = [&](auto nearestImage) {
+    // The force's IndexPairs: their geometry from the positions they were found at, with the gathers' nearest image.
+    withNearestImage(pairs.getBox(), [&](auto nearestImage) {
         sweepBlocks(context, pairs, pairs.getIndexPairs(),
                     SlotPositionGeometry<decltype(nearestImage)>{nullptr, nearestImage}, velocities, integrator, terms,
                     threads);
-    };
-    if (box == nullptr)
-        withGeometry([](const Vec3& d) { return d; });
-    else if (box->isTriclinic())
-        withGeometry([box = *box](const Vec3& d) { return box.nearestImageTriclinic(d); });
-    else
-        withGeometry([box = *box](const Vec3& d) { return box.nearestImageRectangular(d); });
+    });
 }
 
 template <class Pair, class Geometry>

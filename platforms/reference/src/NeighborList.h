@@ -52,6 +52,21 @@ private:
     bool triclinic = false;
 };
 
+/**
+ * body(nearestImage) with the nearest-image rule of this box chosen once, not once per pair: the identity (box null:
+ * not periodic), or a copy of the box's triclinic or rectangular rule. The CPU platform's gathers and its sweep both
+ * take their rule here, so the displacements they compute from the same positions have the same bits.
+ */
+template <class Body>
+void withNearestImage(const PeriodicBox* box, Body body) {
+    if (box == nullptr)
+        body([](const OpenMM::Vec3& d) { return d; });
+    else if (box->isTriclinic())
+        body([copy = *box](const OpenMM::Vec3& d) { return copy.nearestImageTriclinic(d); });
+    else
+        body([copy = *box](const OpenMM::Vec3& d) { return copy.nearestImageRectangular(d); });
+}
+
 /** Two particles closer than the cutoff: i < j, delta = r_i - r_j (nearest periodic image), r = |delta|. */
 struct ParticlePair {
     int i, j;

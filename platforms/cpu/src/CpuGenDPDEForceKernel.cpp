@@ -1,6 +1,7 @@
 #include "CpuGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "RowGatherAvx2.h"
+#include "internal/Buffers.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
@@ -157,7 +158,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     rowMomentForce.resize(moments ? numParticles : 0);
     Vec3* momentOf = rowMoment.data();
     Vec3* momentForceOf = rowMomentForce.data();
-    listedFlags.resize(layout.getNeighbors().size());
+    resizeBuffer(listedFlags, layout.getNeighbors().size());
     char* listed = listedFlags.data();
     const ParticleModel model(*this, context);
     const int* typeOf = types->getParticleTypeIndices().data();
@@ -352,7 +353,7 @@ PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
         }
     });
     rowPairStart[numRows] = pairOffset[numChunks];
-    pairs.resize(pairOffset[numChunks]);
+    resizeBuffer(pairs, pairOffset[numChunks]);
     IndexPair* pair = pairs.data();
     const int* neighbors = layout.getNeighbors().data();
     parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {

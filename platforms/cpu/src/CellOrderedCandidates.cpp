@@ -1,4 +1,5 @@
 #include "CellOrderedCandidates.h"
+#include "internal/Buffers.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
 
@@ -29,41 +30,44 @@ void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) 
     row.resize(numRows);
     for (int s = 0; s < numRows; s++)
         row[particle[s]] = s;
-    const std::vector<int>& candidateStart = list.getCandidateStart();
-    const std::vector<int>& candidates = list.getCandidates();
 
     // Row sizes: the candidates (j, i) of each particle i, then its own candidates (i, j).
     lowerCount.assign(numRows, 0);
-    for (int j : candidates)
-        lowerCount[j]++;
+    for (int i = 0; i < numRows; i++) {
+        const int* candidate = list.candidatesOf(i);
+        for (int c = 0, count = list.numCandidates(i); c < count; c++)
+            lowerCount[candidate[c]]++;
+    }
     rowStart.assign(numRows + 1, 0);
     upperStart.resize(numRows);
     for (int s = 0; s < numRows; s++) {
         const int i = particle[s];
         upperStart[s] = rowStart[s] + lowerCount[i];
-        rowStart[s + 1] = upperStart[s] + candidateStart[i + 1] - candidateStart[i];
+        rowStart[s + 1] = upperStart[s] + list.numCandidates(i);
     }
-    neighbors.resize(rowStart[numRows]);
+    resizeBuffer(neighbors, rowStart[numRows]);
 
     // The upper parts, row by row in parallel; the lower parts by one pass over the candidates in (i, j) order,
     // which appends each i to the row of j in increasing order of i.
     const int* particleOf = particle.data();
     const int* rowOf = row.data();
-    const int* start = candidateStart.data();
-    const int* candidate = candidates.data();
     const int* upper = upperStart.data();
     int* neighbor = neighbors.data();
+    const NeighborList* candidates = &list;
     parallelFor(numThreads, numRows, rowChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++) {
             const int i = particleOf[s];
-            for (int c = start[i], m = upper[s]; c < start[i + 1]; c++, m++)
+            const int* candidate = candidates->candidatesOf(i);
+            for (int c = 0, m = upper[s], count = candidates->numCandidates(i); c < count; c++, m++)
                 neighbor[m] = rowOf[candidate[c]];
         }
     });
     fill.assign(rowStart.begin(), rowStart.end() - 1);
-    for (int i = 0; i < numRows; i++)
-        for (int c = start[i]; c < start[i + 1]; c++)
+    for (int i = 0; i < numRows; i++) {
+        const int* candidate = list.candidatesOf(i);
+        for (int c = 0, count = list.numCandidates(i); c < count; c++)
             neighbor[fill[rowOf[candidate[c]]]++] = rowOf[i];
+    }
     followedList = &list;
     followedBuild = list.getBuildCount();
 }

@@ -1,5 +1,6 @@
 #include "NeighborList.h"
 #include "internal/BoxGeometry.h"
+#include "internal/Buffers.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <atomic>
@@ -42,15 +43,10 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
     return moved.load();
 }
 
-namespace {
-/** Particles per range when threads share the work (fixed, so ranges do not depend on the thread count). */
-const int particleChunk = 256;
-}
-
 void NeighborList::build(const std::vector<Vec3>& positions, int numThreads) {
     Vec3 extent;
-    unitCellCoordinates(positions, extent, numThreads, unitCoordinates);
-    sortIntoCells(unitCoordinates, extent);
+    unitCellCoordinates(positions, extent, numThreads, buildScratch);
+    sortIntoCells(buildScratch, extent);
     collectCandidates(periodic ? wrappedPositions : positions, numThreads);
     builtPositions = positions;
     for (int k = 0; k < 3; k++)
@@ -138,13 +134,37 @@ std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimen
     return neighborCells;
 }
 
-void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end,
-                                  const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
+void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {
+    const int numParticles = r.size();
+    const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
+    // The positions in cell order, so that scanning a cell reads consecutive memory (exact copies: the same
+    // candidates), in the build's scratch (the unit-cell coordinates are no longer needed).
+    std::vector<Vec3>& cellPositions = buildScratch;
+    cellPositions.resize(numParticles);
+    for (int m = 0; m < numParticles; m++)
+        cellPositions[m] = r[cellParticles[m]];
+    candidateStart.assign(numParticles + 1, 0);
+    const int numChunks = numRanges(numParticles, particleChunk);
+    chunkCandidates.resize(numChunks);
+    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++)
+            findCandidates(r, cellPositions, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk),
+                           neighborCells, chunkCandidates[c]);
+    });
+    for (int i = 0; i < numParticles; i++)
+        candidateStart[i + 1] += candidateStart[i];
+}
+
+void NeighborList::findCandidates(const std::vector<Vec3>& r, const std::vector<Vec3>& cellPositions, int begin,
+                                  int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
                                   std::vector<int>& found) {
     // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted. Every particle of
-    // the surrounding cells is written and kept only if it is one (no branch: which are is close to random).
+    // the surrounding cells is written and kept only if it is one (no branch: which are is close to random). `found`
+    // keeps its capacity from build to build and grows by a quarter when it must (a rebuild allocates nothing, and
+    // the buffers hold little more than the candidates).
     const double listCutoff = cutoff + skin, listCutoff2 = listCutoff * listCutoff;
-    size_t size = found.size();
+    size_t size = 0;
+    found.resize(found.capacity());
     for (int i = begin; i < end; i++) {
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell / numCells[2]) % numCells[1], cx = cell / (numCells[2] * numCells[1]);
@@ -154,8 +174,10 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
                 for (int nz : neighborCells[2][cz]) {
                     const int neighborCell = (nx * numCells[1] + ny) * numCells[2] + nz;
                     const int cellBegin = cellStart[neighborCell], cellEnd = cellStart[neighborCell + 1];
-                    if (found.size() < size + (cellEnd - cellBegin))
-                        found.resize(2 * (size + (cellEnd - cellBegin)));
+                    if (found.size() < size + (cellEnd - cellBegin)) {
+                        found.reserve(std::max(size + (cellEnd - cellBegin), size + size / 4));
+                        found.resize(found.capacity());
+                    }
                     int* out = found.data();
                     for (int m = cellBegin; m < cellEnd; m++) {
                         const int j = cellParticles[m];
@@ -170,40 +192,13 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, int begin, int end
     found.resize(size);
 }
 
-void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {
-    const int numParticles = r.size();
-    const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
-    // The positions in cell order, so that scanning a cell reads consecutive memory (exact copies: the same
-    // candidates).
-    cellPositions.resize(numParticles);
-    for (int m = 0; m < numParticles; m++)
-        cellPositions[m] = r[cellParticles[m]];
-    candidateStart.assign(numParticles + 1, 0);
-    const int numChunks = numRanges(numParticles, particleChunk);
-    chunkCandidates.resize(numChunks);
-    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            chunkCandidates[c].clear();
-            findCandidates(r, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk), neighborCells,
-                           chunkCandidates[c]);
-        }
-    });
-    for (int i = 0; i < numParticles; i++)
-        candidateStart[i + 1] += candidateStart[i];
-    candidates.resize(candidateStart[numParticles]);
-    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++)
-            std::copy(chunkCandidates[c].begin(), chunkCandidates[c].end(),
-                      candidates.begin() + candidateStart[c * particleChunk]);
-    });
-}
-
 template <class Displacement>
 void NeighborList::findPairs(int begin, int end, Displacement displacement, std::vector<ParticlePair>& found) const {
     const double cutoff2 = cutoff * cutoff;
-    for (int i = begin; i < end; i++)
-        for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
-            const int j = candidates[m];
+    for (int i = begin; i < end; i++) {
+        const int* candidate = candidatesOf(i);
+        for (int m = 0, count = numCandidates(i); m < count; m++) {
+            const int j = candidate[m];
             const Vec3 d = displacement(i, j);
             if (d.dot(d) < cutoff2) {
                 found.emplace_back();
@@ -213,6 +208,7 @@ void NeighborList::findPairs(int begin, int end, Displacement displacement, std:
                 pair.delta = d;
             }
         }
+    }
 }
 
 template <class Displacement>
@@ -221,20 +217,22 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
         // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
         // store-to-load forwarding), every candidate written and kept only if in range (no branch: a quarter of
         // the candidates are not, at random). The buffer only grows, so it is never re-initialised.
-        if (pairs.size() < candidates.size())
-            pairs.resize(candidates.size());
+        if (pairs.size() < (size_t) getNumCandidates())
+            resizeBuffer(pairs, getNumCandidates());
         size_t found = 0;
         ParticlePair* pair = pairs.data();
         const double cutoff2 = cutoff * cutoff;
-        for (int i = 0; i < numParticles; i++)
-            for (int m = candidateStart[i]; m < candidateStart[i + 1]; m++) {
-                const int j = candidates[m];
+        for (int i = 0; i < numParticles; i++) {
+            const int* candidate = candidatesOf(i);
+            for (int m = 0, count = numCandidates(i); m < count; m++) {
+                const int j = candidate[m];
                 const Vec3 d = displacement(i, j);
                 pair[found].i = i;
                 pair[found].j = j;
                 pair[found].delta = d;
                 found += (d.dot(d) < cutoff2);
             }
+        }
         numPairs = found;
     } else {
         // Each range of particles finds its pairs, then the ranges are copied in order: the same list.
@@ -252,7 +250,7 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
             offset[c + 1] = offset[c] + chunkPairs[c].size();
         numPairs = offset[numChunks];
         if (pairs.size() < numPairs)
-            pairs.resize(numPairs);
+            resizeBuffer(pairs, numPairs);
         parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
             for (int c = chunkBegin; c < chunkEnd; c++)
                 std::copy(chunkPairs[c].begin(), chunkPairs[c].end(), pairs.begin() + offset[c]);

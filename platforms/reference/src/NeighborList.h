@@ -172,9 +172,14 @@ public:
     const std::vector<OpenMM::Vec3>& getRefreshedPositions() const {
         return periodic ? wrappedPositions : *currentPositions;
     }
-    /** The candidates j > i of particle i are candidates[candidateStart[i]] ... [candidateStart[i + 1] - 1]. */
-    const std::vector<int>& getCandidateStart() const { return candidateStart; }
-    const std::vector<int>& getCandidates() const { return candidates; }
+    /** The candidates j > i of particle i, in increasing order: candidatesOf(i)[0] ... [numCandidates(i) - 1]. */
+    const int* candidatesOf(int i) const {
+        const int chunk = i / particleChunk;
+        return chunkCandidates[chunk].data() + (candidateStart[i] - candidateStart[chunk * particleChunk]);
+    }
+    int numCandidates(int i) const { return candidateStart[i + 1] - candidateStart[i]; }
+    /** All particles' candidates: the sum of numCandidates(i). */
+    int getNumCandidates() const { return candidateStart.back(); }
     /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
     const std::vector<int>& getCellOrder() const { return cellParticles; }
     /** How many times the candidates have been built: a change means new candidates. */
@@ -199,9 +204,10 @@ private:
     std::array<std::vector<std::vector<int>>, 3> neighborCellsPerDimension() const;
     /** The candidates of each particle (j > i within cutoff + skin), from the cells around it. */
     void collectCandidates(const std::vector<OpenMM::Vec3>& positions, int numThreads);
-    /** The candidates of particles begin .. end - 1, appended to `found` (their counts in candidateStart[i + 1]). */
-    void findCandidates(const std::vector<OpenMM::Vec3>& positions, int begin, int end,
-                        const std::array<std::vector<std::vector<int>>, 3>& neighborCells, std::vector<int>& found);
+    /** The candidates of particles begin .. end - 1 into `found` (their counts in candidateStart[i + 1]). */
+    void findCandidates(const std::vector<OpenMM::Vec3>& positions, const std::vector<OpenMM::Vec3>& cellPositions,
+                        int begin, int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
+                        std::vector<int>& found);
     /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
     template <class Displacement>
     void collectPairs(int numParticles, Displacement displacement, int numThreads);
@@ -215,18 +221,22 @@ private:
     OpenMM::Vec3 builtBox[3]; // the box when the candidates were built
     std::vector<OpenMM::Vec3> builtPositions;
     std::vector<OpenMM::Vec3> wrappedPositions; // positions wrapped into the box (periodic only)
-    std::vector<int> candidateStart; // candidates of i in candidates[candidateStart[i]..[i+1])
-    std::vector<int> candidates;
+    /** Particles per range when threads share the work (fixed, so ranges do not depend on the thread count). */
+    static const int particleChunk = 256;
+    // The candidates, kept as the ranges of particles found them (not copied into one array: that would hold them
+    // twice): those of particles [c particleChunk, (c + 1) particleChunk) in chunkCandidates[c]; candidateStart[i]: the
+    // candidates of the particles before i.
+    std::vector<int> candidateStart;
+    std::vector<std::vector<int>> chunkCandidates;
     std::array<int, 3> numCells; // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
-    std::vector<OpenMM::Vec3> cellPositions; // the positions of cellParticles, during a build
-    // Scratch of a build, kept so that a rebuild allocates nothing: unit-cell coordinates, each cell's next place.
-    std::vector<OpenMM::Vec3> unitCoordinates;
+    // Scratch of a build, kept so that a rebuild allocates nothing: the unit-cell coordinates, then (one buffer for
+    // both) the positions of cellParticles; each cell's next place.
+    std::vector<OpenMM::Vec3> buildScratch;
     std::vector<int> cellFill;
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr; // those of the last refresh (not periodic)
     std::vector<ParticlePair> pairs; // a buffer with room for every candidate; numPairs are in use
     size_t numPairs = 0;
-    std::vector<std::vector<int>> chunkCandidates; // per range of particles, when threads share the work
     std::vector<std::vector<ParticlePair>> chunkPairs;
 };
 

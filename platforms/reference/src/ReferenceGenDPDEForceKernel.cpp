@@ -20,8 +20,6 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     pressure.resize(numParticles);
     forceCoefficient.resize(numParticles);
     particleVirial.resize(numParticles);
-    moment.resize(numParticles);
-    momentForce.resize(numParticles);
     types.reset(new ParticleTypeIndex(force.getParticleTypes(), numParticles, "GenDPDEForce"));
     readParameters(force);
 }
@@ -46,6 +44,9 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
     dependsOnTemperature = force.dependsOnTemperature();
     thermalEnergy.assign(dependsOnTemperature ? primitiveDensity.size() : 0, 0.0);
     densityEntropy.assign(thermalEnergy.size(), 0.0);
+    // V-C's moments (48 bytes per particle) only while the estimator uses them
+    moment.assign(usesMoments() ? primitiveDensity.size() : 0, Vec3());
+    momentForce.assign(moment.size(), Vec3());
     cutoffScaling = force.getCutoffScaling();
     observablesValid = false;
 }
@@ -134,12 +135,14 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
     // own (a step does not pay for them).
     const Physics::DensityWeight weight(cutoff);
     const bool moments = usesMoments();
+    const Vec3 noMoment;
     // The force on pair.i from pair.j (pair.r > 0; the core's gendpdePairForce); virial receives pair.delta . F. A
     // pair whose r^2 < R^2 rounds to r = R has w'(r) = 0 (DensityWeight::derivative) and no moment term.
     auto pairForce = [&](const ParticlePair& pair, double& virial) {
         return Physics::pairForce(pair.delta, pair.r, forceCoefficient[pair.i] + forceCoefficient[pair.j],
                                   weight.derivative(pair.r), weight.getInverseCutoff(), moments && pair.r < cutoff,
-                                  momentForce[pair.i], momentForce[pair.j], virial);
+                                  moments ? momentForce[pair.i] : noMoment, moments ? momentForce[pair.j] : noMoment,
+                                  virial);
     };
     std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {

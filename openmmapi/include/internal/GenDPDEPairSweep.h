@@ -61,9 +61,12 @@ class SweepLayout {
 public:
     /**
      * Copy velocities, internal energies (null: none), inverse masses, classes (null: one class) and positions (null:
-     * none; the pairs carry their geometry) into cell order, on this many threads.
+     * none; the pairs carry their geometry) into cell order, on this many threads; the velocities of particles with
+     * mass advanced on the way by forces (kJ/mol/nm) over kickTime (ps), v + F (kickTime / m), as a kick computes
+     * it (the step's first half kick: the particles' own velocities stay as they were until scatter()).
      */
-    void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& velocities, const double* energies,
+    void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& velocities,
+                const std::vector<OpenMM::Vec3>& forces, double kickTime, const double* energies,
                 const double* inverseMasses, const int* classes, int numThreads,
                 const OpenMM::Vec3* positions = nullptr) {
         slots = order.getSlots().data();
@@ -77,6 +80,7 @@ public:
         OpenMM::Vec3* sx = slotPositions.data();
         const int* particle = particles;
         const OpenMM::Vec3* v = velocities.data();
+        const OpenMM::Vec3* f = forces.data();
         OpenMM::Vec3* sv = slotVelocities.data();
         double* se = slotEnergies.data();
         double* sm = slotInverseMasses.data();
@@ -84,7 +88,7 @@ public:
         parallelFor(numThreads, n, 4096, [=](int begin, int end) {
             for (int s = begin; s < end; s++) {
                 const int i = particle[s];
-                sv[s] = v[i];
+                sv[s] = inverseMasses[i] != 0.0 ? v[i] + f[i] * (kickTime * inverseMasses[i]) : v[i];
                 sm[s] = inverseMasses[i];
                 if (energies != nullptr)
                     se[s] = energies[i];

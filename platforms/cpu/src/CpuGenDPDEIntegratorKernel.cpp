@@ -87,7 +87,7 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
     const int* blockStart = sweepOrder.getBlockStart().data();
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
-    gatherSweepState(parameters, velocities, threads, pairs.getPositions());
+    gatherSweepState(context, integrator, parameters, threads, pairs.getPositions());
     if constexpr (!std::is_same<Geometry, StoredPairGeometry>::value)
         geometry.slotPosition = layout.slotPositions.data();
     const int* slot = layout.slots;
@@ -115,7 +115,7 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
         // The first failing pair of the sequence: in the first block (of this first failing colour) that failed.
         for (int failed : blockFailure)
             if (failed >= 0)
-                failSweep(pairs, sweepOrder.getOrder(), failed, velocities, step);
+                failSweep(pairs, sweepOrder.getOrder(), failed, step);
     }
     layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, threads);
 }

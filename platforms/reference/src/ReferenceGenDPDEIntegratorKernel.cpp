@@ -105,19 +105,19 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
     const std::vector<int>& order = sweepOrder.getOrder();
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
-    gatherSweepState(parameters, velocities, 1);
+    gatherSweepState(context, integrator, parameters, 1);
     const int* slot = layout.slots;
     if (!terms.internalEnergies)
         sweepIsothermal(pairs.begin(), StoredPairGeometry(), order.data(), order.size(), parameters, slot,
                         layout.slotInverseMasses.data(), layout.slotVelocities.data());
     else {
-        // If an internal energy would become <= 0, the velocities and internal energies go back to what execute()
-        // saved before the step (positions have not moved yet), and the error names the particle and the step.
+        // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies stay
+        // those before the step; positions have not moved yet), and the error names the particle and the step.
         const int failed = sweepIsoenergetic(pairs.begin(), StoredPairGeometry(), order.data(), order.size(),
                                              parameters, slot, layout.slotInverseMasses.data(),
                                              layout.slotVelocities.data(), layout.slotEnergies.data());
         if (failed >= 0)
-            failSweep(pairs, order, failed, velocities, step);
+            failSweep(pairs, order, failed, step);
     }
     layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, 1);
 }
@@ -130,24 +130,23 @@ void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, 
                      first != nullptr ? first + 1 : nullptr, stride, numThreads, pairs.getRowPairStart());
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(PairSweepParameters& parameters,
-                                                           const std::vector<Vec3>& velocities, int numThreads,
+void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(ContextImpl& context, const GenDPDEIntegrator& integrator,
+                                                           PairSweepParameters& parameters, int numThreads,
                                                            const Vec3* positions) {
     const bool classes = parameters.numClasses > 1;
-    layout.gather(sweepOrder, velocities, parameters.terms.internalEnergies ? internalEnergies.data() : nullptr,
-                  inverseMasses.data(), classes ? parameters.particleClass : nullptr, numThreads, positions);
+    layout.gather(sweepOrder, extractVelocities(context), extractForces(context), 0.5 * integrator.getStepSize(),
+                  parameters.terms.internalEnergies ? internalEnergies.data() : nullptr, inverseMasses.data(),
+                  classes ? parameters.particleClass : nullptr, numThreads, positions);
     if (classes)
         parameters.particleClass = layout.slotClasses.data();
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
-                                                    std::vector<Vec3>& velocities, long long step) {
+                                                    long long step) {
     const int particle = pairs.holdsIndexPairs()
             ? failedParticle(pairs.getIndexPairs(), order.data(), failed, layout.slots, layout.slotEnergies.data())
             : failedParticle(pairs.begin(), order.data(), failed, layout.slots, layout.slotEnergies.data());
     const double value = layout.slotEnergies[layout.slots[particle]];
-    velocities = savedVelocities;
-    internalEnergies = savedInternalEnergies;
     throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, value, step));
 }
 
@@ -169,11 +168,7 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
     if (!terms.pairSweep)
         kick(context, velocities, forces, dt);
     else {
-        if (terms.internalEnergies) {
-            savedVelocities = velocities;
-            savedInternalEnergies = internalEnergies;
-        }
-        kick(context, velocities, forces, 0.5 * dt);
+        // (the first half kick inside the sweep, on the sweep's copies: a failed sweep leaves the state untouched)
         sweep(context, currentPairs(context, pairSource, numThreads(context)), velocities, integrator, terms);
         kick(context, velocities, forces, 0.5 * dt);
     }

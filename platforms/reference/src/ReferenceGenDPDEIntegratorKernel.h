@@ -58,8 +58,10 @@ protected:
      */
     virtual void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement);
     /**
-     * The pair updates in the order of GenDPDESweepOrder (Isoenergetic or Isothermal). If an internal energy would
-     * become <= 0, restore the velocities and internal energies saved before the step and throw.
+     * The step's first half kick, applied as the velocities are copied into the sweep's layout, then the pair updates
+     * in the order of GenDPDESweepOrder (Isoenergetic or Isothermal), then the results copied back. If an internal
+     * energy would become <= 0, throw: nothing has been copied back, so the velocities and internal energies are those
+     * before the step.
      */
     virtual void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
                        const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
@@ -80,26 +82,24 @@ protected:
     /** Build sweepOrder for these pairs at the current positions, on this many threads. */
     void buildSweepOrder(OpenMM::ContextImpl& context, PairView pairs, int numThreads);
     /**
-     * Copy what the sweep reads into layout (the order's cell order), and point parameters at the copied classes.
-     * The sweep then works on layout's arrays; layout.scatter() copies its results back. positions (by particle
-     * index): the geometry of pairs that do not carry it (PairView::getPositions()), or null.
+     * Copy what the sweep reads into layout (the order's cell order), the velocities given the step's first half
+     * kick (the context's forces, half of the integrator's step) on the way, and point parameters at the copied
+     * classes. The sweep then works on layout's arrays; layout.scatter() copies its results back. positions (by
+     * particle index): the geometry of pairs that do not carry it (PairView::getPositions()), or null.
      */
-    void gatherSweepState(PairSweepParameters& parameters, const std::vector<OpenMM::Vec3>& velocities, int numThreads,
-                          const OpenMM::Vec3* positions = nullptr);
+    void gatherSweepState(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
+                          PairSweepParameters& parameters, int numThreads, const OpenMM::Vec3* positions = nullptr);
     /**
-     * The sweep's failure at position failed of the order (the sweep's state still in layout): restore the saved
-     * state and throw.
+     * The sweep's failure at position failed of the order (the sweep's state still in layout, nothing copied back):
+     * throw, naming the particle and the step.
      */
-    [[noreturn]] void failSweep(PairView pairs, const std::vector<int>& order, int failed,
-                                std::vector<OpenMM::Vec3>& velocities, long long step);
+    [[noreturn]] void failSweep(PairView pairs, const std::vector<int>& order, int failed, long long step);
     double cutoff = 0.0;
     int seed = 0;
     std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
     std::vector<double> inverseMasses, internalEnergies;
-    std::vector<OpenMM::Vec3> savedVelocities;
     GenDPDESweepOrder sweepOrder;
     SweepLayout layout;   // the sweep's particle data in sweepOrder's cell order, during a sweep
-    std::vector<double> savedInternalEnergies;
     // docs/theory.md section 11: sigma(n_i) at the densities internalEnergies belong to, if known.
     std::vector<double> densityEntropies;
     bool densityEntropiesKnown = false;

@@ -144,15 +144,20 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     layout.update(*neighborList, threads);
 
     // docs/theory.md sections 2-4: n0_i = sum_j w(r_ij) along the row, then the particle's volume, pressure and free
-    // energy, all in row order (threads writing particle arrays at random would share cache lines). The error
-    // reported is that of the lowest failing particle, as the sequential loop would report it.
+    // energy, all in row order (threads writing particle arrays at random would share cache lines). A step needs of
+    // each particle's state only its force coefficient and free energy; the whole state is kept (and copied into the
+    // per-particle arrays) where the observables ask for it or a law that depends on temperature keeps its thermal
+    // state. The error reported is that of the lowest failing particle, as the sequential loop would report it.
     const int* particleOf = layout.getParticle().data();
+    const bool keepStates = observablesAsked || dependsOnTemperature;
     rowDensity.resize(numParticles);
-    rowState.resize(numParticles);
+    rowState.resize(keepStates ? numParticles : 0);
     rowCoefficient.resize(numParticles);
+    rowFreeEnergy.resize(numParticles);
     double* density = rowDensity.data();
-    Physics::ParticleState* state = rowState.data();
+    Physics::ParticleState* keptState = rowState.data();
     double* coefficient = rowCoefficient.data();
+    double* freeEnergy = rowFreeEnergy.data();
     const bool moments = usesMoments();
     rowMoment.resize(moments ? numParticles : 0);
     rowMomentForce.resize(moments ? numParticles : 0);
@@ -165,8 +170,10 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
     std::vector<int> failedParticle(numRanges(numParticles, rowChunk), INT_MAX);
     std::vector<int> failedStatus(failedParticle.size(), GENDPDE_PARTICLE_VALID);
+    std::vector<double> failedVolume(failedParticle.size(), 0.0);
     int* failed = failedParticle.data();
     int* status = failedStatus.data();
+    double* volumeOfFailed = failedVolume.data();
     withRowGather([&](auto gather) {
         parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
             if (vectorRows != nullptr)
@@ -192,33 +199,53 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
             for (int s = begin; s < end; s++) {
                 const int i = particleOf[s];
                 const double G = moments ? momentOf[s].dot(momentOf[s]) : 0.0;
-                const int particleStatus = model.particleState(i, typeOf[i], density[s], G, state[s]);
+                Physics::ParticleState state;
+                const int particleStatus = model.particleState(i, typeOf[i], density[s], G, state);
                 if (moments)
-                    momentForceOf[s] = momentOf[s] * state[s].momentForceScale; // as storeParticle()
+                    momentForceOf[s] = momentOf[s] * state.momentForceScale; // as storeParticle()
                 if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin / rowChunk]) {
                     failed[begin / rowChunk] = i;
                     status[begin / rowChunk] = particleStatus;
+                    volumeOfFailed[begin / rowChunk] = state.volume;
                 }
-                coefficient[s] = state[s].forceCoefficient;
+                coefficient[s] = state.forceCoefficient;
+                freeEnergy[s] = state.freeEnergy;
+                if (keepStates)
+                    keptState[s] = state;
             }
         });
     });
-    // The per-particle arrays in particle order, each thread writing its own range.
+    // The per-particle arrays in particle order where they are read, each thread writing its own range: all of them
+    // for the observables, else a law's thermal state.
     const int* rowOf = layout.getRow().data();
-    parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
-        for (int i = begin; i < end; i++) {
-            primitiveDensity[i] = density[rowOf[i]];
-            if (moments)
-                moment[i] = momentOf[rowOf[i]];
-            storeParticle(i, state[rowOf[i]]);
-        }
-    });
+    if (observablesAsked) {
+        sizeParticleArrays();
+        parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
+            for (int i = begin; i < end; i++) {
+                primitiveDensity[i] = density[rowOf[i]];
+                if (moments)
+                    moment[i] = momentOf[rowOf[i]];
+                storeParticle(i, keptState[rowOf[i]]);
+            }
+        });
+    } else if (dependsOnTemperature) {
+        double* thermal = thermalEnergy.data();
+        double* entropy = densityEntropy.data();
+        parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
+            for (int i = begin; i < end; i++) {
+                thermal[i] = keptState[rowOf[i]].thermalEnergy; // as storeParticle()
+                entropy[i] = keptState[rowOf[i]].densityEntropy;
+            }
+        });
+    }
     const auto lowest = std::min_element(failedParticle.begin(), failedParticle.end());
-    if (*lowest != INT_MAX)
-        throwParticleError(failedStatus[lowest - failedParticle.begin()], *lowest, volume[*lowest], context);
+    if (*lowest != INT_MAX) {
+        const size_t chunk = lowest - failedParticle.begin();
+        throwParticleError(failedStatus[chunk], *lowest, failedVolume[chunk], context);
+    }
     // U = sum_i f(n_i)
     return FixedOrderSum::parallelSum(
-            threads, numParticles, [state, rowOf](int i) { return state[rowOf[i]].freeEnergy; }, chunkSums);
+            threads, numParticles, [freeEnergy, rowOf](int i) { return freeEnergy[rowOf[i]]; }, chunkSums);
 }
 
 double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,
@@ -289,17 +316,15 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
                 gatherRows(gather, std::false_type(), begin, end);
         });
     });
-    // Back to particle order, each thread writing its own range.
+    // The forces back to particle order, each thread writing its own range.
     const int* rowOf = layout.getRow().data();
-    double* virial = particleVirial.data();
-    Vec3* force = forces != nullptr ? forces->data() : nullptr;
-    parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
-        for (int i = begin; i < end; i++) {
-            virial[i] = rowW[rowOf[i]];
-            if (force != nullptr)
+    if (forces != nullptr) {
+        Vec3* force = forces->data();
+        parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
+            for (int i = begin; i < end; i++)
                 force[i] = rowF[rowOf[i]];
-        }
-    });
+        });
+    }
     if (particleVirials != nullptr) {
         particleVirials->resize(9 * numRows);
         double* tensorOut = particleVirials->data();
@@ -308,7 +333,8 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
                 std::copy(rowTensor[rowOf[i]].element, rowTensor[rowOf[i]].element + 9, tensorOut + 9 * i);
         });
     }
-    return FixedOrderSum::parallelSum(threads, numRows, [virial](int i) { return virial[i]; }, chunkSums);
+    // W summed over the particles in index order, as Reference sums it
+    return FixedOrderSum::parallelSum(threads, numRows, [rowW, rowOf](int i) { return rowW[rowOf[i]]; }, chunkSums);
 }
 
 PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {

@@ -63,9 +63,9 @@ private:
     bool sequential = false; // whether the last evaluation ran Reference's passes (one thread, small systems)
     CellOrderedCandidates layout; // the neighbor list's candidates as full rows in cell order
     // Per row: what the passes find, before it is copied to the particle arrays.
-    std::vector<double> rowDensity, rowCoefficient, rowVirial;
+    std::vector<double> rowDensity, rowCoefficient, rowFreeEnergy, rowVirial;
     std::vector<OpenMM::Vec3> rowMoment, rowMomentForce; // VC: g and q = 2 pi dV/dG g per row
-    std::vector<Physics::ParticleState> rowState;
+    std::vector<Physics::ParticleState> rowState; // where the whole state is kept (computeDensitiesAndEnergy)
     std::vector<OpenMM::Vec3> rowForce;
     std::vector<Physics::Tensor> rowVirialTensor; // each row's virial tensor, when the observables ask for them
     std::vector<double> chunkSums; // partial sums of the energy or the virial (FixedOrderSum chunks)

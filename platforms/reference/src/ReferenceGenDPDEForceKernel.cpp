@@ -14,12 +14,7 @@ void ReferenceCalcGenDPDEForceKernel::initialize(const System& system, const Gen
     cutoff = force.getCutoffDistance();
     periodic = force.usesPeriodicBoundaryConditions();
     neighborList.reset(new NeighborList(cutoff, NeighborList::defaultSkinFraction * cutoff, periodic));
-    int numParticles = system.getNumParticles();
-    primitiveDensity.resize(numParticles);
-    volume.resize(numParticles);
-    pressure.resize(numParticles);
-    forceCoefficient.resize(numParticles);
-    particleVirial.resize(numParticles);
+    numParticles = system.getNumParticles();
     types.reset(new ParticleTypeIndex(force.getParticleTypes(), numParticles, "GenDPDEForce"));
     readParameters(force);
 }
@@ -42,10 +37,10 @@ void ReferenceCalcGenDPDEForceKernel::readParameters(const GenDPDEForce& force) 
     estimator = (int) force.getDensityEstimator();
     lawByType = laws;
     dependsOnTemperature = force.dependsOnTemperature();
-    thermalEnergy.assign(dependsOnTemperature ? primitiveDensity.size() : 0, 0.0);
+    thermalEnergy.assign(dependsOnTemperature ? numParticles : 0, 0.0);
     densityEntropy.assign(thermalEnergy.size(), 0.0);
     // V-C's moments (48 bytes per particle) only while the estimator uses them
-    moment.assign(usesMoments() ? primitiveDensity.size() : 0, Vec3());
+    moment.assign(usesMoments() ? numParticles : 0, Vec3());
     momentForce.assign(moment.size(), Vec3());
     cutoffScaling = force.getCutoffScaling();
     observablesValid = false;
@@ -93,6 +88,7 @@ double ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& c
 
     // docs/theory.md sections 2-3: primitive densities n0_i = sum_j w(r_ij).
     const Physics::DensityWeight weight(cutoff);
+    sizeParticleArrays();
     std::fill(primitiveDensity.begin(), primitiveDensity.end(), 0.0);
     for (const ParticlePair& pair : pairs) {
         double w = weight.value(pair.r);
@@ -144,7 +140,7 @@ double ReferenceCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, 
                                   moments ? momentForce[pair.i] : noMoment, moments ? momentForce[pair.j] : noMoment,
                                   virial);
     };
-    std::fill(particleVirial.begin(), particleVirial.end(), 0.0);
+    particleVirial.assign(numParticles, 0.0);
     for (const ParticlePair& pair : neighborList->getPairs()) {
         if (pair.r == 0.0)
             continue; // coincident particles: counted in the density, no direction, no force
@@ -192,7 +188,14 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
         && positions == observedPositions && box[0] == observedBox[0] && box[1] == observedBox[1]
         && box[2] == observedBox[2])
         return observables;
-    computeDensitiesAndEnergy(context);
+    observablesAsked = true;
+    try {
+        computeDensitiesAndEnergy(context);
+    } catch (...) {
+        observablesAsked = false;
+        throw;
+    }
+    observablesAsked = false;
     observables.virial = computePairForces(context, nullptr, particleVirials ? &observables.particleVirials : nullptr);
     if (!particleVirials)
         observables.particleVirials.clear();

@@ -109,9 +109,18 @@ protected:
     int estimator;                              // GenDPDEForce::DensityEstimator (= GENDPDE_ESTIMATOR_*)
     bool periodic;
     std::unique_ptr<NeighborList> neighborList;
-    // Per particle, at the positions of the last evaluation.
+    int numParticles = 0;
+    /** Give the per-particle arrays below (primitiveDensity ... forceCoefficient) their size, where a pass fills them. */
+    void sizeParticleArrays() {
+        for (std::vector<double>* values : {&primitiveDensity, &volume, &pressure, &forceCoefficient})
+            values->resize(numParticles);
+    }
+    // Whether computeDensitiesAndEnergy() runs for getObservables(), which reads the per-particle arrays below (the
+    // CPU platform's passes fill them only then).
+    bool observablesAsked = false;
+    // Per particle, at the positions of the last evaluation that filled them (sizeParticleArrays()).
     std::vector<double> primitiveDensity, volume, pressure;
-    std::vector<double> forceCoefficient;   // pi_i dV_i/dn0_i (kJ/mol nm^3)
+    std::vector<double> forceCoefficient; // pi_i dV_i/dn0_i (kJ/mol nm^3)
     // Laws that depend on temperature: C_V theta_i (kJ/mol) and sigma(n_i) (kJ/(mol K)); eps_i and 0 for Tait particles.
     std::vector<double> thermalEnergy, densityEntropy;
     std::vector<double> particleVirial; // sum over the pairs (i, j > i) of r_ij . F_ij (kJ/mol)

@@ -62,6 +62,7 @@ void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) 
                 neighbor[m] = rowOf[candidate[c]];
         }
     });
+    std::vector<int>& fill = lowerCount; // (one buffer for both)
     fill.assign(rowStart.begin(), rowStart.end() - 1);
     for (int i = 0; i < numRows; i++) {
         const int* candidate = list.candidatesOf(i);

@@ -44,7 +44,7 @@ private:
     const NeighborList* followedList = nullptr; // the list and its build count when the rows were derived
     long long followedBuild = -1;
     std::vector<int> particle, row, rowStart, upperStart, neighbors;
-    std::vector<int> fill, lowerCount; // scratch of buildRows, kept so that a rebuild allocates nothing
+    std::vector<int> lowerCount; // scratch of buildRows (then each row's next place), kept: a rebuild allocates nothing
     std::vector<OpenMM::Vec3> positions;
 };
 

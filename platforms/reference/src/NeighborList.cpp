@@ -45,9 +45,13 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
 
 void NeighborList::build(const std::vector<Vec3>& positions, int numThreads) {
     Vec3 extent;
-    unitCellCoordinates(positions, extent, numThreads, buildScratch);
-    sortIntoCells(buildScratch, extent);
-    collectCandidates(periodic ? wrappedPositions : positions, numThreads);
+    // The positions of the last build are not needed until they are replaced at the end: their buffer is the build's
+    // scratch (the unit-cell coordinates, then the positions in cell order).
+    std::vector<Vec3>& scratch = builtPositions;
+    built = false; // (until the end: a build interrupted leaves no stale positions to compare with)
+    unitCellCoordinates(positions, extent, numThreads, scratch);
+    sortIntoCells(scratch, extent);
+    collectCandidates(periodic ? wrappedPositions : positions, numThreads, scratch);
     builtPositions = positions;
     for (int k = 0; k < 3; k++)
         builtBox[k] = box.getVectors()[k];
@@ -134,12 +138,11 @@ std::array<std::vector<std::vector<int>>, 3> NeighborList::neighborCellsPerDimen
     return neighborCells;
 }
 
-void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads) {
+void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads, std::vector<Vec3>& cellPositions) {
     const int numParticles = r.size();
     const std::array<std::vector<std::vector<int>>, 3> neighborCells = neighborCellsPerDimension();
     // The positions in cell order, so that scanning a cell reads consecutive memory (exact copies: the same
     // candidates), in the build's scratch (the unit-cell coordinates are no longer needed).
-    std::vector<Vec3>& cellPositions = buildScratch;
     cellPositions.resize(numParticles);
     for (int m = 0; m < numParticles; m++)
         cellPositions[m] = r[cellParticles[m]];
@@ -214,17 +217,19 @@ void NeighborList::findPairs(int begin, int end, Displacement displacement, std:
 template <class Displacement>
 void NeighborList::collectPairs(int numParticles, Displacement displacement, int numThreads) {
     if (numThreads < 2) {
-        // Fill a buffer with room for every candidate, field by field (a push_back of a temporary pair stalls on
-        // store-to-load forwarding), every candidate written and kept only if in range (no branch: a quarter of
-        // the candidates are not, at random). The buffer only grows, so it is never re-initialised.
-        if (pairs.size() < (size_t) getNumCandidates())
-            resizeBuffer(pairs, getNumCandidates());
+        // Fill a buffer field by field (a push_back of a temporary pair stalls on store-to-load forwarding), every
+        // candidate written and kept only if in range (no branch: a quarter of the candidates are not, at random):
+        // the buffer has room for every candidate of the particle at hand. It only grows (by 1/16 when it must), so
+        // it is rarely re-initialised, and holds little more than the pairs.
         size_t found = 0;
-        ParticlePair* pair = pairs.data();
         const double cutoff2 = cutoff * cutoff;
         for (int i = 0; i < numParticles; i++) {
             const int* candidate = candidatesOf(i);
-            for (int m = 0, count = numCandidates(i); m < count; m++) {
+            const int count = numCandidates(i);
+            if (pairs.size() < found + count)
+                resizeBuffer(pairs, found + count);
+            ParticlePair* pair = pairs.data();
+            for (int m = 0; m < count; m++) {
                 const int j = candidate[m];
                 const Vec3 d = displacement(i, j);
                 pair[found].i = i;

@@ -202,8 +202,12 @@ private:
     void sortIntoCells(const std::vector<OpenMM::Vec3>& unit, const OpenMM::Vec3& extent);
     /** For each dimension and cell coordinate, the distinct cell coordinates within one step. */
     std::array<std::vector<std::vector<int>>, 3> neighborCellsPerDimension() const;
-    /** The candidates of each particle (j > i within cutoff + skin), from the cells around it. */
-    void collectCandidates(const std::vector<OpenMM::Vec3>& positions, int numThreads);
+    /**
+     * The candidates of each particle (j > i within cutoff + skin), from the cells around it; cellPositions: a buffer
+     * for the positions in cell order.
+     */
+    void collectCandidates(const std::vector<OpenMM::Vec3>& positions, int numThreads,
+                           std::vector<OpenMM::Vec3>& cellPositions);
     /** The candidates of particles begin .. end - 1 into `found` (their counts in candidateStart[i + 1]). */
     void findCandidates(const std::vector<OpenMM::Vec3>& positions, const std::vector<OpenMM::Vec3>& cellPositions,
                         int begin, int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
@@ -230,9 +234,8 @@ private:
     std::vector<std::vector<int>> chunkCandidates;
     std::array<int, 3> numCells; // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
-    // Scratch of a build, kept so that a rebuild allocates nothing: the unit-cell coordinates, then (one buffer for
-    // both) the positions of cellParticles; each cell's next place.
-    std::vector<OpenMM::Vec3> buildScratch;
+    // Scratch of a build, kept so that a rebuild allocates nothing: each cell's next place. (The unit-cell coordinates
+    // and the positions in cell order use builtPositions' buffer, build().)
     std::vector<int> cellFill;
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr; // those of the last refresh (not periodic)
     std::vector<ParticlePair> pairs; // a buffer with room for every candidate; numPairs are in use

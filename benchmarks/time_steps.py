@@ -12,6 +12,7 @@ It uses only liquid_argon and the public API, so that older versions run it too.
 """
 
 import argparse
+import gc
 import os
 import time
 
@@ -72,6 +73,9 @@ def main():
     parser.add_argument("--no-type-entries", action="store_true",
                         help="give the --types no entries: every type uses the force's and integrator's parameters")
     parser.add_argument("--memory", action="store_true", help="also print the peak resident memory (MB)")
+    parser.add_argument("--heap", action="store_true",
+                        help="also print the heap the Context holds per particle after its first 10 steps (bytes; "
+                             "glibc's count of allocated bytes, mallinfo2, before the Context and after)")
     arguments = parser.parse_args()
     if not os.path.exists(arguments.state):
         melt_properties = {"Precision": arguments.precision} if arguments.precision and arguments.melt_platform in (
@@ -85,11 +89,19 @@ def main():
     properties = {"Threads": str(arguments.threads)} if arguments.threads else {}
     if arguments.precision:
         properties["Precision"] = arguments.precision
+    positions, velocities = saved["positions"], saved["velocities"]
+    if arguments.heap:   # (imported here: without --heap the tool runs with versions that lack it)
+        from openmmgendpde.benchmarks.cpu import allocated_bytes
+    gc.collect()
+    heap_before = allocated_bytes() if arguments.heap else None
     context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(arguments.platform),
                              properties)
-    context.setPositions(saved["positions"])
-    context.setVelocities(saved["velocities"])
+    context.setPositions(positions)
+    context.setVelocities(velocities)
     model.integrator.step(10)
+    if heap_before is not None:
+        gc.collect()
+        heap = (allocated_bytes() - heap_before) / num_particles
     start = time.perf_counter()
     if arguments.what == "step":
         model.integrator.step(arguments.count)
@@ -97,11 +109,13 @@ def main():
         for _ in range(arguments.count):
             context.getState(getEnergy=True, getForces=True)
     milliseconds = (time.perf_counter() - start) / arguments.count * 1e3
+    line = f"{milliseconds:.3f}"
     if arguments.memory:
         import resource
-        print(f"{milliseconds:.3f} ms, peak {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB")
-    else:
-        print(f"{milliseconds:.3f}")
+        line += f" ms, peak {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MB"
+    if arguments.heap:
+        line += f", heap {heap:.0f} bytes per particle" if heap_before is not None else ", heap unknown"
+    print(line)
 
 
 if __name__ == "__main__":

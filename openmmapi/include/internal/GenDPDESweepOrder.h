@@ -92,7 +92,7 @@ private:
     bool periodic = false;
     RowReading rowReading = RowReading::BySize;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order;
+    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order, sortedFirst;
     std::vector<int> cellCount, particlesByCell, slotOfParticle, runBound;
 };
 

@@ -33,17 +33,15 @@ void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) 
 
     // Row sizes: the candidates (j, i) of each particle i, then its own candidates (i, j).
     lowerCount.assign(numRows, 0);
-    for (int i = 0; i < numRows; i++) {
-        const int* candidate = list.candidatesOf(i);
-        for (int c = 0, count = list.numCandidates(i); c < count; c++)
-            lowerCount[candidate[c]]++;
-    }
+    for (int i = 0; i < numRows; i++)
+        for (int j : list.candidatesOf(i))
+            lowerCount[j]++;
     rowStart.assign(numRows + 1, 0);
     upperStart.resize(numRows);
     for (int s = 0; s < numRows; s++) {
         const int i = particle[s];
         upperStart[s] = rowStart[s] + lowerCount[i];
-        rowStart[s + 1] = upperStart[s] + list.numCandidates(i);
+        rowStart[s + 1] = upperStart[s] + list.candidatesOf(i).size();
     }
     resizeBuffer(neighbors, rowStart[numRows]);
 
@@ -57,18 +55,16 @@ void CellOrderedCandidates::buildRows(const NeighborList& list, int numThreads) 
     parallelFor(numThreads, numRows, rowChunk, [=](int begin, int end) {
         for (int s = begin; s < end; s++) {
             const int i = particleOf[s];
-            const int* candidate = candidates->candidatesOf(i);
-            for (int c = 0, m = upper[s], count = candidates->numCandidates(i); c < count; c++, m++)
-                neighbor[m] = rowOf[candidate[c]];
+            int m = upper[s];
+            for (int j : candidates->candidatesOf(i))
+                neighbor[m++] = rowOf[j];
         }
     });
     std::vector<int>& fill = lowerCount; // (one buffer for both)
     fill.assign(rowStart.begin(), rowStart.end() - 1);
-    for (int i = 0; i < numRows; i++) {
-        const int* candidate = list.candidatesOf(i);
-        for (int c = 0, count = list.numCandidates(i); c < count; c++)
-            neighbor[fill[rowOf[candidate[c]]]++] = rowOf[i];
-    }
+    for (int i = 0; i < numRows; i++)
+        for (int j : list.candidatesOf(i))
+            neighbor[fill[rowOf[j]]++] = rowOf[i];
     followedList = &list;
     followedBuild = list.getBuildCount();
 }

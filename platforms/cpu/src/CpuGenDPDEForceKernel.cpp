@@ -134,7 +134,9 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
         return ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(context);
     const std::vector<Vec3>& positions = extractPositions(context);
     const int numParticles = positions.size();
-    std::vector<int> firstBad(numRanges(numParticles, rowChunk), -1);
+    const int numRangesOfRows = numRanges(numParticles, rowChunk);
+    std::vector<int>& firstBad = rangeFirstBad;
+    firstBad.assign(numRangesOfRows, -1);
     parallelFor(threads, numParticles, rowChunk, [&](int begin, int end) {
         firstBad[begin / rowChunk] = firstNonFinitePosition(positions, begin, end);
     });
@@ -168,12 +170,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     const ParticleModel model(*this, context);
     const int* typeOf = types->getParticleTypeIndices().data();
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
-    std::vector<int> failedParticle(numRanges(numParticles, rowChunk), INT_MAX);
-    std::vector<int> failedStatus(failedParticle.size(), GENDPDE_PARTICLE_VALID);
-    std::vector<double> failedVolume(failedParticle.size(), 0.0);
-    int* failed = failedParticle.data();
-    int* status = failedStatus.data();
-    double* volumeOfFailed = failedVolume.data();
+    rangeFailures.assign(numRangesOfRows, RangeFailure());
+    RangeFailure* failure = rangeFailures.data();
     withRowGather([&](auto gather) {
         parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
             if (vectorRows != nullptr)
@@ -203,11 +201,8 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                 const int particleStatus = model.particleState(i, typeOf[i], density[s], G, state);
                 if (moments)
                     momentForceOf[s] = momentOf[s] * state.momentForceScale; // as storeParticle()
-                if (particleStatus != GENDPDE_PARTICLE_VALID && i < failed[begin / rowChunk]) {
-                    failed[begin / rowChunk] = i;
-                    status[begin / rowChunk] = particleStatus;
-                    volumeOfFailed[begin / rowChunk] = state.volume;
-                }
+                if (particleStatus != GENDPDE_PARTICLE_VALID && i < failure[begin / rowChunk].particle)
+                    failure[begin / rowChunk] = {i, particleStatus, state.volume};
                 coefficient[s] = state.forceCoefficient;
                 freeEnergy[s] = state.freeEnergy;
                 if (keepStates)
@@ -229,20 +224,16 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
             }
         });
     } else if (dependsOnTemperature) {
-        double* thermal = thermalEnergy.data();
-        double* entropy = densityEntropy.data();
         parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
-            for (int i = begin; i < end; i++) {
-                thermal[i] = keptState[rowOf[i]].thermalEnergy; // as storeParticle()
-                entropy[i] = keptState[rowOf[i]].densityEntropy;
-            }
+            for (int i = begin; i < end; i++)
+                storeThermalState(i, keptState[rowOf[i]]);
         });
     }
-    const auto lowest = std::min_element(failedParticle.begin(), failedParticle.end());
-    if (*lowest != INT_MAX) {
-        const size_t chunk = lowest - failedParticle.begin();
-        throwParticleError(failedStatus[chunk], *lowest, failedVolume[chunk], context);
-    }
+    const auto lowest =
+            std::min_element(rangeFailures.begin(), rangeFailures.end(),
+                             [](const RangeFailure& a, const RangeFailure& b) { return a.particle < b.particle; });
+    if (lowest->particle != INT_MAX)
+        throwParticleError(lowest->status, lowest->particle, lowest->volume, context);
     // U = sum_i f(n_i)
     return FixedOrderSum::parallelSum(
             threads, numParticles, [freeEnergy, rowOf](int i) { return freeEnergy[rowOf[i]]; }, chunkSums);

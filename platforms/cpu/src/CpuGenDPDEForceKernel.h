@@ -4,6 +4,7 @@
 #include "CellOrderedCandidates.h"
 #include "ReferenceGenDPDEForceKernel.h"
 #include "RowGatherAvx2.h"
+#include <climits>
 #include <memory>
 #include <vector>
 
@@ -69,6 +70,15 @@ private:
     std::vector<OpenMM::Vec3> rowForce;
     std::vector<Physics::Tensor> rowVirialTensor; // each row's virial tensor, when the observables ask for them
     std::vector<double> chunkSums; // partial sums of the energy or the virial (FixedOrderSum chunks)
+    // Per range of rows, kept so that a step allocates nothing: the first particle with a position that is not finite,
+    // and the lowest particle whose state failed (its status and volume, for the error).
+    struct RangeFailure {
+        int particle = INT_MAX;
+        int status = GENDPDE_PARTICLE_VALID;
+        double volume = 0.0;
+    };
+    std::vector<int> rangeFirstBad;
+    std::vector<RangeFailure> rangeFailures;
     std::vector<char> listedFlags; // per row entry: a pair closer than the cutoff (upper parts only)
     // collectPairs(): the first pair of each range of rows and of each row (and the end); the pairs.
     std::vector<int> pairOffset, rowPairStart;

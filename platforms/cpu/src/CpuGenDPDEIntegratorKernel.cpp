@@ -21,7 +21,8 @@ int CpuIntegrateGenDPDEStepKernel::numThreads(ContextImpl& context) const {
 
 void CpuIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context, double stepSize, double maxDisplacement) {
     const int numParticles = inverseMasses.size();
-    std::vector<int> firstUnstable(numRanges(numParticles, particleChunk), -1);
+    std::vector<int>& firstUnstable = rangeFirstUnstable;
+    firstUnstable.assign(numRanges(numParticles, particleChunk), -1);
     parallelFor(extractNumThreads(context), numParticles, particleChunk, [&](int begin, int end) {
         firstUnstable[begin / particleChunk] = firstUnstableParticle(context, stepSize, maxDisplacement, begin, end);
     });

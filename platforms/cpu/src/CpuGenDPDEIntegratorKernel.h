@@ -36,6 +36,7 @@ private:
                      const GenDPDEStepTerms& terms, int threads);
     std::vector<int> blockFailure; // per block of the running colour: position of the failing pair, or -1
     std::vector<double> chunkSums;
+    std::vector<int> rangeFirstUnstable; // per range of particles: the first unstable one, or -1 (checkStepIsStable)
 };
 
 } // namespace GenDPDEPlugin

@@ -199,9 +199,7 @@ template <class Displacement>
 void NeighborList::findPairs(int begin, int end, Displacement displacement, std::vector<ParticlePair>& found) const {
     const double cutoff2 = cutoff * cutoff;
     for (int i = begin; i < end; i++) {
-        const int* candidate = candidatesOf(i);
-        for (int m = 0, count = numCandidates(i); m < count; m++) {
-            const int j = candidate[m];
+        for (int j : candidatesOf(i)) {
             const Vec3 d = displacement(i, j);
             if (d.dot(d) < cutoff2) {
                 found.emplace_back();
@@ -224,13 +222,11 @@ void NeighborList::collectPairs(int numParticles, Displacement displacement, int
         size_t found = 0;
         const double cutoff2 = cutoff * cutoff;
         for (int i = 0; i < numParticles; i++) {
-            const int* candidate = candidatesOf(i);
-            const int count = numCandidates(i);
-            if (pairs.size() < found + count)
-                resizeBuffer(pairs, found + count);
+            const Candidates candidates = candidatesOf(i);
+            if (pairs.size() < found + candidates.size())
+                resizeBuffer(pairs, found + candidates.size());
             ParticlePair* pair = pairs.data();
-            for (int m = 0; m < count; m++) {
-                const int j = candidate[m];
+            for (int j : candidates) {
                 const Vec3 d = displacement(i, j);
                 pair[found].i = i;
                 pair[found].j = j;

@@ -172,13 +172,20 @@ public:
     const std::vector<OpenMM::Vec3>& getRefreshedPositions() const {
         return periodic ? wrappedPositions : *currentPositions;
     }
-    /** The candidates j > i of particle i, in increasing order: candidatesOf(i)[0] ... [numCandidates(i) - 1]. */
-    const int* candidatesOf(int i) const {
+    /** A particle's candidates, for (int j : list.candidatesOf(i)). */
+    struct Candidates {
+        const int *first, *last;
+        const int* begin() const { return first; }
+        const int* end() const { return last; }
+        int size() const { return last - first; }
+    };
+    /** The candidates j > i of particle i, in increasing order. */
+    Candidates candidatesOf(int i) const {
         const int chunk = i / particleChunk;
-        return chunkCandidates[chunk].data() + (candidateStart[i] - candidateStart[chunk * particleChunk]);
+        const int* first = chunkCandidates[chunk].data() + (candidateStart[i] - candidateStart[chunk * particleChunk]);
+        return {first, first + (candidateStart[i + 1] - candidateStart[i])};
     }
-    int numCandidates(int i) const { return candidateStart[i + 1] - candidateStart[i]; }
-    /** All particles' candidates: the sum of numCandidates(i). */
+    /** All particles' candidates: the sum of candidatesOf(i).size(). */
     int getNumCandidates() const { return candidateStart.back(); }
     /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
     const std::vector<int>& getCellOrder() const { return cellParticles; }

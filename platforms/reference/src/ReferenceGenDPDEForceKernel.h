@@ -84,6 +84,10 @@ protected:
         forceCoefficient[i] = state.forceCoefficient;
         if (usesMoments())
             momentForce[i] = moment[i] * state.momentForceScale;
+        storeThermalState(i, state);
+    }
+    /** Store particle i's thermal state (a law that depends on temperature; nothing otherwise). */
+    void storeThermalState(int i, const Physics::ParticleState& state) {
         if (dependsOnTemperature) {
             thermalEnergy[i] = state.thermalEnergy;
             densityEntropy[i] = state.densityEntropy;

@@ -5,20 +5,8 @@
 # prints the path of the lmp executable.
 set -euo pipefail
 directory=$(realpath -m "${1:-/tmp/lammps-dpd-react}")
-sudo_prefix=()
-[ "$(id -u)" -eq 0 ] || sudo_prefix=(sudo)
-mkdir -p "$directory"
+source_dir=$("$(dirname "$0")/../lammps/fetch-source.sh" "$directory")
 cd "$directory"
-if ! ls lammps-*/cmake/CMakeLists.txt > /dev/null 2>&1; then
-    # The source package needs deb-src lines; Debian 12's default sources file has only "Types: deb".
-    if ! apt-get source --download-only -q lammps > /dev/null 2>&1; then
-        "${sudo_prefix[@]}" sed -i 's/^Types: deb$/Types: deb deb-src/' /etc/apt/sources.list.d/debian.sources
-        "${sudo_prefix[@]}" apt-get update -q > /dev/null
-        apt-get source --download-only -q lammps > /dev/null 2>&1
-    fi
-    tar xf lammps_*.orig.tar.xz
-fi
-source_dir=$(ls -d "$directory"/lammps-*/ | head -1)
 mkdir -p build
 # CMAKE_DISABLE_FIND_PACKAGE_MPI: with openmpi-bin but not its headers installed, LAMMPS's MPI probe fails.
 cmake -S "$source_dir/cmake" -B build -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-O2 \

@@ -13,8 +13,10 @@ echo "== C++ tests (ctest)"
 # The C++ tests are separate processes that share nothing but the kernel cache: run them two (or one per core) at a
 # time (cold cache, 2 cores: 223 s against 314 s one at a time, measured back to back).
 ctest --test-dir build --output-on-failure -j "$(nproc)"
+echo "== The LAMMPS package (lammps/build.sh: LAMMPS with MPI once, ~3.5 minutes on 2 cores, then the plugin)"
+lammps/build.sh
 echo "== Python tests (pytest)"
 # The Python tests, one worker per core, each test file on one worker (its module fixtures made once): 317 s against
 # 544 s in one process, on 2 cores.
-# -m "": every tier (fast, validation, gpu; pyproject.toml's markers).
+# -m "": every tier (fast, validation, gpu, lammps; pyproject.toml's markers).
 .venv/bin/python -m pytest -q -ra -m "" -n "$(nproc)" --dist loadfile python/tests

@@ -1,6 +1,7 @@
 #include "internal/GenDPDESweepOrder.h"
 #include "internal/BoxGeometry.h"
 #include "internal/Buffers.h"
+#include "internal/GenDPDESweepDefinition.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <cmath>
@@ -8,52 +9,13 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-namespace {
-
-const int numColours = 8;
-/** Cells are at least this factor times the range wide, so that rounding can never put a pair in range two cells
- *  apart. */
-const double cellMargin = 1.0 + 1e-9;
-
-/**
- * Copy the pairs listed[0..count) (sorted by their first particles first[0..count)) to output, with the lists of each
- * four consecutive distinct first particles interleaved: the first pair of each list, then the second of each, ...
- */
-void interleaveRuns(const int* listed, const int* first, int count, int* output) {
-    int next = 0, start = 0;
-    while (start < count) {
-        // Up to four runs of equal first particle, starting at `start`.
-        int runStart[5], numRuns = 0, end = start;
-        while (numRuns < 4 && end < count) {
-            runStart[numRuns++] = end;
-            const int particle = first[end];
-            while (end < count && first[end] == particle)
-                end++;
-        }
-        runStart[numRuns] = end;
-        int longest = 0;
-        for (int r = 0; r < numRuns; r++)
-            longest = std::max(longest, runStart[r + 1] - runStart[r]);
-        for (int rank = 0; rank < longest; rank++)
-            for (int r = 0; r < numRuns; r++)
-                if (runStart[r] + rank < runStart[r + 1])
-                    output[next++] = listed[runStart[r] + rank];
-        start = end;
-    }
-}
-
-} // namespace
+using SweepDefinition::interleaveRuns;
+using SweepDefinition::numColours;
 
 std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double range, bool periodic) {
     std::array<int, 3> cells;
-    for (int k = 0; k < 3; k++) {
-        const double fit = std::floor(extent[k] / (cellMargin * range));
-        const int m = (int) std::min(fit, 1e6);
-        if (periodic)
-            cells[k] = (m >= 4 ? 4 * (m / 4) : (m >= 2 ? 2 : 1));
-        else
-            cells[k] = std::max(1, m);
-    }
+    for (int k = 0; k < 3; k++)
+        cells[k] = SweepDefinition::cellCount(extent[k], range, periodic);
     return cells;
 }
 
@@ -67,7 +29,7 @@ int GenDPDESweepOrder::blockRanks(const std::array<int, 3>& numBlocks, std::vect
         for (int block = 0; block < totalBlocks; block++) {
             const int bx = block % numBlocks[0], by = (block / numBlocks[0]) % numBlocks[1];
             const int bz = block / (numBlocks[0] * numBlocks[1]);
-            if ((bx % 2) + 2 * (by % 2) + 4 * (bz % 2) == colour)
+            if (SweepDefinition::blockColour(bx, by, bz) == colour)
                 rankOfBlock[block] = rank++;
         }
         groupStart.push_back(rank);
@@ -104,12 +66,12 @@ void GenDPDESweepOrder::computeCells(const std::vector<Vec3>& positions, const V
         for (int i = begin; i < end; i++) {
             const Vec3 s = periodic ? BoxGeometry::fractionalCoordinates(position[i], box) : Vec3();
             for (int k = 0; k < 3; k++) {
-                double unit;
                 if (periodic)
-                    unit = s[k] - BoxGeometry::floorToInteger(s[k]);
-                else
-                    unit = extent[k] > 0.0 ? (position[i][k] - low[k]) / extent[k] : 0.0;
-                cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit * cells[k])));
+                    cell[i][k] = SweepDefinition::periodicCell(s[k], cells[k]);
+                else {
+                    const double unit = extent[k] > 0.0 ? (position[i][k] - low[k]) / extent[k] : 0.0;
+                    cell[i][k] = std::max(0, std::min(cells[k] - 1, (int) (unit * cells[k])));
+                }
             }
         }
     });

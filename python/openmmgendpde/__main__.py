@@ -9,6 +9,7 @@ from .benchmarks import integrator as benchmark_integrator
 from .benchmarks import timing
 from .calibration import calibrate, expansion
 from .calibration import fcut as tune_fcut
+from .cli import lammps_input
 from .cli.options import parse_arguments, run_command
 from .studies import compression, rdf, slab, speed_vs_error, table3
 
@@ -27,6 +28,7 @@ SUBCOMMANDS = (
     ("slab", slab, "a liquid slab in vacuum with VA, VB and VC, and the estimators against the exact "
                    "partition-of-unity volume"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
+    ("lammps-input", lammps_input, "a calibrated model file as the LAMMPS plugin's input: a data file and a script"),
     ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),
     ("benchmark-integrator", benchmark_integrator, "GenDPDEIntegrator: ms per step against a force evaluation"),
     ("benchmark-cpu", benchmark_cpu, "the CPU platform's threads side by side with Reference: ms, speed-ups, memory"),

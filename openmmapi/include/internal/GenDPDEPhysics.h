@@ -11,7 +11,7 @@
  * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).      *
  * -------------------------------------------------------------------------- */
 
-#include "VolumeVBTables.h"
+#include "GenDPDEPhysicsCoreDouble.h"
 #include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>
@@ -22,49 +22,12 @@
 namespace GenDPDEPlugin {
 namespace Physics {
 
-/**
- * frexp(x, exponent) for a positive double from its bits, inline (glibc's frexp is a library call, and the V-B
- * integrals take one per particle): x = fraction 2^exponent with fraction in [1/2, 1), exactly as frexp gives them.
- * Zero, subnormal and non-finite x go to std::frexp.
- */
-inline double frexpOfPositive(double x, int* exponent) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &x, sizeof(bits));
-    const int biased = (int) ((bits >> 52) & 0x7ff);
-    if (biased == 0 || biased == 0x7ff)
-        return std::frexp(x, exponent);
-    *exponent = biased - 1022;
-    bits = (bits & ~(0x7ffull << 52)) | (1022ull << 52);
-    double fraction;
-    std::memcpy(&fraction, &bits, sizeof(fraction));
-    return fraction;
-}
-
-// The core in double precision, with the sizes of the V-B tables it reads.
-#define GENDPDE_REAL double
-#define GENDPDE_ISFINITE(x) std::isfinite(x)
-#define GENDPDE_FREXP(x, exponent) frexpOfPositive(x, exponent)
-#define GENDPDE_VB_FIRST_OCTAVE (VolumeVBPolynomials::firstOctave)
-#define GENDPDE_VB_LAST_OCTAVE (VolumeVBPolynomials::lastOctave)
-#define GENDPDE_VB_QUADRATURE_PAIRS (VolumeVBQuadrature::numPairs)
-#include "GenDPDEPhysicsCore.h"
-#undef GENDPDE_REAL
-#undef GENDPDE_ISFINITE
-#undef GENDPDE_FREXP
-#undef GENDPDE_VB_FIRST_OCTAVE
-#undef GENDPDE_VB_LAST_OCTAVE
-#undef GENDPDE_VB_QUADRATURE_PAIRS
-
 static_assert(VolumeVBPolynomials::subintervals == 4 && VolumeVBPolynomials::degree == 13,
               "gendpdeVolumeIntegralsVB reads 4 pieces per octave of 14 coefficients each");
 
 /** Boltzmann's constant in OpenMM units, kJ/(mol K): k_B N_A (exact SI values), as OpenMM defines it. */
 constexpr double Boltzmann = 1.380649e-23 * 6.02214076e23 / 1000.0;
 
-/** The V-B polynomial coefficients as the core reads them (gendpdeVolumeIntegralsVB). */
-inline const double* volumePolynomials() {
-    return &VolumeVBPolynomials::coefficients[0][0][0];
-}
 
 /**
  * The normalised density weight of docs/theory.md section 2 (gendpdeDensityWeight), with its constants for one
@@ -193,9 +156,7 @@ public:
      * gamma_T - 1 when gamma_T is an integer in [2, 33], else -1. gamma_T is usually an integer (6 for argon, 7 for
      * water): then x^(gamma_T - 1) by multiplications, exact to a few ulp and several times cheaper than pow().
      */
-    static int integerPowerOf(double exponent) {
-        return (exponent == std::floor(exponent) && exponent >= 2.0 && exponent <= 33.0) ? (int) exponent - 1 : -1;
-    }
+    static int integerPowerOf(double exponent) { return gendpdeTaitIntegerPower(exponent); }
     /** Pressure pi(n) and free energy per particle f(n) at density n, with one power between them. */
     void evaluate(double density, double& pressure, double& freeEnergy) const {
         gendpdeTait(density, referenceDensity, referencePressure, bulkModulus, exponent, integerPower, &pressure,

@@ -306,6 +306,11 @@ GENDPDE_CORE GENDPDE_REAL gendpdeIntegerPower(GENDPDE_REAL x, int p) {
     return result;
 }
 
+/** The integerPower of gendpdeTait for exponent gamma_T: gamma_T - 1 when gamma_T is an integer in [2, 33], else -1. */
+GENDPDE_CORE int gendpdeTaitIntegerPower(GENDPDE_REAL exponent) {
+    return (exponent == floor(exponent) && exponent >= 2 && exponent <= 33) ? (int) exponent - 1 : -1;
+}
+
 /**
  * The Tait equation of state and the free energy per particle at density n (section 4):
  *   pi(n) = pi0 + B_T [ (n/n0)^gamma_T - 1 ],   f(n) = (B_T - pi0)/n + B_T/((gamma_T - 1) n0) (n/n0)^(gamma_T - 1).

@@ -1,0 +1,125 @@
+"""The LAMMPS package (lammps/: pair_style gendpde + fix gendpde) against LAMMPS's own DPD-E step and EAM, and against
+this plugin's CPU platform, side by side (docs/lammps.md, "Speed").
+
+On one liquid (liquid argon at R* = 1.6839 with V-B, melted and numbered at random, or --state), alternating rounds of:
+- LAMMPS GenDPDE: the files `python -m openmmgendpde lammps-input` writes for the model (Isoenergetic: the pair
+  sweep across subdomains, the many-body force, velocity Verlet), on 1 and 2 MPI ranks;
+- LAMMPS DPD-E: pair dpd/fdt/energy with no conservative force, fix shardlow, fix eos/cv, fix nve (the same
+  Shardlow sweep, no many-body force: benchmarks/compare_lammps_dpde.py's input), on 1 and 2 ranks;
+- LAMMPS EAM: eam/alloy/opt tabulating the same V-B force, velocity Verlet (benchmarks/compare_lammps.py's input),
+  on 1 and 2 ranks;
+- this plugin's GenDPDEIntegrator (Isoenergetic) on the CPU platform with 1 and 2 threads.
+LAMMPS's own "Loop time" (start-up excluded); ms per step, medians (min-max) over the rounds, and the medians of the
+per-round ratios. Needs lammps/build.sh (LAMMPS with MPI, DPD-REACT, MANYBODY, OPT and the plugin). Usage:
+
+    .venv/bin/python benchmarks/compare_lammps_package.py --particles 32000 --steps 50 --rounds 5
+    .venv/bin/python benchmarks/compare_lammps_package.py --state argon256k.npz --steps 10 --rounds 3
+"""
+
+import argparse
+import os
+import pathlib
+import re
+import statistics
+import subprocess
+import tempfile
+
+# (this directory: run as a script)
+from compare_lammps import add_layout_argument, liquid, write_data, write_setfl
+from compare_lammps import write_input as write_eam_input
+from compare_lammps_dpde import summary, time_steps
+from compare_lammps_dpde import write_input as write_dpde_input
+from openmm import unit
+
+from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde.benchmarks.cpu import context_at
+from openmmgendpde.models.argon import liquid_argon
+from openmmgendpde.models.lammps_files import lammps_input, write_lammps_input
+
+CUTOFF = 1.6839
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def run_lammps(lmp, directory, script, ranks, steps, plugin=None):
+    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(lmp), "-in", script,
+               "-log", "log.lammps", "-screen", "none"]
+    if plugin is not None:
+        command += ["-var", "plugin", str(plugin)]
+    subprocess.run(command, cwd=directory, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    log = (pathlib.Path(directory) / "log.lammps").read_text()
+    return 1e3 * float(re.search(r"Loop time of (\S+) on", log).group(1)) / steps
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--lmp", default=ROOT / "build/lammps/lammps/lmp", type=pathlib.Path)
+    parser.add_argument("--plugin", default=ROOT / "build/lammps/plugin/gendpdeplugin.so", type=pathlib.Path)
+    parser.add_argument("--particles", type=int, default=32000)
+    parser.add_argument("--steps", type=int, default=50, help="steps per timed run (default 50)")
+    parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
+    parser.add_argument("--ranks", default="1,2", help="MPI ranks (and CPU threads) to compare (default 1,2)")
+    add_layout_argument(parser)
+    arguments = parser.parse_args()
+    for path in (arguments.lmp, arguments.plugin):
+        if not path.exists():
+            parser.error(f"{path} does not exist: run lammps/build.sh")
+    ranks = [int(r) for r in arguments.ranks.split(",")]
+    arguments.particles, positions, velocities = liquid(arguments, CUTOFF)
+    model = liquid_argon(arguments.particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
+    cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
+    mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
+    temperature = model.integrator.getTemperature().value_in_unit(unit.kelvin)
+    time_step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
+    contexts = {}
+    for r in ranks:
+        contexts[r] = context_at(arguments.particles, CUTOFF, positions, velocities, "CPU", r)
+        contexts[r][1].step(5)
+
+    labels = {r: [f"LAMMPS GenDPDE, {r} rank{'s' if r > 1 else ''}", f"LAMMPS DPD-E, {r} rank{'s' if r > 1 else ''}",
+                  f"LAMMPS eam/alloy/opt, {r} rank{'s' if r > 1 else ''}",
+                  f"OpenMM CPU platform GenDPDE, {r} thread{'s' if r > 1 else ''}"] for r in ranks}
+    times = {label: [] for r in ranks for label in labels[r]}
+    with tempfile.TemporaryDirectory() as directory:
+        directories = {name: os.path.join(directory, name) for name in ("gendpde", "dpde", "eam")}
+        for path in directories.values():
+            os.makedirs(path)
+        write_lammps_input(directories["gendpde"], lammps_input(model.system, model.integrator, positions, velocities,
+                                                                steps=arguments.steps, thermo=arguments.steps))
+        write_data(os.path.join(directories["dpde"], "liquid.data"), positions, velocities, edge, mass, temperature)
+        write_dpde_input(os.path.join(directories["dpde"], "dpde.in"), model.integrator, cutoff, 0.1 * cutoff,
+                         arguments.steps)
+        write_data(os.path.join(directories["eam"], "liquid.data"), positions, velocities, edge, mass)
+        write_setfl(os.path.join(directories["eam"], "gendpde_vb.eam.alloy"), model, 4.0 * arguments.particles
+                    / edge**3)
+        write_eam_input(os.path.join(directories["eam"], "eam.in"), "eam/alloy/opt", 0.1 * cutoff, time_step,
+                        arguments.steps, False)
+        for _ in range(arguments.rounds):
+            for r in ranks:
+                gendpde, dpde, eam, cpu = labels[r]
+                times[gendpde].append(run_lammps(arguments.lmp, directories["gendpde"], "in.gendpde", r,
+                                                 arguments.steps, arguments.plugin))
+                times[dpde].append(run_lammps(arguments.lmp, directories["dpde"], "dpde.in", r, arguments.steps))
+                times[eam].append(run_lammps(arguments.lmp, directories["eam"], "eam.in", r, arguments.steps))
+                times[cpu].append(time_steps(contexts[r][1], arguments.steps))
+    load = os.getloadavg()[0]
+    layout = "numbered cell by cell" if arguments.cell_order else "numbered at random"
+    print(f"N = {arguments.particles}, liquid argon R* = {CUTOFF} V-B, {layout}; {arguments.rounds} alternating rounds "
+          f"of {arguments.steps} steps; ms per step, median (min-max); load average at the end {load:.2f}")
+    print("| N | candidate | ms per step | LAMMPS GenDPDE / candidate (same ranks) |")
+    print("|---|---|---|---|")
+    for r in ranks:
+        for label in labels[r]:
+            ratios = [g / c for g, c in zip(times[labels[r][0]], times[label])]
+            print(f"| {arguments.particles} | {label} | {summary(times[label])} | {statistics.median(ratios):.2f} |")
+    if 1 in ranks and len(ranks) > 1:
+        for label_index, name in enumerate(("LAMMPS GenDPDE", "LAMMPS DPD-E", "LAMMPS eam/alloy/opt",
+                                            "OpenMM CPU platform")):
+            one = times[labels[1][label_index]]
+            for r in ranks[1:]:
+                speedups = [a / b for a, b in zip(one, times[labels[r][label_index]])]
+                print(f"{name}: {r} ranks/threads {statistics.median(speedups):.2f}x one (strong scaling)")
+
+
+if __name__ == "__main__":
+    main()

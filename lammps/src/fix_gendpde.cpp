@@ -1,0 +1,699 @@
+/* ----------------------------------------------------------------------
+   openmm-gendpde's LAMMPS package: fix gendpde (fix_gendpde.h).
+------------------------------------------------------------------------- */
+
+#include "fix_gendpde.h"
+
+#include "atom.h"
+#include "comm.h"
+#include "domain.h"
+#include "error.h"
+#include "force.h"
+#include "gendpde_core.h"
+#include "memory.h"
+#include "neighbor.h"
+#include "pair_gendpde.h"
+#include "update.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mpi.h>
+
+using namespace LAMMPS_NS;
+using namespace FixConst;
+using namespace GenDPDEPlugin;
+using namespace GenDPDEPlugin::Physics;
+
+FixGenDPDE::FixGenDPDE(LAMMPS* lmp, int narg, char** arg) : Fix(lmp, narg, arg) {
+    if (narg < 5)
+        error->all(FLERR, "Illegal fix gendpde command: fix ID group gendpde mode seed keyword values ...");
+    const std::string name = arg[3];
+    if (name == "isoenergetic")
+        mode = ISOENERGETIC;
+    else if (name == "isothermal")
+        mode = ISOTHERMAL;
+    else if (name == "conservative")
+        mode = CONSERVATIVE;
+    else
+        error->all(FLERR, "fix gendpde: mode '{}' is not allowed: it must be isoenergetic, isothermal or conservative",
+                   name);
+    seed = utils::inumeric(FLERR, arg[4], false, lmp);
+    if (seed < 0)
+        error->all(FLERR, "fix gendpde: seed = {} is not allowed: it must be in [0, 2147483647]", arg[4]);
+
+    const int ntypes = atom->ntypes;
+    heatCapacityOfType.assign(ntypes + 1, 0.0);
+    heatCapacitySet.assign(ntypes + 1, false);
+    frictionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    conductionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    auto number = [&](int k, const char* what, bool positive) {
+        const double value = utils::numeric(FLERR, arg[k], false, lmp);
+        if (!(std::isfinite(value) && (positive ? value > 0.0 : value >= 0.0)))
+            error->all(FLERR, "fix gendpde: {} = {} is not allowed: it must be {} and finite", what, arg[k],
+                       positive ? "> 0" : ">= 0");
+        return value;
+    };
+    int k = 5;
+    while (k < narg) {
+        const std::string keyword = arg[k];
+        if (keyword == "heat_capacity" && k + 2 < narg) {
+            int lo, hi;
+            utils::bounds(FLERR, arg[k + 1], 1, ntypes, lo, hi, error);
+            const double value = number(k + 2, "heat_capacity C_V", true);
+            for (int t = lo; t <= hi; t++) {
+                heatCapacityOfType[t] = value;
+                heatCapacitySet[t] = true;
+            }
+            k += 3;
+        } else if ((keyword == "friction" || keyword == "conduction") && k + 3 < narg) {
+            int ilo, ihi, jlo, jhi;
+            utils::bounds(FLERR, arg[k + 1], 1, ntypes, ilo, ihi, error);
+            utils::bounds(FLERR, arg[k + 2], 1, ntypes, jlo, jhi, error);
+            const double value = number(k + 3, keyword == "friction" ? "friction gamma" : "conduction kappa", false);
+            std::vector<double>& table = keyword == "friction" ? frictionOfPair : conductionOfPair;
+            for (int i = ilo; i <= ihi; i++)
+                for (int j = jlo; j <= jhi; j++)
+                    table[i * (ntypes + 1) + j] = table[j * (ntypes + 1) + i] = value;
+            k += 4;
+        } else if (keyword == "temperature" && k + 1 < narg) {
+            temperature = number(k + 1, "temperature T", true);
+            hasTemperature = true;
+            k += 2;
+        } else if (keyword == "initial" && k + 1 < narg) {
+            initialTemperature = number(k + 1, "initial temperature T", true);
+            hasInitial = true;
+            k += 2;
+        } else
+            error->all(FLERR,
+                       "fix gendpde: keyword '{}' is not allowed (or lacks its values): heat_capacity I C, "
+                       "friction I J gamma, conduction I J kappa, temperature T, initial T",
+                       keyword);
+    }
+    if (mode == ISOTHERMAL && !hasTemperature)
+        error->all(FLERR, "fix gendpde: the isothermal mode needs the bath temperature: temperature T");
+    if (mode == ISOENERGETIC)
+        for (int t = 1; t <= ntypes; t++)
+            if (!heatCapacitySet[t])
+                error->all(FLERR,
+                           "fix gendpde: type {} has no heat capacity: the isoenergetic mode needs heat_capacity {} C",
+                           t, t);
+
+    time_integrate = 1;
+    restart_global = 1;
+    restart_peratom = 1;
+    scalar_flag = 1;
+    extscalar = 1;
+    global_freq = 1;
+    peratom_flag = 1;
+    size_peratom_cols = 0;
+    peratom_freq = 1;
+    comm_forward = 7;
+    comm_reverse = 5;
+    grow_arrays(atom->nmax);
+    atom->add_callback(Atom::GROW);
+    atom->add_callback(Atom::RESTART);
+    for (int i = 0; i < atom->nlocal; i++) {
+        energy[i] = 0.0;
+        entropy[i] = std::numeric_limits<double>::quiet_NaN();
+    }
+}
+
+FixGenDPDE::~FixGenDPDE() {
+    atom->delete_callback(id, Atom::GROW);
+    atom->delete_callback(id, Atom::RESTART);
+    memory->destroy(energy);
+    memory->destroy(entropy);
+}
+
+int FixGenDPDE::setmask() {
+    return INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
+}
+
+void FixGenDPDE::init() {
+    dtv = update->dt;
+    dtf = 0.5 * update->dt * force->ftm2v;
+    pair = dynamic_cast<PairGenDPDE*>(force->pair_match("^gendpde$", 0));
+    if (mode != CONSERVATIVE && pair == nullptr)
+        error->all(FLERR, "fix gendpde: the {} mode needs pair_style gendpde (its pair range R)",
+                   mode == ISOTHERMAL ? "isothermal" : "isoenergetic");
+    if (pair != nullptr && pair->dependsOnTemperature())
+        for (int t = 1; t <= atom->ntypes; t++)
+            if (!heatCapacitySet[t])
+                error->all(FLERR, "fix gendpde: type {} has no heat capacity, which its law needs: heat_capacity {} C",
+                           t, t);
+    if (mode != CONSERVATIVE) {
+        if (domain->triclinic)
+            error->all(FLERR, "fix gendpde: the sweep needs an orthogonal box");
+        if (!(domain->xperiodic && domain->yperiodic && domain->zperiodic))
+            error->all(FLERR, "fix gendpde: the sweep needs a box periodic in x, y and z");
+        if (!(force->newton_pair))
+            error->all(FLERR, "fix gendpde requires newton pair on");
+    }
+}
+
+void FixGenDPDE::setup_pre_force(int /*vflag*/) {
+  // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
+    if (!energiesSet && hasInitial) {
+        for (int i = 0; i < atom->nlocal; i++) {
+            energy[i] = heatCapacityOfType[atom->type[i]] * initialTemperature;
+            entropy[i] = std::numeric_limits<double>::quiet_NaN();
+        }
+        energiesSet = 1;
+    }
+    const bool needsEnergies =
+            mode == ISOENERGETIC || (pair != nullptr && pair->dependsOnTemperature() && mode == CONSERVATIVE);
+    if (needsEnergies && !energiesSet)
+        error->all(FLERR, "fix gendpde: the internal energies are not set: give initial T (or read a restart file)");
+    if (mode != CONSERVATIVE) {
+        const double need = ghostNeed();
+        for (int d = 0; d < 3; d++)
+            if (comm->cutghost[d] < need)
+                error->all(FLERR,
+                           "fix gendpde: the ghost cutoff {} is below what the sweep needs, {} (1.5 sweep cells + "
+                           "the skin): comm_modify cutoff {}",
+                           comm->cutghost[d], need, need);
+    }
+}
+
+double FixGenDPDE::ghostNeed() const {
+    double widest = 0.0;
+    for (int d = 0; d < 3; d++) {
+        const int n = SweepDefinition::cellCount(domain->prd[d], pair->range(), true);
+        widest = std::max(widest, domain->prd[d] / n);
+    }
+    return 1.5 * widest + neighbor->skin;
+}
+
+void FixGenDPDE::reset_dt() {
+    dtv = update->dt;
+    dtf = 0.5 * update->dt * force->ftm2v;
+}
+
+void FixGenDPDE::initial_integrate(int /*vflag*/) {
+  // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
+    if (mode != CONSERVATIVE)
+        sweep();
+    kick();
+    double **x = atom->x, **v = atom->v;
+    const int* mask = atom->mask;
+    const double limit = pair != nullptr ? pair->range() : std::numeric_limits<double>::infinity();
+    for (int i = 0; i < atom->nlocal; i++) {
+        if (!(mask[i] & groupbit))
+            continue;
+        const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
+    // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
+        if (!(dx * dx + dy * dy + dz * dz <= limit * limit))
+            error->one(FLERR,
+                       "fix gendpde: atom {} would move {} in one step at step {} (more than R = {}): the run "
+                       "went bad; reduce the timestep",
+                       atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep, limit);
+        x[i][0] += dx;
+        x[i][1] += dy;
+        x[i][2] += dz;
+    }
+}
+
+void FixGenDPDE::final_integrate() {
+    kick();
+}
+
+void FixGenDPDE::kick() {
+    // Half a step of the forces: v += (dt/2) F/m.
+    double **v = atom->v, **f = atom->f;
+    const double *rmass = atom->rmass, *mass = atom->mass;
+    const int *type = atom->type, *mask = atom->mask;
+    for (int i = 0; i < atom->nlocal; i++) {
+        if (!(mask[i] & groupbit))
+            continue;
+        const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
+        for (int d = 0; d < 3; d++)
+            v[i][d] += dtfm * f[i][d];
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+void FixGenDPDE::prepareCells() {
+  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
+  // centre, boxlo + (2b + 1.5) w, is in the subdomain.
+    for (int d = 0; d < 3; d++) {
+        numCells[d] = SweepDefinition::cellCount(domain->prd[d], pair->range(), true);
+        if (numCells[d] < 4)
+            error->all(FLERR,
+                       "fix gendpde: the box is {} wide along {}, less than 4 pair ranges R = {}: too small for "
+                       "the sweep across subdomains",
+                       domain->prd[d], "xyz"[d], pair -> range());
+        cellWidth[d] = domain->prd[d] / numCells[d];
+        const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d], w = cellWidth[d];
+        int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1, last = first;
+        while (!(base + (2 * first + 1.5) * w >= lo))
+            first++;
+        last = first;
+        while (base + (2 * last + 1.5) * w < hi)
+            last++;
+        blockLow[d] = first;
+        blockCount[d] = last - first;
+        gridLow[d] = 2 * first;
+        gridCount[d] = blockCount[d] > 0 ? 2 * blockCount[d] + 1 : 0;
+    }
+}
+
+void FixGenDPDE::sweep() {
+    const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+    const double mvv2e = force->mvv2e;
+    if (sweepEnergy.size() < (size_t) nall) {
+        sweepEnergy.resize(nall);
+        extendedCell.resize(3 * (size_t) nall);
+        modified.resize(nall);
+        touched.resize(nall);
+    }
+    const double need = ghostNeed();
+    for (int d = 0; d < 3; d++)
+        if (comm->cutghost[d] < need)
+            error->all(FLERR,
+                       "fix gendpde: the ghost cutoff {} is below what the sweep needs, {}: comm_modify cutoff {}",
+                       comm->cutghost[d], need, need);
+    prepareCells();
+
+  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
+  // pair updates' units: kinetic energies m v^2/2), to every ghost.
+    const bool isoenergetic = (mode == ISOENERGETIC);
+    double** x = atom->x;
+    for (int i = 0; i < nlocal; i++) {
+        sweepEnergy[i] = isoenergetic ? energy[i] / mvv2e : 0.0;
+        for (int d = 0; d < 3; d++)
+            extendedCell[3 * i + d] =
+                    SweepDefinition::periodicCell((x[i][d] - domain->boxlo[d]) / domain->prd[d], numCells[d]);
+    }
+    commPhase = 0;
+    comm->forward_comm_fix(this, 7);
+  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
+    for (int i = 0; i < nall; i++)
+        for (int d = 0; d < 3; d++) {
+            const int owner = extendedCell[3 * i + d];
+            const double approximate = std::floor((x[i][d] - domain->boxlo[d]) / cellWidth[d]);
+            const double images = std::nearbyint((approximate - owner) / numCells[d]);
+            extendedCell[3 * i + d] = owner + numCells[d] * (int) images;
+        }
+    if (neighbor->lastcall != candidatesBuiltAt) {
+        findCandidates();
+        candidatesBuiltAt = neighbor->lastcall;
+    }
+    orderPairs();
+    std::fill(touched.begin(), touched.begin() + nall, 0);
+    // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
+    // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
+    // (isothermal).
+    const int ntypes = atom->ntypes;
+    const double boltzmann = force->boltz / mvv2e;
+    pairTables.inverseMass.assign(ntypes + 1, 0.0);
+    pairTables.heatCapacity.assign(ntypes + 1, 0.0);
+    pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    pairTables.noise.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    for (int a = 1; a <= ntypes; a++) {
+        pairTables.inverseMass[a] = atom->mass ? 1.0 / atom->mass[a] : 0.0;
+        pairTables.heatCapacity[a] = heatCapacityOfType[a] / mvv2e;
+        for (int b = 1; b <= ntypes; b++) {
+            const int ab = a * (ntypes + 1) + b;
+            pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
+            pairTables.noise[ab] = isoenergetic ? std::sqrt(2.0 * boltzmann * pairTables.conduction[ab])
+                                                : std::sqrt(2.0 * frictionOfPair[ab] * boltzmann * temperature);
+        }
+    }
+
+    // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners and back out.
+    for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
+        std::fill(modified.begin(), modified.begin() + nall, 0);
+        for (int rank = colourStart[colour]; rank < colourStart[colour + 1]; rank++)
+            sweepPairs(&sweepList[blockRankStart[rank]], blockRankStart[rank + 1] - blockRankStart[rank], isoenergetic);
+        comm->reverse_comm_fix(this, 5);
+        commPhase = 1;
+        comm->forward_comm_fix(this, 4);
+    }
+    if (isoenergetic)
+        for (int i = 0; i < nlocal; i++)
+            if (touched[i])
+                energy[i] = sweepEnergy[i] * mvv2e;
+}
+
+void FixGenDPDE::findCandidates() {
+    // The particles within a skin of this rank's cells (no other can reach them before the next neighbour list: each
+    // moves less than skin/2), binned in cells at least R + skin wide; their pairs closer than R + skin.
+    const int nall = atom->nlocal + atom->nghost;
+    double** x = atom->x;
+    const tagint* tag = atom->tag;
+    const int* mask = atom->mask;
+    const double reach = pair->range() + neighbor->skin, reach2 = reach * reach;
+    double low[3], high[3];
+    int bins[3];
+    const double margin = neighbor->skin + 1e-9 * pair->range();
+    for (int d = 0; d < 3; d++) {
+        low[d] = domain->boxlo[d] + gridLow[d] * cellWidth[d] - margin;
+        high[d] = domain->boxlo[d] + (gridLow[d] + gridCount[d]) * cellWidth[d] + margin;
+        bins[d] = std::max(1, (int) ((high[d] - low[d]) / reach));
+    }
+    binHead.assign((size_t) bins[0] * bins[1] * bins[2], -1);
+    binNext.assign(nall, -1);
+    auto binOf = [&](int i, int* b) {
+        for (int d = 0; d < 3; d++) {
+            if (!(x[i][d] >= low[d] && x[i][d] <= high[d]))
+                return false;
+            b[d] = std::max(0, std::min(bins[d] - 1, (int) ((x[i][d] - low[d]) / (high[d] - low[d]) * bins[d])));
+        }
+        return true;
+    };
+    for (int i = nall - 1; i >= 0; i--) {
+        int b[3];
+        if (!(mask[i] & groupbit) || gridCount[0] == 0 || !binOf(i, b))
+            continue;
+        const size_t bin = ((size_t) b[2] * bins[1] + b[1]) * bins[0] + b[0];
+        binNext[i] = binHead[bin];
+        binHead[bin] = i;
+    }
+    candidates.clear();
+    for (int bz = 0; bz < bins[2]; bz++)
+        for (int by = 0; by < bins[1]; by++)
+            for (int bx = 0; bx < bins[0]; bx++) {
+                const int home = (bz * bins[1] + by) * bins[0] + bx;
+                for (int a = binHead[home]; a >= 0; a = binNext[a])
+                    for (int oz = -1; oz <= 1; oz++)
+                        for (int oy = -1; oy <= 1; oy++)
+                            for (int ox = -1; ox <= 1; ox++) {
+                                const int cx = bx + ox, cy = by + oy, cz = bz + oz;
+                                if (cx < 0 || cy < 0 || cz < 0 || cx >= bins[0] || cy >= bins[1] || cz >= bins[2])
+                                    continue;
+                                const int other = (cz * bins[1] + cy) * bins[0] + cx;
+                                if (other < home)
+                                    continue;
+                                for (int b = (other == home ? binNext[a] : binHead[other]); b >= 0; b = binNext[b]) {
+                                    const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
+                                    if (!(dx * dx + dy * dy + dz * dz < reach2))
+                                        continue;
+                                    const int ta = (int) (tag[a] - 1), tb = (int) (tag[b] - 1);
+                                    candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b} : SweepPair{tb, ta, b, a});
+                                }
+                            }
+            }
+    // In (i, j) order: each block's pairs then come out in the order that defines the sweep within a block.
+    std::sort(candidates.begin(), candidates.end(), [](const SweepPair& p, const SweepPair& q) {
+        return ((std::uint64_t) (std::uint32_t) p.i << 32 | (std::uint32_t) p.j)
+                < ((std::uint64_t) (std::uint32_t) q.i << 32 | (std::uint32_t) q.j);
+    });
+}
+
+void FixGenDPDE::orderPairs() {
+    // Each candidate closer than R goes to the block of its home cell (the lower of its two cells along each
+    // direction), if that block is this rank's; a stable counting sort by the blocks' ranks (colour by colour) keeps
+    // each block's pairs in (i, j) order; then the lists of four consecutive first particles are interleaved.
+    const int numBlocks = blockCount[0] * blockCount[1] * blockCount[2];
+    if (blockOfBlockRank.size() != (size_t) numBlocks || colourStart.empty()) {
+        // the ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives
+        // the same result: its blocks share no particle)
+        blockOfBlockRank.assign(numBlocks, 0);
+        colourStart.assign(SweepDefinition::numColours + 1, 0);
+        std::vector<int> rankOfBlock(numBlocks);
+        int rank = 0;
+        for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
+            colourStart[colour] = rank;
+            for (int b = 0; b < numBlocks; b++) {
+                const int bx = blockLow[0] + b % blockCount[0], by = blockLow[1] + (b / blockCount[0]) % blockCount[1];
+                const int bz = blockLow[2] + b / (blockCount[0] * blockCount[1]);
+                if (SweepDefinition::blockColour(bx, by, bz) == colour) {
+                    rankOfBlock[b] = rank;
+                    blockOfBlockRank[rank++] = b;
+                }
+            }
+        }
+        colourStart[SweepDefinition::numColours] = rank;
+        blockOfBlockRank.swap(rankOfBlock); // (kept as the rank of each block)
+    }
+    const std::vector<int>& rankOf = blockOfBlockRank;
+    double** x = atom->x;
+    const double range2 = pair->range() * pair->range();
+    const int count = candidates.size();
+    pairBlockRank.resize(count);
+    blockRankStart.assign(numBlocks + 1, 0);
+    for (int k = 0; k < count; k++) {
+        if (k + 16 < count) { // the second particle of a candidate ahead: the candidates are in order of tags
+            __builtin_prefetch(x[candidates[k + 16].lj]);
+            __builtin_prefetch(&extendedCell[3 * candidates[k + 16].lj]);
+        }
+        const SweepPair& p = candidates[k];
+        const int a = p.li, b = p.lj;
+        const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
+        int rank = -1;
+        if (dx * dx + dy * dy + dz * dz < range2) {
+            int block = 0;
+            for (int d = 2; d >= 0; d--) {
+                const int home = std::min(extendedCell[3 * a + d], extendedCell[3 * b + d]) - gridLow[d];
+                const int bd = home >= 0 ? home >> 1 : -1;
+                if (bd < 0 || bd >= blockCount[d]) {
+                    block = -1;
+                    break;
+                }
+                block = block * blockCount[d] + bd;
+            }
+            if (block >= 0) {
+                rank = rankOf[block];
+                blockRankStart[rank + 1]++;
+            }
+        }
+        pairBlockRank[k] = rank;
+    }
+    for (int r = 0; r < numBlocks; r++)
+        blockRankStart[r + 1] += blockRankStart[r];
+    const int total = blockRankStart[numBlocks];
+    blockPairs.resize(total);
+    blockFirst.resize(total);
+    blockOrder.resize(total);
+    std::vector<int>& next = binNext; // (scratch: the next free place of each block rank)
+    next.assign(blockRankStart.begin(), blockRankStart.end() - 1);
+    for (int k = 0; k < count; k++)
+        if (pairBlockRank[k] >= 0) {
+            const int place = next[pairBlockRank[k]]++;
+            blockPairs[place] = k;
+            blockFirst[place] = candidates[k].i;
+        }
+    for (int r = 0; r < numBlocks; r++)
+        SweepDefinition::interleaveRuns(&blockPairs[blockRankStart[r]], &blockFirst[blockRankStart[r]],
+                                        blockRankStart[r + 1] - blockRankStart[r], &blockOrder[blockRankStart[r]]);
+    // the pairs themselves in sweep order: the sweep reads them one after the other
+    sweepList.resize(total);
+    for (int k = 0; k < total; k++)
+        sweepList[k] = candidates[blockOrder[k]];
+}
+
+void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic) {
+    // The pair updates (docs/theory.md sections 5-7), each by the physics core as on every OpenMM platform.
+    double **x = atom->x, **v = atom->v;
+    const tagint* tag = atom->tag;
+    const double* rmass = atom->rmass;
+    const int* type = atom->type;
+    const int ntypes = atom->ntypes;
+    const double range = pair->range(), mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+    const double dt = update->dt, sqrtDt = std::sqrt(dt);
+    const std::uint64_t step = (std::uint64_t) (update->ntimestep - 1);
+    const double *inverseMassOfType = pairTables.inverseMass.data(), *capacity = pairTables.heatCapacity.data();
+    const double *kappaOf = pairTables.conduction.data(), *noiseOf = pairTables.noise.data();
+    double* energy = sweepEnergy.data();
+    for (int k = 0; k < count; k++) {
+        if (k + 8 < count) { // the particles of a pair a few updates ahead, which are anywhere in memory
+            const SweepPair& ahead = pairs[k + 8];
+            __builtin_prefetch(x[ahead.li]);
+            __builtin_prefetch(x[ahead.lj]);
+            __builtin_prefetch(v[ahead.li]);
+            __builtin_prefetch(v[ahead.lj]);
+            __builtin_prefetch(&energy[ahead.li]);
+            __builtin_prefetch(&energy[ahead.lj]);
+        }
+        const SweepPair& pair = pairs[k];
+        const int i = pair.li, j = pair.lj;
+        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+        if (r == 0.0)
+            continue;
+        const double inverseMassI = rmass ? 1.0 / rmass[i] : inverseMassOfType[type[i]];
+        const double inverseMassJ = rmass ? 1.0 / rmass[j] : inverseMassOfType[type[j]];
+        const int ab = type[i] * (ntypes + 1) + type[j];
+        const double inverseDistance = 1.0 / r; // (as OpenMM's sweep forms the unit vector)
+        const double e[3] = {dx * inverseDistance, dy * inverseDistance, dz * inverseDistance};
+        const double u0 = e[0] * (v[i][0] - v[j][0]) + e[1] * (v[i][1] - v[j][1]) + e[2] * (v[i][2] - v[j][2]);
+        const double omegaR = gendpdeRandomWeight(r, range);
+        const double friction = frictionOfPair[ab];
+        CounterRandom::PairStream random((std::uint32_t) seed, step, (std::uint32_t) pair.i, (std::uint32_t) pair.j);
+        double impulse;
+        if (isoenergetic) {
+            const double kappa = kappaOf[ab];
+            const bool dissipation = friction > 0.0, conduction = kappa > 0.0;
+            double pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
+            gendpdePairTemperatures(sweepEnergy[i], sweepEnergy[j], capacity[type[i]], capacity[type[j]], boltzmann,
+                                    &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
+            const double xi = dissipation ? random.normal() : 0.0; // the stream's order: impulse, then heat
+            const double xiQ = conduction ? random.normal() : 0.0;
+            const int failed =
+                    gendpdePairUpdate(dissipation, conduction, pairThermalEnergy, inverseTemperatureDifference,
+                                      frictionFactor, u0, omegaR, inverseMassI, inverseMassJ, friction, kappa,
+                                      noiseOf[ab], dt, sqrtDt, xi, xiQ, &sweepEnergy[i], &sweepEnergy[j], &impulse);
+            if (failed) {
+                const int bad = sweepEnergy[i] > 0.0 ? j : i;
+                error->one(FLERR,
+                           "fix gendpde: atom {}'s internal energy became {} at step {} (it must stay > 0): reduce "
+                           "the timestep or raise the heat capacity",
+                           tag[bad], sweepEnergy[bad] * mvv2e, update->ntimestep);
+            }
+            if (!dissipation)
+                impulse = 0.0;
+        } else {
+            double kineticChange;
+            impulse = gendpdePairImpulse(u0, omegaR, friction, noiseOf[ab], dt, sqrtDt, inverseMassI + inverseMassJ,
+                                         random.normal(), &kineticChange);
+        }
+        for (int d = 0; d < 3; d++) {
+            v[i][d] += e[d] * (impulse * inverseMassI);
+            v[j][d] -= e[d] * (impulse * inverseMassJ);
+        }
+        modified[i] = modified[j] = touched[i] = touched[j] = 1;
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+int FixGenDPDE::pack_forward_comm(int n, int* list, double* buf, int /*pbc_flag*/, int* /*pbc*/) {
+    double** v = atom->v;
+    int m = 0;
+    for (int k = 0; k < n; k++) {
+        const int i = list[k];
+        buf[m++] = v[i][0];
+        buf[m++] = v[i][1];
+        buf[m++] = v[i][2];
+        buf[m++] = sweepEnergy[i];
+        if (commPhase == 0)
+            for (int d = 0; d < 3; d++)
+                buf[m++] = extendedCell[3 * i + d];
+    }
+    return m;
+}
+
+void FixGenDPDE::unpack_forward_comm(int n, int first, double* buf) {
+    double** v = atom->v;
+    int m = 0;
+    for (int i = first; i < first + n; i++) {
+        v[i][0] = buf[m++];
+        v[i][1] = buf[m++];
+        v[i][2] = buf[m++];
+        sweepEnergy[i] = buf[m++];
+        if (commPhase == 0)
+            for (int d = 0; d < 3; d++)
+                extendedCell[3 * i + d] = (int) buf[m++];
+    }
+}
+
+int FixGenDPDE::pack_reverse_comm(int n, int first, double* buf) {
+    double** v = atom->v;
+    int m = 0;
+    for (int i = first; i < first + n; i++) {
+        buf[m++] = modified[i];
+        buf[m++] = v[i][0];
+        buf[m++] = v[i][1];
+        buf[m++] = v[i][2];
+        buf[m++] = sweepEnergy[i];
+    }
+    return m;
+}
+
+void FixGenDPDE::unpack_reverse_comm(int n, int* list, double* buf) {
+    // A ghost's values replace its owner's where the ghost was updated (one block at most updates a particle per
+    // colour): set, not summed, so the owner has exactly the bits the updating rank computed.
+    double** v = atom->v;
+    int m = 0;
+    for (int k = 0; k < n; k++, m += 5) {
+        const int j = list[k];
+        if (buf[m] == 0.0)
+            continue;
+        v[j][0] = buf[m + 1];
+        v[j][1] = buf[m + 2];
+        v[j][2] = buf[m + 3];
+        sweepEnergy[j] = buf[m + 4];
+        modified[j] = touched[j] = 1;
+    }
+}
+
+/* ---------------------------------------------------------------------- */
+
+double FixGenDPDE::compute_scalar() {
+    // The sum of the internal energies (energy units): etotal + this is the energy an isoenergetic run conserves.
+    double local = 0.0, total = 0.0;
+    for (int i = 0; i < atom->nlocal; i++)
+        if (atom->mask[i] & groupbit)
+            local += energy[i];
+    MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, world);
+    return total;
+}
+
+void FixGenDPDE::grow_arrays(int nmax) {
+    memory->grow(energy, nmax, "fix_gendpde:energy");
+    memory->grow(entropy, nmax, "fix_gendpde:entropy");
+    vector_atom = energy;
+}
+
+void FixGenDPDE::copy_arrays(int i, int j, int /*delflag*/) {
+    energy[j] = energy[i];
+    entropy[j] = entropy[i];
+}
+
+int FixGenDPDE::pack_exchange(int i, double* buf) {
+    buf[0] = energy[i];
+    buf[1] = entropy[i];
+    return 2;
+}
+
+int FixGenDPDE::unpack_exchange(int nlocal, double* buf) {
+    energy[nlocal] = buf[0];
+    entropy[nlocal] = buf[1];
+    return 2;
+}
+
+int FixGenDPDE::pack_restart(int i, double* buf) {
+    buf[0] = 3; // (the count first: other fixes' unpack_restart skip it so)
+    buf[1] = energy[i];
+    buf[2] = entropy[i];
+    return 3;
+}
+
+void FixGenDPDE::unpack_restart(int nlocal, int nth) {
+    double** extra = atom->extra;
+    int m = 0;
+    for (int i = 0; i < nth; i++)
+        m += static_cast<int>(extra[nlocal][m]);
+    m++;
+    energy[nlocal] = extra[nlocal][m++];
+    entropy[nlocal] = extra[nlocal][m++];
+}
+
+int FixGenDPDE::size_restart(int /*nlocal*/) {
+    return 3;
+}
+
+int FixGenDPDE::maxsize_restart() {
+    return 3;
+}
+
+void FixGenDPDE::write_restart(FILE* fp) {
+    if (comm->me == 0) {
+        const int size = sizeof(double);
+        const double value = energiesSet;
+        fwrite(&size, sizeof(int), 1, fp);
+        fwrite(&value, sizeof(double), 1, fp);
+    }
+}
+
+void FixGenDPDE::restart(char* buf) {
+    energiesSet = (int) ((double*) buf)[0];
+}
+
+double FixGenDPDE::memory_usage() {
+    return (double) atom->nmax * 2 * sizeof(double) + sweepEnergy.size() * (sizeof(double) + 5 * sizeof(int) + 2);
+}

@@ -1,0 +1,39 @@
+/* ----------------------------------------------------------------------
+   openmm-gendpde's LAMMPS package as a plugin (plugin load gendpdeplugin.so):
+   registers pair_style gendpde and fix gendpde.
+------------------------------------------------------------------------- */
+
+#include "lammpsplugin.h"
+#include "version.h"
+
+#include "fix_gendpde.h"
+#include "pair_gendpde.h"
+
+using namespace LAMMPS_NS;
+
+static Pair* pairCreator(LAMMPS* lmp) {
+    return new PairGenDPDE(lmp);
+}
+
+static Fix* fixCreator(LAMMPS* lmp, int argc, char** argv) {
+    return new FixGenDPDE(lmp, argc, argv);
+}
+
+extern "C" void lammpsplugin_init(void* lmp, void* handle, void* regfunc) {
+    lammpsplugin_regfunc registerPlugin = (lammpsplugin_regfunc) regfunc;
+    lammpsplugin_t plugin;
+    plugin.version = LAMMPS_VERSION;
+    plugin.style = "pair";
+    plugin.name = "gendpde";
+    plugin.info = "GenDPDE many-body force (V-A, V-B, V-C; Tait and temperature-dependent laws), openmm-gendpde";
+    plugin.author = "openmm-gendpde";
+    plugin.creator.v1 = (lammpsplugin_factory1*) &pairCreator;
+    plugin.handle = handle;
+    (*registerPlugin)(&plugin, lmp);
+
+    plugin.style = "fix";
+    plugin.name = "gendpde";
+    plugin.info = "GenDPDE integrator: Shardlow sweep across subdomains, three modes, openmm-gendpde";
+    plugin.creator.v2 = (lammpsplugin_factory2*) &fixCreator;
+    (*registerPlugin)(&plugin, lmp);
+}

@@ -1,0 +1,89 @@
+/* -*- c++ -*- ----------------------------------------------------------------
+   openmm-gendpde's LAMMPS package: pair_style gendpde, GenDPDE's many-body
+   conservative force (docs/theory.md sections 2-4 and 11; docs/lammps.md).
+
+   pair_style gendpde R estimator f_cut [background p_b]
+     R          pair range (distance units)
+     estimator  va | vb | vc  (the density estimators V-A, V-B, V-C)
+     f_cut      cutoff scaling: the estimators' reduced range is R/f_cut
+     p_b        background pressure (pressure units, >= 0; docs/theory.md section 12)
+   pair_coeff I I tait n0 pi0 B_T gamma_T
+   pair_coeff I I tait/thermal n0 pi0 B_T gamma_T beta theta0
+   pair_coeff I I vdw a b k
+     one law per type; a pair of different types takes no coefficients.
+
+   Two passes over a half neighbor list (newton on): the primitive densities
+   n0_i (and V-C's first moments g_i) summed over pairs, ghosts' sums
+   reverse-communicated to their owners; each owner's state from the physics
+   core (gendpdeParticleState), its force coefficient (and V-C's moment force)
+   forward-communicated to the ghosts; then the pair forces
+   (gendpdePairForce). A law that depends on temperature reads and keeps each
+   particle's thermal state in fix gendpde.
+------------------------------------------------------------------------- */
+
+#ifdef PAIR_CLASS
+// clang-format off
+PairStyle(gendpde,PairGenDPDE);
+// clang-format on
+#else
+
+#ifndef LMP_PAIR_GENDPDE_H
+#define LMP_PAIR_GENDPDE_H
+
+#include "pair.h"
+#include <vector>
+
+namespace LAMMPS_NS {
+
+class FixGenDPDE;
+
+class PairGenDPDE : public Pair {
+public:
+    PairGenDPDE(class LAMMPS*);
+    ~PairGenDPDE() override;
+    void compute(int, int) override;
+    void settings(int, char**) override;
+    void coeff(int, char**) override;
+    void init_style() override;
+    double init_one(int, int) override;
+    int pack_forward_comm(int, int*, double*, int, int*) override;
+    void unpack_forward_comm(int, int, double*) override;
+    int pack_reverse_comm(int, int, double*) override;
+    void unpack_reverse_comm(int, int*, double*) override;
+    double memory_usage() override;
+    void* extract(const char*, int&) override;
+
+  /** The pair range R (distance units). */
+    double range() const { return cut_global; }
+  /** Whether some type's law depends on temperature (then fix gendpde holds the thermal state). */
+    bool dependsOnTemperature() const;
+
+private:
+  /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
+    struct Law {
+        int law = -1;                   // GENDPDE_EOS_*; -1: not set
+        double parameter[8] = {0.0};    // in the core's order, the background pressure included
+        int integerPower = -1;
+        double reference = 0.0;    // pi0 (Tait laws) or 0 (van der Waals), before the background pressure
+    };
+    double background = 0.0;
+    void setBackground(Law& law) const;
+    double cut_global = 0.0, fcut = 1.0;
+    int estimator = 0;
+    double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;
+    double weightScale, weightDerivativeScale;
+    std::vector<Law> laws;    // by type, 1 ... ntypes
+  // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's moment force q
+    int nmax = 0;
+    double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **momentForce = nullptr;
+    int commPhase = 0;    // 0: densities (reverse), 1: coefficients (forward)
+    bool moments() const;
+    void grow();
+    void particleError(int status, int i, double volume);
+    FixGenDPDE* thermalFix();
+};
+
+}    // namespace LAMMPS_NS
+
+#endif
+#endif

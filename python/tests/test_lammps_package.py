@@ -1,0 +1,319 @@
+"""The LAMMPS package (lammps/: pair_style gendpde, fix gendpde) against OpenMM's Reference platform.
+
+LAMMPS runs in its lj units with OpenMM's numbers written as they are (nm, kJ/mol, amu, ps): lengths, energies, masses
+and times then need no conversion, so the two engines compute with the same values. Only the temperature scale
+differs (k_B = 1 in lj units): temperatures and theta0 are given as k_B T, heat capacities as C/k_B, heat conductions
+as k_B kappa and thermal pressure coefficients as beta/k_B (exact up to one rounding each).
+
+Needs the package built (lammps/build.sh, which scripts/run-tests.sh runs first): build/lammps/lammps/lmp and
+build/lammps/plugin/gendpdeplugin.so, or the paths in GENDPDE_LMP and GENDPDE_LAMMPS_PLUGIN. Ranks: mpirun with
+--oversubscribe (4 ranks on 2 cores is fine for correctness).
+"""
+
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import openmm
+import pytest
+from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
+
+from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+
+pytestmark = pytest.mark.lammps
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp"))
+PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
+#: OpenMM's Boltzmann constant, kJ/(mol K) (k_B N_A, exact SI values)
+KB = 1.380649e-23 * 6.02214076e23 / 1000
+ESTIMATOR_NAMES = {GenDPDEForce.VA: "va", GenDPDEForce.VB: "vb", GenDPDEForce.VC: "vc"}
+#: A second type's law and thermal parameters (a liquid with thermal expansion, OpenMM units): beta (kJ/mol/nm^3/K),
+#: theta0 (K), C_V (kJ/mol/K), and its pairs' friction (amu/ps) and heat conduction (kJ K/(mol ps)) with type 0.
+BETA, THETA0, SECOND_HEAT_CAPACITY, MIXED_FRICTION, MIXED_CONDUCTION = 0.9, 130.0, 0.2, 20.0, 3.0
+
+
+@pytest.fixture(scope="module")
+def lammps():
+    if not (LMP.exists() and PLUGIN.exists()):
+        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
+    return LMP
+
+
+def run_lammps(directory, script, ranks=1, check=True):
+    """Run lmp on ``script`` (text) in ``directory`` with ``ranks`` MPI ranks; returns the CompletedProcess."""
+    (directory / "in.test").write_text(script)
+    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(LMP), "-in", "in.test",
+               "-log", "log.lammps", "-echo", "none"] + (["-screen", "none"] if check else [])
+    result = subprocess.run(command, cwd=directory, capture_output=True, text=True, timeout=300)
+    if check and result.returncode != 0:
+        log = (directory / "log.lammps").read_text() if (directory / "log.lammps").exists() else ""
+        raise AssertionError(f"lmp failed ({result.returncode}):\n{log[-3000:]}\n{result.stdout[-2000:]}")
+    return result
+
+
+def write_data(path, positions, edges, masses, types, velocities=None):
+    """A LAMMPS data file (atom_style atomic) of an orthogonal box [0, edges); types 0-based as OpenMM's."""
+    lines = ["GenDPDE test", "", f"{len(positions)} atoms", f"{len(masses)} atom types"]
+    lines += [f"0 {float(edge)!r} {axis}lo {axis}hi" for edge, axis in zip(edges, "xyz")]
+    lines += ["", "Masses", ""] + [f"{t + 1} {float(m)!r}" for t, m in enumerate(masses)]
+    lines += ["", "Atoms # atomic", ""]
+    lines += [f"{i + 1} {types[i] + 1} {float(x)!r} {float(y)!r} {float(z)!r}"
+              for i, (x, y, z) in enumerate(positions)]
+    if velocities is not None:
+        lines += ["", "Velocities", ""]
+        lines += [f"{i + 1} {float(x)!r} {float(y)!r} {float(z)!r}" for i, (x, y, z) in enumerate(velocities)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def read_dump(path):
+    """(ids sorted) columns of a LAMMPS custom dump of one frame."""
+    table = np.loadtxt(path, skiprows=9, ndmin=2)
+    return table[np.argsort(table[:, 0])]
+
+
+class Scene:
+    """A liquid in OpenMM (System, force, positions) and its LAMMPS input in lj units (see the module docstring)."""
+
+    def __init__(self, estimator=GenDPDEForce.VB, slab=False, two_types=False, cells=8, seed=1):
+        system, force, positions = lattice_liquid(cells, estimator=estimator, seed=seed)
+        edges = [system.getDefaultPeriodicBoxVectors()[k][k]._value for k in range(3)]
+        if slab:
+            # A slab: the box twice as tall, so the liquid has two free surfaces (V-C's moment terms act there).
+            edges[2] *= 2
+            system.setDefaultPeriodicBoxVectors(openmm.Vec3(edges[0], 0, 0), openmm.Vec3(0, edges[1], 0),
+                                                openmm.Vec3(0, 0, edges[2]))
+        self.positions = np.mod(positions, edges)
+        self.system, self.force, self.edges = system, force, edges
+        n0, pi0, bulk, gamma = force.getTaitParameters()
+        self.tait = [q._value if hasattr(q, "_value") else q for q in (n0, pi0, bulk, gamma)]
+        self.types = np.zeros(len(positions), dtype=int)
+        if two_types:
+            self.types[1::3] = 1
+            for i in np.flatnonzero(self.types):
+                force.setParticleType(int(i), 1)
+            force.addTypeEquationOfState(1, GenDPDEForce.TaitThermalExpansion, [BETA, THETA0])
+
+    @property
+    def num_types(self):
+        return int(self.types.max()) + 1
+
+    def integrator(self, mode, step_size=0.004, seed=1234):
+        integrator = argon_integrator(step_size)
+        integrator.setMode(mode)
+        integrator.setRandomNumberSeed(seed)
+        integrator.setTemperature(TEMPERATURE)
+        if self.num_types > 1:
+            integrator.addTypeHeatCapacity(1, SECOND_HEAT_CAPACITY)
+            integrator.addTypePair(0, 1, MIXED_FRICTION, MIXED_CONDUCTION)
+        return integrator
+
+    def pair_commands(self):
+        cutoff = self.force.getCutoffDistance()._value
+        lines = [f"pair_style gendpde {cutoff!r} {ESTIMATOR_NAMES[self.force.getDensityEstimator()]} "
+                 f"{self.force.getCutoffScaling()!r}",
+                 "pair_coeff 1 1 tait " + " ".join(repr(float(p)) for p in self.tait)]
+        if self.num_types > 1:
+            lines.append("pair_coeff 2 2 tait/thermal " + " ".join(repr(float(p)) for p in self.tait)
+                         + f" {BETA / KB!r} {KB * THETA0!r}")
+        return "\n".join(lines)
+
+    def fix_command(self, integrator, mode_name):
+        """fix gendpde with ``integrator``'s parameters (the argon model's) in lj units."""
+        friction = integrator.getFriction()._value
+        conduction = integrator.getHeatConduction()._value
+        capacity = integrator.getHeatCapacity()._value
+        words = [f"fix integrate all gendpde {mode_name} {integrator.getRandomNumberSeed()}",
+                 f"heat_capacity * {capacity / KB!r}", f"friction * * {friction!r}",
+                 f"conduction * * {KB * conduction!r}", f"temperature {KB * TEMPERATURE!r}",
+                 f"initial {KB * TEMPERATURE!r}"]
+        if self.num_types > 1:
+            words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {MIXED_FRICTION!r}",
+                      f"conduction 1 2 {KB * MIXED_CONDUCTION!r}"]
+        return " ".join(words)
+
+    def header(self, directory, velocities=None):
+        write_data(directory / "data", self.positions, self.edges, [MASS] * self.num_types, self.types, velocities)
+        return f"""units lj
+atom_style atomic
+boundary p p p
+atom_modify map array
+plugin load {PLUGIN}
+read_data data
+{self.pair_commands()}
+neighbor 0.1 bin
+neigh_modify every 1 delay 0 check yes
+comm_modify cutoff 2.0
+"""
+
+
+def openmm_energy_and_forces(scene, integrator=None):
+    context = openmm.Context(scene.system, integrator or openmm.VerletIntegrator(0.001),
+                             openmm.Platform.getPlatformByName("Reference"))
+    context.setPositions(scene.positions)
+    if integrator is not None:
+        integrator.setParticleTemperatures([TEMPERATURE] * scene.system.getNumParticles())
+    state = context.getState(getEnergy=True, getForces=True)
+    return state.getPotentialEnergy()._value, np.array(state.getForces()._value)
+
+
+def lammps_energy_and_forces(scene, directory, ranks, fix=""):
+    script = scene.header(directory) + fix + """
+thermo_style custom step pe
+thermo_modify norm no format float %.17g
+dump forces all custom 1 forces.dump id fx fy fz
+dump_modify forces format float %.17g sort id
+run 0
+"""
+    run_lammps(directory, script, ranks)
+    log = (directory / "log.lammps").read_text().splitlines()
+    row = next(k for k, line in enumerate(log) if line.split()[:2] == ["Step", "PotEng"])
+    return float(log[row + 1].split()[1]), read_dump(directory / "forces.dump")[:, 1:4]
+
+
+@pytest.mark.parametrize("ranks", [1, 2, 4])
+@pytest.mark.parametrize("case", ["va", "vb", "vc-slab", "two-types-thermal"])
+def test_energy_and_forces_equal_reference(lammps, tmp_path, case, ranks):
+    """U and every force as OpenMM's Reference platform computes them, to 1e-12 (relative to U and to the rms force;
+    the sums run in other orders, so they differ by rounding, ~1e-15)."""
+    estimator = {"va": GenDPDEForce.VA, "vc-slab": GenDPDEForce.VC}.get(case, GenDPDEForce.VB)
+    scene = Scene(estimator, slab=case == "vc-slab", two_types=case == "two-types-thermal")
+    integrator = fix = None
+    if case == "two-types-thermal":
+        # A law that depends on temperature: its pressure and U read each particle's temperature, here T0
+        integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+        fix = scene.fix_command(integrator, "isoenergetic")
+    energy, forces = openmm_energy_and_forces(scene, integrator)
+    lammps_energy, lammps_forces = lammps_energy_and_forces(scene, tmp_path, ranks, fix or "")
+    assert abs(lammps_energy - energy) <= 1e-12 * abs(energy)
+    rms = np.sqrt(np.mean(forces**2))
+    assert np.max(np.abs(lammps_forces - forces)) <= 1e-12 * rms
+    if case == "vc-slab":
+        # the moment terms act: V-C's forces differ from V-B's at the surfaces by far more than rounding
+        scene.force.setDensityEstimator(GenDPDEForce.VB)
+        assert np.max(np.abs(openmm_energy_and_forces(scene)[1] - forces)) > 1e-3 * rms
+
+
+def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004):
+    """Positions and internal energies after ``steps`` steps of GenDPDEIntegrator on Reference, starting from
+    ``velocities`` at the time of the positions (OpenMM keeps velocities half a step behind: the first half kick is
+    undone here)."""
+    integrator = scene.integrator(mode, step_size)
+    context = openmm.Context(scene.system, integrator, openmm.Platform.getPlatformByName("Reference"))
+    context.setPositions(scene.positions)
+    forces = np.array(context.getState(getForces=True).getForces()._value)
+    context.setVelocities(velocities - forces * (0.5 * step_size / MASS))
+    if mode != GenDPDEIntegrator.Isothermal:
+        integrator.setParticleTemperatures([TEMPERATURE] * scene.system.getNumParticles())
+    integrator.step(steps)
+    positions = np.array(context.getState(getPositions=True).getPositions()._value)
+    energies = np.array(integrator.getInternalEnergies()) if mode != GenDPDEIntegrator.Isothermal else None
+    return positions, energies, integrator
+
+
+def lammps_trajectory(scene, directory, mode, mode_name, steps, velocities, ranks, step_size=0.004, restart_at=None):
+    """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps; with ``restart_at``,
+    the run stops there, writes a restart file, and a second lmp reads it and runs the rest."""
+    integrator = scene.integrator(mode, step_size)
+    script = scene.header(directory, velocities) + f"""{scene.fix_command(integrator, mode_name)}
+timestep {step_size!r}
+thermo_style custom step pe ke f_integrate
+thermo 10
+"""
+    finish = """write_dump all custom final.dump id x y z f_integrate modify format float %.17g sort id
+"""
+    if restart_at is None:
+        run_lammps(directory, script + f"run {steps}\n" + finish, ranks)
+    else:
+        run_lammps(directory, script + f"run {restart_at}\nwrite_restart state.restart\n", ranks)
+        resumed = f"""units lj
+atom_modify map array
+plugin load {PLUGIN}
+read_restart state.restart
+{scene.pair_commands()}
+neighbor 0.1 bin
+neigh_modify every 1 delay 0 check yes
+comm_modify cutoff 2.0
+{scene.fix_command(integrator, mode_name)}
+timestep {step_size!r}
+run {steps - restart_at}
+""" + finish
+        run_lammps(directory, resumed, ranks)
+    table = read_dump(directory / "final.dump")
+    return table[:, 1:4], table[:, 4]
+
+
+def start_velocities(scene, seed=7):
+    rng = np.random.default_rng(seed)
+    return rng.normal(0.0, np.sqrt(KB * TEMPERATURE / MASS), scene.positions.shape)
+
+
+MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIntegrator.Isothermal,
+         "conservative": GenDPDEIntegrator.Conservative}
+
+
+@pytest.mark.parametrize("ranks", [1, 2, 4])
+@pytest.mark.parametrize("mode_name", ["isoenergetic", "isothermal"])
+def test_trajectory_follows_reference(lammps, tmp_path, mode_name, ranks):
+    """fix gendpde's sweep across subdomains is GenDPDEIntegrator's (same order of pair updates, same random numbers):
+    after 30 steps every position and internal energy is OpenMM's to rounding, 1e-12 nm and 1e-12 relative, with 1, 2
+    or 4 ranks. A pair updated out of order, twice, never, or with another random number moves particles by ~1e-5 nm
+    in one step."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 30, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 30, velocities,
+                                                          ranks)
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    if energies is not None:
+        assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+        assert np.max(np.abs(energies / (scene.integrator(MODES[mode_name]).getHeatCapacity()._value * TEMPERATURE)
+                             - 1)) > 1e-4   # (the energies did change)
+
+
+@pytest.mark.parametrize("mode_name", ["isoenergetic", "conservative"])
+def test_two_types_with_thermal_law_follow_reference(lammps, tmp_path, mode_name):
+    """Two types, one with a temperature-dependent law (TaitThermalExpansion): per-type laws, heat capacities and pair
+    parameters, and the thermal state the pair style keeps in the fix (Conservative: isentropic temperatures only), on
+    2 ranks: OpenMM's trajectory to rounding after 20 steps."""
+    scene = Scene(GenDPDEForce.VB, two_types=True)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 20, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 20, velocities,
+                                                          2)
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+def test_restart_continues_the_run(lammps, tmp_path):
+    """A run of 20 steps written to a restart file after 10 and continued by another lmp (read_restart: positions,
+    velocities, internal energies and entropies, the step) ends where OpenMM's 20 steps end, to rounding."""
+    scene = Scene(GenDPDEForce.VB, two_types=True)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
+                                                          "isoenergetic", 20, velocities, 2, restart_at=10)
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+@pytest.mark.parametrize("change, words", [
+    (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vd 1.35 #"), "density estimator 'vd'"),
+    (("pair_coeff 1 1 tait", "pair_coeff 1 1 tait 1.0 #"), "law tait takes 4 parameters"),
+    (("pair_coeff 1 1 tait", "#"), "All pair coeffs are not set"),
+    (("comm_modify cutoff 2.0", "comm_modify cutoff 1.2"), "the ghost cutoff 1.2 is below what the sweep needs"),
+    (("fix integrate all gendpde isoenergetic", "fix integrate all gendpde adiabatic"), "mode 'adiabatic'"),
+    ((" initial ", " # "), "the internal energies are not set"),
+])
+def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
+    """Bad input stops LAMMPS with its ERROR line naming the problem (exit status 1), not a crash."""
+    scene = Scene(GenDPDEForce.VB)
+    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+    script = (scene.header(tmp_path) + scene.fix_command(integrator, "isoenergetic")
+              + "\ntimestep 0.004\nrun 1\n")
+    assert change[0] in script
+    result = run_lammps(tmp_path, script.replace(change[0], change[1], 1), check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    assert "ERROR" in result.stdout and words in result.stdout, result.stdout[-2000:]
+

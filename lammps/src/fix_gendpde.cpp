@@ -299,6 +299,7 @@ void FixGenDPDE::sweep() {
             extendedCell[3 * i + d] = owner + numCells[d] * (int) images;
         }
     if (neighbor->lastcall != candidatesBuiltAt) {
+        rankBlocks();
         findCandidates();
         candidatesBuiltAt = neighbor->lastcall;
     }
@@ -393,73 +394,81 @@ void FixGenDPDE::findCandidates() {
                                     if (!(dx * dx + dy * dy + dz * dz < reach2))
                                         continue;
                                     const int ta = (int) (tag[a] - 1), tb = (int) (tag[b] - 1);
-                                    candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b} : SweepPair{tb, ta, b, a});
+                                    candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, 0}
+                                                                 : SweepPair{tb, ta, b, a, 0});
                                 }
                             }
             }
-    // In (i, j) order: each block's pairs then come out in the order that defines the sweep within a block.
+    // By the block each candidate is in now (the others last), then in (i, j) order, the order that defines the
+    // sweep within a block: each step reads a block's particles together, and the pairs that are still in the same
+    // block come out in order.
+    const int numBlocks = colourStart.back();
+    candidateGroupStart.assign(numBlocks + 2, 0);
+    for (size_t k = 0; k < candidates.size(); k++) {
+        const int rank = blockRankOf(candidates[k].li, candidates[k].lj);
+        candidates[k].group = rank >= 0 ? rank : numBlocks;
+        candidateGroupStart[candidates[k].group + 1]++;
+    }
+    for (int g = 0; g <= numBlocks; g++)
+        candidateGroupStart[g + 1] += candidateGroupStart[g];
     std::sort(candidates.begin(), candidates.end(), [](const SweepPair& p, const SweepPair& q) {
-        return ((std::uint64_t) (std::uint32_t) p.i << 32 | (std::uint32_t) p.j)
-                < ((std::uint64_t) (std::uint32_t) q.i << 32 | (std::uint32_t) q.j);
+        return p.group < q.group || (p.group == q.group && pairKey(p) < pairKey(q));
     });
 }
 
-void FixGenDPDE::orderPairs() {
-    // Each candidate closer than R goes to the block of its home cell (the lower of its two cells along each
-    // direction), if that block is this rank's; a stable counting sort by the blocks' ranks (colour by colour) keeps
-    // each block's pairs in (i, j) order; then the lists of four consecutive first particles are interleaved.
-    const int numBlocks = blockCount[0] * blockCount[1] * blockCount[2];
-    if (blockOfBlockRank.size() != (size_t) numBlocks || colourStart.empty()) {
-        // the ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives
-        // the same result: its blocks share no particle)
-        blockOfBlockRank.assign(numBlocks, 0);
-        colourStart.assign(SweepDefinition::numColours + 1, 0);
-        std::vector<int> rankOfBlock(numBlocks);
-        int rank = 0;
-        for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
-            colourStart[colour] = rank;
-            for (int b = 0; b < numBlocks; b++) {
-                const int bx = blockLow[0] + b % blockCount[0], by = blockLow[1] + (b / blockCount[0]) % blockCount[1];
-                const int bz = blockLow[2] + b / (blockCount[0] * blockCount[1]);
-                if (SweepDefinition::blockColour(bx, by, bz) == colour) {
-                    rankOfBlock[b] = rank;
-                    blockOfBlockRank[rank++] = b;
-                }
-            }
-        }
-        colourStart[SweepDefinition::numColours] = rank;
-        blockOfBlockRank.swap(rankOfBlock); // (kept as the rank of each block)
+int FixGenDPDE::blockRankOf(int a, int b) const {
+    // The rank of the block of a pair's home cell (the lower of its two cells along each direction), or -1 if that
+    // block is not this rank's.
+    int block = 0;
+    for (int d = 2; d >= 0; d--) {
+        const int home = std::min(extendedCell[3 * a + d], extendedCell[3 * b + d]) - gridLow[d];
+        const int bd = home >= 0 ? home >> 1 : -1;
+        if (bd < 0 || bd >= blockCount[d])
+            return -1;
+        block = block * blockCount[d] + bd;
     }
-    const std::vector<int>& rankOf = blockOfBlockRank;
+    return rankOfBlock[block];
+}
+
+void FixGenDPDE::rankBlocks() {
+    // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives the
+    // same result: its blocks share no particle).
+    const int numBlocks = blockCount[0] * blockCount[1] * blockCount[2];
+    rankOfBlock.assign(numBlocks, 0);
+    colourStart.assign(SweepDefinition::numColours + 1, 0);
+    int rank = 0;
+    for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
+        colourStart[colour] = rank;
+        for (int b = 0; b < numBlocks; b++) {
+            const int bx = blockLow[0] + b % blockCount[0], by = blockLow[1] + (b / blockCount[0]) % blockCount[1];
+            const int bz = blockLow[2] + b / (blockCount[0] * blockCount[1]);
+            if (SweepDefinition::blockColour(bx, by, bz) == colour)
+                rankOfBlock[b] = rank++;
+        }
+    }
+    colourStart[SweepDefinition::numColours] = rank;
+}
+
+void FixGenDPDE::orderPairs() {
+    // Each candidate closer than R goes to the block of its home cell, if that block is this rank's. A block's pairs
+    // are those of its group of candidates still in it (in (i, j) order), merged in (i, j) order with the few that
+    // moved in from other groups since the candidates were found; then the lists of four consecutive first particles
+    // are interleaved.
+    const int numBlocks = colourStart.back();
     double** x = atom->x;
     const double range2 = pair->range() * pair->range();
     const int count = candidates.size();
     pairBlockRank.resize(count);
     blockRankStart.assign(numBlocks + 1, 0);
+    movedIn.assign(numBlocks, 0);
     for (int k = 0; k < count; k++) {
-        if (k + 16 < count) { // the second particle of a candidate ahead: the candidates are in order of tags
-            __builtin_prefetch(x[candidates[k + 16].lj]);
-            __builtin_prefetch(&extendedCell[3 * candidates[k + 16].lj]);
-        }
         const SweepPair& p = candidates[k];
         const int a = p.li, b = p.lj;
         const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-        int rank = -1;
-        if (dx * dx + dy * dy + dz * dz < range2) {
-            int block = 0;
-            for (int d = 2; d >= 0; d--) {
-                const int home = std::min(extendedCell[3 * a + d], extendedCell[3 * b + d]) - gridLow[d];
-                const int bd = home >= 0 ? home >> 1 : -1;
-                if (bd < 0 || bd >= blockCount[d]) {
-                    block = -1;
-                    break;
-                }
-                block = block * blockCount[d] + bd;
-            }
-            if (block >= 0) {
-                rank = rankOf[block];
-                blockRankStart[rank + 1]++;
-            }
+        const int rank = dx * dx + dy * dy + dz * dz < range2 ? blockRankOf(a, b) : -1;
+        if (rank >= 0) {
+            blockRankStart[rank + 1]++;
+            movedIn[rank] += (rank != p.group);
         }
         pairBlockRank[k] = rank;
     }
@@ -469,14 +478,28 @@ void FixGenDPDE::orderPairs() {
     blockPairs.resize(total);
     blockFirst.resize(total);
     blockOrder.resize(total);
-    std::vector<int>& next = binNext; // (scratch: the next free place of each block rank)
-    next.assign(blockRankStart.begin(), blockRankStart.end() - 1);
-    for (int k = 0; k < count; k++)
-        if (pairBlockRank[k] >= 0) {
-            const int place = next[pairBlockRank[k]]++;
-            blockPairs[place] = k;
-            blockFirst[place] = candidates[k].i;
-        }
+    std::vector<int>& next = binNext; // (scratch: the next place of a block's own pairs, then of those moved in)
+    next.resize(2 * (size_t) numBlocks);
+    for (int r = 0; r < numBlocks; r++) {
+        next[2 * r] = blockRankStart[r];
+        next[2 * r + 1] = blockRankStart[r + 1] - movedIn[r];
+    }
+    for (int k = 0; k < count; k++) {
+        const int rank = pairBlockRank[k];
+        if (rank >= 0)
+            blockPairs[next[2 * rank + (rank != candidates[k].group)]++] = k;
+    }
+    auto byPair = [&](int p, int q) { return pairKey(candidates[p]) < pairKey(candidates[q]); };
+    for (int r = 0; r < numBlocks; r++) {
+        if (movedIn[r] == 0)
+            continue;
+        int* begin = &blockPairs[blockRankStart[r]];
+        int *middle = &blockPairs[blockRankStart[r + 1] - movedIn[r]], *end = &blockPairs[0] + blockRankStart[r + 1];
+        std::sort(middle, end, byPair);
+        std::inplace_merge(begin, middle, end, byPair);
+    }
+    for (int k = 0; k < total; k++)
+        blockFirst[k] = candidates[blockPairs[k]].i;
     for (int r = 0; r < numBlocks; r++)
         SweepDefinition::interleaveRuns(&blockPairs[blockRankStart[r]], &blockFirst[blockRankStart[r]],
                                         blockRankStart[r + 1] - blockRankStart[r], &blockOrder[blockRankStart[r]]);

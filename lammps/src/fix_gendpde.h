@@ -34,6 +34,7 @@ FixStyle(gendpde,FixGenDPDE);
 
 #include "fix.h"
 #include "lmptype.h"
+#include <cstdint>
 #include <vector>
 
 namespace LAMMPS_NS {
@@ -88,25 +89,31 @@ private:
     double *energy = nullptr, *entropy = nullptr;    // per atom (ghosts: scratch of the sweep)
     PairGenDPDE* pair = nullptr;
 
-  // The sweep (see the header comment).
+    // The sweep (see the header comment).
     struct SweepPair {
-        int i, j;    // tag - 1 of the two particles, i < j (the particle indices of the random stream)
-        int li, lj;  // their local indices (local or ghost)
+        int i, j;   // tag - 1 of the two particles, i < j (the particle indices of the random stream)
+        int li, lj; // their local indices (local or ghost)
+        int group;  // the rank of the block it was in when found (the number of blocks: none of this rank's)
     };
+    static std::uint64_t pairKey(const SweepPair& p) {
+        return (std::uint64_t) (std::uint32_t) p.i << 32 | (std::uint32_t) p.j;
+    }
     int numCells[3];
     double cellWidth[3];
-    int blockLow[3], blockCount[3];    // this rank's blocks
-    int gridLow[3], gridCount[3];      // the extended cells they cover
-    std::vector<double> sweepEnergy;   // eps / mvv2e, local and ghost
-    std::vector<int> extendedCell;     // each particle's cell in this rank's frame
+    int blockLow[3], blockCount[3];  // this rank's blocks
+    int gridLow[3], gridCount[3];    // the extended cells they cover
+    std::vector<double> sweepEnergy; // eps / mvv2e, local and ghost
+    std::vector<int> extendedCell;   // each particle's cell in this rank's frame
     std::vector<char> modified, touched;
-    // Candidates: the pairs closer than R + skin among the particles near this rank's blocks, sorted by (i, j), found
-    // again when LAMMPS has built its neighbour lists again (every particle has then moved less than skin/2).
+    // Candidates: the pairs closer than R + skin among the particles near this rank's blocks, by the block they were
+    // in, then by (i, j); found again when LAMMPS has built its neighbour lists again (every particle has then moved
+    // less than skin/2).
     std::vector<SweepPair> candidates;
     bigint candidatesBuiltAt = -1;
-    std::vector<int> binHead, binNext;
-    // Each step: the pairs closer than R in each block (blockStart by block rank: colour by colour), in (i, j) order
-    std::vector<int> blockOfBlockRank, blockRankStart, colourStart, pairBlockRank, blockPairs, blockFirst, blockOrder;
+    std::vector<int> binHead, binNext, candidateGroupStart;
+    // Each step: the pairs closer than R of each block (by block rank: colour by colour), in sweep order
+    std::vector<int> rankOfBlock, blockRankStart, colourStart, pairBlockRank, blockPairs, blockFirst, blockOrder;
+    std::vector<int> movedIn;
     std::vector<SweepPair> sweepList; // the pairs in sweep order
     struct PairTables {
         std::vector<double> inverseMass, heatCapacity, conduction, noise; // by type, type pair
@@ -115,7 +122,9 @@ private:
     void kick();
     void sweep();
     void prepareCells();
+    void rankBlocks();
     void findCandidates();
+    int blockRankOf(int a, int b) const;
     void orderPairs();
     void sweepPairs(const SweepPair* pairs, int count, bool isoenergetic);
     double ghostNeed() const;

@@ -388,3 +388,11 @@ def test_lammps_energy_and_virial_pressure_with_a_background_pressure(tmp_path):
     virial = np.trace(virial_tensor(model.force, context)) / (3 * abs(np.linalg.det(box)))   # kJ/mol/nm^3
     bar = (1 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.bar)
     assert row["c_virialPressure"] == pytest.approx(virial * bar, rel=1e-6)
+
+
+def test_the_default_particle_count_is_calibrate_s():
+    """lammps-input's default --particles is the count models are calibrated with (cli sits below calibration, so it
+    cannot import it)."""
+    from openmmgendpde.calibration.calibration import Plan
+    from openmmgendpde.cli.lammps_input import DEFAULT_PARTICLES
+    assert DEFAULT_PARTICLES == Plan.particles

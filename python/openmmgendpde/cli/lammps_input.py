@@ -21,7 +21,6 @@ import os
 
 import openmm
 
-from ..calibration.calibration import Plan
 from ..models.fluid_files import load_parameters
 from ..models.lammps_files import DATA_FILE, MAX_SEED, MODES, SCRIPT_FILE, model_input, write_lammps_input
 from .options import (
@@ -35,9 +34,10 @@ from .options import (
 )
 
 COMMAND = "lammps-input"
-#: The particles by default: those models are calibrated with (calibrate's default, Plan.particles), since
+#: The particles by default: those models are calibrated with (calibrate's default, calibration.Plan.particles;
+#: test_lammps_input checks they agree), since
 #: GenDPDEParameters.liquid() has no default of its own.
-DEFAULT_PARTICLES = Plan.particles
+DEFAULT_PARTICLES = 2048
 #: --seed: the fix takes 0 to 2^31 - 1, and 0 would make OpenMM pick a seed of its own when a Context is created.
 SEED = integer(1, MAX_SEED, " (the fix gendpde's random seed and the velocities' OpenMM seed; 0 would let OpenMM pick "
                             "one, and LAMMPS could not draw the same random numbers)")

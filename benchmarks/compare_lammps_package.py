@@ -14,6 +14,9 @@ per-round ratios. Needs lammps/build.sh (LAMMPS with MPI, DPD-REACT, MANYBODY, O
 
     .venv/bin/python benchmarks/compare_lammps_package.py --particles 32000 --steps 50 --rounds 5
     .venv/bin/python benchmarks/compare_lammps_package.py --state argon256k.npz --steps 10 --rounds 3
+
+--weak-state STATE (a liquid of twice the particles): in the same rounds, LAMMPS GenDPDE and DPD-E on 2 ranks with
+it, for the weak scaling t(N, 1 rank)/t(2N, 2 ranks).
 """
 
 import argparse
@@ -23,6 +26,8 @@ import re
 import statistics
 import subprocess
 import tempfile
+
+import numpy as np
 
 # (this directory: run as a script)
 from compare_lammps import add_layout_argument, liquid, write_data, write_setfl
@@ -58,6 +63,7 @@ def main():
     parser.add_argument("--steps", type=int, default=50, help="steps per timed run (default 50)")
     parser.add_argument("--rounds", type=int, default=5, help="alternating rounds (default 5)")
     parser.add_argument("--ranks", default="1,2", help="MPI ranks (and CPU threads) to compare (default 1,2)")
+    parser.add_argument("--weak-state", help="a saved liquid of twice the particles, for weak scaling (2 ranks)")
     add_layout_argument(parser)
     arguments = parser.parse_args()
     for path in (arguments.lmp, arguments.plugin):
@@ -94,7 +100,31 @@ def main():
                     / edge**3)
         write_eam_input(os.path.join(directories["eam"], "eam.in"), "eam/alloy/opt", 0.1 * cutoff, time_step,
                         arguments.steps, False)
+        weak = {}
+        if arguments.weak_state:
+            # the same liquid, twice the particles: GenDPDE and DPD-E on 2 ranks
+            saved = np.load(arguments.weak_state)
+            big = liquid_argon(len(saved["positions"]), CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+            big_edge = big.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
+            for name in ("weak-gendpde", "weak-dpde"):
+                directories[name] = os.path.join(directory, name)
+                os.makedirs(directories[name])
+            write_lammps_input(directories["weak-gendpde"],
+                               lammps_input(big.system, big.integrator, saved["positions"], saved["velocities"],
+                                            steps=arguments.steps, thermo=arguments.steps))
+            write_data(os.path.join(directories["weak-dpde"], "liquid.data"), saved["positions"], saved["velocities"],
+                       big_edge, mass, temperature)
+            write_dpde_input(os.path.join(directories["weak-dpde"], "dpde.in"), big.integrator, cutoff, 0.1 * cutoff,
+                             arguments.steps)
+            weak = {"LAMMPS GenDPDE": [], "LAMMPS DPD-E": []}
+            weak_particles = len(saved["positions"])
+            times["weak GenDPDE"], times["weak DPD-E"] = weak["LAMMPS GenDPDE"], weak["LAMMPS DPD-E"]
         for _ in range(arguments.rounds):
+            if weak:
+                weak["LAMMPS GenDPDE"].append(run_lammps(arguments.lmp, directories["weak-gendpde"], "in.gendpde", 2,
+                                                         arguments.steps, arguments.plugin))
+                weak["LAMMPS DPD-E"].append(run_lammps(arguments.lmp, directories["weak-dpde"], "dpde.in", 2,
+                                                       arguments.steps))
             for r in ranks:
                 gendpde, dpde, eam, cpu = labels[r]
                 times[gendpde].append(run_lammps(arguments.lmp, directories["gendpde"], "in.gendpde", r,
@@ -119,6 +149,11 @@ def main():
             for r in ranks[1:]:
                 speedups = [a / b for a, b in zip(one, times[labels[r][label_index]])]
                 print(f"{name}: {r} ranks/threads {statistics.median(speedups):.2f}x one (strong scaling)")
+    for name, values in (weak.items() if 1 in ranks else ()):
+        one = times[labels[1][0 if name == "LAMMPS GenDPDE" else 1]]
+        efficiency = [a / b for a, b in zip(one, values)]
+        print(f"{name}: 2 ranks with {weak_particles} particles {summary(values)} ms per step; weak scaling "
+              f"t(N, 1 rank)/t(2N, 2 ranks) = {statistics.median(efficiency):.2f}")
 
 
 if __name__ == "__main__":

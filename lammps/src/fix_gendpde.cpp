@@ -10,10 +10,12 @@
 #include "error.h"
 #include "force.h"
 #include "gendpde_core.h"
+#include "input.h"
 #include "memory.h"
 #include "neighbor.h"
 #include "pair_gendpde.h"
 #include "update.h"
+#include "variable.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -83,7 +85,10 @@ FixGenDPDE::FixGenDPDE(LAMMPS* lmp, int narg, char** arg) : Fix(lmp, narg, arg) 
             hasTemperature = true;
             k += 2;
         } else if (keyword == "initial" && k + 1 < narg) {
-            initialTemperature = number(k + 1, "initial temperature T", true);
+            if (strncmp(arg[k + 1], "v_", 2) == 0)
+                initialVariable = arg[k + 1] + 2;
+            else
+                initialTemperature = number(k + 1, "initial temperature T", true);
             hasInitial = true;
             k += 2;
         } else
@@ -155,10 +160,22 @@ void FixGenDPDE::init() {
 }
 
 void FixGenDPDE::setup_pre_force(int /*vflag*/) {
-  // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
+    // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
     if (!energiesSet && hasInitial) {
+        // one temperature, or each particle's from an atom-style variable (e.g. an atomfile variable of the
+        // temperatures an OpenMM run had: GenDPDEIntegrator.getParticleTemperatures)
+        std::vector<double> theta(atom->nlocal, initialTemperature);
+        if (!initialVariable.empty()) {
+            const int index = input->variable->find(initialVariable.c_str());
+            if (index < 0 || !input->variable->atomstyle(index))
+                error->all(FLERR, "fix gendpde: initial v_{}: no atom-style variable of that name", initialVariable);
+            input->variable->compute_atom(index, igroup, theta.data(), 1, 0);
+        }
         for (int i = 0; i < atom->nlocal; i++) {
-            energy[i] = heatCapacityOfType[atom->type[i]] * initialTemperature;
+            if ((atom->mask[i] & groupbit) && !(theta[i] > 0.0 && std::isfinite(theta[i])))
+                error->one(FLERR, "fix gendpde: initial temperature {} of atom {} is not allowed: it must be > 0",
+                           theta[i], atom->tag[i]);
+            energy[i] = heatCapacityOfType[atom->type[i]] * theta[i];
             entropy[i] = std::numeric_limits<double>::quiet_NaN();
         }
         energiesSet = 1;
@@ -193,7 +210,7 @@ void FixGenDPDE::reset_dt() {
 }
 
 void FixGenDPDE::initial_integrate(int /*vflag*/) {
-  // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
+    // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
     if (mode != CONSERVATIVE)
         sweep();
     kick();
@@ -204,7 +221,7 @@ void FixGenDPDE::initial_integrate(int /*vflag*/) {
         if (!(mask[i] & groupbit))
             continue;
         const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
-    // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
+        // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
         if (!(dx * dx + dy * dy + dz * dz <= limit * limit))
             error->one(FLERR,
                        "fix gendpde: atom {} would move {} in one step at step {} (more than R = {}): the run "
@@ -237,8 +254,8 @@ void FixGenDPDE::kick() {
 /* ---------------------------------------------------------------------- */
 
 void FixGenDPDE::prepareCells() {
-  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
-  // centre, boxlo + (2b + 1.5) w, is in the subdomain.
+    // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
+    // centre, boxlo + (2b + 1.5) w, is in the subdomain.
     for (int d = 0; d < 3; d++) {
         numCells[d] = SweepDefinition::cellCount(domain->prd[d], pair->range(), true);
         if (numCells[d] < 4)
@@ -278,8 +295,8 @@ void FixGenDPDE::sweep() {
                        comm->cutghost[d], need, need);
     prepareCells();
 
-  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
-  // pair updates' units: kinetic energies m v^2/2), to every ghost.
+    // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
+    // pair updates' units: kinetic energies m v^2/2), to every ghost.
     const bool isoenergetic = (mode == ISOENERGETIC);
     double** x = atom->x;
     for (int i = 0; i < nlocal; i++) {
@@ -290,7 +307,7 @@ void FixGenDPDE::sweep() {
     }
     commPhase = 0;
     comm->forward_comm_fix(this, 7);
-  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
+    // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
     for (int i = 0; i < nall; i++)
         for (int d = 0; d < 3; d++) {
             const int owner = extendedCell[3 * i + d];

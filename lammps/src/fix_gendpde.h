@@ -11,7 +11,8 @@
      friction I J gamma       gamma of type pair(s) I J (mass/time)
      conduction I J kappa     kappa of type pair(s) I J (energy temperature/time)
      temperature T            bath temperature of the isothermal mode
-     initial T                internal energies C_V T at the first run (not after a restart)
+     initial T | v_name       internal energies C_V T at the first run (not after a restart); v_name: an
+                              atom-style variable of each particle's T (e.g. an atomfile variable)
 
    The sweep runs across subdomains in the order every OpenMM platform
    follows (GenDPDESweepOrder.h): cells at least R wide, 2x2x2 blocks in
@@ -34,6 +35,7 @@ FixStyle(gendpde,FixGenDPDE);
 
 #include "fix.h"
 #include "lmptype.h"
+#include <string>
 #include <cstdint>
 #include <vector>
 
@@ -82,6 +84,7 @@ private:
     int seed;
     double temperature = 0.0, initialTemperature = 0.0;
     bool hasTemperature = false, hasInitial = false;
+    std::string initialVariable; // initial v_name
     int energiesSet = 0;    // saved in restart files
     double dtv, dtf;
     std::vector<double> heatCapacityOfType, frictionOfPair, conductionOfPair;    // by type, type pair (ntypes+1)^2

@@ -104,7 +104,7 @@ void PairGenDPDE::coeff(int narg, char** arg) {
     utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
     utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  // The law and its parameters, with the optional background pressure p_b at the end.
+    // The law and its parameters (in the physics core's order; the background pressure is the pair style's).
     const std::string name = arg[2];
     int numOwn;
     Law law;
@@ -168,8 +168,8 @@ void PairGenDPDE::coeff(int narg, char** arg) {
 }
 
 void PairGenDPDE::setBackground(Law& law) const {
-  // The laws take p_b as the core reads it (gendpdeLocalEquationOfState): added to the Tait laws' pi0, as van der
-  // Waals's last parameter.
+    // The laws take p_b as the core reads it (gendpdeLocalEquationOfState): added to the Tait laws' pi0, as van der
+    // Waals's last parameter.
     if (law.law >= 0)
         law.parameter[law.law == GENDPDE_EOS_VAN_DER_WAALS ? 3 : 1] = law.reference + background;
 }
@@ -244,7 +244,7 @@ void PairGenDPDE::compute(int eflag, int vflag) {
     const double cut = cut_global, cut2 = cut * cut, inverseCut = 1.0 / cut;
     const bool vc = moments();
 
-  // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs.
+    // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs.
     for (int i = 0; i < nall; i++) {
         density[i] = 0.0;
         if (vc)
@@ -279,7 +279,7 @@ void PairGenDPDE::compute(int eflag, int vflag) {
     commPhase = 0;
     comm->reverse_comm_pair(this);
 
-  // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
+    // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
     FixGenDPDE* fix = dependsOnTemperature() ? thermalFix() : nullptr;
     double* storedEnergy = fix ? fix->internalEnergies() : nullptr;
     double* storedEntropy = fix ? fix->storedEntropies() : nullptr;

@@ -198,9 +198,9 @@ def test_the_script_has_the_plugin_syntax_in_order(tmp_path):
     _, commands = written(tmp_path, ARGON_FILE, "--particles", "500", "--mode", "isothermal", "--seed", "42",
                           "--steps", "50", "--thermo", "5", "--step-size", "0.002", "--plugin", str(plugin))
     names = [c[0] for c in commands if c[0] != "variable"]
-    assert names == ["units", "atom_style", "boundary", "plugin", "read_data", "pair_style", "pair_coeff", "neighbor",
-                     "neigh_modify", "comm_modify", "fix", "timestep", "thermo_style", "thermo_modify", "thermo",
-                     "run"]
+    assert names == ["units", "atom_style", "atom_modify", "boundary", "plugin", "read_data", "pair_style",
+                     "pair_coeff", "neighbor", "neigh_modify", "comm_modify", "fix", "timestep", "thermo_style",
+                     "thermo_modify", "thermo", "run"]
     assert commands[[c[0] for c in commands].index("units")] == ["units", "metal"]
     assert command(commands, "atom_style") == ["atomic"] and command(commands, "boundary") == ["p", "p", "p"]
     assert command(commands, "plugin") == ["load", str(plugin)]

@@ -119,15 +119,16 @@ class Scene:
                          + f" {BETA / KB!r} {KB * THETA0!r}")
         return "\n".join(lines)
 
-    def fix_command(self, integrator, mode_name):
-        """fix gendpde with ``integrator``'s parameters (the argon model's) in lj units."""
+    def fix_command(self, integrator, mode_name, initial=None):
+        """fix gendpde with ``integrator``'s parameters (the argon model's) in lj units; ``initial``: the keyword's
+        value (default T0)."""
         friction = integrator.getFriction()._value
         conduction = integrator.getHeatConduction()._value
         capacity = integrator.getHeatCapacity()._value
         words = [f"fix integrate all gendpde {mode_name} {integrator.getRandomNumberSeed()}",
                  f"heat_capacity * {capacity / KB!r}", f"friction * * {friction!r}",
                  f"conduction * * {KB * conduction!r}", f"temperature {KB * TEMPERATURE!r}",
-                 f"initial {KB * TEMPERATURE!r}"]
+                 f"initial {initial or repr(KB * TEMPERATURE)}"]
         if self.num_types > 1:
             words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {MIXED_FRICTION!r}",
                       f"conduction 1 2 {KB * MIXED_CONDUCTION!r}"]
@@ -195,7 +196,7 @@ def test_energy_and_forces_equal_reference(lammps, tmp_path, case, ranks):
         assert np.max(np.abs(openmm_energy_and_forces(scene)[1] - forces)) > 1e-3 * rms
 
 
-def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004):
+def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004, temperatures=None):
     """Positions and internal energies after ``steps`` steps of GenDPDEIntegrator on Reference, starting from
     ``velocities`` at the time of the positions (OpenMM keeps velocities half a step behind: the first half kick is
     undone here)."""
@@ -205,18 +206,28 @@ def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004):
     forces = np.array(context.getState(getForces=True).getForces()._value)
     context.setVelocities(velocities - forces * (0.5 * step_size / MASS))
     if mode != GenDPDEIntegrator.Isothermal:
-        integrator.setParticleTemperatures([TEMPERATURE] * scene.system.getNumParticles())
+        integrator.setParticleTemperatures(
+            [TEMPERATURE] * scene.system.getNumParticles() if temperatures is None else temperatures)
     integrator.step(steps)
     positions = np.array(context.getState(getPositions=True).getPositions()._value)
     energies = np.array(integrator.getInternalEnergies()) if mode != GenDPDEIntegrator.Isothermal else None
     return positions, energies, integrator
 
 
-def lammps_trajectory(scene, directory, mode, mode_name, steps, velocities, ranks, step_size=0.004, restart_at=None):
+def lammps_trajectory(scene, directory, mode, mode_name, steps, velocities, ranks, step_size=0.004, restart_at=None,
+                      temperatures=None):
     """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps; with ``restart_at``,
-    the run stops there, writes a restart file, and a second lmp reads it and runs the rest."""
+    the run stops there, writes a restart file, and a second lmp reads it and runs the rest; ``temperatures``: each
+    particle's initial temperature (K), through an atomfile variable."""
     integrator = scene.integrator(mode, step_size)
-    script = scene.header(directory, velocities) + f"""{scene.fix_command(integrator, mode_name)}
+    initial = None
+    if temperatures is not None:
+        # an atomfile: the number of lines, then "ID value" per atom
+        lines = [f"{i + 1} {KB * float(t)!r}" for i, t in enumerate(temperatures)]
+        (directory / "temperatures").write_text("\n".join([str(len(lines))] + lines) + "\n")
+        initial = "v_theta"
+    script = scene.header(directory, velocities) + ("variable theta atomfile temperatures\n" if initial else "") + f"""\
+{scene.fix_command(integrator, mode_name, initial)}
 timestep {step_size!r}
 thermo_style custom step pe ke f_integrate
 thermo 10
@@ -317,3 +328,19 @@ def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     assert result.returncode == 1, result.stdout[-2000:]
     assert "ERROR" in result.stdout and words in result.stdout, result.stdout[-2000:]
 
+
+
+def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
+    """initial v_name: every particle's starting temperature from an atom-style variable (here an atomfile, as an
+    OpenMM run's GenDPDEIntegrator.getParticleTemperatures would be written): 20 isoenergetic steps on 2 ranks end
+    where OpenMM's end after setParticleTemperatures with the same temperatures, to rounding (a uniform start would
+    differ by ~10% in eps_i)."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    temperatures = TEMPERATURE * np.random.default_rng(11).uniform(0.8, 1.2, len(scene.positions))
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities,
+                                               temperatures=temperatures)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
+                                                          "isoenergetic", 20, velocities, 2, temperatures=temperatures)
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12

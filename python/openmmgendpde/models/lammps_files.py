@@ -356,6 +356,7 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
         "",
         "units metal",
         "atom_style atomic",
+        "atom_modify map yes   # (atom-style variables of per-atom files need it: initial v_name)",
         "boundary p p p",
         "plugin load ${plugin}",
         f"read_data {DATA_FILE}",

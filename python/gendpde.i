@@ -289,6 +289,10 @@ int numEquationsOfState() {
 const char* equationOfStateName(int law) {
     return requireLaw(law).name;
 }
+/** Whether an equation of state extends the Tait law (it takes the type's n0, pi0, B_T, gamma_T before its own). */
+bool equationOfStateExtendsTait(int law) {
+    return requireLaw(law).extendsTait;
+}
 /** The number of parameters an equation of state takes (setEquationOfState). */
 int numEquationOfStateParameters(int law) {
     return requireLaw(law).numParameters;

@@ -22,7 +22,11 @@
 #include <limits>
 
 using namespace LAMMPS_NS;
+using namespace GenDPDEPlugin;
 using namespace GenDPDEPlugin::Physics;
+
+static_assert(EquationsOfState::coreStride() <= 12 && EquationsOfState::maxParameters + 4 <= 12,
+              "PairGenDPDE::Law holds at most 12 parameters");
 
 
 PairGenDPDE::PairGenDPDE(LAMMPS* lmp) : Pair(lmp) {
@@ -104,56 +108,54 @@ void PairGenDPDE::coeff(int narg, char** arg) {
     utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
     utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-    // The law and its parameters (in the physics core's order; the background pressure is the pair style's).
+    // The law and its parameters as GenDPDEForce takes them (the table of GenDPDEEquationsOfState.h: a law that extends
+    // Tait takes n0, pi0, B_T, gamma_T first), laid out as the physics core reads them. The table's ranges are in
+    // OpenMM's units; only their signs hold in any LAMMPS units, and those are checked.
     const std::string name = arg[2];
-    int numOwn;
-    Law law;
-    if (name == "tait") {
-        law.law = GENDPDE_EOS_TAIT;
-        numOwn = 4;
-    } else if (name == "tait/thermal") {
-        law.law = GENDPDE_EOS_TAIT_THERMAL;
-        numOwn = 6;
-    } else if (name == "vdw") {
-        law.law = GENDPDE_EOS_VAN_DER_WAALS;
-        numOwn = 3;
-    } else
-        error->all(FLERR, "pair_coeff gendpde: law '{}' is not allowed: it must be tait, tait/thermal or vdw", name);
-    if (narg != 3 + numOwn)
-        error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters; got {}", name, numOwn, narg - 3);
-    double value[6];
-    for (int k = 0; k < numOwn; k++)
+    const EquationsOfState::Law* found = nullptr;
+    for (const EquationsOfState::Law& candidate : EquationsOfState::laws)
+        if (name == candidate.name)
+            found = &candidate;
+    if (found == nullptr)
+        error->all(FLERR, "pair_coeff gendpde: law '{}' is not allowed: it must be one of GenDPDEForce's, {}", name,
+                   EquationsOfState::listOfLaws());
+    const int numTait = found->extendsTait ? 4 : 0, numGiven = numTait + found->numParameters;
+    if (narg != 3 + numGiven)
+        error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}{}{}); got {}", name, numGiven,
+                   found->extendsTait ? "n0, pi0, B_T, gamma_T" : "",
+                   found->extendsTait && found->numParameters ? ", " : "", EquationsOfState::listOfParameters(*found),
+                   narg - 3);
+    double value[EquationsOfState::maxParameters + 4];
+    for (int k = 0; k < numGiven; k++)
         value[k] = utils::numeric(FLERR, arg[3 + k], false, lmp);
-    auto require = [&](bool ok, const char* what, double v, const char* allowed) {
+    auto require = [&](bool ok, const std::string& what, double v, const char* allowed) {
         if (!ok)
             error->all(FLERR, "pair_coeff gendpde: {} {} = {} is not allowed: it must be {}", name, what, v, allowed);
     };
-    if (law.law == GENDPDE_EOS_VAN_DER_WAALS) {
-        require(value[0] >= 0.0 && std::isfinite(value[0]), "attraction a", value[0], ">= 0 and finite");
-        require(value[1] > 0.0 && std::isfinite(value[1]), "excluded volume b", value[1], "> 0 and finite");
-        require(value[2] > 0.0 && std::isfinite(value[2]), "k", value[2], "> 0 and finite");
-        law.parameter[0] = value[0];
-        law.parameter[1] = value[1];
-        law.parameter[2] = value[2];
-    } else {
+    Law law;
+    law.law = found->coreId;
+    if (found->extendsTait) {
         require(value[0] > 0.0 && std::isfinite(value[0]), "reference density n0", value[0], "> 0 and finite");
         require(std::isfinite(value[1]), "reference pressure pi0", value[1], "finite");
         require(value[2] > 0.0 && std::isfinite(value[2]), "bulk modulus B_T", value[2], "> 0 and finite");
         require(value[3] > 1.0 && value[3] <= 100.0, "exponent gamma_T", value[3], "> 1 and <= 100");
-        law.parameter[0] = value[0];
-        law.parameter[1] = value[1];
-        law.parameter[2] = value[2];
-        law.parameter[3] = value[3];
         law.integerPower = gendpdeTaitIntegerPower(value[3]);
-        if (law.law == GENDPDE_EOS_TAIT_THERMAL) {
-            require(std::isfinite(value[4]), "thermal pressure coefficient beta", value[4], "finite");
-            require(value[5] > 0.0 && std::isfinite(value[5]), "reference temperature theta0", value[5],
-                    "> 0 and finite");
-            law.parameter[4] = value[4];
-            law.parameter[5] = value[5];
-        }
     }
-    law.reference = law.parameter[law.law == GENDPDE_EOS_VAN_DER_WAALS ? 3 : 1];
+    for (int k = 0; k < found->numParameters; k++) {
+        const EquationsOfState::Parameter& parameter = found->parameters[k];
+        const double v = value[numTait + k];
+        if (parameter.excludeMinimum || parameter.range.minimum > 0.0)
+            require(v > 0.0 && std::isfinite(v), parameter.description, v, "> 0 and finite");
+        else if (parameter.range.minimum == 0.0)
+            require(v >= 0.0 && std::isfinite(v), parameter.description, v, ">= 0 and finite");
+        else
+            require(std::isfinite(v), parameter.description, v, "finite");
+    }
+    for (int k = 0; k < numGiven; k++)
+        law.parameter[k] = value[k];
+    // the background pressure: added to pi0 of a law that extends Tait, the last core parameter of any other
+    law.backgroundIndex = found->extendsTait ? 1 : found->numCoreParameters() - 1;
+    law.reference = law.parameter[law.backgroundIndex];
     setBackground(law);
     int count = 0;
     for (int i = ilo; i <= ihi; i++)
@@ -168,10 +170,10 @@ void PairGenDPDE::coeff(int narg, char** arg) {
 }
 
 void PairGenDPDE::setBackground(Law& law) const {
-    // The laws take p_b as the core reads it (gendpdeLocalEquationOfState): added to the Tait laws' pi0, as van der
-    // Waals's last parameter.
+    // The laws take p_b as the core reads it (gendpdeLocalEquationOfState): added to pi0 of a law that extends Tait,
+    // as the last parameter of any other.
     if (law.law >= 0)
-        law.parameter[law.law == GENDPDE_EOS_VAN_DER_WAALS ? 3 : 1] = law.reference + background;
+        law.parameter[law.backgroundIndex] = law.reference + background;
 }
 
 void PairGenDPDE::init_style() {

@@ -7,10 +7,10 @@
      estimator  va | vb | vc  (the density estimators V-A, V-B, V-C)
      f_cut      cutoff scaling: the estimators' reduced range is R/f_cut
      p_b        background pressure (pressure units, >= 0; docs/theory.md section 12)
-   pair_coeff I I tait n0 pi0 B_T gamma_T
-   pair_coeff I I tait/thermal n0 pi0 B_T gamma_T beta theta0
-   pair_coeff I I vdw a b k
-     one law per type; a pair of different types takes no coefficients.
+   pair_coeff I I law parameters ...
+     one law per type with its parameters, as GenDPDEForce::setEquationOfState
+     takes them (the table of GenDPDEEquationsOfState.h; docs/lammps.md).
+     A pair of different types takes no coefficients.
 
    Two passes over a half neighbor list (newton on): the primitive densities
    n0_i (and V-C's first moments g_i) summed over pairs, ghosts' sums
@@ -61,10 +61,11 @@ public:
 private:
   /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
     struct Law {
-        int law = -1;                   // GENDPDE_EOS_*; -1: not set
-        double parameter[8] = {0.0};    // in the core's order, the background pressure included
+        int law = -1;                  // GENDPDE_EOS_*; -1: not set
+        double parameter[12] = {0.0};  // in the core's order, the background pressure included
         int integerPower = -1;
-        double reference = 0.0;    // pi0 (Tait laws) or 0 (van der Waals), before the background pressure
+        int backgroundIndex = 1;       // the parameter the background pressure adds to
+        double reference = 0.0;        // that parameter before the background pressure
     };
     double background = 0.0;
     void setBackground(Law& law) const;

@@ -100,6 +100,14 @@ def _law_table():
 _LAW_PARAMETERS = _law_table()
 
 
+def law_description(law):
+    """(name as the API spells it, whether it takes the Tait parameters n0, pi0, B_T, gamma_T before its own, [(its
+    own parameters' names, OpenMM units), ...]) of a GenDPDEForce.EquationOfState value, from the C++ table
+    (GenDPDEEquationsOfState.h): what a program that writes the laws for another engine reads."""
+    return (_swig.equationOfStateName(int(law)), bool(_swig.equationOfStateExtendsTait(int(law))),
+            _LAW_PARAMETERS[int(law)])
+
+
 def _describe_laws():
     """The laws' parameters for docstrings: "Tait [], TaitThermalExpansion [beta (kJ/mol/nm^3/K, or MPa/K), ...]"."""
     def one(law, k, unit_):

@@ -234,12 +234,13 @@ def test_physics_covers_every_estimator_and_law():
 def test_a_law_is_spelt_only_in_the_core_the_table_and_the_api_enum():
     """What a new law touches (issue 41): its formula in the physics core, its entry in the table (and its value of
     GenDPDEForce::EquationOfState), and its oracle in the tests. The van der Waals law, the latest added, is named in
-    no other source file of the plugin: not in the checks, messages, serialization, platforms or Python wrapping."""
+    no other source file of the plugin: not in the checks, messages, serialization, platforms, Python wrapping, the
+    LAMMPS package or its input files (which take the laws from the table)."""
     import pathlib
     import re
     root = pathlib.Path(__file__).resolve().parents[2]
     pattern = re.compile(r"van ?der ?Waals|VAN_DER_WAALS", re.IGNORECASE)
-    sources = [path for folder in ("openmmapi", "platforms", "serialization", "python/openmmgendpde")
+    sources = [path for folder in ("openmmapi", "platforms", "serialization", "python/openmmgendpde", "lammps")
                for path in (root / folder).rglob("*")
                if path.suffix in (".h", ".cpp", ".cc", ".in", ".py", ".i") and "tests" not in path.parts]
     sources.append(root / "python" / "gendpde.i")

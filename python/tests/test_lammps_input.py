@@ -151,9 +151,9 @@ def test_the_numbers_are_the_model_parameters_in_metal_units(model_file, tmp_pat
     coefficients = command(commands, "pair_coeff", "1", "1")
     expected = [p.density / 1000, p.reference_pressure * PRESSURE, p.bulk_modulus * PRESSURE, p.tait_exponent]
     if p.thermal_pressure is None:
-        assert coefficients[0] == "tait"
+        assert coefficients[0] == "Tait"
     else:
-        assert coefficients[0] == "tait/thermal"
+        assert coefficients[0] == "TaitThermalExpansion"
         expected += [p.thermal_pressure * PRESSURE, p.thermal_reference_temperature]
     assert [float(x) for x in coefficients[1:]] == pytest.approx(expected, rel=1e-12)
     assert command(commands, "variable", "mode") == ["index", "isoenergetic"]
@@ -242,7 +242,7 @@ def test_several_types_each_with_its_law_masses_and_pair_coefficients():
     first = [p.density / 1000, p.reference_pressure * PRESSURE, p.bulk_modulus * PRESSURE, 6.0]
     second = [0.5 * EV_PER_KJ_PER_MOL * 1000, 0.05 * 1000, 0.04 * EV_PER_KJ_PER_MOL]
     coefficients = [line.split() for line in script.splitlines() if line.startswith("pair_coeff")]
-    assert [c[:4] for c in coefficients] == [["pair_coeff", "1", "1", "tait"], ["pair_coeff", "2", "2", "vdw"]]
+    assert [c[:4] for c in coefficients] == [["pair_coeff", "1", "1", "Tait"], ["pair_coeff", "2", "2", "VanDerWaals"]]
     for words, expected in zip(coefficients, (first, second)):
         assert [float(x) for x in words[4:]] == pytest.approx(expected, rel=1e-12)
     style = next(line.split() for line in script.splitlines() if line.startswith("pair_style"))

@@ -113,9 +113,9 @@ class Scene:
         cutoff = self.force.getCutoffDistance()._value
         lines = [f"pair_style gendpde {cutoff!r} {ESTIMATOR_NAMES[self.force.getDensityEstimator()]} "
                  f"{self.force.getCutoffScaling()!r}",
-                 "pair_coeff 1 1 tait " + " ".join(repr(float(p)) for p in self.tait)]
+                 "pair_coeff 1 1 Tait " + " ".join(repr(float(p)) for p in self.tait)]
         if self.num_types > 1:
-            lines.append("pair_coeff 2 2 tait/thermal " + " ".join(repr(float(p)) for p in self.tait)
+            lines.append("pair_coeff 2 2 TaitThermalExpansion " + " ".join(repr(float(p)) for p in self.tait)
                          + f" {BETA / KB!r} {KB * THETA0!r}")
         return "\n".join(lines)
 
@@ -311,8 +311,9 @@ def test_restart_continues_the_run(lammps, tmp_path):
 
 @pytest.mark.parametrize("change, words", [
     (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vd 1.35 #"), "density estimator 'vd'"),
-    (("pair_coeff 1 1 tait", "pair_coeff 1 1 tait 1.0 #"), "law tait takes 4 parameters"),
-    (("pair_coeff 1 1 tait", "#"), "All pair coeffs are not set"),
+    (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Tait 1.0 #"), "law Tait takes 4 parameters"),
+    (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Murnaghan"), "law 'Murnaghan' is not allowed"),
+    (("pair_coeff 1 1 Tait", "#"), "All pair coeffs are not set"),
     (("comm_modify cutoff 2.0", "comm_modify cutoff 1.2"), "the ghost cutoff 1.2 is below what the sweep needs"),
     (("fix integrate all gendpde isoenergetic", "fix integrate all gendpde adiabatic"), "mode 'adiabatic'"),
     ((" initial ", " # "), "the internal energies are not set"),

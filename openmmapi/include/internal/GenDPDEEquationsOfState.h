@@ -8,11 +8,12 @@
  *
  * A new law is: its formula in the physics core (a GENDPDE_EOS_* id and a branch of gendpdeLocalEquationOfState,
  * GenDPDEPhysicsCore.h; gendpdeLawDependsOnTemperature if it does), an entry here (and its enum value in
- * GenDPDEForce.h, which the static_asserts below tie to this table), and its oracle in the tests. */
+ * GenDPDEForce.h, which the static_assert below ties to this table where GenDPDEForce.h is included first), and its
+ * oracle in the tests. The header has no OpenMM dependency: the LAMMPS package (lammps/) takes its laws' names and
+ * parameters from it too. */
 
-#include "GenDPDEForce.h"
-#include "internal/GenDPDEPhysics.h"
-#include "internal/ParameterChecks.h"
+#include "internal/GenDPDEPhysicsCoreDouble.h"
+#include "internal/ParameterRanges.h"
 #include <string>
 
 namespace GenDPDEPlugin {
@@ -89,9 +90,12 @@ constexpr bool numberedInOrder() {
     return true;
 }
 static_assert(numberedInOrder(), "each law's core id must be its place in the table");
+
+#ifdef GENDPDE_FORCE_H_ // (where the API is included first, as in GenDPDEForce.cpp; the LAMMPS package has no API)
 static_assert(GenDPDEForce::Tait == 0 && GenDPDEForce::TaitThermalExpansion == 1 && GenDPDEForce::VanDerWaals == 2
                       && numLaws == 3,
               "GenDPDEForce::EquationOfState must number the laws as this table does");
+#endif
 
 /** The law numbered law (a GenDPDEForce::EquationOfState value), or nullptr if there is none. */
 inline const Law* find(int law) {

@@ -23,12 +23,12 @@ N_A = 6.02214076e23/mol):
     energy               kJ/mol            eV               E = 1000/(e N_A) = 0.010364269656262174
     pressure             kJ/mol/nm^3       eV/Å^3           E/1000 (n0, pi0, B_T, p_b)
     number density       nm^-3             Å^-3             1/1000
-    volume               nm^3              Å^3              1000 (van der Waals b)
+    volume               nm^3              Å^3              1000
     friction             amu/ps            g/mol/ps         1
-    heat capacity        kJ/mol/K          eV/K             E (C_V; van der Waals k)
+    heat capacity        kJ/mol/K          eV/K             E (C_V; entropy scales)
     heat conduction      kJ/mol K/ps       eV K/ps          E
     thermal pressure     kJ/mol/nm^3/K     eV/Å^3/K         E/1000 (beta of TaitThermalExpansion)
-    energy x volume      kJ/mol nm^3       eV Å^3           1000 E (van der Waals a)
+    energy x volume      kJ/mol nm^3       eV Å^3           1000 E (attractions)
 
 The constants are not the same in the two engines, and no factor can make them so. OpenMM's k_B is CODATA 2018's,
 0.00831446261815324 kJ/mol/K = 8.617333262e-5 eV/K; LAMMPS's metal units have their own, force->boltz =
@@ -59,7 +59,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
+from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator, law_description
 from ..internal.files import atomic_write
 
 #: 1 kJ/mol in eV: 1000/(e N_A), CODATA 2018 (exact e and N_A).
@@ -87,15 +87,7 @@ METAL_UNITS = {
     "energy_volume": ("kJ/mol nm^3", "eV Å^3", ENERGY * 1e3),
 }
 
-#: The laws of GenDPDEForce as the pair style names them, and the kinds of their parameters in order (the Tait
-#: parameters n0, pi0, B_T, gamma_T come first for the Tait laws; api._LAW_PARAMETERS names the others).
-LAWS = {
-    GenDPDEForce.Tait: ("tait", ()),
-    GenDPDEForce.TaitThermalExpansion: ("tait/thermal", ("thermal_pressure", "temperature")),
-    GenDPDEForce.VanDerWaals: ("vdw", ("energy_volume", "volume", "heat_capacity")),
-}
-#: The Tait laws, which take n0, pi0, B_T and gamma_T before their own parameters.
-TAIT_LAWS = (GenDPDEForce.Tait, GenDPDEForce.TaitThermalExpansion)
+#: The Tait parameters n0, pi0, B_T, gamma_T (a law that extends Tait takes them first).
 TAIT_KINDS = ("number_density", "pressure", "pressure", None)   # gamma_T: a plain number
 #: The integrator's modes as the fix names them.
 MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIntegrator.Isothermal,
@@ -207,16 +199,25 @@ def _laws(force, kinds):
     return {kind: (*laws.get(kind, default_law), tait.get(kind, default_tait)) for kind in kinds}
 
 
+def _kind_of(openmm_unit):
+    """The kind (a key of METAL_UNITS, or None for a plain number) of a parameter in ``openmm_unit``."""
+    if openmm_unit is None or openmm_unit == unit.dimensionless:
+        return None
+    for kind, known in _OPENMM_UNITS.items():
+        if openmm_unit.is_compatible(known) and math.isclose(openmm_unit.conversion_factor_to(known), 1.0):
+            return kind
+    raise ValueError(f"a law's parameter is in {openmm_unit}, which lammps_files cannot convert to metal units")
+
+
 def _pair_coeff(index, law, parameters, tait):
-    """One pair_coeff line (metal units) of the LAMMPS type ``index``."""
-    if int(law) not in LAWS:
-        raise ValueError(f"the local equation of state {law} has no keyword in the LAMMPS pair style")
-    keyword, kinds = LAWS[int(law)]
-    if len(parameters) != len(kinds):
-        raise ValueError(f"the law {keyword} has {len(parameters)} parameters, not {len(kinds)}")
-    values = [in_metal(v, k) for v, k in zip(tait, TAIT_KINDS)] if int(law) in TAIT_LAWS else []
-    values += [in_metal(v, k) for v, k in zip(parameters, kinds)]
-    return f"pair_coeff {index} {index} {keyword} " + " ".join(map(_number, values))
+    """One pair_coeff line (metal units) of the LAMMPS type ``index``: the law as GenDPDEForce names it and its
+    parameters, all as the table of the laws describes them (api.law_description), so that no law is spelt here."""
+    name, extends_tait, described = law_description(law)
+    if len(parameters) != len(described):
+        raise ValueError(f"the law {name} has {len(parameters)} parameters, not {len(described)}")
+    values = [in_metal(v, k) for v, k in zip(tait, TAIT_KINDS)] if extends_tait else []
+    values += [in_metal(v, _kind_of(u)) for v, (_, u) in zip(parameters, described)]
+    return f"pair_coeff {index} {index} {name} " + " ".join(map(_number, values))
 
 
 def _transport(integrator, kinds):
@@ -364,8 +365,8 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
         "# R (Å), the density estimator, f_cut (the reduced range is R/f_cut), background pressure p_b (eV/Å^3)",
         f"pair_style gendpde {_number(cutoff)} {estimator} {_number(force.getCutoffScaling())}"
         + (f" background {_number(background)}" if background != 0 else ""),
-        "# per type: the law and its parameters (tait: n0 (1/Å^3), pi0 and B_T (eV/Å^3), gamma_T; tait/thermal: then",
-        "# beta (eV/Å^3/K), theta0 (K); vdw: a (eV Å^3), b (Å^3), k (eV/K))",
+        "# per type: the law as GenDPDEForce names it and its parameters in metal units (a law that extends Tait",
+        "# takes n0 (1/Å^3), pi0 and B_T (eV/Å^3) and gamma_T first; docs/lammps.md)",
         *[_pair_coeff(index[kind], *laws[kind]) for kind in kinds],
         "",
         f"# skin {_number(skin)} Å; ghosts: 1.5 sweep cells + skin, the fix's sweep needs them (lammps_files)",

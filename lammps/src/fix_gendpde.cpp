@@ -319,6 +319,24 @@ void FixGenDPDE::sweep() {
         rankBlocks();
         findCandidates();
         candidatesBuiltAt = neighbor->lastcall;
+        builtPositions.resize(3 * (size_t) nlocal);
+        for (int i = 0; i < nlocal; i++)
+            for (int d = 0; d < 3; d++)
+                builtPositions[3 * i + d] = x[i][d];
+    } else {
+        // The candidates (and the ghosts) hold only while every particle has moved less than half the skin since
+        // LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees; other settings may not.
+        const double limit = 0.25 * neighbor->skin * neighbor->skin;
+        for (int i = 0; i < nlocal; i++) {
+            const double dx = x[i][0] - builtPositions[3 * i], dy = x[i][1] - builtPositions[3 * i + 1],
+                         dz = x[i][2] - builtPositions[3 * i + 2];
+            if (!(dx * dx + dy * dy + dz * dz <= limit))
+                error->one(FLERR,
+                           "fix gendpde: atom {} has moved {} since the last neighbour list at step {}, more than half "
+                           "the skin: the sweep's pairs are no longer complete; use neigh_modify every 1 delay 0 "
+                           "check yes",
+                           atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep);
+        }
     }
     orderPairs();
     std::fill(touched.begin(), touched.begin() + nall, 0);

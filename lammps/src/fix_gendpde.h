@@ -114,6 +114,7 @@ private:
     std::vector<SweepPair> candidates;
     bigint candidatesBuiltAt = -1;
     std::vector<int> binHead, binNext, candidateGroupStart;
+    std::vector<double> builtPositions; // the local particles' positions when the candidates were found
     // Each step: the pairs closer than R of each block (by block rank: colour by colour), in sweep order
     std::vector<int> rankOfBlock, blockRankStart, colourStart, pairBlockRank, blockPairs, blockFirst, blockOrder;
     std::vector<int> movedIn;

@@ -345,3 +345,17 @@ def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
                                                           "isoenergetic", 20, velocities, 2, temperatures=temperatures)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
+    """With neighbour lists LAMMPS does not rebuild in time (a skin of 0.001 nm, checked every 1000 steps), the sweep's
+    pairs would miss some: fix gendpde stops with an error naming the atom and the step, not a silent wrong step."""
+    scene = Scene(GenDPDEForce.VB)
+    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+    script = (scene.header(tmp_path, start_velocities(scene)) + scene.fix_command(integrator, "isoenergetic")
+              + "\ntimestep 0.004\nrun 50\n")
+    script = script.replace("neighbor 0.1 bin\nneigh_modify every 1 delay 0 check yes",
+                            "neighbor 0.001 bin\nneigh_modify every 1000 delay 0 check no")
+    result = run_lammps(tmp_path, script, check=False)
+    assert result.returncode != 0
+    assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout

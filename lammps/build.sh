@@ -33,12 +33,14 @@ if [ ! -f "$out/lammps/CMakeCache.txt" ]; then
         || { tail -30 "$out/lammps-configure.log" >&2; exit 1; }
 fi
 echo "Building LAMMPS (log: $out/lammps-build.log)" >&2
-cmake --build "$out/lammps" -j "$jobs" > "$out/lammps-build.log" 2>&1 || { tail -30 "$out/lammps-build.log" >&2; exit 1; }
+cmake --build "$out/lammps" -j "$jobs" > "$out/lammps-build.log" 2>&1 \
+    || { tail -30 "$out/lammps-build.log" >&2; exit 1; }
 if [ ! -f "$out/plugin/CMakeCache.txt" ]; then
     cmake -S lammps -B "$out/plugin" -DLAMMPS_SOURCE_DIR="$source_dir" -DBUILD_MPI=on -DLAMMPS_SIZES=smallbig \
         -DBUILD_OMP=off > "$out/plugin-configure.log" 2>&1 || { tail -30 "$out/plugin-configure.log" >&2; exit 1; }
 fi
 echo "Building the plugin (log: $out/plugin-build.log)" >&2
-cmake --build "$out/plugin" -j "$jobs" > "$out/plugin-build.log" 2>&1 || { tail -30 "$out/plugin-build.log" >&2; exit 1; }
+cmake --build "$out/plugin" -j "$jobs" > "$out/plugin-build.log" 2>&1 \
+    || { tail -30 "$out/plugin-build.log" >&2; exit 1; }
 echo "$out/lammps/lmp"
 echo "$out/plugin/gendpdeplugin.so"

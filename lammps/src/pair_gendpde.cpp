@@ -246,7 +246,9 @@ void PairGenDPDE::compute(int eflag, int vflag) {
     const double cut = cut_global, cut2 = cut * cut, inverseCut = 1.0 / cut;
     const bool vc = moments();
 
-    // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs.
+    // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs;
+    // the pairs closer than R kept with their geometry for pass 2 (the list's others, up to R + skin, are not).
+    closePairs.clear(); // (keeps its capacity: no step allocates once the list has grown)
     for (int i = 0; i < nall; i++) {
         density[i] = 0.0;
         if (vc)
@@ -262,6 +264,8 @@ void PairGenDPDE::compute(int eflag, int vflag) {
             if (!(r2 < cut2))
                 continue;
             const double r = std::sqrt(r2);
+            if (r2 > 0.0)
+                closePairs.push_back({i, j, dx, dy, dz, r});
             if (r < cut) {
                 const double w = gendpdeDensityWeight(r, inverseCut, weightScale);
                 density[i] += w;
@@ -328,31 +332,23 @@ void PairGenDPDE::compute(int eflag, int vflag) {
 
     // Pass 2 (section 4): the pair forces, central (c_i + c_j) w'(r)/r d plus V-C's moment term.
     const double zero[3] = {0.0, 0.0, 0.0};
-    for (int ii = 0; ii < inum; ii++) {
-        const int i = ilist[ii];
-        const int* jlist = firstneigh[i];
-        for (int jj = 0; jj < numneigh[i]; jj++) {
-            const int j = jlist[jj] & NEIGHMASK;
-            const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-            const double r2 = dx * dx + dy * dy + dz * dz;
-            if (!(r2 < cut2) || r2 == 0.0)
-                continue;
-            const double r = std::sqrt(r2);
-            const bool inside = r < cut;
-            const double *qi = vc ? momentForce[i] : zero, *qj = vc ? momentForce[j] : zero;
-            double force[3];
-            gendpdePairForce(dx, dy, dz, r, coefficient[i] + coefficient[j],
-                             inside ? gendpdeDensityWeightDerivative(r, inverseCut, weightDerivativeScale) : 0.0,
-                             inverseCut, (vc && inside) ? 1 : 0, qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
-            f[i][0] += force[0];
-            f[i][1] += force[1];
-            f[i][2] += force[2];
-            f[j][0] -= force[0];
-            f[j][1] -= force[1];
-            f[j][2] -= force[2];
-            if (evflag)
-                ev_tally_xyz(i, j, nlocal, 1, 0.0, 0.0, force[0], force[1], force[2], dx, dy, dz);
-        }
+    for (const ClosePair& pair : closePairs) {
+        const int i = pair.i, j = pair.j;
+        const double dx = pair.dx, dy = pair.dy, dz = pair.dz, r = pair.r;
+        const bool inside = r < cut;
+        const double *qi = vc ? momentForce[i] : zero, *qj = vc ? momentForce[j] : zero;
+        double force[3];
+        gendpdePairForce(dx, dy, dz, r, coefficient[i] + coefficient[j],
+                         inside ? gendpdeDensityWeightDerivative(r, inverseCut, weightDerivativeScale) : 0.0,
+                         inverseCut, (vc && inside) ? 1 : 0, qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
+        f[i][0] += force[0];
+        f[i][1] += force[1];
+        f[i][2] += force[2];
+        f[j][0] -= force[0];
+        f[j][1] -= force[1];
+        f[j][2] -= force[2];
+        if (evflag)
+            ev_tally_xyz(i, j, nlocal, 1, 0.0, 0.0, force[0], force[1], force[2], dx, dy, dz);
     }
     const bool virial = vflag_global || vflag_fdotr;
     if (vflag_fdotr)

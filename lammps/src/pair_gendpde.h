@@ -77,6 +77,11 @@ private:
   // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's moment force q
     int nmax = 0;
     double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **momentForce = nullptr;
+    struct ClosePair {
+        int i, j;            // local indices (i local, j local or ghost)
+        double dx, dy, dz, r; // d = x_i - x_j, r = |d| > 0, r^2 < R^2
+    };
+    std::vector<ClosePair> closePairs; // pass 1's pairs closer than R, read by pass 2
     int commPhase = 0;    // 0: densities (reverse), 1: coefficients (forward)
     bool moments() const;
     void grow();

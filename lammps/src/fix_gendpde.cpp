@@ -365,9 +365,9 @@ void FixGenDPDE::sweep() {
         std::fill(modified.begin(), modified.begin() + nall, 0);
         for (int rank = colourStart[colour]; rank < colourStart[colour + 1]; rank++)
             sweepPairs(&sweepList[blockRankStart[rank]], blockRankStart[rank + 1] - blockRankStart[rank], isoenergetic);
-        comm->reverse_comm_fix(this, 5);
         commPhase = 1;
-        comm->forward_comm_fix(this, 4);
+        comm->reverse_comm_fix(this, 5);
+        comm->forward_comm_fix(this, 5);
     }
     if (isoenergetic)
         for (int i = 0; i < nlocal; i++)
@@ -619,11 +619,21 @@ void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic
 
 /* ---------------------------------------------------------------------- */
 
+// The exchanges of the sweep. At its start (commPhase 0) every ghost gets its owner's velocity, energy and cell. After
+// each colour only what the colour changed travels: a flag per particle, then its velocity and energy if it was
+// updated (on its rank, or received), so the reverse exchange carries the ghosts a block updated to their owners and
+// the forward one the owners' new values out to every ghost.
+
 int FixGenDPDE::pack_forward_comm(int n, int* list, double* buf, int /*pbc_flag*/, int* /*pbc*/) {
     double** v = atom->v;
     int m = 0;
     for (int k = 0; k < n; k++) {
         const int i = list[k];
+        if (commPhase == 1) {
+            buf[m++] = modified[i];
+            if (!modified[i])
+                continue;
+        }
         buf[m++] = v[i][0];
         buf[m++] = v[i][1];
         buf[m++] = v[i][2];
@@ -639,6 +649,11 @@ void FixGenDPDE::unpack_forward_comm(int n, int first, double* buf) {
     double** v = atom->v;
     int m = 0;
     for (int i = first; i < first + n; i++) {
+        if (commPhase == 1) {
+            if (buf[m++] == 0.0)
+                continue;
+            modified[i] = 1; // (a ghost may be sent on in a later swap)
+        }
         v[i][0] = buf[m++];
         v[i][1] = buf[m++];
         v[i][2] = buf[m++];
@@ -654,6 +669,8 @@ int FixGenDPDE::pack_reverse_comm(int n, int first, double* buf) {
     int m = 0;
     for (int i = first; i < first + n; i++) {
         buf[m++] = modified[i];
+        if (!modified[i])
+            continue;
         buf[m++] = v[i][0];
         buf[m++] = v[i][1];
         buf[m++] = v[i][2];
@@ -667,14 +684,14 @@ void FixGenDPDE::unpack_reverse_comm(int n, int* list, double* buf) {
     // colour): set, not summed, so the owner has exactly the bits the updating rank computed.
     double** v = atom->v;
     int m = 0;
-    for (int k = 0; k < n; k++, m += 5) {
+    for (int k = 0; k < n; k++) {
         const int j = list[k];
-        if (buf[m] == 0.0)
+        if (buf[m++] == 0.0)
             continue;
-        v[j][0] = buf[m + 1];
-        v[j][1] = buf[m + 2];
-        v[j][2] = buf[m + 3];
-        sweepEnergy[j] = buf[m + 4];
+        v[j][0] = buf[m++];
+        v[j][1] = buf[m++];
+        v[j][2] = buf[m++];
+        sweepEnergy[j] = buf[m++];
         modified[j] = touched[j] = 1;
     }
 }

@@ -359,3 +359,21 @@ def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
     result = run_lammps(tmp_path, script, check=False)
     assert result.returncode != 0
     assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout
+
+
+def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):
+    """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 2.0 nm: the sweep's
+    exchanges then reach past the neighbouring rank (two hops), and the trajectory is still OpenMM's to rounding."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 30, velocities)
+    header = Scene.header
+
+    def slabs(self, directory, velocities=None):
+        return header(self, directory, velocities).replace("boundary p p p\n", "boundary p p p\nprocessors 1 1 4\n")
+    scene.header = slabs.__get__(scene)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
+                                                          "isoenergetic", 30, velocities, 4)
+    assert "1 by 1 by 4 MPI processor grid" in (tmp_path / "log.lammps").read_text()
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12

@@ -50,7 +50,7 @@ from openmm import unit
 from openmmgendpde.analysis.statistics import BlockAverageWarning, block_average
 from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS, PUBLISHED_TABLE3, liquid_argon
 from openmmgendpde.models.argon_runs import FULL, Samples, melt_then_draw, production, stepper
-from openmmgendpde.models.lammps_files import ENERGY, in_metal, lammps_input, write_lammps_input
+from openmmgendpde.models.lammps_files import ENERGY, in_metal, lammps_input, thermo_table, write_lammps_input
 from openmmgendpde.studies.table3 import sampling_summary
 
 CUTOFF = 1.6839
@@ -121,24 +121,6 @@ def run_openmm(protocol, argon, simulation, advance):
     return samples, time.perf_counter() - start
 
 
-def thermo_rows(log):
-    """{step: {column: value}} of every thermo line in a LAMMPS log (the first line of a step where it repeats)."""
-    rows, columns = {}, None
-    for line in log.splitlines():
-        fields = line.split()
-        if fields[:1] == ["Step"]:
-            columns = fields
-        elif line.startswith("Loop time"):
-            columns = None
-        elif columns and len(fields) == len(columns):
-            try:
-                values = [float(x) for x in fields]
-            except ValueError:
-                continue
-            rows.setdefault(int(values[0]), dict(zip(columns, values)))
-    return rows
-
-
 def dump_frames(path, count):
     """{step: array count x 4 (x, y, z in Å, eps_i in eV), sorted by atom id} of a LAMMPS custom dump."""
     lines = pathlib.Path(path).read_text().splitlines()
@@ -168,7 +150,7 @@ def run_lammps(protocol, directory, texts, temperatures, ranks, lmp, plugin):
     if result.returncode != 0:
         raise SystemExit(f"LAMMPS failed ({' '.join(command)} in {directory}):\n{result.stdout[-3000:]}\n{log[-3000:]}")
     loop = sum(float(line.split()[3]) for line in log.splitlines() if line.startswith("Loop time of"))
-    return thermo_rows(log), dump_frames(directory / "frames.dump", protocol.num_particles), wall, loop
+    return thermo_table(log), dump_frames(directory / "frames.dump", protocol.num_particles), wall, loop
 
 
 def lammps_samples(protocol, rows, frames, heat_capacity_ev, density_context, force):

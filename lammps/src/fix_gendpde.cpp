@@ -157,6 +157,7 @@ void FixGenDPDE::init() {
         if (!(force->newton_pair))
             error->all(FLERR, "fix gendpde requires newton pair on");
     }
+    makePairTables(); // (the masses, units and parameters a run reads)
 }
 
 void FixGenDPDE::setup_pre_force(int /*vflag*/) {
@@ -202,6 +203,29 @@ double FixGenDPDE::ghostNeed() const {
         widest = std::max(widest, domain->prd[d] / n);
     }
     return 1.5 * widest + neighbor->skin;
+}
+
+void FixGenDPDE::makePairTables() {
+    // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
+    // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
+    // (isothermal).
+    const int ntypes = atom->ntypes;
+    const double mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+    const bool isoenergetic = (mode == ISOENERGETIC);
+    pairTables.inverseMass.assign(ntypes + 1, 0.0);
+    pairTables.heatCapacity.assign(ntypes + 1, 0.0);
+    pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    pairTables.noise.assign((ntypes + 1) * (ntypes + 1), 0.0);
+    for (int a = 1; a <= ntypes; a++) {
+        pairTables.inverseMass[a] = atom->mass ? 1.0 / atom->mass[a] : 0.0;
+        pairTables.heatCapacity[a] = heatCapacityOfType[a] / mvv2e;
+        for (int b = 1; b <= ntypes; b++) {
+            const int ab = a * (ntypes + 1) + b;
+            pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
+            pairTables.noise[ab] = isoenergetic ? std::sqrt(2.0 * boltzmann * pairTables.conduction[ab])
+                                                : std::sqrt(2.0 * frictionOfPair[ab] * boltzmann * temperature);
+        }
+    }
 }
 
 void FixGenDPDE::reset_dt() {
@@ -256,19 +280,20 @@ void FixGenDPDE::kick() {
 void FixGenDPDE::prepareCells() {
     // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
     // centre, boxlo + (2b + 1.5) w, is in the subdomain.
+    const double range = pair->range();
     for (int d = 0; d < 3; d++) {
-        numCells[d] = SweepDefinition::cellCount(domain->prd[d], pair->range(), true);
+        numCells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
         if (numCells[d] < 4)
             error->all(FLERR,
                        "fix gendpde: the box is {} wide along {}, less than 4 pair ranges R = {}: too small for "
                        "the sweep across subdomains",
-                       domain->prd[d], "xyz"[d], pair -> range());
+                       domain->prd[d], "xyz"[d], range);
         cellWidth[d] = domain->prd[d] / numCells[d];
         const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d], w = cellWidth[d];
-        int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1, last = first;
+        int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1;
         while (!(base + (2 * first + 1.5) * w >= lo))
             first++;
-        last = first;
+        int last = first;
         while (base + (2 * last + 1.5) * w < hi)
             last++;
         blockLow[d] = first;
@@ -340,26 +365,6 @@ void FixGenDPDE::sweep() {
     }
     orderPairs();
     std::fill(touched.begin(), touched.begin() + nall, 0);
-    // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
-    // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
-    // (isothermal).
-    const int ntypes = atom->ntypes;
-    const double boltzmann = force->boltz / mvv2e;
-    pairTables.inverseMass.assign(ntypes + 1, 0.0);
-    pairTables.heatCapacity.assign(ntypes + 1, 0.0);
-    pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    pairTables.noise.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    for (int a = 1; a <= ntypes; a++) {
-        pairTables.inverseMass[a] = atom->mass ? 1.0 / atom->mass[a] : 0.0;
-        pairTables.heatCapacity[a] = heatCapacityOfType[a] / mvv2e;
-        for (int b = 1; b <= ntypes; b++) {
-            const int ab = a * (ntypes + 1) + b;
-            pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
-            pairTables.noise[ab] = isoenergetic ? std::sqrt(2.0 * boltzmann * pairTables.conduction[ab])
-                                                : std::sqrt(2.0 * frictionOfPair[ab] * boltzmann * temperature);
-        }
-    }
-
     // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners and back out.
     for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
         std::fill(modified.begin(), modified.begin() + nall, 0);
@@ -438,14 +443,10 @@ void FixGenDPDE::findCandidates() {
     // sweep within a block: each step reads a block's particles together, and the pairs that are still in the same
     // block come out in order.
     const int numBlocks = colourStart.back();
-    candidateGroupStart.assign(numBlocks + 2, 0);
-    for (size_t k = 0; k < candidates.size(); k++) {
-        const int rank = blockRankOf(candidates[k].li, candidates[k].lj);
-        candidates[k].group = rank >= 0 ? rank : numBlocks;
-        candidateGroupStart[candidates[k].group + 1]++;
+    for (SweepPair& candidate : candidates) {
+        const int rank = blockRankOf(candidate.li, candidate.lj);
+        candidate.group = rank >= 0 ? rank : numBlocks;
     }
-    for (int g = 0; g <= numBlocks; g++)
-        candidateGroupStart[g + 1] += candidateGroupStart[g];
     std::sort(candidates.begin(), candidates.end(), [](const SweepPair& p, const SweepPair& q) {
         return p.group < q.group || (p.group == q.group && pairKey(p) < pairKey(q));
     });
@@ -624,76 +625,70 @@ void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic
 // updated (on its rank, or received), so the reverse exchange carries the ghosts a block updated to their owners and
 // the forward one the owners' new values out to every ghost.
 
-int FixGenDPDE::pack_forward_comm(int n, int* list, double* buf, int /*pbc_flag*/, int* /*pbc*/) {
-    double** v = atom->v;
+int FixGenDPDE::packState(int i, double* buf) const {
+    // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a colour only if the
+    // colour changed it, behind a flag.
     int m = 0;
-    for (int k = 0; k < n; k++) {
-        const int i = list[k];
-        if (commPhase == 1) {
-            buf[m++] = modified[i];
-            if (!modified[i])
-                continue;
-        }
-        buf[m++] = v[i][0];
-        buf[m++] = v[i][1];
-        buf[m++] = v[i][2];
-        buf[m++] = sweepEnergy[i];
-        if (commPhase == 0)
-            for (int d = 0; d < 3; d++)
-                buf[m++] = extendedCell[3 * i + d];
+    if (commPhase == 1) {
+        buf[m++] = modified[i];
+        if (!modified[i])
+            return m;
     }
+    const double* vi = atom->v[i];
+    buf[m++] = vi[0];
+    buf[m++] = vi[1];
+    buf[m++] = vi[2];
+    buf[m++] = sweepEnergy[i];
+    if (commPhase == 0)
+        for (int d = 0; d < 3; d++)
+            buf[m++] = extendedCell[3 * i + d];
+    return m;
+}
+
+int FixGenDPDE::unpackState(int i, const double* buf) {
+    // What packState wrote, set (not added) on particle i: after a colour one block at most updated a particle, so it
+    // gets exactly the bits the updating rank computed; it is then marked changed, to be sent on in a later swap.
+    int m = 0;
+    if (commPhase == 1) {
+        if (buf[m++] == 0.0)
+            return m;
+        modified[i] = touched[i] = 1;
+    }
+    double* vi = atom->v[i];
+    vi[0] = buf[m++];
+    vi[1] = buf[m++];
+    vi[2] = buf[m++];
+    sweepEnergy[i] = buf[m++];
+    if (commPhase == 0)
+        for (int d = 0; d < 3; d++)
+            extendedCell[3 * i + d] = (int) buf[m++];
+    return m;
+}
+
+int FixGenDPDE::pack_forward_comm(int n, int* list, double* buf, int /*pbc_flag*/, int* /*pbc*/) {
+    int m = 0;
+    for (int k = 0; k < n; k++)
+        m += packState(list[k], buf + m);
     return m;
 }
 
 void FixGenDPDE::unpack_forward_comm(int n, int first, double* buf) {
-    double** v = atom->v;
     int m = 0;
-    for (int i = first; i < first + n; i++) {
-        if (commPhase == 1) {
-            if (buf[m++] == 0.0)
-                continue;
-            modified[i] = 1; // (a ghost may be sent on in a later swap)
-        }
-        v[i][0] = buf[m++];
-        v[i][1] = buf[m++];
-        v[i][2] = buf[m++];
-        sweepEnergy[i] = buf[m++];
-        if (commPhase == 0)
-            for (int d = 0; d < 3; d++)
-                extendedCell[3 * i + d] = (int) buf[m++];
-    }
+    for (int i = first; i < first + n; i++)
+        m += unpackState(i, buf + m);
 }
 
 int FixGenDPDE::pack_reverse_comm(int n, int first, double* buf) {
-    double** v = atom->v;
     int m = 0;
-    for (int i = first; i < first + n; i++) {
-        buf[m++] = modified[i];
-        if (!modified[i])
-            continue;
-        buf[m++] = v[i][0];
-        buf[m++] = v[i][1];
-        buf[m++] = v[i][2];
-        buf[m++] = sweepEnergy[i];
-    }
+    for (int i = first; i < first + n; i++)
+        m += packState(i, buf + m);
     return m;
 }
 
 void FixGenDPDE::unpack_reverse_comm(int n, int* list, double* buf) {
-    // A ghost's values replace its owner's where the ghost was updated (one block at most updates a particle per
-    // colour): set, not summed, so the owner has exactly the bits the updating rank computed.
-    double** v = atom->v;
     int m = 0;
-    for (int k = 0; k < n; k++) {
-        const int j = list[k];
-        if (buf[m++] == 0.0)
-            continue;
-        v[j][0] = buf[m++];
-        v[j][1] = buf[m++];
-        v[j][2] = buf[m++];
-        sweepEnergy[j] = buf[m++];
-        modified[j] = touched[j] = 1;
-    }
+    for (int k = 0; k < n; k++)
+        m += unpackState(list[k], buf + m);
 }
 
 /* ---------------------------------------------------------------------- */

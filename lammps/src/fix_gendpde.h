@@ -113,7 +113,7 @@ private:
     // less than skin/2).
     std::vector<SweepPair> candidates;
     bigint candidatesBuiltAt = -1;
-    std::vector<int> binHead, binNext, candidateGroupStart;
+    std::vector<int> binHead, binNext;
     std::vector<double> builtPositions; // the local particles' positions when the candidates were found
     // Each step: the pairs closer than R of each block (by block rank: colour by colour), in sweep order
     std::vector<int> rankOfBlock, blockRankStart, colourStart, pairBlockRank, blockPairs, blockFirst, blockOrder;
@@ -124,6 +124,9 @@ private:
     } pairTables;
     int commPhase = 0; // 0: velocities, energies and cells (start of the sweep); 1: velocities and energies
     void kick();
+    void makePairTables();
+    int packState(int i, double* buf) const;
+    int unpackState(int i, const double* buf);
     void sweep();
     void prepareCells();
     void rankBlocks();

@@ -282,7 +282,6 @@ void PairGenDPDE::compute(int eflag, int vflag) {
             }
         }
     }
-    commPhase = 0;
     comm->reverse_comm_pair(this);
 
     // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
@@ -327,7 +326,6 @@ void PairGenDPDE::compute(int eflag, int vflag) {
         if (eflag_atom)
             eatom[i] += energy;
     }
-    commPhase = 1;
     comm->forward_comm_pair(this);
 
     // Pass 2 (section 4): the pair forces, central (c_i + c_j) w'(r)/r d plus V-C's moment term.
@@ -417,13 +415,11 @@ void PairGenDPDE::unpack_forward_comm(int n, int first, double* buf) {
 }
 
 double PairGenDPDE::memory_usage() {
-    return (double) nmax * sizeof(double) * (moments() ? 8 : 2);
+    return (double) nmax * sizeof(double) * (moments() ? 8 : 2) + closePairs.capacity() * sizeof(ClosePair);
 }
 
 void* PairGenDPDE::extract(const char* name, int& dim) {
     dim = 0;
-    if (strcmp(name, "cut_coul") == 0)
-        return nullptr;
     if (strcmp(name, "cut_global") == 0)
         return (void*) &cut_global;
     return nullptr;

@@ -82,7 +82,6 @@ private:
         double dx, dy, dz, r; // d = x_i - x_j, r = |d| > 0, r^2 < R^2
     };
     std::vector<ClosePair> closePairs; // pass 1's pairs closer than R, read by pass 2
-    int commPhase = 0;    // 0: densities (reverse), 1: coefficients (forward)
     bool moments() const;
     void grow();
     void particleError(int status, int i, double volume);

@@ -17,7 +17,7 @@ from openmmgendpde.__main__ import main
 from openmmgendpde.analysis.pressure import virial_tensor
 from openmmgendpde.models.fluid import ARGON_EXPANDING, coarse_grain
 from openmmgendpde.models.fluid_files import load_parameters, save_parameters
-from openmmgendpde.models.lammps_files import lammps_input, round_up
+from openmmgendpde.models.lammps_files import lammps_input, round_up, thermo_table
 
 FIGURES = pathlib.Path(__file__).resolve().parents[2] / "docs" / "figures"
 ARGON_FILE = str(FIGURES / "calibrated-argon-model.toml")
@@ -317,20 +317,6 @@ LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp
 PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
 
 
-def thermo_rows(output):
-    """The thermo table of a LAMMPS run: {step: {column: value}}."""
-    lines = output.splitlines()
-    start = next(k for k, line in enumerate(lines) if line.split()[:1] == ["Step"])
-    names = lines[start].split()
-    rows = {}
-    for line in lines[start + 1:]:
-        if line.startswith("Loop time"):
-            break
-        values = [float(x) for x in line.split()]
-        rows[int(values[0])] = dict(zip(names, values))
-    return rows
-
-
 @pytest.mark.lammps
 def test_lammps_runs_the_written_input_as_openmm_runs_the_model(tmp_path):
     """lmp with the plugin on the files of the argon model (500 particles, 20 steps): at step 0 the potential energy
@@ -344,7 +330,7 @@ def test_lammps_runs_the_written_input_as_openmm_runs_the_model(tmp_path):
     result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
                             cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    rows = thermo_rows(result.stdout)
+    rows = thermo_table(result.stdout)
     model = load_parameters(ARGON_FILE).liquid(500, seed=1)
     context = model.context("Reference", seed=1)
     for step, tolerance in ((0, 1e-12), (20, 1e-6)):
@@ -378,7 +364,7 @@ def test_lammps_energy_and_virial_pressure_with_a_background_pressure(tmp_path):
     result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
                             cwd=tmp_path, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    row = thermo_rows(result.stdout)[0]
+    row = thermo_table(result.stdout)[0]
     model = load_parameters(WATER_FILE).liquid(500, seed=1)
     assert model.force.getBackgroundPressure().value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3) > 0
     context = model.context("Reference", seed=1)

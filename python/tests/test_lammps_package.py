@@ -20,6 +20,7 @@ import pytest
 from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+from openmmgendpde.models.lammps_files import thermo_table
 
 pytestmark = pytest.mark.lammps
 
@@ -168,9 +169,8 @@ dump_modify forces format float %.17g sort id
 run 0
 """
     run_lammps(directory, script, ranks)
-    log = (directory / "log.lammps").read_text().splitlines()
-    row = next(k for k, line in enumerate(log) if line.split()[:2] == ["Step", "PotEng"])
-    return float(log[row + 1].split()[1]), read_dump(directory / "forces.dump")[:, 1:4]
+    potential_energy = thermo_table((directory / "log.lammps").read_text())[0]["PotEng"]
+    return potential_energy, read_dump(directory / "forces.dump")[:, 1:4]
 
 
 @pytest.mark.parametrize("ranks", [1, 2, 4])

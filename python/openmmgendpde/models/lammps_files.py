@@ -408,6 +408,25 @@ def model_input(parameters, num_particles, mode="isoenergetic", seed=1, step_siz
                         f"{title}, {num_particles} particles", plugin)
 
 
+def thermo_table(log):
+    """{step: {column: value}} of every thermo line of a LAMMPS log or screen output (the first line of a step where
+    runs repeat it): what a run of these files prints, for the tools and tests that read it back."""
+    rows, columns = {}, None
+    for line in log.splitlines():
+        fields = line.split()
+        if fields[:1] == ["Step"]:
+            columns = fields
+        elif line.startswith("Loop time"):
+            columns = None
+        elif columns and len(fields) == len(columns):
+            try:
+                values = [float(x) for x in fields]
+            except ValueError:
+                continue
+            rows.setdefault(int(values[0]), dict(zip(columns, values)))
+    return rows
+
+
 def write_lammps_input(directory, texts):
     """Write DATA_FILE and SCRIPT_FILE of ``texts`` (a LammpsInput) into ``directory`` (made if absent), each
     atomically; their paths."""

@@ -8,7 +8,7 @@ set -euo pipefail
 openmm=${1:?"usage: devtools/check_cuda_kernels.sh OPENMM_SOURCE_DIR (a checkout of openmm/openmm)"}
 root="$(cd "$(dirname "$0")/.." && pwd)"
 kernels="$root/platforms/common/src/kernels"
-core="$root/openmmapi/include/internal/GenDPDEPhysicsCore.h"
+core="$root/core/include/gendpde/GenDPDEPhysicsCore.h"
 nvcc=${NVCC:-/usr/local/cuda/bin/nvcc}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -48,7 +48,7 @@ for precision in single mixed double; do
         cat $prelude
     } > "$work/prelude.cu"
     # As CommonGenDPDEKernelSources::physicsCore: the shared core in real (force) or mixed (integrator) precision,
-    # with the V-B table sizes of openmmapi/include/internal/VolumeVBTables.h.
+    # with the V-B table sizes of core/include/gendpde/VolumeVBTables.h.
     core_in() {
         printf '#define GENDPDE_REAL %s\n#define GENDPDE_ENERGY mixed\n#define GENDPDE_CORE inline DEVICE\n#define GENDPDE_GLOBAL GLOBAL\n' "$1"
         printf '#define GENDPDE_ISFINITE(x) isfinite(x)\n#define GENDPDE_FREXP(x, e) frexp(x, e)\n'

@@ -6,4 +6,4 @@
 #   devtools/cpp_files.sh | xargs .venv/bin/clang-format --dry-run --Werror   # check (scripts/run-tests.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-git ls-files '*.h' '*.cpp' | grep -v -e '^platforms/common/src/kernels/' -e 'internal/VolumeVBTables\.h$'
+git ls-files '*.h' '*.cpp' | grep -v -e '^platforms/common/src/kernels/' -e 'gendpde/VolumeVBTables\.h$'

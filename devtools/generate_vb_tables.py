@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Generate openmmapi/include/internal/VolumeVBTables.h: the tables behind the V-B integrals.
+"""Generate core/include/gendpde/VolumeVBTables.h: the tables behind the V-B integrals.
 
 I(k) = int_0^1 y^2 (1-y)^2/(y^2+k) dy and J(k) = -dI/dk (docs/theory.md section 3) are evaluated from two tables:
 
@@ -166,7 +166,7 @@ def main():
     lines += ["/** w_m y_m^2 (1 - y_m)^2 */"] + c_array("coefficient", [q[2] for q in quadrature])
     lines += ["", "} // namespace VolumeVBQuadrature", "", "} // namespace Physics", "} // namespace GenDPDEPlugin",
               "", "#endif /*GENDPDE_VOLUME_VB_TABLES_H_*/", ""]
-    output = pathlib.Path(__file__).resolve().parents[1] / "openmmapi/include/internal/VolumeVBTables.h"
+    output = pathlib.Path(__file__).resolve().parents[1] / "core/include/gendpde/VolumeVBTables.h"
     output.write_text("\n".join(lines))
     print(f"wrote {output} (degree {args.degree}, {len(table)} sub-intervals, max relative error {worst:.2e}; "
           f"{2 * len(quadrature)}-point Gauss-Legendre)")

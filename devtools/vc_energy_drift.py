@@ -7,7 +7,7 @@ number of steps at each step size; printed: the change of K + U + sum eps per N 
 
 With --crossings (V-C runs only), the particles whose one-sidedness a^2 = c^2 |g|^2/(n0^2 + eps^2) crosses V-C's
 threshold t = 0.4 are counted step by step, from the positions (numpy and scipy's k-d tree; the same formulas as
-the physics core, openmmapi/include/internal/GenDPDEPhysicsCore.h), over the first --crossing-steps steps, with the
+the physics core, core/include/gendpde/GenDPDEPhysicsCore.h), over the first --crossing-steps steps, with the
 fraction of the particles above t at the end of them and the median change of a^2 in one step for the particles
 within 0.1 of t (how many steps a crossing of the threshold's bend takes).
 --mode Conservative runs velocity Verlet alone (no pair dynamics) instead of the isoenergetic mode.

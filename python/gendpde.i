@@ -35,7 +35,8 @@ static int isNumpyAvailable() {
 #include "openmm/RPMDMonteCarloBarostat.h"
 #include "GenDPDEForce.h"
 #include "GenDPDEIntegrator.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEDensityEstimators.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "internal/LiquidArgon.h"
@@ -261,6 +262,13 @@ const GenDPDEPlugin::EquationsOfState::Law& requireLaw(int law) {
                                       + GenDPDEPlugin::EquationsOfState::listOfLaws());
     return *found;
 }
+const GenDPDEPlugin::DensityEstimators::Estimator& requireEstimator(int estimator) {
+    const GenDPDEPlugin::DensityEstimators::Estimator* found = GenDPDEPlugin::DensityEstimators::find(estimator);
+    if (found == nullptr)
+        throw OpenMM::OpenMMException("density estimator " + std::to_string(estimator) + " is not one; it must be "
+                                      + GenDPDEPlugin::DensityEstimators::listOfEstimators());
+    return *found;
+}
 const GenDPDEPlugin::EquationsOfState::Parameter& requireParameter(int law, int index) {
     const GenDPDEPlugin::EquationsOfState::Law& found = requireLaw(law);
     if (index < 0 || index >= found.numParameters)
@@ -318,14 +326,39 @@ void equationOfStateParameterRange(int law, int index, double& minimum, double& 
 bool equationOfStateParameterExcludesMinimum(int law, int index) {
     return requireParameter(law, index).excludeMinimum;
 }
+/** The number of density estimators (GenDPDEForce.DensityEstimator values 0 .. n-1; GenDPDEDensityEstimators.h). */
+int numDensityEstimators() {
+    return DensityEstimators::numEstimators;
+}
+/** The name of a density estimator as the API spells it ("VB"). */
+const char* densityEstimatorName(int estimator) {
+    return requireEstimator(estimator).name;
+}
+/** A density estimator's description, for help and messages ("partition of unity"). */
+const char* densityEstimatorDescription(int estimator) {
+    return requireEstimator(estimator).description;
+}
+/** Whether the cutoff scaling f_cut changes a density estimator (Rt = R/f_cut; V-A ignores it). */
+bool densityEstimatorReadsCutoffScaling(int estimator) {
+    return requireEstimator(estimator).readsCutoffScaling;
+}
+/** Whether a density estimator reads the first moments of the neighbourhoods (V-C). */
+bool densityEstimatorNeedsMoments(int estimator) {
+    return requireEstimator(estimator).needsMoments;
+}
+/** What a suggested time step is multiplied by for this estimator (V-C: 0.1; GenDPDEDensityEstimators.h says why). */
+double densityEstimatorStableStepFactor(int estimator) {
+    return requireEstimator(estimator).stableStepFactor;
+}
 /** V, dV/dn0 and dV/dG of any estimator (GenDPDEForce.VA, VB, VC) at primitive density n0 >= 0 and squared moment G
  *  (V-C), for cutoff R and cutoff scaling f_cut (Rt = R/f_cut): returns (V, dV/dn0, dV/dG). */
 void particleVolume(int estimator, double primitiveDensity, double squaredMoment, double cutoff,
                     double cutoffScaling, double& volume, double& derivative, double& momentDerivative) {
-    if (estimator < GENDPDE_ESTIMATOR_VA || estimator > GENDPDE_ESTIMATOR_VC || !(primitiveDensity >= 0.0)
+    if (DensityEstimators::find(estimator) == nullptr || !(primitiveDensity >= 0.0)
             || !(squaredMoment >= 0.0) || !(cutoff > 0.0) || !(cutoffScaling >= 1.0))
-        throw OpenMM::OpenMMException("particleVolume: need an estimator (VA, VB or VC), primitive density >= 0, "
-                                      "squared moment >= 0, cutoff > 0 and cutoff scaling >= 1");
+        throw OpenMM::OpenMMException("particleVolume: need an estimator (" + DensityEstimators::listOfEstimators()
+                                      + "), primitive density >= 0, squared moment >= 0, cutoff > 0 and cutoff "
+                                      "scaling >= 1");
     const Physics::ParticleVolumeAndMoment v = Physics::VolumeEstimator(estimator, cutoff, cutoff/cutoffScaling)(
             primitiveDensity, squaredMoment);
     volume = v.volume;

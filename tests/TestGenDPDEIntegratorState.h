@@ -4,7 +4,7 @@
  * naming the particle and the step. */
 
 #include "TestGenDPDEIntegrator.h"
-#include "internal/CounterRandom.h"
+#include "gendpde/CounterRandom.h"
 #include "openmm/serialization/XmlSerializer.h"
 #include <cstdint>
 #include <cstring>

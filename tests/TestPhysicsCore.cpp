@@ -1,4 +1,4 @@
-/* The physics core (openmmapi/include/internal/GenDPDEPhysicsCore.h) as the host platforms compile it:
+/* The physics core (core/include/gendpde/GenDPDEPhysicsCore.h) as the host platforms compile it:
  *  - no contraction: the build forbids turning a*b + c into a fused multiply-add (-ffp-contract=off), on which the
  *    bitwise CPU == Reference claim rests (the CPU platform's AVX2 gathers and the scalar core must round alike);
  *    checked in functions compiled for a processor with FMA, where the compiler would otherwise fuse;

@@ -1,6 +1,6 @@
 /* -------------------------------------------------------------------------- *
  * openmm-gendpde's LAMMPS package: the project's one physics core            *
- * (openmmapi/include/internal/GenDPDEPhysicsCore.h) in double precision as   *
+ * (core/include/gendpde/GenDPDEPhysicsCore.h) in double precision as   *
  * the OpenMM host platforms compile it (GenDPDEPhysicsCoreDouble.h), its     *
  * counter-based random streams, the table of the equations of state (their *
  * names and parameters) and the definition of the sweep's order.            *
@@ -11,9 +11,10 @@
 #ifndef LMP_GENDPDE_CORE_H
 #define LMP_GENDPDE_CORE_H
 
-#include "internal/CounterRandom.h"
-#include "internal/GenDPDEEquationsOfState.h"
-#include "internal/GenDPDEPhysicsCoreDouble.h"
-#include "internal/GenDPDESweepDefinition.h"
+#include "gendpde/CounterRandom.h"
+#include "gendpde/GenDPDEDensityEstimators.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEPhysicsCoreDouble.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 
 #endif

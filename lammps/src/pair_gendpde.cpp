@@ -68,15 +68,13 @@ void PairGenDPDE::settings(int narg, char** arg) {
     cut_global = utils::numeric(FLERR, arg[0], false, lmp);
     if (!(cut_global > 0.0))
         error->all(FLERR, "pair_style gendpde: pair range R = {} is not allowed: it must be > 0", arg[0]);
+    // the estimators of GenDPDEForce (the table of GenDPDEDensityEstimators.h), in lower case
     const std::string name = arg[1];
-    if (name == "va")
-        estimator = GENDPDE_ESTIMATOR_VA;
-    else if (name == "vb")
-        estimator = GENDPDE_ESTIMATOR_VB;
-    else if (name == "vc")
-        estimator = GENDPDE_ESTIMATOR_VC;
-    else
-        error->all(FLERR, "pair_style gendpde: density estimator '{}' is not allowed: it must be va, vb or vc", name);
+    const DensityEstimators::Estimator* found = DensityEstimators::findByName(name);
+    if (found == nullptr)
+        error->all(FLERR, "pair_style gendpde: density estimator '{}' is not allowed: it must be {}", name,
+                   DensityEstimators::listOfEstimators(true));
+    estimator = found->coreId;
     fcut = utils::numeric(FLERR, arg[2], false, lmp);
     if (!(fcut > 0.0))
         error->all(FLERR, "pair_style gendpde: cutoff scaling f_cut = {} is not allowed: it must be > 0", arg[2]);

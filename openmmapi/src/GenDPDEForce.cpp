@@ -1,5 +1,6 @@
 #include "GenDPDEForce.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEDensityEstimators.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
@@ -11,11 +12,6 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 using namespace ParameterChecks;
-
-// The physics core numbers the estimators as the API does.
-static_assert(GenDPDEForce::VA == GENDPDE_ESTIMATOR_VA && GenDPDEForce::VB == GENDPDE_ESTIMATOR_VB
-                      && GenDPDEForce::VC == GENDPDE_ESTIMATOR_VC,
-              "GenDPDEPhysicsCore.h numbers the estimators differently");
 
 namespace {
 // Default Tait parameters: liquid argon (internal/LiquidArgon.h) converted to OpenMM units.
@@ -60,8 +56,8 @@ GenDPDEForce::DensityEstimator GenDPDEForce::getDensityEstimator() const {
 }
 
 void GenDPDEForce::setDensityEstimator(DensityEstimator estimator) {
-    if (estimator != VA && estimator != VB && estimator != VC)
-        reject("GenDPDEForce", "density estimator", (int) estimator, "", "VA (0), VB (1) or VC (2)");
+    if (DensityEstimators::find(estimator) == nullptr)
+        reject("GenDPDEForce", "density estimator", (int) estimator, "", DensityEstimators::listOfEstimators());
     this->estimator = estimator;
 }
 

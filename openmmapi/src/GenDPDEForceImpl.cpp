@@ -1,7 +1,7 @@
 #include "internal/GenDPDEForceImpl.h"
 #include "GenDPDEIntegrator.h"
 #include "internal/BoxGeometry.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"

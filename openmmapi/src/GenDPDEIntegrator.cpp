@@ -2,7 +2,7 @@
 #include "GenDPDEForce.h"
 #include "GenDPDEKernels.h"
 #include "internal/BoxGeometry.h"
-#include "internal/CounterRandom.h"
+#include "gendpde/CounterRandom.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"

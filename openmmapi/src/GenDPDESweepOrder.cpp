@@ -1,7 +1,7 @@
 #include "internal/GenDPDESweepOrder.h"
 #include "internal/BoxGeometry.h"
 #include "internal/Buffers.h"
-#include "internal/GenDPDESweepDefinition.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <cmath>

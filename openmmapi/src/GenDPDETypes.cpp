@@ -1,5 +1,5 @@
 #include "internal/GenDPDETypes.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/ParameterChecks.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>

@@ -6,6 +6,7 @@ Import the classes from the package (``from openmmgendpde import GenDPDEForce``)
 import them from here, so that nothing imports the package's ``__init__`` in a circle.
 """
 
+import dataclasses as _dataclasses
 import glob as _glob
 import os as _os
 
@@ -206,10 +207,33 @@ return_units(GenDPDEIntegrator, "getInternalEnergies", _unit.kilojoule_per_mole)
 add_cast_copy_and_pickle(GenDPDEIntegrator)
 
 
-#: The density estimators, GenDPDEForce's enum value -> name ('VA', 'VB', ...), read from the class itself so that
-#: an estimator added to the C++ enum is known here (to the CLI's choices, repr, presets) without another list.
-ESTIMATOR_NAMES = {getattr(GenDPDEForce, name): name for name in sorted(dir(GenDPDEForce))
-                   if len(name) == 2 and name[0] == "V" and name[1].isupper()}
+@_dataclasses.dataclass(frozen=True)
+class DensityEstimator:
+    """One density estimator as the C++ table describes it (GenDPDEDensityEstimators.h): its
+    GenDPDEForce.DensityEstimator value, name ('VB'), description, whether f_cut changes it, whether it reads the
+    first moments (V-C), and what a suggested time step is multiplied by for it."""
+    value: int
+    name: str
+    description: str
+    reads_cutoff_scaling: bool
+    needs_moments: bool
+    stable_step_factor: float
+
+    @classmethod
+    def of(cls, value):
+        """The table's entry of a GenDPDEForce.DensityEstimator value (OpenMMException if there is none)."""
+        value = int(value)
+        return cls(value, _swig.densityEstimatorName(value), _swig.densityEstimatorDescription(value),
+                   bool(_swig.densityEstimatorReadsCutoffScaling(value)),
+                   bool(_swig.densityEstimatorNeedsMoments(value)), _swig.densityEstimatorStableStepFactor(value))
+
+
+#: The density estimators in GenDPDEForce.DensityEstimator order, from the C++ table: an estimator added there is
+#: known here (to the commands' choices, the model files, repr) without another list.
+ESTIMATORS = tuple(DensityEstimator.of(value) for value in range(_swig.numDensityEstimators()))
+
+#: The density estimators, GenDPDEForce's enum value -> name ('VA', 'VB', ...), from ESTIMATORS.
+ESTIMATOR_NAMES = {estimator.value: estimator.name for estimator in ESTIMATORS}
 
 
 def _force_repr(self):

@@ -240,11 +240,11 @@ def test_a_law_is_spelt_only_in_the_core_the_table_and_the_api_enum():
     import re
     root = pathlib.Path(__file__).resolve().parents[2]
     pattern = re.compile(r"van ?der ?Waals|VAN_DER_WAALS", re.IGNORECASE)
-    sources = [path for folder in ("openmmapi", "platforms", "serialization", "python/openmmgendpde", "lammps")
+    sources = [path for folder in ("core", "openmmapi", "platforms", "serialization", "python/openmmgendpde", "lammps")
                for path in (root / folder).rglob("*")
                if path.suffix in (".h", ".cpp", ".cc", ".in", ".py", ".i") and "tests" not in path.parts]
     sources.append(root / "python" / "gendpde.i")
     assert len(sources) > 50
     found = sorted(str(path.relative_to(root)) for path in sources if pattern.search(path.read_text()))
-    assert found == ["openmmapi/include/GenDPDEForce.h", "openmmapi/include/internal/GenDPDEEquationsOfState.h",
-                     "openmmapi/include/internal/GenDPDEPhysicsCore.h"]
+    assert found == ["core/include/gendpde/GenDPDEEquationsOfState.h", "core/include/gendpde/GenDPDEPhysicsCore.h",
+                     "openmmapi/include/GenDPDEForce.h"]

@@ -1,7 +1,7 @@
 #include "GenDPDEForceProxy.h"
 #include "GenDPDEForce.h"
 #include "ParticleTypesXml.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/StrictXml.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"

@@ -7,7 +7,7 @@
 #include "openmm/Vec3.h"
 #include <algorithm>
 #include <cmath>
-#include "internal/IntegerRounding.h"
+#include "gendpde/IntegerRounding.h"
 #include "internal/MessageText.h"
 #include <string>
 

@@ -4,7 +4,7 @@
 /* The errors a GenDPDEForce evaluation reports, in the same words on every platform. */
 
 #include "GenDPDEForce.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/OpenMMException.h"

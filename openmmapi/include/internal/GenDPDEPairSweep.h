@@ -6,7 +6,7 @@
  * whole sequence (Reference) or on the blocks of one colour in parallel (CPU): blocks of one colour share no
  * particle, so the result is the same. */
 
-#include "internal/CounterRandom.h"
+#include "gendpde/CounterRandom.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDESweepOrder.h"

@@ -11,7 +11,7 @@
  * Units are whatever the caller uses consistently (OpenMM: nm, kJ/mol).      *
  * -------------------------------------------------------------------------- */
 
-#include "GenDPDEPhysicsCoreDouble.h"
+#include "gendpde/GenDPDEPhysicsCoreDouble.h"
 #include "openmm/Vec3.h"
 #include <cmath>
 #include <cstdint>

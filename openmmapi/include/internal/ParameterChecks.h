@@ -7,7 +7,7 @@
 #include "openmm/OpenMMException.h"
 #include <cmath>
 #include "internal/MessageText.h"
-#include "internal/ParameterRanges.h"
+#include "gendpde/ParameterRanges.h"
 #include <string>
 
 namespace GenDPDEPlugin {

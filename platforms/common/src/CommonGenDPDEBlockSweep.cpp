@@ -2,7 +2,7 @@
 #include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/BoxGeometry.h"
-#include "internal/CounterRandom.h"
+#include "gendpde/CounterRandom.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>

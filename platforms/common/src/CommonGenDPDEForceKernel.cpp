@@ -5,7 +5,7 @@
 #include "CommonGenDPDEKernelSources.h"
 #include "internal/BoxGeometry.h"
 #include "internal/FixedOrderSum.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include "internal/GenDPDEForceErrors.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"

@@ -20,7 +20,7 @@ namespace Lanes4 {
 #define GENDPDE_REAL __m256d
 #define GENDPDE_CORE GENDPDE_AVX2 inline
 #define GENDPDE_CORE_ARITHMETIC_ONLY
-#include "internal/GenDPDEPhysicsCore.h"
+#include "gendpde/GenDPDEPhysicsCore.h"
 #undef GENDPDE_REAL
 #undef GENDPDE_CORE
 #undef GENDPDE_CORE_ARITHMETIC_ONLY

@@ -1,7 +1,7 @@
 #include "ReferenceGenDPDEIntegratorKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
-#include "internal/CounterRandom.h"
+#include "gendpde/CounterRandom.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"

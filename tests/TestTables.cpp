@@ -1,12 +1,18 @@
-/* The table of the equations of state (openmmapi/include/internal/GenDPDEEquationsOfState.h) is what GenDPDEForce's
- * checks and messages, the XML serialization and the packing for the platforms read: every law of the table, with
- * parameters taken from the table alone, is accepted, round-trips through XML, is refused with a wrong count or a
- * parameter outside its range in words the table gives, and is packed as the table lays it out. */
+/* The tables of the core (core/include/gendpde): what GenDPDEForce's checks and messages, the XML serialization and
+ * the packing for the platforms read.
+ *  - The equations of state (GenDPDEEquationsOfState.h): every law of the table, with parameters taken from the
+ *    table alone, is accepted, round-trips through XML, is refused with a wrong count or a parameter outside its
+ *    range in words the table gives, and is packed as the table lays it out.
+ *  - The density estimators (GenDPDEDensityEstimators.h): every one is accepted and round-trips, a number past the
+ *    table is refused naming them all, and what the table says of each (reads f_cut, needs moments) is what the
+ *    physics core does with it. */
 
 #include "GenDPDEForce.h"
 #include "TestPlugins.h"
 #include "TestUtilities.h"
-#include "internal/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDEDensityEstimators.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
+#include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "openmm/serialization/XmlSerializer.h"
 #include <cmath>
@@ -124,6 +130,49 @@ void testPackingFollowsTheTable() {
     }
 }
 
+void testEveryEstimatorIsAcceptedAndRoundTrips() {
+    namespace Estimators = DensityEstimators;
+    ASSERT(Estimators::numEstimators >= 3);
+    for (int k = 0; k < Estimators::numEstimators; k++) {
+        GenDPDEForce force(1.0);
+        force.setDensityEstimator((GenDPDEForce::DensityEstimator) k);
+        std::stringstream buffer;
+        XmlSerializer::serialize<GenDPDEForce>(&force, "Force", buffer);
+        std::unique_ptr<GenDPDEForce> copy(XmlSerializer::deserialize<GenDPDEForce>(buffer));
+        ASSERT_EQUAL(k, (int) copy->getDensityEstimator());
+        ASSERT(Estimators::findByName(Estimators::estimators[k].name) == &Estimators::estimators[k]);
+        ASSERT(Estimators::find(k) == &Estimators::estimators[k]);
+    }
+    std::vector<std::string> names = {"density estimator"};
+    for (const Estimators::Estimator& estimator : Estimators::estimators)
+        names.push_back(estimator.name);
+    GenDPDEForce force(1.0);
+    for (int bad : {-1, Estimators::numEstimators}) {
+        names.push_back("= " + std::to_string(bad));
+        assertThrowsMentioning([&]() { force.setDensityEstimator((GenDPDEForce::DensityEstimator) bad); }, names);
+        names.pop_back();
+    }
+    ASSERT(Estimators::find(-1) == nullptr && Estimators::findByName("V") == nullptr);
+    ASSERT(Estimators::findByName("vb") == &Estimators::estimators[GENDPDE_ESTIMATOR_VB]);   // LAMMPS's spelling
+}
+
+void testEstimatorEntriesSayWhatTheCoreDoes() {
+    // At a liquid's primitive density n0 (nm^-3) and a one-sided neighbourhood (G = 4 n0^2, a^2 = 1: a flat free
+    // surface): an estimator reads f_cut if its volume changes between f_cut = 1 and 1.5, and the moments if its
+    // volume changes with G or its dV/dG is not zero.
+    const double cutoff = 1.0, n0 = 6.5, G = 4 * n0 * n0;
+    for (const DensityEstimators::Estimator& entry : DensityEstimators::estimators) {
+        const Physics::VolumeEstimator plain(entry.coreId, cutoff, cutoff), scaled(entry.coreId, cutoff, cutoff / 1.5);
+        const bool readsCutoffScaling = plain(n0).volume != scaled(n0).volume;
+        const Physics::ParticleVolumeAndMoment bulk = plain(n0, 0.0), surface = plain(n0, G);
+        const bool readsMoments = bulk.volume != surface.volume || surface.momentDerivative != 0.0;
+        ASSERT_EQUAL(entry.readsCutoffScaling, readsCutoffScaling);
+        ASSERT_EQUAL(entry.needsMoments, readsMoments);
+        ASSERT_EQUAL(entry.needsMoments, Physics::gendpdeEstimatorNeedsMoments(entry.coreId) != 0);
+        ASSERT(entry.stableStepFactor > 0.0 && entry.stableStepFactor <= 1.0);
+    }
+}
+
 } // namespace
 
 int main() {
@@ -132,5 +181,7 @@ int main() {
         testEveryLawIsAcceptedAndRoundTrips();
         testWrongCountsAndRangesAreRefusedInTheTablesWords();
         testPackingFollowsTheTable();
+        testEveryEstimatorIsAcceptedAndRoundTrips();
+        testEstimatorEntriesSayWhatTheCoreDoes();
     });
 }

@@ -1,8 +1,8 @@
 /* The counter-based random numbers: Philox4x32-10 against the Random123 known-answer vectors, and the normal
  * variates of the ziggurat against the normal distribution. */
 
-#include "TestUtilities.h"
-#include "internal/CounterRandom.h"
+#include "CoreTest.h"
+#include "gendpde/CounterRandom.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -11,7 +11,6 @@
 #include <vector>
 
 using namespace GenDPDEPlugin::CounterRandom;
-using namespace OpenMM;
 
 void testPhiloxKnownAnswers() {
     struct Case {
@@ -30,7 +29,7 @@ void testPhiloxKnownAnswers() {
         std::uint32_t output[4];
         philox4x32(c.counter, c.key, output);
         for (int k = 0; k < 4; k++)
-            ASSERT_EQUAL(c.expected[k], output[k]);
+            CORE_ASSERT_EQUAL(c.expected[k], output[k]);
     }
 }
 
@@ -60,19 +59,20 @@ void testNormalVariates() {
         product += a * b;
     }
     const double n = values.size();
-    assertClose(0.0, sum / n, 5 * std::sqrt(1 / n), "mean of the normal variates");
-    assertClose(1.0, sum2 / n, 5 * std::sqrt(2 / n), "variance of the normal variates");
-    assertClose(3.0, sum4 / n, 5 * std::sqrt(96 / n), "fourth moment of the normal variates");
-    assertClose(0.0, product / numStreams, 5 / std::sqrt((double) numStreams), "correlation within a stream");
+    GenDPDECoreTest::checkClose(0.0, sum / n, 5 * std::sqrt(1 / n), "mean of the normal variates");
+    GenDPDECoreTest::checkClose(1.0, sum2 / n, 5 * std::sqrt(2 / n), "variance of the normal variates");
+    GenDPDECoreTest::checkClose(3.0, sum4 / n, 5 * std::sqrt(96 / n), "fourth moment of the normal variates");
+    GenDPDECoreTest::checkClose(0.0, product / numStreams, 5 / std::sqrt((double) numStreams),
+                                "correlation within a stream");
     const double tailProbability = std::erfc(3.6541528853610088 / std::sqrt(2.0));
-    assertClose(tailProbability, tail / n, 5 * std::sqrt(tailProbability / n), "tail beyond R");
+    GenDPDECoreTest::checkClose(tailProbability, tail / n, 5 * std::sqrt(tailProbability / n), "tail beyond R");
     std::sort(values.begin(), values.end());
     double distance = 0;
     for (size_t k = 0; k < values.size(); k++) {
         double cdf = 0.5 * std::erfc(-values[k] / std::sqrt(2.0));
         distance = std::max(distance, std::max(std::abs(cdf - k / n), std::abs(cdf - (k + 1) / n)));
     }
-    ASSERT(distance < 1.95 / std::sqrt(n));
+    CORE_ASSERT(distance < 1.95 / std::sqrt(n));
 }
 
 /** The regularized lower incomplete gamma function P(a, x) (series below a + 1, continued fraction above), written
@@ -128,8 +128,9 @@ void testGammaVariates() {
         for (double x : values)
             sum2 += (x - mean) * (x - mean);
         const std::string label = "Gamma(" + std::to_string(shape) + ")";
-        assertClose(shape, mean, 5 * std::sqrt(shape / n), label + " mean");
-        assertClose(shape, sum2 / (n - 1), 5 * std::sqrt((2 * shape * shape + 6 * shape) / n), label + " variance");
+        GenDPDECoreTest::checkClose(shape, mean, 5 * std::sqrt(shape / n), label + " mean");
+        GenDPDECoreTest::checkClose(shape, sum2 / (n - 1), 5 * std::sqrt((2 * shape * shape + 6 * shape) / n),
+                                    label + " variance");
         std::sort(values.begin(), values.end());
         double distance = 0;
         for (int k = 0; k < n; k++) {
@@ -145,12 +146,12 @@ void testGammaVariates() {
 void testStreamsAreReproducible() {
     PairStream a(7, 123456789012LL, 3, 9), b(7, 123456789012LL, 3, 9), c(7, 123456789012LL, 3, 10);
     double x = a.normal(), y = b.normal();
-    ASSERT_EQUAL(x, y);
-    ASSERT(c.normal() != x);
+    CORE_ASSERT_EQUAL(x, y);
+    CORE_ASSERT(c.normal() != x);
 }
 
 int main() {
-    return runTestProgram([]() {
+    return GenDPDECoreTest::run([]() {
         testPhiloxKnownAnswers();
         testNormalVariates();
         testStreamsAreReproducible();

@@ -5,7 +5,7 @@
  * no dependencies, so that every engine that runs the sweep computes the same cells, blocks, colours and order within
  * a block: the OpenMM platforms (through GenDPDESweepOrder) and the LAMMPS package (lammps/, across MPI ranks). */
 
-#include "internal/IntegerRounding.h"
+#include "gendpde/IntegerRounding.h"
 #include <algorithm>
 #include <cmath>
 

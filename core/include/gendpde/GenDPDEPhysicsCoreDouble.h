@@ -5,7 +5,7 @@
  * namespace GenDPDEPlugin::Physics: what GenDPDEPhysics.h (the OpenMM platforms, the bindings, the tests) and the
  * LAMMPS package (lammps/src/gendpde_core.h) both include. No OpenMM header. */
 
-#include "VolumeVBTables.h"
+#include "gendpde/VolumeVBTables.h"
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -38,7 +38,7 @@ inline double frexpOfPositive(double x, int* exponent) {
 #define GENDPDE_VB_FIRST_OCTAVE (VolumeVBPolynomials::firstOctave)
 #define GENDPDE_VB_LAST_OCTAVE (VolumeVBPolynomials::lastOctave)
 #define GENDPDE_VB_QUADRATURE_PAIRS (VolumeVBQuadrature::numPairs)
-#include "GenDPDEPhysicsCore.h"
+#include "gendpde/GenDPDEPhysicsCore.h"
 #undef GENDPDE_REAL
 #undef GENDPDE_ISFINITE
 #undef GENDPDE_FREXP

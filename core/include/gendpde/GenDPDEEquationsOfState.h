@@ -7,13 +7,13 @@
  * the Python unit wrapping (through SWIG) all read this table.
  *
  * A new law is: its formula in the physics core (a GENDPDE_EOS_* id and a branch of gendpdeLocalEquationOfState,
- * GenDPDEPhysicsCore.h; gendpdeLawDependsOnTemperature if it does), an entry here (and its enum value in
- * GenDPDEForce.h, which the static_assert below ties to this table where GenDPDEForce.h is included first), and its
- * oracle in the tests. The header has no OpenMM dependency: the LAMMPS package (lammps/) takes its laws' names and
- * parameters from it too. */
+ * GenDPDEPhysicsCore.h; gendpdeLawDependsOnTemperature if it does), an entry here, its enum value in GenDPDEForce.h
+ * (python/tests/test_tables.py checks through the bindings that every entry's name is the enum value of its place),
+ * and its oracle in the tests. Engine-neutral (core/): the LAMMPS package takes its laws' names and parameters from
+ * it too. */
 
-#include "internal/GenDPDEPhysicsCoreDouble.h"
-#include "internal/ParameterRanges.h"
+#include "gendpde/GenDPDEPhysicsCoreDouble.h"
+#include "gendpde/ParameterRanges.h"
 #include <string>
 
 namespace GenDPDEPlugin {
@@ -90,12 +90,6 @@ constexpr bool numberedInOrder() {
     return true;
 }
 static_assert(numberedInOrder(), "each law's core id must be its place in the table");
-
-#ifdef GENDPDE_FORCE_H_ // (where the API is included first, as in GenDPDEForce.cpp; the LAMMPS package has no API)
-static_assert(GenDPDEForce::Tait == 0 && GenDPDEForce::TaitThermalExpansion == 1 && GenDPDEForce::VanDerWaals == 2
-                      && numLaws == 3,
-              "GenDPDEForce::EquationOfState must number the laws as this table does");
-#endif
 
 /** The law numbered law (a GenDPDEForce::EquationOfState value), or nullptr if there is none. */
 inline const Law* find(int law) {

@@ -34,6 +34,9 @@
  * GenDPDEEquationsOfState.h and its oracle in the tests.                     *
  * -------------------------------------------------------------------------- */
 
+#ifndef GENDPDE_REAL
+#error "GenDPDEPhysicsCore.h needs its precision GENDPDE_REAL: include GenDPDEPhysicsCoreDouble.h on the host"
+#endif
 #ifndef GENDPDE_CORE
 #define GENDPDE_CORE inline
 #endif

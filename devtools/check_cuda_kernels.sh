@@ -9,20 +9,24 @@ openmm=${1:?"usage: devtools/check_cuda_kernels.sh OPENMM_SOURCE_DIR (a checkout
 root="$(cd "$(dirname "$0")/.." && pwd)"
 kernels="$root/platforms/common/src/kernels"
 core="$root/core/include/gendpde/GenDPDEPhysicsCore.h"
+sweep_pair="$root/core/include/gendpde/GenDPDESweepPair.h"
 nvcc=${NVCC:-/usr/local/cuda/bin/nvcc}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 prelude="$openmm/platforms/cuda/src/kernels/common.cu $openmm/platforms/cuda/src/kernels/vectorOps.cu"
-# The status words' layout as the integrator kernel defines it (CommonGenDPDEStatus.h, one source).
+# The status words' layout as the integrator kernel defines it (CommonGenDPDEStatus.h, one source), and the stride
+# of the laws' parameters as the force kernel defines it (the table of the laws).
 cat > "$work/status.cpp" <<'SOURCE'
 #include "CommonGenDPDEStatus.h"
+#include "gendpde/GenDPDEEquationsOfState.h"
 #include <cstdio>
 int main() {
     for (const auto& define : GenDPDEPlugin::DeviceStatus::defines())
         std::printf("#define %s %s\n", define.first.c_str(), define.second.c_str());
+    std::printf("#define LAW_PARAMETER_STRIDE %d\n", GenDPDEPlugin::EquationsOfState::coreStride());
 }
 SOURCE
-g++ -std=c++17 -I"$root/platforms/common/src" -o "$work/status" "$work/status.cpp"
+g++ -std=c++17 -I"$root/platforms/common/src" -I"$root/core/include" -o "$work/status" "$work/status.cpp"
 "$work/status" > "$work/status.h"
 for precision in single mixed double; do
     case $precision in
@@ -60,7 +64,7 @@ for precision in single mixed double; do
     { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
         "$kernels/gendpdeStatus.cc" "$kernels/gendpdeIntegrator.cc"; } > "$work/integrator.cu"
     { cat "$work/prelude.cu"; core_in mixed; cat "$kernels/gendpdeCells.cc" "$kernels/gendpdeRandom.cc" \
-        "$kernels/gendpdeStatus.cc" "$kernels/gendpdeSweep.cc"; } > "$work/sweep.cu"
+        "$kernels/gendpdeStatus.cc" "$sweep_pair" "$kernels/gendpdeSweep.cc"; } > "$work/sweep.cu"
     for program in force integrator sweep; do
         "$nvcc" --ptx -arch=sm_90 -o "$work/$program.ptx" "$work/$program.cu"
         echo "$precision $program: $(grep -c '\.entry' "$work/$program.ptx") kernels"

@@ -1,10 +1,12 @@
 #ifndef GENDPDE_PHYSICS_CORE_DOUBLE_H_
 #define GENDPDE_PHYSICS_CORE_DOUBLE_H_
 
-/* The physics core (GenDPDEPhysicsCore.h) compiled in double precision on the host, with the V-B tables it reads, in
- * namespace GenDPDEPlugin::Physics: what GenDPDEPhysics.h (the OpenMM platforms, the bindings, the tests) and the
- * LAMMPS package (lammps/src/gendpde_core.h) both include. No OpenMM header. */
+/* The physics core (GenDPDEPhysicsCore.h) and the sweep's pair step (GenDPDESweepPair.h, with CounterRandom's pair
+ * streams) compiled in double precision on the host, with the V-B tables they read, in namespace
+ * GenDPDEPlugin::Physics: what GenDPDEPhysics.h (the OpenMM platforms, the bindings, the tests) and the LAMMPS
+ * package (lammps/src/gendpde_core.h) both include. No OpenMM header. */
 
+#include "gendpde/CounterRandom.h"
 #include "gendpde/VolumeVBTables.h"
 #include <cmath>
 #include <cstdint>
@@ -39,6 +41,11 @@ inline double frexpOfPositive(double x, int* exponent) {
 #define GENDPDE_VB_LAST_OCTAVE (VolumeVBPolynomials::lastOctave)
 #define GENDPDE_VB_QUADRATURE_PAIRS (VolumeVBQuadrature::numPairs)
 #include "gendpde/GenDPDEPhysicsCore.h"
+#define GENDPDE_PAIR_STREAM CounterRandom::PairStream
+#define GENDPDE_PAIR_NORMAL(stream) ((stream)->normal())
+#include "gendpde/GenDPDESweepPair.h"
+#undef GENDPDE_PAIR_STREAM
+#undef GENDPDE_PAIR_NORMAL
 #undef GENDPDE_REAL
 #undef GENDPDE_ISFINITE
 #undef GENDPDE_FREXP

@@ -32,9 +32,9 @@ struct PairSweepParameters {
             table(&tables.getTable()), numClasses(table->numClasses), particleClass(tables.getParticleClasses().data()),
             seed((std::uint32_t) seed), step((std::uint64_t) step) {
         for (int ab = 0; ab < numClasses * numClasses; ab++) {
-            heatNoise.push_back(std::sqrt(2.0 * Physics::Boltzmann * table->heatConduction[ab]));
+            heatNoise.push_back(Physics::gendpdeHeatNoise(table->heatConduction[ab], Physics::Boltzmann));
             bathNoise.push_back(
-                    std::sqrt(2.0 * table->friction[ab] * Physics::Boltzmann * integrator.getTemperature()));
+                    Physics::gendpdeBathNoise(table->friction[ab], Physics::Boltzmann, integrator.getTemperature()));
         }
     }
     /** The class of particle i. */
@@ -176,19 +176,22 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
 }
 
 /**
- * Full GenDPDE on the pairs order[0..count) (indices into pairs, whose elements have i and j; their delta and r come
- * from geometry: StoredPairGeometry or SlotPositionGeometry), each pair
- * updated by the physics core's gendpdePairUpdate (as on the device, gendpdeSweep.cc): dissipative and random
- * momenta with sigma^2 = 2 gamma k_B Theta_ij and the Ito term of the friction, mechanical heating split equally,
- * heat conduction, all with the temperatures the particles have when the pair is reached. Particle i's data
- * is at slot[i] of inverseMasses, velocities, energies and p's classes (SweepLayout); the random stream is keyed on
- * (i, j). Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops
- * there; the caller restores the state), or -1.
+ * The sweep's pairs order[0..count) (indices into pairs, whose elements have i and j; their delta and r come from
+ * geometry: StoredPairGeometry or SlotPositionGeometry), each by the core's pair step (gendpdeSweepPair,
+ * GenDPDESweepPair.h, as on the device and in LAMMPS) with the random stream keyed on (i, j): in the Isoenergetic
+ * mode (p.terms.internalEnergies) full GenDPDE, dissipative and random momenta with sigma^2 = 2 gamma k_B Theta_ij,
+ * mechanical heating split equally and heat conduction, at the temperatures the particles have when the pair is
+ * reached; otherwise the DPD thermostat of the Isothermal mode, whose heat goes to the bath. Particle i's data is at
+ * slot[i] of inverseMasses, velocities, energies (null in the Isothermal mode) and p's classes (SweepLayout).
+ * Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops there;
+ * the caller restores the state), or -1.
  */
 template <class Pair, class Geometry>
-int sweepIsoenergetic(const Pair* pairs, const Geometry& geometry, const int* order, int count,
-                      const PairSweepParameters& p, const int* slot, const double* inverseMasses,
-                      OpenMM::Vec3* velocities, double* energies) {
+int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, int count,
+               const PairSweepParameters& p, const int* slot, const double* inverseMasses, OpenMM::Vec3* velocities,
+               double* energies) {
+    const int dissipation = p.terms.dissipation, conduction = p.terms.conduction;
+    const int internalEnergies = p.terms.internalEnergies ? 1 : 0;
     for (int n = 0; n < count; n++) {
         prefetchAhead(pairs, order, n, count, slot, velocities, energies, geometry.positions());
         const Pair& pair = pairs[order[n]];
@@ -196,54 +199,18 @@ int sweepIsoenergetic(const Pair* pairs, const Geometry& geometry, const int* or
         OpenMM::Vec3 delta;
         double r;
         geometry(pair, i, j, delta, r);
-        if (r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
-            continue;
         const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
-        const Physics::PairTemperatures temperatures = Physics::pairTemperatures(
-                energies[i], energies[j], p.table->heatCapacity[a], p.table->heatCapacity[b], Physics::Boltzmann);
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
-        const double xi = p.terms.dissipation ? random.normal() : 0.0;   // the stream's order: impulse, then heat
-        const double xiQ = p.terms.conduction ? random.normal() : 0.0;
-        const OpenMM::Vec3 e = delta * (1.0 / r);
-        double impulse;
-        const int failed = Physics::gendpdePairUpdate(
-                p.terms.dissipation, p.terms.conduction, temperatures.pairThermalEnergy,
-                temperatures.inverseTemperatureDifference, temperatures.frictionFactor,
-                e.dot(velocities[i] - velocities[j]), Physics::gendpdeRandomWeight(r, p.cutoff), inverseMasses[i],
-                inverseMasses[j], p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.stepSize,
-                p.sqrtStepSize, xi, xiQ, &energies[i], &energies[j], &impulse);
-        if (p.terms.dissipation)
-            Physics::applyPairImpulse(e, impulse, inverseMasses[i], inverseMasses[j], velocities[i], velocities[j]);
+        const int failed = Physics::gendpdeSweepPair(
+                dissipation, conduction, internalEnergies, delta[0], delta[1], delta[2], r, p.cutoff,
+                inverseMasses[i], inverseMasses[j], &velocities[i][0], &velocities[j][0],
+                internalEnergies ? &energies[i] : nullptr, internalEnergies ? &energies[j] : nullptr,
+                p.table->heatCapacity[a], p.table->heatCapacity[b], p.table->friction[ab], p.table->heatConduction[ab],
+                p.heatNoise[ab], p.bathNoise[ab], Physics::Boltzmann, p.stepSize, p.sqrtStepSize, &random);
         if (failed)
             return n;
     }
     return -1;
-}
-
-/**
- * The classic DPD thermostat (Isothermal mode) on the pairs order[0..count): the heat goes to the bath. Particle i's
- * data at slot[i], as in sweepIsoenergetic.
- */
-template <class Pair, class Geometry>
-void sweepIsothermal(const Pair* pairs, const Geometry& geometry, const int* order, int count,
-                     const PairSweepParameters& p, const int* slot, const double* inverseMasses,
-                     OpenMM::Vec3* velocities) {
-    for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, slot, velocities, nullptr, geometry.positions());
-        const Pair& pair = pairs[order[n]];
-        const int i = slot[pair.i], j = slot[pair.j];
-        OpenMM::Vec3 delta;
-        double r;
-        geometry(pair, i, j, delta, r);
-        if (r == 0.0 || (inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0))
-            continue;
-        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
-        const int ab = p.classOf(i) * p.numClasses + p.classOf(j);
-        Physics::dissipativePairUpdate(delta * (1.0 / r), Physics::gendpdeRandomWeight(r, p.cutoff),
-                                       p.table->friction[ab], p.bathNoise[ab], p.stepSize, p.sqrtStepSize,
-                                       inverseMasses[i], inverseMasses[j], velocities[i], velocities[j],
-                                       random.normal());
-    }
 }
 
 /**

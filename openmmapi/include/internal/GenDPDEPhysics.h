@@ -260,30 +260,6 @@ inline void addHalfPairVirial(const OpenMM::Vec3& force, const OpenMM::Vec3& d, 
     gendpdeAddHalfPairVirial(force[0], force[1], force[2], d[0], d[1], d[2], virial.element);
 }
 
-/** A pair's impulse P along e (mass length/time): v_i += P e/m_i, v_j -= P e/m_j. */
-inline void applyPairImpulse(const OpenMM::Vec3& e, double impulse, double inverseMassI, double inverseMassJ,
-                             OpenMM::Vec3& vi, OpenMM::Vec3& vj) {
-    vi += e * (impulse * inverseMassI);
-    vj -= e * (impulse * inverseMassJ);
-}
-
-/**
- * The dissipative and random update of one pair's momenta (docs/theory.md sections 5-6, gendpdePairImpulse): e is
- * the unit vector from j to i, omegaR = 1 - r/R, friction the coefficient of the drift -friction omega_R^2 u,
- * noiseAmplitude the sigma of the random impulse sigma omega_R dW, xi a standard normal variate. The impulse P e
- * goes to i and -P e to j. Returns the change of the pair's kinetic energy, which the caller hands to the internal
- * energies (or to a bath).
- */
-inline double dissipativePairUpdate(const OpenMM::Vec3& e, double omegaR, double friction, double noiseAmplitude,
-                                    double stepSize, double sqrtStepSize, double inverseMassI, double inverseMassJ,
-                                    OpenMM::Vec3& vi, OpenMM::Vec3& vj, double xi) {
-    double kineticChange;
-    const double impulse = gendpdePairImpulse(e.dot(vi - vj), omegaR, friction, noiseAmplitude, stepSize, sqrtStepSize,
-                                              inverseMassI + inverseMassJ, xi, &kineticChange);
-    applyPairImpulse(e, impulse, inverseMassI, inverseMassJ, vi, vj);
-    return kineticChange;
-}
-
 /**
  * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type;
  * gendpdePairTemperatures, whose results the sweeps pass to the core's gendpdePairUpdate).

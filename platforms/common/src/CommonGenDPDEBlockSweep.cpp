@@ -180,7 +180,9 @@ void CommonGenDPDEBlockSweep::compile() {
     programDefines["SWEEP_MAX_PARTICLES"] = cc.intToString(maxParticles);
     programDefines["SWEEP_BLOCKS_PER_GROUP"] = cc.intToString(blocksPerGroup);
     programDefines["SWEEP_BLOCK_THREADS"] = cc.intToString(blockThreads);
-    ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::gendpdeSweep, programDefines);
+    ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::GenDPDESweepPair
+                                                           + CommonGenDPDEKernelSources::gendpdeSweep,
+                                               programDefines);
     orderKernel = program->createKernel("orderBlocks");
     {
         using namespace OrderArgument;

@@ -94,7 +94,7 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
     const int* slot = layout.slots;
     const double* inverseMass = layout.slotInverseMasses.data();
     Vec3* v = layout.slotVelocities.data();
-    double* energy = layout.slotEnergies.data();
+    double* energy = terms.internalEnergies ? layout.slotEnergies.data() : nullptr;
     for (int group = 0; group < sweepOrder.getNumGroups(); group++) {
         const int firstBlock = groupStart[group], numBlocks = groupStart[group + 1] - firstBlock;
         blockFailure.assign(numBlocks, -1);
@@ -103,14 +103,9 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
             for (int b = firstBlock + begin; b < firstBlock + end; b++) {
                 const int* blockOrder = order + blockStart[b];
                 const int count = blockStart[b + 1] - blockStart[b];
-                if (!parameters.terms.internalEnergies)
-                    sweepIsothermal(pair, geometry, blockOrder, count, parameters, slot, inverseMass, v);
-                else {
-                    const int failed = sweepIsoenergetic(pair, geometry, blockOrder, count, parameters, slot,
-                                                         inverseMass, v, energy);
-                    if (failed >= 0)
-                        failure[b - firstBlock] = blockStart[b] + failed;
-                }
+                const int failed = sweepPairs(pair, geometry, blockOrder, count, parameters, slot, inverseMass, v, energy);
+                if (failed >= 0)
+                    failure[b - firstBlock] = blockStart[b] + failed;
             }
         });
         // The first failing pair of the sequence: in the first block (of this first failing colour) that failed.

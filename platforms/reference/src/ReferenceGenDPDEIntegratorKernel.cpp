@@ -106,19 +106,13 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
     gatherSweepState(context, integrator, parameters, 1);
-    const int* slot = layout.slots;
-    if (!terms.internalEnergies)
-        sweepIsothermal(pairs.begin(), StoredPairGeometry(), order.data(), order.size(), parameters, slot,
-                        layout.slotInverseMasses.data(), layout.slotVelocities.data());
-    else {
-        // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies stay
-        // those before the step; positions have not moved yet), and the error names the particle and the step.
-        const int failed = sweepIsoenergetic(pairs.begin(), StoredPairGeometry(), order.data(), order.size(),
-                                             parameters, slot, layout.slotInverseMasses.data(),
-                                             layout.slotVelocities.data(), layout.slotEnergies.data());
-        if (failed >= 0)
-            failSweep(pairs, order, failed, step);
-    }
+    // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies stay
+    // those before the step; positions have not moved yet), and the error names the particle and the step.
+    const int failed = sweepPairs(pairs.begin(), StoredPairGeometry(), order.data(), order.size(), parameters,
+                                  layout.slots, layout.slotInverseMasses.data(), layout.slotVelocities.data(),
+                                  terms.internalEnergies ? layout.slotEnergies.data() : nullptr);
+    if (failed >= 0)
+        failSweep(pairs, order, failed, step);
     layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, 1);
 }
 

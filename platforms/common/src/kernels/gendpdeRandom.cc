@@ -91,3 +91,16 @@ DEVICE randomReal randomNormal(GenDPDEStream* s, GLOBAL const randomReal* RESTRI
             return u*zigguratX[layer];
     }
 }
+
+/**
+ * The random stream of one pair of the sweep, with the ziggurat's tables: what the sweep's pair step
+ * (GenDPDESweepPair.h, which follows this file in the sweep's program) draws its variates from.
+ */
+typedef struct {
+    GenDPDEStream stream;
+    GLOBAL const randomReal* zigguratX;
+    GLOBAL const randomReal* zigguratF;
+    GLOBAL const randomReal* zigguratRatio;
+} GenDPDEPairRandom;
+#define GENDPDE_PAIR_STREAM GenDPDEPairRandom
+#define GENDPDE_PAIR_NORMAL(s) randomNormal(&(s)->stream, (s)->zigguratX, (s)->zigguratF, (s)->zigguratRatio)

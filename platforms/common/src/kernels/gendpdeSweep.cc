@@ -20,8 +20,8 @@
  * bounded number of work groups, so that is how many blocks run together); every barrier is the whole group's, so
  * the blocks of a group go through their levels together. Pairs of a block are stored as (i << 16) | j in region
  * ranks (position in the region's list, by original index). Defines: SWEEP_BLOCKS_PER_GROUP, SWEEP_BLOCK_THREADS,
- * SWEEP_MAX_PARTICLES, the STATUS_* words (CommonGenDPDEStatus.h); after gendpdeCells.cc and gendpdeRandom.cc, with
- * the physics core in `mixed`. */
+ * SWEEP_MAX_PARTICLES, the STATUS_* words (CommonGenDPDEStatus.h); after gendpdeCells.cc, gendpdeRandom.cc and the
+ * sweep's pair step (GenDPDESweepPair.h), with the physics core in `mixed`. */
 
 #define SWEEP_GROUP_SIZE (SWEEP_BLOCKS_PER_GROUP*SWEEP_BLOCK_THREADS)
 
@@ -320,69 +320,27 @@ typedef struct {
     unsigned int seed, stepLow, stepHigh;
 } SweepConstants;
 
-/** e . (v_i - v_j), the relative velocity along e (velocities with the inverse mass in w, as velm). */
-inline DEVICE mixed relativeVelocityAlong(mixed3 e, const mixed4* vi, const mixed4* vj) {
-    return e.x*(vi->x - vj->x) + e.y*(vi->y - vj->y) + e.z*(vi->z - vj->z);
-}
-
-/** Physics::applyPairImpulse: the impulse P along e, P e/m_i to i and -P e/m_j to j. */
-inline DEVICE void applyPairImpulse(mixed3 e, mixed impulse, mixed4* vi, mixed4* vj) {
-    const mixed inverseMassI = vi->w, inverseMassJ = vj->w;
-    vi->x += e.x*(impulse*inverseMassI);
-    vi->y += e.y*(impulse*inverseMassI);
-    vi->z += e.z*(impulse*inverseMassI);
-    vj->x -= e.x*(impulse*inverseMassJ);
-    vj->y -= e.y*(impulse*inverseMassJ);
-    vj->z -= e.z*(impulse*inverseMassJ);
-}
-
-/** Physics::dissipativePairUpdate (the Isothermal mode's pair update): the core's impulse applied along e. */
-inline DEVICE void dissipativePairUpdate(mixed3 e, mixed omegaR, mixed friction, mixed noiseAmplitude,
-        mixed stepSize, mixed sqrtStepSize, mixed4* vi, mixed4* vj, mixed xi) {
-    mixed kineticChange;
-    const mixed impulse = gendpdePairImpulse(relativeVelocityAlong(e, vi, vj), omegaR, friction, noiseAmplitude,
-                                             stepSize, sqrtStepSize, vi->w + vj->w, xi, &kineticChange);
-    applyPairImpulse(e, impulse, vi, vj);
-}
-
 /**
- * One pair update of the sweep on copies of the two particles' velocities and internal energies, as the host's
- * (GenDPDEPairSweep.h): the physics core's gendpdePairUpdate, or the Isothermal mode's dissipativePairUpdate.
- * i < j original indices, d = r_i - r_j. Returns whether an internal energy is now <= 0 (Isoenergetic mode).
- * typeI, typeJ: the particles' classes (GenDPDETypes.h); pairTable[c_i numClasses + c_j] = (friction, heat conduction,
- * alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath), heatCapacityTable[c] = C_V of class c.
+ * One pair update of the sweep on copies of the two particles' velocities (inverse mass in w, as velm) and internal
+ * energies: the core's pair step (GenDPDESweepPair.h), as on the host and in LAMMPS, with the pair's stream keyed on
+ * (i, j). i < j original indices, d = r_i - r_j. Returns whether an internal energy is now <= 0 (Isoenergetic mode).
+ * typeI, typeJ: the particles' classes (GenDPDETypes.h); pairTable[c_i numClasses + c_j] = (friction, heat
+ * conduction, alpha = sqrt(2 k_B kappa), sigma of the Isothermal bath), heatCapacityTable[c] = C_V of class c.
  */
 inline DEVICE bool pairUpdate(int i, int j, mixed3 d, int typeI, int typeJ, mixed4* vi, mixed4* vj, mixed* ei,
         mixed* ej, SweepConstants c, GLOBAL const mixed4* RESTRICT pairTable,
         GLOBAL const mixed* RESTRICT heatCapacityTable, GLOBAL const randomReal* RESTRICT zigguratX,
         GLOBAL const randomReal* RESTRICT zigguratF, GLOBAL const randomReal* RESTRICT zigguratRatio) {
-    const mixed r = sqrt(dot(d, d));
-    if (r == 0 || (vi->w == 0 && vj->w == 0))
-        return false;
-    const mixed omegaR = gendpdeRandomWeight(r, c.cutoff);
-    const mixed3 e = d*(1/r);
     const mixed4 pairParameters = pairTable[typeI*c.numClasses + typeJ];
-    const mixed friction = pairParameters.x;
-    GenDPDEStream random;
-    initPairStream(&random, c.seed, c.stepLow, c.stepHigh, (unsigned int) i, (unsigned int) j);
-    if (!c.internalEnergies) {
-        dissipativePairUpdate(e, omegaR, friction, pairParameters.w, c.stepSize, c.sqrtStepSize, vi, vj,
-                              (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio));
-        return false;
-    }
-    mixed pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
-    gendpdePairTemperatures(*ei, *ej, heatCapacityTable[typeI], heatCapacityTable[typeJ], c.boltzmann,
-                            &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
-    // The stream's order: the impulse's variate, then the heat's.
-    const mixed xi = (c.dissipation ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
-    const mixed xiQ = (c.conduction ? (mixed) randomNormal(&random, zigguratX, zigguratF, zigguratRatio) : 0);
-    mixed impulse;
-    const int failed = gendpdePairUpdate(c.dissipation, c.conduction, pairThermalEnergy, inverseTemperatureDifference,
-            frictionFactor, relativeVelocityAlong(e, vi, vj), omegaR, vi->w, vj->w, friction, pairParameters.y,
-            pairParameters.z, c.stepSize, c.sqrtStepSize, xi, xiQ, ei, ej, &impulse);
-    if (c.dissipation)
-        applyPairImpulse(e, impulse, vi, vj);
-    return failed != 0;
+    GenDPDEPairRandom random;
+    initPairStream(&random.stream, c.seed, c.stepLow, c.stepHigh, (unsigned int) i, (unsigned int) j);
+    random.zigguratX = zigguratX;
+    random.zigguratF = zigguratF;
+    random.zigguratRatio = zigguratRatio;
+    return gendpdeSweepPair(c.dissipation, c.conduction, c.internalEnergies, d.x, d.y, d.z, sqrt(dot(d, d)),
+            c.cutoff, vi->w, vj->w, (mixed*) vi, (mixed*) vj, ei, ej, heatCapacityTable[typeI],
+            heatCapacityTable[typeJ], pairParameters.x, pairParameters.y, pairParameters.z, pairParameters.w,
+            c.boltzmann, c.stepSize, c.sqrtStepSize, &random) != 0;
 }
 
 /** The cells of a streamed block's region: each with its offsets' code and the end of its particles. */

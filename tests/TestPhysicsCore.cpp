@@ -199,7 +199,7 @@ void testPairUpdate() {
             ASSERT(impulse == 0.0);
         if (!conduction) // the kinetic change alone, in equal halves
             assertClose(ei - ei0, ej - ej0, 1e-13 * (ei0 + ej0), "equal halves of the kinetic change");
-        vi += e * (impulse / mi);   // (the sweep's pair step applies it so: core/tests/TestSweepPair.cpp)
+        vi += e * (impulse / mi); // (the sweep's pair step applies it so: core/tests/TestSweepPair.cpp)
         vj -= e * (impulse / mj);
         for (int k = 0; k < 3; k++)
             assertClose(momentum0[k], mi * vi[k] + mj * vj[k], 1e-13 * (mi + mj), "pair update momentum");

@@ -130,6 +130,28 @@ void testPackingFollowsTheTable() {
     }
 }
 
+void testRulesInAnyUnits() {
+    // What an engine in other units (LAMMPS) checks of each given parameter: a value GenDPDEForce accepts passes; a
+    // non-finite one never does; one below a range that starts at or above 0 does not; a dimensionless parameter
+    // (gamma_T) keeps its whole range.
+    std::string rule;
+    for (const Table::Law& law : Table::laws)
+        for (int k = 0; k < Table::numGivenParameters(law); k++) {
+            const Table::Parameter& p = Table::givenParameter(law, k);
+            ASSERT(Table::allowedInAnyUnits(p, allowedValue(p, k), rule));
+            ASSERT(!Table::allowedInAnyUnits(p, std::nan(""), rule));
+            ASSERT(!Table::allowedInAnyUnits(p, INFINITY, rule));
+            if (p.range.minimum >= 0.0)
+                ASSERT(!Table::allowedInAnyUnits(p, -1.0, rule));
+        }
+    const Table::Parameter& exponent = Table::taitParameters[3];
+    ASSERT(!Table::allowedInAnyUnits(exponent, 1.0, rule) && Table::allowedInAnyUnits(exponent, 100.0, rule));
+    ASSERT(!Table::allowedInAnyUnits(exponent, 100.5, rule));
+    ASSERT_EQUAL(std::string("in (1, 100]"), rule);
+    ASSERT(Table::allowedInAnyUnits(Table::taitParameters[1], -5.0, rule)); // pi0 may be negative
+    ASSERT_EQUAL(std::string("finite"), rule);
+}
+
 void testEveryEstimatorIsAcceptedAndRoundTrips() {
     namespace Estimators = DensityEstimators;
     ASSERT(Estimators::numEstimators >= 3);
@@ -153,7 +175,7 @@ void testEveryEstimatorIsAcceptedAndRoundTrips() {
         names.pop_back();
     }
     ASSERT(Estimators::find(-1) == nullptr && Estimators::findByName("V") == nullptr);
-    ASSERT(Estimators::findByName("vb") == &Estimators::estimators[GENDPDE_ESTIMATOR_VB]);   // LAMMPS's spelling
+    ASSERT(Estimators::findByName("vb") == &Estimators::estimators[GENDPDE_ESTIMATOR_VB]); // LAMMPS's spelling
 }
 
 void testEstimatorEntriesSayWhatTheCoreDoes() {
@@ -181,6 +203,7 @@ int main() {
         testEveryLawIsAcceptedAndRoundTrips();
         testWrongCountsAndRangesAreRefusedInTheTablesWords();
         testPackingFollowsTheTable();
+        testRulesInAnyUnits();
         testEveryEstimatorIsAcceptedAndRoundTrips();
         testEstimatorEntriesSayWhatTheCoreDoes();
     });

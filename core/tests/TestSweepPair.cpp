@@ -75,8 +75,8 @@ void testIsothermalIsTheCrankNicolsonStep() {
         for (int k = 0; k < 3; k++) {   // momentum, and the motion across e
             GenDPDECoreTest::checkClose(p.mi * p.vi[k] + p.mj * p.vj[k], p.mi * vi[k] + p.mj * vj[k],
                                         1e-13 * (p.mi + p.mj), "momentum");
-            GenDPDECoreTest::checkClose(p.vi[k] - e[k] * along(e, p.vi, zero), vi[k] - e[k] * along(e, vi, zero),
-                                        1e-13, "velocity of i across e");
+            GenDPDECoreTest::checkClose(p.vi[k] - e[k] * along(e, p.vi, zero), vi[k] - e[k] * along(e, vi, zero), 1e-13,
+                                        "velocity of i across e");
         }
     }
 }
@@ -92,8 +92,8 @@ void testIsoenergeticConservesAndReadsTheVariatesInOrder() {
         double ei = p.ei, ej = p.ej;
         CounterRandom::PairStream stream(7, trial, 2, 4), copy(7, trial, 2, 4);
         CORE_ASSERT(gendpdeSweepPair(dissipation, conduction, 1, p.d[0], p.d[1], p.d[2], p.r, cutoff, 1 / p.mi,
-                                     1 / p.mj, vi, vj, &ei, &ej, p.ci, p.cj, friction, kappa, alpha, 0.0, boltzmann,
-                                     dt, std::sqrt(dt), &stream)
+                                     1 / p.mj, vi, vj, &ei, &ej, p.ci, p.cj, friction, kappa, alpha, 0.0, boltzmann, dt,
+                                     std::sqrt(dt), &stream)
                     == 0);
         double total0 = p.ei + p.ej, total = ei + ej;
         for (int k = 0; k < 3; k++) {
@@ -141,8 +141,8 @@ void testAFailedEnergyIsReported() {
     // variate, whatever it is, adds at most a few units) flows from i to j and leaves eps_i = 10 far below zero.
     double vi[3] = {0, 0, 0}, vj[3] = {0, 0, 0}, ei = 10.0, ej = 1e-6;
     CounterRandom::PairStream stream(1, 1, 1, 2);
-    CORE_ASSERT(gendpdeSweepPair(0, 1, 1, 0.5, 0.0, 0.0, 0.5, cutoff, 1.0, 1.0, vi, vj, &ei, &ej, 1.0, 1.0, 0.0,
-                                 1000.0, 0.0, 0.0, boltzmann, dt, std::sqrt(dt), &stream)
+    CORE_ASSERT(gendpdeSweepPair(0, 1, 1, 0.5, 0.0, 0.0, 0.5, cutoff, 1.0, 1.0, vi, vj, &ei, &ej, 1.0, 1.0, 0.0, 1000.0,
+                                 0.0, 0.0, boltzmann, dt, std::sqrt(dt), &stream)
                 != 0);
     CORE_ASSERT(!(ei > 0) && ej > 0);
 }

@@ -212,6 +212,7 @@ void FixGenDPDE::makePairTables() {
     const int ntypes = atom->ntypes;
     const double mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
     const bool isoenergetic = (mode == ISOENERGETIC);
+    terms.dissipation = terms.conduction = 0;
     pairTables.inverseMass.assign(ntypes + 1, 0.0);
     pairTables.heatCapacity.assign(ntypes + 1, 0.0);
     pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
@@ -222,8 +223,10 @@ void FixGenDPDE::makePairTables() {
         for (int b = 1; b <= ntypes; b++) {
             const int ab = a * (ntypes + 1) + b;
             pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
-            pairTables.noise[ab] = isoenergetic ? std::sqrt(2.0 * boltzmann * pairTables.conduction[ab])
-                                                : std::sqrt(2.0 * frictionOfPair[ab] * boltzmann * temperature);
+            pairTables.noise[ab] = isoenergetic ? gendpdeHeatNoise(pairTables.conduction[ab], boltzmann)
+                                                : gendpdeBathNoise(frictionOfPair[ab], boltzmann, temperature);
+            terms.dissipation |= (mode != CONSERVATIVE && frictionOfPair[ab] > 0.0);
+            terms.conduction |= (isoenergetic && conductionOfPair[ab] > 0.0);
         }
     }
 }
@@ -235,7 +238,7 @@ void FixGenDPDE::reset_dt() {
 
 void FixGenDPDE::initial_integrate(int /*vflag*/) {
     // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
-    if (mode != CONSERVATIVE)
+    if (terms.dissipation || terms.conduction)
         sweep();
     kick();
     double **x = atom->x, **v = atom->v;
@@ -546,7 +549,8 @@ void FixGenDPDE::orderPairs() {
 }
 
 void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic) {
-    // The pair updates (docs/theory.md sections 5-7), each by the physics core as on every OpenMM platform.
+    // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM platform, with the
+    // run's terms (any pair of types with friction, with conduction), as GenDPDEIntegrator decides them.
     double **x = atom->x, **v = atom->v;
     const tagint* tag = atom->tag;
     const double* rmass = atom->rmass;
@@ -572,47 +576,21 @@ void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic
         const int i = pair.li, j = pair.lj;
         const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        if (r == 0.0)
-            continue;
         const double inverseMassI = rmass ? 1.0 / rmass[i] : inverseMassOfType[type[i]];
         const double inverseMassJ = rmass ? 1.0 / rmass[j] : inverseMassOfType[type[j]];
         const int ab = type[i] * (ntypes + 1) + type[j];
-        const double inverseDistance = 1.0 / r; // (as OpenMM's sweep forms the unit vector)
-        const double e[3] = {dx * inverseDistance, dy * inverseDistance, dz * inverseDistance};
-        const double u0 = e[0] * (v[i][0] - v[j][0]) + e[1] * (v[i][1] - v[j][1]) + e[2] * (v[i][2] - v[j][2]);
-        const double omegaR = gendpdeRandomWeight(r, range);
-        const double friction = frictionOfPair[ab];
         CounterRandom::PairStream random((std::uint32_t) seed, step, (std::uint32_t) pair.i, (std::uint32_t) pair.j);
-        double impulse;
-        if (isoenergetic) {
-            const double kappa = kappaOf[ab];
-            const bool dissipation = friction > 0.0, conduction = kappa > 0.0;
-            double pairThermalEnergy, inverseTemperatureDifference, frictionFactor;
-            gendpdePairTemperatures(sweepEnergy[i], sweepEnergy[j], capacity[type[i]], capacity[type[j]], boltzmann,
-                                    &pairThermalEnergy, &inverseTemperatureDifference, &frictionFactor);
-            const double xi = dissipation ? random.normal() : 0.0; // the stream's order: impulse, then heat
-            const double xiQ = conduction ? random.normal() : 0.0;
-            const int failed =
-                    gendpdePairUpdate(dissipation, conduction, pairThermalEnergy, inverseTemperatureDifference,
-                                      frictionFactor, u0, omegaR, inverseMassI, inverseMassJ, friction, kappa,
-                                      noiseOf[ab], dt, sqrtDt, xi, xiQ, &sweepEnergy[i], &sweepEnergy[j], &impulse);
-            if (failed) {
-                const int bad = sweepEnergy[i] > 0.0 ? j : i;
-                error->one(FLERR,
-                           "fix gendpde: atom {}'s internal energy became {} at step {} (it must stay > 0): reduce "
-                           "the timestep or raise the heat capacity",
-                           tag[bad], sweepEnergy[bad] * mvv2e, update->ntimestep);
-            }
-            if (!dissipation)
-                impulse = 0.0;
-        } else {
-            double kineticChange;
-            impulse = gendpdePairImpulse(u0, omegaR, friction, noiseOf[ab], dt, sqrtDt, inverseMassI + inverseMassJ,
-                                         random.normal(), &kineticChange);
-        }
-        for (int d = 0; d < 3; d++) {
-            v[i][d] += e[d] * (impulse * inverseMassI);
-            v[j][d] -= e[d] * (impulse * inverseMassJ);
+        const int failed = gendpdeSweepPair(terms.dissipation, terms.conduction, isoenergetic ? 1 : 0, dx, dy, dz, r,
+                                            range, inverseMassI, inverseMassJ, v[i], v[j],
+                                            isoenergetic ? &energy[i] : nullptr, isoenergetic ? &energy[j] : nullptr,
+                                            capacity[type[i]], capacity[type[j]], frictionOfPair[ab], kappaOf[ab],
+                                            noiseOf[ab], noiseOf[ab], boltzmann, dt, sqrtDt, &random);
+        if (failed) {
+            const int bad = energy[i] > 0.0 ? j : i;
+            error->one(FLERR,
+                       "fix gendpde: atom {}'s internal energy became {} at step {} (it must stay > 0): reduce "
+                       "the timestep or raise the heat capacity",
+                       tag[bad], energy[bad] * mvv2e, update->ntimestep);
         }
         modified[i] = modified[j] = touched[i] = touched[j] = 1;
     }

@@ -122,6 +122,11 @@ private:
     struct PairTables {
         std::vector<double> inverseMass, heatCapacity, conduction, noise; // by type, type pair
     } pairTables;
+    // The run's pair terms, as GenDPDEIntegrator decides them (GenDPDEStepTerms): whether any pair of types has
+    // friction, heat conduction (isoenergetic); the sweep runs if either does.
+    struct {
+        int dissipation = 0, conduction = 0;
+    } terms;
     int commPhase = 0; // 0: velocities, energies and cells (start of the sweep); 1: velocities and energies
     void kick();
     void makePairTables();

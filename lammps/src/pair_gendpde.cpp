@@ -83,7 +83,7 @@ void PairGenDPDE::settings(int narg, char** arg) {
         error->all(FLERR, "pair_style gendpde: background pressure p_b = {} is not allowed: it must be >= 0 and finite",
                    arg[4]);
     for (Law& law : laws)
-        setBackground(law);
+        pack(law);
     gendpdeEstimatorConstants(cut_global, cut_global / fcut, &kPerDensity, &volumeScale, &derivativeScale, &momentScale,
                               &densitySoftening);
     gendpdeDensityWeightScales(cut_global, &weightScale, &weightDerivativeScale);
@@ -117,44 +117,27 @@ void PairGenDPDE::coeff(int narg, char** arg) {
     if (found == nullptr)
         error->all(FLERR, "pair_coeff gendpde: law '{}' is not allowed: it must be one of GenDPDEForce's, {}", name,
                    EquationsOfState::listOfLaws());
-    const int numTait = found->extendsTait ? 4 : 0, numGiven = numTait + found->numParameters;
-    if (narg != 3 + numGiven)
-        error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}{}{}); got {}", name, numGiven,
-                   found->extendsTait ? "n0, pi0, B_T, gamma_T" : "",
-                   found->extendsTait && found->numParameters ? ", " : "", EquationsOfState::listOfParameters(*found),
+    const int numGiven = EquationsOfState::numGivenParameters(*found);
+    if (narg != 3 + numGiven) {
+        std::string names;
+        for (int k = 0; k < numGiven; k++)
+            names += (k > 0 ? ", " : "") + std::string(EquationsOfState::givenParameter(*found, k).name);
+        error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}); got {}", name, numGiven, names,
                    narg - 3);
-    double value[EquationsOfState::maxParameters + 4];
-    for (int k = 0; k < numGiven; k++)
-        value[k] = utils::numeric(FLERR, arg[3 + k], false, lmp);
-    auto require = [&](bool ok, const std::string& what, double v, const char* allowed) {
-        if (!ok)
-            error->all(FLERR, "pair_coeff gendpde: {} {} = {} is not allowed: it must be {}", name, what, v, allowed);
-    };
+    }
+    // Each parameter by the rule of its range that holds in any units (GenDPDEForce's ranges are in OpenMM's).
     Law law;
     law.law = found->coreId;
-    if (found->extendsTait) {
-        require(value[0] > 0.0 && std::isfinite(value[0]), "reference density n0", value[0], "> 0 and finite");
-        require(std::isfinite(value[1]), "reference pressure pi0", value[1], "finite");
-        require(value[2] > 0.0 && std::isfinite(value[2]), "bulk modulus B_T", value[2], "> 0 and finite");
-        require(value[3] > 1.0 && value[3] <= 100.0, "exponent gamma_T", value[3], "> 1 and <= 100");
-        law.integerPower = gendpdeTaitIntegerPower(value[3]);
+    for (int k = 0; k < numGiven; k++) {
+        const EquationsOfState::Parameter& parameter = EquationsOfState::givenParameter(*found, k);
+        const double value = utils::numeric(FLERR, arg[3 + k], false, lmp);
+        std::string rule;
+        if (!EquationsOfState::allowedInAnyUnits(parameter, value, rule))
+            error->all(FLERR, "pair_coeff gendpde: {} {} = {} is not allowed: it must be {}", name,
+                       parameter.description, value, rule);
+        law.given[k] = value;
     }
-    for (int k = 0; k < found->numParameters; k++) {
-        const EquationsOfState::Parameter& parameter = found->parameters[k];
-        const double v = value[numTait + k];
-        if (parameter.excludeMinimum || parameter.range.minimum > 0.0)
-            require(v > 0.0 && std::isfinite(v), parameter.description, v, "> 0 and finite");
-        else if (parameter.range.minimum == 0.0)
-            require(v >= 0.0 && std::isfinite(v), parameter.description, v, ">= 0 and finite");
-        else
-            require(std::isfinite(v), parameter.description, v, "finite");
-    }
-    for (int k = 0; k < numGiven; k++)
-        law.parameter[k] = value[k];
-    // the background pressure: added to pi0 of a law that extends Tait, the last core parameter of any other
-    law.backgroundIndex = found->extendsTait ? 1 : found->numCoreParameters() - 1;
-    law.reference = law.parameter[law.backgroundIndex];
-    setBackground(law);
+    pack(law);
     int count = 0;
     for (int i = ilo; i <= ihi; i++)
         if (i >= jlo && i <= jhi) {
@@ -167,11 +150,14 @@ void PairGenDPDE::coeff(int narg, char** arg) {
                    arg[0], arg[1]);
 }
 
-void PairGenDPDE::setBackground(Law& law) const {
-    // The laws take p_b as the core reads it (gendpdeLocalEquationOfState): added to pi0 of a law that extends Tait,
-    // as the last parameter of any other.
+static_assert(EquationsOfState::maxParameters + 4 <= 12 && EquationsOfState::coreStride() <= 12,
+              "PairGenDPDE::Law holds 12 given and 12 core parameters");
+
+void PairGenDPDE::pack(Law& law) const {
+    // The core's parameters with the background pressure, packed as GenDPDEForce packs them (packCoreParameters).
     if (law.law >= 0)
-        law.parameter[law.backgroundIndex] = law.reference + background;
+        law.integerPower = EquationsOfState::packCoreParameters(EquationsOfState::laws[law.law], law.given, background,
+                                                                law.parameter);
 }
 
 void PairGenDPDE::init_style() {
@@ -350,20 +336,22 @@ void PairGenDPDE::compute(int eflag, int vflag) {
     if (vflag_fdotr)
         virial_fdotr_compute(); // (which clears vflag_fdotr)
     if (background != 0.0) {
-        // docs/theory.md section 12: U gains p_b V_box and the virial -p_b V_box along each axis, shared equally by the
-        // particles (as GenDPDEForce computes them)
-        const double share = background * domain->xprd * domain->yprd * domain->zprd / (double) atom->natoms;
+        // docs/theory.md section 12: U gains p_b V_box and the virial's trace -3 p_b V_box (the core's box term),
+        // shared equally by the particles (as GenDPDEForce shares them)
+        const double volume = domain->xprd * domain->yprd * domain->zprd, natoms = (double) atom->natoms;
+        const double share = gendpdeBackgroundEnergy(background, volume) / natoms;
+        const double virialShare = gendpdeBackgroundVirial(background, volume) / (3.0 * natoms);
         if (eflag_global)
             eng_vdwl += share * nlocal;
         if (virial)
             for (int k = 0; k < 3; k++)
-                this->virial[k] -= share * nlocal;
+                this->virial[k] += virialShare * nlocal;
         for (int i = 0; i < nlocal; i++) {
             if (eflag_atom)
                 eatom[i] += share;
             if (vflag_atom)
                 for (int k = 0; k < 3; k++)
-                    vatom[i][k] -= share;
+                    vatom[i][k] += virialShare;
         }
     }
 }

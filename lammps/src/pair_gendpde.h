@@ -62,13 +62,12 @@ private:
   /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
     struct Law {
         int law = -1;                  // GENDPDE_EOS_*; -1: not set
-        double parameter[12] = {0.0};  // in the core's order, the background pressure included
+        double given[12] = {0.0};      // as pair_coeff gives them (the Tait four first if the law extends Tait)
+        double parameter[12] = {0.0};  // in the core's order, the background pressure included (pack)
         int integerPower = -1;
-        int backgroundIndex = 1;       // the parameter the background pressure adds to
-        double reference = 0.0;        // that parameter before the background pressure
     };
     double background = 0.0;
-    void setBackground(Law& law) const;
+    void pack(Law& law) const;
     double cut_global = 0.0, fcut = 1.0;
     int estimator = 0;
     double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;

@@ -67,12 +67,12 @@ double GenDPDEForceImpl::calcForcesAndEnergy(ContextImpl& context, bool includeF
     numEvaluations++;
     double energy = kernel.getAs<CalcGenDPDEForceKernel>().execute(context, includeForces, includeEnergy);
     if (includeEnergy && backgroundPressure != 0)
-        energy += backgroundPressure * boxVolume(context);
+        energy += Physics::gendpdeBackgroundEnergy(backgroundPressure, boxVolume(context));
     return energy;
 }
 
 double GenDPDEForceImpl::backgroundVirial(ContextImpl& context) const {
-    return backgroundPressure == 0 ? 0.0 : -3 * backgroundPressure * boxVolume(context);
+    return backgroundPressure == 0 ? 0.0 : Physics::gendpdeBackgroundVirial(backgroundPressure, boxVolume(context));
 }
 
 void GenDPDEForceImpl::checkBackgroundPressure() const {

@@ -103,21 +103,18 @@ Physics::LocalEquationOfState GenDPDEPlugin::packEquationOfState(GenDPDEForce::E
                                                                  const std::vector<double>& parameters,
                                                                  const TaitParameters& tait,
                                                                  double backgroundPressure) {
-    // The core's parameters as the table lays them out (GenDPDEEquationsOfState.h), every type the same number (the
-    // platforms upload them with one stride). The background pressure p_b adds to every law's pressure (and -p_b/n to
-    // its free energy): to pi0 of a law that extends Tait, as the last parameter of any other.
+    // The given parameters (the Tait four first for a law that extends Tait) packed as the core reads them, with
+    // the background pressure (GenDPDEEquationsOfState.h, packCoreParameters: as the LAMMPS package packs them).
     const EquationsOfState::Law& description = EquationsOfState::laws[law];
+    std::vector<double> given;
+    if (description.extendsTait)
+        given = {tait.referenceDensity, tait.referencePressure, tait.bulkModulus, tait.exponent};
+    given.insert(given.end(), parameters.begin(), parameters.end());
     Physics::LocalEquationOfState eos;
     eos.law = description.coreId;
-    std::vector<double>& core = eos.parameter;
-    if (description.extendsTait) {
-        core = {tait.referenceDensity, tait.referencePressure + backgroundPressure, tait.bulkModulus, tait.exponent};
-        eos.integerPower = Physics::TaitEquationOfState::integerPowerOf(tait.exponent);
-    }
-    core.insert(core.end(), parameters.begin(), parameters.end());
-    if (!description.extendsTait)
-        core.push_back(backgroundPressure);
-    core.resize(EquationsOfState::coreStride(), 0.0);
+    eos.parameter.resize(EquationsOfState::coreStride());
+    eos.integerPower =
+            EquationsOfState::packCoreParameters(description, given.data(), backgroundPressure, eos.parameter.data());
     return eos;
 }
 

@@ -77,8 +77,10 @@ def read_dump(path):
 class Scene:
     """A liquid in OpenMM (System, force, positions) and its LAMMPS input in lj units (see the module docstring)."""
 
-    def __init__(self, estimator=GenDPDEForce.VB, slab=False, two_types=False, cells=8, seed=1):
+    def __init__(self, estimator=GenDPDEForce.VB, slab=False, two_types=False, cells=8, seed=1,
+                 mixed_friction=MIXED_FRICTION):
         system, force, positions = lattice_liquid(cells, estimator=estimator, seed=seed)
+        self.mixed_friction = mixed_friction
         edges = [system.getDefaultPeriodicBoxVectors()[k][k]._value for k in range(3)]
         if slab:
             # A slab: the box twice as tall, so the liquid has two free surfaces (V-C's moment terms act there).
@@ -107,7 +109,7 @@ class Scene:
         integrator.setTemperature(TEMPERATURE)
         if self.num_types > 1:
             integrator.addTypeHeatCapacity(1, SECOND_HEAT_CAPACITY)
-            integrator.addTypePair(0, 1, MIXED_FRICTION, MIXED_CONDUCTION)
+            integrator.addTypePair(0, 1, self.mixed_friction, MIXED_CONDUCTION)
         return integrator
 
     def pair_commands(self):
@@ -131,7 +133,7 @@ class Scene:
                  f"conduction * * {KB * conduction!r}", f"temperature {KB * TEMPERATURE!r}",
                  f"initial {initial or repr(KB * TEMPERATURE)}"]
         if self.num_types > 1:
-            words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {MIXED_FRICTION!r}",
+            words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {self.mixed_friction!r}",
                       f"conduction 1 2 {KB * MIXED_CONDUCTION!r}"]
         return " ".join(words)
 
@@ -293,6 +295,20 @@ def test_two_types_with_thermal_law_follow_reference(lammps, tmp_path, mode_name
     positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 20, velocities)
     lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 20, velocities,
                                                           2)
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+def test_a_pair_without_friction_reads_its_stream_as_openmm_does(lammps, tmp_path):
+    """Unlike pairs without friction (but with heat conduction) in a run with friction: a pair's stream is read the
+    same way whatever its own parameters (the impulse's variate, then the heat's; core/include/gendpde/
+    GenDPDESweepPair.h), so LAMMPS follows OpenMM's trajectory to rounding after 20 steps on 2 ranks. (Before the two
+    engines shared the pair step, LAMMPS drew no impulse variate for such a pair and gave its heat the impulse's.)"""
+    scene = Scene(GenDPDEForce.VB, two_types=True, mixed_friction=0.0)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
+                                                          "isoenergetic", 20, velocities, 2)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 

@@ -24,7 +24,7 @@ struct Estimator {
     const char* description;   // for messages and help ("partition of unity")
     int coreId;                // its GENDPDE_ESTIMATOR_* number in the physics core
     bool readsCutoffScaling;   // whether f_cut (GenDPDEForce::setCutoffScaling) changes it: Rt = R/f_cut
-    bool needsMoments;         // whether it reads the first moments of the neighbourhoods (gendpdeEstimatorNeedsMoments)
+    bool needsMoments; // whether it reads the first moments of the neighbourhoods (gendpdeEstimatorNeedsMoments)
     /**
      * What a suggested time step is multiplied by, for the same conserved-energy drift as V-B's where the estimator
      * matters most (1 where it behaves as V-B). V-C: 0.1. Its surface factor makes a free-surface particle's energy

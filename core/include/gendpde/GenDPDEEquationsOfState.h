@@ -14,6 +14,8 @@
 
 #include "gendpde/GenDPDEPhysicsCoreDouble.h"
 #include "gendpde/ParameterRanges.h"
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace GenDPDEPlugin {
@@ -111,6 +113,80 @@ inline std::string listOfParameters(const Law& law) {
     for (int k = 0; k < law.numParameters; k++)
         list += (k == 0 ? "" : ", ") + std::string(law.parameters[k].description);
     return list;
+}
+
+/**
+ * The four Tait parameters that a law extending Tait takes first, n0, pi0, B_T, gamma_T (GenDPDEForce::
+ * setTaitParameters), described as the laws' own parameters are.
+ */
+constexpr Parameter taitParameters[4] = {
+        {"n0", "reference density n0", ParameterChecks::Ranges::referenceDensity},
+        {"pi0", "reference pressure pi0", ParameterChecks::Ranges::referencePressure},
+        {"B_T", "bulk modulus B_T", ParameterChecks::Ranges::bulkModulus},
+        {"gamma_T", "Tait exponent gamma_T", ParameterChecks::Ranges::taitExponent, true},
+};
+
+/** The number of parameters a law is given: the four Tait parameters first if it extends Tait, then its own. */
+constexpr int numGivenParameters(const Law& law) {
+    return (law.extendsTait ? 4 : 0) + law.numParameters;
+}
+
+/** The k-th parameter a law is given (numGivenParameters: the Tait four first if it extends Tait). */
+inline const Parameter& givenParameter(const Law& law, int k) {
+    return law.extendsTait ? (k < 4 ? taitParameters[k] : law.parameters[k - 4]) : law.parameters[k];
+}
+
+/**
+ * Whether value is allowed for parameter p by the rule that holds in any units (an engine whose units are not
+ * OpenMM's, as LAMMPS's): finite, and of the sign its range asks (> 0 where the range starts above 0 or excludes 0,
+ * >= 0 where it starts at 0); a dimensionless parameter (no units) must lie in its range itself. rule receives the
+ * rule in words ("> 0 and finite", "in (1, 100]").
+ */
+inline bool allowedInAnyUnits(const Parameter& p, double value, std::string& rule) {
+    const ParameterChecks::Range& range = p.range;
+    if (range.units[0] == '\0') {
+        char text[64];
+        std::snprintf(text, sizeof(text), "in %s%g, %g]", p.excludeMinimum ? "(" : "[", range.minimum, range.maximum);
+        rule = text;
+        return (p.excludeMinimum ? value > range.minimum : value >= range.minimum) && value <= range.maximum;
+    }
+    const bool finite = std::isfinite(value);
+    if (range.minimum > 0.0 || (p.excludeMinimum && range.minimum == 0.0)) {
+        rule = "> 0 and finite";
+        return finite && value > 0.0;
+    }
+    if (range.minimum == 0.0) {
+        rule = ">= 0 and finite";
+        return finite && value >= 0.0;
+    }
+    rule = "finite";
+    return finite;
+}
+
+/**
+ * The physics core's parameters of a law (gendpdeLocalEquationOfState) from what it is given, given[0 ..
+ * numGivenParameters(law)) (the Tait four first if it extends Tait, then its own), and the background pressure p_b,
+ * which adds to every law's pressure (and -p_b/n to its free energy): to pi0 of a law that extends Tait, as the last
+ * parameter of any other. Writes coreStride() values to core (unused ones 0: every type has the same number, which
+ * the platforms upload with one stride). Returns the Tait law's integer power (gendpdeTaitIntegerPower of gamma_T),
+ * or -1 for a law that does not extend Tait.
+ */
+inline int packCoreParameters(const Law& law, const double* given, double backgroundPressure, double* core) {
+    int n = 0, integerPower = -1;
+    if (law.extendsTait) {
+        core[n++] = given[0];
+        core[n++] = given[1] + backgroundPressure;
+        core[n++] = given[2];
+        core[n++] = given[3];
+        integerPower = Physics::gendpdeTaitIntegerPower(given[3]);
+    }
+    for (int k = 0; k < law.numParameters; k++)
+        core[n++] = given[(law.extendsTait ? 4 : 0) + k];
+    if (!law.extendsTait)
+        core[n++] = backgroundPressure;
+    while (n < coreStride())
+        core[n++] = 0.0;
+    return integerPower;
 }
 
 } // namespace EquationsOfState

@@ -576,6 +576,21 @@ GENDPDE_CORE void gendpdeAddHalfPairVirial(GENDPDE_REAL fx, GENDPDE_REAL fy, GEN
     virial[8] += hz * dz;
 }
 
+/* ---- The background pressure's box term (section 12) ------------------------------------------------------------ */
+
+/** The box term of the energy, p_b V_box (energy), of a background pressure p_b in a periodic box of volume V_box. */
+GENDPDE_CORE GENDPDE_REAL gendpdeBackgroundEnergy(GENDPDE_REAL backgroundPressure, GENDPDE_REAL boxVolume) {
+    return backgroundPressure * boxVolume;
+}
+
+/**
+ * The box term's virial, the trace W_xx + W_yy + W_zz = -3 p_b V_box (energy) of -dU/d(strain): each diagonal element
+ * is a third of it, the off-diagonal ones zero. (Engines share it equally among the particles.)
+ */
+GENDPDE_CORE GENDPDE_REAL gendpdeBackgroundVirial(GENDPDE_REAL backgroundPressure, GENDPDE_REAL boxVolume) {
+    return -3 * backgroundPressure * boxVolume;
+}
+
 /* ---- The integrator's pair updates (sections 5-7) --------------------------------------------------------------- */
 
 /**

@@ -187,9 +187,8 @@ __attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, cons
  * the caller restores the state), or -1.
  */
 template <class Pair, class Geometry>
-int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, int count,
-               const PairSweepParameters& p, const int* slot, const double* inverseMasses, OpenMM::Vec3* velocities,
-               double* energies) {
+int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, int count, const PairSweepParameters& p,
+               const int* slot, const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
     const int dissipation = p.terms.dissipation, conduction = p.terms.conduction;
     const int internalEnergies = p.terms.internalEnergies ? 1 : 0;
     for (int n = 0; n < count; n++) {
@@ -202,11 +201,11 @@ int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, in
         const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int failed = Physics::gendpdeSweepPair(
-                dissipation, conduction, internalEnergies, delta[0], delta[1], delta[2], r, p.cutoff,
-                inverseMasses[i], inverseMasses[j], &velocities[i][0], &velocities[j][0],
-                internalEnergies ? &energies[i] : nullptr, internalEnergies ? &energies[j] : nullptr,
-                p.table->heatCapacity[a], p.table->heatCapacity[b], p.table->friction[ab], p.table->heatConduction[ab],
-                p.heatNoise[ab], p.bathNoise[ab], Physics::Boltzmann, p.stepSize, p.sqrtStepSize, &random);
+                dissipation, conduction, internalEnergies, delta[0], delta[1], delta[2], r, p.cutoff, inverseMasses[i],
+                inverseMasses[j], &velocities[i][0], &velocities[j][0], internalEnergies ? &energies[i] : nullptr,
+                internalEnergies ? &energies[j] : nullptr, p.table->heatCapacity[a], p.table->heatCapacity[b],
+                p.table->friction[ab], p.table->heatConduction[ab], p.heatNoise[ab], p.bathNoise[ab],
+                Physics::Boltzmann, p.stepSize, p.sqrtStepSize, &random);
         if (failed)
             return n;
     }

@@ -181,7 +181,7 @@ void CommonGenDPDEBlockSweep::compile() {
     programDefines["SWEEP_BLOCKS_PER_GROUP"] = cc.intToString(blocksPerGroup);
     programDefines["SWEEP_BLOCK_THREADS"] = cc.intToString(blockThreads);
     ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::GenDPDESweepPair
-                                                           + CommonGenDPDEKernelSources::gendpdeSweep,
+                                                       + CommonGenDPDEKernelSources::gendpdeSweep,
                                                programDefines);
     orderKernel = program->createKernel("orderBlocks");
     {

@@ -103,7 +103,8 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
             for (int b = firstBlock + begin; b < firstBlock + end; b++) {
                 const int* blockOrder = order + blockStart[b];
                 const int count = blockStart[b + 1] - blockStart[b];
-                const int failed = sweepPairs(pair, geometry, blockOrder, count, parameters, slot, inverseMass, v, energy);
+                const int failed =
+                        sweepPairs(pair, geometry, blockOrder, count, parameters, slot, inverseMass, v, energy);
                 if (failed >= 0)
                     failure[b - firstBlock] = blockStart[b] + failed;
             }

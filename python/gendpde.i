@@ -37,6 +37,7 @@ static int isNumpyAvailable() {
 #include "GenDPDEIntegrator.h"
 #include "gendpde/GenDPDEDensityEstimators.h"
 #include "gendpde/GenDPDEEquationsOfState.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/GenDPDEPhysics.h"
 #include "internal/GenDPDETypes.h"
 #include "internal/LiquidArgon.h"
@@ -325,6 +326,25 @@ void equationOfStateParameterRange(int law, int index, double& minimum, double& 
 /** Whether a parameter's minimum itself is refused. */
 bool equationOfStateParameterExcludesMinimum(int law, int index) {
     return requireParameter(law, index).excludeMinimum;
+}
+/** The number of sweep cells along one direction of this extent for this pair range (periodic or not), as every
+ *  engine computes them (GenDPDESweepDefinition.h). */
+int sweepCellCount(double extent, double range, bool periodic) {
+    if (!(extent > 0.0) || !(range > 0.0))
+        throw OpenMM::OpenMMException("sweepCellCount: the extent and the range must be > 0");
+    return SweepDefinition::cellCount(extent, range, periodic);
+}
+/** The fewest sweep cells per direction that a sweep split across subdomains (the LAMMPS fix) takes. */
+int sweepMinCellsAcrossSubdomains() {
+    return SweepDefinition::minCellsAcrossSubdomains;
+}
+/** The ghost cutoff a sweep split across subdomains (the LAMMPS fix) needs for a periodic box of these widths, pair
+ *  range and neighbour skin (GenDPDESweepDefinition.h): 1.5 widths of the widest sweep cell plus the skin. */
+double sweepGhostCutoff(double widthX, double widthY, double widthZ, double range, double skin) {
+    if (!(widthX > 0.0 && widthY > 0.0 && widthZ > 0.0 && range > 0.0 && skin >= 0.0))
+        throw OpenMM::OpenMMException("sweepGhostCutoff: the widths and the range must be > 0, the skin >= 0");
+    const double widths[3] = {widthX, widthY, widthZ};
+    return SweepDefinition::ghostCutoff(widths, range, skin);
 }
 /** The number of density estimators (GenDPDEForce.DensityEstimator values 0 .. n-1; GenDPDEDensityEstimators.h). */
 int numDensityEstimators() {

@@ -197,12 +197,7 @@ void FixGenDPDE::setup_pre_force(int /*vflag*/) {
 }
 
 double FixGenDPDE::ghostNeed() const {
-    double widest = 0.0;
-    for (int d = 0; d < 3; d++) {
-        const int n = SweepDefinition::cellCount(domain->prd[d], pair->range(), true);
-        widest = std::max(widest, domain->prd[d] / n);
-    }
-    return 1.5 * widest + neighbor->skin;
+    return SweepDefinition::ghostCutoff(domain->prd, pair->range(), neighbor->skin);
 }
 
 void FixGenDPDE::makePairTables() {
@@ -286,11 +281,11 @@ void FixGenDPDE::prepareCells() {
     const double range = pair->range();
     for (int d = 0; d < 3; d++) {
         numCells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
-        if (numCells[d] < 4)
+        if (numCells[d] < SweepDefinition::minCellsAcrossSubdomains)
             error->all(FLERR,
-                       "fix gendpde: the box is {} wide along {}, less than 4 pair ranges R = {}: too small for "
+                       "fix gendpde: the box is {} wide along {}, less than {} pair ranges R = {}: too small for "
                        "the sweep across subdomains",
-                       domain->prd[d], "xyz"[d], range);
+                       domain->prd[d], "xyz"[d], SweepDefinition::minCellsAcrossSubdomains, range);
         cellWidth[d] = domain->prd[d] / numCells[d];
         const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d], w = cellWidth[d];
         int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1;

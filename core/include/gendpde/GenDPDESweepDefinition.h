@@ -33,6 +33,26 @@ inline int cellCount(double extent, double range, bool periodic) {
 }
 
 /**
+ * The fewest cells per direction of a periodic box that a sweep split across subdomains takes (the LAMMPS fix: a
+ * block of 2 cells and its neighbours' reach must fit in the box without meeting their own images).
+ */
+const int minCellsAcrossSubdomains = 4;
+
+/**
+ * How far around its subdomain an engine that splits the sweep across subdomains (the LAMMPS fix) needs the other
+ * subdomains' particles (ghosts), for a periodic box of these three widths, pair range and neighbour skin: 1.5
+ * widths of the widest sweep cell (a block's pairs reach its 3 x 3 x 3 cells around a centre that may lie anywhere
+ * in the subdomain) plus the skin (a particle moves up to half the skin between neighbour lists, and so may its
+ * partner). The box must have at least minCellsAcrossSubdomains cells along each direction.
+ */
+inline double ghostCutoff(const double widths[3], double range, double skin) {
+    double widest = 0.0;
+    for (int d = 0; d < 3; d++)
+        widest = std::max(widest, widths[d] / cellCount(widths[d], range, true));
+    return 1.5 * widest + skin;
+}
+
+/**
  * The cell along one direction of a particle at fractional coordinate s of a periodic box (any real s: the particle
  * is wrapped), of numCells cells.
  */

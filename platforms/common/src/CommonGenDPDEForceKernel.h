@@ -52,6 +52,13 @@ private:
     /** The slot (position in OpenMM's per-atom arrays) of a particle. */
     int slotOf(int particle) const;
     void readParameters(const GenDPDEForce& force);
+    /** The setup's stages (CommonGenDPDEForceSetup.cpp): the per-particle arrays and the neighbour list; the V-B
+     *  tables; the kernels of the list, of the density pass, of the forces and virials, with their arguments. */
+    void allocateArrays(const OpenMM::System& system);
+    void uploadVolumeTables();
+    void createListKernels(OpenMM::ComputeProgram& program);
+    void createDensityKernel(OpenMM::ComputeProgram& program);
+    void createForceKernels(OpenMM::ComputeProgram& program);
     /**
      * Build the grid and run the density pass; throws (after the pass) if a particle's state is invalid, unless the
      * checks are deferred.

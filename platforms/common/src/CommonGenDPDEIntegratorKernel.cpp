@@ -81,26 +81,14 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     this->cutoff = cutoff;
     this->seed = seed;
     periodic = context.getSystem().usesPeriodicBoundaryConditions();
-    const int numAtoms = cc.getNumAtoms();
-    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
-    energies.initialize(cc, numAtoms, mixedSize, "gendpdeInternalEnergies");
-    densityEntropies.initialize(cc, numAtoms, mixedSize, "gendpdeDensityEntropies");
-    savedEnergies.initialize(cc, numAtoms, mixedSize, "gendpdeSavedInternalEnergies");
-    savedVelm.initialize(cc, cc.getVelm().getSize(), cc.getVelm().getElementSize(), "gendpdeSavedVelm");
-    kinetic.initialize(cc, numAtoms, mixedSize, "gendpdeKineticEnergy");
-    std::vector<int> words(DeviceStatus::Size, 0);
-    resetStatusWords(words);
-    status.initialize<int>(cc, words.size(), "gendpdeStepStatus");
-    status.upload(words);
-    noForceErrors.initialize<int>(cc, 2, "gendpdeNoForceErrors");
-    noForceErrors.upload(std::vector<int>(2, DeviceStatus::NoValue));
-    setInternalEnergies(internalEnergies);
+    allocateArrays(internalEnergies);
 
     // Per-type parameters (GenDPDETypes.h): each particle's class by original index, the tables by class, all
     // uploaded by uploadTypeTables() (their sizes follow the integrator's entries).
     typeTables.reset(new IntegratorTypeTables(
             ParticleTypeIndex(particleTypes, context.getSystem().getNumParticles(), "GenDPDEIntegrator")));
-    atomType.initialize<int>(cc, numAtoms, "gendpdeAtomType");
+    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
+    atomType.initialize<int>(cc, cc.getNumAtoms(), "gendpdeAtomType");
     pairTable.initialize(cc, 1, 4 * mixedSize, "gendpdePairTable");
     heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
 
@@ -115,6 +103,35 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
             + CommonGenDPDEKernelSources::gendpdeStatus;
     ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::gendpdeIntegrator, defines);
     grid->createKernels(program);
+    createStepKernels(program);
+    if (cutoff > 0.0) {
+        sweep.reset(new CommonGenDPDEBlockSweep(cc, profiler, defines, sources, localMemory));
+        Vec3 box[3];
+        context.getSystem().getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
+        sweep->estimateCapacities(context.getSystem().getNumParticles(), periodic ? box : nullptr, cutoff);
+    }
+}
+
+void CommonIntegrateGenDPDEStepKernel::allocateArrays(const std::vector<double>& internalEnergies) {
+    // The internal energies and their saved copies, the status words, the kinetic energies.
+    const int numAtoms = cc.getNumAtoms();
+    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
+    energies.initialize(cc, numAtoms, mixedSize, "gendpdeInternalEnergies");
+    densityEntropies.initialize(cc, numAtoms, mixedSize, "gendpdeDensityEntropies");
+    savedEnergies.initialize(cc, numAtoms, mixedSize, "gendpdeSavedInternalEnergies");
+    savedVelm.initialize(cc, cc.getVelm().getSize(), cc.getVelm().getElementSize(), "gendpdeSavedVelm");
+    kinetic.initialize(cc, numAtoms, mixedSize, "gendpdeKineticEnergy");
+    std::vector<int> words(DeviceStatus::Size, 0);
+    resetStatusWords(words);
+    status.initialize<int>(cc, words.size(), "gendpdeStepStatus");
+    status.upload(words);
+    noForceErrors.initialize<int>(cc, 2, "gendpdeNoForceErrors");
+    noForceErrors.upload(std::vector<int>(2, DeviceStatus::NoValue));
+    setInternalEnergies(internalEnergies);
+}
+
+void CommonIntegrateGenDPDEStepKernel::createStepKernels(ComputeProgram& program) {
+    // The kernels of the step (kernels/gendpdeIntegrator.cc) with their arguments.
     startKernel = program->createKernel("startStep");
     {
         using namespace StartArgument;
@@ -169,12 +186,6 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
             .later(KineticArgument::HalfStep)
             .array(KineticArgument::Energy, kinetic)
             .done(KineticArgument::Count);
-    if (cutoff > 0.0) {
-        sweep.reset(new CommonGenDPDEBlockSweep(cc, profiler, defines, sources, localMemory));
-        Vec3 box[3];
-        context.getSystem().getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
-        sweep->estimateCapacities(context.getSystem().getNumParticles(), periodic ? box : nullptr, cutoff);
-    }
 }
 
 const std::vector<double>& CommonIntegrateGenDPDEStepKernel::getInternalEnergies() const {

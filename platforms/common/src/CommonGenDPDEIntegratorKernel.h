@@ -56,6 +56,9 @@ public:
 
 private:
     /** The sweep's tables by class (and each particle's class), uploaded when the integrator's entries changed. */
+    /** initialize()'s stages: the per-particle arrays and status words; the step's kernels with their arguments. */
+    void allocateArrays(const std::vector<double>& internalEnergies);
+    void createStepKernels(OpenMM::ComputeProgram& program);
     void uploadTypeTables(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
     /** Read the status words: adjust the sweep's capacities, and throw the run's failure if it stopped. */
     void readStatus(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator);
@@ -75,12 +78,12 @@ private:
     CommonGenDPDEForceChecks* deferredChecks = nullptr;
     GenDPDEStepTerms runTerms;
     double runStepSize = 0.0;
-    std::unique_ptr<CommonGenDPDECellGrid> grid;   // own cells, when no force's can be reused
+    std::unique_ptr<CommonGenDPDECellGrid> grid; // own cells, when no force's can be reused
     std::unique_ptr<CommonGenDPDEBlockSweep> sweep;
     int streamedBlocks = 0;
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, status, noForceErrors, kinetic;
-    std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
-    OpenMM::ComputeArray atomType, pairTable, heatCapacityTable;   // class by original index; per-class parameters
+    std::unique_ptr<IntegratorTypeTables> typeTables; // the particle types given to initialize(), and the tables
+    OpenMM::ComputeArray atomType, pairTable, heatCapacityTable; // class by original index; per-class parameters
     std::vector<double> uploadedPairTable, uploadedHeatCapacities;
     OpenMM::ComputeKernel startKernel, finishKernel, kineticKernel, keepKernel;
     mutable std::vector<double> hostEnergies;

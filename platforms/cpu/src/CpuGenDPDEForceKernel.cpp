@@ -132,18 +132,9 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     sequential = (threads == 1) && !oneThreadGathers(extractPositions(context).size());
     if (sequential)
         return ReferenceCalcGenDPDEForceKernel::computeDensitiesAndEnergy(context);
-    const std::vector<Vec3>& positions = extractPositions(context);
-    const int numParticles = positions.size();
+    const int numParticles = extractPositions(context).size();
     const int numRangesOfRows = numRanges(numParticles, rowChunk);
-    std::vector<int>& firstBad = rangeFirstBad;
-    firstBad.assign(numRangesOfRows, -1);
-    parallelFor(threads, numParticles, rowChunk, [&](int begin, int end) {
-        firstBad[begin / rowChunk] = firstNonFinitePosition(positions, begin, end);
-    });
-    const auto bad = std::find_if(firstBad.begin(), firstBad.end(), [](int i) { return i >= 0; });
-    checkConfiguration(context, bad == firstBad.end() ? -1 : *bad);
-    neighborList->refresh(positions, extractBoxVectors(context), threads);
-    layout.update(*neighborList, threads);
+    refreshRows(context, threads);
 
     // docs/theory.md sections 2-4: n0_i = sum_j w(r_ij) along the row, then the particle's volume, pressure and free
     // energy, all in row order (threads writing particle arrays at random would share cache lines). A step needs of
@@ -210,9 +201,43 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
             }
         });
     });
+    const int* rowOf = layout.getRow().data();
+    storeRowStates(threads, numParticles);
+    const auto lowest =
+            std::min_element(rangeFailures.begin(), rangeFailures.end(),
+                             [](const RangeFailure& a, const RangeFailure& b) { return a.particle < b.particle; });
+    if (lowest->particle != INT_MAX)
+        throwParticleError(lowest->status, lowest->particle, lowest->volume, context);
+    // U = sum_i f(n_i)
+    return FixedOrderSum::parallelSum(
+            threads, numParticles, [freeEnergy, rowOf](int i) { return freeEnergy[rowOf[i]]; }, chunkSums);
+}
+
+void CpuCalcGenDPDEForceKernel::refreshRows(ContextImpl& context, int threads) {
+    // The positions checked (the first non-finite one is reported), the neighbour list refreshed and the rows laid
+    // out for this evaluation.
+    const std::vector<Vec3>& positions = extractPositions(context);
+    const int numParticles = positions.size();
+    const int numRangesOfRows = numRanges(numParticles, rowChunk);
+    std::vector<int>& firstBad = rangeFirstBad;
+    firstBad.assign(numRangesOfRows, -1);
+    parallelFor(threads, numParticles, rowChunk, [&](int begin, int end) {
+        firstBad[begin / rowChunk] = firstNonFinitePosition(positions, begin, end);
+    });
+    const auto bad = std::find_if(firstBad.begin(), firstBad.end(), [](int i) { return i >= 0; });
+    checkConfiguration(context, bad == firstBad.end() ? -1 : *bad);
+    neighborList->refresh(positions, extractBoxVectors(context), threads);
+    layout.update(*neighborList, threads);
+}
+
+void CpuCalcGenDPDEForceKernel::storeRowStates(int threads, int numParticles) {
     // The per-particle arrays in particle order where they are read, each thread writing its own range: all of them
     // for the observables, else a law's thermal state.
     const int* rowOf = layout.getRow().data();
+    const double* density = rowDensity.data();
+    const Physics::ParticleState* keptState = rowState.data();
+    const Vec3* momentOf = rowMoment.data();
+    const bool moments = usesMoments();
     if (observablesAsked) {
         sizeParticleArrays();
         parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
@@ -229,14 +254,6 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                 storeThermalState(i, keptState[rowOf[i]]);
         });
     }
-    const auto lowest =
-            std::min_element(rangeFailures.begin(), rangeFailures.end(),
-                             [](const RangeFailure& a, const RangeFailure& b) { return a.particle < b.particle; });
-    if (lowest->particle != INT_MAX)
-        throwParticleError(lowest->status, lowest->particle, lowest->volume, context);
-    // U = sum_i f(n_i)
-    return FixedOrderSum::parallelSum(
-            threads, numParticles, [freeEnergy, rowOf](int i) { return freeEnergy[rowOf[i]]; }, chunkSums);
 }
 
 double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::vector<Vec3>* forces,

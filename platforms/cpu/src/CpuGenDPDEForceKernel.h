@@ -55,6 +55,11 @@ protected:
                              std::vector<double>* particleVirials) override;
 
 private:
+    /** computeDensitiesAndEnergy()'s first and last stages: the positions checked, the neighbour list refreshed and
+     *  the rows laid out; the rows' states copied to the per-particle arrays that are read (observables, thermal
+     *  state). */
+    void refreshRows(OpenMM::ContextImpl& context, int threads);
+    void storeRowStates(int threads, int numParticles);
     /** body(gather) with the RowGather (CpuGenDPDEForceKernel.cpp) for this box: open, rectangular or triclinic. */
     template <class Body>
     void withRowGather(Body body);

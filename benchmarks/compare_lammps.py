@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDE's V-B force against LAMMPS's EAM, which has the same form, side by side (docs/performance.md).
 
 V-A and V-B are embedded-atom potentials: U = sum_i F(rho_i) with rho_i = sum_j w(r_ij), the density function w of

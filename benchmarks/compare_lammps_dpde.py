@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEIntegrator's Isoenergetic step against LAMMPS's DPD-E (DPD-REACT package), side by side
 (docs/performance.md, "Against LAMMPS (DPD-E and EAM)").
 

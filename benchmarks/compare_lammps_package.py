@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The LAMMPS package (lammps/: pair_style gendpde + fix gendpde) against LAMMPS's own DPD-E step and EAM, and against
 this plugin's CPU platform, side by side (docs/lammps.md, "Speed").
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Whether LAMMPS's DPD-E step depends on the numbering of its atoms (docs/performance.md, "Against LAMMPS").
 
 LAMMPS sorts its atoms spatially when a run starts and every 1000 steps (`atom_modify sort`). This tool runs the DPD-E

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Where the time of a step (or a force evaluation) goes: samples `benchmarks/time_steps.py` with Linux perf and prints
 the share of each function of the plugin, the parallel loops' bodies named by the function that runs them
 (docs/performance.md, "Where a step's time goes").

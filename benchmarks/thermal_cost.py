@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The cost of an equation of state that depends on temperature, against the Tait law, per Isoenergetic step.
 
 Two copies of liquid argon at R* = 1.6839 (VB, the published gamma*, kappa*, C_V*), one with the Tait law and one

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Time the CPU platform alone and with a second copy of the same job running at once: what a user running two jobs
 (or a notebook beside a job) sees. Candidates are GenDPDE steps (benchmarks/time_steps.py) under one or more Python
 environments, e.g. an earlier build's and this one's, and OpenMM's own CPU platform on a plain Lennard-Jones liquid

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Time force evaluations or Isoenergetic steps of liquid argon (R* = 1.6839, V-B) from a saved state, with whatever
 version of openmmgendpde the running Python has installed: the tool that compares two builds side by side
 (docs/performance.md), e.g. this one against the last release, each in its own virtual environment, alternating.

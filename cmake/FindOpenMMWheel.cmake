@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Locate the OpenMM this plugin builds against. OpenMM's PyPI wheel ships headers and libraries but no CMake
 # config, so by default it is found through the Python interpreter (Python3_EXECUTABLE) without importing it:
 # site-packages/openmm is the Python package, site-packages/OpenMM.libs the install tree. -DOPENMM_DIR=<prefix>

@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The API reference, docs/api.md, generated from the docstrings of the installed package (the C++ documentation of
 GenDPDEForce and GenDPDEIntegrator reaches Python through SWIG):
 

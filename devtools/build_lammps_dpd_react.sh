@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Build LAMMPS (Debian 12's source package, 20220106) with the DPD-REACT package, for benchmarks/compare_lammps_dpde.py:
 # Debian's binary package lacks DPD-REACT. Packages DPD-REACT, MANYBODY, OPT and OPENMP; no MPI (threads only);
 # -O2. About 4 minutes on 2 cores. Usage: devtools/build_lammps_dpd_react.sh [DIRECTORY] (default /tmp/lammps-dpd-react);

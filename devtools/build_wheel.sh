@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # A binary wheel of the plugin, checked the way a user installs it:
 #   1. `pip wheel .` in an isolated build environment (OpenMM 8.6.x, SWIG and scikit-build-core from PyPI);
 #   2. auditwheel repair: the manylinux tag this machine's glibc and libstdc++ allow; OpenMM's own libraries

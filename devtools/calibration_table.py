@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The table of docs/fluids.md "The calibrated fluids" from calibrate's --json records, side by side:
 
     .venv/bin/python devtools/calibration_table.py docs/figures/calibrated-{water,argon,nitrogen}.json

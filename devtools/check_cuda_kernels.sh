@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Compile the device kernels (platforms/common/src/kernels) as CUDA, as OpenMM's CUDA platform would at run time,
 # on a machine without a GPU: OpenMM's CUDA prelude (common.cu and vectorOps.cu from an OpenMM source checkout of
 # the supported version) + the defines and typedefs of each precision + the kernels, through nvcc --ptx for sm_90.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Liquid argon, Table III's V-B row at R* = 1.6839, in both engines: the OpenMM CPU platform and the project's
 LAMMPS package (pair_style gendpde + fix gendpde), from one melted state; prints a markdown table of the production
 averages with block-average standard errors, beside the published values and the exact equilibrium identities.

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # The C++ sources that clang-format keeps in the project's style (.clang-format): every tracked .h and .cpp but the
 # generated tables (VolumeVBTables.h, devtools/generate_vb_tables.py writes it) and the device kernels
 # (platforms/common/src/kernels/*.cc: OpenMM's common dialect, embedded as text). One path a line.

@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # The CUDA platform's checks and benchmarks on a lent GPU machine without network: the H200 of the device tool,
 # whose python3 (3.12, /opt/torch/.venv) holds numpy, scipy, tqdm, scikit-build-core, cmake, ninja and NVIDIA's
 # CUDA 13 runtime wheels, with nvcc 13 and g++, but no OpenMM.

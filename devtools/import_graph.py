@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The import graph of the Python package openmmgendpde, read from the source (nothing is imported or run).
 
     python3 devtools/import_graph.py             # each module and the package modules it imports; the circles

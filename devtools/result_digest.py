@@ -1,4 +1,6 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Digests of every deterministic result of the plugin, to show that a change which must not change behaviour
 (a refactoring, a new build) leaves every result bit-identical.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Measure a fluid model's viscosity or conductivity two ways on the same parameters and box (docs/transport.md):
 the wave decay of `calibrate` (Calibration.shear_viscosity / thermal_conductivity) and the steady flow of
 openmmgendpde.analysis.transport (Poiseuille flow / heat flux between slabs), and print both with their ratio.

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The conserved-energy error of isoenergetic GenDPDE at free surfaces, V-B against V-C (docs/interfaces.md, "V-C's
 energy error"): a liquid-argon slab and droplet in vacuum (openmmgendpde.studies.slab's set-ups: 1000 particles at n* =
 0.82, R* = 1.6839, f_cut 1.35 for V-B and 1.3525 for V-C, velocities and internal energies drawn at T0) run for a fixed

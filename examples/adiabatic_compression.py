@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Adiabatic compression of a liquid whose particles expand with temperature (docs/theory.md section 11).
 
 Liquid argon with its thermal expansion (fluid.ARGON_EXPANDING: 125.7 K, 85.31 MPa, alpha = 2.64e-3 1/K; 5 atoms per

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Two liquids that do not mix: particle types plus a repulsion between unlike particles (docs/types.md).
 
     .venv/bin/python examples/immiscible_pair.py [--steps 20000] [--repulsion 0 20]

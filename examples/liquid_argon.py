@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A liquid-argon GenDPDE simulation with OpenMM's Simulation, a GenDPDEReporter and a DCD trajectory.
 
     .venv/bin/python examples/liquid_argon.py [--estimator VA] [--cutoff 1.3365]

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A liquid layer heated from below in gravity, which starts to convect above a critical temperature difference
 (Rayleigh-Benard); the velocity and temperature fields are drawn (docs/thermal.md).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A shock in liquid argon whose particles expand with temperature, against the Rankine-Hugoniot jump of the model's
 own equation of state (docs/thermal.md).
 

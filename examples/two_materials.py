@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Two liquids exchanging heat across an interface: particle types with their own heat capacity, equation of state,
 mass, and a per-pair heat conduction (docs/types.md).
 

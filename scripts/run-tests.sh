@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Every test: set up, build and install (scripts/setup.sh), then the style checks (ruff), the C++ tests (ctest) and
 # the Python tests of every tier (pytest against the installed package; a plain `pytest` runs the fast tier only).
 set -euo pipefail

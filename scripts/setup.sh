@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Set up everything the plugin needs on a Debian 12 machine, then build and install it into ./.venv. Safe to run
 # again: a no-op install, an incremental build. Used by run-main.sh and run-tests.sh.
 #   1. Debian packages (only the missing ones): compilers, CMake, OpenCL ICD loader, headers and PoCL.

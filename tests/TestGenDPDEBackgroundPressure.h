@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce tests (included by TestGenDPDEForce.h): the background pressure p_b (docs/theory.md section 12). */
 
 namespace ForceTests {

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* Tests of GenDPDEForce shared by every platform: a platform file defines `platform`, calls runForceTests(). Every
  * estimator the brute-force oracle evaluates runs through every test (TestScenes::testEstimators). The physics
  * against the oracle and finite differences is here; the virial tensors in TestGenDPDEForceVirial.h, particle types

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce tests (included by TestGenDPDEForce.h): bad input refused where it enters, and states that go bad
  * stopped with an error naming the particle and the step. */
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce tests (included by TestGenDPDEForce.h): particle types (docs/types.md), per-type Tait laws against
  * the brute force, their identities, their lifetime in a Context and their bad input. */
 

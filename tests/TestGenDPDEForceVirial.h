@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce tests (included by TestGenDPDEForce.h): the scalar virial and the virial tensors (docs/theory.md
  * section 4) against the energy's response to scaling and to strain. */
 

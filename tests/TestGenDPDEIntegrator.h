@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* Tests of GenDPDEIntegrator shared by every platform: a platform file defines `platform`, calls
  * runIntegratorTests(). Particle types are tested in TestGenDPDEIntegratorTypes.h. The statistical tests (equilibrium
  * identities, relaxation rate, order of the energy error) are in python/tests/test_integrator_physics.py. */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The state rules of GenDPDEIntegrator, shared by every platform (a platform file defines `platform` and calls
  * runIntegratorStateTests()): one Context per integrator, the bath temperature apart from the particles' state,
  * checkpoints and States validated before anything changes, and simulations that go bad stopped with an error

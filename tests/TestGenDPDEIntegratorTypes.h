@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEIntegrator tests (included by TestGenDPDEIntegrator.h): particle types (docs/types.md): per-type heat
  * capacities and per-pair friction and conduction, where the types come from, and their bad input. */
 

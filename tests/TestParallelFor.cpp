@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* parallelFor and its ThreadTeam (internal/ParallelFor.h, internal/ThreadTeam.h), the threads of the CPU platform:
  * every index exactly once at any thread count and chunk; a loop inside a loop; an exception reaches the caller and
  * the team goes on; two calling threads at once; a child process of fork(); and threads that wait for the next loop

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The physics core (core/include/gendpde/GenDPDEPhysicsCore.h) as the host platforms compile it:
  *  - no contraction: the build forbids turning a*b + c into a fused multiply-add (-ffp-contract=off), on which the
  *    bitwise CPU == Reference claim rests (the CPU platform's AVX2 gathers and the scalar core must round alike);

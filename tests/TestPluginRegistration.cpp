@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* Each kernel library registers its kernels on its own platform and no other: `TestPluginRegistration P` loads
  * OpenMM's CPU platform and this build's kernel library for P only, then checks which platforms run the kernels.
  * (A factory registered on every ReferencePlatform subclass would also claim the CPU platform and, depending on

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDESweepOrder, the order of the pair updates every platform follows (docs/theory.md section 6): each pair
  * exactly once; blocks of one colour share no particle (what makes the parallel sweep equal to the sequential one);
  * a pure function of positions, box and pairs (periodic images, thread count); the plain sequence when the box is

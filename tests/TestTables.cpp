@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The tables of the core (core/include/gendpde): what GenDPDEForce's checks and messages, the XML serialization and
  * the packing for the platforms read.
  *  - The equations of state (GenDPDEEquationsOfState.h): every law of the table, with parameters taken from the

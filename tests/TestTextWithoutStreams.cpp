@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The message text and the XML numbers written and read without iostreams (MessageText.h, StrictXml.h) against
  * std::ostringstream and std::istringstream in the classic locale, which they replace: the same text for every kind
  * of number the messages and files hold. */

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_TEST_UTILITIES_H_
 #define GENDPDE_TEST_UTILITIES_H_
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The counter-based random numbers: Philox4x32-10 against the Random123 known-answer vectors, and the normal
  * variates of the ziggurat against the normal distribution. */
 

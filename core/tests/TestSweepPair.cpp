@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The sweep's pair step (GenDPDESweepPair.h) that every engine calls, against what it must do:
  *  - the Isothermal mode's update is the Crank-Nicolson step of the relative velocity along e in closed form,
  *    u1 = (u0 (1 - M f) + 2 M R)/(1 + M f) with M = 1/m_i + 1/m_j, f = gamma omega_R^2 dt/2 and

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEIntegrator's per-particle state on its way out of and into a Context: checkpoints (Context.createCheckpoint)
  * and States (getState(getIntegratorParameters=True), Simulation.saveState). docs/integrator.md describes both
  * formats; every input is read and checked in full before the integrator's state changes. */

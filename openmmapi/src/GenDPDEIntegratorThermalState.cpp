@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEIntegrator and the particles' thermal state when a GenDPDEForce's equation of state depends on temperature
  * (docs/theory.md section 11; the rule in docs/integrator.md, "The particles' thermal state: one rule").
  *

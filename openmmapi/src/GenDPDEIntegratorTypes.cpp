@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEIntegrator's particle types (docs/integrator.md, "Parameters"): a particle's type, each type's heat capacity and
  * each pair of types' friction and heat conduction, with their checks against the bound Context's types. */
 
@@ -39,7 +41,7 @@ void GenDPDEIntegrator::requireBoundTypes() {
                     + "); particle types are read when the Context is "
                       "created: call Context.reinitialize(preserveState=True) to apply them, or set them back");
     }
-    typesChangedWhileBound = false;   // every change gave a particle the type it runs with
+    typesChangedWhileBound = false; // every change gave a particle the type it runs with
 }
 
 void GenDPDEIntegrator::requireContextType(const std::string& entry, int type) const {

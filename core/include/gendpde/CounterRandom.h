@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_COUNTER_RANDOM_H_
 #define GENDPDE_COUNTER_RANDOM_H_
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_SWEEP_DEFINITION_H_
 #define GENDPDE_SWEEP_DEFINITION_H_
 

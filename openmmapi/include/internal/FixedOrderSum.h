@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_FIXED_ORDER_SUM_H_
 #define GENDPDE_FIXED_ORDER_SUM_H_
 

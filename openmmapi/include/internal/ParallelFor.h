@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_PARALLEL_FOR_H_
 #define GENDPDE_PARALLEL_FOR_H_
 

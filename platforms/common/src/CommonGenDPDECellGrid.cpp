@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #include "CommonGenDPDECellGrid.h"
 #include "CommonGenDPDEArguments.h"
 #include "internal/BoxGeometry.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef COMMON_GENDPDE_FORCE_ARGUMENTS_H_
 #define COMMON_GENDPDE_FORCE_ARGUMENTS_H_
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce on the GPU platforms: the steps (the density pass, the forces, the checks and their errors, the
  * observables). The setup is in CommonGenDPDEForceSetup.cpp. */
 

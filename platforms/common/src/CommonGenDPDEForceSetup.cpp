@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce on the GPU platforms: the kernel's setup (initialize) - its arrays, the V-B tables and the law table
  * uploaded, the device program compiled and each kernel's arguments bound - and the parameters read from the force.
  * The steps are in CommonGenDPDEForceKernel.cpp. */

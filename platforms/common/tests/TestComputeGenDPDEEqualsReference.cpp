@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* A GPU platform (GENDPDE_TEST_PLATFORM: OpenCL or CUDA) against Reference, in single, mixed and double precision.
  *
  * Forces, observables and virial tensors of the force tests' scenes (every estimator, triclinic boxes, a V-C slab):

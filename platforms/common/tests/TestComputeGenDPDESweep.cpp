@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The device's Shardlow sweep (CommonGenDPDEBlockSweep: blocks ordered in local memory, swept level by level, or
  * streamed by one thread beyond the capacities) against the Reference platform's sequential sweep, and a run of steps
  * that stops on the device against Reference's.

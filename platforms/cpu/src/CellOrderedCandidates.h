@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_CELL_ORDERED_CANDIDATES_H_
 #define GENDPDE_CELL_ORDERED_CANDIDATES_H_
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #include "CpuGenDPDEForceKernel.h"
 #include "ReferenceKernelAccess.h"
 #include "RowGatherAvx2.h"

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef CPU_GENDPDE_FORCE_KERNEL_H_
 #define CPU_GENDPDE_FORCE_KERNEL_H_
 

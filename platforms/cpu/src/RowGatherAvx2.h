@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_ROW_GATHER_AVX2_H_
 #define GENDPDE_ROW_GATHER_AVX2_H_
 

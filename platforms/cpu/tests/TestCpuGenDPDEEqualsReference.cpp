@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The CPU platform computes exactly what Reference computes, with any number of threads: energies, forces,
  * observables, virials and virial tensors of the force tests' scenes (every estimator), and trajectories (positions, velocities, internal energies)
  * after 1000 isoenergetic steps of a liquid large enough for the sweep to run many blocks of a colour at once

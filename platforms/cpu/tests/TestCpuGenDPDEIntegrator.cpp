@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #include "TestGenDPDEIntegrator.h"
 #include "TestPlugins.h"
 

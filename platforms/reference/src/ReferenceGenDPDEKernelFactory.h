@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 #ifndef GENDPDE_REFERENCE_KERNEL_FACTORY_H_
 #define GENDPDE_REFERENCE_KERNEL_FACTORY_H_
 

@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEForce on the device (docs/theory.md sections 2-4), over a neighbour list with a skin:
  *   checkList         the error flags cleared; the list marked for a rebuild if any particle has moved more than
  *                     half the skin since it was built (or the host asks);

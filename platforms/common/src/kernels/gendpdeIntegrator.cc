@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* GenDPDEIntegrator on the device (docs/theory.md sections 5-7): one step is startStep (the checks, a copy of the
  * state, the first kick), the Shardlow sweep of gendpdeSweep.cc (when the step has pair terms), and finishStep (the
  * second kick and the drift, or the roll back of a failed step). Velocities in `mixed` precision (velm, w = 1/m),

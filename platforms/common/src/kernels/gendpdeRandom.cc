@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The counter-based random numbers of CounterRandom.h on the device: Philox4x32-10 keyed on (seed, step) and
  * counted by the original indices of a pair, so a pair's variates do not depend on the platform, the thread or the
  * order of the particles in memory; normal variates by the same ziggurat, whose tables come from the host

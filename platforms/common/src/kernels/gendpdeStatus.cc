@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The integrator's status words on the device (CommonGenDPDEStatus.h, whose layout arrives as the STATUS_* defines):
  * once a run of steps stops, every later kernel of the run does nothing or undoes its step. */
 

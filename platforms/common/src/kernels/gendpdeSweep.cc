@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 /* The Shardlow sweep of GenDPDEIntegrator on the device, in the sequence of GenDPDESweepOrder (docs/theory.md
  * section 6), with parallel work inside each block:
  *

@@ -49,7 +49,8 @@ def imports(path, modules, root=SOURCE):
 
 
 def graph(root=SOURCE):
-    paths = {module_of(path, root): path for path in sorted(root.rglob("*.py"))}
+    paths = {module_of(path, root): path for path in sorted(root.rglob("*.py"))
+             if module_of(path, root) not in GENERATED}   # (where a build copied them in: not sources)
     known = set(paths) | set(GENERATED)
     return {name: sorted(imports(path, known, root)) for name, path in paths.items()}
 

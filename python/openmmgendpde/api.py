@@ -236,6 +236,76 @@ ESTIMATORS = tuple(DensityEstimator.of(value) for value in range(_swig.numDensit
 ESTIMATOR_NAMES = {estimator.value: estimator.name for estimator in ESTIMATORS}
 
 
+def estimator_value(estimator):
+    """GenDPDEForce.VA, VB, ... from a name ('VA', 'vb', ...) or the enum value itself (ESTIMATOR_NAMES); ValueError
+    naming the estimator and those allowed."""
+    values = {name: value for value, name in ESTIMATOR_NAMES.items()}
+    listed = ", ".join(f"'{name}'" for name in values)
+    if isinstance(estimator, str):
+        if estimator.upper() not in values:
+            raise ValueError(f"estimator must be one of {listed}, not '{estimator}'")
+        return values[estimator.upper()]
+    if estimator not in ESTIMATOR_NAMES:
+        raise ValueError(f"estimator must be GenDPDEForce.{', '.join(values)}, not {estimator}")
+    return estimator
+
+
+def estimator_of(estimator):
+    """The DensityEstimator (ESTIMATORS) of a name or a GenDPDEForce.DensityEstimator value (estimator_value)."""
+    return ESTIMATORS[estimator_value(estimator)]
+
+
+def estimators_reading_cutoff_scaling():
+    """The names of the estimators that f_cut changes (the table's reads_cutoff_scaling): those tune-fcut tunes."""
+    return [estimator.name for estimator in ESTIMATORS if estimator.reads_cutoff_scaling]
+
+
+@_dataclasses.dataclass(frozen=True)
+class Law:
+    """One local equation of state as the C++ table describes it (GenDPDEEquationsOfState.h): its
+    GenDPDEForce.EquationOfState value, name ('TaitThermalExpansion'), whether it takes the Tait parameters n0, pi0,
+    B_T, gamma_T before its own, and its own parameters ((name, OpenMM unit), ...) in the order setEquationOfState
+    takes them, each with its allowed range (minimum, maximum) in that unit."""
+    value: int
+    name: str
+    extends_tait: bool
+    parameters: tuple
+    ranges: tuple
+
+    @property
+    def parameter_names(self):
+        return tuple(name for name, _ in self.parameters)
+
+    @classmethod
+    def of(cls, value):
+        """The table's entry of a GenDPDEForce.EquationOfState value (OpenMMException if there is none)."""
+        value = int(value)
+        name, extends_tait, parameters = law_description(value)
+        ranges = tuple(tuple(_swig.equationOfStateParameterRange(value, k)) for k in range(len(parameters)))
+        return cls(value, name, extends_tait, tuple(parameters), ranges)
+
+
+#: The local equations of state in GenDPDEForce.EquationOfState order, from the C++ table: a law added there is known
+#: here (to the model files, the mapping of a fluid, the calibration) without another list.
+LAWS = tuple(Law.of(value) for value in range(_swig.numEquationsOfState()))
+
+#: The laws, GenDPDEForce's enum value -> name, from LAWS.
+LAW_NAMES = {law.value: law.name for law in LAWS}
+
+
+def law_value(law):
+    """A GenDPDEForce.EquationOfState value from its name (as LAW_NAMES spells it) or the value itself; ValueError
+    naming the law and those allowed."""
+    values = {name: value for value, name in LAW_NAMES.items()}
+    if isinstance(law, str):
+        if law not in values:
+            raise ValueError(f"equation of state must be one of {', '.join(map(repr, values))}, not {law!r}")
+        return values[law]
+    if isinstance(law, bool) or law not in LAW_NAMES:
+        raise ValueError(f"equation of state must be GenDPDEForce.{', GenDPDEForce.'.join(values)}, not {law!r}")
+    return int(law)
+
+
 def _force_repr(self):
     estimator = ESTIMATOR_NAMES[self.getDensityEstimator()]
     method = "CutoffPeriodic" if self.usesPeriodicBoundaryConditions() else "CutoffNonPeriodic"

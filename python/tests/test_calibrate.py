@@ -412,7 +412,7 @@ def test_calibrate_iterates_the_conductivity_of_a_fluid_that_expands_on_the_heat
     monkeypatch.setattr(Calibration, "thermal_conductivity", wave)
     monkeypatch.setattr(Calibration, "steady_conductivity", lambda self: Measured(
         self.parameters.targets()["thermal_conductivity"] * self.parameters.heat_conduction / (2 * kappa0), 1e-6, 3))
-    monkeypatch.setattr(calibrate_module, "thermal_expansion_rows", lambda calibration, plan, platform, seed: [])
+    monkeypatch.setattr(calibrate_module, "thermal_expansion_rows", lambda *arguments: [])   # (runs of its own)
     path = tmp_path / "calibration.json"
     main(["calibrate", "--quick", "--fluid", "argon-expanding", "--molecules-per-particle", "5", "--neighbors", "20",
           "--json", str(path)])
@@ -512,7 +512,7 @@ def test_suggested_vc_step_drifts_at_a_free_surface_as_little_as_vb_at_its_own(m
     for estimator in ("VB", "VC"):
         steps[estimator], step = stability.suggest_time_step(parameters, estimator)
         positions, box, _ = droplet_positions()
-        model = argon_model(positions, box, estimator, platform="CPU", seed=5)
+        model, _context = argon_model(positions, box, estimator, platform="CPU", seed=5)
         model.integrator.setStepSize(step)
         kt = (unit.MOLAR_GAS_CONSTANT_R * model.temperature).value_in_unit(unit.kilojoule_per_mole) * len(positions)
         start = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
@@ -580,8 +580,8 @@ def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
 def test_speed_of_sound_of_an_ideal_monatomic_gas():
     """calibrate.speed_of_sound with K_T = n k_B T and the heat capacity of the motion alone (c = 3 k_B/2): the ideal
     monatomic gas, c = sqrt(5 k_B T/(3 m)) (argon atoms at 300 K: 322.6 m/s, computed here in SI)."""
-    from openmmgendpde.calibration.calibrate import speed_of_sound
     from openmmgendpde.calibration.calibration import Measured
+    from openmmgendpde.calibration.report import speed_of_sound
     from openmmgendpde.models.fluid import KB
     gas = dataclasses.replace(coarse_grain(ARGON, 1, neighbors=20), heat_capacity=0.0, temperature=300.0,
                               mass=39.948)

@@ -206,10 +206,9 @@ def test_an_output_that_cannot_be_written_is_refused_before_anything_runs(comman
 
 def test_an_output_directory_that_can_be_made_is_accepted(tmp_path, monkeypatch):
     """--output DIR may name a directory to make (table3 makes it), under one that exists and is writable."""
-    import openmmgendpde.studies.table3 as table3
+    import openmmgendpde.cli.table3 as table3
     seen = []
     monkeypatch.setattr(table3, "run", lambda arguments: seen.append(arguments.output))
-    monkeypatch.setattr("openmmgendpde.__main__.table3", table3)
     main(["table3", "--quick", "--output", str(tmp_path / "new" / "results")])
     assert seen == [str(tmp_path / "new" / "results")]
 
@@ -367,7 +366,7 @@ def test_arguments_that_do_not_fit_together_end_in_one_line_before_anything_runs
 def test_a_failure_during_the_run_ends_in_one_line(failure, status, message, monkeypatch, capsys):
     """A simulation that goes bad, an output that cannot be written, Ctrl-C: one line on stderr and a nonzero status,
     not a traceback."""
-    import openmmgendpde.benchmarks.timing as timing
+    import openmmgendpde.cli.timing as timing
 
     def fail(arguments):
         raise failure
@@ -530,7 +529,8 @@ def test_thermal_expansion_takes_a_fluid_as_every_command_does(capsys):
     import argparse
     import os
 
-    from openmmgendpde.calibration.expansion import fluid_of, mapped
+    from openmmgendpde.calibration.expansion import mapped
+    from openmmgendpde.cli.thermal_expansion import fluid_of
     from openmmgendpde.models.fluid import ARGON_EXPANDING, SUPERCRITICAL_ARGON
 
     def given(fluid, **options):

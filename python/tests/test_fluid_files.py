@@ -118,7 +118,7 @@ def test_bad_model_files_are_refused(tmp_path):
     path = str(tmp_path / "model.toml")
     save_parameters(coarse_grain(WATER, 4, neighbors=20), path)
     text = open(path).read()
-    for old, new, message in [("openmmgendpde-model-2", "other-2", "format = 'other-2' is not a model file"),
+    for old, new, message in [("openmmgendpde-model-3", "other-2", "format = 'other-2' is not a model file"),
                               ("cutoff = ", "cut = ", "missing ['cutoff']; unknown ['cut']"),
                               ("mass = 72.06", "mass = -72.06", "mass = -72.06 is not allowed; it must be > 0"),
                               ("mass = 72.06", 'mass = "72.06"', "mass = '72.06' is not allowed; it must be a finite")]:
@@ -133,17 +133,21 @@ def test_bad_model_files_are_refused(tmp_path):
 
 
 def test_a_model_file_records_the_estimator_and_the_law_and_refuses_another_estimator(tmp_path):
-    """Format 2 writes the estimator that f_cut was tuned for and the equation of state; loaded, liquid() builds with
+    """Format 3 writes the estimator that f_cut was tuned for and the equation of state with its parameters by the
+    names of the table of laws (format 2 wrote the estimator and the law); loaded, liquid() builds with
     that estimator by default, allows V-A (which has no f_cut), and refuses V-C with V-B's f_cut, naming both (the
     bug of format 1: V-C ran silently on V-B's f_cut)."""
     path = str(tmp_path / "model.toml")
     tuned = coarse_grain(ARGON_EXPANDING, 5, neighbors=20).with_cutoff_scaling(1.3371, "VB")
     save_parameters(tuned, path)
     text = open(path).read()
-    assert 'format = "openmmgendpde-model-2"' in text
+    assert 'format = "openmmgendpde-model-3"' in text
     assert 'estimator = "VB"' in text and 'equation_of_state = "TaitThermalExpansion"' in text
+    beta, theta0 = tuned.law_parameters
+    assert f"equation_of_state_parameters = {{beta = {beta!r}, theta0 = {theta0!r}}}" in text
     loaded = load_parameters(path)
     assert loaded.estimator == "VB" and loaded.equation_of_state == "TaitThermalExpansion"
+    assert loaded == dataclasses.replace(tuned, fluid=loaded.fluid)
     assert loaded.liquid(500).force.getDensityEstimator() == openmm_gendpde_estimator("VB")
     assert loaded.liquid(500, "VA").force.getDensityEstimator() == openmm_gendpde_estimator("VA")
     with pytest.raises(ValueError, match=r"estimator = 'VC' is not allowed for this model: its f_cut = 1\.3371 was "
@@ -171,7 +175,7 @@ def test_a_format_1_model_file_is_still_read_without_an_estimator(tmp_path):
              if not line.startswith(("estimator", "equation_of_state"))]
     old = str(tmp_path / "old.toml")
     with open(old, "w") as stream:
-        stream.write("\n".join(lines).replace("openmmgendpde-model-2", "openmmgendpde-model-1") + "\n")
+        stream.write("\n".join(lines).replace("openmmgendpde-model-3", "openmmgendpde-model-1") + "\n")
     loaded = load_parameters(old)
     assert loaded.estimator is None and loaded == dataclasses.replace(parameters, fluid=loaded.fluid)
     with open(old, "a") as stream:   # format 1 knows no estimator key
@@ -183,7 +187,13 @@ def test_a_format_1_model_file_is_still_read_without_an_estimator(tmp_path):
 @pytest.mark.parametrize("old, new, message", [
     ('estimator = "VB"', 'estimator = "VD"', "estimator = 'VD' is not allowed; it must be one of 'VA', 'VB', 'VC'"),
     ('equation_of_state = "Tait"', 'equation_of_state = "TaitThermalExpansion"',
-     "equation_of_state = 'TaitThermalExpansion' does not match the parameters given"),
+     "equation_of_state_parameters = {} is not allowed; the law TaitThermalExpansion takes ['beta', 'theta0']"),
+    ('equation_of_state = "Tait"', 'equation_of_state = "Taylor"',
+     "equation_of_state = 'Taylor' is not allowed; it must be one of 'Tait', 'TaitThermalExpansion', 'VanDerWaals'"),
+    ('equation_of_state = "Tait"\nequation_of_state_parameters = {}',
+     'equation_of_state = "VanDerWaals"\nequation_of_state_parameters = {a = 1.0, b = -0.2, k = 0.05}',
+     "excluded volume b = -0.2"),
+    ('equation_of_state_parameters = {}\n', "", "missing ['equation_of_state_parameters']"),
 ])
 def test_a_model_file_with_a_bad_estimator_or_law_is_refused(old, new, message, tmp_path):
     path = str(tmp_path / "model.toml")
@@ -194,6 +204,28 @@ def test_a_model_file_with_a_bad_estimator_or_law_is_refused(old, new, message, 
     with pytest.raises(ValueError) as error:
         load_parameters(broken)
     assert message in str(error.value)
+
+
+def test_a_format_2_model_file_is_still_read_with_its_thermal_law(tmp_path):
+    """Format 2 (version 0.2's last) wrote the thermal Tait law's parameters as thermal_pressure and
+    thermal_reference_temperature: such a file loads with the same law and numbers; one whose equation_of_state does
+    not match the parameters given is refused."""
+    parameters = coarse_grain(ARGON_EXPANDING, 5, neighbors=20).for_estimator("VB")
+    path = str(tmp_path / "model.toml")
+    save_parameters(parameters, path)
+    beta, theta0 = parameters.law_parameters
+    text = open(path).read().replace("openmmgendpde-model-3", "openmmgendpde-model-2").replace(
+        f"equation_of_state_parameters = {{beta = {beta!r}, theta0 = {theta0!r}}}",
+        f"thermal_pressure = {beta!r}\nthermal_reference_temperature = {theta0!r}")
+    old = tmp_path / "old.toml"
+    old.write_text(text)
+    assert "openmmgendpde-model-2" in text and "thermal_pressure" in text
+    loaded = load_parameters(str(old))
+    assert loaded == dataclasses.replace(parameters, fluid=loaded.fluid)
+    assert (loaded.equation_of_state, loaded.law_parameters) == ("TaitThermalExpansion", (beta, theta0))
+    old.write_text(text.replace('equation_of_state = "TaitThermalExpansion"', 'equation_of_state = "Tait"'))
+    with pytest.raises(ValueError, match="equation_of_state = 'Tait' does not match the parameters given"):
+        load_parameters(str(old))
 
 
 def test_calibrate_takes_a_fluid_file_and_writes_the_calibrated_model(monkeypatch, tmp_path, capsys):

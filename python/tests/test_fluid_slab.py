@@ -14,16 +14,19 @@ from openmm import unit
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.__main__ import main
+from openmmgendpde.cli import slab as slab_command
 from openmmgendpde.models.fluid import ARGON, WATER, coarse_grain
 from openmmgendpde.models.fluid_files import load_parameters, save_parameters
 from openmmgendpde.studies import slab as slab_module
-from openmmgendpde.studies.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run, surface_tension_table
+from openmmgendpde.studies.slab import SLAB_THERMOSTAT_TIME, fluid_slab, sample_run
+from openmmgendpde.studies.surfaces import surface_tension_table
 
 NM = unit.nanometer
 WATER_FILE = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "fluids", "water.toml")
 ONE_THREAD = {"Threads": "1"}
 #: dt* of a V-C water slab (4 molecules per particle, 20 neighbours): stability.suggest_time_step(parameters, 'VC'),
-#: measured (0.5 x the Conservative limit 0.095 x STEP_FACTOR 0.1), written here to spare the 10 s of measuring it.
+#: measured (0.5 x the Conservative limit 0.095 x V-C's stable_step_factor 0.1), written here to spare the 10 s of
+#: measuring it.
 WATER_VC_STEP = 0.0048
 
 
@@ -46,10 +49,10 @@ def test_slab_at_the_cut_lies_in_its_region_with_the_stated_vacuum_and_the_fluid
     edges = [reference.system.getDefaultPeriodicBoxVectors()[k][k].value_in_unit(NM) for k in range(3)]
     assert slab.thickness == pytest.approx(edges[2])
     assert slab.vacuum == pytest.approx(vacuum)
-    box = slab.model.context.getState().getPeriodicBoxVectors()
+    box = slab.context.getState().getPeriodicBoxVectors()
     assert [box[k][k].value_in_unit(NM) for k in range(3)] == pytest.approx([edges[0], edges[1], edges[2] + vacuum])
     assert slab.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(NM) == pytest.approx(edges[2] + vacuum)
-    z = slab.model.context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(NM)[:, 2]
+    z = slab.context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(NM)[:, 2]
     z = z - np.floor(z / (edges[2] + vacuum)) * (edges[2] + vacuum)
     assert z.min() >= vacuum / 2 - 1e-9 and z.max() < vacuum / 2 + edges[2]
     # Nothing in the vacuum: the faces' gap across the boundary is at least the vacuum.
@@ -84,7 +87,7 @@ def _temperatures(water, thermostat_time):
     every time unit."""
     slab = fluid_slab(water, (5, 5, 6), "VC", time_step=WATER_VC_STEP, thermostat_time=thermostat_time,
                       properties=ONE_THREAD, seed=5)
-    samples = sample_run(slab.model, slab.thickness, 10.0, 1.0, water.units)[1:]
+    samples = sample_run(slab.model, slab.context, slab.thickness, 10.0, 1.0, water.units)[1:]
     return (np.mean([s.kinetic_temperature for s in samples]), np.mean([s.harmonic_temperature for s in samples]))
 
 
@@ -170,7 +173,7 @@ def test_fluid_options_without_fluid_are_refused(option):
 
 def _slab_arguments(argv):
     parser = argparse.ArgumentParser()
-    slab_module.add_arguments(parser)
+    slab_command.add_arguments(parser)
     return parser.parse_args(argv)
 
 
@@ -178,12 +181,12 @@ def test_fluid_coarse_graining_defaults_are_calibrates():
     """--fluid without the coarse-graining options is coarse-grained as calibrate does (4 molecules per particle,
     20 neighbours); each option given is used."""
     cells = (5, 5, 6)
-    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water"]), cells)
+    parameters = slab_command.fluid_parameters(_slab_arguments(["--fluid", "water"]), cells)
     assert parameters == coarse_grain(WATER, 4, neighbors=20)
-    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water", "--neighbors", "30",
+    parameters = slab_command.fluid_parameters(_slab_arguments(["--fluid", "water", "--neighbors", "30",
                                                                "--molecules-per-particle", "3"]), cells)
     assert parameters == coarse_grain(WATER, 3, neighbors=30)
-    parameters = slab_module.fluid_parameters(_slab_arguments(["--fluid", "water", "--cutoff", "1.1"]), cells)
+    parameters = slab_command.fluid_parameters(_slab_arguments(["--fluid", "water", "--cutoff", "1.1"]), cells)
     assert parameters == coarse_grain(WATER, 4, cutoff=1.1)
 
 
@@ -223,7 +226,7 @@ def test_slab_command_runs_a_model_file(model_file, monkeypatch, tmp_path, capsy
 
 
 def test_slab_model_is_the_files_parameters(model_file):
-    assert slab_module.fluid_parameters(_slab_arguments(["--model", model_file]), (5, 5, 6)) == load_parameters(
+    assert slab_command.fluid_parameters(_slab_arguments(["--model", model_file]), (5, 5, 6)) == load_parameters(
         model_file)
 
 

@@ -84,10 +84,11 @@ def test_quick_slab_shows_where_vb_goes_wrong():
     density is within 10% of the exact partition-of-unity density (measured +5%), at the surface it is far above it
     (measured 1.8 times: 0.685 against 0.379), which is why V-B slabs foam (docs/interfaces.md). Tolerance: the
     surface ratio above 1.3."""
-    from openmmgendpde.studies.slab import depth_profile, run_slab
-    samples, model, thickness = run_slab("VB", duration=10.0, every=10.0, cells=(5, 5, 6), platform="CPU")
+    from openmmgendpde.studies.slab import run_slab
+    from openmmgendpde.studies.surfaces import depth_profile
+    samples, model, context, thickness = run_slab("VB", duration=10.0, every=10.0, cells=(5, 5, 6), platform="CPU")
     assert samples[0].core_density == pytest.approx(0.82)
-    rows = depth_profile(model, thickness, bin_width=0.5)
+    rows = depth_profile(model, context, thickness, bin_width=0.5)
     interior, surface = rows[0], rows[-1]
     assert abs(interior[5] / interior[4] - 1) < 0.1, interior
     assert surface[5] / surface[4] > 1.3, surface
@@ -99,11 +100,13 @@ def test_vc_slab_holds_where_vb_foams():
     (measured 0.54) while V-C's stays near the liquid's (measured 0.75); tolerance: V-C's core above 0.68 (15% below
     the start) and at least 0.1 above V-B's. At the surface V-C's density is closer to the exact one than V-B's
     (measured 0.81 and 0.84 against 0.49: closer, not close)."""
-    from openmmgendpde.studies.slab import depth_profile, run_slab
+    from openmmgendpde.studies.slab import run_slab
+    from openmmgendpde.studies.surfaces import depth_profile
     cores = {}
     for estimator in ("VB", "VC"):
-        samples, model, thickness = run_slab(estimator, duration=40.0, every=40.0, cells=(5, 5, 6), platform="CPU")
+        samples, model, context, thickness = run_slab(estimator, duration=40.0, every=40.0, cells=(5, 5, 6),
+                                                      platform="CPU")
         cores[estimator] = samples[-1].core_density
     assert cores["VC"] > 0.68 and cores["VC"] > cores["VB"] + 0.1, cores
-    surface = depth_profile(model, thickness, bin_width=0.5)[-1]   # (the V-C run's last slice)
+    surface = depth_profile(model, context, thickness, bin_width=0.5)[-1]   # (the V-C run's last slice)
     assert abs(surface[7] / surface[4] - 1) < abs(surface[5] / surface[4] - 1), surface

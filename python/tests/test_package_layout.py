@@ -12,8 +12,8 @@ import pytest
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 #: The layers, lowest first: a module may import its own layer's and those below (the package's __init__, which
 #: re-exports the API, is importable from everywhere).
-LAYERS = ["internal", "gendpde", "api", "units", "physics", "analysis", "reporter", "models", "cli", "calibration",
-          "studies", "benchmarks", "__main__"]
+LAYERS = ["internal", "gendpde", "api", "units", "physics", "analysis", "reporter", "models", "calibration", "studies",
+          "benchmarks", "cli", "__main__"]
 
 
 def _import_graph():

@@ -165,18 +165,18 @@ def test_a_slab_whose_surface_particle_is_not_integrated_stops_at_once():
     # and the run stopped much later naming another particle, or never (OpenCL). Now the first step that changes a
     # particle's temperature by more than a factor 2 by its motion alone stops the run, naming it, before the jump.
     positions, box, thickness = slab_positions(cells=(4, 4, 4))
-    slab = argon_model(positions, box, "VC", platform="CPU")
+    slab, context = argon_model(positions, box, "VC", platform="CPU")
     slab.force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [0.955, 125.7])
-    slab.context.reinitialize(preserveState=True)
+    context.reinitialize(preserveState=True)
     integrator = slab.integrator
     start = integrator.getConservedEnergy().value_in_unit(KJ)
     with pytest.raises(openmm.OpenMMException, match=r"the temperature of particle (\d+) went from .* more than a "
                                                      r"factor 2, at step (\d+)") as error:
         integrator.step(4000)
-    step = slab.context.getState().getStepCount()
+    step = context.getState().getStepCount()
     assert 1000 < step < 2300
     # The energy had not jumped yet (a stable slab drifts by a few kJ/mol over such a run).
     assert abs(integrator.getConservedEnergy().value_in_unit(KJ) - start) < 30
     # The particle named is at a free surface: its density well below the liquid's (4.27 nm^-3).
     particle = int(str(error.value).split("particle ")[1].split()[0])
-    assert slab.force.getParticleDensities(slab.context)[particle].value_in_unit(PER_NM3) < 2.0
+    assert slab.force.getParticleDensities(context)[particle].value_in_unit(PER_NM3) < 2.0

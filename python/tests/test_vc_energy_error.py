@@ -13,7 +13,7 @@ from openmmgendpde.units import ARGON_UNITS
 def energy_error(estimator, step_size, duration=10.0, seed=5):
     """The change of K + U + sum eps over ``duration`` time units, per N k_B T0."""
     positions, box = slab_positions()[:2]
-    model = argon_model(positions, box, estimator, platform="CPU", seed=seed)
+    model, _context = argon_model(positions, box, estimator, platform="CPU", seed=seed)
     model.integrator.setStepSize(ARGON_UNITS.to_openmm(step_size, "time"))
     kt = (unit.MOLAR_GAS_CONSTANT_R * model.temperature).value_in_unit(unit.kilojoule_per_mole)
     start = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)

@@ -16,15 +16,11 @@ import dataclasses
 import gc
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from ..api import GenDPDEIntegrator
-from ..cli.options import DEFAULT_CUTOFF, THREADS, add_cutoff, add_json, add_progress, add_rounds, fcc_particles
-from ..cli.progress import Progress
-from ..cli.protocol import check_argon
-from ..models.argon import liquid_argon
-from .measurement import alternating_rounds, default_rounds, median, median_ratio, print_results
+from ..models.argon import DEFAULT_CUTOFF, liquid_argon
+from .measurement import alternating_rounds, default_rounds, median, median_ratio
 
 #: Isothermal steps that melt the lattice before the particles are renumbered.
 MELTING_STEPS = 300
@@ -64,9 +60,7 @@ def context_at(num_particles, cutoff, positions, velocities, platform_name, thre
     returns (context, integrator)."""
     model = liquid_argon(num_particles, cutoff, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
     properties = {"Threads": str(threads)} if threads is not None else {}
-    context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(platform_name),
-                             properties)
-    context.setPositions(positions)
+    context = model.context(platform_name, properties=properties, positions=positions, velocities=False)
     context.setVelocities(velocities)
     return context, model.integrator
 
@@ -145,29 +139,3 @@ def format_table(results):
         f"N = {r.num_particles}: " + (f"{r.memory_bytes_per_particle:.0f} bytes" if r.memory_bytes_per_particle
                                       else "unknown") for r in results))
     return "\n".join(lines)
-
-
-def run(arguments):
-    check_argon("benchmark-cpu", arguments.particles, [arguments.cutoff])
-    progress = Progress(sum(arguments.rounds or default_rounds(n) for n in arguments.particles), "benchmark-cpu",
-                        always=arguments.progress)
-    results = [benchmark(n, arguments.cutoff, arguments.thread_counts, not arguments.no_reference, arguments.rounds,
-                         progress) for n in arguments.particles]
-    progress.finish()
-    print_results(f"CPU platform against itself and Reference, liquid argon R* = {arguments.cutoff}, VB, particles "
-                  f"renumbered at random; medians of alternating rounds of {CALLS} calls (speed-ups: medians of "
-                  f"per-round ratios, against {arguments.thread_counts[0]} thread(s)):", format_table(results),
-                  results, arguments.json)
-
-
-def add_arguments(parser):
-    parser.add_argument("--particles", type=fcc_particles, nargs="+", default=[4000, 32000],
-                        help="particle counts, 4 m^3 each (default 4000 32000)")
-    parser.add_argument("--thread-counts", type=THREADS, nargs="+", default=[1, 2],
-                        help="CPU thread counts, the first the baseline of the speed-ups (default 1 2)")
-    parser.add_argument("--no-reference", action="store_true", help="leave out the Reference platform")
-    add_cutoff(parser)
-    add_rounds(parser, "15, or 7 above 8000 particles")
-    add_json(parser)
-    add_progress(parser)
-    parser.set_defaults(run=run)

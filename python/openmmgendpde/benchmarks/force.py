@@ -13,19 +13,9 @@ import dataclasses
 import openmm
 from openmm import unit
 
-from ..cli.options import add_cutoffs, chosen_cutoffs, context_threads, platform_description
-from ..cli.progress import Progress
-from ..cli.protocol import check_argon
-from ..models.argon import ARGON_STATE, ARGON_UNITS, liquid_argon
+from ..models.argon import ARGON_STATE, ARGON_UNITS, PUBLISHED_ESTIMATORS, liquid_argon
 from ..models.customgb import custom_gb_equivalent
-from .measurement import (
-    add_benchmark_arguments,
-    alternating_rounds,
-    default_rounds,
-    median,
-    median_ratio,
-    print_results,
-)
+from .measurement import alternating_rounds, context_threads, default_rounds, median, median_ratio
 
 #: Time step of the preparation and of the timed Verlet steps (reduced units).
 TIME_STEP = 0.01
@@ -45,17 +35,16 @@ class ForceBenchmark:
     rounds: int
 
 
-def _context(system, positions, platform):
+def _context(model, positions, platform):
+    """A Context of ``model`` (its System as it is now) with a VerletIntegrator, at ``positions``, at rest."""
     integrator = openmm.VerletIntegrator(ARGON_UNITS.to_openmm(TIME_STEP, "time"))
-    context = openmm.Context(system, integrator, platform)
-    context.setPositions(positions)
-    return context
+    return model.context(platform, integrator=integrator, positions=positions, velocities=False)
 
 
 def prepare_liquid(num_particles, cutoff, platform, steps=200):
     """Positions (nm) of a liquid-like configuration: the FCC lattice melted by `steps` Verlet steps with VB."""
     argon = liquid_argon(num_particles, cutoff, "VB")
-    context = _context(argon.system, argon.positions, platform)
+    context = _context(argon, argon.positions, platform)
     context.setVelocitiesToTemperature(ARGON_UNITS.to_openmm(ARGON_STATE.temperature, "temperature"), 1)
     context.getIntegrator().step(steps)
     return context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
@@ -65,13 +54,13 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
     platform = openmm.Platform.getPlatformByName(platform_name)
     positions = prepare_liquid(num_particles, cutoff, platform)
     contexts = {}
-    for estimator in ("VA", "VB"):
+    for estimator in PUBLISHED_ESTIMATORS:
         argon = liquid_argon(num_particles, cutoff, estimator)
         custom = custom_gb_equivalent(argon.force, num_particles)
-        contexts[f"GenDPDE {estimator}"] = _context(argon.system, positions, platform)
+        contexts[f"GenDPDE {estimator}"] = _context(argon, positions, platform)
         argon.system.removeForce(0)
         argon.system.addForce(custom)
-        contexts[f"CustomGB {estimator}"] = _context(argon.system, positions, platform)
+        contexts[f"CustomGB {estimator}"] = _context(argon, positions, platform)
     for context in contexts.values():
         context.getState(getEnergy=True)   # warm up: neighbor lists, caches
     if rounds is None:
@@ -80,8 +69,8 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
     seconds = alternating_rounds(evaluate, rounds, progress)
     steps_per_call = 10
     step = {estimator: (lambda c=contexts[f"GenDPDE {estimator}"]: c.getIntegrator().step(steps_per_call))
-            for estimator in ("VA", "VB")}
-    for estimator in ("VA", "VB"):
+            for estimator in PUBLISHED_ESTIMATORS}
+    for estimator in PUBLISHED_ESTIMATORS:
         contexts[f"GenDPDE {estimator}"].setVelocitiesToTemperature(
             ARGON_UNITS.to_openmm(ARGON_STATE.temperature, "temperature"), 2)
     step_seconds = alternating_rounds(step, rounds, progress)
@@ -91,7 +80,7 @@ def benchmark(num_particles, cutoff, platform_name="Reference", rounds=None, pro
         evaluation_ms={name: 1e3 * median(values) for name, values in seconds.items()},
         vb_over_va=median_ratio(seconds, "GenDPDE VB", "GenDPDE VA"),
         custom_gb_speedup={estimator: median_ratio(seconds, f"CustomGB {estimator}", f"GenDPDE {estimator}")
-                           for estimator in ("VA", "VB")},
+                           for estimator in PUBLISHED_ESTIMATORS},
         verlet_step_ms={estimator: 1e3 * median(values) / steps_per_call for estimator, values in step_seconds.items()},
         verlet_vb_over_va=median_ratio(step_seconds, "VB", "VA"),
         rounds=rounds)
@@ -111,26 +100,3 @@ def format_table(results):
             f"| {r.custom_gb_speedup['VB']:.1f}x | {r.verlet_step_ms['VA']:.2f} / {r.verlet_step_ms['VB']:.2f} "
             f"| {r.verlet_vb_over_va:.3f} |")
     return "\n".join(lines)
-
-
-def run(arguments):
-    cutoffs = chosen_cutoffs(arguments)
-    check_argon("benchmark-force", arguments.particles, cutoffs, ("VA", "VB"))
-    cases = [(n, c) for n in arguments.particles for c in cutoffs]
-    rounds = arguments.rounds
-    total = sum(2 * (rounds or default_rounds(n)) for n, _ in cases)
-    progress = Progress(total, "benchmark-force", always=arguments.progress)
-    results = []
-    for n, cutoff in cases:
-        progress.label = f"benchmark-force N={n} R*={cutoff}"
-        results.append(benchmark(n, cutoff, arguments.platform, rounds, progress))
-    progress.finish()
-    print_results(f"Force evaluation on the {platform_description(arguments)}, medians of alternating rounds "
-                  f"(same configuration for all four columns of each row):", format_table(results), results,
-                  arguments.json)
-
-
-def add_arguments(parser):
-    add_benchmark_arguments(parser)
-    add_cutoffs(parser)
-    parser.set_defaults(run=run)

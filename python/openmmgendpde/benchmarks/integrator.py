@@ -25,19 +25,9 @@ from openmm import unit
 
 from ..analysis.statistics import block_average
 from ..api import GenDPDEIntegrator
-from ..cli.options import DEFAULT_CUTOFF, add_cutoff, context_threads, platform_description
-from ..cli.progress import Progress
-from ..cli.protocol import check_argon
-from ..models.argon import liquid_argon
+from ..models.argon import DEFAULT_CUTOFF, liquid_argon
 from ..units import BOLTZMANN
-from .measurement import (
-    add_benchmark_arguments,
-    alternating_rounds,
-    default_rounds,
-    median,
-    median_ratio,
-    print_results,
-)
+from .measurement import alternating_rounds, context_threads, default_rounds, median, median_ratio
 
 #: The candidates whose kinetic temperature is sampled after the timing, and how: samples, steps between samples.
 THERMOSTATS = ("Isothermal step", "DPDIntegrator step", "Isothermal step, no force", "DPDIntegrator step, no force")
@@ -133,7 +123,8 @@ def candidate(start, num_particles, cutoff, platform, mode=None, kind="GenDPDE",
     internal energies of ``start``), or kind "Verlet" (VerletIntegrator) or "DPD" (dpd_integrator); ``bare``:
     without forces (without_forces), at the gas positions."""
     model = liquid_argon(num_particles, cutoff, "VB", seed=1)
-    system = without_forces(model.system) if bare else model.system
+    if bare:
+        model = dataclasses.replace(model, system=without_forces(model.system))
     if kind == "Verlet":
         integrator = openmm.VerletIntegrator(model.integrator.getStepSize())
     elif kind == "DPD":
@@ -144,10 +135,11 @@ def candidate(start, num_particles, cutoff, platform, mode=None, kind="GenDPDE",
         integrator.setMode(mode)
         if bare:
             integrator.setCutoffDistance(model.force.getCutoffDistance())
-    context = openmm.Context(system, integrator, platform)
+    positions = start.gas_positions if bare else start.state.getPositions()
+    context = model.context(platform, integrator=integrator, positions=positions, velocities=False)
     if kind == "GenDPDE":
         context.setState(start.state)   # with the internal energies
-    context.setPositions(start.gas_positions if bare else start.state.getPositions())
+        context.setPositions(positions)
     context.setVelocities(start.velocities)
     return Candidate(context, integrator)
 
@@ -221,28 +213,3 @@ def format_dpd_table(results):
                          f"| {gendpde.mean:.1f} +- {gendpde.standard_error:.1f} | {dpd.mean:.1f} +- "
                          f"{dpd.standard_error:.1f} |")
     return "\n".join(lines)
-
-
-def run(arguments):
-    check_argon("benchmark-integrator", arguments.particles, [arguments.cutoff])
-    total = sum(arguments.rounds or default_rounds(n) for n in arguments.particles)
-    progress = Progress(total, "benchmark-integrator", always=arguments.progress)
-    results = []
-    for n in arguments.particles:
-        progress.label = f"benchmark-integrator N={n}"
-        results.append(benchmark(n, arguments.cutoff, arguments.platform, arguments.rounds, progress))
-    progress.finish()
-    print_results(f"GenDPDEIntegrator on the {platform_description(arguments)}, liquid argon R* = "
-                  f"{arguments.cutoff}, VB; medians of alternating rounds from the same state:", format_table(results),
-                  results, arguments.json)
-    print()
-    print(f"GenDPDEIntegrator (Isothermal) against OpenMM's DPDIntegrator (friction gamma/m), same System and "
-          f"state; kinetic temperatures from {TEMPERATURE_SAMPLES} samples {STEPS_PER_SAMPLE} steps apart (mean "
-          f"+- standard error of {TEMPERATURE_BLOCKS} block means):")
-    print(format_dpd_table(results))
-
-
-def add_arguments(parser):
-    add_benchmark_arguments(parser)
-    add_cutoff(parser)
-    parser.set_defaults(run=run)

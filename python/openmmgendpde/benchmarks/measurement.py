@@ -5,13 +5,8 @@ results are reported as medians: the median time per call, and the median over r
 between two candidates (robust to another process slowing down part of the run).
 """
 
-import dataclasses
-import json
 import statistics
 import time
-
-from ..cli.options import add_json, add_platform, add_progress, add_rounds, fcc_particles
-from ..internal.files import atomic_write
 
 
 def alternating_rounds(candidates, rounds, progress=None):
@@ -44,20 +39,7 @@ def default_rounds(num_particles):
     return 15 if num_particles <= 8000 else 7
 
 
-def add_benchmark_arguments(parser):
-    """The options shared by the benchmark subcommands."""
-    parser.add_argument("--particles", type=fcc_particles, nargs="+", default=[4000, 32000],
-                        help="particle counts, 4 m^3 each (default 4000 32000)")
-    add_platform(parser)
-    add_rounds(parser, "15, or 7 above 8000 particles")
-    add_json(parser)
-    add_progress(parser)
-
-
-def print_results(header, table, results, json_path):
-    """Print a benchmark's header line and table; write the results (dataclasses) as JSON if asked."""
-    print(header)
-    print(table)
-    if json_path:
-        with atomic_write(json_path) as stream:
-            json.dump([dataclasses.asdict(r) for r in results], stream, indent=1)
+def context_threads(context):
+    """The threads a Context computes on: the CPU platform's Threads property, else 1."""
+    platform = context.getPlatform()
+    return int(platform.getPropertyValue(context, "Threads")) if platform.getName() == "CPU" else 1

@@ -7,12 +7,7 @@ ratios (total simulation time, its own Fortran code) are 1.07, 1.22 and 1.03.
 
 import dataclasses
 
-from openmm import unit
-
-from ..cli.options import COUNT, add_cutoffs, add_rounds, chosen_cutoffs, platform_description
-from ..cli.progress import Progress
-from ..cli.protocol import add_protocol_arguments, protocol_from_arguments
-from ..models.argon import ARGON_UNITS, PUBLISHED_TABLE4_RATIO, liquid_argon
+from ..models.argon import PUBLISHED_ESTIMATORS, PUBLISHED_TABLE4_RATIO, liquid_argon
 from ..models.argon_runs import melt_then_draw
 from .measurement import alternating_rounds, median, median_ratio
 
@@ -34,39 +29,18 @@ def prepared_simulation(cutoff, estimator, protocol, platform, preparation_time)
     return simulation
 
 
-def run(arguments):
-    cutoffs = chosen_cutoffs(arguments)
-    protocol = protocol_from_arguments(arguments, cutoffs=cutoffs, estimators=("VA", "VB"))
-    rounds = arguments.rounds or (7 if arguments.quick else 15)
-    steps = arguments.steps or (20 if arguments.quick else 50)
-    preparation = 2.0 if arguments.quick else 10.0
-    progress = Progress(len(cutoffs) * rounds, "timing", always=arguments.progress)
+def timing_rows(cutoffs, protocol, platform="Reference", rounds=15, steps=50, preparation_time=10.0, progress=None):
+    """A TimingRow per cutoff: the published estimators prepared side by side (prepared_simulation), then ``rounds``
+    alternating rounds of ``steps`` isoenergetic steps each; ``progress`` advances by the rounds."""
     rows = []
     for cutoff in cutoffs:
-        progress.label = f"timing R*={cutoff}"
-        prepared = {estimator: prepared_simulation(cutoff, estimator, protocol, arguments.platform, preparation)
-                    for estimator in ("VA", "VB")}
+        if progress is not None:
+            progress.label = f"timing R*={cutoff}"
+        prepared = {estimator: prepared_simulation(cutoff, estimator, protocol, platform, preparation_time)
+                    for estimator in PUBLISHED_ESTIMATORS}
         candidates = {estimator: (lambda integrator=prepared[estimator].integrator: integrator.step(steps))
-                      for estimator in ("VA", "VB")}
+                      for estimator in PUBLISHED_ESTIMATORS}
         seconds = alternating_rounds(candidates, rounds, progress)
         rows.append(TimingRow(cutoff, {e: 1e3 * median(s) / steps for e, s in seconds.items()},
                               median_ratio(seconds, "VB", "VA"), PUBLISHED_TABLE4_RATIO[cutoff]))
-    progress.finish()
-    time_unit = ARGON_UNITS.unit("time").value_in_unit(unit.picosecond)
-    print(f"Wall time per isoenergetic GenDPDE step, {protocol.num_particles} particles, dt* = {protocol.time_step} "
-          f"({protocol.time_step * time_unit:.4f} ps), {platform_description(arguments)}; medians of {rounds} "
-          f"alternating rounds of {steps} steps")
-    print("| R_cut* | VA (ms/step) | VB (ms/step) | VB/VA | VB/VA published (Table IV) |")
-    print("|---|---|---|---|---|")
-    for row in rows:
-        print(f"| {row.cutoff} | {row.milliseconds_per_step['VA']:.2f} | {row.milliseconds_per_step['VB']:.2f} "
-              f"| {row.vb_over_va:.3f} | {row.published} |")
     return rows
-
-
-def add_arguments(parser):
-    add_protocol_arguments(parser)
-    add_cutoffs(parser)
-    add_rounds(parser, "15, quick 7")
-    parser.add_argument("--steps", type=COUNT, help="steps per round (default 50, quick 20)")
-    parser.set_defaults(run=run)

@@ -21,7 +21,7 @@ from ..analysis.thermodynamics import (
     self_diffusion,
 )
 from ..analysis.transport import heat_flux_conductivity, poiseuille_viscosity
-from ..api import GenDPDEIntegrator
+from ..api import GenDPDEIntegrator, estimator_of
 from ..internal import forked
 from ..models.fluid import KB
 from ..models.melting import switch_after_melting
@@ -173,10 +173,9 @@ class Calibration:
         """A Context melted with the DPD thermostat at T0, then isoenergetic with theta_i drawn at T0 (a cube of
         plan.particles, or ``cells`` FCC cells)."""
         model = self._model(density, cells)
-        context = openmm.Context(model.system, model.integrator, self.platform)
+        context = model.context(self.platform, self.parameters.temperature, self.seed,
+                                positions=self._start(model, density))
         self.runs += 1
-        context.setPositions(self._start(model, density))
-        context.setVelocitiesToTemperature(self.parameters.temperature, self.seed)
         steps, stationary = self.melt(model, context, first=_box_edges(model) not in self._melted)
         self.melt_steps.append((steps, stationary))
         self._melted[_box_edges(model)] = (model_positions(context), density or self.parameters.density)
@@ -226,12 +225,12 @@ class Calibration:
         return run
 
     def tune_cutoff_scaling(self, iterations=None):
-        """f_cut such that n-bar = n0 (V-B); returns it (or the given one for V-A). Each run measures n-bar on its
-        frames at f_cut and at f_cut (1 -+ 2%); the step to the next f_cut uses half that slope: the structure
-        follows f_cut and halves its effect (water, 2048 particles: n-bar moved by 2.7 nm^-3 per unit of f_cut from
-        run to run where the frames, structure held fixed, said 5.1), and a secant between runs is too noisy at
-        the lengths of --quick."""
-        if self.estimator == "VA":
+        """f_cut such that n-bar = n0 (V-B); returns it (or the given one for an estimator that f_cut does not change,
+        V-A). Each run measures n-bar on its frames at f_cut and at f_cut (1 -+ 2%); the step to the next f_cut uses
+        half that slope: the structure follows f_cut and halves its effect (water, 2048 particles: n-bar moved by 2.7
+        nm^-3 per unit of f_cut from run to run where the frames, structure held fixed, said 5.1), and a secant
+        between runs is too noisy at the lengths of --quick."""
+        if not estimator_of(self.estimator).reads_cutoff_scaling:
             return self.parameters.cutoff_scaling
         scaling = self.parameters.cutoff_scaling
         for iteration in range(self.plan.tuning_iterations if iterations is None else iterations):
@@ -305,7 +304,7 @@ class Calibration:
         fixed configuration one to one, but in equilibrium the structure follows pi0 and restores most of it
         until f_cut is tuned again (docs/fluids.md, "pi0 is a weak handle"): calibrate moves pi0 and tunes f_cut
         in rounds (pressure_step)."""
-        self.parameters = dataclasses.replace(self.parameters, reference_pressure=reference_pressure)
+        self.parameters = self.parameters.replace(reference_pressure=reference_pressure)
 
     def bulk_modulus(self):
         """n dP/dn at n0 by a central difference between boxes at n0 (1 -+ delta), and the response of the particle
@@ -349,7 +348,7 @@ class Calibration:
                     f"particle (the motion and the configuration carry {carried:.3g} k_B "
                     f"+ k_B of the internal energy's Gamma law), below {MIN_INTERNAL_HEAT_CAPACITY / KB:g} k_B; "
                     f"C_V kept at {self.parameters.heat_capacity / KB:.4g} k_B; put more molecules in a particle")
-        self.parameters = dataclasses.replace(self.parameters, heat_capacity=needed)
+        self.parameters = self.parameters.replace(heat_capacity=needed)
         return None
 
     def _wave_rate(self, amplitude_of, perturb, diffusivity):
@@ -464,7 +463,7 @@ class Calibration:
             return steady, None, failure
         value = getattr(self.parameters, attribute)
         factor = min(MAX_STEP, max(1 / MAX_STEP, (target / steady.value) ** (1 / _elasticity(history))))
-        self.parameters = dataclasses.replace(self.parameters, **{attribute: value * factor})
+        self.parameters = self.parameters.replace(**{attribute: value * factor})
         self.report(f"  {name} by the steady flow: {steady.value:.5g} +- {steady.error:.2g} (target {target:.5g}): "
                     f"{attribute} {value:.5g} -> {value * factor:.5g}, both methods measured again")
         if failure:
@@ -495,7 +494,7 @@ class Calibration:
             first = history[0]
             candidates = [first] + [entry for entry in history[1:] if _measured_difference(first[1], entry[1])]
             best_value, best = min(candidates, key=lambda entry: abs(entry[1].value - target))
-            self.parameters = dataclasses.replace(self.parameters, **{attribute: best_value})
+            self.parameters = self.parameters.replace(**{attribute: best_value})
             return best, history, (message + f"; {attribute} kept at {best_value:.4g}; {FAILURE_ADVICE[attribute]}"
                                    if message else None)
 
@@ -530,7 +529,7 @@ class Calibration:
             # At most a factor MAX_STEP per run: a response that is not measured (water's n dP/dn does not follow
             # B_T) must not throw the parameter far (B_T went x11 twice before this limit).
             proposal = min(MAX_STEP * value, max(value / MAX_STEP, proposal))
-            self.parameters = dataclasses.replace(self.parameters, **{attribute: proposal})
+            self.parameters = self.parameters.replace(**{attribute: proposal})
         # Out of runs: keep the best parameter measured, and say so if the last step did not move the property.
         failure = None
         if len(history) >= 2:

@@ -18,27 +18,14 @@ the estimator, not one for one) and measured again (--iterations).
 
 import dataclasses
 import math
-import sys
 
 from openmm import unit
 
 from ..analysis.statistics import correlated_mean
 from ..analysis.thermodynamics import ThermodynamicProbe
 from ..api import GenDPDEIntegrator
-from ..cli.fluids import add_fluid_arguments
-from ..cli.options import (
-    NON_NEGATIVE_COUNT,
-    POSITIVE,
-    SEED,
-    add_platform,
-    checked_model,
-    command_line_error,
-    fcc_particles,
-    integer,
-)
 from ..models.argon import ARGON_UNITS
 from ..models.fluid import ARGON_EXPANDING, coarse_grain
-from ..models.fluid_files import fluid_named
 from ..units import BOLTZMANN
 
 #: The default half-difference of the two runs' temperatures, a fraction of T0.
@@ -112,13 +99,14 @@ def mapped(fluid=ARGON_EXPANDING, molecules_per_particle=None, neighbors=None, c
 
 
 def corrected(parameters, result):
-    """The parameters with beta scaled so that the thermal part of (dP/dT)_V, beyond the kinetic n0 k_B, reaches the
-    fluid's: the response of P to beta is linear (a uniform shift of every pi_i), so one secant step from the origin
-    lands, to the measurement's error."""
+    """The parameters with beta, the law's thermal pressure dpi/dtheta at n0 (ModelParameters.with_thermal_pressure:
+    any law that depends on temperature), scaled so that the thermal part of (dP/dT)_V, beyond the kinetic n0 k_B,
+    reaches the fluid's: the response of P to beta is linear (a uniform shift of every pi_i), so one secant step from
+    the origin lands, to the measurement's error."""
     kinetic = parameters.density * BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin) \
         * MPA_PER_OPENMM_PRESSURE
     scale = (result.target_slope - kinetic) / (result.slope - kinetic)
-    return dataclasses.replace(parameters, thermal_pressure=parameters.thermal_pressure * scale)
+    return parameters.with_thermal_pressure(parameters.thermal_pressure * scale)
 
 
 def iterated(parameters, history):
@@ -137,7 +125,7 @@ def iterated(parameters, history):
             beta = last.thermal_pressure + (last.target_slope - last.slope) * (
                 last.thermal_pressure - previous.thermal_pressure) / difference
             beta = min(3 * last.thermal_pressure, max(last.thermal_pressure / 3, beta))
-            return dataclasses.replace(parameters, thermal_pressure=beta)
+            return parameters.with_thermal_pressure(beta)
     return corrected(parameters, last)
 
 
@@ -174,73 +162,19 @@ def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4
         thermal_pressure=parameters.thermal_pressure)
 
 
-#: The names --fluid took before every command took the same ones, and those names (until 0.3, with a warning).
-OLD_FLUID_NAMES = {"liquid": "argon-expanding", "supercritical": "supercritical-argon"}
 #: The molecules per particle of thermal-expansion where --molecules-per-particle is not given.
 MOLECULES_PER_PARTICLE = 5
 
 
-def fluid_of(arguments):
-    """(Fluid, its mapped GenDPDEParameters) of --fluid (a built-in name or a fluid or model file, as every command
-    takes it) and the coarse-graining options; a fluid without a thermal expansion, or a bad name, ends in a one-line
-    error."""
-    name = arguments.fluid
-    if name in OLD_FLUID_NAMES:
-        print(f"warning: thermal-expansion: --fluid {name} is now --fluid {OLD_FLUID_NAMES[name]} (the old name is "
-              f"removed in version 0.3)", file=sys.stderr)
-        name = OLD_FLUID_NAMES[name]
-    try:
-        fluid = fluid_named(name)
-        return fluid, mapped(fluid, arguments.molecules_per_particle,
-                             neighbors=arguments.neighbors,
-                             cutoff=None if arguments.cutoff is None else arguments.cutoff * unit.nanometer)
-    except ValueError as error:
-        raise command_line_error("thermal-expansion", error) from None
-
-
-def run(arguments):
-    fluid, parameters = fluid_of(arguments)
-    # Checked before anything runs: the box against the cutoff, and the two temperatures T0 -+ dT above zero.
-    checked_model("thermal-expansion", lambda: parameters.liquid(arguments.particles, seed=arguments.seed),
-                  "use more --particles")
-    if arguments.delta is not None and not arguments.delta < parameters.temperature:
-        raise SystemExit(f"error: thermal-expansion: --delta {arguments.delta:g} is not allowed; it must be < T0 = "
-                         f"{parameters.temperature:g} K of {fluid.name} (the run at T0 - dT needs a temperature > 0)")
-    print(f"{fluid.name}, {arguments.particles} particles, {parameters.neighbors:.2f} neighbours within the cutoff "
-          f"{parameters.cutoff:.4f} nm, {arguments.platform}")
+def measured_and_corrected(parameters, iterations=1, report=None, **runs):
+    """[ThermalExpansion] of the mapped model ``parameters`` and of each of ``iterations`` corrections of its beta
+    (corrected, from the last measurement), each measured (measure with ``runs``); ``report(result)`` is called after
+    each."""
     results = []
-    for iteration in range(arguments.iterations + 1):
-        result = measure(parameters, num_particles=arguments.particles, delta=arguments.delta,
-                         melt_steps=arguments.melt, steps=arguments.steps, sample_every=SAMPLE_EVERY,
-                         platform=arguments.platform, seed=arguments.seed)
-        label = "mapped" if iteration == 0 else f"after correction {iteration}"
-        print(f" beta = {result.thermal_pressure:.5f} kJ/mol/nm^3/K ({label})")
-        for t, te, p, e in zip(result.temperatures, result.temperature_errors, result.pressures,
-                               result.pressure_errors):
-            print(f"  T = {t:.2f} +- {te:.2f} K: P = {p:.3f} +- {e:.3f} MPa")
-        print(f"  (dP/dT)_V = {result.slope:.4f} +- {result.slope_error:.4f} MPa/K (fluid: {result.target_slope:.4f})")
-        print(f"  alpha = kappa_T (dP/dT)_V = {result.alpha:.4e} +- {result.alpha_error:.1e} 1/K "
-              f"(fluid: {result.target_alpha:.4e}; ratio {result.alpha / result.target_alpha:.3f})", flush=True)
+    for _ in range(iterations + 1):
+        result = measure(parameters, **runs)
+        if report is not None:
+            report(result)
         results.append(result)
         parameters = corrected(parameters, result)
     return results
-
-
-def add_arguments(parser):
-    add_fluid_arguments(parser, default="argon-expanding", coarse_graining_defaults=(
-        f"default of thermal-expansion: {MOLECULES_PER_PARTICLE} molecules per particle, argon-expanding at the "
-        f"paper's R* = 1.6839, another fluid at 20 neighbours within the cutoff, as that R* gives"))
-    parser.add_argument("--particles", type=fcc_particles, default=4000, help="4 m^3 particles (default 4000)")
-    parser.add_argument("--delta", type=POSITIVE, help="dT (K) of the runs at T0 -+ dT, > 0 and < T0 (default: 8%% "
-                                                       "of T0)")
-    parser.add_argument("--melt", type=NON_NEGATIVE_COUNT, default=1000,
-                        help="Isothermal steps before each run (default 1000)")
-    parser.add_argument("--steps", type=integer(SAMPLE_EVERY * MIN_SAMPLES, why=f" ({MIN_SAMPLES} samples, one every "
-                                                                                  f"{SAMPLE_EVERY} steps)"),
-                        default=4000, help=f"sampled Isoenergetic steps per run (default 4000; at least "
-                                           f"{SAMPLE_EVERY * MIN_SAMPLES})")
-    parser.add_argument("--seed", type=SEED, default=1, help="random seed (default 1)")
-    parser.add_argument("--iterations", type=NON_NEGATIVE_COUNT, default=1,
-                        help="corrections of beta from the measured slope, each measured again (default 1)")
-    add_platform(parser, default="CPU")
-    parser.set_defaults(run=run)

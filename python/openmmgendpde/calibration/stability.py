@@ -7,7 +7,7 @@ defining quantity: the drift of the conserved energy K + U + sum eps within 1% o
 the kinetic temperature averaged over the last 10 samples (50 steps apart) within 10% of T0 (the bath's; a sample's
 own scatter is sqrt(2/(3N)) = 3.7% for 500 particles). Step sizes are tried on a doubling ladder from dt* = 0.01, then
 the last interval is bisected twice. `suggest_time_step` returns half the smallest limit over the three modes, times
-an accuracy factor for V-C (STEP_FACTOR).
+an accuracy factor for V-C (its stable_step_factor in the table of estimators).
 
 The limits are measured on a bulk liquid, where V-C is V-B (its surface factor is 1 for 99% of the particles); at free
 surfaces V-C's conserved-energy error at a given step is ~100 times V-B's (docs/interfaces.md, "V-C's energy error":
@@ -23,8 +23,7 @@ import openmm
 from openmm import unit
 
 from ..analysis.thermodynamics import ThermodynamicProbe
-from ..api import GenDPDEForce, GenDPDEIntegrator
-from ..models.argon import estimator_value
+from ..api import GenDPDEIntegrator, estimator_of
 from ..models.melting import melt_then_switch
 
 MODES = {"Isoenergetic": GenDPDEIntegrator.Isoenergetic, "Isothermal": GenDPDEIntegrator.Isothermal,
@@ -34,9 +33,7 @@ MODES = {"Isoenergetic": GenDPDEIntegrator.Isoenergetic, "Isothermal": GenDPDEIn
 def _passes(parameters, estimator, mode, time_step, steps, particles, platform, seed):
     model = parameters.liquid(particles, estimator, mode=GenDPDEIntegrator.Isothermal, time_step=0.005, seed=seed)
     integrator = model.integrator
-    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName(platform))
-    context.setPositions(model.positions)
-    context.setVelocitiesToTemperature(parameters.temperature, seed)
+    context = model.context(platform, parameters.temperature, seed)
     melt_then_switch(integrator, 500, parameters.temperature, seed, MODES[mode])
     integrator.setStepSize(parameters.units.to_openmm(time_step, "time"))
     probe = ThermodynamicProbe(model.system)
@@ -83,15 +80,11 @@ def largest_stable_step(parameters, estimator="VB", mode="Isoenergetic", steps=1
     return passed
 
 
-#: What suggest_time_step multiplies an estimator's step by, for the same conserved-energy drift at free surfaces as
-#: V-B's (module docstring; V-A and V-B: 1). Measured for liquid argon (devtools/vc_energy_drift.py): the drift is
-#: second order in dt, V-C's is ~100 times V-B's at the same step, so 1/10.
-STEP_FACTOR = {GenDPDEForce.VC: 0.1}
-
-
 def suggest_time_step(parameters, estimator="VB", **options):
-    """Half the smallest measured limit over the three modes, times STEP_FACTOR for V-C (a step ten times smaller,
-    for the same drift at free surfaces as V-B's), in the model's reduced time, and in ps."""
+    """Half the smallest measured limit over the three modes, times the estimator's stable_step_factor (the table of
+    estimators, api.ESTIMATORS: for the same conserved-energy drift at free surfaces as V-B's; V-C's 0.1, measured
+    for liquid argon by devtools/vc_energy_drift.py: its drift is second order in dt and ~100 times V-B's at the same
+    step), in the model's reduced time, and in ps."""
     limit = min(largest_stable_step(parameters, estimator, mode, **options) for mode in MODES)
-    step = 0.5 * limit * STEP_FACTOR.get(estimator_value(estimator), 1.0)
+    step = 0.5 * limit * estimator_of(estimator).stable_step_factor
     return step, parameters.units.to_openmm(step, "time")

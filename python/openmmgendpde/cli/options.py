@@ -11,11 +11,7 @@ import math
 import os
 import sys
 
-from ..models.argon import ARGON_CUTOFFS
-
-#: R_cut* of the subcommands that study one cutoff (tune-fcut, speed-vs-error, benchmark-integrator): the middle
-#: one of the three published.
-DEFAULT_CUTOFF = ARGON_CUTOFFS[1].cutoff
+from ..models.argon import ARGON_CUTOFFS, DEFAULT_CUTOFF
 
 
 def integer(minimum, maximum=None, why=""):
@@ -147,12 +143,6 @@ def parse_arguments(parser, argv=None):
     except ValueError as error:
         parser.error(str(error))
     return arguments
-
-
-def context_threads(context):
-    """The threads a Context computes on: the CPU platform's Threads property, else 1."""
-    platform = context.getPlatform()
-    return int(platform.getPropertyValue(context, "Threads")) if platform.getName() == "CPU" else 1
 
 
 def platform_description(arguments):

@@ -9,14 +9,17 @@ defaults come from it too); this module reads them through the bindings and adds
 import dataclasses
 import numbers
 
-import openmm
+import numpy as np
 from openmm import app, unit
 
-from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
+from ..api import GenDPDEForce, GenDPDEIntegrator, estimator_value  # noqa: F401  (estimator_value: this module's API)
 from ..gendpde import LiquidArgon as _Model
-from ..units import ARGON_UNITS, ReducedUnits  # noqa: F401  (ARGON_UNITS: part of this module's API)
-from .lattice import build_liquid, fcc_positions
-from .model import Model
+from ..units import ARGON_UNITS, OPENMM_UNITS, ReducedUnits  # noqa: F401  (ARGON_UNITS: part of this module's API)
+from .lattice import fcc_positions
+from .model import Model, ModelParameters
+
+#: The names of an argon model's particles in its Topology (atom, element, residue): 5 argon atoms each.
+ARGON_NAMES = ("AR", app.element.argon, "AR5")
 
 
 @dataclasses.dataclass(frozen=True)
@@ -57,12 +60,19 @@ class ArgonCutoff:
 ARGON_CUTOFFS = tuple(ArgonCutoff(c.cutoff, c.neighbors, c.friction, c.heatConduction, c.cutoffScaling)
                       for c in (_Model.getCutoff(index) for index in range(_Model.numCutoffs)))
 
+#: R_cut* of the studies of one cutoff (tune-fcut, speed-vs-error, the benchmarks): the middle one of the three
+#: published.
+DEFAULT_CUTOFF = ARGON_CUTOFFS[1].cutoff
+
 #: Published averages (Table III): T*, n-bar*, P* for each cutoff and estimator; +-0.0001 (T*), +-0.001 (others).
 PUBLISHED_TABLE3 = {
     1.3365: {"VA": {"T": 0.0115, "n": 0.799, "P": 0.008}, "VB": {"T": 0.0112, "n": 0.997, "P": 0.136}},
     1.6839: {"VA": {"T": 0.0112, "n": 0.811, "P": 0.011}, "VB": {"T": 0.0112, "n": 1.000, "P": 0.128}},
     2.1564: {"VA": {"T": 0.0111, "n": 0.870, "P": 0.041}, "VB": {"T": 0.0111, "n": 1.000, "P": 0.127}},
 }
+
+#: The estimators the paper compares (Tables III and IV, Fig. 1), in its order: those the argon studies run.
+PUBLISHED_ESTIMATORS = tuple(PUBLISHED_TABLE3[1.6839])
 
 #: Published total simulation time ratios V-B/V-A (Table IV, the authors' Fortran code).
 PUBLISHED_TABLE4_RATIO = {1.3365: 1.07, 1.6839: 1.22, 2.1564: 1.03}
@@ -82,19 +92,6 @@ def argon_cutoff(cutoff):
 #: (VC is VB in bulk).
 VC_CUTOFF_SCALING = {c.cutoff: c.cutoffScalingVC for c in (_Model.getCutoff(i) for i in range(_Model.numCutoffs))
                      if c.cutoffScalingVC > 0}
-
-
-def estimator_value(estimator):
-    """GenDPDEForce.VA, VB, ... from a name ('VA', 'vb', ...) or the enum value itself (ESTIMATOR_NAMES)."""
-    values = {name: value for value, name in ESTIMATOR_NAMES.items()}
-    listed = ", ".join(f"'{name}'" for name in values)
-    if isinstance(estimator, str):
-        if estimator.upper() not in values:
-            raise ValueError(f"estimator must be one of {listed}, not '{estimator}'")
-        return values[estimator.upper()]
-    if estimator not in ESTIMATOR_NAMES:
-        raise ValueError(f"estimator must be GenDPDEForce.{', '.join(values)}, not {estimator}")
-    return estimator
 
 
 def default_cutoff_scaling(cutoff, estimator):
@@ -130,13 +127,30 @@ class LiquidArgon(Model):
         return self.units.to_openmm(self.state.temperature, "temperature")
 
     @property
-    def bath_temperature(self):
-        return self.temperature.value_in_unit(unit.kelvin)
-
-    @property
     def box_volume(self):
         """nm^3 (Model.volume)."""
         return self.volume
+
+
+def argon_parameters(cutoff=1.6839, estimator="VB", cutoff_scaling=None):
+    """The ModelParameters of the published model at R_cut* = ``cutoff`` (one of the published 1.3365, 1.6839,
+    2.1564), in OpenMM units: the state of ARGON_STATE, the cutoff's gamma* and kappa* (ARGON_CUTOFFS), and f_cut
+    ``cutoff_scaling`` (default: default_cutoff_scaling of the cutoff and ``estimator``)."""
+    published, units, state = argon_cutoff(cutoff), ARGON_UNITS, ARGON_STATE
+
+    def openmm_value(value, kind):
+        return units.to_openmm(value, kind).value_in_unit(OPENMM_UNITS[kind])
+
+    return ModelParameters(
+        mass=units.unit("mass").value_in_unit(unit.amu), temperature=openmm_value(state.temperature, "temperature"),
+        density=openmm_value(state.density, "number_density"),
+        reference_pressure=openmm_value(state.reference_pressure, "pressure"),
+        bulk_modulus=openmm_value(state.bulk_modulus, "pressure"), tait_exponent=state.tait_exponent,
+        cutoff=openmm_value(published.cutoff, "length"),
+        cutoff_scaling=default_cutoff_scaling(cutoff, estimator) if cutoff_scaling is None else cutoff_scaling,
+        friction=openmm_value(published.friction, "friction"),
+        heat_conduction=openmm_value(published.heat_conduction, "heat_conduction"),
+        heat_capacity=openmm_value(state.heat_capacity, "heat_capacity"))
 
 
 def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scaling=None, time_step=0.01, seed=0,
@@ -145,11 +159,11 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
 
     ``num_particles`` is 4 m^3 (an FCC lattice of m^3 cells); ``cutoff`` is R_cut* (one of the published 1.3365,
     1.6839, 2.1564); ``cutoff_scaling`` defaults to the published f_cut for that cutoff (VC:
-    ``default_cutoff_scaling``); ``estimator`` is 'VA', 'VC' or
-    'VB'. The GenDPDEIntegrator has the published gamma*, kappa* and C_V*, step ``time_step`` (reduced, or a time
-    Quantity), the bath temperature T0 at which every particle starts, and random seed ``seed`` (0: chosen when the
-    Context is created). Returns a LiquidArgon whose System holds one GenDPDEForce. Bad arguments raise ValueError
-    naming the argument, the value and what is allowed.
+    ``default_cutoff_scaling``); ``estimator`` is a name of the table of estimators (api.ESTIMATOR_NAMES) or its
+    GenDPDEForce value. The GenDPDEIntegrator has the published gamma*, kappa* and C_V*, step ``time_step`` (reduced,
+    or a time Quantity), the bath temperature T0 at which every particle starts, and random seed ``seed`` (0: chosen
+    when the Context is created). Returns a LiquidArgon (built by argon_parameters(...).build) whose System holds one
+    GenDPDEForce. Bad arguments raise ValueError naming the argument, the value and what is allowed.
     """
     if isinstance(num_particles, bool) or not isinstance(num_particles, numbers.Integral) or num_particles < 4:
         raise ValueError(f"liquid_argon: num_particles = {num_particles!r} is not allowed; it must be an integer "
@@ -160,26 +174,16 @@ def liquid_argon(num_particles=4000, cutoff=1.6839, estimator="VB", cutoff_scali
         step_size = time_step.in_units_of(unit.picosecond)
     else:
         step_size = ARGON_UNITS.to_openmm(time_step, "time")
-    parameters = argon_cutoff(cutoff)
-    units, state = ARGON_UNITS, ARGON_STATE
-    length = units.unit("length").value_in_unit(unit.nanometer)
-    edge = (num_particles / state.density) ** (1 / 3) * length
-    if parameters.cutoff * length > edge / 2:
+    published = argon_cutoff(cutoff)
+    length = ARGON_UNITS.unit("length").value_in_unit(unit.nanometer)
+    edge = (num_particles / ARGON_STATE.density) ** (1 / 3) * length
+    if published.cutoff * length > edge / 2:
         raise ValueError(f"{num_particles} particles make a box of edge {edge / length:.3f} L, less than twice "
-                         f"R_cut* = {parameters.cutoff}; use more particles")
-    box = [openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge)]
+                         f"R_cut* = {published.cutoff}; use more particles")
     positions = fcc_lattice(num_particles, edge)   # (checks that num_particles is 4 m^3)
-    system, force, integrator, topology = build_liquid(
-        box, num_particles, units.unit("mass"), units.to_openmm(parameters.cutoff, "length"),
-        estimator_value(estimator),
-        default_cutoff_scaling(cutoff, estimator) if cutoff_scaling is None else cutoff_scaling,
-        (units.to_openmm(state.density, "number_density"), units.to_openmm(state.reference_pressure, "pressure"),
-         units.to_openmm(state.bulk_modulus, "pressure"), state.tait_exponent),
-        step_size, units.to_openmm(parameters.friction, "friction"),
-        units.to_openmm(parameters.heat_conduction, "heat_conduction"),
-        units.to_openmm(state.heat_capacity, "heat_capacity"), units.to_openmm(state.temperature, "temperature"),
-        seed, mode, atom_name="AR", element=app.element.argon, residue_name="AR5")
-    return LiquidArgon(system, force, integrator, topology, positions, parameters)
+    return argon_parameters(cutoff, estimator, cutoff_scaling).build(
+        np.diag([edge] * 3), positions, estimator_value(estimator), step_size, seed, mode, ARGON_NAMES,
+        model_type=LiquidArgon, cutoff=published)
 
 
 def pressure_unit_mpa():
@@ -188,6 +192,6 @@ def pressure_unit_mpa():
     return (per_mole / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.megapascal)
 
 
-__all__ = ["ARGON_CUTOFFS", "ARGON_STATE", "ARGON_UNITS", "ArgonCutoff", "ArgonState", "LiquidArgon",
-           "PUBLISHED_TABLE3", "PUBLISHED_TABLE4_RATIO", "VC_CUTOFF_SCALING", "argon_cutoff", "default_cutoff_scaling",
-           "fcc_lattice", "liquid_argon", "pressure_unit_mpa"]
+__all__ = ["ARGON_CUTOFFS", "ARGON_STATE", "ARGON_UNITS", "DEFAULT_CUTOFF", "ArgonCutoff", "ArgonState", "LiquidArgon",
+           "PUBLISHED_ESTIMATORS", "PUBLISHED_TABLE3", "PUBLISHED_TABLE4_RATIO", "VC_CUTOFF_SCALING", "argon_cutoff",
+           "argon_parameters", "default_cutoff_scaling", "fcc_lattice", "liquid_argon", "pressure_unit_mpa"]

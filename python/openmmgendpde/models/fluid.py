@@ -22,287 +22,33 @@ lambda_q = (kappa n0^2/(6 T^2)) int d^3r r^2 omega_q = 2 pi kappa n0^2 R^5/(315 
 
 import dataclasses
 import math
-import numbers
 
 import numpy as np
-import openmm
 from openmm import unit
 
-from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator
-from ..units import BOLTZMANN, ReducedUnits
-from .argon import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS, estimator_value
-from .lattice import build_liquid, fcc_box
-from .model import Model
-
-#: The OpenMM units of the parameters (plain floats in GenDPDEParameters).
-FRICTION = unit.amu / unit.picosecond
-HEAT_CONDUCTION = unit.kilojoule_per_mole * unit.kelvin / unit.picosecond
-PRESSURE = unit.kilojoule_per_mole / unit.nanometer**3
-VISCOSITY = unit.amu / (unit.nanometer * unit.picosecond)
-CONDUCTIVITY = unit.kilojoule_per_mole / (unit.picosecond * unit.nanometer * unit.kelvin)
-HEAT_CAPACITY = unit.kilojoule_per_mole / unit.kelvin
-
-
-MASS_DENSITY = unit.amu / unit.nanometer**3
-MOLAR_MASS = unit.gram / unit.mole
-COMPRESSIBILITY = PRESSURE**-1
-
-
-def amount_power(unit_):
-    """The power of the amount of substance (mol) in an openmm.unit Unit: -1 for kJ/mol, 1 for a compressibility in
-    OpenMM units (nm^3 mol/kJ), 0 for a temperature or an SI unit per molecule (Pa, J/K)."""
-    return int(round(sum(power for dimension, power in unit_.iter_base_dimensions() if dimension.name == "amount")))
-
-
-def _in_openmm(quantity, target, name):
-    """A Quantity in ``target`` (an OpenMM unit): directly if compatible; else, where ``target`` is per mole (OpenMM's
-    energies, pressures and masses are) and the quantity per molecule (SI: J, Pa, W, kg, 1/Pa ...: no mol in its
-    unit), made per mole (times Avogadro's number, or divided by it for the inverse of an energy, such as a
-    compressibility). Nothing else: a property with no mol in its unit (a temperature, a thermal expansion coefficient,
-    a speed) takes only a compatible unit, and a quantity per mole is not made per molecule. Raises ValueError naming
-    the property if neither works."""
-    if not unit.is_quantity(quantity):
-        raise ValueError(f"{name} = {quantity!r} needs a unit (an openmm.unit Quantity compatible with {target})")
-    if quantity.unit.is_compatible(target):
-        return quantity.value_in_unit(target)
-    moles = amount_power(target)
-    if moles and not amount_power(quantity.unit):
-        per_mole = quantity * unit.AVOGADRO_CONSTANT_NA ** -moles
-        if per_mole.unit.is_compatible(target):
-            return per_mole.value_in_unit(target)
-    raise ValueError(f"{name} = {quantity} is not compatible with {target}"
-                     + (" (per mole, or per molecule in SI)" if moles else ""))
-
-
-def _positive(name, value, given=None):
-    """``value`` if it is a finite number > 0, else ValueError naming ``name`` and the value as ``given``."""
-    if not (isinstance(value, numbers.Real) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} = {value if given is None else given} is not allowed; it must be finite and > 0")
-    return value
-
-
-def heat_capacity_per_molecule(value):
-    """c_v per molecule in kJ/mol/K from a Quantity per molecule (J/K), per mole of molecules (J/(mol K),
-    kJ/mol/K), or a plain number in units of k_B; ValueError unless it is finite and > 0."""
-    if unit.is_quantity(value):
-        per_molecule = _in_openmm(value, HEAT_CAPACITY, "heat_capacity")
-    else:
-        per_molecule = value * BOLTZMANN.value_in_unit(HEAT_CAPACITY) if isinstance(value, numbers.Real) else None
-    return _positive("heat_capacity", per_molecule, value)
-
-
-#: The OpenMM units of a Fluid's properties (heat_capacity and tait_exponent aside).
-_PROPERTY_UNITS = {"temperature": unit.kelvin, "pressure": PRESSURE, "mass_density": MASS_DENSITY,
-                   "compressibility": COMPRESSIBILITY, "shear_viscosity": VISCOSITY,
-                   "thermal_conductivity": CONDUCTIVITY, "molar_mass": MOLAR_MASS}
-#: The OpenMM units of the optional properties.
-_OPTIONAL_PROPERTY_UNITS = {"self_diffusion": unit.nanometer**2 / unit.picosecond,
-                            "speed_of_sound": unit.nanometer / unit.picosecond,
-                            "surface_tension": unit.kilojoule_per_mole / unit.nanometer**2,
-                            "thermal_expansion": unit.kelvin**-1}
-#: The OpenMM unit of every property with a unit (heat_capacity also takes a plain number in k_B).
-PROPERTY_UNITS = {**_PROPERTY_UNITS, "heat_capacity": HEAT_CAPACITY, **_OPTIONAL_PROPERTY_UNITS}
-
-
-@dataclasses.dataclass(frozen=True)
-class Fluid:
-    """A fluid at one state point; every property an openmm.unit Quantity in any compatible unit (SI per molecule,
-    or per mole), except heat_capacity, which may also be a number in k_B per molecule. Every property must be
-    finite and > 0 but the pressure (finite, of either sign), and tait_exponent > 1: a Fluid that is not raises
-    ValueError naming the property, its value and what is allowed. The optional properties (self_diffusion,
-    speed_of_sound, surface_tension) are not fitted, only measured back; None where not known."""
-    name: str
-    temperature: unit.Quantity            # T0
-    pressure: unit.Quantity               # P0
-    mass_density: unit.Quantity           # rho
-    compressibility: unit.Quantity        # isothermal, kappa_T
-    heat_capacity: object                 # isochoric, per molecule (c_v)
-    shear_viscosity: unit.Quantity        # eta
-    thermal_conductivity: unit.Quantity   # lambda
-    molar_mass: unit.Quantity             # M
-    tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
-    self_diffusion: unit.Quantity = None  # the molecules' self-diffusion coefficient: not fitted, measured back
-    speed_of_sound: unit.Quantity = None  # not fitted: compared with the model's (from its measured n dP/dn)
-    surface_tension: unit.Quantity = None  # liquid-vapour; not fitted: compared with a slab's (`slab`)
-    thermal_expansion: unit.Quantity = None  # alpha (1/K): if given, the model's law is TaitThermalExpansion
-
-    def __post_init__(self):
-        self.in_openmm()
-
-    def in_openmm(self):
-        """The properties as plain floats in OpenMM units (temperature K, pressure kJ/mol/nm^3, mass_density
-        amu/nm^3, compressibility nm^3 mol/kJ, shear_viscosity amu/(nm ps), thermal_conductivity kJ/(mol ps nm K),
-        molar_mass g/mol, heat_capacity kJ/mol/K per molecule, tait_exponent, and self_diffusion nm^2/ps if
-        given, speed_of_sound nm/ps if given, surface_tension kJ/mol/nm^2 if given), checked as the class says."""
-        values = {}
-        for name, target in _PROPERTY_UNITS.items():
-            given = getattr(self, name)
-            values[name] = _in_openmm(given, target, name)
-            if name != "pressure":
-                _positive(name, values[name], given)
-            elif not math.isfinite(values[name]):
-                raise ValueError(f"pressure = {given} is not allowed; it must be finite")
-        values["heat_capacity"] = heat_capacity_per_molecule(self.heat_capacity)
-        if not (isinstance(self.tait_exponent, numbers.Real) and 1 < self.tait_exponent < math.inf):
-            raise ValueError(f"tait_exponent = {self.tait_exponent} is not allowed; it must be finite and > 1")
-        values["tait_exponent"] = self.tait_exponent
-        for name, target in _OPTIONAL_PROPERTY_UNITS.items():
-            if getattr(self, name) is not None:
-                values[name] = _positive(name, _in_openmm(getattr(self, name), target, name), getattr(self, name))
-        return values
-
-
-@dataclasses.dataclass(frozen=True)
-class GenDPDEParameters:
-    """Every parameter of GenDPDEForce and GenDPDEIntegrator for one fluid, coarse-graining level and cutoff, as plain
-    floats in OpenMM units (nm, amu, ps, kJ/mol, K), with the targets they came from."""
-    fluid: Fluid
-    molecules_per_particle: float
-    mass: float                   # amu, one particle
-    temperature: float            # K, T0
-    density: float                # nm^-3, n0
-    reference_pressure: float     # kJ/mol/nm^3, pi0
-    bulk_modulus: float           # kJ/mol/nm^3, B_T
-    tait_exponent: float          # gamma_T
-    cutoff: float                 # nm, R
-    neighbors: float              # particles within R at n0
-    cutoff_scaling: float         # f_cut of V-B (a first estimate until `calibrate` tunes it)
-    friction: float               # amu/ps, gamma
-    heat_conduction: float        # kJ K/(mol ps), kappa
-    heat_capacity: float          # kJ/mol/K, C_V per particle
-    thermal_pressure: float = None              # kJ/mol/nm^3/K, beta of TaitThermalExpansion (None: the Tait law)
-    thermal_reference_temperature: float = None  # K, theta0 of TaitThermalExpansion
-    background_pressure: float = None   # kJ/mol/nm^3, p_b of GenDPDEForce (None: none); background_pressure_for()
-    #: The density estimator ('VA', 'VB', 'VC') that cutoff_scaling was tuned for; None where none was (a mapping's
-    #: first estimate, or a model file of format 1, which did not record it). liquid() refuses another estimator
-    #: that reads f_cut: V-C with V-B's f_cut does not give n0.
-    estimator: str = None
-
-    @property
-    def equation_of_state(self):
-        """The local equation of state: 'TaitThermalExpansion' where thermal_pressure is set, else 'Tait'."""
-        return "Tait" if self.thermal_pressure is None else "TaitThermalExpansion"
-
-    @property
-    def units(self):
-        """The reduced units of the model: mass of a particle, length n0^(-1/3), energy L^3/kappa_T (k_B = 1)."""
-        length = self.density ** (-1 / 3)
-        return ReducedUnits(mass=self.mass * unit.amu, length=length * unit.nanometer,
-                            energy=length**3 * self.tait_exponent * self.bulk_modulus * unit.kilojoule_per_mole)
-
-    def reduced(self):
-        """The parameters in the model's reduced units (the paper's Table II for argon)."""
-        u = self.units
-        kb = BOLTZMANN.value_in_unit(HEAT_CAPACITY)
-        return {
-            "T0*": u.from_openmm(self.temperature, "temperature"),
-            "n0*": u.from_openmm(self.density, "number_density"),
-            "pi0*": u.from_openmm(self.reference_pressure, "pressure"),
-            "B_T*": u.from_openmm(self.bulk_modulus, "pressure"),
-            "gamma_T": self.tait_exponent,
-            "R*": u.from_openmm(self.cutoff, "length"),
-            "f_cut": self.cutoff_scaling,
-            "gamma*": u.from_openmm(self.friction, "friction"),
-            "kappa*": u.from_openmm(self.heat_conduction, "heat_conduction"),
-            "C_V*": self.heat_capacity / kb,
-            "p_b*": u.from_openmm(self.background_pressure or 0.0, "pressure"),
-        }
-
-    def targets(self):
-        """The fluid's properties that the model should reproduce, in OpenMM units: pressure, bulk modulus
-        1/kappa_T, temperature, viscosity, conductivity, the density n0, and the isochoric heat capacity of the
-        molecules of one particle (kJ/mol/K); and those it is not fitted to, None where the fluid has none:
-        self_diffusion, speed_of_sound and surface_tension (kJ/mol/nm^2)."""
-        f = self.fluid.in_openmm()
-        return {"density": self.density, "pressure": f["pressure"], "bulk_modulus": 1 / f["compressibility"],
-                "temperature": f["temperature"], "shear_viscosity": f["shear_viscosity"],
-                "heat_capacity": self.molecules_per_particle * f["heat_capacity"],
-                "thermal_conductivity": f["thermal_conductivity"], "self_diffusion": f.get("self_diffusion"),
-                "speed_of_sound": f.get("speed_of_sound"), "surface_tension": f.get("surface_tension"),
-                "thermal_expansion": f.get("thermal_expansion")}
-
-    def with_cutoff_scaling(self, cutoff_scaling, estimator=None):
-        """The parameters with f_cut = ``cutoff_scaling``, tuned for ``estimator`` (default: the one recorded)."""
-        return dataclasses.replace(self, cutoff_scaling=cutoff_scaling, estimator=estimator or self.estimator)
-
-    def for_estimator(self, estimator):
-        """The parameters with ``estimator`` recorded as the one f_cut is for (calibrate and tune-fcut, which tune
-        f_cut for it from this start)."""
-        return dataclasses.replace(self, estimator=ESTIMATOR_NAMES[estimator_value(estimator)])
-
-    def checked_estimator(self, estimator=None):
-        """The estimator's name that liquid() builds with: ``estimator``, by default the recorded one (else 'VB'); a
-        ValueError where f_cut was tuned for another estimator that reads f_cut (V-A does not)."""
-        name = ESTIMATOR_NAMES[estimator_value(estimator or self.estimator or "VB")]
-        if self.estimator is not None and name not in (self.estimator, "VA"):
-            raise ValueError(f"estimator = {name!r} is not allowed for this model: its f_cut = "
-                             f"{self.cutoff_scaling:.6g} was tuned for {self.estimator}, and with {name} it does not "
-                             f"give the density n0; tune f_cut for {name} (calibrate --fluid FILE --estimator {name} "
-                             f"--output NEW, or tune-fcut) and use with_cutoff_scaling(f_cut, {name!r})")
-        return name
-
-    def with_transport(self, friction, heat_conduction):
-        return dataclasses.replace(self, friction=friction, heat_conduction=heat_conduction)
-
-    def liquid(self, num_particles=None, estimator=None, mode=GenDPDEIntegrator.Isoenergetic, time_step=0.01,
-               seed=0, density=None, cells=None):
-        """The fluid at n0 (or ``density``, nm^-3) in a periodic box on an FCC lattice: a cube of num_particles = 4 m^3
-        particles, or ``cells`` = (n_x, n_y, n_z) cubic FCC cells (any rectangular box: slabs, elongated boxes).
-        Returns a FluidModel with its System (one GenDPDEForce), GenDPDEIntegrator (step ``time_step`` in reduced time
-        units, bath temperature T0), topology and positions (nm). ``estimator``: by default the one f_cut was tuned
-        for (else V-B); another that reads f_cut is refused (checked_estimator)."""
-        estimator = self.checked_estimator(estimator)
-        density = self.density if density is None else density
-        if cells is None:
-            if num_particles is None:
-                raise ValueError("give num_particles (4 m^3, a cube) or cells = (n_x, n_y, n_z)")
-            integral = isinstance(num_particles, numbers.Integral) and num_particles > 0
-            m = round((num_particles / 4) ** (1 / 3)) if integral else 0
-            if m < 1 or 4 * m**3 != num_particles:
-                raise ValueError(f"num_particles = {num_particles} is not allowed; a cube holds 4 m^3 "
-                                 f"(500, 864, 2048, 4000, ...); give cells for other boxes")
-            cells = (m, m, m)
-        positions, box = fcc_box(density, cells)
-        num_particles = len(positions)
-        widths = [box[k][k] for k in range(3)]
-        if self.cutoff > min(widths) / 2:
-            raise ValueError(f"the box {widths[0]:.3f} x {widths[1]:.3f} x {widths[2]:.3f} nm is less than twice the "
-                             f"cutoff {self.cutoff:.3f} nm across; use more cells")
-        step = self.units.to_openmm(time_step, "time").value_in_unit(unit.picosecond)
-        system, force, integrator, topology = build_liquid(
-            [openmm.Vec3(*row) for row in box], num_particles, self.mass, self.cutoff, estimator_value(estimator),
-            self.cutoff_scaling, (self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent), step,
-            self.friction, self.heat_conduction, self.heat_capacity, self.temperature, seed, mode)
-        if self.background_pressure is not None:
-            force.setBackgroundPressure(self.background_pressure)
-        if self.thermal_pressure is not None:
-            force.setEquationOfState(GenDPDEForce.TaitThermalExpansion,
-                                     [self.thermal_pressure, self.thermal_reference_temperature])
-        return FluidModel(system, force, integrator, topology, positions, self)
-
-
-@dataclasses.dataclass
-class FluidModel(Model):
-    """A ready model of a fluid (model.Model) and the parameters it was built from."""
-    parameters: GenDPDEParameters = None
-
-    @property
-    def bath_temperature(self):
-        return self.parameters.temperature
-
-
-def set_temperature_field(integrator, positions, temperature):
-    """Set every particle's internal temperature theta_i = temperature(r_i) (K; r_i in nm, a row of ``positions``,
-    e.g. State.getPositions(asNumpy=True) or a plain N x 3 array): a temperature field, such as two regions at two
-    temperatures for a heat-conduction study. The integrator must be bound to its Context."""
-    if unit.is_quantity(positions):
-        positions = positions.value_in_unit(unit.nanometer)
-    values = []
-    for r in np.asarray(positions, dtype=float):
-        t = temperature(r)
-        t = t.value_in_unit(unit.kelvin) if unit.is_quantity(t) else float(t)
-        values.append(t)
-    integrator.setParticleTemperatures(values)
+from ..api import LAWS, GenDPDEForce, law_value
+from ..units import BOLTZMANN
+from . import laws
+from .argon import ARGON_CUTOFFS, ARGON_STATE, ARGON_UNITS
+from .model import set_temperature_field  # noqa: F401  (part of this module's API, version 0.2)
+from .parameters import FluidModel, GenDPDEParameters  # noqa: F401  (part of this module's API)
+from .properties import (  # noqa: F401  (part of this module's API)
+    COMPRESSIBILITY,
+    CONDUCTIVITY,
+    FRICTION,
+    HEAT_CAPACITY,
+    HEAT_CONDUCTION,
+    MASS_DENSITY,
+    MOLAR_MASS,
+    PRESSURE,
+    PROPERTY_UNITS,
+    VISCOSITY,
+    Fluid,
+    _in_openmm,
+    _positive,
+    amount_power,
+    heat_capacity_per_molecule,
+)
 
 
 def cutoff_scaling_guess(neighbors):
@@ -314,16 +60,46 @@ def cutoff_scaling_guess(neighbors):
     return float(np.interp(neighbors, counts, values))
 
 
-def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cutoff_scaling=None):
+def coarse_grain(fluid, molecules_per_particle, neighbors=None, cutoff=None, cutoff_scaling=None, law=None):
     """Every GenDPDE parameter for ``fluid`` with ``molecules_per_particle`` molecules per particle and either
     ``neighbors`` particles within the cutoff at n0 or the ``cutoff`` itself (a length Quantity or nm); the formulas
-    are the module's. Raises ValueError naming a bad argument."""
+    are the module's. ``law``: the local equation of state (a name of the table of laws, api.LAW_NAMES, or its
+    GenDPDEForce.EquationOfState value); by default Tait, or TaitThermalExpansion for a fluid with a thermal_expansion.
+    A law with parameters of its own is fitted (models.laws) to the Tait law's pi0 and n dpi/dn = gamma_T B_T at n0 and
+    to the thermal pressure beta (thermal_expansion_law) at the particles' mean temperature, so it needs the fluid's
+    thermal_expansion. Raises ValueError naming a bad argument."""
     _positive("molecules_per_particle", molecules_per_particle)
     try:
-        return _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_scaling)
+        parameters = _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_scaling)
+        thermal = _thermal_law(fluid, parameters)
     except (OverflowError, ZeroDivisionError):
         raise ValueError(f"{fluid.name}: the mapping overflows: the fluid's properties are out of the range of a "
                          f"model ({molecules_per_particle:g} molecules per particle)") from None
+    if law is None:
+        law = GenDPDEForce.Tait if thermal is None else GenDPDEForce.TaitThermalExpansion
+    chosen = LAWS[law_value(law)]
+    if not chosen.parameters:
+        return parameters.with_law(chosen.value, ())
+    if thermal is None:
+        raise ValueError(f"law = {chosen.name!r} is not allowed for {fluid.name}: its parameters are fitted to the "
+                         f"fluid's thermal expansion, and the fluid has no thermal_expansion")
+    beta, theta = thermal
+    return parameters.with_law(chosen.value, laws.fit(chosen.value, parameters.tait,
+                                                      parameters.reference_state(beta, theta)))
+
+
+def _thermal_law(fluid, parameters):
+    """(beta, theta_r) of the fluid's thermal expansion at the mapped parameters (thermal_expansion_law), or None
+    for a fluid without one; ValueError naming beta if it is not a finite number."""
+    if fluid.thermal_expansion is None:
+        return None
+    f = fluid.in_openmm()
+    beta, theta = thermal_expansion_law(f["thermal_expansion"], f["compressibility"], parameters.density,
+                                        parameters.temperature, parameters.heat_capacity)
+    if not (math.isfinite(beta) and math.isfinite(theta)):
+        raise ValueError(f"{fluid.name}: the mapping gives thermal_pressure = {beta}, not a finite number; the "
+                         f"fluid's properties are out of the range of a model")
+    return beta, theta
 
 
 def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_scaling):
@@ -342,11 +118,6 @@ def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_sca
         cutoff = _positive("cutoff", _in_openmm(cutoff, unit.nanometer, "cutoff") if unit.is_quantity(cutoff)
                            else cutoff, cutoff)
         neighbors = 4 * math.pi / 3 * density * cutoff**3
-    thermal_pressure = thermal_reference_temperature = None
-    if "thermal_expansion" in f:
-        thermal_pressure, thermal_reference_temperature = thermal_expansion_law(
-            f["thermal_expansion"], f["compressibility"], density, temperature,
-            molecules_per_particle * f["heat_capacity"])
     r5 = density * density * cutoff**5
     friction = 1575 * f["shear_viscosity"] / (2 * math.pi * r5)
     heat_conduction = 315 * f["thermal_conductivity"] * temperature * temperature / (2 * math.pi * r5)
@@ -356,15 +127,14 @@ def _coarse_grained(fluid, molecules_per_particle, neighbors, cutoff, cutoff_sca
         tait_exponent=f["tait_exponent"], cutoff=cutoff, neighbors=neighbors,
         cutoff_scaling=cutoff_scaling_guess(neighbors) if cutoff_scaling is None else cutoff_scaling,
         friction=friction, heat_conduction=heat_conduction,
-        heat_capacity=molecules_per_particle * f["heat_capacity"], thermal_pressure=thermal_pressure,
-        thermal_reference_temperature=thermal_reference_temperature,
+        heat_capacity=molecules_per_particle * f["heat_capacity"],
         background_pressure=background_pressure_for(reference_pressure, bulk_modulus))
     # Properties far outside what a fluid has (a temperature of 1e300 K) can take a parameter out of the floats: say
     # so here, naming it, rather than in a Context or as inf in a model file.
     for field in dataclasses.fields(GenDPDEParameters):
         value = getattr(parameters, field.name)
-        signed = field.name in ("reference_pressure", "thermal_pressure")
-        if field.name != "fluid" and value is not None and not (math.isfinite(value) and (signed or value > 0)):
+        signed = field.name == "reference_pressure"
+        if isinstance(value, float) and not (math.isfinite(value) and (signed or value > 0)):
             raise ValueError(f"{fluid.name}: the mapping gives {field.name} = {value}, not a finite number"
                              f"{'' if signed else ' > 0'}; the fluid's properties are out of the range of a model "
                              f"(temperature = {temperature:g} K, mass_density = {f['mass_density']:g} amu/nm^3, "

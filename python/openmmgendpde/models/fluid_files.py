@@ -24,9 +24,11 @@ import numbers
 import os
 import re
 
+import openmm
 import tomllib
 from openmm import unit
 
+from ..api import ESTIMATOR_NAMES, LAW_NAMES, LAWS, GenDPDEForce, law_value
 from ..internal.files import atomic_write
 from .fluid import (
     ARGON,
@@ -40,13 +42,19 @@ from .fluid import (
     amount_power,
 )
 
-#: The format key of the model files this version writes. Format 2 records the estimator that f_cut was tuned for and
-#: the equation of state; format 1 files (without them) are still read, their estimator unknown (None).
-MODEL_FORMAT = "openmmgendpde-model-2"
-#: Every format this version reads.
-MODEL_FORMATS = ("openmmgendpde-model-1", MODEL_FORMAT)
-#: The parameters of a model file that are names, not numbers, and the names each allows.
-_NAMED_PARAMETERS = {"estimator": ("VA", "VB", "VC"), "equation_of_state": ("Tait", "TaitThermalExpansion")}
+#: The format key of the model files this version writes. Format 3 records the equation of state as any law of the
+#: table with its parameters by name (equation_of_state_parameters); format 2 recorded the estimator that f_cut was
+#: tuned for and the law, Tait or the thermal Tait law (its two parameters as thermal_pressure and
+#: thermal_reference_temperature); format 1 neither (its estimator unknown, None). All three are read.
+MODEL_FORMAT = "openmmgendpde-model-3"
+#: Every format this version reads, oldest first.
+MODEL_FORMATS = ("openmmgendpde-model-1", "openmmgendpde-model-2", MODEL_FORMAT)
+#: The parameters of a model file that are names, not numbers, and the names each allows (the core's tables).
+_NAMED_PARAMETERS = {"estimator": tuple(ESTIMATOR_NAMES.values()), "equation_of_state": tuple(LAW_NAMES.values())}
+#: The table of a format-3 file that holds the law's parameters by the names of the table of laws.
+_LAW_PARAMETERS = "equation_of_state_parameters"
+#: The names formats 1 and 2 gave the two parameters of their one law with parameters (beta and theta0).
+_OLD_LAW_PARAMETERS = ("thermal_pressure", "thermal_reference_temperature")
 
 #: The properties of a Fluid with a unit, and the SI unit a model file writes each in (pint syntax, openmm.unit).
 _SI_UNITS = {
@@ -67,12 +75,11 @@ _OPTIONAL_UNITS = {"self_diffusion": ("m^2/s", unit.meter**2 / unit.second),
 #: pint's base units and openmm.unit's.
 _BASE_UNITS = {"kilogram": unit.kilogram, "meter": unit.meter, "second": unit.second, "mole": unit.mole,
                "kelvin": unit.kelvin}
-#: The parameters of GenDPDEParameters that a model file may hold but need not (None: absent): those of a law that
-#: depends on temperature.
-_OPTIONAL_PARAMETERS = ["thermal_pressure", "thermal_reference_temperature", "background_pressure"]
-#: The parameters of GenDPDEParameters that a model file holds, in order (the fluid and the optional ones aside).
-_PARAMETERS = [field for field in GenDPDEParameters.__dataclass_fields__
-               if field not in ("fluid", *_OPTIONAL_PARAMETERS, *_NAMED_PARAMETERS)]
+#: The numbers of GenDPDEParameters that a model file may hold but need not (None: absent).
+_OPTIONAL_PARAMETERS = ["background_pressure"]
+#: The numbers of GenDPDEParameters that a model file holds, in order (the fluid, the law and the optional ones aside).
+_PARAMETERS = ["molecules_per_particle", "mass", "temperature", "density", "reference_pressure", "bulk_modulus",
+               "tait_exponent", "cutoff", "neighbors", "cutoff_scaling", "friction", "heat_conduction", "heat_capacity"]
 
 
 #: One quantity: a number (digits, an optional decimal point and exponent; no nan or inf) then its unit.
@@ -215,6 +222,7 @@ def save_parameters(parameters, path, comment=None):
     if parameters.estimator is not None:
         model["estimator"] = parameters.estimator
     model["equation_of_state"] = parameters.equation_of_state
+    model[_LAW_PARAMETERS] = dict(zip(LAWS[parameters.law].parameter_names, parameters.law_parameters))
     extension = os.path.splitext(path)[1].lower()
     if extension == ".json":
         with atomic_write(path) as stream:
@@ -233,6 +241,8 @@ def save_parameters(parameters, path, comment=None):
 
 
 def _toml_value(value):
+    if isinstance(value, dict):   # (an inline table of numbers)
+        return "{" + ", ".join(f"{name} = {value!r}" for name, value in value.items()) + "}"
     return json.dumps(value) if isinstance(value, str) else repr(value)
 
 
@@ -247,37 +257,84 @@ def _check_model(table, path):
 
 
 def load_parameters(path):
-    """The GenDPDEParameters of a model file written by save_parameters; ValueError naming what is wrong."""
+    """The GenDPDEParameters of a model file written by save_parameters (any format of MODEL_FORMATS); ValueError
+    naming what is wrong."""
     table = _read(path)
     _check_model(table, path)
     fluid = fluid_from_table(table["fluid"], f"{path} [fluid]")
-    given = table["parameters"]
+    given, version = table["parameters"], MODEL_FORMATS.index(table["format"])
+    where = f"{path} [parameters]"
+    law_keys = {0: list(_OLD_LAW_PARAMETERS), 1: list(_NAMED_PARAMETERS) + list(_OLD_LAW_PARAMETERS),
+                2: list(_NAMED_PARAMETERS) + [_LAW_PARAMETERS]}[version]
     missing = sorted(set(_PARAMETERS) - set(given))
-    named = _NAMED_PARAMETERS if table["format"] != MODEL_FORMATS[0] else {}
-    unknown = sorted(set(given) - set(_PARAMETERS) - set(_OPTIONAL_PARAMETERS) - set(named))
+    unknown = sorted(set(given) - set(_PARAMETERS) - set(_OPTIONAL_PARAMETERS) - set(law_keys))
     if missing or unknown:
-        raise ValueError(f"{path} [parameters]: " + "; ".join(
+        raise ValueError(f"{where}: " + "; ".join(
             part for part in (f"missing {missing}" if missing else "", f"unknown {unknown}" if unknown else "")
             if part))
-    values = {}
-    for name in _PARAMETERS + [name for name in _OPTIONAL_PARAMETERS if name in given]:
-        value = given[name]
-        if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
-            raise ValueError(f"{path} [parameters]: {name} = {value!r} is not allowed; it must be a finite number")
-        if name != "reference_pressure" and not value > 0:
-            raise ValueError(f"{path} [parameters]: {name} = {value!r} is not allowed; it must be > 0")
-        values[name] = float(value)
-    for name, allowed in named.items():
+    values = {name: _number(given, name, where) for name in _PARAMETERS + _OPTIONAL_PARAMETERS if name in given}
+    for name, allowed in _NAMED_PARAMETERS.items():
         if name in given and given[name] not in allowed:
-            raise ValueError(f"{path} [parameters]: {name} = {given[name]!r} is not allowed; it must be one of "
+            raise ValueError(f"{where}: {name} = {given[name]!r} is not allowed; it must be one of "
                              f"{', '.join(map(repr, allowed))}")
-    parameters = GenDPDEParameters(fluid=fluid, estimator=given.get("estimator"), **values)
-    law = given.get("equation_of_state", parameters.equation_of_state)
-    if law != parameters.equation_of_state:
-        raise ValueError(f"{path} [parameters]: equation_of_state = {law!r} does not match the parameters given "
-                         f"(TaitThermalExpansion needs thermal_pressure and thermal_reference_temperature, Tait "
-                         f"neither)")
-    return parameters
+    law, law_parameters = (_law(given, where) if version == 2 else _old_law(given, version, where))
+    return GenDPDEParameters(fluid=fluid, estimator=given.get("estimator"), law=law, law_parameters=law_parameters,
+                             **values)
+
+
+def _number(given, name, where):
+    """given[name] as a float: finite, and > 0 but for the reference pressure; ValueError naming it."""
+    value = given[name]
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
+    if name != "reference_pressure" and not value > 0:
+        raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be > 0")
+    return float(value)
+
+
+def _law(given, where):
+    """(law, its parameters) of a format-3 file: equation_of_state (a name of the table of laws) and its parameters
+    by name, each a finite number within the range GenDPDEForce allows (its own check, through a force)."""
+    absent = [name for name in ("equation_of_state", _LAW_PARAMETERS) if name not in given]
+    if absent:
+        raise ValueError(f"{where}: missing {absent}")
+    law = LAWS[law_value(given["equation_of_state"])]
+    table = given[_LAW_PARAMETERS]
+    if not isinstance(table, dict) or sorted(table) != sorted(law.parameter_names):
+        raise ValueError(f"{where}: {_LAW_PARAMETERS} = {table!r} is not allowed; the law {law.name} takes "
+                         f"{list(law.parameter_names) or 'no parameters'}")
+    return law.value, _checked_law(law, [_signed(table, name, f"{where} {_LAW_PARAMETERS}")
+                                         for name in law.parameter_names], where)
+
+
+def _old_law(given, version, where):
+    """(law, its parameters) of a file of format 1 or 2: the law named (format 2) or the one its parameters, if any,
+    belong to, which formats 1 and 2 wrote as thermal_pressure and thermal_reference_temperature."""
+    values = [_signed(given, name, where) for name in _OLD_LAW_PARAMETERS if name in given]
+    law = LAWS[law_value(given["equation_of_state"]) if version == 1 and "equation_of_state" in given else
+               next(entry.value for entry in LAWS if len(entry.parameters) == len(values) and entry.extends_tait)]
+    if len(values) != len(law.parameters):
+        raise ValueError(f"{where}: equation_of_state = {law.name!r} does not match the parameters given "
+                         f"({', '.join(_OLD_LAW_PARAMETERS)}: the parameters of the thermal Tait law, which this "
+                         f"format writes for that law only)")
+    return law.value, _checked_law(law, values, where)
+
+
+def _signed(table, name, where):
+    value = table[name]
+    if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
+        raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
+    return float(value)
+
+
+def _checked_law(law, values, where):
+    """``values`` if GenDPDEForce takes them for ``law`` (its check names the parameter and its range), else
+    ValueError naming the file."""
+    try:
+        GenDPDEForce(1.0).setEquationOfState(law.value, values)
+    except openmm.OpenMMException as error:
+        raise ValueError(f"{where}: {' '.join(str(error).split())}") from None
+    return tuple(values)
 
 
 FLUIDS = {"water": WATER, "argon": ARGON, "argon-expanding": ARGON_EXPANDING,

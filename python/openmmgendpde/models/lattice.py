@@ -1,10 +1,8 @@
-"""The one builder of ready GenDPDE liquids, for the argon model (openmmgendpde.models.argon) and any fluid
-(openmmgendpde.models.fluid): FCC positions, and a System with one GenDPDEForce, its GenDPDEIntegrator and a
-Topology."""
+"""The lattices that models start from (FCC positions in a rectangular box) and the volume of a System's box; the
+model itself is built by model.ModelParameters.build."""
 
 import numpy as np
-import openmm
-from openmm import app, unit
+from openmm import unit
 
 
 def fcc_positions(cells, cell_edge):
@@ -27,38 +25,6 @@ def fcc_box(density, cells):
         raise ValueError(f"density = {density} is not allowed; it must be > 0")
     edge = (4 / density) ** (1 / 3)
     return fcc_positions((nx, ny, nz), edge), [[nx * edge, 0, 0], [0, ny * edge, 0], [0, 0, nz * edge]]
-
-
-def build_liquid(box, num_particles, mass, cutoff, estimator, cutoff_scaling, tait, step_size, friction,
-                 heat_conduction, heat_capacity, temperature, seed, mode, atom_name="CG", element=None,
-                 residue_name="CG"):
-    """(system, force, integrator, topology) of ``num_particles`` identical particles in the periodic ``box`` (three
-    Vec3, nm): a GenDPDEForce of ``cutoff`` (nm), ``estimator`` (an enum value), f_cut ``cutoff_scaling`` and the
-    Tait parameters ``tait`` = (n0, pi0, B_T, gamma_T), and a GenDPDEIntegrator of step ``step_size`` (ps),
-    ``friction``, ``heat_conduction`` and ``heat_capacity``, bath temperature ``temperature`` (K), random seed
-    ``seed`` and ``mode``; every value in OpenMM units. The topology's atoms are named for PDB files and viewers.
-    The force holds a reference to the System, which owns it, so that it stays valid as long as it is used."""
-    from ..api import GenDPDEForce, GenDPDEIntegrator
-    system = openmm.System()
-    system.setDefaultPeriodicBoxVectors(*box)
-    for _ in range(num_particles):
-        system.addParticle(mass)
-    force = GenDPDEForce(cutoff)
-    force.setDensityEstimator(estimator)
-    force.setCutoffScaling(cutoff_scaling)
-    force.setTaitParameters(*tait)
-    system.addForce(force)
-    force._system = system   # the System owns the C++ force (addForce): the force, once returned, keeps it alive
-    integrator = GenDPDEIntegrator(step_size, friction, heat_conduction, heat_capacity)
-    integrator.setTemperature(temperature)
-    integrator.setRandomNumberSeed(seed)
-    integrator.setMode(mode)
-    topology = app.Topology()
-    chain = topology.addChain()
-    for _ in range(num_particles):
-        topology.addAtom(atom_name, element, topology.addResidue(residue_name, chain))
-    topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))   # as PDBFile and PDBReporter expect
-    return system, force, integrator, topology
 
 
 def box_volume(system):

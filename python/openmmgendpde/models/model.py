@@ -1,6 +1,9 @@
-"""The model of the package: a System holding one GenDPDEForce, its GenDPDEIntegrator, a Topology and lattice
-positions, built for the published liquid argon (argon.LiquidArgon) or any fluid (fluid.FluidModel), and brought to
-equilibrium one way (equilibrate, with an Equilibration protocol)."""
+"""The model of the package and its one builder: ModelParameters holds every parameter of a one-type GenDPDE model
+(its GenDPDEForce, with the local equation of state as a law of the table and its parameters, and its
+GenDPDEIntegrator) and builds it whole (build: a System holding one GenDPDEForce, its GenDPDEIntegrator, a Topology
+and positions); Model is what it builds, and makes every Context of it (context, simulation), brought to
+equilibrium one way (equilibrate, with an Equilibration protocol). The published liquid argon (argon.liquid_argon)
+and any fluid (fluid.GenDPDEParameters.liquid) are built here."""
 
 import dataclasses
 
@@ -8,9 +11,174 @@ import numpy as np
 import openmm
 from openmm import app, unit
 
-from ..api import GenDPDEForce, GenDPDEIntegrator
+from ..api import LAWS, GenDPDEForce, GenDPDEIntegrator, law_value
+from ..units import BOLTZMANN
+from . import laws
 from .lattice import box_volume
 from .melting import melt_then_switch
+
+#: The names of a model's particles in its Topology (atom, element, residue), for PDB files and viewers.
+PARTICLE_NAMES = ("CG", None, "CG")
+#: Boltzmann's constant in kJ/mol/K.
+_KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+
+
+@dataclasses.dataclass(frozen=True, kw_only=True)
+class ModelParameters:
+    """Every parameter of a GenDPDE model of one particle type, as plain floats in OpenMM units (nm, amu, ps, kJ/mol,
+    K). The GenDPDEForce: the cutoff R, f_cut, the Tait parameters n0 (``density``), pi0, B_T, gamma_T, the local
+    equation of state ``law`` (a GenDPDEForce.EquationOfState value) with ``law_parameters`` in the order of the table
+    of laws (api.LAWS; () for Tait) and the background pressure p_b (None: none). The GenDPDEIntegrator: friction
+    gamma, heat conduction kappa, heat capacity C_V per particle and bath temperature T0. And the particle mass.
+
+    A law that extends Tait adds its parameters to the Tait parameters; any other ignores them in the force, and they
+    are its tangent at n0: its pressure pi0 and modulus gamma_T B_T there (models.laws). replace() keeps that so, and
+    with_thermal_pressure() and with_law() fit the law's parameters to it, for any law of the table."""
+    mass: float                   # amu, one particle
+    temperature: float            # K, T0
+    density: float                # nm^-3, n0
+    reference_pressure: float     # kJ/mol/nm^3, pi0
+    bulk_modulus: float           # kJ/mol/nm^3, B_T
+    tait_exponent: float          # gamma_T
+    cutoff: float                 # nm, R
+    cutoff_scaling: float         # f_cut of the estimators that read it (V-B, V-C)
+    friction: float               # amu/ps, gamma
+    heat_conduction: float        # kJ K/(mol ps), kappa
+    heat_capacity: float          # kJ/mol/K, C_V per particle
+    law: int = GenDPDEForce.Tait  # the local equation of state (GenDPDEForce.EquationOfState)
+    law_parameters: tuple = ()    # its own parameters (api.LAWS[law].parameters), OpenMM units
+    background_pressure: float = None   # kJ/mol/nm^3, p_b of GenDPDEForce (None: none)
+
+    def __post_init__(self):
+        object.__setattr__(self, "law", law_value(self.law))
+        object.__setattr__(self, "law_parameters", tuple(float(value) for value in self.law_parameters))
+
+    @property
+    def tait(self):
+        """The Tait parameters (n0, pi0, B_T, gamma_T)."""
+        return self.density, self.reference_pressure, self.bulk_modulus, self.tait_exponent
+
+    @property
+    def equation_of_state(self):
+        """The law's name, as the table of laws spells it (api.LAW_NAMES)."""
+        return LAWS[self.law].name
+
+    @property
+    def particle_temperature(self):
+        """theta_r = T0 (1 + k_B/C_V) (K): the particles' mean temperature at T0, where a law that depends on
+        temperature gives its pressure (docs/theory.md section 11)."""
+        return self.temperature * (1 + _KB / self.heat_capacity)
+
+    @property
+    def thermal_pressure(self):
+        """dpi/dtheta of the law at n0 (kJ/mol/nm^3/K; beta of TaitThermalExpansion); None for a law without
+        parameters of its own (Tait)."""
+        if not self.law_parameters:
+            return None
+        return laws.pressure(self.law, self.law_parameters, self.tait, self.density, 0.0)[1]
+
+    @property
+    def thermal_reference_temperature(self):
+        """The particle temperature (K) at which the law gives pi0 at n0 (theta0 of TaitThermalExpansion; the theta_r
+        another law was fitted at); None for a law whose pressure does not depend on temperature."""
+        if not self.law_parameters:
+            return None
+        return laws.reference_temperature(self.law, self.law_parameters, self.tait, self.density)
+
+    def reference_state(self, thermal_pressure=None, temperature=None):
+        """The laws.ReferenceState that the law is fitted to: pi0 and gamma_T B_T at n0, at the particle temperature
+        ``temperature`` (default: the law's own reference temperature, else particle_temperature) with the thermal
+        pressure ``thermal_pressure`` (default: the law's)."""
+        if temperature is None:
+            temperature = self.thermal_reference_temperature or self.particle_temperature
+        if thermal_pressure is None:
+            thermal_pressure = self.thermal_pressure or 0.0
+        return laws.ReferenceState(self.density, temperature, self.reference_pressure,
+                                   self.tait_exponent * self.bulk_modulus, thermal_pressure)
+
+    def replace(self, **changes):
+        """dataclasses.replace, keeping the law on its Tait parameters: where n0, pi0, B_T or gamma_T change and the
+        law does not extend Tait, its parameters are fitted again (laws.fit) to give the new pi0 and gamma_T B_T at
+        n0 with the thermal pressure and reference temperature it had. The calibration's handles (pi0, B_T) act so on
+        every law."""
+        changed = dataclasses.replace(self, **changes)
+        tait = {"density", "reference_pressure", "bulk_modulus", "tait_exponent"}
+        if (not self.law_parameters or LAWS[self.law].extends_tait or not tait & set(changes)
+                or {"law", "law_parameters"} & set(changes)):
+            return changed
+        state = changed.reference_state(self.thermal_pressure, self.thermal_reference_temperature)
+        return dataclasses.replace(changed, law_parameters=laws.fit(self.law, changed.tait, state,
+                                                                    self.law_parameters))
+
+    def with_thermal_pressure(self, thermal_pressure):
+        """The parameters with the law's dpi/dtheta at n0 = ``thermal_pressure`` (kJ/mol/nm^3/K), its pressure and
+        modulus there kept (laws.fit; beta of TaitThermalExpansion, theta0 kept)."""
+        if not self.law_parameters:
+            raise ValueError(f"thermal_pressure = {thermal_pressure} is not allowed for the law "
+                             f"{self.equation_of_state}: it has no parameters of its own")
+        return dataclasses.replace(self, law_parameters=laws.fit(self.law, self.tait, self.reference_state(
+            thermal_pressure), self.law_parameters))
+
+    def with_law(self, law, law_parameters=None, thermal_pressure=None):
+        """The parameters with the local equation of state ``law`` (its name or GenDPDEForce.EquationOfState value):
+        with ``law_parameters`` as given, or fitted (laws.fit) to pi0 and gamma_T B_T at n0 and the particle
+        temperature and to ``thermal_pressure`` (default: the law's now; needed for a law with parameters of its
+        own where the current law has none)."""
+        law = law_value(law)
+        if law_parameters is None:
+            if not LAWS[law].parameters:
+                law_parameters = ()
+            else:
+                if thermal_pressure is None and self.thermal_pressure is None:
+                    raise ValueError(f"the law {LAWS[law].name} needs a thermal pressure dpi/dtheta to be fitted to "
+                                     f"(thermal_pressure, kJ/mol/nm^3/K; the mapping takes it from the fluid's "
+                                     f"thermal_expansion)")
+                state = self.reference_state(thermal_pressure, self.particle_temperature)
+                law_parameters = laws.fit(law, self.tait, state)
+        return dataclasses.replace(self, law=law, law_parameters=tuple(law_parameters))
+
+    def _force(self, estimator):
+        force = GenDPDEForce(self.cutoff)
+        force.setDensityEstimator(estimator)
+        force.setCutoffScaling(self.cutoff_scaling)
+        force.setTaitParameters(*self.tait)
+        if self.background_pressure is not None:
+            force.setBackgroundPressure(self.background_pressure)
+        if self.law != GenDPDEForce.Tait or self.law_parameters:
+            force.setEquationOfState(self.law, list(self.law_parameters))
+        return force
+
+    def _integrator(self, step_size, seed, mode):
+        integrator = GenDPDEIntegrator(step_size, self.friction, self.heat_conduction, self.heat_capacity)
+        integrator.setTemperature(self.temperature)
+        integrator.setRandomNumberSeed(seed)
+        integrator.setMode(mode)
+        return integrator
+
+    def build(self, box, positions, estimator, step_size, seed=0, mode=GenDPDEIntegrator.Isoenergetic,
+              names=PARTICLE_NAMES, model_type=None, **fields):
+        """The model (``model_type``, default Model, with ``fields``) of these parameters: a System of len(positions)
+        particles in the periodic ``box`` (three rows, nm) with one GenDPDEForce of ``estimator`` (a
+        GenDPDEForce.DensityEstimator value) and a GenDPDEIntegrator of step ``step_size`` (ps, or a Quantity),
+        random seed ``seed`` (0: chosen when a Context is made) and ``mode``, a Topology whose particles are named
+        ``names`` (atom, element, residue), and the ``positions`` (nm, N x 3). The force holds a reference to the
+        System, which owns it, so that it stays valid as long as it is used."""
+        box = [openmm.Vec3(*(float(x) for x in row)) for row in box]
+        system = openmm.System()
+        system.setDefaultPeriodicBoxVectors(*box)
+        for _ in range(len(positions)):
+            system.addParticle(self.mass)
+        force = self._force(estimator)
+        system.addForce(force)
+        force._system = system   # the System owns the C++ force (addForce): the force, once returned, keeps it alive
+        integrator = self._integrator(step_size, seed, mode)
+        atom, element, residue = names
+        topology = app.Topology()
+        chain = topology.addChain()
+        for _ in range(len(positions)):
+            topology.addAtom(atom, element, topology.addResidue(residue, chain))
+        topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))   # as PDBFile and PDBReporter expect
+        return (model_type or Model)(system, force, integrator, topology, np.asarray(positions), self, **fields)
 
 
 @dataclasses.dataclass(frozen=True)
@@ -28,12 +196,14 @@ class Equilibration:
 @dataclasses.dataclass
 class Model:
     """A ready model in OpenMM units (nm, amu, ps, kJ/mol, K): its System (one GenDPDEForce), GenDPDEIntegrator (bath
-    temperature T0), Topology and lattice positions (nm, N x 3)."""
+    temperature T0), Topology, positions (nm, N x 3) and the ModelParameters it was built from. Every Context of a
+    model is made by context() or simulation()."""
     system: openmm.System
     force: GenDPDEForce
     integrator: GenDPDEIntegrator
     topology: app.Topology
     positions: np.ndarray
+    parameters: ModelParameters = None
 
     @property
     def num_particles(self):
@@ -45,34 +215,50 @@ class Model:
         return box_volume(self.system)
 
     @property
+    def box_edges(self):
+        """The edges of the System's default (rectangular) periodic box, nm (a numpy array of 3)."""
+        vectors = self.system.getDefaultPeriodicBoxVectors()
+        return np.array([vectors[k][k].value_in_unit(unit.nanometer) for k in range(3)])
+
+    @property
     def bath_temperature(self):
-        """T0 (K, a float), at which the model was built: the integrator's bath temperature here; the argon and fluid
-        models give their own T0 (equilibrate() may move the bath)."""
+        """T0 (K, a float), at which the model was built (equilibrate() may move the integrator's bath)."""
+        if self.parameters is not None:
+            return self.parameters.temperature
         return self.integrator.getTemperature().value_in_unit(unit.kelvin)
 
-    def context(self, platform="Reference", temperature=None, seed=1):
-        """An openmm.Context of the model (``platform``: an openmm.Platform or its name) at the lattice positions,
-        velocities drawn at ``temperature`` (K; default T0) with ``seed``."""
+    def context(self, platform="Reference", temperature=None, seed=1, properties=None, positions=None,
+                integrator=None, velocities=True):
+        """An openmm.Context of the model (``platform``: an openmm.Platform or its name, with ``properties``) and its
+        integrator (or ``integrator``), at its positions (or ``positions``, nm), with velocities drawn at
+        ``temperature`` (K; default T0) with ``seed`` unless ``velocities`` is False."""
         if isinstance(platform, str):
             platform = openmm.Platform.getPlatformByName(platform)
-        context = openmm.Context(self.system, self.integrator, platform)
-        self._place(context, self.bath_temperature if temperature is None else temperature, seed)
+        integrator = self.integrator if integrator is None else integrator
+        context = (openmm.Context(self.system, integrator, platform) if properties is None
+                   else openmm.Context(self.system, integrator, platform, properties))
+        context.setPositions(self.positions if positions is None else positions)
+        if velocities:
+            context.setVelocitiesToTemperature((self.bath_temperature if temperature is None else temperature)
+                                               * unit.kelvin, seed)
         return context
 
-    def simulation(self, platform="Reference", velocity_seed=1):
-        """An openmm.app.Simulation of the model at the lattice positions, with Maxwell-Boltzmann velocities at T0
+    def simulation(self, platform="Reference", velocity_seed=1, properties=None):
+        """An openmm.app.Simulation of the model at its positions, with Maxwell-Boltzmann velocities at T0
         (``platform``: its name)."""
         simulation = app.Simulation(self.topology, self.system, self.integrator,
-                                    openmm.Platform.getPlatformByName(platform))
-        self._place(simulation.context, self.bath_temperature, velocity_seed)
+                                    openmm.Platform.getPlatformByName(platform), properties)
+        simulation.context.setPositions(self.positions)
+        simulation.context.setVelocitiesToTemperature(self.bath_temperature * unit.kelvin, velocity_seed)
         return simulation
 
-    def _place(self, context, temperature, seed):
-        """The lattice positions, and Maxwell-Boltzmann velocities at ``temperature`` (K) drawn with ``seed``."""
-        context.setPositions(self.positions)
-        context.setVelocitiesToTemperature(temperature * unit.kelvin, seed)
+    def wrapped_positions(self, context):
+        """The positions of ``context`` (a Context of the model) in nm, N x 3, wrapped into the box (box_edges)."""
+        x = context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+        box = self.box_edges
+        return x - np.floor(x / box) * box
 
-    def equilibrate(self, platform, protocol):
+    def equilibrate(self, platform, protocol, properties=None):
         """A Context of the model brought off its lattice by ``protocol`` (an Equilibration): the integrator's bath at
         its temperature, velocities drawn at it, its thermostat steps, then its mode with the internal energies drawn
         at that temperature (melting.melt_then_switch) and its settle steps."""
@@ -80,7 +266,7 @@ class Model:
         integrator = self.integrator
         integrator.setMode(GenDPDEIntegrator.Isothermal)
         integrator.setTemperature(temperature)
-        context = self.context(platform, temperature, protocol.seed)
+        context = self.context(platform, temperature, protocol.seed, properties)
         melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
         integrator.step(protocol.settle_steps)
         return context
@@ -88,3 +274,17 @@ class Model:
     def melted(self, platform, mode, melt_steps, settle_steps, temperature=None, seed=0):
         """equilibrate(platform, Equilibration(melt_steps, settle_steps, mode, temperature, seed))."""
         return self.equilibrate(platform, Equilibration(melt_steps, settle_steps, mode, temperature, seed))
+
+
+def set_temperature_field(integrator, positions, temperature):
+    """Set every particle's internal temperature theta_i = temperature(r_i) (K; r_i in nm, a row of ``positions``,
+    e.g. State.getPositions(asNumpy=True) or a plain N x 3 array): a temperature field, such as two regions at two
+    temperatures for a heat-conduction study. The integrator must be bound to its Context."""
+    if unit.is_quantity(positions):
+        positions = positions.value_in_unit(unit.nanometer)
+    values = []
+    for r in np.asarray(positions, dtype=float):
+        t = temperature(r)
+        t = t.value_in_unit(unit.kelvin) if unit.is_quantity(t) else float(t)
+        values.append(t)
+    integrator.setParticleTemperatures(values)

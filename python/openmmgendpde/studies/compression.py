@@ -23,12 +23,7 @@ from ..analysis.rdf import radial_distribution
 from ..analysis.statistics import correlated_mean
 from ..analysis.thermodynamics import ThermodynamicProbe, self_diffusion
 from ..calibration.calibration import Calibration, Measured, Plan, model_positions
-from ..calibration.expansion import MPA_PER_OPENMM_PRESSURE
-from ..cli.fluids import add_fluid_arguments, parameters_from_arguments
-from ..cli.options import add_json, add_platform, command_line_error, fcc_particles, integer, number
-from ..internal.files import atomic_write
 from ..models.fluid import KB
-from ..models.fluid_files import load_parameters
 
 #: Pairs closer than this fraction of the cutoff are "close pairs" (water's calibrated model: g = 0.24 there).
 CLOSE_PAIR_FRACTION = 0.15
@@ -181,76 +176,61 @@ def structure_modulus(point):
     return Measured(value, value * s0_error / s0)
 
 
-def run(arguments):
-    if arguments.model is not None:
-        try:
-            parameters = load_parameters(arguments.model)
-        except (OSError, ValueError) as error:
-            raise command_line_error("compression", error) from None
-    else:
-        parameters = parameters_from_arguments(arguments, "compression")
-    changes = {}
-    if arguments.cutoff_scaling is not None:
-        changes["cutoff_scaling"] = arguments.cutoff_scaling
-    if arguments.reference_pressure is not None:
-        changes["reference_pressure"] = arguments.reference_pressure
-    if arguments.background_pressure is not None:
-        changes["background_pressure"] = arguments.background_pressure or None
-    parameters = dataclasses.replace(parameters, **changes)
-    compressions = sorted(arguments.compressions)
-    if arguments.quick:
-        plan = Plan(particles=500, melt=400, melt_block=500, frames=40, interval=25)
-    else:
-        plan = Plan(particles=arguments.particles, frames=arguments.frames, interval=arguments.interval)
-    calibration = Calibration(parameters, arguments.estimator, plan, arguments.platform, seed=arguments.seed,
-                              report=lambda *_: None)
-    mpa = MPA_PER_OPENMM_PRESSURE
-    print(f"{parameters.fluid.name}: {arguments.estimator}, {plan.particles} particles, {parameters.neighbors:.3g} "
-          f"neighbours within R = {parameters.cutoff:.4g} nm, f_cut = {parameters.cutoff_scaling:.4g}, pi0 = "
-          f"{parameters.reference_pressure * mpa:.4g} MPa, B_T = {parameters.bulk_modulus * mpa:.4g} MPa "
-          f"(gamma_T B_T = {parameters.tait_exponent * parameters.bulk_modulus * mpa:.4g} MPa), p_b = "
-          f"{(parameters.background_pressure or 0) * mpa:.4g} MPa, B_T/(n0 k_B T0) = "
-          f"{parameters.bulk_modulus / (parameters.density * KB * parameters.temperature):.3g}", flush=True)
-    print("| c | n-bar/n | sd(n_i)/n-bar | n0-bar/n | g(r < 0.15 R) | Q6 | q6 | D (1e-9 m^2/s) | P (MPa) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+@dataclasses.dataclass
+class Compression:
+    """What the study found: a CompressionPoint per box (by compression), and between the extreme boxes the
+    particle-density response, the primitive response and n dP/dn (responses; None with one box), and n k_B T/S(0)
+    at the central box (structure_modulus; None without shells)."""
+    points: list
+    response: Measured = None
+    primitive_response: float = None
+    bulk_modulus: Measured = None
+    structure_modulus: Measured = None
+
+    @property
+    def central(self):
+        return min(self.points, key=lambda p: abs(p.compression))
+
+
+def quick_plan():
+    """The runs of --quick: 500 particles, 40 frames 25 steps apart."""
+    return Plan(particles=500, melt=400, melt_block=500, frames=40, interval=25)
+
+
+def compress(parameters, compressions, estimator="VB", plan=Plan(), platform="CPU", seed=1, report=None):
+    """The study (module docstring) of the model ``parameters`` with ``estimator``: a box at n0 (1 + c) for each of
+    ``compressions`` (sorted), each run as calibrate runs it (Calibration, ``plan``, ``platform``, ``seed``);
+    ``report(point)`` is called after each box. Returns a Compression."""
+    calibration = Calibration(parameters, estimator, plan, platform, seed=seed, report=lambda *_: None)
     points = []
-    for compression in compressions:
-        p = measure(calibration, compression, plan)
-        points.append(p)
-        print(f"| {compression:+.3f} | {p.mean_density.value / p.density:.4f} +- "
-              f"{p.mean_density.error / p.density:.4f} "
-              f"| {p.spread:.4f} | {p.primitive:.4f} | {p.close_pairs:.3f} | {p.global_q6:.3f} | {p.local_q6:.3f} | "
-              f"{p.diffusion.value * 1e3:.3g} +- {p.diffusion.error * 1e3:.2g} | {p.pressure.value * mpa:.2f} +- "
-              f"{p.pressure.error * mpa:.2f} |", flush=True)
+    for compression in sorted(compressions):
+        points.append(measure(calibration, compression, plan))
+        if report is not None:
+            report(points[-1])
+    result = Compression(points)
+    if len(points) >= 2:
+        result.response, result.primitive_response, result.bulk_modulus = responses(points)
+    result.structure_modulus = structure_modulus(result.central)
+    return result
+
+
+def record(parameters, estimator, plan, result):
+    """What --json writes: the fluid, the model's parameters, the estimator, the particles, every box and what was
+    derived from them."""
     model = {field.name: getattr(parameters, field.name) for field in dataclasses.fields(parameters)
              if field.name != "fluid"}
-    record = {"fluid": parameters.fluid.name, "model": model,
-              "estimator": arguments.estimator, "particles": plan.particles,
-              "points": [dataclasses.asdict(p) for p in points]}
-    if len(points) >= 2:
-        response, primitive, modulus = responses(points)
-        target = parameters.targets()["bulk_modulus"]
-        print(f"particle-density response (n/n-bar) dn-bar/dn = {response.value:.3f} +- {response.error:.3f}; "
-              f"primitive d ln n0-bar/d ln n = {primitive:.3f}")
-        print(f"n dP/dn = {modulus.value * mpa:.1f} +- {modulus.error * mpa:.1f} MPa (the fluid's {target * mpa:.1f}: "
-              f"{modulus.value / target:.3f})")
-        record.update(response=dataclasses.asdict(response), primitive_response=primitive,
-                      bulk_modulus=dataclasses.asdict(modulus))
-    central = min(points, key=lambda p: abs(p.compression))
-    structural = structure_modulus(central)
-    if structural is not None:
-        print(f"n k_B T/S(k -> 0) at c = {central.compression:+.3f}: {structural.value * mpa:.1f} +- "
-              f"{structural.error * mpa:.1f} MPa (S(k) at k = "
-              + ", ".join(f"{k:.3g}" for k, _, _ in central.structure) + " nm^-1: "
-              + ", ".join(f"{s:.4f}" for _, s, _ in central.structure) + ")")
-        record["structure_modulus"] = dataclasses.asdict(structural)
-    if arguments.json:
-        import json
-        with atomic_write(arguments.json) as stream:
-            json.dump(record, stream, indent=1, default=float)
+    found = {"fluid": parameters.fluid.name, "model": model, "estimator": estimator, "particles": plan.particles,
+             "points": [dataclasses.asdict(p) for p in result.points]}
+    if result.response is not None:
+        found.update(response=dataclasses.asdict(result.response), primitive_response=result.primitive_response,
+                     bulk_modulus=dataclasses.asdict(result.bulk_modulus))
+    if result.structure_modulus is not None:
+        found["structure_modulus"] = dataclasses.asdict(result.structure_modulus)
+    return found
 
 
-def _compressions(text):
+def compressions_of(text):
+    """The compressions of a comma-separated list; ValueError unless each is a finite number in (-0.5, 0.5)."""
     try:
         values = [float(x) for x in text.split(",")]
     except ValueError:
@@ -258,33 +238,3 @@ def _compressions(text):
     if len(values) < 1 or not all(math.isfinite(v) and -0.5 < v < 0.5 for v in values):
         raise ValueError(f"{text!r}: each compression must be a finite number in (-0.5, 0.5)")
     return values
-
-
-def add_arguments(parser):
-    import argparse
-
-    def compressions(text):
-        try:
-            return _compressions(text)
-        except ValueError as error:
-            raise argparse.ArgumentTypeError(str(error)) from None
-
-    parser.add_argument("--model", help="a model file (calibrate --output); else the mapping of --fluid")
-    add_fluid_arguments(parser)
-    parser.add_argument("--estimator", choices=("VA", "VB", "VC"), default="VB", help="density estimator (default VB)")
-    parser.add_argument("--compressions", type=compressions, default=[-0.05, 0.0, 0.05],
-                        help="relative compressions c, comma-separated: boxes at n0 (1 + c) (default -0.05,0,0.05; "
-                             "write --compressions=-0.02,0,0.02)")
-    parser.add_argument("--particles", type=fcc_particles, default=2048, help="4 m^3 particles (default 2048)")
-    parser.add_argument("--quick", action="store_true",
-                        help="500 particles, 40 frames 25 steps apart (a functional check in about a minute)")
-    parser.add_argument("--frames", type=integer(2), default=150, help="frames per box (default 150)")
-    parser.add_argument("--interval", type=integer(1), default=50, help="steps between frames (default 50)")
-    parser.add_argument("--cutoff-scaling", type=number(at_least=1.0), help="f_cut instead of the model's")
-    parser.add_argument("--reference-pressure", type=number(), help="pi0 (kJ/mol/nm^3) instead of the model's")
-    parser.add_argument("--background-pressure", type=number(at_least=0.0),
-                        help="p_b (kJ/mol/nm^3) instead of the model's; 0: none")
-    parser.add_argument("--seed", type=integer(1), default=1, help="random seed (default 1)")
-    add_platform(parser, default="CPU")
-    add_json(parser)
-    parser.set_defaults(run=run)

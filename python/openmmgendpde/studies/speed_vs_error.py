@@ -11,18 +11,14 @@ Writes a table and a log-log plot (PNG and PDF) of cost against each error.
 
 import csv
 import dataclasses
-import pathlib
 
 import numpy as np
 import openmm
 
 from ..analysis.statistics import BlockAverage, block_average
-from ..cli.options import add_cutoff, add_output, platform_description
-from ..cli.progress import Progress
-from ..cli.protocol import TIME_STEP, add_protocol_arguments, protocol_from_arguments
 from ..internal.files import atomic_write
 from ..internal.plotting import panels, save
-from ..models.argon import liquid_argon
+from ..models.argon import PUBLISHED_ESTIMATORS, liquid_argon
 from ..models.argon_runs import FULL, run_argon
 
 
@@ -82,7 +78,7 @@ def plot(points, path_stem):
               ("pressure_error", "pressure_error_bar", "|P* - P*(smallest dt)|"))
     figure, axes = panels(len(errors))
     for axis, (field, bar, label) in zip(axes, errors):
-        for estimator, style in (("VA", "o--"), ("VB", "s-")):
+        for estimator, style in zip(PUBLISHED_ESTIMATORS, ("o--", "s-")):
             chosen = [p for p in points if p.estimator == estimator and getattr(p, field) > 0]
             if not chosen:
                 continue
@@ -103,34 +99,41 @@ def plot(points, path_stem):
     save(figure, path_stem, legend_axis=axes[0])
 
 
-def run(arguments):
-    protocol = protocol_from_arguments(arguments, defaults=dataclasses.replace(FULL, production_time=50.0),
-                                       cutoffs=[arguments.cutoff], estimators=("VA", "VB"))
-    if arguments.quick and arguments.production is None:
-        protocol = dataclasses.replace(protocol, production_time=10.0)
-    steps = arguments.steps or ([0.02, 0.01, 0.005] if arguments.quick else [0.04, 0.02, 0.01, 0.005, 0.0025])
-    output = pathlib.Path(arguments.output)
-    output.mkdir(parents=True, exist_ok=True)
+#: The runs of the study: the protocol's phases (models.argon_runs.FULL) with 50 time units of production per step size.
+DEFAULTS = dataclasses.replace(FULL, production_time=50.0)
+
+
+def study(cutoff, steps, protocol=DEFAULTS, platform="Reference", progress=None):
+    """The Points of both published estimators at R_cut* = ``cutoff`` for the step sizes ``steps`` (measure);
+    ``progress`` advances by the steps and is labelled by the estimator."""
+    points = []
+    for estimator in PUBLISHED_ESTIMATORS:
+        if progress is not None:
+            progress.label = f"speed-vs-error {estimator}"
+        points += measure(cutoff, estimator, steps, protocol, platform, progress)
+    return points
+
+
+def total_steps(protocol, steps):
+    """The steps study() takes (the progress bar's total)."""
     preparation = (protocol.steps(protocol.thermostat_time + protocol.equilibration_time) * protocol.time_step
                    / min(steps))
-    total = 2 * (preparation + sum(protocol.production_time / s for s in steps))
-    progress = Progress(int(total), "speed-vs-error", always=arguments.progress)
-    points = []
-    for estimator in ("VA", "VB"):
-        progress.label = f"speed-vs-error {estimator}"
-        points += measure(arguments.cutoff, estimator, steps, protocol, arguments.platform, progress)
-    progress.finish()
-    print(f"R_cut* = {arguments.cutoff}, {protocol.num_particles} particles, {protocol.production_time} time units per "
-          f"step size from one state equilibrated at dt* = {min(steps)}; {platform_description(arguments)}")
-    print("| estimator | dt* | wall s per time unit | energy drift /particle/time | |T_kin/T_harm - 1| "
-          "| n-bar* | |dn-bar*| | P* | |dP*| |")
-    print("|---|---|---|---|---|---|---|---|---|")
-    for p in points:
-        print(f"| {p.estimator} | {p.time_step:g} | {p.seconds_per_time_unit:.3f} | {p.drift:.2e} "
+    return int(len(PUBLISHED_ESTIMATORS) * (preparation + sum(protocol.production_time / s for s in steps)))
+
+
+def table(points):
+    """The Points as a Markdown table."""
+    lines = ["| estimator | dt* | wall s per time unit | energy drift /particle/time | |T_kin/T_harm - 1| "
+             "| n-bar* | |dn-bar*| | P* | |dP*| |", "|---|---|---|---|---|---|---|---|---|"]
+    lines += [f"| {p.estimator} | {p.time_step:g} | {p.seconds_per_time_unit:.3f} | {p.drift:.2e} "
               f"| {p.temperature_error:.4f} +- {p.temperature_error_bar:.4f} | {p.density.mean:.4f} +- "
               f"{p.density.standard_error:.4f} | {p.density_error:.4f} | {p.pressure.mean:.4f} +- "
-              f"{p.pressure.standard_error:.4f} | {p.pressure_error:.4f} |")
-    with atomic_write(output / "speed-vs-error.csv", newline="") as stream:
+              f"{p.pressure.standard_error:.4f} | {p.pressure_error:.4f} |" for p in points]
+    return "\n".join(lines)
+
+
+def write_csv(points, path):
+    with atomic_write(path, newline="") as stream:
         writer = csv.writer(stream)
         writer.writerow(["estimator", "dt*", "wall s per time unit", "drift", "|Tkin/Tharm-1|", "its error",
                          "n-bar*", "n-bar* error", "|dn|", "P*", "P* error", "|dP|"])
@@ -138,15 +141,3 @@ def run(arguments):
             writer.writerow([p.estimator, p.time_step, p.seconds_per_time_unit, p.drift, p.temperature_error,
                              p.temperature_error_bar, p.density.mean, p.density.standard_error, p.density_error,
                              p.pressure.mean, p.pressure.standard_error, p.pressure_error])
-    plot(points, output / "speed-vs-error")
-    print(f"Written: {output / 'speed-vs-error.csv'}, {output / 'speed-vs-error'}.png/.pdf")
-    return points
-
-
-def add_arguments(parser):
-    add_protocol_arguments(parser, defaults=dataclasses.replace(FULL, production_time=50.0))
-    add_cutoff(parser)
-    parser.add_argument("--steps", type=TIME_STEP, nargs="+",
-                        help="step sizes dt* (default 0.04 0.02 0.01 0.005 0.0025; quick 0.02 0.01 0.005)")
-    add_output(parser, "the table and plot")
-    parser.set_defaults(run=run)

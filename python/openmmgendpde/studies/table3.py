@@ -22,12 +22,8 @@ import warnings
 import numpy as np
 
 from ..analysis.statistics import BlockAverageWarning, block_average
-from ..api import ESTIMATOR_NAMES
-from ..cli.options import add_cutoffs, add_frames, add_output, chosen_cutoffs, platform_description
-from ..cli.progress import Progress
-from ..cli.protocol import add_protocol_arguments, protocol_from_arguments
 from ..internal.files import atomic_write
-from ..models.argon import ARGON_STATE, PUBLISHED_TABLE3
+from ..models.argon import ARGON_STATE, PUBLISHED_ESTIMATORS, PUBLISHED_TABLE3
 from ..models.argon_runs import run_argon
 
 #: (published key, Samples field, label, published error bar)
@@ -92,11 +88,12 @@ def pairing_signature(cells):
     lines = []
     for cutoff in sorted({c.cutoff for c in cells}):
         density = {c.estimator: c for c in cells if c.cutoff == cutoff and c.quantity == "n-bar*"}
-        if set(density) == {"VA", "VB"}:
-            lines.append(f"R_cut* = {cutoff}: n-bar* = {density['VA'].reproduced:.3f} with VA (pairs clump towards "
-                         f"the free-energy minimum n_min* = {ARGON_STATE.free_energy_minimum_density:.3f}) and "
-                         f"{density['VB'].reproduced:.3f} with VB "
-                         f"(imposed n0* = 1)")
+        if set(density) == set(PUBLISHED_ESTIMATORS):
+            traditional, partition = (density[estimator] for estimator in PUBLISHED_ESTIMATORS)
+            lines.append(f"R_cut* = {cutoff}: n-bar* = {traditional.reproduced:.3f} with {traditional.estimator} "
+                         f"(pairs clump towards the free-energy minimum n_min* = "
+                         f"{ARGON_STATE.free_energy_minimum_density:.3f}) and {partition.reproduced:.3f} with "
+                         f"{partition.estimator} (imposed n0* = 1)")
     return lines
 
 
@@ -197,51 +194,27 @@ def sampling_summary(unsettled, count, verbose=False):
     return line + ("".join(f"\n  {w.message}" for w in unsettled) if verbose else "; --verbose names each.")
 
 
-def run(arguments):
-    cutoffs = chosen_cutoffs(arguments)
-    protocol = protocol_from_arguments(arguments, cutoffs=cutoffs, estimators=arguments.estimators)
-    cases = [(cutoff, estimator) for cutoff in cutoffs for estimator in arguments.estimators]
-    output = pathlib.Path(arguments.output)
-    output.mkdir(parents=True, exist_ok=True)
-    frames = arguments.frames if arguments.frames is not None else (10 if arguments.quick else 50)
-    print(f"Table III: {protocol.num_particles} particles, dt* = {protocol.time_step}, thermostat "
-          f"{protocol.thermostat_time} + isoenergetic equilibration {protocol.equilibration_time} + production "
-          f"{protocol.production_time} time units, samples every {protocol.sample_interval}; "
-          f"{platform_description(arguments)}", flush=True)
-    progress = Progress(len(cases) * protocol.total_steps, "table3", always=arguments.progress)
+@dataclasses.dataclass
+class Table3:
+    """What reproduce found: the Cells (every quantity of every case), the production frames kept of each case
+    {(cutoff, estimator): (positions F x N x 3 in nm, box edge in nm)} and the BlockAverageWarnings of the error bars
+    that had not reached their plateau."""
+    cells: list
+    frames: dict
+    unsettled: list
+
+
+def reproduce(cutoffs, estimators, protocol, platform="Reference", frames=10, progress=None):
+    """Table III for ``cutoffs`` x ``estimators`` by the protocol (models.argon_runs.run_argon on ``platform``),
+    keeping ``frames`` production frames of each case; ``progress`` (cli.progress.Progress) advances by the steps
+    and is labelled by the case. Returns a Table3."""
     cells, kept = [], {}
-    with warnings.catch_warnings(record=True) as unsettled:   # (one line about them after the table)
+    with warnings.catch_warnings(record=True) as unsettled:
         warnings.simplefilter("always", BlockAverageWarning)
-        for cutoff, estimator in cases:
-            progress.label = f"table3 R*={cutoff} {estimator}"
-            samples = run_argon(cutoff, estimator, protocol, arguments.platform, frames=frames,
-                                progress=progress).samples
+        for cutoff, estimator in [(cutoff, estimator) for cutoff in cutoffs for estimator in estimators]:
+            if progress is not None:
+                progress.label = f"table3 R*={cutoff} {estimator}"
+            samples = run_argon(cutoff, estimator, protocol, platform, frames=frames, progress=progress).samples
             cells += cells_of(cutoff, estimator, samples)
             kept[(cutoff, estimator)] = (samples.frames, samples.box_edge)
-    progress.finish()
-    print(format_table(cells))
-    print(sampling_summary([w for w in unsettled if issubclass(w.category, BlockAverageWarning)], len(cells),
-                           arguments.verbose))
-    print("(!) differs from the published value by more than its error bar (0.0001 for T*, 0.001 otherwise) "
-          "plus twice the standard error of the reproduction")
-    for line in pairing_signature(cells):
-        print(line)
-    if arguments.quick:
-        print("(--quick: 500 particles and runs of 50 time units, too short to settle T* at T0; the full-size "
-              "reproduction, with every n-bar* and P* within the published error bars, is in docs/argon.md)")
-    write_csv(cells, output / "table3.csv")
-    save_frames(output, kept)   # (all at the end, as one set: rdf --frames-from reads a complete set only)
-    print(f"Written: {output / 'table3.csv'} and the production frames for `rdf --frames-from {output}`")
-    return cells
-
-
-def add_arguments(parser):
-    add_protocol_arguments(parser)
-    add_cutoffs(parser)
-    add_frames(parser, "to keep for the RDF", default_text="50, quick 10")
-    add_output(parser, "table3.csv and the frames")
-    parser.add_argument("--estimators", nargs="+", choices=list(ESTIMATOR_NAMES.values()), default=["VA", "VB"],
-                        help="estimators to run (default VA VB; VC is compared with the published VB values)")
-    parser.add_argument("--verbose", action="store_true",
-                        help="each error bar that has not reached its block-average plateau, with its estimates")
-    parser.set_defaults(run=run)
+    return Table3(cells, kept, [w for w in unsettled if issubclass(w.category, BlockAverageWarning)])

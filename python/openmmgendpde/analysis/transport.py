@@ -23,17 +23,27 @@ import dataclasses
 import math
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from ..units import BOLTZMANN
+from .flows import (  # noqa: F401  (BODY_FORCE_GROUP ... momentum_diffusion_time: part of this module's API)
+    BODY_FORCE_GROUP,
+    bin_shape,
+    body_force,
+    fit_amplitude,
+    half_sign,
+    line_slopes,
+    momentum_diffusion_time,
+    poiseuille_shape,
+    slab_profile,
+    thermal_diffusion_time,
+    viscosity_from_amplitude,
+)
 from .profiles import profile
 from .statistics import block_standard_error, statistical_inefficiency
 from .thermodynamics import heat_capacity_per_particle
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
-#: The force group of the Poiseuille body force (its energy, -F x s(z), means nothing and is kept out of group 0).
-BODY_FORCE_GROUP = 31
 
 
 @dataclasses.dataclass
@@ -58,68 +68,6 @@ def each_replica(equilibrated, count):
 
 
 # --- Poiseuille flow ------------------------------------------------------------------------------------------------
-
-def body_force(force, box_length, num_particles):
-    """An openmm.CustomExternalForce of +``force`` x-hat (kJ/mol/nm) on ``num_particles`` particles with z wrapped into
-    the periodic length ``box_length`` (nm) in [0, L/2), -``force`` x-hat in [L/2, L); in group BODY_FORCE_GROUP. OpenMM
-    differentiates step() and floor() as zero, so the force has no z component; the energy is -F x s(z) with the
-    unwrapped x (not periodic: leave the group out of energies)."""
-    external = openmm.CustomExternalForce(
-        "-poiseuille_F*x*(1 - 2*step(z - poiseuille_L*floor(z/poiseuille_L) - poiseuille_L/2))")
-    external.addGlobalParameter("poiseuille_F", force)
-    external.addGlobalParameter("poiseuille_L", box_length)
-    external.setForceGroup(BODY_FORCE_GROUP)
-    for particle in range(num_particles):
-        external.addParticle(particle, [])
-    return external
-
-
-def half_sign(z, box_length):
-    """+1 where z wrapped into [0, L) is below L/2, else -1: the direction of the body force."""
-    wrapped = np.mod(z, box_length)
-    return np.where(wrapped < box_length / 2, 1.0, -1.0)
-
-
-def poiseuille_shape(z, box_length):
-    """h(z) = z (L/2 - z) for wrapped z in [0, L/2) and -(z - L/2)(L - z) in [L/2, L) (nm^2)."""
-    wrapped = np.mod(z, box_length)
-    half = box_length / 2
-    inner = np.mod(wrapped, half)
-    return half_sign(z, box_length) * inner * (half - inner)
-
-
-def bin_shape(bins, box_length):
-    """The mean of h over each of ``bins`` equal bins of [0, L) (Simpson's rule, exact for the parabola of each
-    half: ``bins`` must be even so that no bin straddles L/2)."""
-    if bins % 2:
-        raise ValueError(f"bins = {bins} is not allowed; it must be even (no bin may straddle L/2)")
-    edges = np.linspace(0, box_length, bins + 1)
-    low, high = edges[:-1], edges[1:]
-    # Evaluate each end inside its own bin: h at the right edge of the bin below L/2 is that of the first half.
-    eps = 1e-12 * box_length
-    return (poiseuille_shape(low, box_length) + 4 * poiseuille_shape((low + high) / 2, box_length)
-            + poiseuille_shape(high - eps, box_length)) / 6
-
-
-def fit_amplitude(velocities, shape):
-    """(A, c): the least-squares fit of v_b = A s_b + c to a binned profile ``velocities`` (nm/ps) with the bins'
-    shape ``shape`` (nm^2); A in 1/(nm ps), c the uniform drift (nm/ps). ``velocities`` may be one profile or one
-    per row (frames)."""
-    design = np.column_stack([shape, np.ones_like(shape)])
-    solution = np.linalg.lstsq(design, np.asarray(velocities, float).T, rcond=None)[0]
-    return solution[0], solution[1]
-
-
-def viscosity_from_amplitude(amplitude, density, force):
-    """eta = n F/(2 A) (amu/(nm ps)) from the amplitude A (1/(nm ps)) of v_x = A h(z), n in nm^-3, F in kJ/mol/nm."""
-    return density * force / (2 * amplitude)
-
-
-def momentum_diffusion_time(mass_density, viscosity, box_length):
-    """rho (L/2)^2/(eta pi^2) (ps): the decay time of the slowest flow mode, sin(2 pi z/L), of a periodic box of
-    length L (nm); rho in amu/nm^3, eta in amu/(nm ps)."""
-    return mass_density * (box_length / 2) ** 2 / (viscosity * math.pi**2)
-
 
 def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0, measured=5.0,
                          bins=20, samples_per_time=10, report=print):
@@ -243,29 +191,6 @@ def _combine(values, errors, frames, length, bins, details):
 
 # --- Heat flux between thermostatted slabs --------------------------------------------------------------------------
 
-def thermal_diffusion_time(density, heat_capacity, conductivity, box_length):
-    """n c (L/2)^2/(lambda pi^2) (ps): the decay time of the slowest temperature mode of a periodic box of length L
-    (nm); n in nm^-3, c the heat capacity per particle at fixed density (kJ/mol/K), lambda in kJ/(mol ps nm K)."""
-    return density * heat_capacity * (box_length / 2) ** 2 / (conductivity * math.pi**2)
-
-
-def slab_profile(z, box_length, slab_width):
-    """+1 in the hot slab (wrapped z in [0, w)), -1 in the cold one ([L/2, L/2 + w)), linear in between: the shape of
-    the steady temperature profile, T0 (1 + e s(z))."""
-    z = np.mod(z, box_length)
-    half = box_length / 2
-    gap = half - slab_width
-    inner = np.mod(z, half)
-    ramp = np.where(inner < slab_width, 1.0, 1 - 2 * (inner - slab_width) / gap)
-    return np.where(z < half, ramp, -ramp)
-
-
-def _line_slopes(centre, profiles, mask):
-    """The least-squares slope (per row of ``profiles``) of the bins in ``mask`` against ``centre``."""
-    x = centre[mask] - centre[mask].mean()
-    return (np.asarray(profiles)[:, mask] @ x) / (x @ x)
-
-
 def heat_flux_conductivity(parameters, replicas, excess=0.1, slab_bins=2, bins=20, reset_steps=10,
                            developed=2.0, measured=6.0, samples_per_time=20, margin=None, uniform=False,
                            report=print):
@@ -293,58 +218,86 @@ def heat_flux_conductivity(parameters, replicas, excess=0.1, slab_bins=2, bins=2
     kinetic temperature profile, the mean temperature, and the energy accounting: E = K + U + sum eps_i changes only
     through the resets, E(end) - E(start) against the sum of the injected energies ('energy_change', 'injected'; the
     hot slab's alone 'injected_hot'), all in kJ/mol."""
-    targets = parameters.targets()
-    heat_capacity = heat_capacity_per_particle(parameters.heat_capacity)
-    margin = parameters.cutoff if margin is None else margin
+    run = _HeatFlux(parameters, excess, slab_bins, bins, reset_steps, developed, measured, samples_per_time,
+                    parameters.cutoff if margin is None else margin, uniform, report)
+    values, errors, profiles, details = zip(*replicas(run.one))
+    return _combine(values, errors, profiles, details[-1]["box_length"], bins, details[-1])
 
-    def one(replica, model, context):
+
+@dataclasses.dataclass
+class _HeatFlux:
+    """The settings of heat_flux_conductivity (its docstring), and its run on one replica (one)."""
+    parameters: object
+    excess: float
+    slab_bins: int
+    bins: int
+    reset_steps: int
+    developed: float
+    measured: float
+    samples_per_time: float
+    margin: float
+    uniform: bool
+    report: object
+
+    def geometry(self, model):
+        """(box length, xy area, slab width, bin centres, and the bins fitted: all of them, the first half's, the
+        second half's) of ``model``'s box."""
         vectors = model.system.getDefaultPeriodicBoxVectors()
         length = vectors[2][2].value_in_unit(unit.nanometer)
         area = vectors[0][0].value_in_unit(unit.nanometer) * vectors[1][1].value_in_unit(unit.nanometer)
-        density = model.num_particles / model.volume
-        width = length * slab_bins / bins
-        centre = (np.arange(bins) + 0.5) * length / bins
+        width = length * self.slab_bins / self.bins
+        centre = (np.arange(self.bins) + 0.5) * length / self.bins
         inside = np.mod(centre, length / 2)
-        region = (inside > width + margin) & (inside < length / 2 - margin)
-        first = region & (centre < length / 2)
-        second = region & (centre > length / 2)
-        if first.sum() < 2:
-            raise ValueError(f"the box (L = {length:.3g} nm) leaves fewer than 2 of {bins} bins between the slabs "
-                             f"(w = {width:.3g} nm) at least {margin:.3g} nm from them: use a longer box or more bins")
-        tau = thermal_diffusion_time(density, heat_capacity, targets["thermal_conductivity"], length)
+        region = (inside > width + self.margin) & (inside < length / 2 - self.margin)
+        if (region & (centre < length / 2)).sum() < 2:
+            raise ValueError(f"the box (L = {length:.3g} nm) leaves fewer than 2 of {self.bins} bins between the "
+                             f"slabs (w = {width:.3g} nm) at least {self.margin:.3g} nm from them: use a longer box "
+                             f"or more bins")
+        return length, area, width, centre, region, region & (centre < length / 2), region & (centre > length / 2)
+
+    def reset(self, model, context, length, width):
+        """The slabs' theta_i reset to T0 (1 -+ excess); the change of each eps_i and the hot and cold slabs."""
+        t0 = self.parameters.temperature
+        wrapped = np.mod(_positions(context)[:, 2], length)
+        hot = wrapped < width
+        cold = (wrapped >= length / 2) & (wrapped < length / 2 + width)
+        theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
+        before = _internal_energies(model)
+        for members, target in ((hot, t0 * (1 + self.excess)), (cold, t0 * (1 - self.excess))):
+            theta[members] = target if self.uniform else theta[members] * target * np.mean(1 / theta[members])
+        model.integrator.setParticleTemperatures(list(theta))
+        return _internal_energies(model) - before, hot, cold
+
+    def one(self, replica, model, context):
+        """The run on one replica: (lambda, its error, the harmonic-mean profiles sampled, the details)."""
+        length, area, width, centre, region, first, second = self.geometry(model)
+        density = model.num_particles / model.volume
+        heat_capacity = heat_capacity_per_particle(self.parameters.heat_capacity)
+        tau = thermal_diffusion_time(density, heat_capacity, self.parameters.targets()["thermal_conductivity"], length)
         step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
-        every = max(1, round(tau / samples_per_time / (step * reset_steps)))
-        resets = round((developed + measured) * tau / (step * reset_steps))
-        warm = round(developed * tau / (step * reset_steps))
-        t0 = parameters.temperature
+        interval = step * self.reset_steps
+        every = max(1, round(tau / self.samples_per_time / interval))
+        resets, warm = round((self.developed + self.measured) * tau / interval), round(self.developed * tau / interval)
         z = _positions(context)[:, 2]
         theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
-        model.integrator.setParticleTemperatures(list(theta * (1 + excess * slab_profile(z, length, width))))
+        model.integrator.setParticleTemperatures(list(theta * (1 + self.excess * slab_profile(z, length, width))))
         energy_start = _total_energy(model, context)
         injected, hot_total, fluxes, frames, kinetic_frames, means = 0.0, 0.0, [], [], [], []
         for reset in range(resets):
-            model.integrator.step(reset_steps)
-            wrapped = np.mod(_positions(context)[:, 2], length)
-            hot = wrapped < width
-            cold = (wrapped >= length / 2) & (wrapped < length / 2 + width)
-            theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
-            before = _internal_energies(model)
-            for members, target in ((hot, t0 * (1 + excess)), (cold, t0 * (1 - excess))):
-                theta[members] = target if uniform else theta[members] * target * np.mean(1 / theta[members])
-            model.integrator.setParticleTemperatures(list(theta))
-            change = _internal_energies(model) - before
+            model.integrator.step(self.reset_steps)
+            change, hot, cold = self.reset(model, context, length, width)
             q_hot, q_cold = change[hot].sum(), change[cold].sum()
             injected += change.sum()
             hot_total += q_hot
             if reset >= warm:
-                fluxes.append((q_hot - q_cold) / 2 / (2 * area * step * reset_steps))
+                fluxes.append((q_hot - q_cold) / 2 / (2 * area * step * self.reset_steps))
                 if (reset - warm) % every == 0:
-                    sample = _sample(model, context, bins)
+                    sample = _sample(model, context, self.bins)
                     frames.append(sample["theta_harmonic"])
                     kinetic_frames.append(sample["kinetic_profile"])
                     means.append(sample["harmonic_temperature"])
         energy_change = _total_energy(model, context) - energy_start
-        gradients = (_line_slopes(centre, frames, second) - _line_slopes(centre, frames, first)) / 2
+        gradients = (line_slopes(centre, frames, second) - line_slopes(centre, frames, first)) / 2
         gradient, gradient_error = _mean_and_error(gradients)
         # The injections at successive resets are anti-correlated (each one removes the slab's fluctuation that the
         # last one left), so that their mean converges faster than a series with g >= 1 would: its error from the
@@ -352,26 +305,21 @@ def heat_flux_conductivity(parameters, replicas, excess=0.1, slab_bins=2, bins=2
         flux, flux_error = float(np.mean(fluxes)), block_standard_error(np.array(fluxes), 10)
         conductivity = flux / gradient
         error = conductivity * math.hypot(flux_error / flux, gradient_error / gradient)
-        kinetic_gradient = float(np.mean(_line_slopes(centre, kinetic_frames, second)
-                                         - _line_slopes(centre, kinetic_frames, first)) / 2)
-        measured_tau = thermal_diffusion_time(density, heat_capacity, conductivity, length)
-        report(f"  heat-flux replica {replica + 1}: lambda = {conductivity:.4g} +- {error:.2g} kJ/(mol ps nm K) "
-               f"(J = {flux:.4g} +- {flux_error:.2g} kJ/(mol ps nm^2), dT/dz = {gradient:.4g} +- "
-               f"{gradient_error:.2g} K/nm from theta, {kinetic_gradient:.4g} K/nm from T_kin); waited "
-               f"{warm * step * reset_steps / measured_tau:.1f} tau of this lambda; mean theta_harm "
-               f"{np.mean(means):.2f} K; energy: E(end) - E(start) = {energy_change:.5g} kJ/mol, injected "
-               f"{injected:.5g} kJ/mol")
-        extra = {"box_length": length, "area": area, "slab_width": width, "margin": margin, "excess": excess,
-                 "fit_bins": int(region.sum()), "flux": flux, "flux_error": flux_error, "gradient": gradient,
-                 "gradient_error": gradient_error, "kinetic_gradient": kinetic_gradient,
-                 "mean_temperature": float(np.mean(means)), "energy_change": energy_change, "injected": injected,
-                 "injected_hot": hot_total,
-                 "run_time": resets * reset_steps * step, "waited_tau": warm * step * reset_steps / measured_tau,
-                 "kinetic_profile": np.mean(kinetic_frames, axis=0)}
-        return conductivity, error, np.array(frames), extra
-
-    values, errors, profiles, details = zip(*replicas(one))
-    return _combine(values, errors, profiles, details[-1]["box_length"], bins, details[-1])
+        kinetic_gradient = float(np.mean(line_slopes(centre, kinetic_frames, second)
+                                         - line_slopes(centre, kinetic_frames, first)) / 2)
+        waited = warm * step * self.reset_steps / thermal_diffusion_time(density, heat_capacity, conductivity, length)
+        self.report(f"  heat-flux replica {replica + 1}: lambda = {conductivity:.4g} +- {error:.2g} kJ/(mol ps nm K) "
+                    f"(J = {flux:.4g} +- {flux_error:.2g} kJ/(mol ps nm^2), dT/dz = {gradient:.4g} +- "
+                    f"{gradient_error:.2g} K/nm from theta, {kinetic_gradient:.4g} K/nm from T_kin); waited "
+                    f"{waited:.1f} tau of this lambda; mean theta_harm {np.mean(means):.2f} K; energy: E(end) - "
+                    f"E(start) = {energy_change:.5g} kJ/mol, injected {injected:.5g} kJ/mol")
+        return conductivity, error, np.array(frames), {
+            "box_length": length, "area": area, "slab_width": width, "margin": self.margin, "excess": self.excess,
+            "fit_bins": int(region.sum()), "flux": flux, "flux_error": flux_error, "gradient": gradient,
+            "gradient_error": gradient_error, "kinetic_gradient": kinetic_gradient,
+            "mean_temperature": float(np.mean(means)), "energy_change": energy_change, "injected": injected,
+            "injected_hot": hot_total, "run_time": resets * self.reset_steps * step, "waited_tau": waited,
+            "kinetic_profile": np.mean(kinetic_frames, axis=0)}
 
 
 def _positions(context):

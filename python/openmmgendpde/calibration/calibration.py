@@ -1,8 +1,7 @@
 """The machinery of calibrate: a Calibration holds a model's parameters and measures them back (melts, thermodynamics,
-the bulk modulus, the heat capacity, the transport coefficients by waves and steady flows), and iterates a parameter
-on its measured response (iterate, steady_correction; pressure_step for pi0). The command, its stages and its report
-are calibrate.py; the module docstring there says the method."""
-
+the bulk modulus, the heat capacity; the transport coefficients by waves and steady flows: waves.py), and iterates a
+parameter on its measured response (iterate, steady_correction; pressure_step for pi0: iteration.py). The protocol and
+its stages are calibrate.py (its docstring says the method), the report report.py, the command cli/calibrate.py."""
 
 import dataclasses
 import math
@@ -20,14 +19,23 @@ from ..analysis.thermodynamics import (
     heat_capacity_per_particle,
     self_diffusion,
 )
-from ..analysis.transport import heat_flux_conductivity, poiseuille_viscosity
 from ..api import GenDPDEIntegrator, estimator_of
 from ..internal import forked
 from ..models.fluid import KB
 from ..models.melting import switch_after_melting
-from .results import (
-    coverage,
+from .iteration import (  # noqa: F401  (the iterations' names, as this module had them)
+    FAILURE_ADVICE,
+    MAX_STEP,
+    TOLERANCE,
+    Iterations,
+    _elasticity,
+    _measured_difference,
+    _reached,
+    _settled,
+    pressure_step,
 )
+from .results import Measured
+from .waves import TransportMeasurements, _decay_rate, model_positions  # noqa: F401  (names of this module)
 
 #: The run-to-run response of n-bar to f_cut over the response on frames at fixed structure (measured: see
 #: Calibration.tune_cutoff_scaling).
@@ -60,38 +68,10 @@ QUICK = Plan(particles=500, melt=400, melt_block=500, frames=60, interval=25, tu
              wave_steps=600, pressure_rounds=2, bulk_runs=2, transport_runs=3, steady_cells=(3, 3, 12), steady_time=0.4)
 
 
-@dataclasses.dataclass
-class Measured:
-    """A measured value and its standard error; ``samples``: the independent samples the error rests on (N/g of
-    a time series, or the replicas), None where it is derived from other measurements."""
-    value: float
-    error: float
-    samples: float = None
-
-
 #: The smallest C_V (kJ/mol/K) match_heat_capacity sets: k_B. Each eps_i/(k_B T) follows a Gamma law of shape
 #: C_V/k_B + 1; below k_B the internal energies reach near zero often and the Ito term k_B/(2 C_V) of the
 #: integrator's friction passes 1/2 (docs/integrator.md).
 MIN_INTERNAL_HEAT_CAPACITY = KB
-
-
-#: The tolerance of the iterations (relative to the target), widened to one standard error (_settled).
-TOLERANCE = 0.05
-
-
-#: The largest factor by which an iteration moves its parameter in one run.
-MAX_STEP = 3.0
-
-
-#: What to change when an iteration cannot reach its target (Calibration.iterate).
-FAILURE_ADVICE = {
-    "friction": "coarse-grain differently (molecules per particle) or change the neighbours within the cutoff",
-    "heat_conduction": "coarse-grain differently (molecules per particle) or change the neighbours within the cutoff",
-    "bulk_modulus": ("the particle densities do not follow the true density closely enough for B_T to reach the "
-                     "fluid's compressibility; where the particles are under tension (pi0 < 0 without a background "
-                     "pressure) give them one (fluid.background_pressure_for, docs/theory.md section 12), else use "
-                     "more neighbours within the cutoff (docs/fluids.md)"),
-}
 
 
 class _StepCounter:
@@ -104,7 +84,7 @@ class _StepCounter:
         self.steps += steps
 
 
-class Calibration:
+class Calibration(TransportMeasurements, Iterations):
     """The simulations of one fluid model on one platform."""
 
     def __init__(self, parameters, estimator, plan, platform, seed=1, report=print, progress=None, workers=1):
@@ -351,229 +331,6 @@ class Calibration:
         self.parameters = self.parameters.replace(heat_capacity=needed)
         return None
 
-    def _wave_rate(self, amplitude_of, perturb, diffusivity):
-        """The decay rate (1/ps) of a wave along z of the box of plan.steady_cells (the steady flows' box, so that
-        both methods see the same wavelength, the longest that box has): the replicas' amplitudes averaged, then a
-        least-squares line through log(amplitude) over the times where the mean amplitude exceeds 1/e^2 of its
-        start; error from the replicas' individual rates. The run covers plan.wave_decays decay times
-        1/(diffusivity k^2) (``diffusivity``, nm^2/ps, from the target: eta/(n0 m) or lambda/(n0 c)), at least
-        plan.wave_steps steps: a shorter run, a third of the decay time in a long box, read the conductivity ~50%
-        high (docs/transport.md). In a 500-particle cube (k R = 1.3 for water) the transverse wave read the
-        viscosity ~0.7 of the 2048-particle cube's, and in that cube (k R = 0.83) it read 0.77 of the Poiseuille
-        flow's in the long box once the friction was doubled: the dissipative stress is spread over R, so a wave
-        much longer than R is needed for the macroscopic coefficient."""
-        def one(index, model, context):
-            edge = model.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(unit.nanometer)
-            k = 2 * math.pi / edge
-            step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
-            steps = max(self.plan.wave_steps, round(self.plan.wave_decays / (diffusivity * k**2) / step))
-            interval = max(1, steps // 150)
-            perturb(model, context, k)
-            times, amplitudes = [], []
-            for n in range(steps // interval + 1):
-                if n:
-                    self._step(model.integrator, interval)
-                state = context.getState(getPositions=True, getVelocities=True, getEnergy=True)
-                times.append(state.getTime().value_in_unit(unit.picosecond))
-                amplitudes.append(amplitude_of(model, context, state, k))
-            times, amplitudes = np.array(times) - times[0], np.array(amplitudes)
-            return times, amplitudes, _decay_rate(times, amplitudes), k
-
-        runs = self.replicas(self.plan.steady_cells)(one)
-        times, k = runs[-1][0], runs[-1][3]
-        curves, rates = [run[1] for run in runs], [run[2] for run in runs]
-        mean_rate = _decay_rate(times, np.mean(curves, axis=0))
-        return mean_rate, float(np.std(rates, ddof=1) / math.sqrt(len(rates))), k, len(rates)
-
-    def shear_viscosity(self):
-        """eta from the decay of v_x = V0 sin(k z), V0 = the thermal velocity sqrt(k_B T0/m)."""
-        p = self.parameters
-        v0 = math.sqrt(KB * p.temperature / p.mass)
-
-        def perturb(model, context, k):
-            z = model_positions(context)[:, 2]
-            velocities = context.getState(getVelocities=True).getVelocities(asNumpy=True).value_in_unit(
-                unit.nanometer / unit.picosecond)
-            velocities[:, 0] += v0 * np.sin(k * z)
-            context.setVelocities(velocities)
-
-        def amplitude(model, context, state, k):
-            z = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)[:, 2]
-            vx = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)[:, 0]
-            return 2 * np.mean(vx * np.sin(k * z))
-
-        mass_density = p.density * p.mass
-        rate, error, k, replicas = self._wave_rate(amplitude, perturb,
-                                                   p.targets()["shear_viscosity"] / mass_density)
-        return Measured(rate * mass_density / k**2, error * mass_density / k**2, replicas)
-
-    def thermal_conductivity(self):
-        """lambda from the decay of a wave theta_i -> theta_i (1 + 0.2 sin(k z_i)), read from the energy wave
-        sum (eps_i + K_i). Each theta_i is scaled, not set: setting every theta_i to T0 (1 + 0.2 sin(k z)) took away
-        the equilibrium spread of the eps_i, the harmonic mean of theta fell by 7% (argon) within 500 steps, and the
-        conduction term, which goes as 1/theta^2, read the conductivity ~16% high (docs/transport.md)."""
-        p = self.parameters
-        heat_capacity = self.heat_capacity().value
-
-        def perturb(model, context, k):
-            z = model_positions(context)[:, 2]
-            theta = np.asarray(model.integrator.getParticleTemperatures().value_in_unit(unit.kelvin))
-            model.integrator.setParticleTemperatures(list(theta * (1 + 0.2 * np.sin(k * z))))
-
-        def amplitude(model, context, state, k):
-            z = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)[:, 2]
-            v = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
-            kinetic = 0.5 * p.mass * np.sum(v * v, axis=1)
-            energies = np.asarray(model.integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole))
-            return 2 * np.mean((energies + kinetic) * np.sin(k * z))
-
-        rate, error, k, replicas = self._wave_rate(
-            amplitude, perturb, p.targets()["thermal_conductivity"] / (p.density * heat_capacity))
-        factor = p.density * heat_capacity / k**2
-        return Measured(rate * factor, error * factor, replicas)
-
-
-    def steady_viscosity(self):
-        """eta by periodic Poiseuille flow (transport.poiseuille_viscosity) in boxes of plan.steady_cells."""
-        time = self.plan.steady_time
-        result = poiseuille_viscosity(self.parameters, self.replicas(self.plan.steady_cells), developed=3.0 * time,
-                                      measured=5.0 * time, report=self.report)
-        return Measured(result.value, result.error, len(result.replica_values))
-
-    def steady_conductivity(self):
-        """lambda by a steady heat flux between slabs (transport.heat_flux_conductivity) in plan.steady_cells."""
-        time = self.plan.steady_time
-        result = heat_flux_conductivity(self.parameters, self.replicas(self.plan.steady_cells), developed=2.0 * time,
-                                        measured=6.0 * time, report=self.report)
-        return Measured(result.value, result.error, len(result.replica_values))
-
-    def steady_correction(self, attribute, measure_steady, measure_wave, history, target, name, failure=None):
-        """The steady flow's measurement of the coefficient that ``attribute`` sets, and, if it misses the target by
-        more than max(TOLERANCE target, one standard error) (_settled), one more step on it: the parameter times
-        (target/measured)^(1/e), e = d ln(coefficient)/d ln(parameter) of the wave iteration (1 if not measured;
-        the step at most MAX_STEP), then the wave and the steady flow measured again. The steady flows are the
-        more precise (water's heat flux 3% where its wave was 19%) and see the same wavelength. Returns (the steady
-        measurement, the new wave measurement or None, ``failure``, the wave iteration's, or None where this step
-        moved the parameter away from the one that failure kept: both methods are then measured again and judged by
-        CRITERIA; water's energy waves read kappa 12367 -> 22526 as no move and kept 22526, the heat flux then took
-        kappa to 31360, where both methods reached the target, and the stale failure failed the calibration); the new
-        wave joins ``history``."""
-        steady = measure_steady()
-        if _settled(steady, target):
-            return steady, None, failure
-        value = getattr(self.parameters, attribute)
-        factor = min(MAX_STEP, max(1 / MAX_STEP, (target / steady.value) ** (1 / _elasticity(history))))
-        self.parameters = self.parameters.replace(**{attribute: value * factor})
-        self.report(f"  {name} by the steady flow: {steady.value:.5g} +- {steady.error:.2g} (target {target:.5g}): "
-                    f"{attribute} {value:.5g} -> {value * factor:.5g}, both methods measured again")
-        if failure:
-            self.report(f"  (superseded: {failure.split(';')[0]})")
-        wave = measure_wave()
-        history.append((value * factor, wave))
-        return measure_steady(), wave, None
-
-    def iterate(self, attribute, measure, target, name, runs):
-        """Move the parameter ``attribute`` ('friction', 'heat_conduction' or 'bulk_modulus') until ``measure()``
-        is within max(TOLERANCE target, one standard error) of ``target`` (_settled): the first step assumes the
-        measured property proportional to the parameter, later ones are secant steps on the last two measurements
-        when their difference is a measured response (more than 2 standard errors of it), else proportional again.
-        The result is judged afterwards with its 95% interval (_reached, CRITERIA). It stops
-        with a failure, saying what to change (FAILURE_ADVICE), when the measured response is not positive (the
-        parameter does not move the property), or when the secant's intercept, the property of the model without
-        the parameter (for gamma and kappa the kinetic and conservative parts), lies above the target. Returns (the
-        last measurement, the history [(parameter, Measured)], a failure message or None); at most ``runs``
-        measurements: one that has not converged by then keeps the parameter measured closest to the target among the
-        first and those that measurably moved the property (water's B_T x 9 read 0.158 of the target against 0.092
-        as mapped, within 2 standard errors: the mapped B_T is kept), and fails, saying what to change, if its last
-        step did not move the property; the result is judged by CRITERIA like any other."""
-        history = []
-
-        def give_up(message):
-            # The closest to the target among the first (mapped) parameter and those whose measurement differs
-            # measurably from its: a move whose effect was not measured is not kept.
-            first = history[0]
-            candidates = [first] + [entry for entry in history[1:] if _measured_difference(first[1], entry[1])]
-            best_value, best = min(candidates, key=lambda entry: abs(entry[1].value - target))
-            self.parameters = self.parameters.replace(**{attribute: best_value})
-            return best, history, (message + f"; {attribute} kept at {best_value:.4g}; {FAILURE_ADVICE[attribute]}"
-                                   if message else None)
-
-        for run in range(runs):
-            value = getattr(self.parameters, attribute)
-            measured = measure()
-            history.append((value, measured))
-            self.report(f"  {name} run {run + 1}: {attribute} = {value:.5g} -> {measured.value:.5g} +- "
-                        f"{measured.error:.2g} (target {target:.5g}, model/target {measured.value / target:.3f})")
-            if _settled(measured, target):
-                return measured, history, None
-            if run + 1 == runs:
-                break
-            proposal = value * target / measured.value
-            if len(history) >= 2:
-                (x1, m1), (x2, m2) = history[-2:]
-                slope = (m2.value - m1.value) / (x2 - x1)
-                if _measured_difference(m1, m2):
-                    if slope <= 0:
-                        return give_up(f"{name}: {attribute} {x1:.4g} -> {x2:.4g} moved it {m1.value:.4g} -> "
-                                       f"{m2.value:.4g} (target {target:.4g}): a response of the wrong sign, no "
-                                       f"{attribute} reaches the target")
-                    floor = m2.value - slope * x2
-                    if floor > target + 2 * math.hypot(m1.error, m2.error):
-                        return give_up(f"{name}: the model's {name} without its {attribute} is {floor:.4g} (the "
-                                       f"secant's intercept), above the target {target:.4g}: no {attribute} reaches "
-                                       f"it")
-                    proposal = x2 + (target - m2.value) / slope
-            if not proposal > 0:
-                return give_up(f"{name}: the next {attribute} would be {proposal:.4g} <= 0: no {attribute} reaches "
-                               f"the target {target:.4g}")
-            # At most a factor MAX_STEP per run: a response that is not measured (water's n dP/dn does not follow
-            # B_T) must not throw the parameter far (B_T went x11 twice before this limit).
-            proposal = min(MAX_STEP * value, max(value / MAX_STEP, proposal))
-            self.parameters = self.parameters.replace(**{attribute: proposal})
-        # Out of runs: keep the best parameter measured, and say so if the last step did not move the property.
-        failure = None
-        if len(history) >= 2:
-            (x1, m1), (x2, m2) = history[-2:]
-            moved = (m2.value - m1.value) * (x2 - x1) > 0 and _measured_difference(m1, m2)
-            # A step too small for its expected effect (the property proportional to the parameter) to stand out
-            # of the noise says nothing (water's friction 8855 -> 8059: 593 +- 52 -> 596 +- 11 read no move).
-            resolvable = abs(m1.value * (x2 / x1 - 1)) > 2 * math.hypot(m1.error, m2.error)
-            if resolvable and not moved:
-                failure = (f"{name}: {attribute} {x1:.4g} -> {x2:.4g} did not move it ({m1.value:.4g} +- "
-                           f"{m1.error:.2g} -> {m2.value:.4g} +- {m2.error:.2g}, target {target:.4g})")
-        return give_up(failure)
-
-
-def _reached(measured, target):
-    """Whether a Measured value is within max(TOLERANCE target, its 95% interval, coverage) of ``target``."""
-    return abs(measured.value - target) <= max(TOLERANCE * target, coverage(measured.samples) * measured.error)
-
-
-def _settled(measured, target):
-    """Whether an iteration stops at a Measured value: within max(TOLERANCE target, one standard error) of
-    ``target``. Not the judgement's 95% interval (_reached): with 4 replicas that spans 3.18 standard errors, and
-    water's first energy wave, 1.74 +- 0.27 of the target, lay inside it; a step on a miss of more than a standard
-    error is a step towards the target on average, a smaller one is within what the measurement resolves."""
-    return abs(measured.value - target) <= max(TOLERANCE * target, measured.error)
-
-
-def _measured_difference(a, b):
-    """Whether two Measured values differ by more than 2 standard errors of their difference."""
-    return abs(b.value - a.value) > 2 * math.hypot(a.error, b.error)
-
-
-def _elasticity(history):
-    """d ln(property)/d ln(parameter) from the last two entries of an iteration's history [(parameter, Measured)]
-    when their difference is measured (more than 2 standard errors) and positive, within [1/3, 3]; else 1."""
-    if len(history) >= 2:
-        (x1, m1), (x2, m2) = history[-2:]
-        if x1 != x2 and _measured_difference(m1, m2) and m1.value > 0 < m2.value:
-            elasticity = math.log(m2.value / m1.value) / math.log(x2 / x1)
-            if elasticity > 0:
-                return min(3.0, max(1 / 3, elasticity))
-    return 1.0
-
-
 def _box_edges(model):
     """The particles and the shape of ``model``'s box (edges over the z edge), the same at every density: the key
     of a melted liquid."""
@@ -582,30 +339,3 @@ def _box_edges(model):
     return model.num_particles, round(edges[0] / edges[2], 9), round(edges[1] / edges[2], 9)
 
 
-def model_positions(context):
-    return context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
-
-
-def _decay_rate(times, amplitudes):
-    """Least-squares slope of -log(amplitude) over the leading times where the amplitude exceeds e^-2 of its start
-    (later the thermal noise dominates)."""
-    start = amplitudes[0]
-    keep = np.nonzero(amplitudes / start < math.exp(-2))[0]
-    end = keep[0] if len(keep) else len(amplitudes)
-    end = max(end, 3)
-    slope = np.polyfit(times[:end], np.log(np.abs(amplitudes[:end] / start)), 1)[0]
-    return -slope
-
-
-def pressure_step(pressures, target):
-    """The move of pi0 (kJ/mol/nm^3) for the next round from the rounds so far, [(pi0, Measured P)] with f_cut tuned
-    in each: P0 - P if there is one round, or if the last two differ by less than 2 standard errors (no measured
-    response); else a secant step (P0 - P)/(dP/dpi0), the response clipped to [0.25, 4] (a noisy secant must not
-    throw pi0 far)."""
-    pi0, pressure = pressures[-1]
-    response = 1.0
-    if len(pressures) >= 2:
-        previous_pi0, previous = pressures[-2]
-        if _measured_difference(previous, pressure):
-            response = min(4.0, max(0.25, (pressure.value - previous.value) / (pi0 - previous_pi0)))
-    return (target - pressure.value) / response

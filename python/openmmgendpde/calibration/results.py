@@ -42,6 +42,15 @@ class Property(enum.Enum):
         return self.quantity in ("shear viscosity", "thermal conductivity")
 
 
+@dataclasses.dataclass
+class Measured:
+    """A measured value and its standard error; ``samples``: the independent samples the error rests on (N/g of
+    a time series, or the replicas), None where it is derived from other measurements."""
+    value: float
+    error: float
+    samples: float = None
+
+
 @dataclasses.dataclass(frozen=True)
 class Criterion:
     """What a property must reach. ``kind`` 'relative': |model/target - 1| <= tolerance; 'pressure': |P - P0| <=

@@ -175,9 +175,8 @@ def main():
     time_step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     integrator = openmm.VerletIntegrator(time_step)
-    context = openmm.Context(model.system, integrator, openmm.Platform.getPlatformByName("CPU"),
-                             {"Threads": str(arguments.ranks)})
-    context.setPositions(positions)
+    context = model.context("CPU", properties={"Threads": str(arguments.ranks)}, positions=positions,
+                            integrator=integrator, velocities=False)
     context.setVelocities(velocities)
     state = context.getState(getEnergy=True, getForces=True)
     energy = state.getPotentialEnergy().value_in_unit(unit.kilojoule_per_mole)

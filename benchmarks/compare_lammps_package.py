@@ -57,7 +57,7 @@ def run_lammps(lmp, directory, script, ranks, steps, plugin=None):
     return 1e3 * float(re.search(r"Loop time of (\S+) on", log).group(1)) / steps
 
 
-def main():
+def parse_arguments():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--lmp", default=ROOT / "build/lammps/lammps/lmp", type=pathlib.Path)
     parser.add_argument("--plugin", default=ROOT / "build/lammps/plugin/gendpdeplugin.so", type=pathlib.Path)
@@ -71,69 +71,73 @@ def main():
     for path in (arguments.lmp, arguments.plugin):
         if not path.exists():
             parser.error(f"{path} does not exist: run lammps/build.sh")
-    ranks = [int(r) for r in arguments.ranks.split(",")]
-    arguments.particles, positions, velocities = liquid(arguments, CUTOFF)
-    model = liquid_argon(arguments.particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    return arguments
+
+
+def write_inputs(directory, arguments, model, positions, velocities):
+    """The LAMMPS inputs of the three candidates (GenDPDE, DPD-E, eam/alloy/opt) in sub-directories of ``directory``,
+    and with --weak-state those of twice the particles (GenDPDE and DPD-E); {name: directory}, and the weak case's
+    particle count (None without it)."""
     edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
     cutoff = model.force.getCutoffDistance().value_in_unit(unit.nanometer)
     mass = model.system.getParticleMass(0).value_in_unit(unit.dalton)
     temperature = model.integrator.getTemperature().value_in_unit(unit.kelvin)
     time_step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
-    contexts = {}
-    for r in ranks:
-        contexts[r] = context_at(arguments.particles, CUTOFF, positions, velocities, "CPU", r)
-        contexts[r][1].step(5)
+    directories = {name: os.path.join(directory, name) for name in ("gendpde", "dpde", "eam")}
+    for path in directories.values():
+        os.makedirs(path)
+    write_lammps_input(directories["gendpde"], lammps_input(model.system, model.integrator, positions, velocities,
+                                                            steps=arguments.steps, thermo=arguments.steps))
+    write_data(os.path.join(directories["dpde"], "liquid.data"), positions, velocities, edge, mass, temperature)
+    write_dpde_input(os.path.join(directories["dpde"], "dpde.in"), model.integrator, cutoff, 0.1 * cutoff,
+                     arguments.steps)
+    write_data(os.path.join(directories["eam"], "liquid.data"), positions, velocities, edge, mass)
+    write_setfl(os.path.join(directories["eam"], "gendpde_vb.eam.alloy"), model, 4.0 * arguments.particles
+                / edge**3)
+    write_eam_input(os.path.join(directories["eam"], "eam.in"), "eam/alloy/opt", 0.1 * cutoff, time_step,
+                    arguments.steps, False)
+    if not arguments.weak_state:
+        return directories, None
+    # the same liquid, twice the particles: GenDPDE and DPD-E on 2 ranks
+    saved = np.load(arguments.weak_state)
+    big = liquid_argon(len(saved["positions"]), CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    big_edge = big.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
+    for name in ("weak-gendpde", "weak-dpde"):
+        directories[name] = os.path.join(directory, name)
+        os.makedirs(directories[name])
+    write_lammps_input(directories["weak-gendpde"],
+                       lammps_input(big.system, big.integrator, saved["positions"], saved["velocities"],
+                                    steps=arguments.steps, thermo=arguments.steps))
+    write_data(os.path.join(directories["weak-dpde"], "liquid.data"), saved["positions"], saved["velocities"],
+               big_edge, mass, temperature)
+    write_dpde_input(os.path.join(directories["weak-dpde"], "dpde.in"), big.integrator, cutoff, 0.1 * cutoff,
+                     arguments.steps)
+    return directories, len(saved["positions"])
 
-    labels = {r: [f"LAMMPS GenDPDE, {r} rank{'s' if r > 1 else ''}", f"LAMMPS DPD-E, {r} rank{'s' if r > 1 else ''}",
-                  f"LAMMPS eam/alloy/opt, {r} rank{'s' if r > 1 else ''}",
-                  f"OpenMM CPU platform GenDPDE, {r} thread{'s' if r > 1 else ''}"] for r in ranks}
+
+def timed_rounds(arguments, ranks, labels, contexts, directories, weak):
+    """ms per step of every candidate (labels) and of the weak case's (``weak``: {name: []} to fill), in alternating
+    rounds: {label: [ms, ...]}."""
     times = {label: [] for r in ranks for label in labels[r]}
-    with tempfile.TemporaryDirectory() as directory:
-        directories = {name: os.path.join(directory, name) for name in ("gendpde", "dpde", "eam")}
-        for path in directories.values():
-            os.makedirs(path)
-        write_lammps_input(directories["gendpde"], lammps_input(model.system, model.integrator, positions, velocities,
-                                                                steps=arguments.steps, thermo=arguments.steps))
-        write_data(os.path.join(directories["dpde"], "liquid.data"), positions, velocities, edge, mass, temperature)
-        write_dpde_input(os.path.join(directories["dpde"], "dpde.in"), model.integrator, cutoff, 0.1 * cutoff,
-                         arguments.steps)
-        write_data(os.path.join(directories["eam"], "liquid.data"), positions, velocities, edge, mass)
-        write_setfl(os.path.join(directories["eam"], "gendpde_vb.eam.alloy"), model, 4.0 * arguments.particles
-                    / edge**3)
-        write_eam_input(os.path.join(directories["eam"], "eam.in"), "eam/alloy/opt", 0.1 * cutoff, time_step,
-                        arguments.steps, False)
-        weak = {}
-        if arguments.weak_state:
-            # the same liquid, twice the particles: GenDPDE and DPD-E on 2 ranks
-            saved = np.load(arguments.weak_state)
-            big = liquid_argon(len(saved["positions"]), CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
-            big_edge = big.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
-            for name in ("weak-gendpde", "weak-dpde"):
-                directories[name] = os.path.join(directory, name)
-                os.makedirs(directories[name])
-            write_lammps_input(directories["weak-gendpde"],
-                               lammps_input(big.system, big.integrator, saved["positions"], saved["velocities"],
-                                            steps=arguments.steps, thermo=arguments.steps))
-            write_data(os.path.join(directories["weak-dpde"], "liquid.data"), saved["positions"], saved["velocities"],
-                       big_edge, mass, temperature)
-            write_dpde_input(os.path.join(directories["weak-dpde"], "dpde.in"), big.integrator, cutoff, 0.1 * cutoff,
-                             arguments.steps)
-            weak = {"LAMMPS GenDPDE": [], "LAMMPS DPD-E": []}
-            weak_particles = len(saved["positions"])
-            times["weak GenDPDE"], times["weak DPD-E"] = weak["LAMMPS GenDPDE"], weak["LAMMPS DPD-E"]
-        for _ in range(arguments.rounds):
-            if weak:
-                weak["LAMMPS GenDPDE"].append(run_lammps(arguments.lmp, directories["weak-gendpde"], "in.gendpde", 2,
-                                                         arguments.steps, arguments.plugin))
-                weak["LAMMPS DPD-E"].append(run_lammps(arguments.lmp, directories["weak-dpde"], "dpde.in", 2,
-                                                       arguments.steps))
-            for r in ranks:
-                gendpde, dpde, eam, cpu = labels[r]
-                times[gendpde].append(run_lammps(arguments.lmp, directories["gendpde"], "in.gendpde", r,
-                                                 arguments.steps, arguments.plugin))
-                times[dpde].append(run_lammps(arguments.lmp, directories["dpde"], "dpde.in", r, arguments.steps))
-                times[eam].append(run_lammps(arguments.lmp, directories["eam"], "eam.in", r, arguments.steps))
-                times[cpu].append(time_steps(contexts[r][1], arguments.steps))
+    if weak:
+        times["weak GenDPDE"], times["weak DPD-E"] = weak["LAMMPS GenDPDE"], weak["LAMMPS DPD-E"]
+    for _ in range(arguments.rounds):
+        if weak:
+            weak["LAMMPS GenDPDE"].append(run_lammps(arguments.lmp, directories["weak-gendpde"], "in.gendpde", 2,
+                                                     arguments.steps, arguments.plugin))
+            weak["LAMMPS DPD-E"].append(run_lammps(arguments.lmp, directories["weak-dpde"], "dpde.in", 2,
+                                                   arguments.steps))
+        for r in ranks:
+            gendpde, dpde, eam, cpu = labels[r]
+            times[gendpde].append(run_lammps(arguments.lmp, directories["gendpde"], "in.gendpde", r,
+                                             arguments.steps, arguments.plugin))
+            times[dpde].append(run_lammps(arguments.lmp, directories["dpde"], "dpde.in", r, arguments.steps))
+            times[eam].append(run_lammps(arguments.lmp, directories["eam"], "eam.in", r, arguments.steps))
+            times[cpu].append(time_steps(contexts[r][1], arguments.steps))
+    return times
+
+
+def report(arguments, ranks, labels, times, weak, weak_particles):
     load = os.getloadavg()[0]
     layout = "numbered cell by cell" if arguments.cell_order else "numbered at random"
     print(f"N = {arguments.particles}, liquid argon R* = {CUTOFF} V-B, {layout}; {arguments.rounds} alternating rounds "
@@ -156,6 +160,25 @@ def main():
         efficiency = [a / b for a, b in zip(one, values)]
         print(f"{name}: 2 ranks with {weak_particles} particles {summary(values)} ms per step; weak scaling "
               f"t(N, 1 rank)/t(2N, 2 ranks) = {statistics.median(efficiency):.2f}")
+
+
+def main():
+    arguments = parse_arguments()
+    ranks = [int(r) for r in arguments.ranks.split(",")]
+    arguments.particles, positions, velocities = liquid(arguments, CUTOFF)
+    model = liquid_argon(arguments.particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isoenergetic)
+    contexts = {}
+    for r in ranks:
+        contexts[r] = context_at(arguments.particles, CUTOFF, positions, velocities, "CPU", r)
+        contexts[r][1].step(5)
+    labels = {r: [f"LAMMPS GenDPDE, {r} rank{'s' if r > 1 else ''}", f"LAMMPS DPD-E, {r} rank{'s' if r > 1 else ''}",
+                  f"LAMMPS eam/alloy/opt, {r} rank{'s' if r > 1 else ''}",
+                  f"OpenMM CPU platform GenDPDE, {r} thread{'s' if r > 1 else ''}"] for r in ranks}
+    with tempfile.TemporaryDirectory() as directory:
+        directories, weak_particles = write_inputs(directory, arguments, model, positions, velocities)
+        weak = {"LAMMPS GenDPDE": [], "LAMMPS DPD-E": []} if weak_particles else {}
+        times = timed_rounds(arguments, ranks, labels, contexts, directories, weak)
+    report(arguments, ranks, labels, times, weak, weak_particles)
 
 
 if __name__ == "__main__":

@@ -13,7 +13,6 @@ the median ms per step of each and the median of the per-round ratios (thermal/T
 import argparse
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
@@ -32,11 +31,8 @@ def contexts(num_particles, platform_name, threads):
             _, _, bulk_modulus, gamma = model.force.getTaitParameters()
             beta = ALPHA * gamma * bulk_modulus.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3)
             model.force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [beta, model.temperature])
-        platform = openmm.Platform.getPlatformByName(platform_name)
         properties = {"Threads": str(threads)} if platform_name == "CPU" else {}
-        context = openmm.Context(model.system, model.integrator, platform, properties)
-        context.setPositions(model.positions)
-        context.setVelocitiesToTemperature(model.temperature * unit.kelvin, 1)
+        context = model.context(platform_name, properties=properties, seed=1)
         made[label] = (model, context)
     # Melt the lattice once (Tait copy, DPD thermostat) and give both copies that state.
     model, context = made["Tait"]

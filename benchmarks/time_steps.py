@@ -19,7 +19,6 @@ import os
 import time
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from openmmgendpde import GenDPDEIntegrator
@@ -30,10 +29,7 @@ CUTOFF = 1.6839
 
 def make_state(path, num_particles, platform="CPU", properties=None):
     model = liquid_argon(num_particles, CUTOFF, "VB", seed=1, mode=GenDPDEIntegrator.Isothermal)
-    context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(platform),
-                             properties or {})
-    context.setPositions(model.positions)
-    context.setVelocitiesToTemperature(model.temperature, 1)
+    context = model.context(platform, properties=properties or {}, seed=1)
     model.integrator.step(300)
     state = context.getState(getPositions=True, getVelocities=True)
     order = np.random.default_rng(2).permutation(num_particles)
@@ -96,9 +92,7 @@ def main():
         from openmmgendpde.benchmarks.cpu import allocated_bytes
     gc.collect()
     heap_before = allocated_bytes() if arguments.heap else None
-    context = openmm.Context(model.system, model.integrator, openmm.Platform.getPlatformByName(arguments.platform),
-                             properties)
-    context.setPositions(positions)
+    context = model.context(arguments.platform, properties=properties, positions=positions, velocities=False)
     context.setVelocities(velocities)
     model.integrator.step(10)
     if heap_before is not None:

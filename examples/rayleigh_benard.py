@@ -203,7 +203,7 @@ def viscosity(parameters, time_step, platform, replicas):
     return measured.value, measured.error
 
 
-def main():
+def arguments_of_the_command_line():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--differences", type=POSITIVE, nargs="+", default=[12.0, 15.0, 18.0, 24.0, 40.0],
                         help="dT between the walls in K, > 0; the first must be below the onset (default 12 15 18 24 "
@@ -228,7 +228,11 @@ def main():
                         help="draw the second halves' mean fields to STEM.png (needs matplotlib)")
     arguments = parse_arguments(parser)
     check(parser, arguments)
+    return arguments
 
+
+def main():
+    arguments = arguments_of_the_command_line()
     fluid = liquid_fluid()
     parameters = coarse_grain(fluid, ATOMS, neighbors=NEIGHBORS)
     u = parameters.units

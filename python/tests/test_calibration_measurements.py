@@ -1,0 +1,159 @@
+"""The measurements calibrate rests on, against what is known: the stability of a time step, V-C's step at a free
+surface, the decay of a conduction wave on a lattice, the speed of sound of an ideal gas, and the model's heat capacity
+from its fluctuations against the energy a temperature change takes."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from openmm import unit
+
+from openmmgendpde.models.fluid import ARGON, coarse_grain, set_temperature_field
+from openmmgendpde.models.lattice import fcc_box
+
+
+@pytest.mark.validation
+def test_stability_criterion_separates_a_good_step_from_a_blow_up():
+    """The step-size test of openmmgendpde.calibration.stability on argon (V-B, Isoenergetic, 500 particles): dt* = 0.01
+    (the step of every argon study here, 10^5-step runs without a failure, docs/argon.md) passes; dt* = 1 (a particle
+    crosses a neighbour's range in a few steps) fails."""
+    from openmmgendpde.calibration.stability import _passes
+    parameters = coarse_grain(ARGON, 5, neighbors=20)
+    assert _passes(parameters, "VB", "Isoenergetic", 0.01, 1000, 500, "CPU", 1)
+    assert not _passes(parameters, "VB", "Isoenergetic", 1.0, 1000, 500, "CPU", 1)
+
+
+@pytest.mark.validation
+def test_suggested_vc_step_drifts_at_a_free_surface_as_little_as_vb_at_its_own(monkeypatch):
+    """suggest_time_step for V-C against the measured energy drift at a free surface (docs/interfaces.md, "V-C's
+    energy error"). The stability limits (measured on a bulk liquid, where V-C is V-B) are set to V-B's measured
+    Isoenergetic limit 0.134 (docs/fluids.md) so that only the estimator's own rule differs. Then a 1000-particle
+    argon droplet in vacuum runs 10 time units from the lattice with each estimator at its suggested step, and the
+    change of K + U + sum eps per N k_B T0 is compared: measured -2.1e-4 (V-B at 0.067) and -2.1e-4 (V-C at 0.0067);
+    at V-B's step V-C's is -2.1e-2, a hundred times more, as it was before V-C had its own step. Tolerance: V-C's
+    error within a factor 2 of V-B's either way (over seeds 5-7 the ratio was 1.0-1.25)."""
+    from openmmgendpde.calibration import stability
+    from openmmgendpde.studies.slab import argon_model, droplet_positions
+    monkeypatch.setattr(stability, "largest_stable_step", lambda *arguments, **options: 0.134)
+    parameters = coarse_grain(ARGON, 5, neighbors=20)
+    errors, steps = {}, {}
+    for estimator in ("VB", "VC"):
+        steps[estimator], step = stability.suggest_time_step(parameters, estimator)
+        positions, box, _ = droplet_positions()
+        model, _context = argon_model(positions, box, estimator, platform="CPU", seed=5)
+        model.integrator.setStepSize(step)
+        kt = (unit.MOLAR_GAS_CONSTANT_R * model.temperature).value_in_unit(unit.kilojoule_per_mole) * len(positions)
+        start = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+        model.integrator.step(int(round(10.0 / steps[estimator])))
+        errors[estimator] = (model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole) - start) / kt
+    assert steps["VB"] == pytest.approx(0.067)
+    assert 0.5 < errors["VC"] / errors["VB"] < 2, (steps, errors)
+
+
+def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
+    """A case with a known answer for the wave-decay measurement that calibrate uses for the conductivity: particles
+    on an FCC lattice too heavy to move (1e9 amu: they drift 1e-5 of a spacing), no conservative force, no friction,
+    only heat conduction (a GenDPDEForce is in the System only to make it periodic: OpenMM's System is periodic when
+    a force is; its forces move nothing here). A wave theta_i = T0 (1 + e sin(k z_i)) (e = 0.1) then obeys, to first
+    order in e, d theta_i/dt = kappa/(C_V T0^2) sum_j omega_q(r_ij) (theta_j - theta_i), so its amplitude decays at
+    exactly
+        Gamma = kappa/(C_V T0^2) sum_j omega_q(r_0j) (1 - cos(k z_0j))
+    (every lattice site alike; the sum over one site's neighbours, computed here with numpy). Measured: the mean of
+    4 replicas (the conductive noise averages out) fitted by calibrate's decay fit, dt small against 1/Gamma (50
+    steps per decay time, Shardlow error ~1%); tolerance 5% (second order in e ~1%, the noise left ~2%)."""
+    import openmm
+
+    from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
+    from openmmgendpde.calibration.calibration import _decay_rate
+    density, temperature, heat_capacity, kappa = 8.0, 300.0, 0.3, 2.0e4
+    positions, box = fcc_box(density, (4, 4, 8))
+    cutoff = 0.9
+    edges = np.diag(box)
+    k = 2 * np.pi / edges[2]
+    delta = positions - positions[0]
+    delta -= edges * np.round(delta / edges)
+    r = np.sqrt((delta**2).sum(axis=1))
+    near = (r > 0) & (r < cutoff)
+    omega = (1 - r[near] / cutoff) ** 2
+    expected = kappa / (heat_capacity * temperature**2) * np.sum(omega * (1 - np.cos(k * delta[near, 2])))
+    curves = []
+    dt = 1 / (50 * expected)
+    for seed in range(1, 5):
+        system = openmm.System()
+        system.setDefaultPeriodicBoxVectors(*[openmm.Vec3(*row) for row in box])
+        for _ in positions:
+            system.addParticle(1e9)
+        periodic = GenDPDEForce(cutoff)
+        periodic.setNonbondedMethod(GenDPDEForce.CutoffPeriodic)
+        system.addForce(periodic)
+        integrator = GenDPDEIntegrator(dt, 0.0, kappa, heat_capacity)
+        integrator.setCutoffDistance(cutoff)
+        integrator.setRandomNumberSeed(seed)
+        context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName("CPU"))
+        context.setPositions(positions)
+        set_temperature_field(integrator, positions, lambda p: temperature * (1 + 0.1 * np.sin(k * p[2])))
+        amplitudes = []
+        for n in range(41):
+            if n:
+                integrator.step(5)
+            theta = integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
+            amplitudes.append(2 * np.mean(theta * np.sin(k * positions[:, 2])))
+        curves.append(amplitudes)
+    times = dt * 5 * np.arange(41)
+    measured = _decay_rate(times, np.mean(curves, axis=0))
+    print(f"lattice-sum decay rate {expected:.5f}/ps, measured {measured:.5f}/ps")
+    assert measured == pytest.approx(expected, rel=0.05)
+
+
+def test_speed_of_sound_of_an_ideal_monatomic_gas():
+    """calibrate.speed_of_sound with K_T = n k_B T and the heat capacity of the motion alone (c = 3 k_B/2): the ideal
+    monatomic gas, c = sqrt(5 k_B T/(3 m)) (argon atoms at 300 K: 322.6 m/s, computed here in SI)."""
+    from openmmgendpde.calibration.calibration import Measured
+    from openmmgendpde.calibration.report import speed_of_sound
+    from openmmgendpde.models.fluid import KB
+    gas = dataclasses.replace(coarse_grain(ARGON, 1, neighbors=20), heat_capacity=0.0, temperature=300.0,
+                              mass=39.948)
+    result = speed_of_sound(gas, Measured(gas.density * KB * 300.0, 0.0), 1.5 * KB)
+    expected = math.sqrt(5 * 1.380649e-23 * 300.0 / (3 * 39.948 * 1.66053906660e-27))   # m/s
+    assert result.value * 1e3 == pytest.approx(expected, rel=1e-6)
+    assert expected == pytest.approx(322.6, abs=0.1)
+
+
+@pytest.mark.validation
+def test_model_heat_capacity_from_fluctuations_equals_the_energy_it_takes():
+    """Calibration.heat_capacity (C_V + k_B + 3 k_B/2 + c_U, c_U from the fluctuation of U in an Isoenergetic run at
+    T0) against what a temperature change at fixed volume costs: the conserved energy E = K + U + sum eps_i of
+    Isoenergetic runs started at T0 (1 -+ 10%), over the change of their harmonic-mean temperatures, per particle.
+    Argon, 5 atoms per particle, 500 particles. Expected: the same c within 3 standard errors of the difference
+    (c_U's error from the fluctuation, ~0.1 k_B of c ~ 15.4 k_B; the temperatures' means, ~0.3% of the 25 K
+    difference). Leaving out the k_B of the internal energies' Gamma law (6% of c) fails it."""
+    from openmmgendpde.analysis.statistics import correlated_mean
+    from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe
+    from openmmgendpde.calibration.calibration import QUICK, Calibration
+    from openmmgendpde.models.fluid import KB
+    u = unit
+    parameters = coarse_grain(ARGON, 5, neighbors=20)
+    plan = dataclasses.replace(QUICK, frames=300, interval=20)
+    calibration = Calibration(parameters, "VB", plan, "CPU", seed=3, report=lambda *a: None)
+    measured = calibration.heat_capacity()
+    energies, temperatures = [], []
+    for factor in (0.9, 1.1):
+        run = Calibration(dataclasses.replace(parameters, temperature=factor * parameters.temperature), "VB", plan,
+                          "CPU", seed=5, report=lambda *a: None)
+        model, context = run._equilibrated()
+        probe = ThermodynamicProbe(model.system)
+        samples = []
+        for _ in range(100):
+            model.integrator.step(20)
+            samples.append(probe.sample(context.getState(getEnergy=True, getVelocities=True), context,
+                                        model.integrator))
+        energies.append(np.mean([s.conserved_energy.value_in_unit(u.kilojoule_per_mole) for s in samples]))
+        temperatures.append(correlated_mean([s.harmonic_temperature.value_in_unit(u.kelvin) for s in samples]))
+    n = model.system.getNumParticles()
+    difference = (energies[1] - energies[0]) / n / (temperatures[1].mean - temperatures[0].mean)
+    error = difference * math.hypot(temperatures[0].standard_error, temperatures[1].standard_error) / (
+        temperatures[1].mean - temperatures[0].mean)
+    print(f"c = {measured.value / KB:.3f} +- {measured.error / KB:.3f} k_B from fluctuations, "
+          f"{difference / KB:.3f} +- {error / KB:.3f} k_B from the energy")
+    assert abs(measured.value - difference) < 3 * math.hypot(measured.error, error)

@@ -19,8 +19,8 @@ import time
 import openmm
 
 from openmmgendpde.analysis import transport
-from openmmgendpde.calibration.calibrate import _mpa_s, _w_mk
 from openmmgendpde.calibration.calibration import Calibration, Plan
+from openmmgendpde.calibration.report import mpa_s, w_mk
 from openmmgendpde.models.fluid import coarse_grain
 from openmmgendpde.models.fluid_files import FLUIDS, load_parameters
 
@@ -63,7 +63,7 @@ def main():
     calibration = Calibration(parameters, "VB", plan, "CPU", seed=arguments.seed, workers=arguments.processes)
     replicas = calibration.replicas(plan.steady_cells)
     viscosity = arguments.what == "viscosity"
-    convert = _mpa_s if viscosity else _w_mk
+    convert = mpa_s if viscosity else w_mk
     target = convert(parameters.targets()["shear_viscosity" if viscosity else "thermal_conductivity"])
     lengths = {key: getattr(arguments, key) for key in ("developed", "measured") if getattr(arguments, key)}
     rows = []

@@ -52,19 +52,19 @@ def one_sidedness(positions, box, cutoff):
 
 def make_model(system, estimator, step_size, seed, platform, mode):
     positions, box = (slab_positions()[:2] if system == "slab" else droplet_positions()[:2])
-    model = argon_model(positions, box, estimator, platform=platform, seed=seed)
+    model, context = argon_model(positions, box, estimator, platform=platform, seed=seed)
     model.integrator.setStepSize(ARGON_UNITS.to_openmm(step_size, "time"))
     if mode == "Conservative":
         model.integrator.setMode(GenDPDEIntegrator.Conservative)
-    return model
+    return model, context
 
 
 def run(system, estimator, step_size, steps, checkpoints, seed, platform, mode, crossing_steps, equilibration):
     """(errors per N k_B T0 at each checkpoint, crossings per step or None, seconds)."""
-    model = make_model(system, estimator, step_size, seed, platform, mode)
+    model, context = make_model(system, estimator, step_size, seed, platform, mode)
     if equilibration:
         model.integrator.step(int(round(equilibration / step_size)))
-    n = model.context.getSystem().getNumParticles()
+    n = model.num_particles
     kt = (unit.MOLAR_GAS_CONSTANT_R * model.temperature).value_in_unit(unit.kilojoule_per_mole)
     def energy():
         return model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
@@ -74,11 +74,11 @@ def run(system, estimator, step_size, steps, checkpoints, seed, platform, mode, 
     done = 0
     if crossing_steps:
         cutoff = model.force.getCutoffDistance().value_in_unit(NM)
-        a2 = one_sidedness(model.positions(), model.box, cutoff)
+        a2 = one_sidedness(model.wrapped_positions(context), model.box_edges, cutoff)
         count, changes = 0, []
         for _ in range(crossing_steps):
             model.integrator.step(1)
-            now = one_sidedness(model.positions(), model.box, cutoff)
+            now = one_sidedness(model.wrapped_positions(context), model.box_edges, cutoff)
             count += int(((now > THRESHOLD) != (a2 > THRESHOLD)).sum())
             changes.append(np.abs(now - a2)[np.abs(a2 - THRESHOLD) < 0.1])
             a2 = now

@@ -147,6 +147,20 @@ def slab_positions(cells=(5, 5, 10), density=0.82, vacuum=3.0):
     return positions, edges, thickness
 
 
+def droplet_positions(num_particles=1000, density=0.82, vacuum=3.0):
+    """(positions nm, box edges nm, radius nm): the ``num_particles`` sites of an FCC lattice at ``density``
+    (reduced) nearest a lattice centre, centred in a cubic box ``vacuum`` times the droplet's diameter."""
+    length = ARGON_UNITS.unit("length").value_in_unit(NM)
+    cells = int(np.ceil((num_particles / 4) ** (1 / 3) * 1.6))
+    positions, box = fcc_box(density / length**3, (cells, cells, cells))
+    centre = np.diag(np.asarray(box, float)) / 2
+    distance = np.linalg.norm(positions - centre, axis=1)
+    chosen = np.argsort(distance)[:num_particles]
+    radius = (3 * num_particles / (4 * np.pi * density)) ** (1 / 3) * length
+    edge = 2 * radius * vacuum
+    return positions[chosen] - centre + edge / 2, np.full(3, edge), radius
+
+
 def depth(positions, box, axis=2):
     """Each particle's distance (nm) from the slab's mid-plane: the plane through the circular mean of the
     coordinates along ``axis`` (periodic)."""

@@ -12,7 +12,7 @@ from ..analysis.statistics import correlated_mean
 from ..api import GenDPDEForce, GenDPDEIntegrator
 from ..models.argon import ARGON_UNITS
 from ..models.lattice import fcc_box
-from .slab import NM, argon_model, depth
+from .slab import NM, argon_model, depth, droplet_positions
 
 
 def estimator_volumes(model, context):
@@ -51,20 +51,6 @@ def depth_profile(model, context, thickness, bin_width=0.25, units=ARGON_UNITS):
         rows.append((low, low + bin_width, int(members.sum()), true,
                      *(float(np.mean(1 / v[members])) * length**3 for v in (exact, vb, va, vc))))
     return rows
-
-
-def droplet_positions(num_particles=1000, density=0.82, vacuum=3.0):
-    """(positions nm, box edges nm, radius nm): the ``num_particles`` sites of an FCC lattice at ``density``
-    (reduced) nearest a lattice centre, centred in a cubic box ``vacuum`` times the droplet's diameter."""
-    length = ARGON_UNITS.unit("length").value_in_unit(NM)
-    cells = int(np.ceil((num_particles / 4) ** (1 / 3) * 1.6))
-    positions, box = fcc_box(density / length**3, (cells, cells, cells))
-    centre = np.diag(np.asarray(box, float)) / 2
-    distance = np.linalg.norm(positions - centre, axis=1)
-    chosen = np.argsort(distance)[:num_particles]
-    radius = (3 * num_particles / (4 * np.pi * density)) ** (1 / 3) * length
-    edge = 2 * radius * vacuum
-    return positions[chosen] - centre + edge / 2, np.full(3, edge), radius
 
 
 def radial_profile(model, context, radius, bin_width=0.2):

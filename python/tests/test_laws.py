@@ -70,6 +70,20 @@ def test_the_handles_move_a_law_that_does_not_extend_tait():
     assert beta == pytest.approx(2.0, rel=1e-15) and theta0 == pytest.approx(thermal.law_parameters[1], rel=1e-15)
 
 
+def test_a_law_that_depends_on_temperature_follows_the_heat_capacity():
+    """A new C_V moves the particles' mean temperature at T0, theta_r = T0 (1 + k_B/C_V) (docs/theory.md section 11):
+    the thermal Tait law's theta0 becomes the new theta_r exactly (beta kept), and van der Waals is fitted again to
+    give pi0, gamma_T B_T and beta there; the Tait law is left as it is."""
+    thermal = coarse_grain(ARGON_EXPANDING, 5, neighbors=20)
+    colder = thermal.replace(heat_capacity=0.75 * thermal.heat_capacity)
+    assert colder.law_parameters == (thermal.law_parameters[0], colder.particle_temperature)
+    assert colder.particle_temperature == pytest.approx(thermal.temperature * (1 + KB / (0.75 * thermal.heat_capacity)))
+    vdw = coarse_grain(ARGON_EXPANDING, 5, neighbors=20, law=VDW).replace(heat_capacity=0.75 * thermal.heat_capacity)
+    assert vdw.law_parameters == pytest.approx(van_der_waals(colder.reference_state()), rel=1e-8)
+    tait = coarse_grain(ARGON, 5, neighbors=20)
+    assert tait.replace(heat_capacity=0.75 * tait.heat_capacity).law_parameters == ()
+
+
 def test_a_law_that_cannot_give_the_state_is_refused_naming_it():
     """A fluid without a thermal expansion has no thermal pressure for a law with parameters of its own; van der
     Waals cannot give a pressure above beta theta (its attraction a would be negative): both refused in one
@@ -108,8 +122,10 @@ def test_a_van_der_waals_fluid_is_mapped_saved_loaded_and_calibrated(monkeypatch
     assert result.succeeded and calibrated.equation_of_state == "VanDerWaals" and calibrated.cutoff_scaling == 1.3
     assert calibrated.reference_pressure == pytest.approx(loaded.reference_pressure - 0.02 * bulk, rel=1e-12)
     assert calibrated.law_parameters != loaded.law_parameters
+    assert calibrated.heat_capacity != loaded.heat_capacity   # (c_U reads 0.5 k_B: C_V matched to c_v)
+    assert calibrated.thermal_reference_temperature == pytest.approx(calibrated.particle_temperature, rel=1e-10)
     state = laws.state_of(VDW, calibrated.law_parameters, calibrated.tait, calibrated.density,
-                          loaded.thermal_reference_temperature)
+                          calibrated.particle_temperature)
     assert state.pressure == pytest.approx(calibrated.reference_pressure, rel=1e-8)
     assert state.modulus == pytest.approx(calibrated.tait_exponent * calibrated.bulk_modulus, rel=1e-8)
     assert state.thermal_pressure == pytest.approx(loaded.thermal_pressure, rel=1e-8)
@@ -125,7 +141,11 @@ def test_a_van_der_waals_argon_calibrates_within_the_quick_criteria():
     """The same fluid calibrated for real (calibrate.calibrate with --quick's plan and criteria, 500 particles, CPU):
     every judged property within QUICK_CRITERIA (density 2%, pressure 0.01/kappa_T, c_v and the temperatures 2%,
     transport within a factor 2, thermal expansion 5%, each widened by its 95% interval), the law still van der Waals
-    with its parameters refitted. What it measured is in CHANGELOG.md."""
+    with its parameters refitted. Measured (72 s on 2 shared cores): n-bar 1.001, (P - P0) kappa_T 0.0055 (f_cut and
+    pi0 tuned again after C_V: the pressure had moved past half its tolerance), n dP/dn 0.993, c_v 0.992, T_kin 0.975
+    and T_harm 0.979 (within 2% only with their 2 standard errors: the temperature of the thermal laws, docs/thermal.md
+    "Not done yet"), viscosity 0.88 and 0.91, conductivity 1.03, alpha 0.996; a, b, k from 4.528, 0.1807, 0.05085 to
+    4.937, 0.1791, 0.05415."""
     mapped = coarse_grain(ARGON_EXPANDING, 5, neighbors=20, law=VDW)
     lines = []
     result = calibrate_module.calibrate(mapped, "VB", QUICK, "CPU", criteria=QUICK_CRITERIA, report=lines.append)

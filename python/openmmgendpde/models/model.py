@@ -97,16 +97,23 @@ class ModelParameters:
                                    self.tait_exponent * self.bulk_modulus, thermal_pressure)
 
     def replace(self, **changes):
-        """dataclasses.replace, keeping the law on its Tait parameters: where n0, pi0, B_T or gamma_T change and the
+        """dataclasses.replace, keeping the law on its reference state. Where n0, pi0, B_T or gamma_T change and the
         law does not extend Tait, its parameters are fitted again (laws.fit) to give the new pi0 and gamma_T B_T at
-        n0 with the thermal pressure and reference temperature it had. The calibration's handles (pi0, B_T) act so on
-        every law."""
+        n0 with the thermal pressure and reference temperature it had: the calibration's handles (pi0, B_T) act so on
+        every law. Where C_V changes, a law that depends on temperature is fitted again at the new particle
+        temperature T0 (1 + k_B/C_V), where the particles' mean temperature now is (the thermal Tait law's theta0
+        follows, as the mapping defines it), with the pi0, modulus and thermal pressure it had, so that the pressure at
+        T0 stays."""
         changed = dataclasses.replace(self, **changes)
-        tait = {"density", "reference_pressure", "bulk_modulus", "tait_exponent"}
-        if (not self.law_parameters or LAWS[self.law].extends_tait or not tait & set(changes)
-                or {"law", "law_parameters"} & set(changes)):
+        if not self.law_parameters or {"law", "law_parameters"} & set(changes):
             return changed
-        state = changed.reference_state(self.thermal_pressure, self.thermal_reference_temperature)
+        temperature = self.thermal_reference_temperature
+        if "heat_capacity" in changes and self.thermal_pressure:
+            temperature = changed.particle_temperature
+        elif LAWS[self.law].extends_tait or not {"density", "reference_pressure", "bulk_modulus",
+                                                 "tait_exponent"} & set(changes):
+            return changed
+        state = changed.reference_state(self.thermal_pressure, temperature)
         return dataclasses.replace(changed, law_parameters=laws.fit(self.law, changed.tait, state,
                                                                     self.law_parameters))
 

@@ -18,6 +18,10 @@ eta_D = (gamma n0^2/30) int d^3r r^2 omega_D = 2 pi gamma n0^2 R^5/1575, and the
 temperature difference (1/theta_i - 1/theta_j = (theta_j - theta_i)/T^2), the conductivity
 lambda_q = (kappa n0^2/(6 T^2)) int d^3r r^2 omega_q = 2 pi kappa n0^2 R^5/(315 T^2). What the model actually gives
 (the kinetic and conservative parts add to both, the estimator shifts the density) is measured by `calibrate`.
+
+The local equation of state is any law of the table (``coarse_grain(..., law=...)``; by default Tait, or the thermal
+Tait law for a fluid with a thermal expansion, beta and theta0 of thermal_expansion_law), its parameters fitted to the
+Tait law's pi0 and n dpi/dn at n0 and to that beta (models.laws; docs/thermal.md).
 """
 
 import dataclasses

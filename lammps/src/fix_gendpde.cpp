@@ -1,10 +1,27 @@
 /* ----------------------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   Steve Plimpton, sjplimp@sandia.gov
+
+   GENDPDE package (openmm-gendpde's LAMMPS package), a plugin for LAMMPS.
+   Copyright (c) 2026 The openmm-gendpde developers. This file is
+   distributed under the MIT License (the LICENSE file of openmm-gendpde),
+   which is compatible with the GNU General Public License version 2 that
+   LAMMPS is distributed under. See lammps/README of openmm-gendpde.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the openmm-gendpde developers
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
    openmm-gendpde's LAMMPS package: fix gendpde (fix_gendpde.h).
 ------------------------------------------------------------------------- */
 
 #include "fix_gendpde.h"
 
 #include "atom.h"
+#include "citeme.h"
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
@@ -18,8 +35,8 @@
 #include "variable.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <mpi.h>
@@ -29,566 +46,613 @@ using namespace FixConst;
 using namespace GenDPDEPlugin;
 using namespace GenDPDEPlugin::Physics;
 
-FixGenDPDE::FixGenDPDE(LAMMPS* lmp, int narg, char** arg) : Fix(lmp, narg, arg) {
-    if (narg < 5)
-        error->all(FLERR, "Illegal fix gendpde command: fix ID group gendpde mode seed keyword values ...");
-    const std::string name = arg[3];
-    if (name == "isoenergetic")
-        mode = ISOENERGETIC;
-    else if (name == "isothermal")
-        mode = ISOTHERMAL;
-    else if (name == "conservative")
-        mode = CONSERVATIVE;
-    else
-        error->all(FLERR, "fix gendpde: mode '{}' is not allowed: it must be isoenergetic, isothermal or conservative",
-                   name);
-    seed = utils::inumeric(FLERR, arg[4], false, lmp);
-    if (seed < 0)
-        error->all(FLERR, "fix gendpde: seed = {} is not allowed: it must be in [0, 2147483647]", arg[4]);
+static const char cite_gendpde[] =
+    "GenDPDE: doi:10.1039/c9cp04404c\n\n"
+    "@Article{BonetAvalos19,\n"
+    " author = {J. Bonet Avalos and M. L{\\'{\\i}}sal and J. P. Larentzos and A. D. Mackie and\n"
+    "           J. K. Brennan},\n"
+    " title = {Generalised Dissipative Particle Dynamics with Energy Conservation: Density- and\n"
+    "          Temperature-Dependent Potentials},\n"
+    " journal = {Phys.\\ Chem.\\ Chem.\\ Phys.},\n"
+    " year = 2019,\n"
+    " volume = 21,\n"
+    " number = 45,\n"
+    " pages = {24891--24911}\n"
+    "}\n\n";
 
-    const int ntypes = atom->ntypes;
-    heatCapacityOfType.assign(ntypes + 1, 0.0);
-    heatCapacitySet.assign(ntypes + 1, false);
-    frictionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    conductionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    auto number = [&](int k, const char* what, bool positive) {
-        const double value = utils::numeric(FLERR, arg[k], false, lmp);
-        if (!(std::isfinite(value) && (positive ? value > 0.0 : value >= 0.0)))
-            error->all(FLERR, "fix gendpde: {} = {} is not allowed: it must be {} and finite", what, arg[k],
-                       positive ? "> 0" : ">= 0");
-        return value;
-    };
-    int k = 5;
-    while (k < narg) {
-        const std::string keyword = arg[k];
-        if (keyword == "heat_capacity" && k + 2 < narg) {
-            int lo, hi;
-            utils::bounds(FLERR, arg[k + 1], 1, ntypes, lo, hi, error);
-            const double value = number(k + 2, "heat_capacity C_V", true);
-            for (int t = lo; t <= hi; t++) {
-                heatCapacityOfType[t] = value;
-                heatCapacitySet[t] = true;
-            }
-            k += 3;
-        } else if ((keyword == "friction" || keyword == "conduction") && k + 3 < narg) {
-            int ilo, ihi, jlo, jhi;
-            utils::bounds(FLERR, arg[k + 1], 1, ntypes, ilo, ihi, error);
-            utils::bounds(FLERR, arg[k + 2], 1, ntypes, jlo, jhi, error);
-            const double value = number(k + 3, keyword == "friction" ? "friction gamma" : "conduction kappa", false);
-            std::vector<double>& table = keyword == "friction" ? frictionOfPair : conductionOfPair;
-            for (int i = ilo; i <= ihi; i++)
-                for (int j = jlo; j <= jhi; j++)
-                    table[i * (ntypes + 1) + j] = table[j * (ntypes + 1) + i] = value;
-            k += 4;
-        } else if (keyword == "temperature" && k + 1 < narg) {
-            temperature = number(k + 1, "temperature T", true);
-            hasTemperature = true;
-            k += 2;
-        } else if (keyword == "initial" && k + 1 < narg) {
-            if (strncmp(arg[k + 1], "v_", 2) == 0)
-                initialVariable = arg[k + 1] + 2;
-            else
-                initialTemperature = number(k + 1, "initial temperature T", true);
-            hasInitial = true;
-            k += 2;
-        } else
-            error->all(FLERR,
-                       "fix gendpde: keyword '{}' is not allowed (or lacks its values): heat_capacity I C, "
-                       "friction I J gamma, conduction I J kappa, temperature T, initial T",
-                       keyword);
+FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
+{
+  if (lmp->citeme) lmp->citeme->add(cite_gendpde);
+  if (narg < 5)
+    error->all(FLERR,
+               "Illegal fix gendpde command: fix ID group gendpde mode seed keyword values ...");
+  const std::string name = arg[3];
+  if (name == "isoenergetic")
+    mode = ISOENERGETIC;
+  else if (name == "isothermal")
+    mode = ISOTHERMAL;
+  else if (name == "conservative")
+    mode = CONSERVATIVE;
+  else
+    error->all(FLERR,
+               "fix gendpde: mode '{}' is not allowed: it must be isoenergetic, isothermal or "
+               "conservative",
+               name);
+  seed = utils::inumeric(FLERR, arg[4], false, lmp);
+  if (seed < 0)
+    error->all(FLERR, "fix gendpde: seed = {} is not allowed: it must be in [0, 2147483647]",
+               arg[4]);
+
+  const int ntypes = atom->ntypes;
+  heatCapacityOfType.assign(ntypes + 1, 0.0);
+  heatCapacitySet.assign(ntypes + 1, false);
+  frictionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
+  conductionOfPair.assign((ntypes + 1) * (ntypes + 1), 0.0);
+  auto number = [&](int k, const char *what, bool positive) {
+    const double value = utils::numeric(FLERR, arg[k], false, lmp);
+    if (!(std::isfinite(value) && (positive ? value > 0.0 : value >= 0.0)))
+      error->all(FLERR, "fix gendpde: {} = {} is not allowed: it must be {} and finite", what,
+                 arg[k], positive ? "> 0" : ">= 0");
+    return value;
+  };
+  int k = 5;
+  while (k < narg) {
+    const std::string keyword = arg[k];
+    if (keyword == "heat_capacity" && k + 2 < narg) {
+      int lo, hi;
+      utils::bounds(FLERR, arg[k + 1], 1, ntypes, lo, hi, error);
+      const double value = number(k + 2, "heat_capacity C_V", true);
+      for (int t = lo; t <= hi; t++) {
+        heatCapacityOfType[t] = value;
+        heatCapacitySet[t] = true;
+      }
+      k += 3;
+    } else if ((keyword == "friction" || keyword == "conduction") && k + 3 < narg) {
+      int ilo, ihi, jlo, jhi;
+      utils::bounds(FLERR, arg[k + 1], 1, ntypes, ilo, ihi, error);
+      utils::bounds(FLERR, arg[k + 2], 1, ntypes, jlo, jhi, error);
+      const double value =
+          number(k + 3, keyword == "friction" ? "friction gamma" : "conduction kappa", false);
+      std::vector<double> &table = keyword == "friction" ? frictionOfPair : conductionOfPair;
+      for (int i = ilo; i <= ihi; i++)
+        for (int j = jlo; j <= jhi; j++)
+          table[i * (ntypes + 1) + j] = table[j * (ntypes + 1) + i] = value;
+      k += 4;
+    } else if (keyword == "temperature" && k + 1 < narg) {
+      temperature = number(k + 1, "temperature T", true);
+      hasTemperature = true;
+      k += 2;
+    } else if (keyword == "initial" && k + 1 < narg) {
+      if (strncmp(arg[k + 1], "v_", 2) == 0)
+        initialVariable = arg[k + 1] + 2;
+      else
+        initialTemperature = number(k + 1, "initial temperature T", true);
+      hasInitial = true;
+      k += 2;
+    } else
+      error->all(
+          FLERR,
+          "fix gendpde: keyword '{}' is not allowed (or lacks its values): heat_capacity I C, "
+          "friction I J gamma, conduction I J kappa, temperature T, initial T",
+          keyword);
+  }
+  if (mode == ISOTHERMAL && !hasTemperature)
+    error->all(FLERR, "fix gendpde: the isothermal mode needs the bath temperature: temperature T");
+  if (mode == ISOENERGETIC)
+    for (int t = 1; t <= ntypes; t++)
+      if (!heatCapacitySet[t])
+        error->all(FLERR,
+                   "fix gendpde: type {} has no heat capacity: the isoenergetic mode needs "
+                   "heat_capacity {} C",
+                   t, t);
+
+  time_integrate = 1;
+  restart_global = 1;
+  restart_peratom = 1;
+  scalar_flag = 1;
+  extscalar = 1;
+  global_freq = 1;
+  peratom_flag = 1;
+  size_peratom_cols = 0;
+  peratom_freq = 1;
+  comm_forward = 7;
+  comm_reverse = 5;
+  grow_arrays(atom->nmax);
+  atom->add_callback(Atom::GROW);
+  atom->add_callback(Atom::RESTART);
+  for (int i = 0; i < atom->nlocal; i++) {
+    energy[i] = 0.0;
+    entropy[i] = std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+FixGenDPDE::~FixGenDPDE()
+{
+  atom->delete_callback(id, Atom::GROW);
+  atom->delete_callback(id, Atom::RESTART);
+  memory->destroy(energy);
+  memory->destroy(entropy);
+}
+
+int FixGenDPDE::setmask()
+{
+  return INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
+}
+
+void FixGenDPDE::init()
+{
+  dtv = update->dt;
+  dtf = 0.5 * update->dt * force->ftm2v;
+  pair = dynamic_cast<PairGenDPDE *>(force->pair_match("^gendpde$", 0));
+  if (mode != CONSERVATIVE && pair == nullptr)
+    error->all(FLERR, "fix gendpde: the {} mode needs pair_style gendpde (its pair range R)",
+               mode == ISOTHERMAL ? "isothermal" : "isoenergetic");
+  if (pair != nullptr && pair->dependsOnTemperature())
+    for (int t = 1; t <= atom->ntypes; t++)
+      if (!heatCapacitySet[t])
+        error->all(
+            FLERR,
+            "fix gendpde: type {} has no heat capacity, which its law needs: heat_capacity {} C", t,
+            t);
+  if (mode != CONSERVATIVE) {
+    if (domain->triclinic) error->all(FLERR, "fix gendpde: the sweep needs an orthogonal box");
+    if (!(domain->xperiodic && domain->yperiodic && domain->zperiodic))
+      error->all(FLERR, "fix gendpde: the sweep needs a box periodic in x, y and z");
+    if (!(force->newton_pair)) error->all(FLERR, "fix gendpde requires newton pair on");
+  }
+  makePairTables();    // (the masses, units and parameters a run reads)
+}
+
+void FixGenDPDE::setup_pre_force(int /*vflag*/)
+{
+  // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
+  if (!energiesSet && hasInitial) {
+    // one temperature, or each particle's from an atom-style variable (e.g. an atomfile variable of the
+    // temperatures an OpenMM run had: GenDPDEIntegrator.getParticleTemperatures)
+    std::vector<double> theta(atom->nlocal, initialTemperature);
+    if (!initialVariable.empty()) {
+      const int index = input->variable->find(initialVariable.c_str());
+      if (index < 0 || !input->variable->atomstyle(index))
+        error->all(FLERR, "fix gendpde: initial v_{}: no atom-style variable of that name",
+                   initialVariable);
+      input->variable->compute_atom(index, igroup, theta.data(), 1, 0);
     }
-    if (mode == ISOTHERMAL && !hasTemperature)
-        error->all(FLERR, "fix gendpde: the isothermal mode needs the bath temperature: temperature T");
-    if (mode == ISOENERGETIC)
-        for (int t = 1; t <= ntypes; t++)
-            if (!heatCapacitySet[t])
-                error->all(FLERR,
-                           "fix gendpde: type {} has no heat capacity: the isoenergetic mode needs heat_capacity {} C",
-                           t, t);
-
-    time_integrate = 1;
-    restart_global = 1;
-    restart_peratom = 1;
-    scalar_flag = 1;
-    extscalar = 1;
-    global_freq = 1;
-    peratom_flag = 1;
-    size_peratom_cols = 0;
-    peratom_freq = 1;
-    comm_forward = 7;
-    comm_reverse = 5;
-    grow_arrays(atom->nmax);
-    atom->add_callback(Atom::GROW);
-    atom->add_callback(Atom::RESTART);
     for (int i = 0; i < atom->nlocal; i++) {
-        energy[i] = 0.0;
-        entropy[i] = std::numeric_limits<double>::quiet_NaN();
+      if ((atom->mask[i] & groupbit) && !(theta[i] > 0.0 && std::isfinite(theta[i])))
+        error->one(FLERR,
+                   "fix gendpde: initial temperature {} of atom {} is not allowed: it must be > 0",
+                   theta[i], atom->tag[i]);
+      energy[i] = heatCapacityOfType[atom->type[i]] * theta[i];
+      entropy[i] = std::numeric_limits<double>::quiet_NaN();
     }
+    energiesSet = 1;
+  }
+  const bool needsEnergies = mode == ISOENERGETIC ||
+      (pair != nullptr && pair->dependsOnTemperature() && mode == CONSERVATIVE);
+  if (needsEnergies && !energiesSet)
+    error->all(
+        FLERR,
+        "fix gendpde: the internal energies are not set: give initial T (or read a restart file)");
+  if (mode != CONSERVATIVE) {
+    const double need = ghostNeed();
+    for (int d = 0; d < 3; d++)
+      if (comm->cutghost[d] < need)
+        error->all(
+            FLERR,
+            "fix gendpde: the ghost cutoff {} is below what the sweep needs, {} (1.5 sweep cells + "
+            "the skin): comm_modify cutoff {}",
+            comm->cutghost[d], need, need);
+  }
 }
 
-FixGenDPDE::~FixGenDPDE() {
-    atom->delete_callback(id, Atom::GROW);
-    atom->delete_callback(id, Atom::RESTART);
-    memory->destroy(energy);
-    memory->destroy(entropy);
+double FixGenDPDE::ghostNeed() const
+{
+  return SweepDefinition::ghostCutoff(domain->prd, pair->range(), neighbor->skin);
 }
 
-int FixGenDPDE::setmask() {
-    return INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
-}
-
-void FixGenDPDE::init() {
-    dtv = update->dt;
-    dtf = 0.5 * update->dt * force->ftm2v;
-    pair = dynamic_cast<PairGenDPDE*>(force->pair_match("^gendpde$", 0));
-    if (mode != CONSERVATIVE && pair == nullptr)
-        error->all(FLERR, "fix gendpde: the {} mode needs pair_style gendpde (its pair range R)",
-                   mode == ISOTHERMAL ? "isothermal" : "isoenergetic");
-    if (pair != nullptr && pair->dependsOnTemperature())
-        for (int t = 1; t <= atom->ntypes; t++)
-            if (!heatCapacitySet[t])
-                error->all(FLERR, "fix gendpde: type {} has no heat capacity, which its law needs: heat_capacity {} C",
-                           t, t);
-    if (mode != CONSERVATIVE) {
-        if (domain->triclinic)
-            error->all(FLERR, "fix gendpde: the sweep needs an orthogonal box");
-        if (!(domain->xperiodic && domain->yperiodic && domain->zperiodic))
-            error->all(FLERR, "fix gendpde: the sweep needs a box periodic in x, y and z");
-        if (!(force->newton_pair))
-            error->all(FLERR, "fix gendpde requires newton pair on");
+void FixGenDPDE::makePairTables()
+{
+  // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
+  // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
+  // (isothermal).
+  const int ntypes = atom->ntypes;
+  const double mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+  const bool isoenergetic = (mode == ISOENERGETIC);
+  terms.dissipation = terms.conduction = 0;
+  pairTables.inverseMass.assign(ntypes + 1, 0.0);
+  pairTables.heatCapacity.assign(ntypes + 1, 0.0);
+  pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
+  pairTables.noise.assign((ntypes + 1) * (ntypes + 1), 0.0);
+  for (int a = 1; a <= ntypes; a++) {
+    pairTables.inverseMass[a] = atom->mass ? 1.0 / atom->mass[a] : 0.0;
+    pairTables.heatCapacity[a] = heatCapacityOfType[a] / mvv2e;
+    for (int b = 1; b <= ntypes; b++) {
+      const int ab = a * (ntypes + 1) + b;
+      pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
+      pairTables.noise[ab] = isoenergetic
+          ? gendpdeHeatNoise(pairTables.conduction[ab], boltzmann)
+          : gendpdeBathNoise(frictionOfPair[ab], boltzmann, temperature);
+      terms.dissipation |= (mode != CONSERVATIVE && frictionOfPair[ab] > 0.0);
+      terms.conduction |= (isoenergetic && conductionOfPair[ab] > 0.0);
     }
-    makePairTables(); // (the masses, units and parameters a run reads)
+  }
 }
 
-void FixGenDPDE::setup_pre_force(int /*vflag*/) {
-    // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
-    if (!energiesSet && hasInitial) {
-        // one temperature, or each particle's from an atom-style variable (e.g. an atomfile variable of the
-        // temperatures an OpenMM run had: GenDPDEIntegrator.getParticleTemperatures)
-        std::vector<double> theta(atom->nlocal, initialTemperature);
-        if (!initialVariable.empty()) {
-            const int index = input->variable->find(initialVariable.c_str());
-            if (index < 0 || !input->variable->atomstyle(index))
-                error->all(FLERR, "fix gendpde: initial v_{}: no atom-style variable of that name", initialVariable);
-            input->variable->compute_atom(index, igroup, theta.data(), 1, 0);
-        }
-        for (int i = 0; i < atom->nlocal; i++) {
-            if ((atom->mask[i] & groupbit) && !(theta[i] > 0.0 && std::isfinite(theta[i])))
-                error->one(FLERR, "fix gendpde: initial temperature {} of atom {} is not allowed: it must be > 0",
-                           theta[i], atom->tag[i]);
-            energy[i] = heatCapacityOfType[atom->type[i]] * theta[i];
-            entropy[i] = std::numeric_limits<double>::quiet_NaN();
-        }
-        energiesSet = 1;
-    }
-    const bool needsEnergies =
-            mode == ISOENERGETIC || (pair != nullptr && pair->dependsOnTemperature() && mode == CONSERVATIVE);
-    if (needsEnergies && !energiesSet)
-        error->all(FLERR, "fix gendpde: the internal energies are not set: give initial T (or read a restart file)");
-    if (mode != CONSERVATIVE) {
-        const double need = ghostNeed();
-        for (int d = 0; d < 3; d++)
-            if (comm->cutghost[d] < need)
-                error->all(FLERR,
-                           "fix gendpde: the ghost cutoff {} is below what the sweep needs, {} (1.5 sweep cells + "
-                           "the skin): comm_modify cutoff {}",
-                           comm->cutghost[d], need, need);
-    }
+void FixGenDPDE::reset_dt()
+{
+  dtv = update->dt;
+  dtf = 0.5 * update->dt * force->ftm2v;
 }
 
-double FixGenDPDE::ghostNeed() const {
-    return SweepDefinition::ghostCutoff(domain->prd, pair->range(), neighbor->skin);
+void FixGenDPDE::initial_integrate(int /*vflag*/)
+{
+  // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
+  if (terms.dissipation || terms.conduction) sweep();
+  kick();
+  double **x = atom->x, **v = atom->v;
+  const int *mask = atom->mask;
+  const double limit = pair != nullptr ? pair->range() : std::numeric_limits<double>::infinity();
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
+    // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
+    if (!(dx * dx + dy * dy + dz * dz <= limit * limit))
+      error->one(
+          FLERR,
+          "fix gendpde: atom {} would move {} in one step at step {} (more than R = {}): the run "
+          "went bad; reduce the timestep",
+          atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep, limit);
+    x[i][0] += dx;
+    x[i][1] += dy;
+    x[i][2] += dz;
+  }
 }
 
-void FixGenDPDE::makePairTables() {
-    // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
-    // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
-    // (isothermal).
-    const int ntypes = atom->ntypes;
-    const double mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
-    const bool isoenergetic = (mode == ISOENERGETIC);
-    terms.dissipation = terms.conduction = 0;
-    pairTables.inverseMass.assign(ntypes + 1, 0.0);
-    pairTables.heatCapacity.assign(ntypes + 1, 0.0);
-    pairTables.conduction.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    pairTables.noise.assign((ntypes + 1) * (ntypes + 1), 0.0);
-    for (int a = 1; a <= ntypes; a++) {
-        pairTables.inverseMass[a] = atom->mass ? 1.0 / atom->mass[a] : 0.0;
-        pairTables.heatCapacity[a] = heatCapacityOfType[a] / mvv2e;
-        for (int b = 1; b <= ntypes; b++) {
-            const int ab = a * (ntypes + 1) + b;
-            pairTables.conduction[ab] = conductionOfPair[ab] / mvv2e;
-            pairTables.noise[ab] = isoenergetic ? gendpdeHeatNoise(pairTables.conduction[ab], boltzmann)
-                                                : gendpdeBathNoise(frictionOfPair[ab], boltzmann, temperature);
-            terms.dissipation |= (mode != CONSERVATIVE && frictionOfPair[ab] > 0.0);
-            terms.conduction |= (isoenergetic && conductionOfPair[ab] > 0.0);
-        }
-    }
+void FixGenDPDE::final_integrate()
+{
+  kick();
 }
 
-void FixGenDPDE::reset_dt() {
-    dtv = update->dt;
-    dtf = 0.5 * update->dt * force->ftm2v;
-}
-
-void FixGenDPDE::initial_integrate(int /*vflag*/) {
-    // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
-    if (terms.dissipation || terms.conduction)
-        sweep();
-    kick();
-    double **x = atom->x, **v = atom->v;
-    const int* mask = atom->mask;
-    const double limit = pair != nullptr ? pair->range() : std::numeric_limits<double>::infinity();
-    for (int i = 0; i < atom->nlocal; i++) {
-        if (!(mask[i] & groupbit))
-            continue;
-        const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
-        // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
-        if (!(dx * dx + dy * dy + dz * dz <= limit * limit))
-            error->one(FLERR,
-                       "fix gendpde: atom {} would move {} in one step at step {} (more than R = {}): the run "
-                       "went bad; reduce the timestep",
-                       atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep, limit);
-        x[i][0] += dx;
-        x[i][1] += dy;
-        x[i][2] += dz;
-    }
-}
-
-void FixGenDPDE::final_integrate() {
-    kick();
-}
-
-void FixGenDPDE::kick() {
-    // Half a step of the forces: v += (dt/2) F/m.
-    double **v = atom->v, **f = atom->f;
-    const double *rmass = atom->rmass, *mass = atom->mass;
-    const int *type = atom->type, *mask = atom->mask;
-    for (int i = 0; i < atom->nlocal; i++) {
-        if (!(mask[i] & groupbit))
-            continue;
-        const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
-        for (int d = 0; d < 3; d++)
-            v[i][d] += dtfm * f[i][d];
-    }
+void FixGenDPDE::kick()
+{
+  // Half a step of the forces: v += (dt/2) F/m.
+  double **v = atom->v, **f = atom->f;
+  const double *rmass = atom->rmass, *mass = atom->mass;
+  const int *type = atom->type, *mask = atom->mask;
+  for (int i = 0; i < atom->nlocal; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const double dtfm = dtf / (rmass ? rmass[i] : mass[type[i]]);
+    for (int d = 0; d < 3; d++) v[i][d] += dtfm * f[i][d];
+  }
 }
 
 /* ---------------------------------------------------------------------- */
 
-void FixGenDPDE::prepareCells() {
-    // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
-    // centre, boxlo + (2b + 1.5) w, is in the subdomain.
-    const double range = pair->range();
-    for (int d = 0; d < 3; d++) {
-        numCells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
-        if (numCells[d] < SweepDefinition::minCellsAcrossSubdomains)
-            error->all(FLERR,
-                       "fix gendpde: the box is {} wide along {}, less than {} pair ranges R = {}: too small for "
-                       "the sweep across subdomains",
-                       domain->prd[d], "xyz"[d], SweepDefinition::minCellsAcrossSubdomains, range);
-        cellWidth[d] = domain->prd[d] / numCells[d];
-        const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d], w = cellWidth[d];
-        int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1;
-        while (!(base + (2 * first + 1.5) * w >= lo))
-            first++;
-        int last = first;
-        while (base + (2 * last + 1.5) * w < hi)
-            last++;
-        blockLow[d] = first;
-        blockCount[d] = last - first;
-        gridLow[d] = 2 * first;
-        gridCount[d] = blockCount[d] > 0 ? 2 * blockCount[d] + 1 : 0;
-    }
+void FixGenDPDE::prepareCells()
+{
+  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
+  // centre, boxlo + (2b + 1.5) w, is in the subdomain.
+  const double range = pair->range();
+  for (int d = 0; d < 3; d++) {
+    numCells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
+    if (numCells[d] < SweepDefinition::minCellsAcrossSubdomains)
+      error->all(FLERR,
+                 "fix gendpde: the box is {} wide along {}, less than {} pair ranges R = {}: too "
+                 "small for "
+                 "the sweep across subdomains",
+                 domain->prd[d], "xyz"[d], SweepDefinition::minCellsAcrossSubdomains, range);
+    cellWidth[d] = domain->prd[d] / numCells[d];
+    const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d],
+                 w = cellWidth[d];
+    int first = (int) std::floor((lo - base) / (2.0 * w) - 0.75) - 1;
+    while (!(base + (2 * first + 1.5) * w >= lo)) first++;
+    int last = first;
+    while (base + (2 * last + 1.5) * w < hi) last++;
+    blockLow[d] = first;
+    blockCount[d] = last - first;
+    gridLow[d] = 2 * first;
+    gridCount[d] = blockCount[d] > 0 ? 2 * blockCount[d] + 1 : 0;
+  }
 }
 
-void FixGenDPDE::sweep() {
-    const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
-    const double mvv2e = force->mvv2e;
-    if (sweepEnergy.size() < (size_t) nall) {
-        sweepEnergy.resize(nall);
-        extendedCell.resize(3 * (size_t) nall);
-        modified.resize(nall);
-        touched.resize(nall);
-    }
-    const double need = ghostNeed();
+void FixGenDPDE::sweep()
+{
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  const double mvv2e = force->mvv2e;
+  if (sweepEnergy.size() < (size_t) nall) {
+    sweepEnergy.resize(nall);
+    extendedCell.resize(3 * (size_t) nall);
+    modified.resize(nall);
+    touched.resize(nall);
+  }
+  const double need = ghostNeed();
+  for (int d = 0; d < 3; d++)
+    if (comm->cutghost[d] < need)
+      error->all(FLERR,
+                 "fix gendpde: the ghost cutoff {} is below what the sweep needs, {}: comm_modify "
+                 "cutoff {}",
+                 comm->cutghost[d], need, need);
+  prepareCells();
+
+  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
+  // pair updates' units: kinetic energies m v^2/2), to every ghost.
+  const bool isoenergetic = (mode == ISOENERGETIC);
+  double **x = atom->x;
+  for (int i = 0; i < nlocal; i++) {
+    sweepEnergy[i] = isoenergetic ? energy[i] / mvv2e : 0.0;
     for (int d = 0; d < 3; d++)
-        if (comm->cutghost[d] < need)
-            error->all(FLERR,
-                       "fix gendpde: the ghost cutoff {} is below what the sweep needs, {}: comm_modify cutoff {}",
-                       comm->cutghost[d], need, need);
-    prepareCells();
-
-    // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
-    // pair updates' units: kinetic energies m v^2/2), to every ghost.
-    const bool isoenergetic = (mode == ISOENERGETIC);
-    double** x = atom->x;
-    for (int i = 0; i < nlocal; i++) {
-        sweepEnergy[i] = isoenergetic ? energy[i] / mvv2e : 0.0;
-        for (int d = 0; d < 3; d++)
-            extendedCell[3 * i + d] =
-                    SweepDefinition::periodicCell((x[i][d] - domain->boxlo[d]) / domain->prd[d], numCells[d]);
-    }
-    commPhase = 0;
-    comm->forward_comm_fix(this, 7);
-    // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
-    for (int i = 0; i < nall; i++)
-        for (int d = 0; d < 3; d++) {
-            const int owner = extendedCell[3 * i + d];
-            const double approximate = std::floor((x[i][d] - domain->boxlo[d]) / cellWidth[d]);
-            const double images = std::nearbyint((approximate - owner) / numCells[d]);
-            extendedCell[3 * i + d] = owner + numCells[d] * (int) images;
-        }
-    if (neighbor->lastcall != candidatesBuiltAt) {
-        rankBlocks();
-        findCandidates();
-        candidatesBuiltAt = neighbor->lastcall;
-        builtPositions.resize(3 * (size_t) nlocal);
-        for (int i = 0; i < nlocal; i++)
-            for (int d = 0; d < 3; d++)
-                builtPositions[3 * i + d] = x[i][d];
-    } else {
-        // The candidates (and the ghosts) hold only while every particle has moved less than half the skin since
-        // LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees; other settings may not.
-        const double limit = 0.25 * neighbor->skin * neighbor->skin;
-        for (int i = 0; i < nlocal; i++) {
-            const double dx = x[i][0] - builtPositions[3 * i], dy = x[i][1] - builtPositions[3 * i + 1],
-                         dz = x[i][2] - builtPositions[3 * i + 2];
-            if (!(dx * dx + dy * dy + dz * dz <= limit))
-                error->one(FLERR,
-                           "fix gendpde: atom {} has moved {} since the last neighbour list at step {}, more than half "
-                           "the skin: the sweep's pairs are no longer complete; use neigh_modify every 1 delay 0 "
-                           "check yes",
-                           atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep);
-        }
-    }
-    orderPairs();
-    std::fill(touched.begin(), touched.begin() + nall, 0);
-    // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners and back out.
-    for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
-        std::fill(modified.begin(), modified.begin() + nall, 0);
-        for (int rank = colourStart[colour]; rank < colourStart[colour + 1]; rank++)
-            sweepPairs(&sweepList[blockRankStart[rank]], blockRankStart[rank + 1] - blockRankStart[rank], isoenergetic);
-        commPhase = 1;
-        comm->reverse_comm_fix(this, 5);
-        comm->forward_comm_fix(this, 5);
-    }
-    if (isoenergetic)
-        for (int i = 0; i < nlocal; i++)
-            if (touched[i])
-                energy[i] = sweepEnergy[i] * mvv2e;
-}
-
-void FixGenDPDE::findCandidates() {
-    // The particles within a skin of this rank's cells (no other can reach them before the next neighbour list: each
-    // moves less than skin/2), binned in cells at least R + skin wide; their pairs closer than R + skin.
-    const int nall = atom->nlocal + atom->nghost;
-    double** x = atom->x;
-    const tagint* tag = atom->tag;
-    const int* mask = atom->mask;
-    const double reach = pair->range() + neighbor->skin, reach2 = reach * reach;
-    double low[3], high[3];
-    int bins[3];
-    const double margin = neighbor->skin + 1e-9 * pair->range();
+      extendedCell[3 * i + d] =
+          SweepDefinition::periodicCell((x[i][d] - domain->boxlo[d]) / domain->prd[d], numCells[d]);
+  }
+  commPhase = 0;
+  comm->forward_comm_fix(this, 7);
+  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
+  for (int i = 0; i < nall; i++)
     for (int d = 0; d < 3; d++) {
-        low[d] = domain->boxlo[d] + gridLow[d] * cellWidth[d] - margin;
-        high[d] = domain->boxlo[d] + (gridLow[d] + gridCount[d]) * cellWidth[d] + margin;
-        bins[d] = std::max(1, (int) ((high[d] - low[d]) / reach));
+      const int owner = extendedCell[3 * i + d];
+      const double approximate = std::floor((x[i][d] - domain->boxlo[d]) / cellWidth[d]);
+      const double images = std::nearbyint((approximate - owner) / numCells[d]);
+      extendedCell[3 * i + d] = owner + numCells[d] * (int) images;
     }
-    binHead.assign((size_t) bins[0] * bins[1] * bins[2], -1);
-    binNext.assign(nall, -1);
-    auto binOf = [&](int i, int* b) {
-        for (int d = 0; d < 3; d++) {
-            if (!(x[i][d] >= low[d] && x[i][d] <= high[d]))
-                return false;
-            b[d] = std::max(0, std::min(bins[d] - 1, (int) ((x[i][d] - low[d]) / (high[d] - low[d]) * bins[d])));
-        }
-        return true;
-    };
-    for (int i = nall - 1; i >= 0; i--) {
-        int b[3];
-        if (!(mask[i] & groupbit) || gridCount[0] == 0 || !binOf(i, b))
-            continue;
-        const size_t bin = ((size_t) b[2] * bins[1] + b[1]) * bins[0] + b[0];
-        binNext[i] = binHead[bin];
-        binHead[bin] = i;
+  if (neighbor->lastcall != candidatesBuiltAt) {
+    rankBlocks();
+    findCandidates();
+    candidatesBuiltAt = neighbor->lastcall;
+    builtPositions.resize(3 * (size_t) nlocal);
+    for (int i = 0; i < nlocal; i++)
+      for (int d = 0; d < 3; d++) builtPositions[3 * i + d] = x[i][d];
+  } else {
+    // The candidates (and the ghosts) hold only while every particle has moved less than half the skin since
+    // LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees; other settings may not.
+    const double limit = 0.25 * neighbor->skin * neighbor->skin;
+    for (int i = 0; i < nlocal; i++) {
+      const double dx = x[i][0] - builtPositions[3 * i], dy = x[i][1] - builtPositions[3 * i + 1],
+                   dz = x[i][2] - builtPositions[3 * i + 2];
+      if (!(dx * dx + dy * dy + dz * dz <= limit))
+        error->one(
+            FLERR,
+            "fix gendpde: atom {} has moved {} since the last neighbour list at step {}, more than "
+            "half "
+            "the skin: the sweep's pairs are no longer complete; use neigh_modify every 1 delay 0 "
+            "check yes",
+            atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep);
     }
-    candidates.clear();
-    for (int bz = 0; bz < bins[2]; bz++)
-        for (int by = 0; by < bins[1]; by++)
-            for (int bx = 0; bx < bins[0]; bx++) {
-                const int home = (bz * bins[1] + by) * bins[0] + bx;
-                for (int a = binHead[home]; a >= 0; a = binNext[a])
-                    for (int oz = -1; oz <= 1; oz++)
-                        for (int oy = -1; oy <= 1; oy++)
-                            for (int ox = -1; ox <= 1; ox++) {
-                                const int cx = bx + ox, cy = by + oy, cz = bz + oz;
-                                if (cx < 0 || cy < 0 || cz < 0 || cx >= bins[0] || cy >= bins[1] || cz >= bins[2])
-                                    continue;
-                                const int other = (cz * bins[1] + cy) * bins[0] + cx;
-                                if (other < home)
-                                    continue;
-                                for (int b = (other == home ? binNext[a] : binHead[other]); b >= 0; b = binNext[b]) {
-                                    const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-                                    if (!(dx * dx + dy * dy + dz * dz < reach2))
-                                        continue;
-                                    const int ta = (int) (tag[a] - 1), tb = (int) (tag[b] - 1);
-                                    candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, 0}
-                                                                 : SweepPair{tb, ta, b, a, 0});
-                                }
-                            }
-            }
-    // By the block each candidate is in now (the others last), then in (i, j) order, the order that defines the
-    // sweep within a block: each step reads a block's particles together, and the pairs that are still in the same
-    // block come out in order.
-    const int numBlocks = colourStart.back();
-    for (SweepPair& candidate : candidates) {
-        const int rank = blockRankOf(candidate.li, candidate.lj);
-        candidate.group = rank >= 0 ? rank : numBlocks;
-    }
-    std::sort(candidates.begin(), candidates.end(), [](const SweepPair& p, const SweepPair& q) {
-        return p.group < q.group || (p.group == q.group && pairKey(p) < pairKey(q));
-    });
+  }
+  orderPairs();
+  std::fill(touched.begin(), touched.begin() + nall, 0);
+  // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners and back out.
+  for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
+    std::fill(modified.begin(), modified.begin() + nall, 0);
+    for (int rank = colourStart[colour]; rank < colourStart[colour + 1]; rank++)
+      sweepPairs(&sweepList[blockRankStart[rank]], blockRankStart[rank + 1] - blockRankStart[rank],
+                 isoenergetic);
+    commPhase = 1;
+    comm->reverse_comm_fix(this, 5);
+    comm->forward_comm_fix(this, 5);
+  }
+  if (isoenergetic)
+    for (int i = 0; i < nlocal; i++)
+      if (touched[i]) energy[i] = sweepEnergy[i] * mvv2e;
 }
 
-int FixGenDPDE::blockRankOf(int a, int b) const {
-    // The rank of the block of a pair's home cell (the lower of its two cells along each direction), or -1 if that
-    // block is not this rank's.
-    int block = 0;
-    for (int d = 2; d >= 0; d--) {
-        const int home = std::min(extendedCell[3 * a + d], extendedCell[3 * b + d]) - gridLow[d];
-        const int bd = home >= 0 ? home >> 1 : -1;
-        if (bd < 0 || bd >= blockCount[d])
-            return -1;
-        block = block * blockCount[d] + bd;
+void FixGenDPDE::findCandidates()
+{
+  // The particles within a skin of this rank's cells (no other can reach them before the next neighbour list: each
+  // moves less than skin/2), binned in cells at least R + skin wide; their pairs closer than R + skin.
+  const int nall = atom->nlocal + atom->nghost;
+  double **x = atom->x;
+  const tagint *tag = atom->tag;
+  const int *mask = atom->mask;
+  const double reach = pair->range() + neighbor->skin, reach2 = reach * reach;
+  double low[3], high[3];
+  int bins[3];
+  const double margin = neighbor->skin + 1e-9 * pair->range();
+  for (int d = 0; d < 3; d++) {
+    low[d] = domain->boxlo[d] + gridLow[d] * cellWidth[d] - margin;
+    high[d] = domain->boxlo[d] + (gridLow[d] + gridCount[d]) * cellWidth[d] + margin;
+    bins[d] = std::max(1, (int) ((high[d] - low[d]) / reach));
+  }
+  binHead.assign((size_t) bins[0] * bins[1] * bins[2], -1);
+  binNext.assign(nall, -1);
+  auto binOf = [&](int i, int *b) {
+    for (int d = 0; d < 3; d++) {
+      if (!(x[i][d] >= low[d] && x[i][d] <= high[d])) return false;
+      b[d] = std::max(
+          0, std::min(bins[d] - 1, (int) ((x[i][d] - low[d]) / (high[d] - low[d]) * bins[d])));
     }
-    return rankOfBlock[block];
+    return true;
+  };
+  for (int i = nall - 1; i >= 0; i--) {
+    int b[3];
+    if (!(mask[i] & groupbit) || gridCount[0] == 0 || !binOf(i, b)) continue;
+    const size_t bin = ((size_t) b[2] * bins[1] + b[1]) * bins[0] + b[0];
+    binNext[i] = binHead[bin];
+    binHead[bin] = i;
+  }
+  candidates.clear();
+  for (int bz = 0; bz < bins[2]; bz++)
+    for (int by = 0; by < bins[1]; by++)
+      for (int bx = 0; bx < bins[0]; bx++) {
+        const int home = (bz * bins[1] + by) * bins[0] + bx;
+        for (int a = binHead[home]; a >= 0; a = binNext[a])
+          for (int oz = -1; oz <= 1; oz++)
+            for (int oy = -1; oy <= 1; oy++)
+              for (int ox = -1; ox <= 1; ox++) {
+                const int cx = bx + ox, cy = by + oy, cz = bz + oz;
+                if (cx < 0 || cy < 0 || cz < 0 || cx >= bins[0] || cy >= bins[1] || cz >= bins[2])
+                  continue;
+                const int other = (cz * bins[1] + cy) * bins[0] + cx;
+                if (other < home) continue;
+                for (int b = (other == home ? binNext[a] : binHead[other]); b >= 0;
+                     b = binNext[b]) {
+                  const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1],
+                               dz = x[a][2] - x[b][2];
+                  if (!(dx * dx + dy * dy + dz * dz < reach2)) continue;
+                  const int ta = (int) (tag[a] - 1), tb = (int) (tag[b] - 1);
+                  candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, 0}
+                                               : SweepPair{tb, ta, b, a, 0});
+                }
+              }
+      }
+  // By the block each candidate is in now (the others last), then in (i, j) order, the order that defines the
+  // sweep within a block: each step reads a block's particles together, and the pairs that are still in the same
+  // block come out in order.
+  const int numBlocks = colourStart.back();
+  for (SweepPair &candidate : candidates) {
+    const int rank = blockRankOf(candidate.li, candidate.lj);
+    candidate.group = rank >= 0 ? rank : numBlocks;
+  }
+  std::sort(candidates.begin(), candidates.end(), [](const SweepPair &p, const SweepPair &q) {
+    return p.group < q.group || (p.group == q.group && pairKey(p) < pairKey(q));
+  });
 }
 
-void FixGenDPDE::rankBlocks() {
-    // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives the
-    // same result: its blocks share no particle).
-    const int numBlocks = blockCount[0] * blockCount[1] * blockCount[2];
-    rankOfBlock.assign(numBlocks, 0);
-    colourStart.assign(SweepDefinition::numColours + 1, 0);
-    int rank = 0;
-    for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
-        colourStart[colour] = rank;
-        for (int b = 0; b < numBlocks; b++) {
-            const int bx = blockLow[0] + b % blockCount[0], by = blockLow[1] + (b / blockCount[0]) % blockCount[1];
-            const int bz = blockLow[2] + b / (blockCount[0] * blockCount[1]);
-            if (SweepDefinition::blockColour(bx, by, bz) == colour)
-                rankOfBlock[b] = rank++;
-        }
-    }
-    colourStart[SweepDefinition::numColours] = rank;
+int FixGenDPDE::blockRankOf(int a, int b) const
+{
+  // The rank of the block of a pair's home cell (the lower of its two cells along each direction), or -1 if that
+  // block is not this rank's.
+  int block = 0;
+  for (int d = 2; d >= 0; d--) {
+    const int home = std::min(extendedCell[3 * a + d], extendedCell[3 * b + d]) - gridLow[d];
+    const int bd = home >= 0 ? home >> 1 : -1;
+    if (bd < 0 || bd >= blockCount[d]) return -1;
+    block = block * blockCount[d] + bd;
+  }
+  return rankOfBlock[block];
 }
 
-void FixGenDPDE::orderPairs() {
-    // Each candidate closer than R goes to the block of its home cell, if that block is this rank's. A block's pairs
-    // are those of its group of candidates still in it (in (i, j) order), merged in (i, j) order with the few that
-    // moved in from other groups since the candidates were found; then the lists of four consecutive first particles
-    // are interleaved.
-    const int numBlocks = colourStart.back();
-    double** x = atom->x;
-    const double range2 = pair->range() * pair->range();
-    const int count = candidates.size();
-    pairBlockRank.resize(count);
-    blockRankStart.assign(numBlocks + 1, 0);
-    movedIn.assign(numBlocks, 0);
-    for (int k = 0; k < count; k++) {
-        const SweepPair& p = candidates[k];
-        const int a = p.li, b = p.lj;
-        const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-        const int rank = dx * dx + dy * dy + dz * dz < range2 ? blockRankOf(a, b) : -1;
-        if (rank >= 0) {
-            blockRankStart[rank + 1]++;
-            movedIn[rank] += (rank != p.group);
-        }
-        pairBlockRank[k] = rank;
+void FixGenDPDE::rankBlocks()
+{
+  // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives the
+  // same result: its blocks share no particle).
+  const int numBlocks = blockCount[0] * blockCount[1] * blockCount[2];
+  rankOfBlock.assign(numBlocks, 0);
+  colourStart.assign(SweepDefinition::numColours + 1, 0);
+  int rank = 0;
+  for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
+    colourStart[colour] = rank;
+    for (int b = 0; b < numBlocks; b++) {
+      const int bx = blockLow[0] + b % blockCount[0],
+                by = blockLow[1] + (b / blockCount[0]) % blockCount[1];
+      const int bz = blockLow[2] + b / (blockCount[0] * blockCount[1]);
+      if (SweepDefinition::blockColour(bx, by, bz) == colour) rankOfBlock[b] = rank++;
     }
-    for (int r = 0; r < numBlocks; r++)
-        blockRankStart[r + 1] += blockRankStart[r];
-    const int total = blockRankStart[numBlocks];
-    blockPairs.resize(total);
-    blockFirst.resize(total);
-    blockOrder.resize(total);
-    std::vector<int>& next = binNext; // (scratch: the next place of a block's own pairs, then of those moved in)
-    next.resize(2 * (size_t) numBlocks);
-    for (int r = 0; r < numBlocks; r++) {
-        next[2 * r] = blockRankStart[r];
-        next[2 * r + 1] = blockRankStart[r + 1] - movedIn[r];
-    }
-    for (int k = 0; k < count; k++) {
-        const int rank = pairBlockRank[k];
-        if (rank >= 0)
-            blockPairs[next[2 * rank + (rank != candidates[k].group)]++] = k;
-    }
-    auto byPair = [&](int p, int q) { return pairKey(candidates[p]) < pairKey(candidates[q]); };
-    for (int r = 0; r < numBlocks; r++) {
-        if (movedIn[r] == 0)
-            continue;
-        int* begin = &blockPairs[blockRankStart[r]];
-        int *middle = &blockPairs[blockRankStart[r + 1] - movedIn[r]], *end = &blockPairs[0] + blockRankStart[r + 1];
-        std::sort(middle, end, byPair);
-        std::inplace_merge(begin, middle, end, byPair);
-    }
-    for (int k = 0; k < total; k++)
-        blockFirst[k] = candidates[blockPairs[k]].i;
-    for (int r = 0; r < numBlocks; r++)
-        SweepDefinition::interleaveRuns(&blockPairs[blockRankStart[r]], &blockFirst[blockRankStart[r]],
-                                        blockRankStart[r + 1] - blockRankStart[r], &blockOrder[blockRankStart[r]]);
-    // the pairs themselves in sweep order: the sweep reads them one after the other
-    sweepList.resize(total);
-    for (int k = 0; k < total; k++)
-        sweepList[k] = candidates[blockOrder[k]];
+  }
+  colourStart[SweepDefinition::numColours] = rank;
 }
 
-void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic) {
-    // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM platform, with the
-    // run's terms (any pair of types with friction, with conduction), as GenDPDEIntegrator decides them.
-    double **x = atom->x, **v = atom->v;
-    const tagint* tag = atom->tag;
-    const double* rmass = atom->rmass;
-    const int* type = atom->type;
-    const int ntypes = atom->ntypes;
-    const double range = pair->range(), mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
-    const double dt = update->dt, sqrtDt = std::sqrt(dt);
-    const std::uint64_t step = (std::uint64_t) (update->ntimestep - 1);
-    const double *inverseMassOfType = pairTables.inverseMass.data(), *capacity = pairTables.heatCapacity.data();
-    const double *kappaOf = pairTables.conduction.data(), *noiseOf = pairTables.noise.data();
-    double* energy = sweepEnergy.data();
-    for (int k = 0; k < count; k++) {
-        if (k + 8 < count) { // the particles of a pair a few updates ahead, which are anywhere in memory
-            const SweepPair& ahead = pairs[k + 8];
-            __builtin_prefetch(x[ahead.li]);
-            __builtin_prefetch(x[ahead.lj]);
-            __builtin_prefetch(v[ahead.li]);
-            __builtin_prefetch(v[ahead.lj]);
-            __builtin_prefetch(&energy[ahead.li]);
-            __builtin_prefetch(&energy[ahead.lj]);
-        }
-        const SweepPair& pair = pairs[k];
-        const int i = pair.li, j = pair.lj;
-        const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-        const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double inverseMassI = rmass ? 1.0 / rmass[i] : inverseMassOfType[type[i]];
-        const double inverseMassJ = rmass ? 1.0 / rmass[j] : inverseMassOfType[type[j]];
-        const int ab = type[i] * (ntypes + 1) + type[j];
-        CounterRandom::PairStream random((std::uint32_t) seed, step, (std::uint32_t) pair.i, (std::uint32_t) pair.j);
-        const int failed = gendpdeSweepPair(terms.dissipation, terms.conduction, isoenergetic ? 1 : 0, dx, dy, dz, r,
-                                            range, inverseMassI, inverseMassJ, v[i], v[j],
-                                            isoenergetic ? &energy[i] : nullptr, isoenergetic ? &energy[j] : nullptr,
-                                            capacity[type[i]], capacity[type[j]], frictionOfPair[ab], kappaOf[ab],
-                                            noiseOf[ab], noiseOf[ab], boltzmann, dt, sqrtDt, &random);
-        if (failed) {
-            const int bad = energy[i] > 0.0 ? j : i;
-            error->one(FLERR,
-                       "fix gendpde: atom {}'s internal energy became {} at step {} (it must stay > 0): reduce "
-                       "the timestep or raise the heat capacity",
-                       tag[bad], energy[bad] * mvv2e, update->ntimestep);
-        }
-        modified[i] = modified[j] = touched[i] = touched[j] = 1;
+void FixGenDPDE::orderPairs()
+{
+  // Each candidate closer than R goes to the block of its home cell, if that block is this rank's. A block's pairs
+  // are those of its group of candidates still in it (in (i, j) order), merged in (i, j) order with the few that
+  // moved in from other groups since the candidates were found; then the lists of four consecutive first particles
+  // are interleaved.
+  const int numBlocks = colourStart.back();
+  double **x = atom->x;
+  const double range2 = pair->range() * pair->range();
+  const int count = candidates.size();
+  pairBlockRank.resize(count);
+  blockRankStart.assign(numBlocks + 1, 0);
+  movedIn.assign(numBlocks, 0);
+  for (int k = 0; k < count; k++) {
+    const SweepPair &p = candidates[k];
+    const int a = p.li, b = p.lj;
+    const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
+    const int rank = dx * dx + dy * dy + dz * dz < range2 ? blockRankOf(a, b) : -1;
+    if (rank >= 0) {
+      blockRankStart[rank + 1]++;
+      movedIn[rank] += (rank != p.group);
     }
+    pairBlockRank[k] = rank;
+  }
+  for (int r = 0; r < numBlocks; r++) blockRankStart[r + 1] += blockRankStart[r];
+  const int total = blockRankStart[numBlocks];
+  blockPairs.resize(total);
+  blockFirst.resize(total);
+  blockOrder.resize(total);
+  std::vector<int> &next =
+      binNext;    // (scratch: the next place of a block's own pairs, then of those moved in)
+  next.resize(2 * (size_t) numBlocks);
+  for (int r = 0; r < numBlocks; r++) {
+    next[2 * r] = blockRankStart[r];
+    next[2 * r + 1] = blockRankStart[r + 1] - movedIn[r];
+  }
+  for (int k = 0; k < count; k++) {
+    const int rank = pairBlockRank[k];
+    if (rank >= 0) blockPairs[next[2 * rank + (rank != candidates[k].group)]++] = k;
+  }
+  auto byPair = [&](int p, int q) {
+    return pairKey(candidates[p]) < pairKey(candidates[q]);
+  };
+  for (int r = 0; r < numBlocks; r++) {
+    if (movedIn[r] == 0) continue;
+    int *begin = &blockPairs[blockRankStart[r]];
+    int *middle = &blockPairs[blockRankStart[r + 1] - movedIn[r]],
+        *end = &blockPairs[0] + blockRankStart[r + 1];
+    std::sort(middle, end, byPair);
+    std::inplace_merge(begin, middle, end, byPair);
+  }
+  for (int k = 0; k < total; k++) blockFirst[k] = candidates[blockPairs[k]].i;
+  for (int r = 0; r < numBlocks; r++)
+    SweepDefinition::interleaveRuns(&blockPairs[blockRankStart[r]], &blockFirst[blockRankStart[r]],
+                                    blockRankStart[r + 1] - blockRankStart[r],
+                                    &blockOrder[blockRankStart[r]]);
+  // the pairs themselves in sweep order: the sweep reads them one after the other
+  sweepList.resize(total);
+  for (int k = 0; k < total; k++) sweepList[k] = candidates[blockOrder[k]];
+}
+
+void FixGenDPDE::sweepPairs(const SweepPair *pairs, int count, bool isoenergetic)
+{
+  // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM platform, with the
+  // run's terms (any pair of types with friction, with conduction), as GenDPDEIntegrator decides them.
+  double **x = atom->x, **v = atom->v;
+  const tagint *tag = atom->tag;
+  const double *rmass = atom->rmass;
+  const int *type = atom->type;
+  const int ntypes = atom->ntypes;
+  const double range = pair->range(), mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+  const double dt = update->dt, sqrtDt = std::sqrt(dt);
+  const std::uint64_t step = (std::uint64_t) (update->ntimestep - 1);
+  const double *inverseMassOfType = pairTables.inverseMass.data(),
+               *capacity = pairTables.heatCapacity.data();
+  const double *kappaOf = pairTables.conduction.data(), *noiseOf = pairTables.noise.data();
+  double *energy = sweepEnergy.data();
+  for (int k = 0; k < count; k++) {
+    if (k + 8 <
+        count) {    // the particles of a pair a few updates ahead, which are anywhere in memory
+      const SweepPair &ahead = pairs[k + 8];
+      __builtin_prefetch(x[ahead.li]);
+      __builtin_prefetch(x[ahead.lj]);
+      __builtin_prefetch(v[ahead.li]);
+      __builtin_prefetch(v[ahead.lj]);
+      __builtin_prefetch(&energy[ahead.li]);
+      __builtin_prefetch(&energy[ahead.lj]);
+    }
+    const SweepPair &pair = pairs[k];
+    const int i = pair.li, j = pair.lj;
+    const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
+    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double inverseMassI = rmass ? 1.0 / rmass[i] : inverseMassOfType[type[i]];
+    const double inverseMassJ = rmass ? 1.0 / rmass[j] : inverseMassOfType[type[j]];
+    const int ab = type[i] * (ntypes + 1) + type[j];
+    CounterRandom::PairStream random((std::uint32_t) seed, step, (std::uint32_t) pair.i,
+                                     (std::uint32_t) pair.j);
+    const int failed = gendpdeSweepPair(
+        terms.dissipation, terms.conduction, isoenergetic ? 1 : 0, dx, dy, dz, r, range,
+        inverseMassI, inverseMassJ, v[i], v[j], isoenergetic ? &energy[i] : nullptr,
+        isoenergetic ? &energy[j] : nullptr, capacity[type[i]], capacity[type[j]],
+        frictionOfPair[ab], kappaOf[ab], noiseOf[ab], noiseOf[ab], boltzmann, dt, sqrtDt, &random);
+    if (failed) {
+      const int bad = energy[i] > 0.0 ? j : i;
+      error->one(
+          FLERR,
+          "fix gendpde: atom {}'s internal energy became {} at step {} (it must stay > 0): reduce "
+          "the timestep or raise the heat capacity",
+          tag[bad], energy[bad] * mvv2e, update->ntimestep);
+    }
+    modified[i] = modified[j] = touched[i] = touched[j] = 1;
+  }
 }
 
 /* ---------------------------------------------------------------------- */
@@ -598,145 +662,154 @@ void FixGenDPDE::sweepPairs(const SweepPair* pairs, int count, bool isoenergetic
 // updated (on its rank, or received), so the reverse exchange carries the ghosts a block updated to their owners and
 // the forward one the owners' new values out to every ghost.
 
-int FixGenDPDE::packState(int i, double* buf) const {
-    // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a colour only if the
-    // colour changed it, behind a flag.
-    int m = 0;
-    if (commPhase == 1) {
-        buf[m++] = modified[i];
-        if (!modified[i])
-            return m;
-    }
-    const double* vi = atom->v[i];
-    buf[m++] = vi[0];
-    buf[m++] = vi[1];
-    buf[m++] = vi[2];
-    buf[m++] = sweepEnergy[i];
-    if (commPhase == 0)
-        for (int d = 0; d < 3; d++)
-            buf[m++] = extendedCell[3 * i + d];
-    return m;
+int FixGenDPDE::packState(int i, double *buf) const
+{
+  // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a colour only if the
+  // colour changed it, behind a flag.
+  int m = 0;
+  if (commPhase == 1) {
+    buf[m++] = modified[i];
+    if (!modified[i]) return m;
+  }
+  const double *vi = atom->v[i];
+  buf[m++] = vi[0];
+  buf[m++] = vi[1];
+  buf[m++] = vi[2];
+  buf[m++] = sweepEnergy[i];
+  if (commPhase == 0)
+    for (int d = 0; d < 3; d++) buf[m++] = extendedCell[3 * i + d];
+  return m;
 }
 
-int FixGenDPDE::unpackState(int i, const double* buf) {
-    // What packState wrote, set (not added) on particle i: after a colour one block at most updated a particle, so it
-    // gets exactly the bits the updating rank computed; it is then marked changed, to be sent on in a later swap.
-    int m = 0;
-    if (commPhase == 1) {
-        if (buf[m++] == 0.0)
-            return m;
-        modified[i] = touched[i] = 1;
-    }
-    double* vi = atom->v[i];
-    vi[0] = buf[m++];
-    vi[1] = buf[m++];
-    vi[2] = buf[m++];
-    sweepEnergy[i] = buf[m++];
-    if (commPhase == 0)
-        for (int d = 0; d < 3; d++)
-            extendedCell[3 * i + d] = (int) buf[m++];
-    return m;
+int FixGenDPDE::unpackState(int i, const double *buf)
+{
+  // What packState wrote, set (not added) on particle i: after a colour one block at most updated a particle, so it
+  // gets exactly the bits the updating rank computed; it is then marked changed, to be sent on in a later swap.
+  int m = 0;
+  if (commPhase == 1) {
+    if (buf[m++] == 0.0) return m;
+    modified[i] = touched[i] = 1;
+  }
+  double *vi = atom->v[i];
+  vi[0] = buf[m++];
+  vi[1] = buf[m++];
+  vi[2] = buf[m++];
+  sweepEnergy[i] = buf[m++];
+  if (commPhase == 0)
+    for (int d = 0; d < 3; d++) extendedCell[3 * i + d] = (int) buf[m++];
+  return m;
 }
 
-int FixGenDPDE::pack_forward_comm(int n, int* list, double* buf, int /*pbc_flag*/, int* /*pbc*/) {
-    int m = 0;
-    for (int k = 0; k < n; k++)
-        m += packState(list[k], buf + m);
-    return m;
+int FixGenDPDE::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) m += packState(list[k], buf + m);
+  return m;
 }
 
-void FixGenDPDE::unpack_forward_comm(int n, int first, double* buf) {
-    int m = 0;
-    for (int i = first; i < first + n; i++)
-        m += unpackState(i, buf + m);
+void FixGenDPDE::unpack_forward_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) m += unpackState(i, buf + m);
 }
 
-int FixGenDPDE::pack_reverse_comm(int n, int first, double* buf) {
-    int m = 0;
-    for (int i = first; i < first + n; i++)
-        m += packState(i, buf + m);
-    return m;
+int FixGenDPDE::pack_reverse_comm(int n, int first, double *buf)
+{
+  int m = 0;
+  for (int i = first; i < first + n; i++) m += packState(i, buf + m);
+  return m;
 }
 
-void FixGenDPDE::unpack_reverse_comm(int n, int* list, double* buf) {
-    int m = 0;
-    for (int k = 0; k < n; k++)
-        m += unpackState(list[k], buf + m);
+void FixGenDPDE::unpack_reverse_comm(int n, int *list, double *buf)
+{
+  int m = 0;
+  for (int k = 0; k < n; k++) m += unpackState(list[k], buf + m);
 }
 
 /* ---------------------------------------------------------------------- */
 
-double FixGenDPDE::compute_scalar() {
-    // The sum of the internal energies (energy units): etotal + this is the energy an isoenergetic run conserves.
-    double local = 0.0, total = 0.0;
-    for (int i = 0; i < atom->nlocal; i++)
-        if (atom->mask[i] & groupbit)
-            local += energy[i];
-    MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, world);
-    return total;
+double FixGenDPDE::compute_scalar()
+{
+  // The sum of the internal energies (energy units): etotal + this is the energy an isoenergetic run conserves.
+  double local = 0.0, total = 0.0;
+  for (int i = 0; i < atom->nlocal; i++)
+    if (atom->mask[i] & groupbit) local += energy[i];
+  MPI_Allreduce(&local, &total, 1, MPI_DOUBLE, MPI_SUM, world);
+  return total;
 }
 
-void FixGenDPDE::grow_arrays(int nmax) {
-    memory->grow(energy, nmax, "fix_gendpde:energy");
-    memory->grow(entropy, nmax, "fix_gendpde:entropy");
-    vector_atom = energy;
+void FixGenDPDE::grow_arrays(int nmax)
+{
+  memory->grow(energy, nmax, "fix_gendpde:energy");
+  memory->grow(entropy, nmax, "fix_gendpde:entropy");
+  vector_atom = energy;
 }
 
-void FixGenDPDE::copy_arrays(int i, int j, int /*delflag*/) {
-    energy[j] = energy[i];
-    entropy[j] = entropy[i];
+void FixGenDPDE::copy_arrays(int i, int j, int /*delflag*/)
+{
+  energy[j] = energy[i];
+  entropy[j] = entropy[i];
 }
 
-int FixGenDPDE::pack_exchange(int i, double* buf) {
-    buf[0] = energy[i];
-    buf[1] = entropy[i];
-    return 2;
+int FixGenDPDE::pack_exchange(int i, double *buf)
+{
+  buf[0] = energy[i];
+  buf[1] = entropy[i];
+  return 2;
 }
 
-int FixGenDPDE::unpack_exchange(int nlocal, double* buf) {
-    energy[nlocal] = buf[0];
-    entropy[nlocal] = buf[1];
-    return 2;
+int FixGenDPDE::unpack_exchange(int nlocal, double *buf)
+{
+  energy[nlocal] = buf[0];
+  entropy[nlocal] = buf[1];
+  return 2;
 }
 
-int FixGenDPDE::pack_restart(int i, double* buf) {
-    buf[0] = 3; // (the count first: other fixes' unpack_restart skip it so)
-    buf[1] = energy[i];
-    buf[2] = entropy[i];
-    return 3;
+int FixGenDPDE::pack_restart(int i, double *buf)
+{
+  buf[0] = 3;    // (the count first: other fixes' unpack_restart skip it so)
+  buf[1] = energy[i];
+  buf[2] = entropy[i];
+  return 3;
 }
 
-void FixGenDPDE::unpack_restart(int nlocal, int nth) {
-    double** extra = atom->extra;
-    int m = 0;
-    for (int i = 0; i < nth; i++)
-        m += static_cast<int>(extra[nlocal][m]);
-    m++;
-    energy[nlocal] = extra[nlocal][m++];
-    entropy[nlocal] = extra[nlocal][m++];
+void FixGenDPDE::unpack_restart(int nlocal, int nth)
+{
+  double **extra = atom->extra;
+  int m = 0;
+  for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
+  m++;
+  energy[nlocal] = extra[nlocal][m++];
+  entropy[nlocal] = extra[nlocal][m++];
 }
 
-int FixGenDPDE::size_restart(int /*nlocal*/) {
-    return 3;
+int FixGenDPDE::size_restart(int /*nlocal*/)
+{
+  return 3;
 }
 
-int FixGenDPDE::maxsize_restart() {
-    return 3;
+int FixGenDPDE::maxsize_restart()
+{
+  return 3;
 }
 
-void FixGenDPDE::write_restart(FILE* fp) {
-    if (comm->me == 0) {
-        const int size = sizeof(double);
-        const double value = energiesSet;
-        fwrite(&size, sizeof(int), 1, fp);
-        fwrite(&value, sizeof(double), 1, fp);
-    }
+void FixGenDPDE::write_restart(FILE *fp)
+{
+  if (comm->me == 0) {
+    const int size = sizeof(double);
+    const double value = energiesSet;
+    fwrite(&size, sizeof(int), 1, fp);
+    fwrite(&value, sizeof(double), 1, fp);
+  }
 }
 
-void FixGenDPDE::restart(char* buf) {
-    energiesSet = (int) ((double*) buf)[0];
+void FixGenDPDE::restart(char *buf)
+{
+  energiesSet = (int) ((double *) buf)[0];
 }
 
-double FixGenDPDE::memory_usage() {
-    return (double) atom->nmax * 2 * sizeof(double) + sweepEnergy.size() * (sizeof(double) + 5 * sizeof(int) + 2);
+double FixGenDPDE::memory_usage()
+{
+  return (double) atom->nmax * 2 * sizeof(double) +
+      sweepEnergy.size() * (sizeof(double) + 5 * sizeof(int) + 2);
 }

@@ -1,4 +1,20 @@
-/* -*- c++ -*- ----------------------------------------------------------------
+/* -*- c++ -*- ----------------------------------------------------------
+   LAMMPS - Large-scale Atomic/Molecular Massively Parallel Simulator
+   https://www.lammps.org/, Sandia National Laboratories
+   Steve Plimpton, sjplimp@sandia.gov
+
+   GENDPDE package (openmm-gendpde's LAMMPS package), a plugin for LAMMPS.
+   Copyright (c) 2026 The openmm-gendpde developers. This file is
+   distributed under the MIT License (the LICENSE file of openmm-gendpde),
+   which is compatible with the GNU General Public License version 2 that
+   LAMMPS is distributed under. See lammps/README of openmm-gendpde.
+------------------------------------------------------------------------- */
+
+/* ----------------------------------------------------------------------
+   Contributing authors: the openmm-gendpde developers
+------------------------------------------------------------------------- */
+
+/* -------------------------------------------------------------------
    openmm-gendpde's LAMMPS package: pair_style gendpde, GenDPDE's many-body
    conservative force (docs/theory.md sections 2-4 and 11; docs/lammps.md).
 
@@ -38,53 +54,54 @@ namespace LAMMPS_NS {
 class FixGenDPDE;
 
 class PairGenDPDE : public Pair {
-public:
-    PairGenDPDE(class LAMMPS*);
-    ~PairGenDPDE() override;
-    void compute(int, int) override;
-    void settings(int, char**) override;
-    void coeff(int, char**) override;
-    void init_style() override;
-    double init_one(int, int) override;
-    int pack_forward_comm(int, int*, double*, int, int*) override;
-    void unpack_forward_comm(int, int, double*) override;
-    int pack_reverse_comm(int, int, double*) override;
-    void unpack_reverse_comm(int, int*, double*) override;
-    double memory_usage() override;
-    void* extract(const char*, int&) override;
+ public:
+  PairGenDPDE(class LAMMPS *);
+  ~PairGenDPDE() override;
+  void compute(int, int) override;
+  void settings(int, char **) override;
+  void coeff(int, char **) override;
+  void init_style() override;
+  double init_one(int, int) override;
+  int pack_forward_comm(int, int *, double *, int, int *) override;
+  void unpack_forward_comm(int, int, double *) override;
+  int pack_reverse_comm(int, int, double *) override;
+  void unpack_reverse_comm(int, int *, double *) override;
+  double memory_usage() override;
+  void *extract(const char *, int &) override;
 
   /** The pair range R (distance units). */
-    double range() const { return cut_global; }
+  double range() const { return cut_global; }
   /** Whether some type's law depends on temperature (then fix gendpde holds the thermal state). */
-    bool dependsOnTemperature() const;
+  bool dependsOnTemperature() const;
 
-private:
+ private:
   /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
-    struct Law {
-        int law = -1;                  // GENDPDE_EOS_*; -1: not set
-        double given[12] = {0.0};      // as pair_coeff gives them (the Tait four first if the law extends Tait)
-        double parameter[12] = {0.0};  // in the core's order, the background pressure included (pack)
-        int integerPower = -1;
-    };
-    double background = 0.0;
-    void pack(Law& law) const;
-    double cut_global = 0.0, fcut = 1.0;
-    int estimator = 0;
-    double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;
-    double weightScale, weightDerivativeScale;
-    std::vector<Law> laws;    // by type, 1 ... ntypes
+  struct Law {
+    int law = -1;    // GENDPDE_EOS_*; -1: not set
+    double given[12] = {
+        0.0};    // as pair_coeff gives them (the Tait four first if the law extends Tait)
+    double parameter[12] = {0.0};    // in the core's order, the background pressure included (pack)
+    int integerPower = -1;
+  };
+  double background = 0.0;
+  void pack(Law &law) const;
+  double cut_global = 0.0, fcut = 1.0;
+  int estimator = 0;
+  double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;
+  double weightScale, weightDerivativeScale;
+  std::vector<Law> laws;    // by type, 1 ... ntypes
   // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's moment force q
-    int nmax = 0;
-    double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **momentForce = nullptr;
-    struct ClosePair {
-        int i, j;            // local indices (i local, j local or ghost)
-        double dx, dy, dz, r; // d = x_i - x_j, r = |d| > 0, r^2 < R^2
-    };
-    std::vector<ClosePair> closePairs; // pass 1's pairs closer than R, read by pass 2
-    bool moments() const;
-    void grow();
-    void particleError(int status, int i, double volume);
-    FixGenDPDE* thermalFix();
+  int nmax = 0;
+  double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **momentForce = nullptr;
+  struct ClosePair {
+    int i, j;                // local indices (i local, j local or ghost)
+    double dx, dy, dz, r;    // d = x_i - x_j, r = |d| > 0, r^2 < R^2
+  };
+  std::vector<ClosePair> closePairs;    // pass 1's pairs closer than R, read by pass 2
+  bool moments() const;
+  void grow();
+  void particleError(int status, int i, double volume);
+  FixGenDPDE *thermalFix();
 };
 
 }    // namespace LAMMPS_NS

@@ -88,24 +88,24 @@ class FixGenDPDE : public Fix {
   double memory_usage() override;
 
   // The thermal state, for pair gendpde (local atoms).
-  Mode getMode() const { return mode; }
-  double getTemperature() const { return temperature; }
-  double heatCapacity(int type) const { return heatCapacityOfType[type]; }
-  double *internalEnergies() { return energy; }
+  Mode get_mode() const { return mode; }
+  double get_temperature() const { return temperature; }
+  double heat_capacity(int type) const { return heat_capacity_of_type[type]; }
+  double *internal_energies() { return energy; }
   /** sigma at the density each internal energy belongs to; NaN where it is not known. */
-  double *storedEntropies() { return entropy; }
+  double *stored_entropies() { return entropy; }
 
  private:
   Mode mode;
   int seed;
-  double temperature = 0.0, initialTemperature = 0.0;
-  bool hasTemperature = false, hasInitial = false;
-  std::string initialVariable;    // initial v_name
-  int energiesSet = 0;            // saved in restart files
+  double temperature = 0.0, initial_temperature = 0.0;
+  bool has_temperature = false, has_initial = false;
+  std::string initial_variable;    // initial v_name
+  int energies_set = 0;            // saved in restart files
   double dtv, dtf;
-  std::vector<double> heatCapacityOfType, frictionOfPair,
-      conductionOfPair;    // by type, type pair (ntypes+1)^2
-  std::vector<bool> heatCapacitySet;
+  std::vector<double> heat_capacity_of_type, friction_of_pair,
+      conduction_of_pair;    // by type, type pair (ntypes+1)^2
+  std::vector<bool> heat_capacity_set;
   double *energy = nullptr, *entropy = nullptr;    // per atom (ghosts: scratch of the sweep)
   PairGenDPDE *pair = nullptr;
 
@@ -115,52 +115,52 @@ class FixGenDPDE : public Fix {
     int li, lj;    // their local indices (local or ghost)
     int group;    // the rank of the block it was in when found (the number of blocks: none of this rank's)
   };
-  static std::uint64_t pairKey(const SweepPair &p)
+  static std::uint64_t pair_key(const SweepPair &p)
   {
     return (std::uint64_t) (std::uint32_t) p.i << 32 | (std::uint32_t) p.j;
   }
-  int numCells[3];
-  double cellWidth[3];
-  int blockLow[3], blockCount[3];     // this rank's blocks
-  int gridLow[3], gridCount[3];       // the extended cells they cover
-  std::vector<double> sweepEnergy;    // eps / mvv2e, local and ghost
-  std::vector<int> extendedCell;      // each particle's cell in this rank's frame
+  int num_cells[3];
+  double cell_width[3];
+  int block_low[3], block_count[3];    // this rank's blocks
+  int grid_low[3], grid_count[3];      // the extended cells they cover
+  std::vector<double> sweep_energy;    // eps / mvv2e, local and ghost
+  std::vector<int> extended_cell;      // each particle's cell in this rank's frame
   std::vector<char> modified, touched;
   // Candidates: the pairs closer than R + skin among the particles near this rank's blocks, by the block they were
   // in, then by (i, j); found again when LAMMPS has built its neighbour lists again (every particle has then moved
   // less than skin/2).
   std::vector<SweepPair> candidates;
-  bigint candidatesBuiltAt = -1;
-  std::vector<int> binHead, binNext;
+  bigint candidates_built_at = -1;
+  std::vector<int> bin_head, bin_next;
   std::vector<double>
-      builtPositions;    // the local particles' positions when the candidates were found
+      built_positions;    // the local particles' positions when the candidates were found
   // Each step: the pairs closer than R of each block (by block rank: colour by colour), in sweep order
-  std::vector<int> rankOfBlock, blockRankStart, colourStart, pairBlockRank, blockPairs, blockFirst,
-      blockOrder;
-  std::vector<int> movedIn;
-  std::vector<SweepPair> sweepList;    // the pairs in sweep order
+  std::vector<int> rank_of_block, block_rank_start, colour_start, pair_block_rank, block_pairs,
+      block_first, block_order;
+  std::vector<int> moved_in;
+  std::vector<SweepPair> sweep_list;    // the pairs in sweep order
   struct PairTables {
-    std::vector<double> inverseMass, heatCapacity, conduction, noise;    // by type, type pair
-  } pairTables;
+    std::vector<double> inverse_mass, heat_capacity, conduction, noise;    // by type, type pair
+  } pair_tables;
   // The run's pair terms, as GenDPDEIntegrator decides them (GenDPDEStepTerms): whether any pair of types has
   // friction, heat conduction (isoenergetic); the sweep runs if either does.
   struct {
     int dissipation = 0, conduction = 0;
   } terms;
-  int commPhase =
+  int comm_phase =
       0;    // 0: velocities, energies and cells (start of the sweep); 1: velocities and energies
   void kick();
-  void makePairTables();
-  int packState(int i, double *buf) const;
-  int unpackState(int i, const double *buf);
+  void make_pair_tables();
+  int pack_state(int i, double *buf) const;
+  int unpack_state(int i, const double *buf);
   void sweep();
-  void prepareCells();
-  void rankBlocks();
-  void findCandidates();
-  int blockRankOf(int a, int b) const;
-  void orderPairs();
-  void sweepPairs(const SweepPair *pairs, int count, bool isoenergetic);
-  double ghostNeed() const;
+  void prepare_cells();
+  void rank_blocks();
+  void find_candidates();
+  int block_rank_of(int a, int b) const;
+  void order_pairs();
+  void sweep_pairs(const SweepPair *pairs, int count, bool isoenergetic);
+  double ghost_need() const;
 };
 
 }    // namespace LAMMPS_NS

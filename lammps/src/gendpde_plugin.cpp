@@ -27,19 +27,19 @@
 
 using namespace LAMMPS_NS;
 
-static Pair *pairCreator(LAMMPS *lmp)
+static Pair *pair_creator(LAMMPS *lmp)
 {
   return new PairGenDPDE(lmp);
 }
 
-static Fix *fixCreator(LAMMPS *lmp, int argc, char **argv)
+static Fix *fix_creator(LAMMPS *lmp, int argc, char **argv)
 {
   return new FixGenDPDE(lmp, argc, argv);
 }
 
 extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
 {
-  lammpsplugin_regfunc registerPlugin = (lammpsplugin_regfunc) regfunc;
+  lammpsplugin_regfunc register_plugin = (lammpsplugin_regfunc) regfunc;
   lammpsplugin_t plugin;
   plugin.version = LAMMPS_VERSION;
   plugin.style = "pair";
@@ -47,13 +47,13 @@ extern "C" void lammpsplugin_init(void *lmp, void *handle, void *regfunc)
   plugin.info = "GenDPDE many-body force (V-A, V-B, V-C; Tait and temperature-dependent laws), "
                 "openmm-gendpde";
   plugin.author = "openmm-gendpde";
-  plugin.creator.v1 = (lammpsplugin_factory1 *) &pairCreator;
+  plugin.creator.v1 = (lammpsplugin_factory1 *) &pair_creator;
   plugin.handle = handle;
-  (*registerPlugin)(&plugin, lmp);
+  (*register_plugin)(&plugin, lmp);
 
   plugin.style = "fix";
   plugin.name = "gendpde";
   plugin.info = "GenDPDE integrator: Shardlow sweep across subdomains, three modes, openmm-gendpde";
-  plugin.creator.v2 = (lammpsplugin_factory2 *) &fixCreator;
-  (*registerPlugin)(&plugin, lmp);
+  plugin.creator.v2 = (lammpsplugin_factory2 *) &fix_creator;
+  (*register_plugin)(&plugin, lmp);
 }

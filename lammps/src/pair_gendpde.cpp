@@ -88,7 +88,7 @@ PairGenDPDE::~PairGenDPDE()
   memory->destroy(density);
   memory->destroy(moment);
   memory->destroy(coefficient);
-  memory->destroy(momentForce);
+  memory->destroy(moment_force);
   if (allocated) {
     memory->destroy(setflag);
     memory->destroy(cutsq);
@@ -100,7 +100,7 @@ bool PairGenDPDE::moments() const
   return gendpdeEstimatorNeedsMoments(estimator) != 0;
 }
 
-bool PairGenDPDE::dependsOnTemperature() const
+bool PairGenDPDE::depends_on_temperature() const
 {
   for (size_t t = 1; t < laws.size(); t++)
     if (laws[t].law >= 0 && gendpdeLawDependsOnTemperature(laws[t].law)) return true;
@@ -138,9 +138,9 @@ void PairGenDPDE::settings(int narg, char **arg)
                "and finite",
                arg[4]);
   for (Law &law : laws) pack(law);
-  gendpdeEstimatorConstants(cut_global, cut_global / fcut, &kPerDensity, &volumeScale,
-                            &derivativeScale, &momentScale, &densitySoftening);
-  gendpdeDensityWeightScales(cut_global, &weightScale, &weightDerivativeScale);
+  gendpdeEstimatorConstants(cut_global, cut_global / fcut, &k_per_density, &volume_scale,
+                            &derivative_scale, &moment_scale, &density_softening);
+  gendpdeDensityWeightScales(cut_global, &weight_scale, &weight_derivative_scale);
 }
 
 void PairGenDPDE::coeff(int narg, char **arg)
@@ -171,18 +171,18 @@ void PairGenDPDE::coeff(int narg, char **arg)
     error->all(FLERR,
                "pair_coeff gendpde: law '{}' is not allowed: it must be one of GenDPDEForce's, {}",
                name, EquationsOfState::listOfLaws());
-  const int numGiven = EquationsOfState::numGivenParameters(*found);
-  if (narg != 3 + numGiven) {
+  const int num_given = EquationsOfState::numGivenParameters(*found);
+  if (narg != 3 + num_given) {
     std::string names;
-    for (int k = 0; k < numGiven; k++)
+    for (int k = 0; k < num_given; k++)
       names += (k > 0 ? ", " : "") + std::string(EquationsOfState::givenParameter(*found, k).name);
-    error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}); got {}", name, numGiven,
-               names, narg - 3);
+    error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}); got {}", name,
+               num_given, names, narg - 3);
   }
   // Each parameter by the rule of its range that holds in any units (GenDPDEForce's ranges are in OpenMM's).
   Law law;
   law.law = found->coreId;
-  for (int k = 0; k < numGiven; k++) {
+  for (int k = 0; k < num_given; k++) {
     const EquationsOfState::Parameter &parameter = EquationsOfState::givenParameter(*found, k);
     const double value = utils::numeric(FLERR, arg[3 + k], false, lmp);
     std::string rule;
@@ -213,15 +213,15 @@ void PairGenDPDE::pack(Law &law) const
 {
   // The core's parameters with the background pressure, packed as GenDPDEForce packs them (packCoreParameters).
   if (law.law >= 0)
-    law.integerPower = EquationsOfState::packCoreParameters(EquationsOfState::laws[law.law],
-                                                            law.given, background, law.parameter);
+    law.integer_power = EquationsOfState::packCoreParameters(EquationsOfState::laws[law.law],
+                                                             law.given, background, law.parameter);
 }
 
 void PairGenDPDE::init_style()
 {
   if (force->newton_pair == 0) error->all(FLERR, "pair_style gendpde requires newton pair on");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style gendpde requires atom IDs");
-  if (dependsOnTemperature() && thermalFix() == nullptr)
+  if (depends_on_temperature() && thermal_fix() == nullptr)
     error->all(FLERR,
                "pair_style gendpde: a law that depends on temperature needs fix gendpde (the "
                "thermal state)");
@@ -236,7 +236,7 @@ double PairGenDPDE::init_one(int i, int j)
   return cut_global;
 }
 
-FixGenDPDE *PairGenDPDE::thermalFix()
+FixGenDPDE *PairGenDPDE::thermal_fix()
 {
   const int index = modify->find_fix_by_style("^gendpde$");
   return index < 0 ? nullptr : dynamic_cast<FixGenDPDE *>(modify->fix[index]);
@@ -252,13 +252,13 @@ void PairGenDPDE::grow()
   memory->create(coefficient, nmax, "pair:gendpde:coefficient");
   if (moments()) {
     memory->destroy(moment);
-    memory->destroy(momentForce);
+    memory->destroy(moment_force);
     memory->create(moment, nmax, 3, "pair:gendpde:moment");
-    memory->create(momentForce, nmax, 3, "pair:gendpde:momentForce");
+    memory->create(moment_force, nmax, 3, "pair:gendpde:moment_force");
   }
 }
 
-void PairGenDPDE::particleError(int status, int i, double volume)
+void PairGenDPDE::particle_error(int status, int i, double volume)
 {
   const tagint tag = atom->tag[i];
   const bigint step = update->ntimestep;
@@ -293,12 +293,12 @@ void PairGenDPDE::compute(int eflag, int vflag)
   const int inum = list->inum;
   const int *ilist = list->ilist, *numneigh = list->numneigh;
   int **firstneigh = list->firstneigh;
-  const double cut = cut_global, cut2 = cut * cut, inverseCut = 1.0 / cut;
+  const double cut = cut_global, cut2 = cut * cut, inv_cut = 1.0 / cut;
   const bool vc = moments();
 
   // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs;
   // the pairs closer than R kept with their geometry for pass 2 (the list's others, up to R + skin, are not).
-  closePairs.clear();    // (keeps its capacity: no step allocates once the list has grown)
+  close_pairs.clear();    // (keeps its capacity: no step allocates once the list has grown)
   for (int i = 0; i < nall; i++) {
     density[i] = 0.0;
     if (vc) moment[i][0] = moment[i][1] = moment[i][2] = 0.0;
@@ -312,13 +312,13 @@ void PairGenDPDE::compute(int eflag, int vflag)
       const double r2 = dx * dx + dy * dy + dz * dz;
       if (!(r2 < cut2)) continue;
       const double r = std::sqrt(r2);
-      if (r2 > 0.0) closePairs.push_back({i, j, dx, dy, dz, r});
+      if (r2 > 0.0) close_pairs.push_back({i, j, dx, dy, dz, r});
       if (r < cut) {
-        const double w = gendpdeDensityWeight(r, inverseCut, weightScale);
+        const double w = gendpdeDensityWeight(r, inv_cut, weight_scale);
         density[i] += w;
         density[j] += w;
         if (vc && r > 0.0) {
-          const double s = gendpdeMomentWeightOverDistance(r, inverseCut);
+          const double s = gendpdeMomentWeightOverDistance(r, inv_cut);
           moment[i][0] += dx * s;
           moment[i][1] += dy * s;
           moment[i][2] += dz * s;
@@ -332,42 +332,43 @@ void PairGenDPDE::compute(int eflag, int vflag)
   comm->reverse_comm_pair(this);
 
   // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
-  FixGenDPDE *fix = dependsOnTemperature() ? thermalFix() : nullptr;
-  double *storedEnergy = fix ? fix->internalEnergies() : nullptr;
-  double *storedEntropy = fix ? fix->storedEntropies() : nullptr;
-  const bool isothermal = fix && fix->getMode() == FixGenDPDE::ISOTHERMAL;
+  FixGenDPDE *fix = depends_on_temperature() ? thermal_fix() : nullptr;
+  double *stored_energy = fix ? fix->internal_energies() : nullptr;
+  double *stored_entropy = fix ? fix->stored_entropies() : nullptr;
+  const bool isothermal = fix && fix->get_mode() == FixGenDPDE::ISOTHERMAL;
   const bool keep = fix && !isothermal;
-  const bool checkStep = update->setupflag == 0;
+  const bool check_step = update->setupflag == 0;
   for (int i = 0; i < nlocal; i++) {
     const Law &law = laws[type[i]];
     const double G = vc
         ? moment[i][0] * moment[i][0] + moment[i][1] * moment[i][1] + moment[i][2] * moment[i][2]
         : 0.0;
     const bool thermal = fix && gendpdeLawDependsOnTemperature(law.law);
-    const double stored = thermal ? storedEnergy[i] : 0.0;
-    const bool entropyKnown = thermal && !std::isnan(storedEntropy[i]);
-    double volume, pressure, energy, forceCoefficient, momentForceScale, thermalEnergy,
-        densityEntropy;
+    const double stored = thermal ? stored_energy[i] : 0.0;
+    const bool entropy_known = thermal && !std::isnan(stored_entropy[i]);
+    double volume, pressure, energy, force_coefficient, moment_force_scale, thermal_energy,
+        density_entropy;
     const int status = gendpdeParticleState(
-        estimator, density[i], G, kPerDensity, volumeScale, derivativeScale, momentScale,
-        densitySoftening, volumePolynomials(), VolumeVBQuadrature::nodeSquared,
+        estimator, density[i], G, k_per_density, volume_scale, derivative_scale, moment_scale,
+        density_softening, volumePolynomials(), VolumeVBQuadrature::nodeSquared,
         VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient, law.law,
-        law.parameter, law.integerPower, isothermal ? 1 : 0, fix ? fix->getTemperature() : 0.0,
-        stored, entropyKnown ? storedEntropy[i] : 0.0, entropyKnown ? 1 : 0,
-        (checkStep && entropyKnown) ? 1 : 0, thermal ? fix->heatCapacity(type[i]) : 1.0, &volume,
-        &pressure, &energy, &forceCoefficient, &momentForceScale, &thermalEnergy, &densityEntropy);
-    if (status != GENDPDE_PARTICLE_VALID) particleError(status, i, volume);
-    coefficient[i] = forceCoefficient;
+        law.parameter, law.integer_power, isothermal ? 1 : 0, fix ? fix->get_temperature() : 0.0,
+        stored, entropy_known ? stored_entropy[i] : 0.0, entropy_known ? 1 : 0,
+        (check_step && entropy_known) ? 1 : 0, thermal ? fix->heat_capacity(type[i]) : 1.0, &volume,
+        &pressure, &energy, &force_coefficient, &moment_force_scale, &thermal_energy,
+        &density_entropy);
+    if (status != GENDPDE_PARTICLE_VALID) particle_error(status, i, volume);
+    coefficient[i] = force_coefficient;
     if (vc)
-      for (int k = 0; k < 3; k++) momentForce[i][k] = momentForceScale * moment[i][k];
+      for (int k = 0; k < 3; k++) moment_force[i][k] = moment_force_scale * moment[i][k];
     if (thermal) {
       // The integrator keeps the thermal state each evaluation finds (Isoenergetic, Conservative); the Isothermal
       // mode does not update eps_i, so the densities it belongs to are forgotten (GenDPDEIntegratorUtilities).
       if (keep) {
-        storedEnergy[i] = thermalEnergy;
-        storedEntropy[i] = densityEntropy;
+        stored_energy[i] = thermal_energy;
+        stored_entropy[i] = density_entropy;
       } else
-        storedEntropy[i] = std::numeric_limits<double>::quiet_NaN();
+        stored_entropy[i] = std::numeric_limits<double>::quiet_NaN();
     }
     if (eflag_global) eng_vdwl += energy;
     if (eflag_atom) eatom[i] += energy;
@@ -376,16 +377,16 @@ void PairGenDPDE::compute(int eflag, int vflag)
 
   // Pass 2 (section 4): the pair forces, central (c_i + c_j) w'(r)/r d plus V-C's moment term.
   const double zero[3] = {0.0, 0.0, 0.0};
-  for (const ClosePair &pair : closePairs) {
+  for (const ClosePair &pair : close_pairs) {
     const int i = pair.i, j = pair.j;
     const double dx = pair.dx, dy = pair.dy, dz = pair.dz, r = pair.r;
     const bool inside = r < cut;
-    const double *qi = vc ? momentForce[i] : zero, *qj = vc ? momentForce[j] : zero;
+    const double *qi = vc ? moment_force[i] : zero, *qj = vc ? moment_force[j] : zero;
     double force[3];
     gendpdePairForce(
         dx, dy, dz, r, coefficient[i] + coefficient[j],
-        inside ? gendpdeDensityWeightDerivative(r, inverseCut, weightDerivativeScale) : 0.0,
-        inverseCut, (vc && inside) ? 1 : 0, qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
+        inside ? gendpdeDensityWeightDerivative(r, inv_cut, weight_derivative_scale) : 0.0, inv_cut,
+        (vc && inside) ? 1 : 0, qi[0], qi[1], qi[2], qj[0], qj[1], qj[2], force);
     f[i][0] += force[0];
     f[i][1] += force[1];
     f[i][2] += force[2];
@@ -402,14 +403,14 @@ void PairGenDPDE::compute(int eflag, int vflag)
     const double volume = domain->xprd * domain->yprd * domain->zprd,
                  natoms = (double) atom->natoms;
     const double share = gendpdeBackgroundEnergy(background, volume) / natoms;
-    const double virialShare = gendpdeBackgroundVirial(background, volume) / (3.0 * natoms);
+    const double virial_share = gendpdeBackgroundVirial(background, volume) / (3.0 * natoms);
     if (eflag_global) eng_vdwl += share * nlocal;
     if (virial)
-      for (int k = 0; k < 3; k++) this->virial[k] += virialShare * nlocal;
+      for (int k = 0; k < 3; k++) this->virial[k] += virial_share * nlocal;
     for (int i = 0; i < nlocal; i++) {
       if (eflag_atom) eatom[i] += share;
       if (vflag_atom)
-        for (int k = 0; k < 3; k++) vatom[i][k] += virialShare;
+        for (int k = 0; k < 3; k++) vatom[i][k] += virial_share;
     }
   }
 }
@@ -443,7 +444,7 @@ int PairGenDPDE::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag
     const int j = list[i];
     buf[m++] = coefficient[j];
     if (moments())
-      for (int k = 0; k < 3; k++) buf[m++] = momentForce[j][k];
+      for (int k = 0; k < 3; k++) buf[m++] = moment_force[j][k];
   }
   return m;
 }
@@ -454,14 +455,14 @@ void PairGenDPDE::unpack_forward_comm(int n, int first, double *buf)
   for (int i = first; i < first + n; i++) {
     coefficient[i] = buf[m++];
     if (moments())
-      for (int k = 0; k < 3; k++) momentForce[i][k] = buf[m++];
+      for (int k = 0; k < 3; k++) moment_force[i][k] = buf[m++];
   }
 }
 
 double PairGenDPDE::memory_usage()
 {
   return (double) nmax * sizeof(double) * (moments() ? 8 : 2) +
-      closePairs.capacity() * sizeof(ClosePair);
+      close_pairs.capacity() * sizeof(ClosePair);
 }
 
 void *PairGenDPDE::extract(const char *name, int &dim)

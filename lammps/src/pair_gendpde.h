@@ -72,7 +72,7 @@ class PairGenDPDE : public Pair {
   /** The pair range R (distance units). */
   double range() const { return cut_global; }
   /** Whether some type's law depends on temperature (then fix gendpde holds the thermal state). */
-  bool dependsOnTemperature() const;
+  bool depends_on_temperature() const;
 
  private:
   /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
@@ -81,27 +81,27 @@ class PairGenDPDE : public Pair {
     double given[12] = {
         0.0};    // as pair_coeff gives them (the Tait four first if the law extends Tait)
     double parameter[12] = {0.0};    // in the core's order, the background pressure included (pack)
-    int integerPower = -1;
+    int integer_power = -1;
   };
   double background = 0.0;
   void pack(Law &law) const;
   double cut_global = 0.0, fcut = 1.0;
   int estimator = 0;
-  double kPerDensity, volumeScale, derivativeScale, momentScale, densitySoftening;
-  double weightScale, weightDerivativeScale;
+  double k_per_density, volume_scale, derivative_scale, moment_scale, density_softening;
+  double weight_scale, weight_derivative_scale;
   std::vector<Law> laws;    // by type, 1 ... ntypes
   // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's moment force q
   int nmax = 0;
-  double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **momentForce = nullptr;
+  double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **moment_force = nullptr;
   struct ClosePair {
     int i, j;                // local indices (i local, j local or ghost)
     double dx, dy, dz, r;    // d = x_i - x_j, r = |d| > 0, r^2 < R^2
   };
-  std::vector<ClosePair> closePairs;    // pass 1's pairs closer than R, read by pass 2
+  std::vector<ClosePair> close_pairs;    // pass 1's pairs closer than R, read by pass 2
   bool moments() const;
   void grow();
-  void particleError(int status, int i, double volume);
-  FixGenDPDE *thermalFix();
+  void particle_error(int status, int i, double volume);
+  FixGenDPDE *thermal_fix();
 };
 
 }    // namespace LAMMPS_NS

@@ -30,7 +30,7 @@
 #include "input.h"
 #include "memory.h"
 #include "neighbor.h"
-#include "pair_gendpde.h"
+#include "pair.h"
 #include "update.h"
 #include "variable.h"
 
@@ -78,6 +78,7 @@ FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
                "fix gendpde: mode '{}' is not allowed: it must be isoenergetic, isothermal or "
                "conservative",
                name);
+  isothermal = mode == ISOTHERMAL ? 1 : 0;
   seed = utils::inumeric(FLERR, arg[4], false, lmp);
   if (seed < 0)
     error->all(FLERR, "fix gendpde: seed = {} is not allowed: it must be in [0, 2147483647]",
@@ -183,11 +184,25 @@ void FixGenDPDE::init()
 {
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
-  pair = dynamic_cast<PairGenDPDE *>(force->pair_match("^gendpde$", 0));
-  if (mode != CONSERVATIVE && pair == nullptr)
+  // pair_style gendpde's range R and whether its laws depend on temperature, by name (Pair::extract)
+  Pair *pair = force->pair_match("^gendpde$", 0);
+  has_pair = pair != nullptr;
+  pair_range = 0.0;
+  pair_thermal = 0;
+  if (has_pair) {
+    int dim_range = -1, dim_thermal = -1;
+    const double *range = (double *) pair->extract("cut_global", dim_range);
+    const int *thermal = (int *) pair->extract("temperature_dependent", dim_thermal);
+    if (!range || !thermal || dim_range != 0 || dim_thermal != 0)
+      error->all(FLERR, "fix gendpde: pair_style {} does not provide its range and laws",
+                 force->pair_style);
+    pair_range = *range;
+    pair_thermal = *thermal;
+  }
+  if (mode != CONSERVATIVE && !has_pair)
     error->all(FLERR, "fix gendpde: the {} mode needs pair_style gendpde (its pair range R)",
                mode == ISOTHERMAL ? "isothermal" : "isoenergetic");
-  if (pair != nullptr && pair->depends_on_temperature())
+  if (pair_thermal)
     for (int t = 1; t <= atom->ntypes; t++)
       if (!heat_capacity_set[t])
         error->all(
@@ -227,8 +242,7 @@ void FixGenDPDE::setup_pre_force(int /*vflag*/)
     }
     energies_set = 1;
   }
-  const bool needs_energies = mode == ISOENERGETIC ||
-      (pair != nullptr && pair->depends_on_temperature() && mode == CONSERVATIVE);
+  const bool needs_energies = mode == ISOENERGETIC || (pair_thermal && mode == CONSERVATIVE);
   if (needs_energies && !energies_set)
     error->all(
         FLERR,
@@ -247,7 +261,7 @@ void FixGenDPDE::setup_pre_force(int /*vflag*/)
 
 double FixGenDPDE::ghost_need() const
 {
-  return SweepDefinition::ghostCutoff(domain->prd, pair->range(), neighbor->skin);
+  return SweepDefinition::ghostCutoff(domain->prd, pair_range, neighbor->skin);
 }
 
 void FixGenDPDE::make_pair_tables()
@@ -291,7 +305,7 @@ void FixGenDPDE::initial_integrate(int /*vflag*/)
   kick();
   double **x = atom->x, **v = atom->v;
   const int *mask = atom->mask;
-  const double limit = pair != nullptr ? pair->range() : std::numeric_limits<double>::infinity();
+  const double limit = has_pair ? pair_range : std::numeric_limits<double>::infinity();
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
@@ -332,7 +346,7 @@ void FixGenDPDE::prepare_cells()
 {
   // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
   // centre, boxlo + (2b + 1.5) w, is in the subdomain.
-  const double range = pair->range();
+  const double range = pair_range;
   for (int d = 0; d < 3; d++) {
     num_cells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
     if (num_cells[d] < SweepDefinition::minCellsAcrossSubdomains)
@@ -443,10 +457,10 @@ void FixGenDPDE::find_candidates()
   double **x = atom->x;
   const tagint *tag = atom->tag;
   const int *mask = atom->mask;
-  const double reach = pair->range() + neighbor->skin, reach2 = reach * reach;
+  const double reach = pair_range + neighbor->skin, reach2 = reach * reach;
   double low[3], high[3];
   int bins[3];
-  const double margin = neighbor->skin + 1e-9 * pair->range();
+  const double margin = neighbor->skin + 1e-9 * pair_range;
   for (int d = 0; d < 3; d++) {
     low[d] = domain->boxlo[d] + grid_low[d] * cell_width[d] - margin;
     high[d] = domain->boxlo[d] + (grid_low[d] + grid_count[d]) * cell_width[d] + margin;
@@ -549,7 +563,7 @@ void FixGenDPDE::order_pairs()
   // are interleaved.
   const int num_blocks = colour_start.back();
   double **x = atom->x;
-  const double range2 = pair->range() * pair->range();
+  const double range2 = pair_range * pair_range;
   const int count = candidates.size();
   pair_block_rank.resize(count);
   block_rank_start.assign(num_blocks + 1, 0);
@@ -611,7 +625,7 @@ void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergeti
   const double *rmass = atom->rmass;
   const int *type = atom->type;
   const int ntypes = atom->ntypes;
-  const double range = pair->range(), mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+  const double range = pair_range, mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
   const double dt = update->dt, sqrt_dt = std::sqrt(dt);
   const std::uint64_t step = (std::uint64_t) (update->ntimestep - 1);
   const double *inverse_mass_of_type = pair_tables.inverse_mass.data(),
@@ -807,6 +821,27 @@ void FixGenDPDE::write_restart(FILE *fp)
 void FixGenDPDE::restart(char *buf)
 {
   energies_set = (int) ((double *) buf)[0];
+}
+
+/* ----------------------------------------------------------------------
+   the thermal state, by name, for pair_style gendpde (which does not
+   include this header): per atom (dim 1, local atoms) internal_energy eps_i
+   and the entropy sigma_i at the density eps_i belongs to (NaN where not
+   known), both read and updated by the pair style; per type (dim 1, index
+   1 ... ntypes) heat_capacity C_V; bath_temperature (dim 0, double);
+   isothermal (dim 0, int: 1 in the isothermal mode)
+------------------------------------------------------------------------- */
+
+void *FixGenDPDE::extract(const char *name, int &dim)
+{
+  dim = 1;
+  if (strcmp(name, "internal_energy") == 0) return (void *) energy;
+  if (strcmp(name, "entropy") == 0) return (void *) entropy;
+  if (strcmp(name, "heat_capacity") == 0) return (void *) heat_capacity_of_type.data();
+  dim = 0;
+  if (strcmp(name, "bath_temperature") == 0) return (void *) &temperature;
+  if (strcmp(name, "isothermal") == 0) return (void *) &isothermal;
+  return nullptr;
 }
 
 double FixGenDPDE::memory_usage()

@@ -57,8 +57,6 @@ FixStyle(gendpde,FixGenDPDE);
 
 namespace LAMMPS_NS {
 
-class PairGenDPDE;
-
 class FixGenDPDE : public Fix {
  public:
   enum Mode { ISOENERGETIC = 0, ISOTHERMAL = 1, CONSERVATIVE = 2 };
@@ -87,13 +85,7 @@ class FixGenDPDE : public Fix {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
 
-  // The thermal state, for pair gendpde (local atoms).
-  Mode get_mode() const { return mode; }
-  double get_temperature() const { return temperature; }
-  double heat_capacity(int type) const { return heat_capacity_of_type[type]; }
-  double *internal_energies() { return energy; }
-  /** sigma at the density each internal energy belongs to; NaN where it is not known. */
-  double *stored_entropies() { return entropy; }
+  void *extract(const char *, int &) override;
 
  private:
   Mode mode;
@@ -107,7 +99,12 @@ class FixGenDPDE : public Fix {
       conduction_of_pair;    // by type, type pair (ntypes+1)^2
   std::vector<bool> heat_capacity_set;
   double *energy = nullptr, *entropy = nullptr;    // per atom (ghosts: scratch of the sweep)
-  PairGenDPDE *pair = nullptr;
+  int isothermal = 0;                              // mode == ISOTHERMAL (extract)
+  // pair_style gendpde's (Pair::extract): whether it is defined, its range R, whether a law depends
+  // on temperature
+  bool has_pair = false;
+  double pair_range = 0.0;
+  int pair_thermal = 0;
 
   // The sweep (see the header comment).
   struct SweepPair {

@@ -25,7 +25,7 @@
 #include "comm.h"
 #include "domain.h"
 #include "error.h"
-#include "fix_gendpde.h"
+#include "fix.h"
 #include "force.h"
 #include "gendpde_core.h"
 #include "memory.h"
@@ -221,7 +221,8 @@ void PairGenDPDE::init_style()
 {
   if (force->newton_pair == 0) error->all(FLERR, "pair_style gendpde requires newton pair on");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style gendpde requires atom IDs");
-  if (depends_on_temperature() && thermal_fix() == nullptr)
+  temperature_dependent = depends_on_temperature() ? 1 : 0;
+  if (temperature_dependent && thermal_fix() == nullptr)
     error->all(FLERR,
                "pair_style gendpde: a law that depends on temperature needs fix gendpde (the "
                "thermal state)");
@@ -236,10 +237,33 @@ double PairGenDPDE::init_one(int i, int j)
   return cut_global;
 }
 
-FixGenDPDE *PairGenDPDE::thermal_fix()
+Fix *PairGenDPDE::thermal_fix()
 {
   const int index = modify->find_fix_by_style("^gendpde$");
-  return index < 0 ? nullptr : dynamic_cast<FixGenDPDE *>(modify->fix[index]);
+  return index < 0 ? nullptr : modify->fix[index];
+}
+
+/* ----------------------------------------------------------------------
+   the thermal state fix gendpde keeps, read by name through Fix::extract
+   (fix_gendpde.h lists the names): neither style includes the other
+------------------------------------------------------------------------- */
+
+void PairGenDPDE::read_thermal_state(Fix *fix, ThermalState &state)
+{
+  int dim_energy = -1, dim_entropy = -1, dim_capacity = -1, dim_temperature = -1,
+      dim_isothermal = -1;
+  state.energy = (double *) fix->extract("internal_energy", dim_energy);
+  state.entropy = (double *) fix->extract("entropy", dim_entropy);
+  state.heat_capacity = (double *) fix->extract("heat_capacity", dim_capacity);
+  const double *temperature = (double *) fix->extract("bath_temperature", dim_temperature);
+  const int *isothermal = (int *) fix->extract("isothermal", dim_isothermal);
+  if (!state.energy || !state.entropy || !state.heat_capacity || !temperature || !isothermal ||
+      dim_energy != 1 || dim_entropy != 1 || dim_capacity != 1 || dim_temperature != 0 ||
+      dim_isothermal != 0)
+    error->all(FLERR, "pair_style gendpde: fix {} (style {}) does not provide the thermal state",
+               fix->id, fix->style);
+  state.temperature = *temperature;
+  state.isothermal = *isothermal;
 }
 
 void PairGenDPDE::grow()
@@ -332,10 +356,12 @@ void PairGenDPDE::compute(int eflag, int vflag)
   comm->reverse_comm_pair(this);
 
   // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
-  FixGenDPDE *fix = depends_on_temperature() ? thermal_fix() : nullptr;
-  double *stored_energy = fix ? fix->internal_energies() : nullptr;
-  double *stored_entropy = fix ? fix->stored_entropies() : nullptr;
-  const bool isothermal = fix && fix->get_mode() == FixGenDPDE::ISOTHERMAL;
+  Fix *fix = temperature_dependent ? thermal_fix() : nullptr;
+  ThermalState state = {nullptr, nullptr, nullptr, 0.0, 0};
+  if (fix) read_thermal_state(fix, state);
+  double *stored_energy = state.energy;
+  double *stored_entropy = state.entropy;
+  const bool isothermal = fix && state.isothermal;
   const bool keep = fix && !isothermal;
   const bool check_step = update->setupflag == 0;
   for (int i = 0; i < nlocal; i++) {
@@ -352,10 +378,10 @@ void PairGenDPDE::compute(int eflag, int vflag)
         estimator, density[i], G, k_per_density, volume_scale, derivative_scale, moment_scale,
         density_softening, volumePolynomials(), VolumeVBQuadrature::nodeSquared,
         VolumeVBQuadrature::mirrorNodeSquared, VolumeVBQuadrature::coefficient, law.law,
-        law.parameter, law.integer_power, isothermal ? 1 : 0, fix ? fix->get_temperature() : 0.0,
-        stored, entropy_known ? stored_entropy[i] : 0.0, entropy_known ? 1 : 0,
-        (check_step && entropy_known) ? 1 : 0, thermal ? fix->heat_capacity(type[i]) : 1.0, &volume,
-        &pressure, &energy, &force_coefficient, &moment_force_scale, &thermal_energy,
+        law.parameter, law.integer_power, isothermal ? 1 : 0, fix ? state.temperature : 0.0, stored,
+        entropy_known ? stored_entropy[i] : 0.0, entropy_known ? 1 : 0,
+        (check_step && entropy_known) ? 1 : 0, thermal ? state.heat_capacity[type[i]] : 1.0,
+        &volume, &pressure, &energy, &force_coefficient, &moment_force_scale, &thermal_energy,
         &density_entropy);
     if (status != GENDPDE_PARTICLE_VALID) particle_error(status, i, volume);
     coefficient[i] = force_coefficient;
@@ -469,5 +495,7 @@ void *PairGenDPDE::extract(const char *name, int &dim)
 {
   dim = 0;
   if (strcmp(name, "cut_global") == 0) return (void *) &cut_global;
+  // whether some type's law depends on temperature (fix gendpde then keeps the thermal state)
+  if (strcmp(name, "temperature_dependent") == 0) return (void *) &temperature_dependent;
   return nullptr;
 }

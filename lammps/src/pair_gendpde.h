@@ -51,8 +51,6 @@ PairStyle(gendpde,PairGenDPDE);
 
 namespace LAMMPS_NS {
 
-class FixGenDPDE;
-
 class PairGenDPDE : public Pair {
  public:
   PairGenDPDE(class LAMMPS *);
@@ -68,11 +66,6 @@ class PairGenDPDE : public Pair {
   void unpack_reverse_comm(int, int *, double *) override;
   double memory_usage() override;
   void *extract(const char *, int &) override;
-
-  /** The pair range R (distance units). */
-  double range() const { return cut_global; }
-  /** Whether some type's law depends on temperature (then fix gendpde holds the thermal state). */
-  bool depends_on_temperature() const;
 
  private:
   /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
@@ -101,7 +94,17 @@ class PairGenDPDE : public Pair {
   bool moments() const;
   void grow();
   void particle_error(int status, int i, double volume);
-  FixGenDPDE *thermal_fix();
+  bool depends_on_temperature() const;
+  int temperature_dependent = 0;    // depends_on_temperature() at init_style (extract)
+  // the thermal state of fix gendpde (Fix::extract): per atom eps_i and the entropy sigma_i they
+  // belong to (NaN: not known), C_V by type, the bath temperature, whether the mode is isothermal
+  struct ThermalState {
+    double *energy, *entropy, *heat_capacity;
+    double temperature;
+    int isothermal;
+  };
+  class Fix *thermal_fix();
+  void read_thermal_state(class Fix *, ThermalState &);
 };
 
 }    // namespace LAMMPS_NS

@@ -409,6 +409,7 @@ void FixGenDPDE::sweep()
       extended_cell[3 * i + d] = owner + num_cells[d] * (int) images;
     }
   if (neighbor->lastcall != candidates_built_at) {
+    check_atom_ids();
     rank_blocks();
     find_candidates();
     candidates_built_at = neighbor->lastcall;
@@ -447,6 +448,21 @@ void FixGenDPDE::sweep()
   if (isoenergetic)
     for (int i = 0; i < nlocal; i++)
       if (touched[i]) energy[i] = sweep_energy[i] * mvv2e;
+}
+
+void FixGenDPDE::check_atom_ids()
+{
+  // A pair's random numbers are keyed on its particles' indices, atom ID - 1, as 32-bit numbers (as
+  // OpenMM's particle indices): a larger ID (possible with -DLAMMPS_BIGBIG) would share the streams
+  // of another particle. Refused here, whenever LAMMPS has built its lists (atoms may have come).
+  const std::int64_t max_id = std::int64_t(1) << 32;
+  for (int i = 0; i < atom->nlocal; i++)
+    if ((std::int64_t) atom->tag[i] > max_id)
+      error->one(FLERR,
+                 "fix gendpde: atom ID {} is not allowed: the sweep's random streams take atom IDs "
+                 "1 ... 4294967296 (2^32, a 32-bit particle index ID - 1); renumber the atoms "
+                 "(reset_atom_ids)",
+                 atom->tag[i]);
 }
 
 void FixGenDPDE::find_candidates()
@@ -502,7 +518,8 @@ void FixGenDPDE::find_candidates()
                   const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1],
                                dz = x[a][2] - x[b][2];
                   if (!(dx * dx + dy * dy + dz * dz < reach2)) continue;
-                  const int ta = (int) (tag[a] - 1), tb = (int) (tag[b] - 1);
+                  // (atom IDs 1 ... 2^32: check_atom_ids)
+                  const auto ta = (std::uint32_t) (tag[a] - 1), tb = (std::uint32_t) (tag[b] - 1);
                   candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, 0}
                                                : SweepPair{tb, ta, b, a, 0});
                 }
@@ -606,7 +623,9 @@ void FixGenDPDE::order_pairs()
     std::sort(middle, end, by_pair);
     std::inplace_merge(begin, middle, end, by_pair);
   }
-  for (int k = 0; k < total; k++) block_first[k] = candidates[block_pairs[k]].i;
+  // (interleaveRuns compares first particles for equality only: an index >= 2^31 may wrap to a
+  // negative int and still compares right)
+  for (int k = 0; k < total; k++) block_first[k] = (int) candidates[block_pairs[k]].i;
   for (int r = 0; r < num_blocks; r++)
     SweepDefinition::interleaveRuns(
         &block_pairs[block_rank_start[r]], &block_first[block_rank_start[r]],
@@ -650,8 +669,7 @@ void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergeti
     const double inverse_mass_i = rmass ? 1.0 / rmass[i] : inverse_mass_of_type[type[i]];
     const double inverse_mass_j = rmass ? 1.0 / rmass[j] : inverse_mass_of_type[type[j]];
     const int ab = type[i] * (ntypes + 1) + type[j];
-    CounterRandom::PairStream random((std::uint32_t) seed, step, (std::uint32_t) pair.i,
-                                     (std::uint32_t) pair.j);
+    CounterRandom::PairStream random((std::uint32_t) seed, step, pair.i, pair.j);
     const int failed =
         gendpdeSweepPair(terms.dissipation, terms.conduction, isoenergetic ? 1 : 0, dx, dy, dz, r,
                          range, inverse_mass_i, inverse_mass_j, v[i], v[j],

@@ -108,14 +108,11 @@ class FixGenDPDE : public Fix {
 
   // The sweep (see the header comment).
   struct SweepPair {
-    int i, j;    // tag - 1 of the two particles, i < j (the particle indices of the random stream)
-    int li, lj;    // their local indices (local or ghost)
+    std::uint32_t i, j;    // atom ID - 1 of the two particles, i < j: the stream's particle indices
+    int li, lj;            // their local indices (local or ghost)
     int group;    // the rank of the block it was in when found (the number of blocks: none of this rank's)
   };
-  static std::uint64_t pair_key(const SweepPair &p)
-  {
-    return (std::uint64_t) (std::uint32_t) p.i << 32 | (std::uint32_t) p.j;
-  }
+  static std::uint64_t pair_key(const SweepPair &p) { return (std::uint64_t) p.i << 32 | p.j; }
   int num_cells[3];
   double cell_width[3];
   int block_low[3], block_count[3];    // this rank's blocks
@@ -153,6 +150,7 @@ class FixGenDPDE : public Fix {
   void sweep();
   void prepare_cells();
   void rank_blocks();
+  void check_atom_ids();
   void find_candidates();
   int block_rank_of(int a, int b) const;
   void order_pairs();

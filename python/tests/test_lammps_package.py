@@ -3,7 +3,9 @@
 LAMMPS runs in its lj units with OpenMM's numbers written as they are (nm, kJ/mol, amu, ps): lengths, energies, masses
 and times then need no conversion, so the two engines compute with the same values. Only the temperature scale
 differs (k_B = 1 in lj units): temperatures and theta0 are given as k_B T, heat capacities as C/k_B, heat conductions
-as k_B kappa and thermal pressure coefficients as beta/k_B (exact up to one rounding each).
+as k_B kappa and thermal pressure coefficients as beta/k_B (exact up to one rounding each). The inputs are written by
+the project's one LAMMPS writer, models.lammps_files.lammps_input(units="lj"), from the OpenMM System and integrator
+each test compares with; a test adds only its own output and run commands.
 
 Needs the package built (lammps/build.sh, which scripts/run-tests.sh runs first): build/lammps/lammps/lmp and
 build/lammps/plugin/gendpdeplugin.so, or the paths in GENDPDE_LMP and GENDPDE_LAMMPS_PLUGIN. Ranks: mpirun with
@@ -20,7 +22,7 @@ import pytest
 from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.models.lammps_files import thermo_table
+from openmmgendpde.models.lammps_files import SECTIONS, lammps_input, round_up, thermo_table, write_lammps_input
 
 pytestmark = pytest.mark.lammps
 
@@ -29,7 +31,6 @@ LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp
 PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
 #: OpenMM's Boltzmann constant, kJ/(mol K) (k_B N_A, exact SI values)
 KB = 1.380649e-23 * 6.02214076e23 / 1000
-ESTIMATOR_NAMES = {GenDPDEForce.VA: "va", GenDPDEForce.VB: "vb", GenDPDEForce.VC: "vc"}
 #: A second type's law and thermal parameters (a liquid with thermal expansion, OpenMM units): beta (kJ/mol/nm^3/K),
 #: theta0 (K), C_V (kJ/mol/K), and its pairs' friction (amu/ps) and heat conduction (kJ K/(mol ps)) with type 0.
 BETA, THETA0, SECOND_HEAT_CAPACITY, MIXED_FRICTION, MIXED_CONDUCTION = 0.9, 130.0, 0.2, 20.0, 3.0
@@ -42,30 +43,16 @@ def lammps():
     return LMP
 
 
-def run_lammps(directory, script, ranks=1, check=True):
+def run_lammps(directory, script, ranks=1, check=True, lmp=None):
     """Run lmp on ``script`` (text) in ``directory`` with ``ranks`` MPI ranks; returns the CompletedProcess."""
     (directory / "in.test").write_text(script)
-    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(LMP), "-in", "in.test",
-               "-log", "log.lammps", "-echo", "none"] + (["-screen", "none"] if check else [])
+    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(lmp or LMP), "-in",
+               "in.test", "-log", "log.lammps", "-echo", "none"] + (["-screen", "none"] if check else [])
     result = subprocess.run(command, cwd=directory, capture_output=True, text=True, timeout=300)
     if check and result.returncode != 0:
         log = (directory / "log.lammps").read_text() if (directory / "log.lammps").exists() else ""
         raise AssertionError(f"lmp failed ({result.returncode}):\n{log[-3000:]}\n{result.stdout[-2000:]}")
     return result
-
-
-def write_data(path, positions, edges, masses, types, velocities=None):
-    """A LAMMPS data file (atom_style atomic) of an orthogonal box [0, edges); types 0-based as OpenMM's."""
-    lines = ["GenDPDE test", "", f"{len(positions)} atoms", f"{len(masses)} atom types"]
-    lines += [f"0 {float(edge)!r} {axis}lo {axis}hi" for edge, axis in zip(edges, "xyz")]
-    lines += ["", "Masses", ""] + [f"{t + 1} {float(m)!r}" for t, m in enumerate(masses)]
-    lines += ["", "Atoms # atomic", ""]
-    lines += [f"{i + 1} {types[i] + 1} {float(x)!r} {float(y)!r} {float(z)!r}"
-              for i, (x, y, z) in enumerate(positions)]
-    if velocities is not None:
-        lines += ["", "Velocities", ""]
-        lines += [f"{i + 1} {float(x)!r} {float(y)!r} {float(z)!r}" for i, (x, y, z) in enumerate(velocities)]
-    path.write_text("\n".join(lines) + "\n")
 
 
 def read_dump(path):
@@ -89,8 +76,6 @@ class Scene:
                                                 openmm.Vec3(0, 0, edges[2]))
         self.positions = np.mod(positions, edges)
         self.system, self.force, self.edges = system, force, edges
-        n0, pi0, bulk, gamma = force.getTaitParameters()
-        self.tait = [q._value if hasattr(q, "_value") else q for q in (n0, pi0, bulk, gamma)]
         self.types = np.zeros(len(positions), dtype=int)
         if two_types:
             self.types[1::3] = 1
@@ -112,44 +97,14 @@ class Scene:
             integrator.addTypePair(0, 1, self.mixed_friction, MIXED_CONDUCTION)
         return integrator
 
-    def pair_commands(self):
-        cutoff = self.force.getCutoffDistance()._value
-        lines = [f"pair_style gendpde {cutoff!r} {ESTIMATOR_NAMES[self.force.getDensityEstimator()]} "
-                 f"{self.force.getCutoffScaling()!r}",
-                 "pair_coeff 1 1 Tait " + " ".join(repr(float(p)) for p in self.tait)]
-        if self.num_types > 1:
-            lines.append("pair_coeff 2 2 TaitThermalExpansion " + " ".join(repr(float(p)) for p in self.tait)
-                         + f" {BETA / KB!r} {KB * THETA0!r}")
-        return "\n".join(lines)
-
-    def fix_command(self, integrator, mode_name, initial=None):
-        """fix gendpde with ``integrator``'s parameters (the argon model's) in lj units; ``initial``: the keyword's
-        value (default T0)."""
-        friction = integrator.getFriction()._value
-        conduction = integrator.getHeatConduction()._value
-        capacity = integrator.getHeatCapacity()._value
-        words = [f"fix integrate all gendpde {mode_name} {integrator.getRandomNumberSeed()}",
-                 f"heat_capacity * {capacity / KB!r}", f"friction * * {friction!r}",
-                 f"conduction * * {KB * conduction!r}", f"temperature {KB * TEMPERATURE!r}",
-                 f"initial {initial or repr(KB * TEMPERATURE)}"]
-        if self.num_types > 1:
-            words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {self.mixed_friction!r}",
-                      f"conduction 1 2 {KB * MIXED_CONDUCTION!r}"]
-        return " ".join(words)
-
-    def header(self, directory, velocities=None):
-        write_data(directory / "data", self.positions, self.edges, [MASS] * self.num_types, self.types, velocities)
-        return f"""units lj
-atom_style atomic
-boundary p p p
-atom_modify map array
-plugin load {PLUGIN}
-read_data data
-{self.pair_commands()}
-neighbor 0.1 bin
-neigh_modify every 1 delay 0 check yes
-comm_modify cutoff 2.0
-"""
+    def lammps(self, directory, integrator=None, velocities=None, **options):
+        """The LAMMPS input of this scene in lj units (lammps_files.lammps_input: data file, script sections, any
+        atomfile), written into ``directory``; ``integrator``: the fix's (default an Isoenergetic one), ``options``:
+        lammps_input's (temperatures, restart, skin)."""
+        texts = lammps_input(self.system, integrator or self.integrator(GenDPDEIntegrator.Isoenergetic),
+                             self.positions, velocities, units="lj", plugin=PLUGIN, **options)
+        write_lammps_input(directory, texts)
+        return texts
 
 
 def openmm_energy_and_forces(scene, integrator=None):
@@ -162,8 +117,11 @@ def openmm_energy_and_forces(scene, integrator=None):
     return state.getPotentialEnergy()._value, np.array(state.getForces()._value)
 
 
-def lammps_energy_and_forces(scene, directory, ranks, fix=""):
-    script = scene.header(directory) + fix + """
+def lammps_energy_and_forces(scene, directory, ranks, integrator=None):
+    """U and the forces of the pair style alone, or with fix gendpde of ``integrator`` (the thermal state)."""
+    texts = scene.lammps(directory, integrator)
+    sections = ("header", "variables", "setup", "pair", "neighbors") + (("fix",) if integrator else ())
+    script = texts.commands(*sections) + """
 thermo_style custom step pe
 thermo_modify norm no format float %.17g
 dump forces all custom 1 forces.dump id fx fy fz
@@ -182,13 +140,12 @@ def test_energy_and_forces_equal_reference(lammps, tmp_path, case, ranks):
     the sums run in other orders, so they differ by rounding, ~1e-15)."""
     estimator = {"va": GenDPDEForce.VA, "vc-slab": GenDPDEForce.VC}.get(case, GenDPDEForce.VB)
     scene = Scene(estimator, slab=case == "vc-slab", two_types=case == "two-types-thermal")
-    integrator = fix = None
+    integrator = None
     if case == "two-types-thermal":
         # A law that depends on temperature: its pressure and U read each particle's temperature, here T0
         integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-        fix = scene.fix_command(integrator, "isoenergetic")
+    lammps_energy, lammps_forces = lammps_energy_and_forces(scene, tmp_path, ranks, integrator)
     energy, forces = openmm_energy_and_forces(scene, integrator)
-    lammps_energy, lammps_forces = lammps_energy_and_forces(scene, tmp_path, ranks, fix or "")
     assert abs(lammps_energy - energy) <= 1e-12 * abs(energy)
     rms = np.sqrt(np.mean(forces**2))
     assert np.max(np.abs(lammps_forces - forces)) <= 1e-12 * rms
@@ -216,43 +173,27 @@ def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004, temperatu
     return positions, energies, integrator
 
 
-def lammps_trajectory(scene, directory, mode, mode_name, steps, velocities, ranks, step_size=0.004, restart_at=None,
-                      temperatures=None):
-    """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps; with ``restart_at``,
-    the run stops there, writes a restart file, and a second lmp reads it and runs the rest; ``temperatures``: each
-    particle's initial temperature (K), through an atomfile variable."""
+def lammps_trajectory(scene, directory, mode, steps, velocities, ranks, step_size=0.004, restart_at=None,
+                      temperatures=None, edit=lambda script: script):
+    """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps of the fix in ``mode``;
+    with ``restart_at``, the run stops there, writes a restart file, and a second lmp reads it and runs the rest;
+    ``temperatures``: each particle's initial temperature (K), through an atomfile variable (initial v_theta);
+    ``edit``: what changes the written script (text) before it runs."""
     integrator = scene.integrator(mode, step_size)
-    initial = None
-    if temperatures is not None:
-        # an atomfile: the number of lines, then "ID value" per atom
-        lines = [f"{i + 1} {KB * float(t)!r}" for i, t in enumerate(temperatures)]
-        (directory / "temperatures").write_text("\n".join([str(len(lines))] + lines) + "\n")
-        initial = "v_theta"
-    script = scene.header(directory, velocities) + ("variable theta atomfile temperatures\n" if initial else "") + f"""\
-{scene.fix_command(integrator, mode_name, initial)}
-timestep {step_size!r}
-thermo_style custom step pe ke f_integrate
+    texts = scene.lammps(directory, integrator, velocities, temperatures=temperatures)
+    output = """thermo_style custom step pe ke f_integrate
 thermo 10
 """
     finish = """write_dump all custom final.dump id x y z f_integrate modify format float %.17g sort id
 """
+    script = edit(texts.commands(*SECTIONS[:-2])) + output
     if restart_at is None:
         run_lammps(directory, script + f"run {steps}\n" + finish, ranks)
     else:
         run_lammps(directory, script + f"run {restart_at}\nwrite_restart state.restart\n", ranks)
-        resumed = f"""units lj
-atom_modify map array
-plugin load {PLUGIN}
-read_restart state.restart
-{scene.pair_commands()}
-neighbor 0.1 bin
-neigh_modify every 1 delay 0 check yes
-comm_modify cutoff 2.0
-{scene.fix_command(integrator, mode_name)}
-timestep {step_size!r}
-run {steps - restart_at}
-""" + finish
-        run_lammps(directory, resumed, ranks)
+        resumed = scene.lammps(directory, integrator, restart="state.restart")
+        run_lammps(directory, resumed.commands(*SECTIONS[:-2]) + output + f"run {steps - restart_at}\n" + finish,
+                   ranks)
     table = read_dump(directory / "final.dump")
     return table[:, 1:4], table[:, 4]
 
@@ -276,8 +217,7 @@ def test_trajectory_follows_reference(lammps, tmp_path, mode_name, ranks):
     scene = Scene(GenDPDEForce.VB)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 30, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 30, velocities,
-                                                          ranks)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 30, velocities, ranks)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     if energies is not None:
         assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
@@ -293,8 +233,7 @@ def test_two_types_with_thermal_law_follow_reference(lammps, tmp_path, mode_name
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 20, velocities,
-                                                          2)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 20, velocities, 2)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -307,8 +246,8 @@ def test_a_pair_without_friction_reads_its_stream_as_openmm_does(lammps, tmp_pat
     scene = Scene(GenDPDEForce.VB, two_types=True, mixed_friction=0.0)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -319,8 +258,8 @@ def test_restart_continues_the_run(lammps, tmp_path):
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2, restart_at=10)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2, restart_at=10)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -330,21 +269,34 @@ def test_restart_continues_the_run(lammps, tmp_path):
     (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Tait 1.0 #"), "law Tait takes 4 parameters"),
     (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Murnaghan"), "law 'Murnaghan' is not allowed"),
     (("pair_coeff 1 1 Tait", "#"), "All pair coeffs are not set"),
-    (("comm_modify cutoff 2.0", "comm_modify cutoff 1.2"), "the ghost cutoff 1.2 is below what the sweep needs"),
-    (("fix integrate all gendpde isoenergetic", "fix integrate all gendpde adiabatic"), "mode 'adiabatic'"),
-    ((" initial ", " # "), "the internal energies are not set"),
+    (("comm_modify cutoff", "comm_modify cutoff 1.2 #"), "the ghost cutoff 1.2 is below what the sweep needs"),
+    (("variable mode index isoenergetic", "variable mode index adiabatic"), "mode 'adiabatic'"),
+    (("initial ${initial}", ""), "the internal energies are not set"),
 ])
 def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     """Bad input stops LAMMPS with its ERROR line naming the problem (exit status 1), not a crash."""
     scene = Scene(GenDPDEForce.VB)
-    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-    script = (scene.header(tmp_path) + scene.fix_command(integrator, "isoenergetic")
-              + "\ntimestep 0.004\nrun 1\n")
+    script = scene.lammps(tmp_path).commands(*SECTIONS[:-1]) + "run 1\n"
     assert change[0] in script
     result = run_lammps(tmp_path, script.replace(change[0], change[1], 1), check=False)
     assert result.returncode == 1, result.stdout[-2000:]
     assert "ERROR" in result.stdout and words in result.stdout, result.stdout[-2000:]
 
+
+
+def test_the_written_ghost_cutoff_is_the_fix_s_need(lammps, tmp_path):
+    """The writer's comm_modify cutoff is the ghost cutoff fix gendpde requires (both from the core's
+    sweepGhostCutoff: 1.5 widths of the widest sweep cell + the skin), rounded up to 4 digits: in a slab box (4 cells
+    across x and y, 8 along z: the cells differ) the fix, given less, names what it needs, and the writer's value is
+    that need rounded up."""
+    scene = Scene(GenDPDEForce.VB, slab=True)
+    texts = scene.lammps(tmp_path)
+    script = texts.commands(*SECTIONS[:-1]).replace(f"comm_modify cutoff {texts.ghost!r}", "comm_modify cutoff 0.5")
+    result = run_lammps(tmp_path, script + "run 1\n", check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    need = float(result.stdout.split("is below what the sweep needs, ")[1].split()[0])
+    assert need <= texts.ghost == round_up(need) < need * (1 + 1e-3)
+    assert need == pytest.approx(1.5 * scene.edges[0] / 4 + texts.skin, rel=1e-15)
 
 
 def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
@@ -357,8 +309,8 @@ def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
     temperatures = TEMPERATURE * np.random.default_rng(11).uniform(0.8, 1.2, len(scene.positions))
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities,
                                                temperatures=temperatures)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2, temperatures=temperatures)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2, temperatures=temperatures)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -367,29 +319,27 @@ def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
     """With neighbour lists LAMMPS does not rebuild in time (a skin of 0.001 nm, checked every 1000 steps), the sweep's
     pairs would miss some: fix gendpde stops with an error naming the atom and the step, not a silent wrong step."""
     scene = Scene(GenDPDEForce.VB)
-    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-    script = (scene.header(tmp_path, start_velocities(scene)) + scene.fix_command(integrator, "isoenergetic")
-              + "\ntimestep 0.004\nrun 50\n")
-    script = script.replace("neighbor 0.1 bin\nneigh_modify every 1 delay 0 check yes",
-                            "neighbor 0.001 bin\nneigh_modify every 1000 delay 0 check no")
+    texts = scene.lammps(tmp_path, velocities=start_velocities(scene), skin=0.001)
+    script = texts.commands(*SECTIONS[:-1]) + "run 50\n"
+    assert "neighbor 0.001 bin\nneigh_modify every 1 delay 0 check yes" in script
+    script = script.replace("neigh_modify every 1 delay 0 check yes", "neigh_modify every 1000 delay 0 check no")
     result = run_lammps(tmp_path, script, check=False)
     assert result.returncode != 0
     assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout
 
 
 def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):
-    """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 2.0 nm: the sweep's
-    exchanges then reach past the neighbouring rank (two hops), and the trajectory is still OpenMM's to rounding."""
+    """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 1.95 nm (1.5 sweep
+    cells + the skin): the sweep's exchanges then reach past the neighbouring rank (two hops), and the trajectory is
+    still OpenMM's to rounding."""
     scene = Scene(GenDPDEForce.VB)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 30, velocities)
-    header = Scene.header
 
-    def slabs(self, directory, velocities=None):
-        return header(self, directory, velocities).replace("boundary p p p\n", "boundary p p p\nprocessors 1 1 4\n")
-    scene.header = slabs.__get__(scene)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 30, velocities, 4)
+    def slabs(script):
+        return script.replace("boundary p p p\n", "boundary p p p\nprocessors 1 1 4\n")
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 30,
+                                                          velocities, 4, edit=slabs)
     assert "1 by 1 by 4 MPI processor grid" in (tmp_path / "log.lammps").read_text()
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12

@@ -29,6 +29,10 @@ pytestmark = pytest.mark.lammps
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp"))
 PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
+#: The same LAMMPS and plugin built with -DLAMMPS_SIZES=bigbig (64-bit atom IDs): lammps/build.sh --bigbig.
+BIGBIG_LMP = pathlib.Path(os.environ.get("GENDPDE_BIGBIG_LMP", ROOT / "build/lammps-bigbig/lammps/lmp"))
+BIGBIG_PLUGIN = pathlib.Path(os.environ.get("GENDPDE_BIGBIG_LAMMPS_PLUGIN",
+                                            ROOT / "build/lammps-bigbig/plugin/gendpdeplugin.so"))
 #: OpenMM's Boltzmann constant, kJ/(mol K) (k_B N_A, exact SI values)
 KB = 1.380649e-23 * 6.02214076e23 / 1000
 #: A second type's law and thermal parameters (a liquid with thermal expansion, OpenMM units): beta (kJ/mol/nm^3/K),
@@ -101,8 +105,9 @@ class Scene:
         """The LAMMPS input of this scene in lj units (lammps_files.lammps_input: data file, script sections, any
         atomfile), written into ``directory``; ``integrator``: the fix's (default an Isoenergetic one), ``options``:
         lammps_input's (temperatures, restart, skin)."""
+        options.setdefault("plugin", PLUGIN)
         texts = lammps_input(self.system, integrator or self.integrator(GenDPDEIntegrator.Isoenergetic),
-                             self.positions, velocities, units="lj", plugin=PLUGIN, **options)
+                             self.positions, velocities, units="lj", **options)
         write_lammps_input(directory, texts)
         return texts
 
@@ -343,3 +348,63 @@ def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):
     assert "1 by 1 by 4 MPI processor grid" in (tmp_path / "log.lammps").read_text()
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+@pytest.fixture(scope="module")
+def bigbig():
+    if not (BIGBIG_LMP.exists() and BIGBIG_PLUGIN.exists()):
+        pytest.fail(f"the bigbig build of the package is missing ({BIGBIG_LMP}, {BIGBIG_PLUGIN}): run lammps/build.sh "
+                    f"--bigbig")
+    return BIGBIG_LMP
+
+
+def with_atom_id(data, old, new):
+    """A data file's text with atom ID ``old`` renamed ``new`` (in its Atoms and Velocities sections)."""
+    lines = data.splitlines()
+    start = lines.index("Atoms # atomic")
+    for k in range(start, len(lines)):
+        if lines[k].split(" ", 1)[0] == str(old):
+            lines[k] = f"{new} {lines[k].split(' ', 1)[1]}"
+    return "\n".join(lines) + "\n"
+
+
+def test_the_package_in_a_bigbig_build(bigbig, tmp_path):
+    """LAMMPS and the plugin built with -DLAMMPS_SIZES=bigbig (64-bit atom IDs, as LAMMPS asks every contribution to
+    build and run): the energy and forces (2 ranks) and 20 isoenergetic steps (2 ranks) are OpenMM's to rounding, as
+    in the default build; the last atom renumbered 2^32, the largest ID the random streams index, runs; renumbered
+    2^32 + 1 it is refused with an error naming the ID, not truncated to another particle's streams."""
+    scene = Scene(GenDPDEForce.VB)
+    energy, forces = openmm_energy_and_forces(scene)
+    texts = scene.lammps(tmp_path, plugin=BIGBIG_PLUGIN)
+    script = texts.commands("header", "variables", "setup", "pair", "neighbors") + """
+thermo_style custom step pe
+thermo_modify norm no format float %.17g
+dump forces all custom 1 forces.dump id fx fy fz
+dump_modify forces format float %.17g sort id
+run 0
+"""
+    run_lammps(tmp_path, script, 2, lmp=bigbig)
+    assert abs(thermo_table((tmp_path / "log.lammps").read_text())[0]["PotEng"] - energy) <= 1e-12 * abs(energy)
+    rms = np.sqrt(np.mean(forces**2))
+    assert np.max(np.abs(read_dump(tmp_path / "forces.dump")[:, 1:4] - forces)) <= 1e-12 * rms
+
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
+    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+    texts = scene.lammps(tmp_path, integrator, velocities, plugin=BIGBIG_PLUGIN)
+    finish = "run 20\nwrite_dump all custom final.dump id x y z f_integrate modify format float %.17g sort id\n"
+    run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + finish, 2, lmp=bigbig)
+    table = read_dump(tmp_path / "final.dump")
+    assert np.max(np.abs(table[:, 1:4] - positions)) <= 1e-12
+    assert np.max(np.abs(table[:, 4] / energies - 1)) <= 1e-12
+
+    last = len(scene.positions)
+    for atom_id, allowed in ((2**32, True), (2**32 + 1, False)):
+        (tmp_path / "gendpde.data").write_text(with_atom_id(texts.data, last, atom_id))
+        result = run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + "run 2\n", 2, check=False, lmp=bigbig)
+        if allowed:
+            assert result.returncode == 0, result.stdout[-2000:]
+        else:
+            assert result.returncode != 0
+            assert f"atom ID {atom_id} is not allowed" in result.stdout and "1 ... 4294967296" in result.stdout, \
+                result.stdout[-2000:]

@@ -42,9 +42,9 @@
 #include <mpi.h>
 
 // A hint to load a particle's data a few pair updates before the sweep reads it: without it a
-// 32,000-particle run on one rank took a median 5% more CPU time (perf stat, 200 steps, 6 alternating
-// pairs of runs: -1% to +9%). GCC, Clang and the compilers that define __GNUC__ (Intel's) have
-// __builtin_prefetch; elsewhere the hint is left out.
+// 32,000-particle run on one rank took a median 5% more CPU time (perf stat, 200 steps, 6
+// alternating pairs of runs: -1% to +9%). GCC, Clang and the compilers that define __GNUC__
+// (Intel's) have __builtin_prefetch; elsewhere the hint is left out.
 #if defined(__GNUC__) || defined(__clang__)
 #define GENDPDE_PREFETCH(address) __builtin_prefetch(address)
 #else
@@ -194,7 +194,8 @@ void FixGenDPDE::init()
 {
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
-  // pair_style gendpde's range R and whether its laws depend on temperature, by name (Pair::extract)
+  // pair_style gendpde's range R and whether its laws depend on temperature, by name
+  // (Pair::extract)
   Pair *pair = force->pair_match("^gendpde$", 0);
   has_pair = pair != nullptr;
   pair_range = 0.0;
@@ -230,10 +231,11 @@ void FixGenDPDE::init()
 
 void FixGenDPDE::setup_pre_force(int /*vflag*/)
 {
-  // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a restart has them).
+  // Before the first force evaluation of a run: the internal energies C_V T of a fresh start (a
+  // restart has them).
   if (!energies_set && has_initial) {
-    // one temperature, or each particle's from an atom-style variable (e.g. an atomfile variable of the
-    // temperatures an OpenMM run had: GenDPDEIntegrator.getParticleTemperatures)
+    // one temperature, or each particle's from an atom-style variable (e.g. an atomfile variable of
+    // the temperatures an OpenMM run had: GenDPDEIntegrator.getParticleTemperatures)
     std::vector<double> theta(atom->nlocal, initial_temperature);
     if (!initial_variable.empty()) {
       const int index = input->variable->find(initial_variable.c_str());
@@ -276,9 +278,9 @@ double FixGenDPDE::ghost_need() const
 
 void FixGenDPDE::make_pair_tables()
 {
-  // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over mvv2e): 1/m, C_V,
-  // kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic) or sqrt(2 gamma k_B T) of the bath
-  // (isothermal).
+  // What the pair updates read by type and type pair, in the units of m v^2/2 (energies over
+  // mvv2e): 1/m, C_V, kappa, and the noise amplitude, sqrt(2 k_B kappa) of the heat (isoenergetic)
+  // or sqrt(2 gamma k_B T) of the bath (isothermal).
   const int ntypes = atom->ntypes;
   const double mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
   const bool isoenergetic = (mode == ISOENERGETIC);
@@ -310,7 +312,8 @@ void FixGenDPDE::reset_dt()
 
 void FixGenDPDE::initial_integrate(int /*vflag*/)
 {
-  // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half kick, drift.
+  // docs/theory.md section 6: the pair sweep at fixed positions on the full-step velocities, half
+  // kick, drift.
   if (terms.dissipation || terms.conduction) sweep();
   kick();
   double **x = atom->x, **v = atom->v;
@@ -319,7 +322,8 @@ void FixGenDPDE::initial_integrate(int /*vflag*/)
   for (int i = 0; i < atom->nlocal; i++) {
     if (!(mask[i] & groupbit)) continue;
     const double dx = dtv * v[i][0], dy = dtv * v[i][1], dz = dtv * v[i][2];
-    // A particle that would cross its whole neighbourhood in one step is no longer being integrated.
+    // A particle that would cross its whole neighbourhood in one step is no longer being
+    // integrated.
     if (!(dx * dx + dy * dy + dz * dz <= limit * limit))
       error->one(
           FLERR,
@@ -354,8 +358,8 @@ void FixGenDPDE::kick()
 
 void FixGenDPDE::prepare_cells()
 {
-  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's blocks: those whose
-  // centre, boxlo + (2b + 1.5) w, is in the subdomain.
+  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's
+  // blocks: those whose centre, boxlo + (2b + 1.5) w, is in the subdomain.
   const double range = pair_range;
   for (int d = 0; d < 3; d++) {
     num_cells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
@@ -398,8 +402,8 @@ void FixGenDPDE::sweep()
                  comm->cutghost[d], need, need);
   prepare_cells();
 
-  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy eps/mvv2e (the
-  // pair updates' units: kinetic energies m v^2/2), to every ghost.
+  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy
+  // eps/mvv2e (the pair updates' units: kinetic energies m v^2/2), to every ghost.
   const bool isoenergetic = (mode == ISOENERGETIC);
   double **x = atom->x;
   for (int i = 0; i < nlocal; i++) {
@@ -410,7 +414,8 @@ void FixGenDPDE::sweep()
   }
   comm_phase = 0;
   comm->forward_comm_fix(this, 7);
-  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where it is.
+  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it
+  // where it is.
   for (int i = 0; i < nall; i++)
     for (int d = 0; d < 3; d++) {
       const int owner = extended_cell[3 * i + d];
@@ -427,8 +432,9 @@ void FixGenDPDE::sweep()
     for (int i = 0; i < nlocal; i++)
       for (int d = 0; d < 3; d++) built_positions[3 * i + d] = x[i][d];
   } else {
-    // The candidates (and the ghosts) hold only while every particle has moved less than half the skin since
-    // LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees; other settings may not.
+    // The candidates (and the ghosts) hold only while every particle has moved less than half the
+    // skin since LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees;
+    // other settings may not.
     const double limit = 0.25 * neighbor->skin * neighbor->skin;
     for (int i = 0; i < nlocal; i++) {
       const double dx = x[i][0] - built_positions[3 * i], dy = x[i][1] - built_positions[3 * i + 1],
@@ -445,7 +451,8 @@ void FixGenDPDE::sweep()
   }
   order_pairs();
   std::fill(touched.begin(), touched.begin() + nall, 0);
-  // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners and back out.
+  // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners
+  // and back out.
   for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
     std::fill(modified.begin(), modified.begin() + nall, 0);
     for (int rank = colour_start[colour]; rank < colour_start[colour + 1]; rank++)
@@ -478,8 +485,8 @@ void FixGenDPDE::check_atom_ids()
 void FixGenDPDE::find_candidates()
 {
   // The particles within a skin of this rank's cells (no other can reach them before the next
-  // neighbour list: each moves less than skin/2), binned in cells at least R + skin wide; their pairs
-  // closer than R + skin, found when LAMMPS has built its own lists.
+  // neighbour list: each moves less than skin/2), binned in cells at least R + skin wide; their
+  // pairs closer than R + skin, found when LAMMPS has built its own lists.
   //
   // Not a neighbour list requested from LAMMPS: a half list with ghosts (newton off, ghost = 1)
   // gives the same candidates (the sweep's dumps are byte for byte the same) but costs more. LAMMPS
@@ -545,9 +552,9 @@ void FixGenDPDE::find_candidates()
                 }
               }
       }
-  // By the block each candidate is in now (the others last), then in (i, j) order, the order that defines the
-  // sweep within a block: each step reads a block's particles together, and the pairs that are still in the same
-  // block come out in order.
+  // By the block each candidate is in now (the others last), then in (i, j) order, the order that
+  // defines the sweep within a block: each step reads a block's particles together, and the pairs
+  // that are still in the same block come out in order.
   const int num_blocks = colour_start.back();
   for (SweepPair &candidate : candidates) {
     const int rank = block_rank_of(candidate.li, candidate.lj);
@@ -560,8 +567,8 @@ void FixGenDPDE::find_candidates()
 
 int FixGenDPDE::block_rank_of(int a, int b) const
 {
-  // The rank of the block of a pair's home cell (the lower of its two cells along each direction), or -1 if that
-  // block is not this rank's.
+  // The rank of the block of a pair's home cell (the lower of its two cells along each direction),
+  // or -1 if that block is not this rank's.
   int block = 0;
   for (int d = 2; d >= 0; d--) {
     const int home = std::min(extended_cell[3 * a + d], extended_cell[3 * b + d]) - grid_low[d];
@@ -574,8 +581,8 @@ int FixGenDPDE::block_rank_of(int a, int b) const
 
 void FixGenDPDE::rank_blocks()
 {
-  // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a colour gives the
-  // same result: its blocks share no particle).
+  // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a
+  // colour gives the same result: its blocks share no particle).
   const int num_blocks = block_count[0] * block_count[1] * block_count[2];
   rank_of_block.assign(num_blocks, 0);
   colour_start.assign(SweepDefinition::numColours + 1, 0);
@@ -594,10 +601,10 @@ void FixGenDPDE::rank_blocks()
 
 void FixGenDPDE::order_pairs()
 {
-  // Each candidate closer than R goes to the block of its home cell, if that block is this rank's. A block's pairs
-  // are those of its group of candidates still in it (in (i, j) order), merged in (i, j) order with the few that
-  // moved in from other groups since the candidates were found; then the lists of four consecutive first particles
-  // are interleaved.
+  // Each candidate closer than R goes to the block of its home cell, if that block is this rank's.
+  // A block's pairs are those of its group of candidates still in it (in (i, j) order), merged in
+  // (i, j) order with the few that moved in from other groups since the candidates were found; then
+  // the lists of four consecutive first particles are interleaved.
   const int num_blocks = colour_start.back();
   double **x = atom->x;
   const double range2 = pair_range * pair_range;
@@ -657,8 +664,9 @@ void FixGenDPDE::order_pairs()
 
 void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergetic)
 {
-  // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM platform, with the
-  // run's terms (any pair of types with friction, with conduction), as GenDPDEIntegrator decides them.
+  // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM
+  // platform, with the run's terms (any pair of types with friction, with conduction), as
+  // GenDPDEIntegrator decides them.
   double **x = atom->x, **v = atom->v;
   const tagint *tag = atom->tag;
   const double *rmass = atom->rmass;
@@ -710,15 +718,16 @@ void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergeti
 
 /* ---------------------------------------------------------------------- */
 
-// The exchanges of the sweep. At its start (comm_phase 0) every ghost gets its owner's velocity, energy and cell. After
-// each colour only what the colour changed travels: a flag per particle, then its velocity and energy if it was
-// updated (on its rank, or received), so the reverse exchange carries the ghosts a block updated to their owners and
-// the forward one the owners' new values out to every ghost.
+// The exchanges of the sweep. At its start (comm_phase 0) every ghost gets its owner's velocity,
+// energy and cell. After each colour only what the colour changed travels: a flag per particle,
+// then its velocity and energy if it was updated (on its rank, or received), so the reverse
+// exchange carries the ghosts a block updated to their owners and the forward one the owners' new
+// values out to every ghost.
 
 int FixGenDPDE::pack_state(int i, double *buf) const
 {
-  // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a colour only if the
-  // colour changed it, behind a flag.
+  // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a
+  // colour only if the colour changed it, behind a flag.
   int m = 0;
   if (comm_phase == 1) {
     buf[m++] = modified[i];
@@ -736,8 +745,9 @@ int FixGenDPDE::pack_state(int i, double *buf) const
 
 int FixGenDPDE::unpack_state(int i, const double *buf)
 {
-  // What pack_state wrote, set (not added) on particle i: after a colour one block at most updated a particle, so it
-  // gets exactly the bits the updating rank computed; it is then marked changed, to be sent on in a later swap.
+  // What pack_state wrote, set (not added) on particle i: after a colour one block at most updated
+  // a particle, so it gets exactly the bits the updating rank computed; it is then marked changed,
+  // to be sent on in a later swap.
   int m = 0;
   if (comm_phase == 1) {
     if (buf[m++] == 0.0) return m;
@@ -783,7 +793,8 @@ void FixGenDPDE::unpack_reverse_comm(int n, int *list, double *buf)
 
 double FixGenDPDE::compute_scalar()
 {
-  // The sum of the internal energies (energy units): etotal + this is the energy an isoenergetic run conserves.
+  // The sum of the internal energies (energy units): etotal + this is the energy an isoenergetic
+  // run conserves.
   double local = 0.0, total = 0.0;
   for (int i = 0; i < atom->nlocal; i++)
     if (atom->mask[i] & groupbit) local += energy[i];

@@ -160,9 +160,10 @@ void PairGenDPDE::coeff(int narg, char **arg)
   utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
   utils::bounds(FLERR, arg[1], 1, atom->ntypes, jlo, jhi, error);
 
-  // The law and its parameters as GenDPDEForce takes them (the table of GenDPDEEquationsOfState.h: a law that extends
-  // Tait takes n0, pi0, B_T, gamma_T first), laid out as the physics core reads them. The table's ranges are in
-  // OpenMM's units; only their signs hold in any LAMMPS units, and those are checked.
+  // The law and its parameters as GenDPDEForce takes them (the table of GenDPDEEquationsOfState.h:
+  // a law that extends Tait takes n0, pi0, B_T, gamma_T first), laid out as the physics core reads
+  // them. The table's ranges are in OpenMM's units; only their signs hold in any LAMMPS units, and
+  // those are checked.
   const std::string name = arg[2];
   const EquationsOfState::Law *found = nullptr;
   for (const EquationsOfState::Law &candidate : EquationsOfState::laws)
@@ -179,7 +180,8 @@ void PairGenDPDE::coeff(int narg, char **arg)
     error->all(FLERR, "pair_coeff gendpde: law {} takes {} parameters ({}); got {}", name,
                num_given, names, narg - 3);
   }
-  // Each parameter by the rule of its range that holds in any units (GenDPDEForce's ranges are in OpenMM's).
+  // Each parameter by the rule of its range that holds in any units (GenDPDEForce's ranges are in
+  // OpenMM's).
   Law law;
   law.law = found->coreId;
   for (int k = 0; k < num_given; k++) {
@@ -211,7 +213,8 @@ static_assert(EquationsOfState::maxParameters + 4 <= 12 && EquationsOfState::cor
 
 void PairGenDPDE::pack(Law &law) const
 {
-  // The core's parameters with the background pressure, packed as GenDPDEForce packs them (packCoreParameters).
+  // The core's parameters with the background pressure, packed as GenDPDEForce packs them
+  // (packCoreParameters).
   if (law.law >= 0)
     law.integer_power = EquationsOfState::packCoreParameters(EquationsOfState::laws[law.law],
                                                              law.given, background, law.parameter);
@@ -320,8 +323,9 @@ void PairGenDPDE::compute(int eflag, int vflag)
   const double cut = cut_global, cut2 = cut * cut, inv_cut = 1.0 / cut;
   const bool vc = moments();
 
-  // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij over the pairs;
-  // the pairs closer than R kept with their geometry for pass 2 (the list's others, up to R + skin, are not).
+  // Pass 1 (docs/theory.md sections 2-3): n0_i = sum_j w(r_ij) and V-C's g_i = sum_j (phi/r) d_ij
+  // over the pairs; the pairs closer than R kept with their geometry for pass 2 (the list's others,
+  // up to R + skin, are not).
   close_pairs.clear();    // (keeps its capacity: no step allocates once the list has grown)
   for (int i = 0; i < nall; i++) {
     density[i] = 0.0;
@@ -355,7 +359,8 @@ void PairGenDPDE::compute(int eflag, int vflag)
   }
   comm->reverse_comm_pair(this);
 
-  // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient, V-C's moment force.
+  // Each owner's state (sections 3-4, 11): its volume, pressure, term of U, force coefficient,
+  // V-C's moment force.
   Fix *fix = temperature_dependent ? thermal_fix() : nullptr;
   ThermalState state = {nullptr, nullptr, nullptr, 0.0, 0};
   if (fix) read_thermal_state(fix, state);
@@ -388,8 +393,9 @@ void PairGenDPDE::compute(int eflag, int vflag)
     if (vc)
       for (int k = 0; k < 3; k++) moment_force[i][k] = moment_force_scale * moment[i][k];
     if (thermal) {
-      // The integrator keeps the thermal state each evaluation finds (Isoenergetic, Conservative); the Isothermal
-      // mode does not update eps_i, so the densities it belongs to are forgotten (GenDPDEIntegratorUtilities).
+      // The integrator keeps the thermal state each evaluation finds (Isoenergetic, Conservative);
+      // the Isothermal mode does not update eps_i, so the densities it belongs to are forgotten
+      // (GenDPDEIntegratorUtilities).
       if (keep) {
         stored_energy[i] = thermal_energy;
         stored_entropy[i] = density_entropy;
@@ -424,8 +430,8 @@ void PairGenDPDE::compute(int eflag, int vflag)
   const bool virial = vflag_global || vflag_fdotr;
   if (vflag_fdotr) virial_fdotr_compute();    // (which clears vflag_fdotr)
   if (background != 0.0) {
-    // docs/theory.md section 12: U gains p_b V_box and the virial's trace -3 p_b V_box (the core's box term),
-    // shared equally by the particles (as GenDPDEForce shares them)
+    // docs/theory.md section 12: U gains p_b V_box and the virial's trace -3 p_b V_box (the core's
+    // box term), shared equally by the particles (as GenDPDEForce shares them)
     const double volume = domain->xprd * domain->yprd * domain->zprd,
                  natoms = (double) atom->natoms;
     const double share = gendpdeBackgroundEnergy(background, volume) / natoms;

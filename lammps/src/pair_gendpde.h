@@ -14,19 +14,20 @@
    Contributing authors: the openmm-gendpde developers
 ------------------------------------------------------------------------- */
 
-/* -------------------------------------------------------------------
-   openmm-gendpde's LAMMPS package: pair_style gendpde, GenDPDE's many-body
-   conservative force (docs/theory.md sections 2-4 and 11; docs/lammps.md).
+/* ----------------------------------------------------------------------
+   pair_style gendpde: GenDPDE's many-body conservative force (docs/theory.md
+   sections 2-4, 11 and 12 of openmm-gendpde; doc/pair_gendpde.rst).
 
    pair_style gendpde R estimator f_cut [background p_b]
      R          pair range (distance units)
      estimator  va | vb | vc  (the density estimators V-A, V-B, V-C)
      f_cut      cutoff scaling: the estimators' reduced range is R/f_cut
-     p_b        background pressure (pressure units, >= 0; docs/theory.md section 12)
+     p_b        background pressure (energy/volume units, >= 0)
    pair_coeff I I law parameters ...
      one law per type with its parameters, as GenDPDEForce::setEquationOfState
-     takes them (the table of GenDPDEEquationsOfState.h; docs/lammps.md).
-     A pair of different types takes no coefficients.
+     takes them (the table of GenDPDEEquationsOfState.h); pressure-like
+     parameters in energy/volume units. A pair of different types takes no
+     coefficients.
 
    Two passes over a half neighbor list (newton on): the primitive densities
    n0_i (and V-C's first moments g_i) summed over pairs, ghosts' sums
@@ -34,7 +35,7 @@
    core (gendpdeParticleState), its force coefficient (and V-C's moment force)
    forward-communicated to the ghosts; then the pair forces
    (gendpdePairForce). A law that depends on temperature reads and keeps each
-   particle's thermal state in fix gendpde.
+   particle's thermal state in fix gendpde, by name (Fix::extract).
 ------------------------------------------------------------------------- */
 
 #ifdef PAIR_CLASS
@@ -47,7 +48,6 @@ PairStyle(gendpde,PairGenDPDE);
 #define LMP_PAIR_GENDPDE_H
 
 #include "pair.h"
-#include <vector>
 
 namespace LAMMPS_NS {
 
@@ -68,12 +68,13 @@ class PairGenDPDE : public Pair {
   void *extract(const char *, int &) override;
 
  private:
-  /** A type's law in the physics core's terms (gendpdeLocalEquationOfState). */
+  // A type's law in the physics core's terms (gendpdeLocalEquationOfState).
   struct Law {
     int law = -1;    // GENDPDE_EOS_*; -1: not set
-    double given[12] = {
-        0.0};    // as pair_coeff gives them (the Tait four first if the law extends Tait)
-    double parameter[12] = {0.0};    // in the core's order, the background pressure included (pack)
+    // as pair_coeff gives them (the Tait four first if the law extends Tait)
+    double given[12] = {0.0};
+    // in the core's order, the background pressure included (pack)
+    double parameter[12] = {0.0};
     int integer_power = -1;
   };
   double background = 0.0;
@@ -83,7 +84,8 @@ class PairGenDPDE : public Pair {
   double k_per_density, volume_scale, derivative_scale, moment_scale, density_softening;
   double weight_scale, weight_derivative_scale;
   std::vector<Law> laws;    // by type, 1 ... ntypes
-  // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's moment force q
+  // per atom (local and ghost): primitive density, V-C's moment g, force coefficient, V-C's
+  // moment force q
   int nmax = 0;
   double *density = nullptr, **moment = nullptr, *coefficient = nullptr, **moment_force = nullptr;
   struct ClosePair {

@@ -22,7 +22,15 @@ import pytest
 from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.models.lammps_files import SECTIONS, lammps_input, round_up, thermo_table, write_lammps_input
+from openmmgendpde.models.fluid_files import load_parameters
+from openmmgendpde.models.lammps_files import (
+    ENERGY,
+    SECTIONS,
+    lammps_input,
+    round_up,
+    thermo_table,
+    write_lammps_input,
+)
 
 pytestmark = pytest.mark.lammps
 
@@ -408,3 +416,41 @@ run 0
             assert result.returncode != 0
             assert f"atom ID {atom_id} is not allowed" in result.stdout and "1 ... 4294967296" in result.stdout, \
                 result.stdout[-2000:]
+
+
+EXAMPLE = ROOT / "lammps" / "examples" / "in.gendpde"
+
+
+def test_the_example_deck(lammps, tmp_path):
+    """lammps/examples/in.gendpde, the package's example (the calibrated argon model in metal units, 864 particles
+    made by create_atoms): at step 0 its potential energy is what OpenMM's Reference platform computes for the model
+    file at LAMMPS's positions and box, to 1e-12 (so the deck's numbers are the model's); its IDs are reset in
+    spatial order, so 100 steps on 1 and on 2 ranks print the same thermo output (to the rounding of the force sums,
+    1e-9); and the conserved energy etotal + f_1 holds to 1e-6."""
+    deck = EXAMPLE.read_text().replace("thermo_modify   format float %.10g", "thermo_modify   format float %.17g")
+    assert "%.17g" in deck
+    first = deck + "write_dump all custom start.dump id x y z modify format float %.17g sort id\n"
+    run_lammps(tmp_path, f"variable plugin index {PLUGIN}\nvariable steps index 0\n" + first)
+    start = thermo_table((tmp_path / "log.lammps").read_text())[0]
+    lines = (tmp_path / "start.dump").read_text().splitlines()
+    edge = [float(lines[5 + k].split()[1]) - float(lines[5 + k].split()[0]) for k in range(3)]
+    table = read_dump(tmp_path / "start.dump")
+    model = load_parameters(ROOT / "docs" / "figures" / "calibrated-argon-model.toml").liquid(len(table))
+    box = [openmm.Vec3(*(0.1 * edge[k] if k == axis else 0 for k in range(3))) for axis in range(3)]
+    context = openmm.Context(model.system, openmm.VerletIntegrator(0.001),
+                             openmm.Platform.getPlatformByName("Reference"))
+    context.setPeriodicBoxVectors(*box)
+    context.setPositions(0.1 * table[:, 1:4])
+    energy = context.getState(getEnergy=True).getPotentialEnergy()._value   # kJ/mol
+    assert start["PotEng"] == pytest.approx(energy * ENERGY, rel=1e-12)
+
+    runs = []
+    for ranks in (1, 2):
+        run_lammps(tmp_path, f"variable plugin index {PLUGIN}\nvariable steps index 100\n" + deck, ranks)
+        runs.append(thermo_table((tmp_path / "log.lammps").read_text()))
+    assert sorted(runs[0]) == sorted(runs[1]) == list(range(0, 101, 20))
+    for step, row in runs[0].items():
+        for column, value in row.items():
+            assert runs[1][step][column] == pytest.approx(value, rel=1e-9, abs=1e-9), (step, column)
+    assert runs[0][100]["v_conserved"] == pytest.approx(runs[0][0]["v_conserved"], rel=1e-6)
+    assert runs[0][100]["Temp"] != pytest.approx(runs[0][0]["Temp"], rel=1e-3)   # (the run did move)

@@ -12,6 +12,7 @@ build/lammps/plugin/gendpdeplugin.so, or the paths in GENDPDE_LMP and GENDPDE_LA
 --oversubscribe (4 ranks on 2 cores is fine for correctness).
 """
 
+import importlib.util
 import os
 import pathlib
 import subprocess
@@ -454,3 +455,126 @@ def test_the_example_deck(lammps, tmp_path):
             assert runs[1][step][column] == pytest.approx(value, rel=1e-9, abs=1e-9), (step, column)
     assert runs[0][100]["v_conserved"] == pytest.approx(runs[0][0]["v_conserved"], rel=1e-6)
     assert runs[0][100]["Temp"] != pytest.approx(runs[0][0]["Temp"], rel=1e-3)   # (the run did move)
+
+
+UNITTEST = ROOT / "lammps" / "unittest"
+#: LAMMPS's force-style test inputs (in.metal, data.metal), from the source tree lammps/build.sh fetched.
+FORCE_STYLE_INPUTS = next((ROOT / "build" / "lammps" / "source").glob("lammps-*/unittest/force-styles/tests"), None)
+#: LAMMPS's metal units: pressure = virial x nktv2p / V (update.cpp).
+NKTV2P = 1.6021765e6
+
+
+def read_force_style_yaml(path):
+    """A force-styles YAML file (LAMMPS's unittest/force-styles layout, as yaml_writer.cpp writes it): {key: text}
+    with block values ("! |", "! |-", "! |2") joined by newlines."""
+    entries, key = {}, None
+    for line in pathlib.Path(path).read_text().splitlines():
+        if line in ("---", "..."):
+            continue
+        if line.startswith(" ") and key is not None:
+            entries[key].append(line.strip())
+            continue
+        key, _, value = line.partition(":")
+        value = value.strip()
+        entries[key] = [] if value.startswith("! |") else [value.strip('"').replace('! ""', "").replace('!', "")]
+    return {k: "\n".join(v).strip() for k, v in entries.items()}
+
+
+def fp_error(value, reference):
+    """test_pair_style's EXPECT_FP_LE_WITH_EPS: the difference relative to the smaller magnitude (absolute at 0)."""
+    value, reference = np.asarray(value, dtype=float), np.asarray(reference, dtype=float)
+    smaller = np.minimum(np.abs(value), np.abs(reference))
+    difference = np.abs(value - reference)
+    return np.max(np.where(smaller == 0, difference, difference / np.where(smaller == 0, 1, smaller)))
+
+
+def force_style_run(directory, config, script_tail, ranks=1, start=None):
+    """Run LAMMPS as test_pair_style sets it up (newton_pair, input_dir, the YAML's pre_commands, its input file,
+    pair_style, pair_coeff, post_commands), or from ``start`` (commands that replace all that, e.g. read_restart),
+    then ``script_tail``; (thermo rows, forces by ID, virial from the pair's pressure tensor)."""
+    setup = start or "\n".join([
+        "variable newton_pair index on", f"variable input_dir index {FORCE_STYLE_INPUTS}",
+        f"variable gendpde_plugin index {PLUGIN}", config["pre_commands"],
+        f"include {FORCE_STYLE_INPUTS / config['input_file']}", f"pair_style {config['pair_style']}",
+        *(f"pair_coeff {line}" for line in config["pair_coeff"].splitlines()),
+        "pair_modify table 0", "pair_modify table/disp 0", config["post_commands"]])
+    output = """
+compute virial all pressure NULL pair
+thermo_style custom step pe vol c_virial[1] c_virial[2] c_virial[3] c_virial[4] c_virial[5] c_virial[6]
+thermo_modify format float %.17g
+"""
+    finish = "write_dump all custom forces.dump id fx fy fz modify format float %.17g sort id\n"
+    run_lammps(directory, setup + output + script_tail + finish, ranks)
+    rows = thermo_table((directory / "log.lammps").read_text())
+    return rows, read_dump(directory / "forces.dump")[:, 1:4], pair_virial(rows[max(rows)])
+
+
+def pair_virial(row):
+    """The pair's virial (xx, yy, zz, xy, xz, yz; energy units, LAMMPS's pair->virial) of a thermo row with the
+    pair's pressure tensor (compute pressure NULL pair) and the volume."""
+    return [row[f"c_virial[{k}]"] * row["Volume"] / NKTV2P for k in range(1, 7)]
+
+
+@pytest.mark.parametrize("name", sorted(path.name for path in UNITTEST.glob("manybody-pair-gendpde*.yaml")))
+def test_the_force_styles_yaml(lammps, tmp_path, name):
+    """lammps/unittest/NAME, a YAML test of LAMMPS's force-styles kind with OpenMM's Reference values
+    (lammps/unittest/pair_gendpde_yaml.py), checked as LAMMPS's test_pair_style checks one: on LAMMPS's own test
+    system (in.metal, data.metal) the energy, the pair virial and every force component at the start, after 4 steps
+    of fix nve (forces to 5 epsilon, as the tester), after write_restart/read_restart and after write_data/read_data
+    (in new processes: the plugin's styles do not survive LAMMPS's clear), each to the YAML's epsilon relative to the
+    smaller of the two values; newton pair on (the style requires it); per-atom energies sum to the total. The YAML
+    still holds what the script computes now."""
+    if FORCE_STYLE_INPUTS is None:
+        pytest.fail("LAMMPS's source tree (unittest/force-styles/tests) is missing: run lammps/build.sh")
+    config = read_force_style_yaml(UNITTEST / name)
+    epsilon = float(config["epsilon"])
+    init_forces = np.array([[float(x) for x in line.split()[1:]] for line in config["init_forces"].splitlines()])
+    run_forces = np.array([[float(x) for x in line.split()[1:]] for line in config["run_forces"].splitlines()])
+    init_stress = [float(x) for x in config["init_stress"].split()]
+    run_stress = [float(x) for x in config["run_stress"].split()]
+
+    tail = """run 0 post no
+write_restart yaml.restart
+write_data yaml.data pair ii
+write_dump all custom init.dump id fx fy fz modify format float %.17g sort id
+fix 1 all nve
+compute pe all pe/atom pair
+compute sum all reduce sum c_pe
+thermo_style custom step pe vol c_virial[1] c_virial[2] c_virial[3] c_virial[4] c_virial[5] c_virial[6] c_sum
+thermo_modify format float %.17g
+thermo 2
+run 4 post no
+"""
+    rows, forces, virial = force_style_run(tmp_path, config, tail)
+    assert fp_error(rows[0]["PotEng"], float(config["init_vdwl"])) <= epsilon
+    assert fp_error(pair_virial(rows[0]), init_stress) <= epsilon
+    assert fp_error(read_dump(tmp_path / "init.dump")[:, 1:4], init_forces) <= epsilon
+    assert fp_error(rows[4]["PotEng"], float(config["run_vdwl"])) <= epsilon
+    assert fp_error(forces, run_forces) <= 5 * epsilon
+    assert fp_error(virial, run_stress) <= epsilon
+    assert fp_error(rows[4]["c_sum"], rows[4]["PotEng"]) <= epsilon
+    assert int(config["natoms"]) == len(forces)
+
+    for start in ("plugin load {plugin}\nread_restart yaml.restart",
+                  "variable newton_pair index on\n{pre}\nvariable pair_style index '{style}'\n"
+                  "variable data_file index yaml.data\ninclude {inputs}/{input}"):
+        setup = start.format(plugin=PLUGIN, pre=config["pre_commands"], style=config["pair_style"],
+                             inputs=FORCE_STYLE_INPUTS, input=config["input_file"])
+        if "read_restart" in setup:
+            setup += f"\npair_style {config['pair_style']}"
+        setup += "\n" + "\n".join(f"pair_coeff {line}" for line in config["pair_coeff"].splitlines())
+        setup = f"variable gendpde_plugin index {PLUGIN}\n" + setup
+        rows, forces, virial = force_style_run(tmp_path, config, "run 0 post no\n", start=setup)
+        assert fp_error(rows[0]["PotEng"], float(config["init_vdwl"])) <= epsilon, setup
+        assert fp_error(forces, init_forces) <= epsilon, setup
+        assert fp_error(virial, init_stress) <= epsilon, setup
+
+    # the YAML holds OpenMM's values as the script computes them now (not edited by hand, not stale)
+    spec = importlib.util.spec_from_file_location("pair_gendpde_yaml", UNITTEST / "pair_gendpde_yaml.py")
+    writer = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(writer)
+    case = writer.CASES[name]
+    expected = writer.yaml_text(name, case, writer.reference_values(case, FORCE_STYLE_INPUTS / "data.metal"), "")
+    written = (UNITTEST / name).read_text()
+    assert [line for line in written.splitlines() if not line.startswith("date_generated")] == \
+        [line for line in expected.splitlines() if not line.startswith("date_generated")]

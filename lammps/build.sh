@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Build openmm-gendpde's LAMMPS package: LAMMPS itself (Debian 12's source package, LAMMPS 29 Sep 2021 Update 2,
 # lammps/fetch-source.sh) with MPI (Debian's Open MPI), the PLUGIN package and shared libraries, plus DPD-REACT,
 # MANYBODY and OPT for the benchmarks against LAMMPS's own styles; then the plugin gendpdeplugin.so

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Write the force-styles YAML tests of pair_style gendpde (manybody-pair-gendpde*.yaml, LAMMPS's
 unittest/force-styles format) with reference data from openmm-gendpde's OpenMM Reference platform, not from LAMMPS:
 the energy, virial and forces of LAMMPS's own test system (unittest/force-styles/tests/data.metal: 32 atoms of two

@@ -52,7 +52,7 @@ from openmm import unit
 from openmmgendpde.analysis.statistics import BlockAverageWarning, block_average
 from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS, PUBLISHED_TABLE3, liquid_argon
 from openmmgendpde.models.argon_runs import FULL, Samples, melt_then_draw, production, stepper
-from openmmgendpde.models.lammps_files import ENERGY, in_metal, lammps_input, thermo_table, write_lammps_input
+from openmmgendpde.models.lammps_files import ENERGY, in_units, lammps_input, thermo_table, write_lammps_input
 from openmmgendpde.studies.table3 import sampling_summary
 
 CUTOFF = 1.6839
@@ -62,8 +62,8 @@ KJ = unit.kilojoule_per_mole
 PRESSURE = KJ / unit.nanometer**3
 #: 1 bar in kJ/mol/nm^3 (LAMMPS's metal pressure unit, per mole).
 BAR = (1.0 * unit.bar * unit.AVOGADRO_CONSTANT_NA).value_in_unit(PRESSURE)
-#: The lines that replace the script's last one ("run ${steps}"): equilibration, then production with a dump of the
-#: positions and internal energies at every thermo step.
+#: The script's run section (lammps_files.SECTIONS): equilibration, then production with a dump of the positions and
+#: internal energies at every thermo step.
 RUNS = """variable equilibration index {equilibration}
 variable production index {production}
 run ${{equilibration}}
@@ -134,17 +134,13 @@ def dump_frames(path, count):
     return frames
 
 
-def run_lammps(protocol, directory, texts, temperatures, ranks, lmp, plugin):
-    """Run the LAMMPS input in ``directory`` on ``ranks`` ranks, each particle starting at its temperature in
-    ``temperatures`` (K): (thermo rows, frames, wall seconds, loop seconds)."""
+def run_lammps(protocol, directory, texts, ranks, lmp, plugin):
+    """Run the LAMMPS input ``texts`` (with each particle's initial temperature: lammps_input's temperatures) in
+    ``directory`` on ``ranks`` ranks: (thermo rows, frames, wall seconds, loop seconds)."""
     directory.mkdir(parents=True, exist_ok=True)
     write_lammps_input(directory, texts)
-    # an atomfile variable: the number of lines, then "ID value" per atom
-    lines = [str(len(temperatures))] + [f"{i + 1} {float(t)!r}" for i, t in enumerate(temperatures)]
-    (directory / "temperatures").write_text("\n".join(lines) + "\n")
     command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(lmp), "-var", "plugin",
-               str(plugin), "-var", "initial", "v_theta", "-in", "in.gendpde", "-log", "log.lammps",
-               "-screen", "none"]
+               str(plugin), "-in", "in.gendpde", "-log", "log.lammps", "-screen", "none"]
     start = time.perf_counter()
     result = subprocess.run(command, cwd=directory, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     wall = time.perf_counter() - start
@@ -258,14 +254,10 @@ def main():
     temperatures = energies / heat_capacity   # K: the fix's eps_i = C_V theta_i
     fresh = liquid_argon(protocol.num_particles, CUTOFF, ESTIMATOR, None, protocol.time_step, seed=protocol.seed)
     texts = lammps_input(fresh.system, fresh.integrator, positions, velocities, thermo=every,
-                         title=f"liquid argon R* = {CUTOFF} {ESTIMATOR} melted on OpenMM")
-    script = texts.script.rstrip("\n")
-    if not script.endswith("run ${steps}"):
-        raise SystemExit("lammps_input's script no longer ends with 'run ${steps}'")
-    script = script.replace("\nfix integrate", "\nvariable theta atomfile temperatures\nfix integrate", 1)
-    script = script[:-len("run ${steps}")] + RUNS.format(equilibration=protocol.steps(protocol.equilibration_time),
-                                                         production=protocol.steps(protocol.production_time))
-    texts = dataclasses.replace(texts, script=script)
+                         title=f"liquid argon R* = {CUTOFF} {ESTIMATOR} melted on OpenMM", temperatures=temperatures)
+    runs = RUNS.format(equilibration=protocol.steps(protocol.equilibration_time),
+                       production=protocol.steps(protocol.production_time))
+    texts = dataclasses.replace(texts, sections={**texts.sections, "run": runs})
     print(f"Melted in {melt_wall:.0f} s; both engines start from OpenMM's drawn eps_i (theta_i from "
           f"{temperatures.min():.1f} to {temperatures.max():.1f} K)", flush=True)
 
@@ -275,13 +267,13 @@ def main():
 
     workdir = options.workdir or pathlib.Path(tempfile.mkdtemp(prefix="gendpde-lammps-statistics-"))
     density_context = fresh.simulation("CPU").context
-    heat_capacity_ev = in_metal(heat_capacity, "heat_capacity")
+    heat_capacity_ev = in_units(heat_capacity, "heat_capacity", "metal")
     n = protocol.num_particles
     try:
         for ranks in options.ranks:
             name = f"LAMMPS {ranks} rank{'s' if ranks > 1 else ''}"
-            rows, frames, wall, loop = run_lammps(protocol, workdir / f"ranks{ranks}", texts, temperatures, ranks,
-                                                  options.lmp, options.plugin)
+            rows, frames, wall, loop = run_lammps(protocol, workdir / f"ranks{ranks}", texts, ranks, options.lmp,
+                                                  options.plugin)
             start_energy = ARGON_UNITS.from_openmm(rows[0]["v_conserved"] / ENERGY * KJ, "energy")
             per_step = 1e3 * loop / (protocol.steps(protocol.equilibration_time)
                                      + protocol.steps(protocol.production_time))

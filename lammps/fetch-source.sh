@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 # Fetch and unpack the LAMMPS source this package is built and tested against: Debian 12's source package lammps
 # 20220106.git7586adbb6a+ds1 (LAMMPS "29 Sep 2021 - Update 2"), into DIRECTORY; check its version; print the path of
 # the source tree. Usage: lammps/fetch-source.sh DIRECTORY. apt's deb-src lines are added if missing (root or sudo).

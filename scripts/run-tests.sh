@@ -17,6 +17,9 @@ echo "== C++ tests (ctest)"
 ctest --test-dir build --output-on-failure -j "$(nproc)"
 echo "== The LAMMPS package (lammps/build.sh: LAMMPS with MPI once, ~3.5 minutes on 2 cores, then the plugin)"
 lammps/build.sh
+# and with 64-bit atom IDs (-DLAMMPS_SIZES=bigbig, which LAMMPS asks contributions to build and run with): LAMMPS once,
+# ~4 minutes on 2 cores, then the plugin; test_lammps_package runs it
+lammps/build.sh --bigbig
 echo "== Python tests (pytest)"
 # The Python tests, one worker per core, each test file on one worker (its module fixtures made once): 317 s against
 # 544 s in one process, on 2 cores.

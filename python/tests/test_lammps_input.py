@@ -28,6 +28,9 @@ EV_PER_KJ_PER_MOL = 1000 / (1.602176634e-19 * 6.02214076e23)
 ANGSTROM_PER_NM = 10.0
 #: kJ/mol/nm^3 in eV/Å^3: the energy factor over 1000 Å^3 per nm^3.
 PRESSURE = EV_PER_KJ_PER_MOL / 1000
+#: 1 kcal/mol in kJ/mol (thermochemical), and OpenMM's k_B in kJ/mol/K (exact SI k_B and N_A).
+KCAL = 4.184
+KB = 1.380649e-23 * 6.02214076e23 / 1000
 
 
 def read_data(path):
@@ -191,6 +194,52 @@ def test_the_ghost_cutoff_by_hand(tmp_path):
     assert command(commands, "comm_modify") == ["cutoff", "31.85"]
 
 
+def test_the_numbers_in_real_units(tmp_path):
+    """--units real: Å, kcal/mol (1 kcal/mol = 4.184 kJ/mol), fs, g/mol, K by hand. Water's model (with its
+    background pressure): R and the box in Å, pressures (pi0, B_T, p_b) as energy/volume in kcal/mol/Å^3 (not atm),
+    n0 in Å^-3, C_V in kcal/mol/K, friction in g/mol/fs, conduction in kcal/mol K/fs, the step and the velocities in
+    fs and Å/fs."""
+    data, commands = written(tmp_path, WATER_FILE, "--particles", "500", "--units", "real")
+    metal, _ = written(tmp_path / "metal", WATER_FILE, "--particles", "500")
+    p = load_parameters(WATER_FILE)
+    assert commands[[c[0] for c in commands].index("units")] == ["units", "real"]
+    assert data["box"] == metal["box"]
+    assert np.array([row[1:] for row in data["Velocities"]]) == pytest.approx(
+        np.array([row[1:] for row in metal["Velocities"]]) / 1000, rel=1e-15)
+    style = command(commands, "pair_style")
+    assert float(style[1]) == pytest.approx(10 * p.cutoff, rel=1e-15)
+    assert style[4] == "background" and float(style[5]) == pytest.approx(p.background_pressure / KCAL / 1000, rel=1e-15)
+    coefficients = command(commands, "pair_coeff", "1", "1")
+    assert coefficients[0] == "Tait"
+    assert [float(x) for x in coefficients[1:]] == pytest.approx(
+        [p.density / 1000, p.reference_pressure / KCAL / 1000, p.bulk_modulus / KCAL / 1000, p.tait_exponent],
+        rel=1e-15)
+    options = keywords(command(commands, "fix", "integrate", "all", "gendpde")[2:])
+    assert float(options["heat_capacity"][0][1]) == pytest.approx(p.heat_capacity / KCAL, rel=1e-15)
+    assert float(options["friction"][0][2]) == pytest.approx(p.friction / 1000, rel=1e-15)
+    assert float(options["conduction"][0][2]) == pytest.approx(p.heat_conduction / KCAL / 1000, rel=1e-15)
+    assert float(command(commands, "timestep")[0]) == pytest.approx(
+        1000 * float(command(written(tmp_path / "again", WATER_FILE, "--particles", "500")[1], "timestep")[0]),
+        rel=1e-15)
+
+
+def test_the_numbers_in_lj_units_are_openmm_s(tmp_path):
+    """--units lj holds OpenMM's numbers (nm, kJ/mol, ps, amu) with k_B = 1: R and the box in nm, the Tait
+    parameters as OpenMM has them, temperatures as k_B T (kJ/mol), C_V as C/k_B, kappa as k_B kappa."""
+    data, commands = written(tmp_path, ARGON_FILE, "--particles", "500", "--units", "lj")
+    p = load_parameters(ARGON_FILE)
+    model = p.liquid(500)
+    edge = model.system.getDefaultPeriodicBoxVectors()[0][0].value_in_unit(unit.nanometer)
+    assert data["box"] == [(0.0, edge)] * 3
+    assert float(command(commands, "pair_style")[1]) == p.cutoff
+    assert [float(x) for x in command(commands, "pair_coeff", "1", "1")[1:]] == [
+        p.density, p.reference_pressure, p.bulk_modulus, p.tait_exponent]
+    options = keywords(command(commands, "fix", "integrate", "all", "gendpde")[2:])
+    assert float(options["heat_capacity"][0][1]) == p.heat_capacity / KB
+    assert float(options["conduction"][0][2]) == KB * p.heat_conduction
+    assert float(options["temperature"][0][0]) == KB * p.temperature == float(options["initial"][0][0])
+
+
 def test_the_script_has_the_plugin_syntax_in_order(tmp_path):
     """The commands of the plugin's syntax in order, the variables on top (run, step, mode, seed: -var overrides
     them), --plugin as the default of the variable plugin, the conserved energy in the thermo output."""
@@ -291,6 +340,7 @@ def _fluid_only(tmp_path):
     ([WATER_FILE, "--particles", "256"], "error: lammps-input: the box is 31.3"),
     ([ARGON_FILE, "--particles", "32"], "error: lammps-input: the box"),
     ([ARGON_FILE, "--particles", "500", "--step-size", "2000"], "error: lammps-input: GenDPDEIntegrator"),
+    ([ARGON_FILE, "--particles", "256", "--units", "lj"], "error: lammps-input: the box is 3.91237 nm wide"),
 ])
 def test_bad_input_is_one_line(arguments, message, tmp_path):
     """A missing or bad model file, a box the fix cannot sweep, a step the integrator refuses: one line, status 1,
@@ -304,7 +354,8 @@ def test_bad_input_is_one_line(arguments, message, tmp_path):
 
 @pytest.mark.parametrize("option, value", [("--particles", "501"), ("--seed", "0"), ("--seed", "2147483648"),
                                            ("--step-size", "nan"), ("--skin", "-1"), ("--steps", "x"),
-                                           ("--mode", "adiabatic"), ("--plugin", "a b.so"), ("--thermo", "0")])
+                                           ("--mode", "adiabatic"), ("--plugin", "a b.so"), ("--thermo", "0"),
+                                           ("--units", "si")])
 def test_a_bad_option_is_a_usage_error(option, value, tmp_path, capsys):
     with pytest.raises(SystemExit) as exit_:
         main(["lammps-input", ARGON_FILE, option, value, "--output", str(tmp_path)])
@@ -374,6 +425,44 @@ def test_lammps_energy_and_virial_pressure_with_a_background_pressure(tmp_path):
     virial = np.trace(virial_tensor(model.force, context)) / (3 * abs(np.linalg.det(box)))   # kJ/mol/nm^3
     bar = (1 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.bar)
     assert row["c_virialPressure"] == pytest.approx(virial * bar, rel=1e-6)
+
+
+@pytest.mark.lammps
+def test_lammps_in_real_units_takes_pressures_as_energy_per_volume(tmp_path):
+    """--units real against OpenMM (Reference), water's model with its background pressure p_b at step 0: the
+    potential energy is OpenMM's in kcal/mol to 1e-12 (pi0, B_T and p_b are written as energy/volume, kcal/mol/Å^3,
+    and the pair style reads them so; read as atm, as the docs once said, U's box term p_b V_box alone would be
+    68,568 times too large), the internal energies sum N C_V T0, the virial pressure (compute pressure NULL virial,
+    atm) is OpenMM's virial W/(3V) to 1e-6 (LAMMPS's real nktv2p is 1.2e-7 below the exact factor), and after 20
+    steps the conserved energy holds."""
+    if not (LMP.exists() and PLUGIN.exists()):
+        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
+    main(["lammps-input", WATER_FILE, "--particles", "500", "--steps", "20", "--thermo", "20", "--units", "real",
+          "--output", str(tmp_path)])
+    script = (tmp_path / "in.gendpde").read_text().replace(
+        "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
+        "compute virialPressure all pressure NULL virial\n"
+        "thermo_style custom step temp pe ke etotal f_integrate v_conserved press c_virialPressure")
+    assert "units real" in script and "c_virialPressure" in script
+    (tmp_path / "in.gendpde").write_text(script)
+    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
+    rows = thermo_table(result.stdout)
+    parameters = load_parameters(WATER_FILE)
+    model = parameters.liquid(500, seed=1)
+    assert model.force.getBackgroundPressure().value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3) > 0
+    context = model.context("Reference", seed=1)
+    energy = context.getState(getEnergy=True).getPotentialEnergy().value_in_unit(unit.kilojoule_per_mole)
+    assert rows[0]["PotEng"] == pytest.approx(energy / KCAL, rel=1e-12)
+    internal = model.integrator.getInternalEnergies().sum().value_in_unit(unit.kilojoule_per_mole)
+    assert rows[0]["f_integrate"] == pytest.approx(internal / KCAL, rel=1e-12)
+    assert internal == pytest.approx(500 * parameters.heat_capacity * parameters.temperature, rel=1e-12)
+    box = context.getState().getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    virial = np.trace(virial_tensor(model.force, context)) / (3 * abs(np.linalg.det(box)))   # kJ/mol/nm^3
+    atm = (1 * unit.kilojoule_per_mole / unit.nanometer**3 / unit.AVOGADRO_CONSTANT_NA).value_in_unit(unit.atmosphere)
+    assert rows[0]["c_virialPressure"] == pytest.approx(virial * atm, rel=1e-6)
+    assert rows[20]["v_conserved"] == pytest.approx(rows[0]["v_conserved"], rel=1e-7)
 
 
 def test_the_default_particle_count_is_calibrate_s():

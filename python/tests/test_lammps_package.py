@@ -3,13 +3,16 @@
 LAMMPS runs in its lj units with OpenMM's numbers written as they are (nm, kJ/mol, amu, ps): lengths, energies, masses
 and times then need no conversion, so the two engines compute with the same values. Only the temperature scale
 differs (k_B = 1 in lj units): temperatures and theta0 are given as k_B T, heat capacities as C/k_B, heat conductions
-as k_B kappa and thermal pressure coefficients as beta/k_B (exact up to one rounding each).
+as k_B kappa and thermal pressure coefficients as beta/k_B (exact up to one rounding each). The inputs are written by
+the project's one LAMMPS writer, models.lammps_files.lammps_input(units="lj"), from the OpenMM System and integrator
+each test compares with; a test adds only its own output and run commands.
 
 Needs the package built (lammps/build.sh, which scripts/run-tests.sh runs first): build/lammps/lammps/lmp and
 build/lammps/plugin/gendpdeplugin.so, or the paths in GENDPDE_LMP and GENDPDE_LAMMPS_PLUGIN. Ranks: mpirun with
 --oversubscribe (4 ranks on 2 cores is fine for correctness).
 """
 
+import importlib.util
 import os
 import pathlib
 import subprocess
@@ -20,16 +23,27 @@ import pytest
 from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
-from openmmgendpde.models.lammps_files import thermo_table
+from openmmgendpde.models.fluid_files import load_parameters
+from openmmgendpde.models.lammps_files import (
+    ENERGY,
+    SECTIONS,
+    lammps_input,
+    round_up,
+    thermo_table,
+    write_lammps_input,
+)
 
 pytestmark = pytest.mark.lammps
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp"))
 PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
+#: The same LAMMPS and plugin built with -DLAMMPS_SIZES=bigbig (64-bit atom IDs): lammps/build.sh --bigbig.
+BIGBIG_LMP = pathlib.Path(os.environ.get("GENDPDE_BIGBIG_LMP", ROOT / "build/lammps-bigbig/lammps/lmp"))
+BIGBIG_PLUGIN = pathlib.Path(os.environ.get("GENDPDE_BIGBIG_LAMMPS_PLUGIN",
+                                            ROOT / "build/lammps-bigbig/plugin/gendpdeplugin.so"))
 #: OpenMM's Boltzmann constant, kJ/(mol K) (k_B N_A, exact SI values)
 KB = 1.380649e-23 * 6.02214076e23 / 1000
-ESTIMATOR_NAMES = {GenDPDEForce.VA: "va", GenDPDEForce.VB: "vb", GenDPDEForce.VC: "vc"}
 #: A second type's law and thermal parameters (a liquid with thermal expansion, OpenMM units): beta (kJ/mol/nm^3/K),
 #: theta0 (K), C_V (kJ/mol/K), and its pairs' friction (amu/ps) and heat conduction (kJ K/(mol ps)) with type 0.
 BETA, THETA0, SECOND_HEAT_CAPACITY, MIXED_FRICTION, MIXED_CONDUCTION = 0.9, 130.0, 0.2, 20.0, 3.0
@@ -42,30 +56,16 @@ def lammps():
     return LMP
 
 
-def run_lammps(directory, script, ranks=1, check=True):
+def run_lammps(directory, script, ranks=1, check=True, lmp=None):
     """Run lmp on ``script`` (text) in ``directory`` with ``ranks`` MPI ranks; returns the CompletedProcess."""
     (directory / "in.test").write_text(script)
-    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(LMP), "-in", "in.test",
-               "-log", "log.lammps", "-echo", "none"] + (["-screen", "none"] if check else [])
+    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(ranks), str(lmp or LMP), "-in",
+               "in.test", "-log", "log.lammps", "-echo", "none"] + (["-screen", "none"] if check else [])
     result = subprocess.run(command, cwd=directory, capture_output=True, text=True, timeout=300)
     if check and result.returncode != 0:
         log = (directory / "log.lammps").read_text() if (directory / "log.lammps").exists() else ""
         raise AssertionError(f"lmp failed ({result.returncode}):\n{log[-3000:]}\n{result.stdout[-2000:]}")
     return result
-
-
-def write_data(path, positions, edges, masses, types, velocities=None):
-    """A LAMMPS data file (atom_style atomic) of an orthogonal box [0, edges); types 0-based as OpenMM's."""
-    lines = ["GenDPDE test", "", f"{len(positions)} atoms", f"{len(masses)} atom types"]
-    lines += [f"0 {float(edge)!r} {axis}lo {axis}hi" for edge, axis in zip(edges, "xyz")]
-    lines += ["", "Masses", ""] + [f"{t + 1} {float(m)!r}" for t, m in enumerate(masses)]
-    lines += ["", "Atoms # atomic", ""]
-    lines += [f"{i + 1} {types[i] + 1} {float(x)!r} {float(y)!r} {float(z)!r}"
-              for i, (x, y, z) in enumerate(positions)]
-    if velocities is not None:
-        lines += ["", "Velocities", ""]
-        lines += [f"{i + 1} {float(x)!r} {float(y)!r} {float(z)!r}" for i, (x, y, z) in enumerate(velocities)]
-    path.write_text("\n".join(lines) + "\n")
 
 
 def read_dump(path):
@@ -89,8 +89,6 @@ class Scene:
                                                 openmm.Vec3(0, 0, edges[2]))
         self.positions = np.mod(positions, edges)
         self.system, self.force, self.edges = system, force, edges
-        n0, pi0, bulk, gamma = force.getTaitParameters()
-        self.tait = [q._value if hasattr(q, "_value") else q for q in (n0, pi0, bulk, gamma)]
         self.types = np.zeros(len(positions), dtype=int)
         if two_types:
             self.types[1::3] = 1
@@ -112,44 +110,15 @@ class Scene:
             integrator.addTypePair(0, 1, self.mixed_friction, MIXED_CONDUCTION)
         return integrator
 
-    def pair_commands(self):
-        cutoff = self.force.getCutoffDistance()._value
-        lines = [f"pair_style gendpde {cutoff!r} {ESTIMATOR_NAMES[self.force.getDensityEstimator()]} "
-                 f"{self.force.getCutoffScaling()!r}",
-                 "pair_coeff 1 1 Tait " + " ".join(repr(float(p)) for p in self.tait)]
-        if self.num_types > 1:
-            lines.append("pair_coeff 2 2 TaitThermalExpansion " + " ".join(repr(float(p)) for p in self.tait)
-                         + f" {BETA / KB!r} {KB * THETA0!r}")
-        return "\n".join(lines)
-
-    def fix_command(self, integrator, mode_name, initial=None):
-        """fix gendpde with ``integrator``'s parameters (the argon model's) in lj units; ``initial``: the keyword's
-        value (default T0)."""
-        friction = integrator.getFriction()._value
-        conduction = integrator.getHeatConduction()._value
-        capacity = integrator.getHeatCapacity()._value
-        words = [f"fix integrate all gendpde {mode_name} {integrator.getRandomNumberSeed()}",
-                 f"heat_capacity * {capacity / KB!r}", f"friction * * {friction!r}",
-                 f"conduction * * {KB * conduction!r}", f"temperature {KB * TEMPERATURE!r}",
-                 f"initial {initial or repr(KB * TEMPERATURE)}"]
-        if self.num_types > 1:
-            words += [f"heat_capacity 2 {SECOND_HEAT_CAPACITY / KB!r}", f"friction 1 2 {self.mixed_friction!r}",
-                      f"conduction 1 2 {KB * MIXED_CONDUCTION!r}"]
-        return " ".join(words)
-
-    def header(self, directory, velocities=None):
-        write_data(directory / "data", self.positions, self.edges, [MASS] * self.num_types, self.types, velocities)
-        return f"""units lj
-atom_style atomic
-boundary p p p
-atom_modify map array
-plugin load {PLUGIN}
-read_data data
-{self.pair_commands()}
-neighbor 0.1 bin
-neigh_modify every 1 delay 0 check yes
-comm_modify cutoff 2.0
-"""
+    def lammps(self, directory, integrator=None, velocities=None, **options):
+        """The LAMMPS input of this scene in lj units (lammps_files.lammps_input: data file, script sections, any
+        atomfile), written into ``directory``; ``integrator``: the fix's (default an Isoenergetic one), ``options``:
+        lammps_input's (temperatures, restart, skin)."""
+        options.setdefault("plugin", PLUGIN)
+        texts = lammps_input(self.system, integrator or self.integrator(GenDPDEIntegrator.Isoenergetic),
+                             self.positions, velocities, units="lj", **options)
+        write_lammps_input(directory, texts)
+        return texts
 
 
 def openmm_energy_and_forces(scene, integrator=None):
@@ -162,8 +131,11 @@ def openmm_energy_and_forces(scene, integrator=None):
     return state.getPotentialEnergy()._value, np.array(state.getForces()._value)
 
 
-def lammps_energy_and_forces(scene, directory, ranks, fix=""):
-    script = scene.header(directory) + fix + """
+def lammps_energy_and_forces(scene, directory, ranks, integrator=None):
+    """U and the forces of the pair style alone, or with fix gendpde of ``integrator`` (the thermal state)."""
+    texts = scene.lammps(directory, integrator)
+    sections = ("header", "variables", "setup", "pair", "neighbors") + (("fix",) if integrator else ())
+    script = texts.commands(*sections) + """
 thermo_style custom step pe
 thermo_modify norm no format float %.17g
 dump forces all custom 1 forces.dump id fx fy fz
@@ -182,13 +154,12 @@ def test_energy_and_forces_equal_reference(lammps, tmp_path, case, ranks):
     the sums run in other orders, so they differ by rounding, ~1e-15)."""
     estimator = {"va": GenDPDEForce.VA, "vc-slab": GenDPDEForce.VC}.get(case, GenDPDEForce.VB)
     scene = Scene(estimator, slab=case == "vc-slab", two_types=case == "two-types-thermal")
-    integrator = fix = None
+    integrator = None
     if case == "two-types-thermal":
         # A law that depends on temperature: its pressure and U read each particle's temperature, here T0
         integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-        fix = scene.fix_command(integrator, "isoenergetic")
+    lammps_energy, lammps_forces = lammps_energy_and_forces(scene, tmp_path, ranks, integrator)
     energy, forces = openmm_energy_and_forces(scene, integrator)
-    lammps_energy, lammps_forces = lammps_energy_and_forces(scene, tmp_path, ranks, fix or "")
     assert abs(lammps_energy - energy) <= 1e-12 * abs(energy)
     rms = np.sqrt(np.mean(forces**2))
     assert np.max(np.abs(lammps_forces - forces)) <= 1e-12 * rms
@@ -216,43 +187,27 @@ def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004, temperatu
     return positions, energies, integrator
 
 
-def lammps_trajectory(scene, directory, mode, mode_name, steps, velocities, ranks, step_size=0.004, restart_at=None,
-                      temperatures=None):
-    """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps; with ``restart_at``,
-    the run stops there, writes a restart file, and a second lmp reads it and runs the rest; ``temperatures``: each
-    particle's initial temperature (K), through an atomfile variable."""
+def lammps_trajectory(scene, directory, mode, steps, velocities, ranks, step_size=0.004, restart_at=None,
+                      temperatures=None, edit=lambda script: script):
+    """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps of the fix in ``mode``;
+    with ``restart_at``, the run stops there, writes a restart file, and a second lmp reads it and runs the rest;
+    ``temperatures``: each particle's initial temperature (K), through an atomfile variable (initial v_theta);
+    ``edit``: what changes the written script (text) before it runs."""
     integrator = scene.integrator(mode, step_size)
-    initial = None
-    if temperatures is not None:
-        # an atomfile: the number of lines, then "ID value" per atom
-        lines = [f"{i + 1} {KB * float(t)!r}" for i, t in enumerate(temperatures)]
-        (directory / "temperatures").write_text("\n".join([str(len(lines))] + lines) + "\n")
-        initial = "v_theta"
-    script = scene.header(directory, velocities) + ("variable theta atomfile temperatures\n" if initial else "") + f"""\
-{scene.fix_command(integrator, mode_name, initial)}
-timestep {step_size!r}
-thermo_style custom step pe ke f_integrate
+    texts = scene.lammps(directory, integrator, velocities, temperatures=temperatures)
+    output = """thermo_style custom step pe ke f_integrate
 thermo 10
 """
     finish = """write_dump all custom final.dump id x y z f_integrate modify format float %.17g sort id
 """
+    script = edit(texts.commands(*SECTIONS[:-2])) + output
     if restart_at is None:
         run_lammps(directory, script + f"run {steps}\n" + finish, ranks)
     else:
         run_lammps(directory, script + f"run {restart_at}\nwrite_restart state.restart\n", ranks)
-        resumed = f"""units lj
-atom_modify map array
-plugin load {PLUGIN}
-read_restart state.restart
-{scene.pair_commands()}
-neighbor 0.1 bin
-neigh_modify every 1 delay 0 check yes
-comm_modify cutoff 2.0
-{scene.fix_command(integrator, mode_name)}
-timestep {step_size!r}
-run {steps - restart_at}
-""" + finish
-        run_lammps(directory, resumed, ranks)
+        resumed = scene.lammps(directory, integrator, restart="state.restart")
+        run_lammps(directory, resumed.commands(*SECTIONS[:-2]) + output + f"run {steps - restart_at}\n" + finish,
+                   ranks)
     table = read_dump(directory / "final.dump")
     return table[:, 1:4], table[:, 4]
 
@@ -276,8 +231,7 @@ def test_trajectory_follows_reference(lammps, tmp_path, mode_name, ranks):
     scene = Scene(GenDPDEForce.VB)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 30, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 30, velocities,
-                                                          ranks)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 30, velocities, ranks)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     if energies is not None:
         assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
@@ -293,8 +247,7 @@ def test_two_types_with_thermal_law_follow_reference(lammps, tmp_path, mode_name
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], mode_name, 20, velocities,
-                                                          2)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 20, velocities, 2)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -307,8 +260,8 @@ def test_a_pair_without_friction_reads_its_stream_as_openmm_does(lammps, tmp_pat
     scene = Scene(GenDPDEForce.VB, two_types=True, mixed_friction=0.0)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -319,8 +272,8 @@ def test_restart_continues_the_run(lammps, tmp_path):
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2, restart_at=10)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2, restart_at=10)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -330,21 +283,34 @@ def test_restart_continues_the_run(lammps, tmp_path):
     (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Tait 1.0 #"), "law Tait takes 4 parameters"),
     (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Murnaghan"), "law 'Murnaghan' is not allowed"),
     (("pair_coeff 1 1 Tait", "#"), "All pair coeffs are not set"),
-    (("comm_modify cutoff 2.0", "comm_modify cutoff 1.2"), "the ghost cutoff 1.2 is below what the sweep needs"),
-    (("fix integrate all gendpde isoenergetic", "fix integrate all gendpde adiabatic"), "mode 'adiabatic'"),
-    ((" initial ", " # "), "the internal energies are not set"),
+    (("comm_modify cutoff", "comm_modify cutoff 1.2 #"), "the ghost cutoff 1.2 is below what the sweep needs"),
+    (("variable mode index isoenergetic", "variable mode index adiabatic"), "mode 'adiabatic'"),
+    (("initial ${initial}", ""), "the internal energies are not set"),
 ])
 def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     """Bad input stops LAMMPS with its ERROR line naming the problem (exit status 1), not a crash."""
     scene = Scene(GenDPDEForce.VB)
-    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-    script = (scene.header(tmp_path) + scene.fix_command(integrator, "isoenergetic")
-              + "\ntimestep 0.004\nrun 1\n")
+    script = scene.lammps(tmp_path).commands(*SECTIONS[:-1]) + "run 1\n"
     assert change[0] in script
     result = run_lammps(tmp_path, script.replace(change[0], change[1], 1), check=False)
     assert result.returncode == 1, result.stdout[-2000:]
     assert "ERROR" in result.stdout and words in result.stdout, result.stdout[-2000:]
 
+
+
+def test_the_written_ghost_cutoff_is_the_fix_s_need(lammps, tmp_path):
+    """The writer's comm_modify cutoff is the ghost cutoff fix gendpde requires (both from the core's
+    sweepGhostCutoff: 1.5 widths of the widest sweep cell + the skin), rounded up to 4 digits: in a slab box (4 cells
+    across x and y, 8 along z: the cells differ) the fix, given less, names what it needs, and the writer's value is
+    that need rounded up."""
+    scene = Scene(GenDPDEForce.VB, slab=True)
+    texts = scene.lammps(tmp_path)
+    script = texts.commands(*SECTIONS[:-1]).replace(f"comm_modify cutoff {texts.ghost!r}", "comm_modify cutoff 0.5")
+    result = run_lammps(tmp_path, script + "run 1\n", check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    need = float(result.stdout.split("is below what the sweep needs, ")[1].split()[0])
+    assert need <= texts.ghost == round_up(need) < need * (1 + 1e-3)
+    assert need == pytest.approx(1.5 * scene.edges[0] / 4 + texts.skin, rel=1e-15)
 
 
 def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
@@ -357,8 +323,8 @@ def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
     temperatures = TEMPERATURE * np.random.default_rng(11).uniform(0.8, 1.2, len(scene.positions))
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities,
                                                temperatures=temperatures)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 20, velocities, 2, temperatures=temperatures)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
+                                                          velocities, 2, temperatures=temperatures)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -367,29 +333,248 @@ def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
     """With neighbour lists LAMMPS does not rebuild in time (a skin of 0.001 nm, checked every 1000 steps), the sweep's
     pairs would miss some: fix gendpde stops with an error naming the atom and the step, not a silent wrong step."""
     scene = Scene(GenDPDEForce.VB)
-    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
-    script = (scene.header(tmp_path, start_velocities(scene)) + scene.fix_command(integrator, "isoenergetic")
-              + "\ntimestep 0.004\nrun 50\n")
-    script = script.replace("neighbor 0.1 bin\nneigh_modify every 1 delay 0 check yes",
-                            "neighbor 0.001 bin\nneigh_modify every 1000 delay 0 check no")
+    texts = scene.lammps(tmp_path, velocities=start_velocities(scene), skin=0.001)
+    script = texts.commands(*SECTIONS[:-1]) + "run 50\n"
+    assert "neighbor 0.001 bin\nneigh_modify every 1 delay 0 check yes" in script
+    script = script.replace("neigh_modify every 1 delay 0 check yes", "neigh_modify every 1000 delay 0 check no")
     result = run_lammps(tmp_path, script, check=False)
     assert result.returncode != 0
     assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout
 
 
 def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):
-    """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 2.0 nm: the sweep's
-    exchanges then reach past the neighbouring rank (two hops), and the trajectory is still OpenMM's to rounding."""
+    """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 1.95 nm (1.5 sweep
+    cells + the skin): the sweep's exchanges then reach past the neighbouring rank (two hops), and the trajectory is
+    still OpenMM's to rounding."""
     scene = Scene(GenDPDEForce.VB)
     velocities = start_velocities(scene)
     positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 30, velocities)
-    header = Scene.header
 
-    def slabs(self, directory, velocities=None):
-        return header(self, directory, velocities).replace("boundary p p p\n", "boundary p p p\nprocessors 1 1 4\n")
-    scene.header = slabs.__get__(scene)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic,
-                                                          "isoenergetic", 30, velocities, 4)
+    def slabs(script):
+        return script.replace("boundary p p p\n", "boundary p p p\nprocessors 1 1 4\n")
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 30,
+                                                          velocities, 4, edit=slabs)
     assert "1 by 1 by 4 MPI processor grid" in (tmp_path / "log.lammps").read_text()
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+@pytest.fixture(scope="module")
+def bigbig():
+    if not (BIGBIG_LMP.exists() and BIGBIG_PLUGIN.exists()):
+        pytest.fail(f"the bigbig build of the package is missing ({BIGBIG_LMP}, {BIGBIG_PLUGIN}): run lammps/build.sh "
+                    f"--bigbig")
+    return BIGBIG_LMP
+
+
+def with_atom_id(data, old, new):
+    """A data file's text with atom ID ``old`` renamed ``new`` (in its Atoms and Velocities sections)."""
+    lines = data.splitlines()
+    start = lines.index("Atoms # atomic")
+    for k in range(start, len(lines)):
+        if lines[k].split(" ", 1)[0] == str(old):
+            lines[k] = f"{new} {lines[k].split(' ', 1)[1]}"
+    return "\n".join(lines) + "\n"
+
+
+def test_the_package_in_a_bigbig_build(bigbig, tmp_path):
+    """LAMMPS and the plugin built with -DLAMMPS_SIZES=bigbig (64-bit atom IDs, as LAMMPS asks every contribution to
+    build and run): the energy and forces (2 ranks) and 20 isoenergetic steps (2 ranks) are OpenMM's to rounding, as
+    in the default build; the last atom renumbered 2^32, the largest ID the random streams index, runs; renumbered
+    2^32 + 1 it is refused with an error naming the ID, not truncated to another particle's streams."""
+    scene = Scene(GenDPDEForce.VB)
+    energy, forces = openmm_energy_and_forces(scene)
+    texts = scene.lammps(tmp_path, plugin=BIGBIG_PLUGIN)
+    script = texts.commands("header", "variables", "setup", "pair", "neighbors") + """
+thermo_style custom step pe
+thermo_modify norm no format float %.17g
+dump forces all custom 1 forces.dump id fx fy fz
+dump_modify forces format float %.17g sort id
+run 0
+"""
+    run_lammps(tmp_path, script, 2, lmp=bigbig)
+    assert abs(thermo_table((tmp_path / "log.lammps").read_text())[0]["PotEng"] - energy) <= 1e-12 * abs(energy)
+    rms = np.sqrt(np.mean(forces**2))
+    assert np.max(np.abs(read_dump(tmp_path / "forces.dump")[:, 1:4] - forces)) <= 1e-12 * rms
+
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
+    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+    texts = scene.lammps(tmp_path, integrator, velocities, plugin=BIGBIG_PLUGIN)
+    finish = "run 20\nwrite_dump all custom final.dump id x y z f_integrate modify format float %.17g sort id\n"
+    run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + finish, 2, lmp=bigbig)
+    table = read_dump(tmp_path / "final.dump")
+    assert np.max(np.abs(table[:, 1:4] - positions)) <= 1e-12
+    assert np.max(np.abs(table[:, 4] / energies - 1)) <= 1e-12
+
+    last = len(scene.positions)
+    for atom_id, allowed in ((2**32, True), (2**32 + 1, False)):
+        (tmp_path / "gendpde.data").write_text(with_atom_id(texts.data, last, atom_id))
+        result = run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + "run 2\n", 2, check=False, lmp=bigbig)
+        if allowed:
+            assert result.returncode == 0, result.stdout[-2000:]
+        else:
+            assert result.returncode != 0
+            assert f"atom ID {atom_id} is not allowed" in result.stdout and "1 ... 4294967296" in result.stdout, \
+                result.stdout[-2000:]
+
+
+EXAMPLE = ROOT / "lammps" / "examples" / "in.gendpde"
+
+
+def test_the_example_deck(lammps, tmp_path):
+    """lammps/examples/in.gendpde, the package's example (the calibrated argon model in metal units, 864 particles
+    made by create_atoms): at step 0 its potential energy is what OpenMM's Reference platform computes for the model
+    file at LAMMPS's positions and box, to 1e-12 (so the deck's numbers are the model's); its IDs are reset in
+    spatial order, so 100 steps on 1 and on 2 ranks print the same thermo output (to the rounding of the force sums,
+    1e-9); and the conserved energy etotal + f_1 holds to 1e-6."""
+    deck = EXAMPLE.read_text().replace("thermo_modify   format float %.10g", "thermo_modify   format float %.17g")
+    assert "%.17g" in deck
+    first = deck + "write_dump all custom start.dump id x y z modify format float %.17g sort id\n"
+    run_lammps(tmp_path, f"variable plugin index {PLUGIN}\nvariable steps index 0\n" + first)
+    start = thermo_table((tmp_path / "log.lammps").read_text())[0]
+    lines = (tmp_path / "start.dump").read_text().splitlines()
+    edge = [float(lines[5 + k].split()[1]) - float(lines[5 + k].split()[0]) for k in range(3)]
+    table = read_dump(tmp_path / "start.dump")
+    model = load_parameters(ROOT / "docs" / "figures" / "calibrated-argon-model.toml").liquid(len(table))
+    box = [openmm.Vec3(*(0.1 * edge[k] if k == axis else 0 for k in range(3))) for axis in range(3)]
+    context = openmm.Context(model.system, openmm.VerletIntegrator(0.001),
+                             openmm.Platform.getPlatformByName("Reference"))
+    context.setPeriodicBoxVectors(*box)
+    context.setPositions(0.1 * table[:, 1:4])
+    energy = context.getState(getEnergy=True).getPotentialEnergy()._value   # kJ/mol
+    assert start["PotEng"] == pytest.approx(energy * ENERGY, rel=1e-12)
+
+    runs = []
+    for ranks in (1, 2):
+        run_lammps(tmp_path, f"variable plugin index {PLUGIN}\nvariable steps index 100\n" + deck, ranks)
+        runs.append(thermo_table((tmp_path / "log.lammps").read_text()))
+    assert sorted(runs[0]) == sorted(runs[1]) == list(range(0, 101, 20))
+    for step, row in runs[0].items():
+        for column, value in row.items():
+            assert runs[1][step][column] == pytest.approx(value, rel=1e-9, abs=1e-9), (step, column)
+    assert runs[0][100]["v_conserved"] == pytest.approx(runs[0][0]["v_conserved"], rel=1e-6)
+    assert runs[0][100]["Temp"] != pytest.approx(runs[0][0]["Temp"], rel=1e-3)   # (the run did move)
+
+
+UNITTEST = ROOT / "lammps" / "unittest"
+#: LAMMPS's force-style test inputs (in.metal, data.metal), from the source tree lammps/build.sh fetched.
+FORCE_STYLE_INPUTS = next((ROOT / "build" / "lammps" / "source").glob("lammps-*/unittest/force-styles/tests"), None)
+#: LAMMPS's metal units: pressure = virial x nktv2p / V (update.cpp).
+NKTV2P = 1.6021765e6
+
+
+def read_force_style_yaml(path):
+    """A force-styles YAML file (LAMMPS's unittest/force-styles layout, as yaml_writer.cpp writes it): {key: text}
+    with block values ("! |", "! |-", "! |2") joined by newlines."""
+    entries, key = {}, None
+    for line in pathlib.Path(path).read_text().splitlines():
+        if line in ("---", "..."):
+            continue
+        if line.startswith(" ") and key is not None:
+            entries[key].append(line.strip())
+            continue
+        key, _, value = line.partition(":")
+        value = value.strip()
+        entries[key] = [] if value.startswith("! |") else [value.strip('"').replace('! ""', "").replace('!', "")]
+    return {k: "\n".join(v).strip() for k, v in entries.items()}
+
+
+def fp_error(value, reference):
+    """test_pair_style's EXPECT_FP_LE_WITH_EPS: the difference relative to the smaller magnitude (absolute at 0)."""
+    value, reference = np.asarray(value, dtype=float), np.asarray(reference, dtype=float)
+    smaller = np.minimum(np.abs(value), np.abs(reference))
+    difference = np.abs(value - reference)
+    return np.max(np.where(smaller == 0, difference, difference / np.where(smaller == 0, 1, smaller)))
+
+
+def force_style_run(directory, config, script_tail, ranks=1, start=None):
+    """Run LAMMPS as test_pair_style sets it up (newton_pair, input_dir, the YAML's pre_commands, its input file,
+    pair_style, pair_coeff, post_commands), or from ``start`` (commands that replace all that, e.g. read_restart),
+    then ``script_tail``; (thermo rows, forces by ID, virial from the pair's pressure tensor)."""
+    setup = start or "\n".join([
+        "variable newton_pair index on", f"variable input_dir index {FORCE_STYLE_INPUTS}",
+        f"variable gendpde_plugin index {PLUGIN}", config["pre_commands"],
+        f"include {FORCE_STYLE_INPUTS / config['input_file']}", f"pair_style {config['pair_style']}",
+        *(f"pair_coeff {line}" for line in config["pair_coeff"].splitlines()),
+        "pair_modify table 0", "pair_modify table/disp 0", config["post_commands"]])
+    output = """
+compute virial all pressure NULL pair
+thermo_style custom step pe vol c_virial[1] c_virial[2] c_virial[3] c_virial[4] c_virial[5] c_virial[6]
+thermo_modify format float %.17g
+"""
+    finish = "write_dump all custom forces.dump id fx fy fz modify format float %.17g sort id\n"
+    run_lammps(directory, setup + output + script_tail + finish, ranks)
+    rows = thermo_table((directory / "log.lammps").read_text())
+    return rows, read_dump(directory / "forces.dump")[:, 1:4], pair_virial(rows[max(rows)])
+
+
+def pair_virial(row):
+    """The pair's virial (xx, yy, zz, xy, xz, yz; energy units, LAMMPS's pair->virial) of a thermo row with the
+    pair's pressure tensor (compute pressure NULL pair) and the volume."""
+    return [row[f"c_virial[{k}]"] * row["Volume"] / NKTV2P for k in range(1, 7)]
+
+
+@pytest.mark.parametrize("name", sorted(path.name for path in UNITTEST.glob("manybody-pair-gendpde*.yaml")))
+def test_the_force_styles_yaml(lammps, tmp_path, name):
+    """lammps/unittest/NAME, a YAML test of LAMMPS's force-styles kind with OpenMM's Reference values
+    (lammps/unittest/pair_gendpde_yaml.py), checked as LAMMPS's test_pair_style checks one: on LAMMPS's own test
+    system (in.metal, data.metal) the energy, the pair virial and every force component at the start, after 4 steps
+    of fix nve (forces to 5 epsilon, as the tester), after write_restart/read_restart and after write_data/read_data
+    (in new processes: the plugin's styles do not survive LAMMPS's clear), each to the YAML's epsilon relative to the
+    smaller of the two values; newton pair on (the style requires it); per-atom energies sum to the total. The YAML
+    still holds what the script computes now."""
+    if FORCE_STYLE_INPUTS is None:
+        pytest.fail("LAMMPS's source tree (unittest/force-styles/tests) is missing: run lammps/build.sh")
+    config = read_force_style_yaml(UNITTEST / name)
+    epsilon = float(config["epsilon"])
+    init_forces = np.array([[float(x) for x in line.split()[1:]] for line in config["init_forces"].splitlines()])
+    run_forces = np.array([[float(x) for x in line.split()[1:]] for line in config["run_forces"].splitlines()])
+    init_stress = [float(x) for x in config["init_stress"].split()]
+    run_stress = [float(x) for x in config["run_stress"].split()]
+
+    tail = """run 0 post no
+write_restart yaml.restart
+write_data yaml.data pair ii
+write_dump all custom init.dump id fx fy fz modify format float %.17g sort id
+fix 1 all nve
+compute pe all pe/atom pair
+compute sum all reduce sum c_pe
+thermo_style custom step pe vol c_virial[1] c_virial[2] c_virial[3] c_virial[4] c_virial[5] c_virial[6] c_sum
+thermo_modify format float %.17g
+thermo 2
+run 4 post no
+"""
+    rows, forces, virial = force_style_run(tmp_path, config, tail)
+    assert fp_error(rows[0]["PotEng"], float(config["init_vdwl"])) <= epsilon
+    assert fp_error(pair_virial(rows[0]), init_stress) <= epsilon
+    assert fp_error(read_dump(tmp_path / "init.dump")[:, 1:4], init_forces) <= epsilon
+    assert fp_error(rows[4]["PotEng"], float(config["run_vdwl"])) <= epsilon
+    assert fp_error(forces, run_forces) <= 5 * epsilon
+    assert fp_error(virial, run_stress) <= epsilon
+    assert fp_error(rows[4]["c_sum"], rows[4]["PotEng"]) <= epsilon
+    assert int(config["natoms"]) == len(forces)
+
+    for start in ("plugin load {plugin}\nread_restart yaml.restart",
+                  "variable newton_pair index on\n{pre}\nvariable pair_style index '{style}'\n"
+                  "variable data_file index yaml.data\ninclude {inputs}/{input}"):
+        setup = start.format(plugin=PLUGIN, pre=config["pre_commands"], style=config["pair_style"],
+                             inputs=FORCE_STYLE_INPUTS, input=config["input_file"])
+        if "read_restart" in setup:
+            setup += f"\npair_style {config['pair_style']}"
+        setup += "\n" + "\n".join(f"pair_coeff {line}" for line in config["pair_coeff"].splitlines())
+        setup = f"variable gendpde_plugin index {PLUGIN}\n" + setup
+        rows, forces, virial = force_style_run(tmp_path, config, "run 0 post no\n", start=setup)
+        assert fp_error(rows[0]["PotEng"], float(config["init_vdwl"])) <= epsilon, setup
+        assert fp_error(forces, init_forces) <= epsilon, setup
+        assert fp_error(virial, init_stress) <= epsilon, setup
+
+    # the YAML holds OpenMM's values as the script computes them now (not edited by hand, not stale)
+    spec = importlib.util.spec_from_file_location("pair_gendpde_yaml", UNITTEST / "pair_gendpde_yaml.py")
+    writer = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(writer)
+    case = writer.CASES[name]
+    expected = writer.yaml_text(name, case, writer.reference_values(case, FORCE_STYLE_INPUTS / "data.metal"), "")
+    written = (UNITTEST / name).read_text()
+    assert [line for line in written.splitlines() if not line.startswith("date_generated")] == \
+        [line for line in expected.splitlines() if not line.startswith("date_generated")]

@@ -1,5 +1,6 @@
-"""A GenDPDE model as LAMMPS input for the project's LAMMPS plugin (pair style ``gendpde`` and fix ``gendpde``), so
-that a calibrated fluid runs in either engine (`lammps-input`; docs/lammps.md).
+"""A GenDPDE model as LAMMPS input for the project's LAMMPS package (pair style ``gendpde`` and fix ``gendpde``), so
+that a calibrated fluid runs in either engine: the one writer of LAMMPS input of the project, used by the
+`lammps-input` command, the tests of the package and the tools that compare the engines (docs/lammps.md).
 
 The LAMMPS system is the OpenMM one: ``model_input`` builds the model as every study does
 (GenDPDEParameters.liquid: the FCC lattice, the box, the System's GenDPDEForce and its GenDPDEIntegrator), draws the
@@ -7,47 +8,61 @@ velocities as Model.context does (Maxwell-Boltzmann at T0, OpenMM's setVelocitie
 ``lammps_input`` reads everything it writes from those OpenMM objects (positions, box, masses, particle types,
 cutoff, estimator, f_cut, each type's law and parameters, background pressure, heat capacities, friction,
 conduction, bath temperature, step, mode, seed), never from a second copy of the parameters. Particle i of OpenMM
-is atom i + 1 of LAMMPS (the plugin uses tag - 1 as the index of a particle's random streams, as OpenMM uses i);
+is atom i + 1 of LAMMPS (the package uses ID - 1 as the index of a particle's random streams, as OpenMM uses i);
 OpenMM's particle types, sorted, are LAMMPS's atom types 1, 2, ...
 
-Units: OpenMM's (nm, kJ/mol, ps, amu, K) to LAMMPS's ``units metal`` (Å, eV, ps, g/mol, K), METAL_UNITS, with the
-energy factor 1 kJ/mol = 1000/(e N_A) eV = 1/96.48533212331002 eV (CODATA 2018, exact: e = 1.602176634e-19 C,
-N_A = 6.02214076e23/mol):
+Units (``units``; UNITS lists every factor): OpenMM's (nm, kJ/mol, ps, amu, K) to LAMMPS's
 
-    kind                 OpenMM            LAMMPS metal     factor (metal value = factor x OpenMM value)
-    length               nm                Å                10
-    velocity             nm/ps             Å/ps             10
-    time                 ps                ps               1
-    mass                 amu               g/mol            1
-    temperature          K                 K                1
-    energy               kJ/mol            eV               E = 1000/(e N_A) = 0.010364269656262174
-    pressure             kJ/mol/nm^3       eV/Å^3           E/1000 (n0, pi0, B_T, p_b)
-    number density       nm^-3             Å^-3             1/1000
-    volume               nm^3              Å^3              1000
-    friction             amu/ps            g/mol/ps         1
-    heat capacity        kJ/mol/K          eV/K             E (C_V; entropy scales)
-    heat conduction      kJ/mol K/ps       eV K/ps          E
-    thermal pressure     kJ/mol/nm^3/K     eV/Å^3/K         E/1000 (beta of TaitThermalExpansion)
-    energy x volume      kJ/mol nm^3       eV Å^3           1000 E (attractions)
+- ``metal`` (Å, eV, ps, g/mol, K), with 1 kJ/mol = 1000/(e N_A) eV = 1/96.48533212331002 eV (CODATA 2018, exact:
+  e = 1.602176634e-19 C, N_A = 6.02214076e23/mol);
+- ``real`` (Å, kcal/mol, fs, g/mol, K), with 1 kcal/mol = 4.184 kJ/mol (thermochemical, exact);
+- ``lj``, used as a container for OpenMM's own numbers: LAMMPS's lj units have k_B = 1 and every other constant 1,
+  so lengths (nm), energies (kJ/mol), masses (amu) and times (ps) are written as they are and only the temperature
+  scale changes: temperatures as k_B T (kJ/mol), heat capacities as C/k_B, heat conductions as k_B kappa, thermal
+  pressure coefficients as beta/k_B (k_B = 0.00831446261815324 kJ/mol/K, exact SI values). The two engines then
+  compute with the same numbers (up to one rounding each), which is how the tests compare them to rounding.
 
-The constants are not the same in the two engines, and no factor can make them so. OpenMM's k_B is CODATA 2018's,
-0.00831446261815324 kJ/mol/K = 8.617333262e-5 eV/K; LAMMPS's metal units have their own, force->boltz =
-8.617343e-5 eV/K (older CODATA), which the plugin uses: 1.13e-6 relatively larger (the sixth significant digit).
-A model whose parameters were fitted with OpenMM's k_B sees in LAMMPS a k_B 1.13e-6 larger wherever k_B enters
-(the thermostat's noise, sigma^2 = 2 gamma k_B T; the fluctuation-dissipation balance of the internal energies;
-the temperature LAMMPS reports from the kinetic energy). Likewise LAMMPS's mvv2e = 1.0364269e-4 eV per g/mol
-Å^2/ps^2 is 6.3e-8 relatively below the exact 10/(e N_A) = 1.0364269656e-4, and its nktv2p (eV/Å^3 to bar)
-8.4e-8 below. All three are far below any statistical error of a run, but trajectories of the two engines are not
+Pressures are energy/volume in every units (eV/Å^3 in metal, kcal/mol/Å^3 in real, kJ/mol/nm^3 in lj): the Tait
+parameters pi0 and B_T, the background pressure p_b and beta's pressure are what the pair style takes, not LAMMPS's
+pressure units (bar, atm): pair_style gendpde computes U = sum_i ... from them without LAMMPS's nktv2p, so that a
+value means the same in any units.
+
+    kind              OpenMM            metal (factor)                  real (factor)
+    length            nm                Å (10)                          Å (10)
+    velocity          nm/ps             Å/ps (10)                       Å/fs (0.01)
+    time              ps                ps (1)                          fs (1000)
+    mass              amu               g/mol (1)                       g/mol (1)
+    temperature       K                 K (1)                           K (1)
+    energy            kJ/mol            eV (E = 0.010364269656262174)   kcal/mol (1/4.184)
+    pressure          kJ/mol/nm^3       eV/Å^3 (E/1000)                 kcal/mol/Å^3 (1/4184)
+    number density    nm^-3             Å^-3 (1/1000)                   Å^-3 (1/1000)
+    volume            nm^3              Å^3 (1000)                      Å^3 (1000)
+    friction          amu/ps            g/mol/ps (1)                    g/mol/fs (1/1000)
+    heat capacity     kJ/mol/K          eV/K (E)                        kcal/mol/K (1/4.184)
+    heat conduction   kJ/mol K/ps       eV K/ps (E)                     kcal/mol K/fs (1/4184)
+    thermal pressure  kJ/mol/nm^3/K     eV/Å^3/K (E/1000)               kcal/mol/Å^3/K (1/4184)
+    energy x volume   kJ/mol nm^3       eV Å^3 (1000 E)                 kcal/mol Å^3 (1000/4.184)
+
+The constants are not the same in the two engines, and no factor can make them so (except in lj, where LAMMPS's are
+all 1). OpenMM's k_B is CODATA 2018's, 0.00831446261815324 kJ/mol/K; LAMMPS's metal k_B, force->boltz =
+8.617343e-5 eV/K (older CODATA), which the package uses, is 1.13e-6 relatively larger, and its real k_B,
+0.0019872067 kcal/mol/K, 1.23e-6 larger. A model whose parameters were fitted with OpenMM's k_B sees in LAMMPS a k_B
+that much larger wherever k_B enters (the thermostat's noise, sigma^2 = 2 gamma k_B T; the fluctuation-dissipation
+balance of the internal energies; the temperature LAMMPS reports from the kinetic energy). Likewise LAMMPS's metal
+mvv2e = 1.0364269e-4 eV per g/mol Å^2/ps^2 is 6.3e-8 relatively below the exact 10/(e N_A), and its nktv2p (eV/Å^3
+to bar, used only for the pressure it reports) 8.4e-8 below; in real units mvv2e is 6.6e-11 above the exact 10^4/4.184.
+All are far below any statistical error of a run, but trajectories of the two engines in metal or real units are not
 the same to the last bit even from the same state and seed.
 
 The neighbour skin (``neighbor SKIN bin``) is by default 0.1 R, rounded up to 4 significant digits: the skin of
 the plugin's OpenMM platforms (their lists hold candidates within 1.1 R, rebuilt once a particle has moved 0.05 R),
 which scales with the model's length, unlike LAMMPS's metal default of 2 Å (0.2 R for argon's R = 10.4 Å, 0.24 R
 for water's 8.3 Å: more pairs in the list for nothing). ``comm_modify cutoff GHOST``: the fix's sweep over pairs
-needs ghosts 1.5 sweep-cell widths plus the skin around each subdomain: per box direction of width L (Å) it has
-n = 4 floor(m/4) cells, m = floor(L/((1 + 1e-9) R)), of width w = L/n (m >= 4 is required: the box must be at
-least 4 R wide), and GHOST = max(1.5 max(w), R) + SKIN (R + SKIN: the pair style's own need), rounded up to
-4 significant digits (ghost_cutoff).
+needs ghosts 1.5 sweep-cell widths plus the skin around each subdomain; the sweep's cells and that cutoff come from
+the physics core (GenDPDESweepDefinition.h, through the bindings: sweepCellCount, sweepGhostCutoff,
+sweepMinCellsAcrossSubdomains), the functions fix gendpde calls, so the two cannot differ; GHOST is the core's value
+rounded up to 4 significant digits (ghost_cutoff). The box must be at least sweepMinCellsAcrossSubdomains() = 4
+cells, so about 4 R, wide.
 """
 
 import dataclasses
@@ -60,33 +75,61 @@ import openmm
 from openmm import unit
 
 from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator, law_description
+from ..gendpde import sweepCellCount, sweepGhostCutoff, sweepMinCellsAcrossSubdomains
 from ..internal.files import atomic_write
 
 #: 1 kJ/mol in eV: 1000/(e N_A), CODATA 2018 (exact e and N_A).
 ELEMENTARY_CHARGE = 1.602176634e-19   # C
 AVOGADRO = 6.02214076e23              # 1/mol
 ENERGY = 1e3 / (ELEMENTARY_CHARGE * AVOGADRO)
-#: LAMMPS's k_B in metal units (update.cpp: force->boltz), which the plugin uses, in eV/K.
+#: 1 kcal/mol in kJ/mol (thermochemical calorie, exact).
+KILOCALORIE = 4.184
+#: OpenMM's k_B in kJ/mol/K (k_B N_A, exact SI values): LAMMPS's lj temperature unit here.
+BOLTZMANN = 1.380649e-23 * 6.02214076e23 / 1000
+#: LAMMPS's k_B in metal units (update.cpp: force->boltz), which the package uses, in eV/K.
 LAMMPS_METAL_BOLTZMANN = 8.617343e-5
 
-#: kind -> (OpenMM unit, LAMMPS metal unit, factor): a value in metal units is factor x the value in OpenMM units.
-METAL_UNITS = {
-    "length": ("nm", "Å", 10.0),
-    "velocity": ("nm/ps", "Å/ps", 10.0),
-    "time": ("ps", "ps", 1.0),
-    "mass": ("amu", "g/mol", 1.0),
-    "temperature": ("K", "K", 1.0),
-    "energy": ("kJ/mol", "eV", ENERGY),
-    "pressure": ("kJ/mol/nm^3", "eV/Å^3", ENERGY * 1e-3),
-    "number_density": ("nm^-3", "Å^-3", 1e-3),
-    "volume": ("nm^3", "Å^3", 1e3),
-    "friction": ("amu/ps", "g/mol/ps", 1.0),
-    "heat_capacity": ("kJ/mol/K", "eV/K", ENERGY),
-    "heat_conduction": ("kJ/mol K/ps", "eV K/ps", ENERGY),
-    "thermal_pressure": ("kJ/mol/nm^3/K", "eV/Å^3/K", ENERGY * 1e-3),
-    "energy_volume": ("kJ/mol nm^3", "eV Å^3", ENERGY * 1e3),
+#: units -> {kind: (LAMMPS unit, multiplier, divisor)}: a value in those units is value x multiplier / divisor of
+#: the value in OpenMM's (the divisor keeps lj's conversions the single rounding of value / k_B).
+UNITS = {
+    "metal": {
+        "length": ("Å", 10.0, 1.0), "velocity": ("Å/ps", 10.0, 1.0), "time": ("ps", 1.0, 1.0),
+        "mass": ("g/mol", 1.0, 1.0), "temperature": ("K", 1.0, 1.0), "energy": ("eV", ENERGY, 1.0),
+        "pressure": ("eV/Å^3", ENERGY * 1e-3, 1.0), "number_density": ("Å^-3", 1e-3, 1.0),
+        "volume": ("Å^3", 1e3, 1.0), "friction": ("g/mol/ps", 1.0, 1.0), "heat_capacity": ("eV/K", ENERGY, 1.0),
+        "heat_conduction": ("eV K/ps", ENERGY, 1.0), "thermal_pressure": ("eV/Å^3/K", ENERGY * 1e-3, 1.0),
+        "energy_volume": ("eV Å^3", ENERGY * 1e3, 1.0),
+    },
+    "real": {
+        "length": ("Å", 10.0, 1.0), "velocity": ("Å/fs", 0.01, 1.0), "time": ("fs", 1e3, 1.0),
+        "mass": ("g/mol", 1.0, 1.0), "temperature": ("K", 1.0, 1.0), "energy": ("kcal/mol", 1.0, KILOCALORIE),
+        "pressure": ("kcal/mol/Å^3", 1.0, KILOCALORIE * 1e3), "number_density": ("Å^-3", 1e-3, 1.0),
+        "volume": ("Å^3", 1e3, 1.0), "friction": ("g/mol/fs", 1e-3, 1.0),
+        "heat_capacity": ("kcal/mol/K", 1.0, KILOCALORIE),
+        "heat_conduction": ("kcal/mol K/fs", 1.0, KILOCALORIE * 1e3),
+        "thermal_pressure": ("kcal/mol/Å^3/K", 1.0, KILOCALORIE * 1e3),
+        "energy_volume": ("kcal/mol Å^3", 1e3, KILOCALORIE),
+    },
+    "lj": {
+        "length": ("nm", 1.0, 1.0), "velocity": ("nm/ps", 1.0, 1.0), "time": ("ps", 1.0, 1.0),
+        "mass": ("amu", 1.0, 1.0), "temperature": ("kJ/mol: k_B T", BOLTZMANN, 1.0),
+        "energy": ("kJ/mol", 1.0, 1.0), "pressure": ("kJ/mol/nm^3", 1.0, 1.0),
+        "number_density": ("nm^-3", 1.0, 1.0), "volume": ("nm^3", 1.0, 1.0), "friction": ("amu/ps", 1.0, 1.0),
+        "heat_capacity": ("C/k_B", 1.0, BOLTZMANN), "heat_conduction": ("(kJ/mol)^2/ps: k_B kappa", BOLTZMANN, 1.0),
+        "thermal_pressure": ("nm^-3: beta/k_B", 1.0, BOLTZMANN), "energy_volume": ("kJ/mol nm^3", 1.0, 1.0),
+    },
 }
-
+#: What each units' script says of itself (its first comment lines).
+UNITS_NOTE = {
+    "metal": ["Units: metal (Å, eV, ps, g/mol, K), converted from OpenMM's (nm, kJ/mol, ps, amu, K) with",
+              "1 kJ/mol = 1000/(e N_A) eV (CODATA 2018); LAMMPS's metal k_B (8.617343e-5 eV/K) is 1.13e-6 relatively",
+              "larger than OpenMM's (openmmgendpde.models.lammps_files). Pressures are energy/volume (eV/Å^3)."],
+    "real": ["Units: real (Å, kcal/mol, fs, g/mol, K), converted from OpenMM's (nm, kJ/mol, ps, amu, K) with",
+             "1 kcal/mol = 4.184 kJ/mol; LAMMPS's real k_B (0.0019872067 kcal/mol/K) is 1.23e-6 relatively larger",
+             "than OpenMM's (openmmgendpde.models.lammps_files). Pressures are energy/volume (kcal/mol/Å^3)."],
+    "lj": ["Units: lj holding OpenMM's numbers (nm, kJ/mol, ps, amu) with k_B = 1: temperatures as k_B T (kJ/mol),",
+           "heat capacities as C/k_B, heat conductions as k_B kappa (openmmgendpde.models.lammps_files)."],
+}
 #: The Tait parameters n0, pi0, B_T, gamma_T (a law that extends Tait takes them first).
 TAIT_KINDS = ("number_density", "pressure", "pressure", None)   # gamma_T: a plain number
 #: The integrator's modes as the fix names them.
@@ -95,22 +138,25 @@ MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIn
 #: The files lammps_input writes, as the input script reads them.
 DATA_FILE = "gendpde.data"
 SCRIPT_FILE = "in.gendpde"
+#: The atomfile of each particle's initial temperature (lammps_input's temperatures).
+TEMPERATURES_FILE = "temperatures"
 #: The default neighbour skin as a fraction of R: that of the plugin's OpenMM platforms.
 SKIN_FRACTION = 0.1
-#: The fewest sweep cells per box direction that the fix takes.
-MIN_SWEEP_CELLS = 4
 #: The largest seed the fix takes.
 MAX_SEED = 2**31 - 1
+#: The script's sections, in order (LammpsInput.sections).
+SECTIONS = ("header", "variables", "setup", "pair", "neighbors", "fix", "output", "run")
 
 
-def in_metal(value, kind):
-    """``value`` (a float in OpenMM units, or a Quantity) of ``kind`` (a key of METAL_UNITS, or None for a plain
-    number) in LAMMPS's metal units."""
+def in_units(value, kind, units="metal"):
+    """``value`` (a float in OpenMM units, or a Quantity) of ``kind`` (a key of UNITS[units], or None for a plain
+    number) in LAMMPS's ``units`` (a key of UNITS)."""
     if kind is None:
         return float(value)
     if unit.is_quantity(value):
         value = value.value_in_unit(_OPENMM_UNITS[kind])
-    return float(value) * METAL_UNITS[kind][2]
+    _, multiplier, divisor = UNITS[units][kind]
+    return float(value) * multiplier / divisor
 
 
 _OPENMM_UNITS = {
@@ -137,36 +183,54 @@ def round_up(value, digits=4):
 
 
 def default_skin(cutoff):
-    """The neighbour skin (Å) for the cutoff R (Å): SKIN_FRACTION R, rounded up to 4 significant digits."""
+    """The neighbour skin for the cutoff R (both in the script's length unit): SKIN_FRACTION R, rounded up to 4
+    significant digits."""
     return round_up(SKIN_FRACTION * cutoff)
 
 
-def sweep_cells(width, cutoff):
-    """The fix's sweep cells across a box ``width`` (Å) for the cutoff R (Å): 4 floor(m/4), m = floor(L/((1 + 1e-9)
-    R)); ValueError where m < 4."""
-    m = math.floor(width / ((1 + 1e-9) * cutoff))
-    if m < MIN_SWEEP_CELLS:
-        raise ValueError(f"the box is {width:.6g} Å wide, {width / cutoff:.3f} R for the cutoff R = {cutoff:.6g} Å; "
-                         f"LAMMPS's fix gendpde needs at least {MIN_SWEEP_CELLS} R ({MIN_SWEEP_CELLS * cutoff:.6g} "
-                         f"Å): use more particles")
-    return MIN_SWEEP_CELLS * (m // MIN_SWEEP_CELLS)
+def sweep_cells(width, cutoff, length="Å"):
+    """The fix's sweep cells across a periodic box ``width`` for the cutoff R (the core's sweepCellCount, as fix
+    gendpde counts them); ValueError where fewer than sweepMinCellsAcrossSubdomains() fit (``length``: the unit
+    the message names)."""
+    cells = sweepCellCount(width, cutoff, True)
+    least = sweepMinCellsAcrossSubdomains()
+    if cells < least:
+        raise ValueError(f"the box is {width:.6g} {length} wide, {width / cutoff:.3f} R for the cutoff R = "
+                         f"{cutoff:.6g} {length}; LAMMPS's fix gendpde needs at least {least} R "
+                         f"({least * cutoff:.6g} {length}): use more particles")
+    return cells
 
 
-def ghost_cutoff(widths, cutoff, skin):
-    """comm_modify cutoff (Å) for box ``widths`` (Å), the cutoff R and the skin (Å): max(1.5 w, R) + skin, w the
-    widest sweep cell (sweep_cells), rounded up to 4 significant digits."""
-    cell = max(width / sweep_cells(width, cutoff) for width in widths)
-    return round_up(max(1.5 * cell, cutoff) + skin)
+def ghost_cutoff(widths, cutoff, skin, length="Å"):
+    """comm_modify cutoff for box ``widths``, the cutoff R and the skin (one length unit): the core's
+    sweepGhostCutoff (1.5 widths of the widest sweep cell + the skin, which fix gendpde requires), rounded up to 4
+    significant digits; ValueError for a box too small for the sweep (sweep_cells)."""
+    for width in widths:
+        sweep_cells(width, cutoff, length)
+    return round_up(sweepGhostCutoff(*widths, cutoff, skin))
 
 
 @dataclasses.dataclass(frozen=True)
 class LammpsInput:
-    """The texts of a LAMMPS data file (DATA_FILE) and input script (SCRIPT_FILE), and the numbers chosen for them."""
+    """The texts of a LAMMPS data file (DATA_FILE) and input script (SCRIPT_FILE, ``script``: its ``sections`` in
+    the order of SECTIONS), any other file the script reads (``files``: name -> text, e.g. TEMPERATURES_FILE), and
+    the numbers chosen for them, in the script's ``units``."""
     data: str
-    script: str
-    cutoff: float   # Å
-    skin: float     # Å
-    ghost: float    # Å, comm_modify cutoff
+    sections: dict
+    units: str
+    cutoff: float
+    skin: float
+    ghost: float    # comm_modify cutoff
+    files: dict = dataclasses.field(default_factory=dict)
+
+    @property
+    def script(self):
+        """The whole input script: every section, in the order of SECTIONS."""
+        return self.commands(*SECTIONS)
+
+    def commands(self, *names):
+        """The text of the script's sections ``names`` (of SECTIONS, in the order given)."""
+        return "".join(self.sections[name] for name in names)
 
 
 def _number(value):
@@ -200,23 +264,23 @@ def _laws(force, kinds):
 
 
 def _kind_of(openmm_unit):
-    """The kind (a key of METAL_UNITS, or None for a plain number) of a parameter in ``openmm_unit``."""
+    """The kind (a key of UNITS[units], or None for a plain number) of a parameter in ``openmm_unit``."""
     if openmm_unit is None or openmm_unit == unit.dimensionless:
         return None
     for kind, known in _OPENMM_UNITS.items():
         if openmm_unit.is_compatible(known) and math.isclose(openmm_unit.conversion_factor_to(known), 1.0):
             return kind
-    raise ValueError(f"a law's parameter is in {openmm_unit}, which lammps_files cannot convert to metal units")
+    raise ValueError(f"a law's parameter is in {openmm_unit}, which lammps_files cannot convert to LAMMPS's units")
 
 
-def _pair_coeff(index, law, parameters, tait):
-    """One pair_coeff line (metal units) of the LAMMPS type ``index``: the law as GenDPDEForce names it and its
+def _pair_coeff(index, units, law, parameters, tait):
+    """One pair_coeff line (in ``units``) of the LAMMPS type ``index``: the law as GenDPDEForce names it and its
     parameters, all as the table of the laws describes them (api.law_description), so that no law is spelt here."""
     name, extends_tait, described = law_description(law)
     if len(parameters) != len(described):
         raise ValueError(f"the law {name} has {len(parameters)} parameters, not {len(described)}")
-    values = [in_metal(v, k) for v, k in zip(tait, TAIT_KINDS)] if extends_tait else []
-    values += [in_metal(v, _kind_of(u)) for v, (_, u) in zip(parameters, described)]
+    values = [in_units(v, k, units) for v, k in zip(tait, TAIT_KINDS)] if extends_tait else []
+    values += [in_units(v, _kind_of(u), units) for v, (_, u) in zip(parameters, described)]
     return f"pair_coeff {index} {index} {name} " + " ".join(map(_number, values))
 
 
@@ -239,14 +303,15 @@ def _transport(integrator, kinds):
 
 def _initial_temperature(integrator):
     """The temperature the particles start at in OpenMM (K): those set before a Context (all one value: the fix's
-    ``initial`` takes one), else the bath's."""
+    ``initial`` takes one, else pass them to lammps_input as ``temperatures``), else the bath's."""
     try:
         temperatures = integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
     except openmm.OpenMMException:   # none set: the particles start at the bath temperature
         return integrator.getTemperature().value_in_unit(unit.kelvin)
     values = set(np.asarray(temperatures, dtype=float).tolist())
     if len(values) != 1:
-        raise ValueError("the particles' initial temperatures differ; the fix's 'initial' keyword takes one")
+        raise ValueError("the particles' initial temperatures differ; pass them as lammps_input's temperatures "
+                         "(an atomfile for the fix's 'initial v_theta')")
     return values.pop()
 
 
@@ -264,13 +329,27 @@ def _wrapped(x, width):
     return 0.0 if x >= width else x
 
 
+def _array(values, quantity_unit, num_particles, what, columns=3):
+    """``values`` (a Quantity or numbers in OpenMM units) as a float array of num_particles rows."""
+    array = np.asarray(values.value_in_unit(quantity_unit) if unit.is_quantity(values) else values, dtype=float)
+    if array.shape != ((num_particles, columns) if columns else (num_particles,)):
+        raise ValueError(f"{array.shape[0] if array.ndim else 1} {what} for {num_particles} particles")
+    return array
+
+
 def lammps_input(system, integrator, positions, velocities=None, steps=1000, thermo=100, skin=None, title="",
-                 plugin=None):
+                 plugin=None, units="metal", temperatures=None, restart=None):
     """LammpsInput for the OpenMM ``system`` (one GenDPDEForce, CutoffPeriodic, an orthogonal box), its
-    GenDPDEIntegrator, ``positions`` (N x 3, nm) and ``velocities`` (N x 3, nm/ps; None: no Velocities section):
-    a run of ``steps`` steps, thermo output every ``thermo`` steps, neighbour ``skin`` (Å; default default_skin),
-    ``title`` in the files' first comment, ``plugin``: the default of the script's variable ``plugin`` (None: given
-    on the command line, lmp -var plugin PATH). ValueError for what the plugin cannot express."""
+    GenDPDEIntegrator, ``positions`` (N x 3, nm) and ``velocities`` (N x 3, nm/ps; None: no Velocities section),
+    in LAMMPS's ``units`` (metal, real or lj: UNITS and the module docstring): a run of ``steps`` steps, thermo
+    output every ``thermo`` steps, neighbour ``skin`` (in the units' length; default default_skin), ``title`` in the
+    files' first comment, ``plugin``: the default of the script's variable ``plugin`` (None: given on the command
+    line, lmp -var plugin PATH); ``temperatures``: each particle's initial temperature (N, K), written as the
+    atomfile TEMPERATURES_FILE that the fix reads (initial v_theta; default: the one temperature the integrator
+    starts from); ``restart``: the name of a restart file the script reads (read_restart) instead of the data file.
+    ValueError for what the package cannot express."""
+    if units not in UNITS:
+        raise ValueError(f"units = {units!r} is not allowed; it must be one of {', '.join(UNITS)}")
     if system.getNumForces() != 1 or not GenDPDEForce.isinstance(system.getForce(0)):
         raise ValueError("the System must hold one force, a GenDPDEForce (the pair style computes nothing else)")
     force = GenDPDEForce.cast(system.getForce(0))
@@ -288,10 +367,7 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
         raise ValueError(f"the integrator's cutoff {own_cutoff} nm differs from the force's {cutoff_nm} nm; the "
                          f"pair style and the fix have one")
     num_particles = system.getNumParticles()
-    positions = np.asarray(positions.value_in_unit(unit.nanometer) if unit.is_quantity(positions) else positions,
-                           dtype=float)
-    if positions.shape != (num_particles, 3):
-        raise ValueError(f"{positions.shape[0]} positions for {num_particles} particles")
+    positions = _array(positions, unit.nanometer, num_particles, "positions")
     types = _types(force, integrator, num_particles)
     kinds = sorted(set(types))
     index = {kind: k + 1 for k, kind in enumerate(kinds)}   # OpenMM type -> LAMMPS type
@@ -302,92 +378,115 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
             raise ValueError(f"particle {i} has mass {mass}: a fixed particle has no counterpart in this input")
         if masses.setdefault(types[i], mass) != mass:
             raise ValueError(f"particles of type {types[i]} have different masses; LAMMPS's masses are per type")
-    widths = [in_metal(width, "length") for width in _box_widths(system)]
-    cutoff = in_metal(cutoff_nm, "length")
+
+    def convert(value, kind):
+        return in_units(value, kind, units)
+    length = UNITS[units]["length"][0]
+    widths = [convert(width, "length") for width in _box_widths(system)]
+    cutoff = convert(cutoff_nm, "length")
     skin = default_skin(cutoff) if skin is None else float(skin)
-    ghost = ghost_cutoff(widths, cutoff, skin)
+    ghost = ghost_cutoff(widths, cutoff, skin, length)
     title = " ".join(title.split())
     header = "GenDPDE model for the LAMMPS plugin (python -m openmmgendpde lammps-input)"
 
     data = [f"{header}{': ' + title if title else ''}", "", f"{num_particles} atoms", f"{len(kinds)} atom types", ""]
     data += [f"0.0 {_number(width)} {axis}lo {axis}hi" for width, axis in zip(widths, "xyz")]
-    data += ["", "Masses", ""] + [f"{index[kind]} {_number(in_metal(masses[kind], 'mass'))}" for kind in kinds]
+    data += ["", "Masses", ""] + [f"{index[kind]} {_number(convert(masses[kind], 'mass'))}" for kind in kinds]
     data += ["", "Atoms # atomic", ""]
     for i, (r, kind) in enumerate(zip(positions, types)):
-        x, y, z = (_wrapped(in_metal(c, "length"), width) for c, width in zip(r, widths))
+        x, y, z = (_wrapped(convert(c, "length"), width) for c, width in zip(r, widths))
         data.append(f"{i + 1} {index[kind]} {_number(x)} {_number(y)} {_number(z)}")
     if velocities is not None:
-        velocities = np.asarray(velocities.value_in_unit(unit.nanometer / unit.picosecond)
-                                if unit.is_quantity(velocities) else velocities, dtype=float)
-        if velocities.shape != (num_particles, 3):
-            raise ValueError(f"{velocities.shape[0]} velocities for {num_particles} particles")
+        velocities = _array(velocities, unit.nanometer / unit.picosecond, num_particles, "velocities")
         data += ["", "Velocities", ""]
-        data += [f"{i + 1} " + " ".join(_number(in_metal(c, "velocity")) for c in v) for i, v in enumerate(velocities)]
+        data += [f"{i + 1} " + " ".join(_number(convert(c, "velocity")) for c in v) for i, v in enumerate(velocities)]
+    files = {}
+    if temperatures is not None:
+        # an atomfile: the count, then "ID value" per atom (LAMMPS's variable atomfile)
+        temperatures = _array(temperatures, unit.kelvin, num_particles, "temperatures", columns=None)
+        if not np.all(temperatures > 0):
+            raise ValueError("every initial temperature must be > 0")
+        files[TEMPERATURES_FILE] = "\n".join(
+            [f"# each particle's initial temperature ({UNITS[units]['temperature'][0]})", str(num_particles)]
+            + [f"{i + 1} {_number(convert(t, 'temperature'))}" for i, t in enumerate(temperatures)]) + "\n"
 
     laws = _laws(force, kinds)
-    background = in_metal(force.getBackgroundPressure(), "pressure")
+    background = convert(force.getBackgroundPressure(), "pressure")
     capacities, pairs = _transport(integrator, kinds)
     mode = {value: name for name, value in MODES.items()}[integrator.getMode()]
-    temperature = integrator.getTemperature().value_in_unit(unit.kelvin)
+    temperature = convert(integrator.getTemperature().value_in_unit(unit.kelvin), "temperature")
     fix = ["fix integrate all gendpde ${mode} ${seed}"]
-    fix += [f"heat_capacity {index[kind]} {_number(in_metal(capacities[kind], 'heat_capacity'))}" for kind in kinds]
-    fix += [f"friction {index[a]} {index[b]} {_number(in_metal(gamma, 'friction'))}"
+    fix += [f"heat_capacity {index[kind]} {_number(convert(capacities[kind], 'heat_capacity'))}" for kind in kinds]
+    fix += [f"friction {index[a]} {index[b]} {_number(convert(gamma, 'friction'))}"
             for (a, b), (gamma, _) in pairs.items()]
-    fix += [f"conduction {index[a]} {index[b]} {_number(in_metal(kappa, 'heat_conduction'))}"
+    fix += [f"conduction {index[a]} {index[b]} {_number(convert(kappa, 'heat_conduction'))}"
             for (a, b), (_, kappa) in pairs.items()]
     fix += ["temperature ${temperature}", "initial ${initial}"]
+    initial = "v_theta" if temperatures is not None else _number(convert(_initial_temperature(integrator),
+                                                                         "temperature"))
     estimator = ESTIMATOR_NAMES[force.getDensityEstimator()].lower()
-    step = integrator.getStepSize().value_in_unit(unit.picosecond)
-    script = [
-        f"# {header}" + (f":\n# {title}." if title else "."),
-        "# Units: metal (Å, eV, ps, g/mol, K), converted from OpenMM's (nm, kJ/mol, ps, amu, K) with",
-        "# 1 kJ/mol = 1000/(e N_A) eV (CODATA 2018); LAMMPS's metal k_B (8.617343e-5 eV/K) is 1.13e-6 relatively",
-        "# larger than OpenMM's (openmmgendpde.models.lammps_files).",
-        f"# Run where {DATA_FILE} is: lmp -var plugin /path/to/gendpdeplugin.so -in {SCRIPT_FILE}",
-        "# Each variable below can also be set on the command line (lmp -var steps 5000 ...).",
-        "",
-        *([f"variable plugin index {plugin}"] if plugin else []),
-        f"variable steps index {int(steps)}",
-        f"variable dt index {_number(step)}   # ps",
-        f"variable mode index {mode}   # isoenergetic, isothermal or conservative",
-        f"variable seed index {seed}",
-        f"variable temperature index {_number(temperature)}   # K, the bath of the isothermal mode",
-        f"variable initial index {_number(_initial_temperature(integrator))}   # K, the start: eps_i = C_V T",
-        f"variable thermo index {int(thermo)}",
-        "",
-        "units metal",
-        "atom_style atomic",
-        "atom_modify map yes   # (atom-style variables of per-atom files need it: initial v_name)",
-        "boundary p p p",
-        "plugin load ${plugin}",
-        f"read_data {DATA_FILE}",
-        "",
-        "# R (Å), the density estimator, f_cut (the reduced range is R/f_cut), background pressure p_b (eV/Å^3)",
-        f"pair_style gendpde {_number(cutoff)} {estimator} {_number(force.getCutoffScaling())}"
-        + (f" background {_number(background)}" if background != 0 else ""),
-        "# per type: the law as GenDPDEForce names it and its parameters in metal units (a law that extends Tait",
-        "# takes n0 (1/Å^3), pi0 and B_T (eV/Å^3) and gamma_T first; docs/lammps.md)",
-        *[_pair_coeff(index[kind], *laws[kind]) for kind in kinds],
-        "",
-        f"# skin {_number(skin)} Å; ghosts: 1.5 sweep cells + skin, the fix's sweep needs them (lammps_files)",
-        f"neighbor {_number(skin)} bin",
-        "neigh_modify every 1 delay 0 check yes",
-        f"comm_modify cutoff {_number(ghost)}",
-        "",
-        "# heat capacity C_V (eV/K), friction gamma (g/mol/ps), conduction kappa (eV K/ps)",
-        " &\n    ".join(fix),
-        "variable conserved equal etotal+f_integrate   # f_integrate: the sum of the internal energies (eV)",
-        "timestep ${dt}",
-        "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
-        "thermo_modify format float %.15g",
-        "thermo ${thermo}",
-        "run ${steps}",
-    ]
-    return LammpsInput("\n".join(data) + "\n", "\n".join(script) + "\n", cutoff, skin, ghost)
+    step = convert(integrator.getStepSize().value_in_unit(unit.picosecond), "time")
+    u = {kind: UNITS[units][kind][0] for kind in UNITS[units]}
+
+    def section(*lines):
+        return "\n".join(lines) + "\n"
+    map_line = "atom_modify map yes   # (atom-style variables of per-atom files need it: initial v_name)"
+    # (read_restart brings the atom style and the boundaries back)
+    start = ([map_line, "plugin load ${plugin}", f"read_restart {restart}"] if restart else
+             ["atom_style atomic", map_line, "boundary p p p", "plugin load ${plugin}", f"read_data {DATA_FILE}"])
+    sections = {
+        "header": section(
+            f"# {header}" + (f":\n# {title}." if title else "."), *(f"# {line}" for line in UNITS_NOTE[units]),
+            f"# Run where {DATA_FILE} is: lmp -var plugin /path/to/gendpdeplugin.so -in {SCRIPT_FILE}",
+            "# Each variable below can also be set on the command line (lmp -var steps 5000 ...).", ""),
+        "variables": section(
+            *([f"variable plugin index {plugin}"] if plugin else []),
+            f"variable steps index {int(steps)}",
+            f"variable dt index {_number(step)}   # {u['time']}",
+            f"variable mode index {mode}   # isoenergetic, isothermal or conservative",
+            f"variable seed index {seed}",
+            f"variable temperature index {_number(temperature)}   # {u['temperature']}, the bath of the isothermal "
+            f"mode",
+            f"variable initial index {initial}   # {u['temperature']}, the start: eps_i = C_V T"
+            + (" (v_theta: each particle's)" if temperatures is not None else ""),
+            f"variable thermo index {int(thermo)}", ""),
+        "setup": section(f"units {units}", *start, ""),
+        "pair": section(
+            f"# R ({length}), the density estimator, f_cut (the reduced range is R/f_cut), background pressure p_b "
+            f"({u['pressure']})",
+            f"pair_style gendpde {_number(cutoff)} {estimator} {_number(force.getCutoffScaling())}"
+            + (f" background {_number(background)}" if background != 0 else ""),
+            "# per type: the law as GenDPDEForce names it and its parameters (a law that extends Tait takes n0",
+            f"# ({u['number_density']}), pi0 and B_T ({u['pressure']}: energy/volume) and gamma_T first; "
+            f"docs/lammps.md)",
+            *[_pair_coeff(index[kind], units, *laws[kind]) for kind in kinds], ""),
+        "neighbors": section(
+            f"# skin {_number(skin)} {length}; ghosts: 1.5 sweep cells + skin, the fix's sweep needs them "
+            f"(lammps_files)",
+            f"neighbor {_number(skin)} bin",
+            "neigh_modify every 1 delay 0 check yes",
+            f"comm_modify cutoff {_number(ghost)}", ""),
+        "fix": section(
+            f"# heat capacity C_V ({u['heat_capacity']}), friction gamma ({u['friction']}), conduction kappa "
+            f"({u['heat_conduction']})",
+            # (an atomfile variable is read when defined: after the atoms)
+            *([f"variable theta atomfile {TEMPERATURES_FILE}   # each particle's initial temperature"]
+              if temperatures is not None else []),
+            " &\n    ".join(fix),
+            f"variable conserved equal etotal+f_integrate   # f_integrate: the sum of the internal energies "
+            f"({u['energy']})",
+            "timestep ${dt}"),
+        "output": section(
+            "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
+            "thermo_modify format float %.15g",
+            "thermo ${thermo}"),
+        "run": section("run ${steps}"),
+    }
+    return LammpsInput("\n".join(data) + "\n", sections, units, cutoff, skin, ghost, files)
 
 
 def model_input(parameters, num_particles, mode="isoenergetic", seed=1, step_size=None, steps=1000, thermo=100,
-                skin=None, plugin=None, title=None):
+                skin=None, plugin=None, title=None, units="metal"):
     """LammpsInput of a model (GenDPDEParameters, e.g. fluid_files.load_parameters of a model file) as its liquid()
     builds it with ``num_particles`` (4 m^3), the integrator in ``mode`` (a key of MODES) with random ``seed``,
     step ``step_size`` (ps; default liquid()'s, dt* = 0.01), and the velocities that Model.context draws with
@@ -395,6 +494,8 @@ def model_input(parameters, num_particles, mode="isoenergetic", seed=1, step_siz
     integrator's checks) for a bad argument."""
     if mode not in MODES:
         raise ValueError(f"mode = {mode!r} is not allowed; it must be one of {', '.join(MODES)}")
+    if units not in UNITS:
+        raise ValueError(f"units = {units!r} is not allowed; it must be one of {', '.join(UNITS)}")
     model = parameters.liquid(num_particles, mode=MODES[mode], seed=seed)
     if step_size is not None:
         model.integrator.setStepSize(step_size)
@@ -405,7 +506,7 @@ def model_input(parameters, num_particles, mode="isoenergetic", seed=1, step_siz
     del context
     title = parameters.fluid.name if title is None else title
     return lammps_input(model.system, model.integrator, positions, velocities, steps, thermo, skin,
-                        f"{title}, {num_particles} particles", plugin)
+                        f"{title}, {num_particles} particles", plugin, units)
 
 
 def thermo_table(log):
@@ -428,11 +529,12 @@ def thermo_table(log):
 
 
 def write_lammps_input(directory, texts):
-    """Write DATA_FILE and SCRIPT_FILE of ``texts`` (a LammpsInput) into ``directory`` (made if absent), each
-    atomically; their paths."""
+    """Write DATA_FILE, SCRIPT_FILE and the other files of ``texts`` (a LammpsInput) into ``directory`` (made if
+    absent), each atomically; the paths of the data file and the script."""
     os.makedirs(directory, exist_ok=True)
     paths = os.path.join(directory, DATA_FILE), os.path.join(directory, SCRIPT_FILE)
-    for path, text in zip(paths, (texts.data, texts.script)):
+    for path, text in [*zip(paths, (texts.data, texts.script)),
+                       *((os.path.join(directory, name), text) for name, text in texts.files.items())]:
         with atomic_write(path) as stream:
             stream.write(text)
     return paths

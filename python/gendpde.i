@@ -1,3 +1,5 @@
+/* SPDX-License-Identifier: MIT
+ * Copyright (c) 2026 The openmm-gendpde developers */
 %module(package="openmmgendpde") gendpde
 
 /* Low-level SWIG bindings of the GenDPDE plugin, built on OpenMM's own SWIG interface so that the proxies subclass

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDE (generalised energy-conserving dissipative particle dynamics) for OpenMM.
 
 ``GenDPDEForce`` is the many-body conservative force U = sum_i f(n_i) with the traditional (VA), the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """python -m openmmgendpde <subcommand> [options]: the command line (openmmgendpde.cli.main); --help for each."""
 
 import warnings

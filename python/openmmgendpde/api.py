@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The plugin's OpenMM classes: ``GenDPDEForce`` and ``GenDPDEIntegrator`` (the SWIG classes of the C++ API) with
 OpenMM's conventions added: arguments accept ``openmm.unit`` quantities, getters return them, per-particle results are
 Quantities holding numpy arrays, copies, pickling and ``repr``. Importing this module loads the kernel libraries.

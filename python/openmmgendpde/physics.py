@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The pointwise physics of GenDPDE (docs/theory.md sections 2-4 and 11), exactly as the kernels evaluate it.
 
 Plain floats in any consistent units (OpenMM units where a law's parameters are checked, as GenDPDEForce checks them):

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Reduced GenDPDE units (mass, length, energy; k_B = 1) and their conversion to OpenMM units.
 
 >>> from openmmgendpde.units import ARGON_UNITS

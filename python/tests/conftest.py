@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Shared pytest configuration: the installed plugin (pip install .), every platform named explicitly."""
 
 import openmm

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units, its numbers taken
 from openmmgendpde.models.argon)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A numerical check of docs/theory.md section 11 (issue 23's design): the Shardlow sweep of sections 5-6, unchanged,
 combined with an isentropic conservative motion for f(theta, n) = e(n) - theta sigma(n) + C theta (1 - ln theta/theta0)
 samples delta(H - E) prod_i exp(s_i/k_B) exp(sigma(n_i)/C), not delta(H - E) prod_i exp(s_i/k_B).

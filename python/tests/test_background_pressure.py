@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The background pressure p_b of GenDPDEForce and the compression study (docs/theory.md section 12)."""
 
 import math

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """calibrate (openmmgendpde.calibration): the judgement of a calibration, its iterations, its stages on made-up
 measurements and in short runs, and the measurements it rests on (heat capacity, thermal expansion, stability)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """calibrate's iterations (calibration.iteration, and beta's by calibration.expansion): a parameter moved on its
 measured response, on made-up responses whose answer is known, until the target, the floor of the model, or the end of
 its runs."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The measurements calibrate rests on, against what is known: the stability of a time step, V-C's step at a free
 surface, the decay of a conduction wave on a lattice, the speed of sound of an ideal gas, and the model's heat capacity
 from its fluctuations against the energy a temperature change takes."""

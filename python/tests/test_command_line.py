@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Every subcommand of `python3 -m openmmgendpde` end to end at its quick size."""
 
 import csv

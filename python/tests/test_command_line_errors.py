@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Every argument of `python3 -m openmmgendpde` checked before anything runs, and every failure in one line: a usage
 error (status 2) for a bad value, one line (status 1) for arguments that do not fit together or a run that fails."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """What the subcommands write: table3's frames as one complete set that rdf reads, calibrate's outputs each on its
 own, the fluid every command takes, and the one line on the error bars."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEForce equals the same potential written with OpenMM's stock CustomGBForce (an independent implementation:
 Lepton expressions, OpenMM's neighbor search and automatic chain rule), on the Reference platform (double)."""
 

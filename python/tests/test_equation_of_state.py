@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The local equations of state that depend on temperature (docs/theory.md section 11), from Python: the API with
 units, copies, and what is refused, and OpenCL against Reference. Their physics is tested in C++
 (tests/TestGenDPDEThermal.h) on every platform."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The two-material example (examples/two_materials.py) runs and shows what it claims: heat flows from the hot
 material to the cold one while the total energy is conserved."""
 

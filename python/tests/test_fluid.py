@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The mapping from a fluid's physical properties to GenDPDE parameters (openmmgendpde.models.fluid) and `calibrate`."""
 
 import dataclasses

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Fluids and calibrated models as files (openmmgendpde.models.fluid_files) and calibrate's --fluid FILE and
 --output."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The slab of any fluid (openmmgendpde.studies.slab.fluid_slab) and the --fluid option of `slab` and `tune-fcut`
 (docs/interfaces.md, "A slab of any fluid")."""
 

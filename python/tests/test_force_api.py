@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEForce from Python: an openmm.Force that feels like OpenMM's own classes."""
 
 import copy

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The GPU platforms (OpenCL, and CUDA where a GPU is present) from Python, in every precision, against Reference.
 
 Tolerances: in double precision the device computes the host's sums in another order (1e-10 relative); in single

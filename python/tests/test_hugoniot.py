@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The Rankine-Hugoniot solver (openmmgendpde.analysis.hugoniot) against the ideal gas's shock, known in closed form,
 and the fit of an equation of state against functions it must reproduce exactly."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEIntegrator from Python: an openmm.Integrator that works with Context, Simulation, reporters,
 XmlSerializer, checkpoints and States."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Physics of GenDPDEIntegrator against exact predictions (docs/theory.md section 5). Statistical tests state the exact
 expected value, the tolerance and why; every run uses fixed seeds, so the tests are deterministic."""
 

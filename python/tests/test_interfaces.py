@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The exact partition-of-unity volume (openmmgendpde.analysis.interfaces) against closed forms and an independent grid
 integration, and the slab study's bookkeeping (openmmgendpde.studies.slab)."""
 

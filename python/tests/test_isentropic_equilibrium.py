@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """docs/theory.md section 11 on a toy whose law is known in closed form (isentropic_toy.py): the pair update of the
 sweep with an isentropic conservative motion samples exp(sigma(n)/C) beside the entropies' weight, as the section
 claims, and not the law without it."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`lammps-input`: a model file as input for the LAMMPS plugin. The files are read back and compared with the OpenMM
 model that the project builds (positions, box, masses, velocities) and with the model file's parameters converted by
 hand, with the CODATA constants written here (not taken from the code under test)."""

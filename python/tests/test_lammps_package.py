@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The LAMMPS package (lammps/: pair_style gendpde, fix gendpde) against OpenMM's Reference platform.
 
 LAMMPS runs in its lj units with OpenMM's numbers written as they are (nm, kJ/mol, amu, ps): lengths, energies, masses

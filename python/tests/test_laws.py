@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Any law of the table in a model (models.laws, model.ModelParameters): its parameters fitted to a reference state
 (pi0 and n dpi/dn = gamma_T B_T at n0, the thermal pressure at the particles' mean temperature), checked against the
 laws' closed forms (docs/theory.md section 11), and a van der Waals fluid mapped, saved to a model file, loaded and

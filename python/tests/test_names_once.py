@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The names of the density estimators and of the laws are spelt once, in the core's tables (api.ESTIMATORS,
 api.LAWS): no module of the Python package holds its own list of them (a command's choices, a model file's allowed
 values, a dict keyed by them), so that a new estimator or law is known to every command and file without a Python

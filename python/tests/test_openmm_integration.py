@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The plugin as part of an OpenMM 8 installation: loaded by `import openmm`, documented by help(), taking what
 OpenMM's own classes take (numpy scalars, Quantity lists and arrays), and releasing the GIL in long calls."""
 

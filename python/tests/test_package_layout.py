@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The package's layout (README, "The package"): no import circles, each subpackage importing only the layers below
 it, and the flat package's module names still importable (until 0.3), with a warning naming the new place."""
 

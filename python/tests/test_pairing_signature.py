@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The physics the paper is about: the pairing instability of VA and its removal by VB."""
 
 import numpy as np

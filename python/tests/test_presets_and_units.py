@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Reduced units and the liquid-argon preset (docs/theory.md section 9)."""
 
 import math

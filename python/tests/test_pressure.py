@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The virial and pressure tensors (GenDPDEForce.getParticleVirials, openmmgendpde.analysis.pressure) against the scalar
 virial and the energy's response to deformations of the box, for every estimator (V-C's pair forces are not central) and
 platform, in cubic and triclinic boxes and a slab. (The C++ tests check each particle's tensor against the

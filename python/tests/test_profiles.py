@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """ProfileReporter (openmmgendpde.analysis.profiles) against a direct computation of the same bins."""
 
 import io

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEReporter and the thermodynamic probe behind it: consistent values, what is reported when something cannot
 be measured, validated input, and the pressure of every force (exact virials, numerical where needed)."""
 

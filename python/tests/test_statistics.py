@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Block averages (openmmgendpde.analysis.statistics): the value, and the plateau check that warns without changing
 it."""
 

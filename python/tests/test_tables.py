@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The core's tables (core/include/gendpde: GenDPDEDensityEstimators.h, GenDPDEEquationsOfState.h) against the API
 enum they number: each entry's name is the GenDPDEForce enum value of its place, and the enum has no value the
 table lacks. This is what lets a new estimator or law touch only the core, its table and the enum."""

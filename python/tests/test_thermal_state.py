@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The particles' thermal state with a law that depends on temperature, as a user meets it from Python: liquid argon
 with its thermal expansion (expansion.mapped(): TaitThermalExpansion, 5 atoms per particle). What each call keeps is
 one rule (docs/integrator.md, "The particles' thermal state: one rule"); its every case is tested on every platform

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The steady-flow transport measurements (openmmgendpde.analysis.transport, docs/transport.md): the Poiseuille fit, the
 body force against OpenMM's own evaluation, the heat-flux energy accounting, and short runs of both methods."""
 

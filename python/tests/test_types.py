@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Particle types from Python: per-particle types, per-type Tait parameters (GenDPDEForce), per-type heat capacities
 and per-type-pair friction and heat conduction (GenDPDEIntegrator), with units, copies and error messages."""
 

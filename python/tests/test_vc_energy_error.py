@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """V-C's conserved-energy error at a free surface (docs/interfaces.md, "V-C's energy error and its time step"): second
 order in the step, and far above V-B's at the same step, which is why stability.suggest_time_step gives V-C a step
 ten times smaller. The slab of the `slab` study (1000 argon particles at n* = 0.82 from the lattice, R* = 1.6839,

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Accuracy of the volume estimators (docs/theory.md sections 2-3) against 40-digit quadrature.
 
 Target: relative error <= 1e-12 for V and dV/dn0 at every k in [0, 1e12], including the numerical traps: k = 0,

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The mean particle density n-bar of a GenDPDEForce over frames, at a given f_cut: the measurement that the f_cut
 tuners (calibration.fcut, calibration.calibrate) step on."""
 

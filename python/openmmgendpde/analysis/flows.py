@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The steady flows of analysis.transport in closed form: the Poiseuille body force and the shape of its flow
 profile, the fit of a binned profile to it, the heat flux's slab profile, and the slowest modes' relaxation times of a
 periodic box (docs/transport.md)."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The Rankine-Hugoniot jump of a fluid whose equation of state is known from equilibrium samples.
 
 A planar shock that brings fluid at rest in the state (n0, E0, P0) to the state (n1, E1, P1) moving at the piston

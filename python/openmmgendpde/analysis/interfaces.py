@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Particle volumes at interfaces (docs/interfaces.md): the exact partition-of-unity volume as an oracle, and the
 estimators of the plugin measured against it on frozen configurations.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The virial and pressure tensors of a GenDPDEForce (docs/fluids.md): what shear flows, surface tension or
 anisotropic boxes need beyond the scalar virial that GenDPDEForce.getVirial returns.
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Profiles along one axis of a periodic box (an OpenMM reporter): what a study of a slab, a heat flow or a shear
 flow reads. Each report bins the particles by their wrapped coordinate along ``axis`` (reduced box: fractional
 coordinate) into ``bins`` equal slices and writes, per bin, one CSV row with the columns

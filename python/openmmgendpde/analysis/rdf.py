@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Radial distribution function g(r) of particle frames (mdtraj), in reduced or OpenMM units."""
 
 import numpy as np

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Averages of correlated time series with honest error bars.
 
 The standard error of the mean of a correlated series comes from the scatter of block means. It is right only

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The thermodynamic state of a simulation at one instant, in OpenMM units: the one definition of what
 GenDPDEReporter writes and what the liquid-argon studies (openmmgendpde.models.argon_runs) average.
 

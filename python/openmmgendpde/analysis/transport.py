@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Transport coefficients from steady non-equilibrium flows (docs/transport.md): a second, independent method for
 each of `calibrate`'s wave-decay measurements, in OpenMM units (nm, ps, amu, kJ/mol, K).
 

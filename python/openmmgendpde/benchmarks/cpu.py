@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The CPU platform at several thread counts, side by side with the Reference platform (`benchmark-cpu`).
 
 For each particle count, liquid argon at R* = 1.6839 (VB) is melted from its lattice by Isothermal steps on the CPU

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Speed of GenDPDEForce against the same potential written with OpenMM's CustomGBForce (`benchmark-force`).
 
 For each particle count and published argon cutoff: a liquid configuration is prepared (FCC lattice at n0* = 1,

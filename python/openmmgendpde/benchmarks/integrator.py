@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Cost of a GenDPDEIntegrator step against a force evaluation and against OpenMM's own integrators
 (`benchmark-integrator`).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Measuring speed on a noisy machine: every comparison is made side by side in one run.
 
 Candidates are called in alternating rounds (the order rotates every round), each call is timed on its own, and

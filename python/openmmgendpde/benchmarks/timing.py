@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The analogue of Table IV of Colella et al. (2025) (`timing`): wall time per step of full GenDPDE (isoenergetic,
 GenDPDEForce + GenDPDEIntegrator) with VA and with VB for each cutoff, and the VB/VA ratio, measured side by side:
 both systems are prepared (thermostat at T0, internal energies drawn at T0), then their production steps run in

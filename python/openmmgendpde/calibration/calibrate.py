@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Set up any fluid from its physical properties and measure the model back (`calibrate`; docs/fluids.md).
 
 1. The mapping (openmmgendpde.models.fluid.coarse_grain) gives every parameter; they are printed in OpenMM and

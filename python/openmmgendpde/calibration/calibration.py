@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The machinery of calibrate: a Calibration holds a model's parameters and measures them back (melts, thermodynamics,
 the bulk modulus, the heat capacity; the transport coefficients by waves and steady flows: waves.py), and iterates a
 parameter on its measured response (iterate, steady_correction; pressure_step for pi0: iteration.py). The protocol and

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The model's thermal expansion measured back (`thermal-expansion`): the thermal pressure coefficient (dP/dT)_V of a
 fluid whose particles have the TaitThermalExpansion law (docs/theory.md section 11), and alpha = kappa_T (dP/dT)_V,
 beside the fluid's.

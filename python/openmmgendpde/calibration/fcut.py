@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Tune f_cut of the VB (or VC) estimator so that the mean density equals the imposed one (`tune-fcut`); the paper tuned
 it by hand.
 

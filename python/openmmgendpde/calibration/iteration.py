@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """How calibrate iterates a parameter on its measured response (Calibration.iterate, steady_correction; pressure_step
 for pi0), and when an iteration stops (_settled) or a result is reached (_reached)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The report of a calibration (calibrate.calibrate): its rows in the units a reader of a fluid expects (MPa, mPa s,
 W/(m K), J/(kg K)), the tables calibrate prints, the record that --json writes, and its figure (--plot)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """What calibrate judges: each property as a typed value (Property), the criteria it must meet (CRITERIA, and those
 of --quick), and the misses, each naming its property. The labels of the report are attributes of the properties:
 renaming one changes no judgement."""

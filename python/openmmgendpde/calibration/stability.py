@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The largest stable time step of a fluid model, measured (docs/fluids.md "Time step").
 
 A step size passes when, from a melted liquid (Isothermal steps at dt* = 0.005), `steps` steps at that size in the

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The transport coefficients of a Calibration measured: the decays of a transverse velocity wave (the shear
 viscosity) and of an energy wave (the thermal conductivity) along the long box of the steady flows, and the steady
 flows themselves (analysis.transport: Poiseuille flow, a heat flux between slabs)."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`benchmark-cpu`: its arguments and output; the measurement is openmmgendpde.benchmarks.cpu's (whose docstring is
 the command's --help)."""
 

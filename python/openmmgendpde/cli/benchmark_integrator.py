@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`benchmark-integrator`: its arguments and output; the measurement is openmmgendpde.benchmarks.integrator's (whose
 docstring is the command's --help)."""
 

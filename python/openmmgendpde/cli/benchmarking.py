@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """What the benchmark subcommands share on the command line: their options and how they print and write their
 results."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`calibrate`: its arguments, checked before anything runs, and its output; the protocol is
 openmmgendpde.calibration.calibrate.calibrate (whose docstring, the method, is the command's --help)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The --fluid options that every command building a model from a fluid shares: a built-in name or a fluid file, and
 the coarse-graining."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A calibrated model file (calibrate --output; fluid_files.load_parameters) as input for the project's LAMMPS plugin
 (pair style gendpde and fix gendpde), so that the fluid runs in LAMMPS as it does in OpenMM (docs/lammps.md).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The command line of openmmgendpde: python -m openmmgendpde <subcommand> [options]; --help for each. Each subcommand
 is a module of this package with its arguments (add_arguments), its run (run, over the functions of the layers
 below) and its --help text (DESCRIPTION, the method's docstring where the method lives below)."""

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Command-line options shared by the subcommands of ``python -m openmmgendpde``, each defined once here.
 
 Where an option's default differs between subcommands on purpose (the frames that table3 keeps against those rdf

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Progress of the long runs on stderr (tqdm): percentage, elapsed time and an estimate of the time remaining."""
 
 import sys

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The command-line options of the liquid-argon studies (table3, rdf, timing, tune-fcut, speed-vs-error): those that
 override the run protocol of openmmgendpde.models.argon_runs (which says what a run does), checked before anything
 runs. All times are in reduced units (the time unit is 0.8962 ps).

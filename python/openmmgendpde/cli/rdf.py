@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`rdf`: its arguments and output; the study is openmmgendpde.studies.rdf (whose docstring is the command's --help)."""
 
 import pathlib

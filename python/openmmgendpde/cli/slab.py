@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`slab`: its arguments, checked before anything runs, and its output; the slabs are openmmgendpde.studies.slab's
 (whose docstring is the command's --help), the measurements against the exact volumes studies.surfaces'."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`speed-vs-error`: its arguments and output; the study is openmmgendpde.studies.speed_vs_error (whose docstring is
 the command's --help)."""
 

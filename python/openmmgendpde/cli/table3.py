@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`table3`: its arguments and output; the study is openmmgendpde.studies.table3 (whose docstring is the command's
 --help)."""
 

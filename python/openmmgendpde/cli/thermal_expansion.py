@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`thermal-expansion`: its arguments and output; the measurement is openmmgendpde.calibration.expansion's (whose
 docstring is the command's --help)."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """`tune-fcut`: its arguments and output; the iterations are openmmgendpde.calibration.fcut's (whose docstring is the
 command's --help)."""
 

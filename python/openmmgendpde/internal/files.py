@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Outputs written atomically: a file is complete or absent (or still the previous one), never partly written.
 
 ``atomic_write(path)`` opens a temporary file in the target's directory and, when the block ends without an

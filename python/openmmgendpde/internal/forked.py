@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Independent runs side by side in forked processes, one CPU thread each: the replicas of a transport measurement
 (calibrate.Calibration.replicas).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The module names of the flat package (version 0.1 and 0.2's development), kept importable in 0.2: ``import
 openmmgendpde.fluid`` gives ``openmmgendpde.models.fluid`` with a FutureWarning that names the new place. Version 0.3
 removes them."""

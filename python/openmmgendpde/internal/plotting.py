@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Figures of the studies, saved as PNG and PDF. Built on matplotlib's Figure directly, not pyplot, so that no
 display and no global backend are involved (nothing here selects a backend for the user's session).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The checks that every reporter of this package makes of its arguments, and how it opens its file: each refusal an
 OpenMMException naming the reporter, the parameter, the value and what is allowed."""
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Liquid argon as modelled by Colella, Larentzos, Bresme and Bonet Avalos (J. Chem. Theory Comput. 2025):
 the reference case of docs/theory.md section 9.
 

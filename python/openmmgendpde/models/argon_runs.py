@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Liquid-argon runs as in Colella et al. (J. Chem. Theory Comput. 2025): the protocol shared by the studies of
 the command line (table3, rdf, timing, tune-fcut, speed-vs-error).
 

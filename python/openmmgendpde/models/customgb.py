@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The GenDPDE conservative potential written with OpenMM's stock ``CustomGBForce``.
 
 An independent implementation (Lepton expressions, OpenMM's own neighbor search and chain rule) used by the tests

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Any fluid, not only argon: from physical properties and a coarse-graining level to every GenDPDE parameter
 (docs/fluids.md; the `calibrate` subcommand measures the model's properties back).
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Fluids and calibrated models as files (TOML or JSON), so that any fluid can be set up without writing Python and a
 calibrated model can be built again (docs/fluids.md, "Fluid files").
 

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A GenDPDE model as LAMMPS input for the project's LAMMPS package (pair style ``gendpde`` and fix ``gendpde``), so
 that a calibrated fluid runs in either engine: the one writer of LAMMPS input of the project, used by the
 `lammps-input` command, the tests of the package and the tools that compare the engines (docs/lammps.md).

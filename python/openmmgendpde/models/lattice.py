@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The lattices that models start from (FCC positions in a rectangular box) and the volume of a System's box; the
 model itself is built by model.ModelParameters.build."""
 

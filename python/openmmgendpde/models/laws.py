@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A model's local equation of state fitted to a reference state, for any law of the table (api.LAWS): the laws are
 evaluated by the physics core (physics.localEquationOfState), so no law is spelt here and a law added to the table
 can be mapped onto a fluid and calibrated with no change to Python.

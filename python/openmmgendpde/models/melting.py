@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The one "melt, then switch mode" of the package: a liquid melted from its lattice with the DPD thermostat
 (Isothermal mode), then run in another mode with each particle's internal energy drawn from its equilibrium law.
 

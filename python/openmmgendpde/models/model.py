@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The model of the package and its one builder: ModelParameters holds every parameter of a one-type GenDPDE model
 (its GenDPDEForce, with the local equation of state as a law of the table and its parameters, and its
 GenDPDEIntegrator) and builds it whole (build: a System holding one GenDPDEForce, its GenDPDEIntegrator, a Topology

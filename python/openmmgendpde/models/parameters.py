@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """The parameters of a fluid's model (GenDPDEParameters): every parameter of its GenDPDEForce and GenDPDEIntegrator
 (model.ModelParameters) with the fluid, the coarse-graining and the estimator f_cut was tuned for, and the fluid's
 model built from them (liquid). models.fluid.coarse_grain makes them from a fluid's properties; models.fluid_files

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """A fluid's physical properties at one state point (Fluid), each an openmm.unit Quantity, checked and converted to
 OpenMM units (per molecule in SI, or per mole); models.fluid maps them onto a model (coarse_grain)."""
 

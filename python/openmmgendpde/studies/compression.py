@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """compression: how a model liquid follows a compression (docs/theory.md section 12).
 
 The liquid of a model file (calibrate --output) or of a fluid's mapping (--fluid), run as calibrate runs it (melted

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Radial distribution functions of liquid argon with VA and VB, plotted like Fig. 1 of Colella et al. (2025)
 (`rdf`): three panels (one per cutoff), VA dashed, VB solid, the cutoff marked. VA shows spurious shoulders inside
 R_cut (the clumped pairs), worst at R_cut* = 1.3365; VB gives an ordinary liquid g(r). g(r) comes from mdtraj

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Free surfaces (`slab`, docs/interfaces.md): a liquid-argon slab in vacuum run with V-A, V-B and V-C, and the
 estimators' volumes measured against the exact partition-of-unity volume (openmmgendpde.analysis.interfaces).
 

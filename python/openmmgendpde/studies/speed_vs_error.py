@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Cost against accuracy of the time step (`speed-vs-error`): for several step sizes, from one equilibrated state
 (openmmgendpde.models.argon_runs protocol at the smallest step), the same simulated time of isoenergetic GenDPDE with VA
 and with VB, reporting the wall time per unit of simulated time against four errors:

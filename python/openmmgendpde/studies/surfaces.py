@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Free surfaces measured (`slab`, docs/interfaces.md): each estimator's particle volumes against the exact
 partition-of-unity volume (analysis.interfaces) in slices of a slab, shells of a droplet and bulk liquids; the bulk
 pressure and the coexistence density; the surface tension against a fluid's; and the figure of a slab run. The slabs

@@ -1,3 +1,5 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
 """Table III of Colella et al. (J. Chem. Theory Comput. 2025) reproduced (`table3`): for the three published cutoffs
 and both estimators (--estimators; VC against the published VB values), the production averages of T* (kinetic,
 and harmonic mean of theta_i), n-bar* and P* with

@@ -111,7 +111,7 @@ void testStrictNumbersReadWhatAStreamReads() {
         if (!StrictXml::parseWhole(c.first, found) || found != c.second)
             throw OpenMMException("StrictXml::parseWhole('" + c.first + "') is not " + std::to_string(c.second));
     }
-    for (const std::string& text : {"", "1.5", "1e3", " 1", "1 ", "abc", "+-1", "9223372036854775808"}) {
+    for (const char* text : {"", "1.5", "1e3", " 1", "1 ", "abc", "+-1", "9223372036854775808"}) {
         long long found;
         if (StrictXml::parseWhole(std::string(text), found))
             throw OpenMMException("StrictXml::parseWhole accepted '" + std::string(text) + "' as an integer");

@@ -6,6 +6,7 @@
 /* Assertions for the C++ tests. Every tolerance is explicit at the call site (absolute, or relative to the
  * expected value); none silently switches to an absolute scale of 1 as OpenMM's ASSERT_EQUAL_TOL does. */
 
+#include "CoreTest.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/AssertionUtilities.h"
 #include "openmm/Vec3.h"
@@ -41,13 +42,7 @@ inline double precisionTolerance(double doubleTolerance, double floatTolerance) 
 }
 
 inline void assertClose(double expected, double found, double tolerance, const std::string& what) {
-    if (!(std::abs(expected - found) <= tolerance)) {
-        std::ostringstream message;
-        message.precision(17);
-        message << what << ": expected " << expected << ", found " << found << " (difference "
-                << std::abs(expected - found) << " > tolerance " << tolerance << ")";
-        throw std::runtime_error(message.str());
-    }
+    GenDPDECoreTest::checkClose(expected, found, tolerance, what);
 }
 
 inline void assertRelative(double expected, double found, double relativeTolerance, const std::string& what) {
@@ -97,16 +92,10 @@ private:
     std::vector<std::pair<std::string, std::string>> values;
 };
 
-/** main() of a test program: run the tests, print "Done" or the failure, return the exit status. */
+/** main() of a test program: run the tests, print "Done" or the failure, return the exit status (as the core's
+ *  tests do: core/tests/CoreTest.h). */
 inline int runTestProgram(const std::function<void()>& tests) {
-    try {
-        tests();
-    } catch (const std::exception& e) {
-        std::cout << "FAILED: " << e.what() << std::endl;
-        return 1;
-    }
-    std::cout << "Done" << std::endl;
-    return 0;
+    return GenDPDECoreTest::run(tests);
 }
 
 #endif /*GENDPDE_TEST_UTILITIES_H_*/

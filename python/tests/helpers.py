@@ -3,7 +3,9 @@
 """Small systems for the Python tests (liquid argon of docs/theory.md section 9 in OpenMM units, its numbers taken
 from openmmgendpde.models.argon)."""
 
+import importlib.util
 import math
+import pathlib
 
 import numpy as np
 import openmm
@@ -113,3 +115,13 @@ def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
                          ("steady_conductivity", "thermal_conductivity")):
         monkeypatch.setattr(Calibration, name, lambda self, target=target: Measured(
             self.parameters.targets()[target], 1e-6, 3))
+
+
+def load_file(path):
+    """The module in the file ``path`` (a tool of devtools/ or lammps/unittest/, which are no package), loaded
+    afresh under its file's name."""
+    path = pathlib.Path(path)
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module

@@ -14,7 +14,6 @@ build/lammps/plugin/gendpdeplugin.so, or the paths in GENDPDE_LMP and GENDPDE_LA
 --oversubscribe (4 ranks on 2 cores is fine for correctness).
 """
 
-import importlib.util
 import os
 import pathlib
 import subprocess
@@ -22,7 +21,7 @@ import subprocess
 import numpy as np
 import openmm
 import pytest
-from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid
+from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid, load_file
 
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.models.fluid_files import load_parameters
@@ -572,9 +571,7 @@ run 4 post no
         assert fp_error(virial, init_stress) <= epsilon, setup
 
     # the YAML holds OpenMM's values as the script computes them now (not edited by hand, not stale)
-    spec = importlib.util.spec_from_file_location("pair_gendpde_yaml", UNITTEST / "pair_gendpde_yaml.py")
-    writer = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(writer)
+    writer = load_file(UNITTEST / "pair_gendpde_yaml.py")
     case = writer.CASES[name]
     expected = writer.yaml_text(name, case, writer.reference_values(case, FORCE_STYLE_INPUTS / "data.metal"), "")
     written = (UNITTEST / name).read_text()

@@ -2,17 +2,15 @@
 # Copyright (c) 2026 The openmm-gendpde developers
 """Every tracked source file names its licence and holders near its top (devtools/licence_headers.py; LICENSE)."""
 
-import importlib.util
 import pathlib
+
+from helpers import load_file
 
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 
 
 def _licence_headers():
-    spec = importlib.util.spec_from_file_location("licence_headers", REPOSITORY / "devtools" / "licence_headers.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_file(REPOSITORY / "devtools" / "licence_headers.py")
 
 
 def test_the_checker_tells_a_header_from_none():

@@ -4,12 +4,12 @@
 it, and the flat package's module names still importable (until 0.3), with a warning naming the new place."""
 
 import importlib
-import importlib.util
 import pathlib
 import sys
 import warnings
 
 import pytest
+from helpers import load_file
 
 REPOSITORY = pathlib.Path(__file__).resolve().parents[2]
 #: The layers, lowest first: a module may import its own layer's and those below (the package's __init__, which
@@ -19,10 +19,7 @@ LAYERS = ["internal", "gendpde", "api", "units", "physics", "analysis", "reporte
 
 
 def _import_graph():
-    spec = importlib.util.spec_from_file_location("import_graph", REPOSITORY / "devtools" / "import_graph.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_file(REPOSITORY / "devtools" / "import_graph.py")
 
 
 def test_the_circle_finder_finds_a_circle():
@@ -68,9 +65,6 @@ def test_the_flat_package_s_module_names_still_import_with_a_warning(old, new):
 def test_the_api_reference_is_generated_from_the_current_docstrings():
     """docs/api.md is devtools/api_reference.py's output for the installed package: a docstring changed without
     regenerating it fails here (the fix: .venv/bin/python devtools/api_reference.py > docs/api.md)."""
-    spec = importlib.util.spec_from_file_location("api_reference", REPOSITORY / "devtools" / "api_reference.py")
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    text = module.generate()
+    text = load_file(REPOSITORY / "devtools" / "api_reference.py").generate()
     assert "### class `GenDPDEForce`" in text and "## `openmmgendpde.calibration.results`" in text
     assert text == (REPOSITORY / "docs" / "api.md").read_text()

@@ -52,7 +52,8 @@ from openmm import unit
 from openmmgendpde.analysis.statistics import BlockAverageWarning, block_average
 from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS, PUBLISHED_TABLE3, liquid_argon
 from openmmgendpde.models.argon_runs import FULL, Samples, melt_then_draw, production, stepper
-from openmmgendpde.models.lammps_files import ENERGY, in_units, lammps_input, thermo_table, write_lammps_input
+from openmmgendpde.models.lammps_files import lammps_input, thermo_table, write_lammps_input
+from openmmgendpde.models.lammps_units import ENERGY, in_units
 from openmmgendpde.studies.table3 import sampling_summary
 
 CUTOFF = 1.6839

@@ -22,7 +22,7 @@ import numpy as np
 import openmm
 
 from openmmgendpde import GenDPDEForce
-from openmmgendpde.models.lammps_files import ENERGY
+from openmmgendpde.models.lammps_units import ENERGY
 
 HERE = pathlib.Path(__file__).resolve().parent
 #: LAMMPS's metal units: force x time / mass to velocity (update.cpp), for fix nve's steps.

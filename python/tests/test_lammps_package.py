@@ -26,13 +26,13 @@ from helpers import MASS, TEMPERATURE, argon_integrator, lattice_liquid, load_fi
 from openmmgendpde import GenDPDEForce, GenDPDEIntegrator
 from openmmgendpde.models.fluid_files import load_parameters
 from openmmgendpde.models.lammps_files import (
-    ENERGY,
     SECTIONS,
     lammps_input,
     round_up,
     thermo_table,
     write_lammps_input,
 )
+from openmmgendpde.models.lammps_units import ENERGY
 
 pytestmark = pytest.mark.lammps
 

@@ -27,7 +27,8 @@ import os
 import openmm
 
 from ..models.fluid_files import load_parameters
-from ..models.lammps_files import DATA_FILE, MAX_SEED, MODES, SCRIPT_FILE, UNITS, model_input, write_lammps_input
+from ..models.lammps_files import DATA_FILE, MAX_SEED, MODES, SCRIPT_FILE, model_input, write_lammps_input
+from ..models.lammps_units import UNITS
 from .options import (
     COUNT,
     NON_NEGATIVE_COUNT,

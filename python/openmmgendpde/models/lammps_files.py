@@ -13,48 +13,8 @@ conduction, bath temperature, step, mode, seed), never from a second copy of the
 is atom i + 1 of LAMMPS (the package uses ID - 1 as the index of a particle's random streams, as OpenMM uses i);
 OpenMM's particle types, sorted, are LAMMPS's atom types 1, 2, ...
 
-Units (``units``; UNITS lists every factor): OpenMM's (nm, kJ/mol, ps, amu, K) to LAMMPS's
-
-- ``metal`` (Å, eV, ps, g/mol, K), with 1 kJ/mol = 1000/(e N_A) eV = 1/96.48533212331002 eV (CODATA 2018, exact:
-  e = 1.602176634e-19 C, N_A = 6.02214076e23/mol);
-- ``real`` (Å, kcal/mol, fs, g/mol, K), with 1 kcal/mol = 4.184 kJ/mol (thermochemical, exact);
-- ``lj``, used as a container for OpenMM's own numbers: LAMMPS's lj units have k_B = 1 and every other constant 1,
-  so lengths (nm), energies (kJ/mol), masses (amu) and times (ps) are written as they are and only the temperature
-  scale changes: temperatures as k_B T (kJ/mol), heat capacities as C/k_B, heat conductions as k_B kappa, thermal
-  pressure coefficients as beta/k_B (k_B = 0.00831446261815324 kJ/mol/K, exact SI values). The two engines then
-  compute with the same numbers (up to one rounding each), which is how the tests compare them to rounding.
-
-Pressures are energy/volume in every units (eV/Å^3 in metal, kcal/mol/Å^3 in real, kJ/mol/nm^3 in lj): the Tait
-parameters pi0 and B_T, the background pressure p_b and beta's pressure are what the pair style takes, not LAMMPS's
-pressure units (bar, atm): pair_style gendpde computes U = sum_i ... from them without LAMMPS's nktv2p, so that a
-value means the same in any units.
-
-    kind              OpenMM            metal (factor)                  real (factor)
-    length            nm                Å (10)                          Å (10)
-    velocity          nm/ps             Å/ps (10)                       Å/fs (0.01)
-    time              ps                ps (1)                          fs (1000)
-    mass              amu               g/mol (1)                       g/mol (1)
-    temperature       K                 K (1)                           K (1)
-    energy            kJ/mol            eV (E = 0.010364269656262174)   kcal/mol (1/4.184)
-    pressure          kJ/mol/nm^3       eV/Å^3 (E/1000)                 kcal/mol/Å^3 (1/4184)
-    number density    nm^-3             Å^-3 (1/1000)                   Å^-3 (1/1000)
-    volume            nm^3              Å^3 (1000)                      Å^3 (1000)
-    friction          amu/ps            g/mol/ps (1)                    g/mol/fs (1/1000)
-    heat capacity     kJ/mol/K          eV/K (E)                        kcal/mol/K (1/4.184)
-    heat conduction   kJ/mol K/ps       eV K/ps (E)                     kcal/mol K/fs (1/4184)
-    thermal pressure  kJ/mol/nm^3/K     eV/Å^3/K (E/1000)               kcal/mol/Å^3/K (1/4184)
-    energy x volume   kJ/mol nm^3       eV Å^3 (1000 E)                 kcal/mol Å^3 (1000/4.184)
-
-The constants are not the same in the two engines, and no factor can make them so (except in lj, where LAMMPS's are
-all 1). OpenMM's k_B is CODATA 2018's, 0.00831446261815324 kJ/mol/K; LAMMPS's metal k_B, force->boltz =
-8.617343e-5 eV/K (older CODATA), which the package uses, is 1.13e-6 relatively larger, and its real k_B,
-0.0019872067 kcal/mol/K, 1.23e-6 larger. A model whose parameters were fitted with OpenMM's k_B sees in LAMMPS a k_B
-that much larger wherever k_B enters (the thermostat's noise, sigma^2 = 2 gamma k_B T; the fluctuation-dissipation
-balance of the internal energies; the temperature LAMMPS reports from the kinetic energy). Likewise LAMMPS's metal
-mvv2e = 1.0364269e-4 eV per g/mol Å^2/ps^2 is 6.3e-8 relatively below the exact 10/(e N_A), and its nktv2p (eV/Å^3
-to bar, used only for the pressure it reports) 8.4e-8 below; in real units mvv2e is 6.6e-11 above the exact 10^4/4.184.
-All are far below any statistical error of a run, but trajectories of the two engines in metal or real units are not
-the same to the last bit even from the same state and seed.
+Units (``units``: metal, real or lj) are converted by models/lammps_units.py, whose docstring gives every factor and
+why pressures are energy/volume in every units.
 
 The neighbour skin (``neighbor SKIN bin``) is by default 0.1 R, rounded up to 4 significant digits: the skin of
 the plugin's OpenMM platforms (their lists hold candidates within 1.1 R, rebuilt once a particle has moved 0.05 R),
@@ -69,7 +29,6 @@ cells, so about 4 R, wide.
 
 import dataclasses
 import decimal
-import math
 import os
 
 import numpy as np
@@ -79,61 +38,8 @@ from openmm import unit
 from ..api import ESTIMATOR_NAMES, GenDPDEForce, GenDPDEIntegrator, law_description
 from ..gendpde import sweepCellCount, sweepGhostCutoff, sweepMinCellsAcrossSubdomains
 from ..internal.files import atomic_write
+from .lammps_units import TAIT_KINDS, UNITS, UNITS_NOTE, in_units, kind_of
 
-#: 1 kJ/mol in eV: 1000/(e N_A), CODATA 2018 (exact e and N_A).
-ELEMENTARY_CHARGE = 1.602176634e-19   # C
-AVOGADRO = 6.02214076e23              # 1/mol
-ENERGY = 1e3 / (ELEMENTARY_CHARGE * AVOGADRO)
-#: 1 kcal/mol in kJ/mol (thermochemical calorie, exact).
-KILOCALORIE = 4.184
-#: OpenMM's k_B in kJ/mol/K (k_B N_A, exact SI values): LAMMPS's lj temperature unit here.
-BOLTZMANN = 1.380649e-23 * 6.02214076e23 / 1000
-#: LAMMPS's k_B in metal units (update.cpp: force->boltz), which the package uses, in eV/K.
-LAMMPS_METAL_BOLTZMANN = 8.617343e-5
-
-#: units -> {kind: (LAMMPS unit, multiplier, divisor)}: a value in those units is value x multiplier / divisor of
-#: the value in OpenMM's (the divisor keeps lj's conversions the single rounding of value / k_B).
-UNITS = {
-    "metal": {
-        "length": ("Å", 10.0, 1.0), "velocity": ("Å/ps", 10.0, 1.0), "time": ("ps", 1.0, 1.0),
-        "mass": ("g/mol", 1.0, 1.0), "temperature": ("K", 1.0, 1.0), "energy": ("eV", ENERGY, 1.0),
-        "pressure": ("eV/Å^3", ENERGY * 1e-3, 1.0), "number_density": ("Å^-3", 1e-3, 1.0),
-        "volume": ("Å^3", 1e3, 1.0), "friction": ("g/mol/ps", 1.0, 1.0), "heat_capacity": ("eV/K", ENERGY, 1.0),
-        "heat_conduction": ("eV K/ps", ENERGY, 1.0), "thermal_pressure": ("eV/Å^3/K", ENERGY * 1e-3, 1.0),
-        "energy_volume": ("eV Å^3", ENERGY * 1e3, 1.0),
-    },
-    "real": {
-        "length": ("Å", 10.0, 1.0), "velocity": ("Å/fs", 0.01, 1.0), "time": ("fs", 1e3, 1.0),
-        "mass": ("g/mol", 1.0, 1.0), "temperature": ("K", 1.0, 1.0), "energy": ("kcal/mol", 1.0, KILOCALORIE),
-        "pressure": ("kcal/mol/Å^3", 1.0, KILOCALORIE * 1e3), "number_density": ("Å^-3", 1e-3, 1.0),
-        "volume": ("Å^3", 1e3, 1.0), "friction": ("g/mol/fs", 1e-3, 1.0),
-        "heat_capacity": ("kcal/mol/K", 1.0, KILOCALORIE),
-        "heat_conduction": ("kcal/mol K/fs", 1.0, KILOCALORIE * 1e3),
-        "thermal_pressure": ("kcal/mol/Å^3/K", 1.0, KILOCALORIE * 1e3),
-        "energy_volume": ("kcal/mol Å^3", 1e3, KILOCALORIE),
-    },
-    "lj": {
-        "length": ("nm", 1.0, 1.0), "velocity": ("nm/ps", 1.0, 1.0), "time": ("ps", 1.0, 1.0),
-        "mass": ("amu", 1.0, 1.0), "temperature": ("kJ/mol: k_B T", BOLTZMANN, 1.0),
-        "energy": ("kJ/mol", 1.0, 1.0), "pressure": ("kJ/mol/nm^3", 1.0, 1.0),
-        "number_density": ("nm^-3", 1.0, 1.0), "volume": ("nm^3", 1.0, 1.0), "friction": ("amu/ps", 1.0, 1.0),
-        "heat_capacity": ("C/k_B", 1.0, BOLTZMANN), "heat_conduction": ("(kJ/mol)^2/ps: k_B kappa", BOLTZMANN, 1.0),
-        "thermal_pressure": ("nm^-3: beta/k_B", 1.0, BOLTZMANN), "energy_volume": ("kJ/mol nm^3", 1.0, 1.0),
-    },
-}
-#: What each units' script says of itself (its first comment lines).
-UNITS_NOTE = {
-    "metal": ["Units: metal (Å, eV, ps, g/mol, K), converted from OpenMM's (nm, kJ/mol, ps, amu, K) with",
-              "1 kJ/mol = 1000/(e N_A) eV (CODATA 2018); LAMMPS's metal k_B (8.617343e-5 eV/K) is 1.13e-6 relatively",
-              "larger than OpenMM's (openmmgendpde.models.lammps_files). Pressures are energy/volume (eV/Å^3)."],
-    "real": ["Units: real (Å, kcal/mol, fs, g/mol, K), converted from OpenMM's (nm, kJ/mol, ps, amu, K) with",
-             "1 kcal/mol = 4.184 kJ/mol; LAMMPS's real k_B (0.0019872067 kcal/mol/K) is 1.23e-6 relatively larger",
-             "than OpenMM's (openmmgendpde.models.lammps_files). Pressures are energy/volume (kcal/mol/Å^3)."],
-    "lj": ["Units: lj holding OpenMM's numbers (nm, kJ/mol, ps, amu) with k_B = 1: temperatures as k_B T (kJ/mol),",
-           "heat capacities as C/k_B, heat conductions as k_B kappa (openmmgendpde.models.lammps_files)."],
-}
-#: The Tait parameters n0, pi0, B_T, gamma_T (a law that extends Tait takes them first).
-TAIT_KINDS = ("number_density", "pressure", "pressure", None)   # gamma_T: a plain number
 #: The integrator's modes as the fix names them.
 MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIntegrator.Isothermal,
          "conservative": GenDPDEIntegrator.Conservative}
@@ -148,29 +54,6 @@ SKIN_FRACTION = 0.1
 MAX_SEED = 2**31 - 1
 #: The script's sections, in order (LammpsInput.sections).
 SECTIONS = ("header", "variables", "setup", "pair", "neighbors", "fix", "output", "run")
-
-
-def in_units(value, kind, units="metal"):
-    """``value`` (a float in OpenMM units, or a Quantity) of ``kind`` (a key of UNITS[units], or None for a plain
-    number) in LAMMPS's ``units`` (a key of UNITS)."""
-    if kind is None:
-        return float(value)
-    if unit.is_quantity(value):
-        value = value.value_in_unit(_OPENMM_UNITS[kind])
-    _, multiplier, divisor = UNITS[units][kind]
-    return float(value) * multiplier / divisor
-
-
-_OPENMM_UNITS = {
-    "length": unit.nanometer, "velocity": unit.nanometer / unit.picosecond, "time": unit.picosecond,
-    "mass": unit.amu, "temperature": unit.kelvin, "energy": unit.kilojoule_per_mole,
-    "pressure": unit.kilojoule_per_mole / unit.nanometer**3, "number_density": unit.nanometer**-3,
-    "volume": unit.nanometer**3, "friction": unit.amu / unit.picosecond,
-    "heat_capacity": unit.kilojoule_per_mole / unit.kelvin,
-    "heat_conduction": unit.kilojoule_per_mole * unit.kelvin / unit.picosecond,
-    "thermal_pressure": unit.kilojoule_per_mole / unit.nanometer**3 / unit.kelvin,
-    "energy_volume": unit.kilojoule_per_mole * unit.nanometer**3,
-}
 
 
 def round_up(value, digits=4):
@@ -265,16 +148,6 @@ def _laws(force, kinds):
     return {kind: (*laws.get(kind, default_law), tait.get(kind, default_tait)) for kind in kinds}
 
 
-def _kind_of(openmm_unit):
-    """The kind (a key of UNITS[units], or None for a plain number) of a parameter in ``openmm_unit``."""
-    if openmm_unit is None or openmm_unit == unit.dimensionless:
-        return None
-    for kind, known in _OPENMM_UNITS.items():
-        if openmm_unit.is_compatible(known) and math.isclose(openmm_unit.conversion_factor_to(known), 1.0):
-            return kind
-    raise ValueError(f"a law's parameter is in {openmm_unit}, which lammps_files cannot convert to LAMMPS's units")
-
-
 def _pair_coeff(index, units, law, parameters, tait):
     """One pair_coeff line (in ``units``) of the LAMMPS type ``index``: the law as GenDPDEForce names it and its
     parameters, all as the table of the laws describes them (api.law_description), so that no law is spelt here."""
@@ -282,7 +155,7 @@ def _pair_coeff(index, units, law, parameters, tait):
     if len(parameters) != len(described):
         raise ValueError(f"the law {name} has {len(parameters)} parameters, not {len(described)}")
     values = [in_units(v, k, units) for v, k in zip(tait, TAIT_KINDS)] if extends_tait else []
-    values += [in_units(v, _kind_of(u), units) for v, (_, u) in zip(parameters, described)]
+    values += [in_units(v, kind_of(u), units) for v, (_, u) in zip(parameters, described)]
     return f"pair_coeff {index} {index} {name} " + " ".join(map(_number, values))
 
 
@@ -352,6 +225,66 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
     ValueError for what the package cannot express."""
     if units not in UNITS:
         raise ValueError(f"units = {units!r} is not allowed; it must be one of {', '.join(UNITS)}")
+    force, seed, cutoff_nm = _checked_model(system, integrator)
+    num_particles = system.getNumParticles()
+    positions = _array(positions, unit.nanometer, num_particles, "positions")
+    types = _types(force, integrator, num_particles)
+    kinds = sorted(set(types))
+    index = {kind: k + 1 for k, kind in enumerate(kinds)}   # OpenMM type -> LAMMPS type
+    masses = _masses(system, types)
+    length = UNITS[units]["length"][0]
+    widths = [in_units(width, "length", units) for width in _box_widths(system)]
+    cutoff = in_units(cutoff_nm, "length", units)
+    skin = default_skin(cutoff) if skin is None else float(skin)
+    ghost = ghost_cutoff(widths, cutoff, skin, length)
+    title = " ".join(title.split())
+    data = _data_text(f"{HEADER}{': ' + title if title else ''}", units, widths, index, masses, positions, types,
+                      velocities)
+    files = {}
+    if temperatures is not None:
+        files[TEMPERATURES_FILE] = _temperatures_text(temperatures, num_particles, units)
+    script = _Script(units, title, plugin, steps, thermo, seed, cutoff, skin, ghost, temperatures is not None,
+                     restart)
+    sections = {**_opening(script, integrator), **_model_sections(script, force, integrator, kinds, index),
+                **_closing(script)}
+    return LammpsInput(data, sections, units, cutoff, skin, ghost, files)
+
+
+#: The first words of the files' first comment.
+HEADER = "GenDPDE model for the LAMMPS plugin (python -m openmmgendpde lammps-input)"
+
+
+@dataclasses.dataclass(frozen=True)
+class _Script:
+    """What the script's sections share: the choices of lammps_input and the numbers made from them."""
+    units: str
+    title: str
+    plugin: str
+    steps: int
+    thermo: int
+    seed: int
+    cutoff: float
+    skin: float
+    ghost: float
+    temperatures: bool   # each particle's initial temperature from TEMPERATURES_FILE
+    restart: str
+
+    def unit(self, kind):
+        """The name of this script's unit of ``kind`` (UNITS)."""
+        return UNITS[self.units][kind][0]
+
+    def number(self, value, kind):
+        """``value`` (OpenMM units) of ``kind`` in this script's units, as text."""
+        return _number(in_units(value, kind, self.units))
+
+
+def _section(*lines):
+    return "\n".join(lines) + "\n"
+
+
+def _checked_model(system, integrator):
+    """(the GenDPDEForce, the integrator's seed, the cutoff in nm) of a System and integrator the package can run;
+    ValueError naming what it cannot express."""
     if system.getNumForces() != 1 or not GenDPDEForce.isinstance(system.getForce(0)):
         raise ValueError("the System must hold one force, a GenDPDEForce (the pair style computes nothing else)")
     force = GenDPDEForce.cast(system.getForce(0))
@@ -368,123 +301,135 @@ def lammps_input(system, integrator, positions, velocities=None, steps=1000, the
     if own_cutoff not in (0, cutoff_nm):
         raise ValueError(f"the integrator's cutoff {own_cutoff} nm differs from the force's {cutoff_nm} nm; the "
                          f"pair style and the fix have one")
-    num_particles = system.getNumParticles()
-    positions = _array(positions, unit.nanometer, num_particles, "positions")
-    types = _types(force, integrator, num_particles)
-    kinds = sorted(set(types))
-    index = {kind: k + 1 for k, kind in enumerate(kinds)}   # OpenMM type -> LAMMPS type
+    return force, seed, cutoff_nm
+
+
+def _masses(system, types):
+    """{OpenMM type: mass (amu)}; ValueError for a fixed particle or a type whose particles differ in mass."""
     masses = {}
-    for i in range(num_particles):
+    for i, type_ in enumerate(types):
         mass = system.getParticleMass(i).value_in_unit(unit.amu)
         if mass <= 0:
             raise ValueError(f"particle {i} has mass {mass}: a fixed particle has no counterpart in this input")
-        if masses.setdefault(types[i], mass) != mass:
-            raise ValueError(f"particles of type {types[i]} have different masses; LAMMPS's masses are per type")
+        if masses.setdefault(type_, mass) != mass:
+            raise ValueError(f"particles of type {type_} have different masses; LAMMPS's masses are per type")
+    return masses
 
+
+def _data_text(first_line, units, widths, index, masses, positions, types, velocities):
+    """The data file: the box (``widths`` in ``units``), the masses and atoms of each LAMMPS type (``index``: OpenMM
+    type -> LAMMPS type), the positions (nm, wrapped into the box) and, if given, the velocities (nm/ps)."""
     def convert(value, kind):
         return in_units(value, kind, units)
-    length = UNITS[units]["length"][0]
-    widths = [convert(width, "length") for width in _box_widths(system)]
-    cutoff = convert(cutoff_nm, "length")
-    skin = default_skin(cutoff) if skin is None else float(skin)
-    ghost = ghost_cutoff(widths, cutoff, skin, length)
-    title = " ".join(title.split())
-    header = "GenDPDE model for the LAMMPS plugin (python -m openmmgendpde lammps-input)"
-
-    data = [f"{header}{': ' + title if title else ''}", "", f"{num_particles} atoms", f"{len(kinds)} atom types", ""]
+    data = [first_line, "", f"{len(positions)} atoms", f"{len(index)} atom types", ""]
     data += [f"0.0 {_number(width)} {axis}lo {axis}hi" for width, axis in zip(widths, "xyz")]
-    data += ["", "Masses", ""] + [f"{index[kind]} {_number(convert(masses[kind], 'mass'))}" for kind in kinds]
+    data += ["", "Masses", ""] + [f"{index[kind]} {_number(convert(masses[kind], 'mass'))}" for kind in index]
     data += ["", "Atoms # atomic", ""]
     for i, (r, kind) in enumerate(zip(positions, types)):
         x, y, z = (_wrapped(convert(c, "length"), width) for c, width in zip(r, widths))
         data.append(f"{i + 1} {index[kind]} {_number(x)} {_number(y)} {_number(z)}")
     if velocities is not None:
-        velocities = _array(velocities, unit.nanometer / unit.picosecond, num_particles, "velocities")
+        velocities = _array(velocities, unit.nanometer / unit.picosecond, len(positions), "velocities")
         data += ["", "Velocities", ""]
         data += [f"{i + 1} " + " ".join(_number(convert(c, "velocity")) for c in v) for i, v in enumerate(velocities)]
-    files = {}
-    if temperatures is not None:
-        # an atomfile: the count, then "ID value" per atom (LAMMPS's variable atomfile)
-        temperatures = _array(temperatures, unit.kelvin, num_particles, "temperatures", columns=None)
-        if not np.all(temperatures > 0):
-            raise ValueError("every initial temperature must be > 0")
-        files[TEMPERATURES_FILE] = "\n".join(
-            [f"# each particle's initial temperature ({UNITS[units]['temperature'][0]})", str(num_particles)]
-            + [f"{i + 1} {_number(convert(t, 'temperature'))}" for i, t in enumerate(temperatures)]) + "\n"
+    return "\n".join(data) + "\n"
 
-    laws = _laws(force, kinds)
-    background = convert(force.getBackgroundPressure(), "pressure")
-    capacities, pairs = _transport(integrator, kinds)
+
+def _temperatures_text(temperatures, num_particles, units):
+    """TEMPERATURES_FILE: an atomfile of each particle's initial temperature (K; the count, then "ID value" per atom,
+    LAMMPS's variable atomfile)."""
+    temperatures = _array(temperatures, unit.kelvin, num_particles, "temperatures", columns=None)
+    if not np.all(temperatures > 0):
+        raise ValueError("every initial temperature must be > 0")
+    return "\n".join(
+        [f"# each particle's initial temperature ({UNITS[units]['temperature'][0]})", str(num_particles)]
+        + [f"{i + 1} {_number(in_units(t, 'temperature', units))}" for i, t in enumerate(temperatures)]) + "\n"
+
+
+def _opening(script, integrator):
+    """The sections header, variables and setup: what the script is, its variables, the units and the atoms."""
     mode = {value: name for name, value in MODES.items()}[integrator.getMode()]
-    temperature = convert(integrator.getTemperature().value_in_unit(unit.kelvin), "temperature")
-    fix = ["fix integrate all gendpde ${mode} ${seed}"]
-    fix += [f"heat_capacity {index[kind]} {_number(convert(capacities[kind], 'heat_capacity'))}" for kind in kinds]
-    fix += [f"friction {index[a]} {index[b]} {_number(convert(gamma, 'friction'))}"
-            for (a, b), (gamma, _) in pairs.items()]
-    fix += [f"conduction {index[a]} {index[b]} {_number(convert(kappa, 'heat_conduction'))}"
-            for (a, b), (_, kappa) in pairs.items()]
-    fix += ["temperature ${temperature}", "initial ${initial}"]
-    initial = "v_theta" if temperatures is not None else _number(convert(_initial_temperature(integrator),
-                                                                         "temperature"))
-    estimator = ESTIMATOR_NAMES[force.getDensityEstimator()].lower()
-    step = convert(integrator.getStepSize().value_in_unit(unit.picosecond), "time")
-    u = {kind: UNITS[units][kind][0] for kind in UNITS[units]}
-
-    def section(*lines):
-        return "\n".join(lines) + "\n"
+    initial = ("v_theta" if script.temperatures else
+               script.number(_initial_temperature(integrator), "temperature"))
+    step = integrator.getStepSize().value_in_unit(unit.picosecond)
+    temperature = integrator.getTemperature().value_in_unit(unit.kelvin)
     map_line = "atom_modify map yes   # (atom-style variables of per-atom files need it: initial v_name)"
     # (read_restart brings the atom style and the boundaries back)
-    start = ([map_line, "plugin load ${plugin}", f"read_restart {restart}"] if restart else
+    start = ([map_line, "plugin load ${plugin}", f"read_restart {script.restart}"] if script.restart else
              ["atom_style atomic", map_line, "boundary p p p", "plugin load ${plugin}", f"read_data {DATA_FILE}"])
-    sections = {
-        "header": section(
-            f"# {header}" + (f":\n# {title}." if title else "."), *(f"# {line}" for line in UNITS_NOTE[units]),
+    return {
+        "header": _section(
+            f"# {HEADER}" + (f":\n# {script.title}." if script.title else "."),
+            *(f"# {line}" for line in UNITS_NOTE[script.units]),
             f"# Run where {DATA_FILE} is: lmp -var plugin /path/to/gendpdeplugin.so -in {SCRIPT_FILE}",
             "# Each variable below can also be set on the command line (lmp -var steps 5000 ...).", ""),
-        "variables": section(
-            *([f"variable plugin index {plugin}"] if plugin else []),
-            f"variable steps index {int(steps)}",
-            f"variable dt index {_number(step)}   # {u['time']}",
+        "variables": _section(
+            *([f"variable plugin index {script.plugin}"] if script.plugin else []),
+            f"variable steps index {int(script.steps)}",
+            f"variable dt index {script.number(step, 'time')}   # {script.unit('time')}",
             f"variable mode index {mode}   # isoenergetic, isothermal or conservative",
-            f"variable seed index {seed}",
-            f"variable temperature index {_number(temperature)}   # {u['temperature']}, the bath of the isothermal "
-            f"mode",
-            f"variable initial index {initial}   # {u['temperature']}, the start: eps_i = C_V T"
-            + (" (v_theta: each particle's)" if temperatures is not None else ""),
-            f"variable thermo index {int(thermo)}", ""),
-        "setup": section(f"units {units}", *start, ""),
-        "pair": section(
+            f"variable seed index {script.seed}",
+            f"variable temperature index {script.number(temperature, 'temperature')}   # "
+            f"{script.unit('temperature')}, the bath of the isothermal mode",
+            f"variable initial index {initial}   # {script.unit('temperature')}, the start: eps_i = C_V T"
+            + (" (v_theta: each particle's)" if script.temperatures else ""),
+            f"variable thermo index {int(script.thermo)}", ""),
+        "setup": _section(f"units {script.units}", *start, ""),
+    }
+
+
+def _model_sections(script, force, integrator, kinds, index):
+    """The sections pair, neighbors and fix: the force's and the integrator's parameters by LAMMPS type."""
+    laws = _laws(force, kinds)
+    background = in_units(force.getBackgroundPressure(), "pressure", script.units)
+    capacities, pairs = _transport(integrator, kinds)
+    estimator = ESTIMATOR_NAMES[force.getDensityEstimator()].lower()
+    length = script.unit("length")
+    fix = ["fix integrate all gendpde ${mode} ${seed}"]
+    fix += [f"heat_capacity {index[kind]} {script.number(capacities[kind], 'heat_capacity')}" for kind in kinds]
+    fix += [f"friction {index[a]} {index[b]} {script.number(gamma, 'friction')}"
+            for (a, b), (gamma, _) in pairs.items()]
+    fix += [f"conduction {index[a]} {index[b]} {script.number(kappa, 'heat_conduction')}"
+            for (a, b), (_, kappa) in pairs.items()]
+    fix += ["temperature ${temperature}", "initial ${initial}"]
+    return {
+        "pair": _section(
             f"# R ({length}), the density estimator, f_cut (the reduced range is R/f_cut), background pressure p_b "
-            f"({u['pressure']})",
-            f"pair_style gendpde {_number(cutoff)} {estimator} {_number(force.getCutoffScaling())}"
+            f"({script.unit('pressure')})",
+            f"pair_style gendpde {_number(script.cutoff)} {estimator} {_number(force.getCutoffScaling())}"
             + (f" background {_number(background)}" if background != 0 else ""),
             "# per type: the law as GenDPDEForce names it and its parameters (a law that extends Tait takes n0",
-            f"# ({u['number_density']}), pi0 and B_T ({u['pressure']}: energy/volume) and gamma_T first; "
-            f"docs/lammps.md)",
-            *[_pair_coeff(index[kind], units, *laws[kind]) for kind in kinds], ""),
-        "neighbors": section(
-            f"# skin {_number(skin)} {length}; ghosts: 1.5 sweep cells + skin, the fix's sweep needs them "
+            f"# ({script.unit('number_density')}), pi0 and B_T ({script.unit('pressure')}: energy/volume) and "
+            f"gamma_T first; docs/lammps.md)",
+            *[_pair_coeff(index[kind], script.units, *laws[kind]) for kind in kinds], ""),
+        "neighbors": _section(
+            f"# skin {_number(script.skin)} {length}; ghosts: 1.5 sweep cells + skin, the fix's sweep needs them "
             f"(lammps_files)",
-            f"neighbor {_number(skin)} bin",
+            f"neighbor {_number(script.skin)} bin",
             "neigh_modify every 1 delay 0 check yes",
-            f"comm_modify cutoff {_number(ghost)}", ""),
-        "fix": section(
-            f"# heat capacity C_V ({u['heat_capacity']}), friction gamma ({u['friction']}), conduction kappa "
-            f"({u['heat_conduction']})",
+            f"comm_modify cutoff {_number(script.ghost)}", ""),
+        "fix": _section(
+            f"# heat capacity C_V ({script.unit('heat_capacity')}), friction gamma ({script.unit('friction')}), "
+            f"conduction kappa ({script.unit('heat_conduction')})",
             # (an atomfile variable is read when defined: after the atoms)
             *([f"variable theta atomfile {TEMPERATURES_FILE}   # each particle's initial temperature"]
-              if temperatures is not None else []),
+              if script.temperatures else []),
             " &\n    ".join(fix),
             f"variable conserved equal etotal+f_integrate   # f_integrate: the sum of the internal energies "
-            f"({u['energy']})",
+            f"({script.unit('energy')})",
             "timestep ${dt}"),
-        "output": section(
+    }
+
+
+def _closing(script):
+    """The sections output and run."""
+    return {
+        "output": _section(
             "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
             "thermo_modify format float %.15g",
             "thermo ${thermo}"),
-        "run": section("run ${steps}"),
+        "run": _section("run ${steps}"),
     }
-    return LammpsInput("\n".join(data) + "\n", sections, units, cutoff, skin, ghost, files)
 
 
 def model_input(parameters, num_particles, mode="isoenergetic", seed=1, step_size=None, steps=1000, thermo=100,

@@ -9,8 +9,8 @@ at the bath temperature T0, T0 (1 + k_B/C_V): docs/theory.md section 11) and wha
 the pressure pi, its modulus n dpi/dn and its thermal pressure dpi/dtheta. A law that extends Tait takes the Tait
 parameters for pi and n dpi/dn (pi0 and gamma_T B_T), and its own parameters are fitted so that they add nothing to
 either there and give the thermal pressure; any other law ignores the Tait parameters, and its own parameters are
-fitted to all three (the Tait parameters are then the law's tangent at n0). The fit is a Levenberg-Marquardt
-least-squares solve in each parameter's natural scale (its unit made of n0^(-1/3), theta_r and the modulus),
+fitted to all three (the Tait parameters are then the law's tangent at n0). The fit is a least-squares solve
+(scipy.optimize.least_squares) in each parameter's natural scale (its unit made of n0^(-1/3), theta_r and the modulus),
 from the current parameters or from a grid of starts, accepted only where it reproduces the state (RESIDUAL).
 """
 
@@ -126,37 +126,15 @@ class _Problem:
                          s.temperature * (got.thermal_pressure - s.thermal_pressure)]) / abs(s.modulus)
 
 
-def _levenberg_marquardt(problem, u, iterations=200):
-    """Minimise |residuals(u)|^2 from ``u``; (u, residuals) at the end."""
+def _least_squares(problem, u):
+    """Minimise |residuals(u)|^2 from ``u`` (scipy's least_squares, trust-region reflective); (u, residuals) at the
+    end, or ``u`` and its residuals where the start has no valid state."""
+    from scipy.optimize import least_squares  # scipy: an extra of the package (pip install .[studies])
     r = problem.residuals(u)
-    damping = 1e-3
-    for _ in range(iterations):
-        if np.max(np.abs(r)) >= _OUTSIDE:
-            break
-        jacobian = np.empty((len(r), len(u)))
-        for k in range(len(u)):
-            step = 1e-7 * max(1.0, abs(u[k]))
-            shifted = u.copy()
-            shifted[k] += step
-            jacobian[:, k] = (problem.residuals(shifted) - r) / step
-        normal = jacobian.T @ jacobian
-        gradient = jacobian.T @ r
-        improved = False
-        while damping < 1e12:
-            try:
-                delta = -np.linalg.solve(normal + damping * np.diag(np.diag(normal) + 1e-30), gradient)
-            except np.linalg.LinAlgError:
-                damping *= 10
-                continue
-            trial = problem.residuals(u + delta)
-            if trial @ trial < r @ r:
-                u, r, improved = u + delta, trial, True
-                damping = max(damping / 10, 1e-15)
-                break
-            damping *= 10
-        if not improved or np.max(np.abs(delta)) < 1e-15 * max(1.0, np.max(np.abs(u))):
-            break
-    return u, r
+    if np.max(np.abs(r)) >= _OUTSIDE:
+        return u, r
+    solution = least_squares(problem.residuals, u, xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=200 * (len(u) + 1))
+    return solution.x, solution.fun
 
 
 #: The starts of a fit without current parameters, per variable: factors e^u of the natural size (positive
@@ -181,7 +159,7 @@ def fit(law, tait, state, start=None):
                              (np.array(u) for u in itertools.islice(grid, _MAX_STARTS)))
     best = None
     for u in starts:
-        u, r = _levenberg_marquardt(problem, np.asarray(u, dtype=float))
+        u, r = _least_squares(problem, np.asarray(u, dtype=float))
         if best is None or np.max(np.abs(r)) < np.max(np.abs(best[1])):
             best = (u, r)
         if np.max(np.abs(r)) < RESIDUAL:

@@ -191,11 +191,12 @@ void testPairUpdate() {
         const double total0 = 0.5 * mi * vi.dot(vi) + 0.5 * mj * vj.dot(vj) + ei + ej;
         const double ei0 = ei, ej0 = ej;
         double impulse;
-        const PairTemperatures t = pairTemperatures(ei, ej, ci, cj, boltzmann);
-        const int failed = gendpdePairUpdate(
-                dissipation, conduction, t.pairThermalEnergy, t.inverseTemperatureDifference, t.frictionFactor,
-                e.dot(vi - vj), omegaR, 1 / mi, 1 / mj, 3.0, kappa, std::sqrt(2 * boltzmann * kappa), dt, std::sqrt(dt),
-                2 * uniform(random) - 1, 2 * uniform(random) - 1, &ei, &ej, &impulse);
+        double theta, difference, factor; // k_B Theta_ij, 1/theta_i - 1/theta_j, the Ito factor
+        gendpdePairTemperatures(ei, ej, ci, cj, boltzmann, &theta, &difference, &factor);
+        const int failed =
+                gendpdePairUpdate(dissipation, conduction, theta, difference, factor, e.dot(vi - vj), omegaR, 1 / mi,
+                                  1 / mj, 3.0, kappa, std::sqrt(2 * boltzmann * kappa), dt, std::sqrt(dt),
+                                  2 * uniform(random) - 1, 2 * uniform(random) - 1, &ei, &ej, &impulse);
         ASSERT(failed == 0);
         if (!dissipation)
             ASSERT(impulse == 0.0);
@@ -210,9 +211,10 @@ void testPairUpdate() {
     }
     // An internal energy that the heat drives below zero is reported (i hot, j nearly at 0 K: heat flows to j).
     double ei = 10.0, ej = 1e-6, impulse;
-    const PairTemperatures t = pairTemperatures(ei, ej, 1.0, 1.0, 0.0083144626);
-    ASSERT(gendpdePairUpdate(0, 1, t.pairThermalEnergy, t.inverseTemperatureDifference, t.frictionFactor, 0.0, 1.0, 1.0,
-                             1.0, 0.0, 1000.0, 0.0, 0.01, 0.1, 0.0, -3.0, &ei, &ej, &impulse)
+    double theta, difference, factor;
+    gendpdePairTemperatures(ei, ej, 1.0, 1.0, 0.0083144626, &theta, &difference, &factor);
+    ASSERT(gendpdePairUpdate(0, 1, theta, difference, factor, 0.0, 1.0, 1.0, 1.0, 0.0, 1000.0, 0.0, 0.01, 0.1, 0.0,
+                             -3.0, &ei, &ej, &impulse)
            != 0);
 }
 

@@ -599,8 +599,18 @@ GENDPDE_CORE GENDPDE_REAL gendpdeBackgroundVirial(GENDPDE_REAL backgroundPressur
  * What a pair update needs from the internal energies eps_i, eps_j and heat capacities C_i, C_j (sections 5 and 7),
  * with beta = 1/theta = C/eps: k_B Theta_ij with 1/Theta_ij = (beta_i + beta_j)/2, beta_i - beta_j, and the Ito
  * factor of the friction k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2 = k_B (beta_i/eps_i + beta_j/eps_j)
- * /(beta_i + beta_j)^2 (GenDPDEPhysics.h, PairTemperatures, says why). beta = 1/theta stays within the range of the
- * temperatures, so no intermediate overflows for any allowed eps and C_V.
+ * /(beta_i + beta_j)^2. beta = 1/theta stays within the range of the temperatures, so no intermediate overflows for
+ * any allowed eps and C_V.
+ *
+ * Why the Ito factor (derivation: docs/theory.md section 7): Theta_ij depends on eps_i and eps_j, which every random
+ * kick changes (mechanical heating), so the noise of the momentum equation is multiplicative. Its equilibrium, the
+ * microcanonical density prod_i eps_i^(C_i/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma
+ * law of eps_i follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update
+ * draws the noise with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance
+ * rate of the relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures):
+ * the update uses gamma (1 + frictionFactor) with sigma^2 = 2 gamma k_B Theta_ij. Without it the kinetic temperature
+ * exceeds the harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's C_V = 12.51 k_B, as measured
+ * (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it vanishes.
  */
 GENDPDE_CORE void gendpdePairTemperatures(GENDPDE_REAL energyI, GENDPDE_REAL energyJ, GENDPDE_REAL heatCapacityI,
                                           GENDPDE_REAL heatCapacityJ, GENDPDE_REAL boltzmann,

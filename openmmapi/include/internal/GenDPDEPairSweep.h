@@ -23,29 +23,33 @@ namespace GenDPDEPlugin {
 
 /**
  * What every pair update of one step needs, read once per step: the step, and the integrator's tables by class
- * (GenDPDETypes.h, already updated for this step) with the noise amplitudes derived from them. tables must outlive
- * the parameters, which are cheap to copy (one per thread): they point to the tables and hold only their own small
- * per-class-pair amplitudes.
+ * (GenDPDETypes.h, already updated for this step) with the noise amplitudes derived from them, written into noise
+ * (the caller's storage, kept between steps: a step allocates nothing once it has the size). tables and noise must
+ * outlive the parameters, which are cheap to copy (one per thread): they hold pointers and numbers only.
  */
 struct PairSweepParameters {
     PairSweepParameters(const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms, double cutoff, int seed,
-                        long long step, const IntegratorTypeTables& tables) :
+                        long long step, const IntegratorTypeTables& tables, std::vector<double>& noise) :
             terms(terms), cutoff(cutoff), stepSize(integrator.getStepSize()), sqrtStepSize(std::sqrt(stepSize)),
             table(&tables.getTable()), numClasses(table->numClasses), particleClass(tables.getParticleClasses().data()),
             seed((std::uint32_t) seed), step((std::uint64_t) step) {
-        for (int ab = 0; ab < numClasses * numClasses; ab++) {
-            heatNoise.push_back(Physics::gendpdeHeatNoise(table->heatConduction[ab], Physics::Boltzmann));
-            bathNoise.push_back(
-                    Physics::gendpdeBathNoise(table->friction[ab], Physics::Boltzmann, integrator.getTemperature()));
+        const int numPairs = numClasses * numClasses;
+        noise.resize(2 * numPairs);
+        for (int ab = 0; ab < numPairs; ab++) {
+            noise[ab] = Physics::gendpdeHeatNoise(table->heatConduction[ab], Physics::Boltzmann);
+            noise[numPairs + ab] =
+                    Physics::gendpdeBathNoise(table->friction[ab], Physics::Boltzmann, integrator.getTemperature());
         }
+        heatNoise = noise.data();
+        bathNoise = noise.data() + numPairs;
     }
     /** The class of particle i. */
     int classOf(int i) const { return numClasses == 1 ? 0 : particleClass[i]; }
     GenDPDEStepTerms terms;
     double cutoff, stepSize, sqrtStepSize;
-    const TypePairTable* table;      // C_V per class, gamma and kappa per pair of classes (index a*numClasses + b)
-    std::vector<double> heatNoise;   // alpha = sqrt(2 k_B kappa) per pair of classes
-    std::vector<double> bathNoise;   // sigma = sqrt(2 gamma k_B T) of the Isothermal mode per pair of classes
+    const TypePairTable* table;   // C_V per class, gamma and kappa per pair of classes (index a*numClasses + b)
+    const double* heatNoise;      // alpha = sqrt(2 k_B kappa) per pair of classes
+    const double* bathNoise;      // sigma = sqrt(2 gamma k_B T) of the Isothermal mode per pair of classes
     int numClasses;
     const int* particleClass;
     std::uint32_t seed;

@@ -262,37 +262,6 @@ inline void addHalfPairVirial(const OpenMM::Vec3& force, const OpenMM::Vec3& d, 
     gendpdeAddHalfPairVirial(force[0], force[1], force[2], d[0], d[1], d[2], virial.element);
 }
 
-/**
- * What a GenDPDE pair update needs from the internal energies eps_i, eps_j (theta = eps/C_V of each particle's type;
- * gendpdePairTemperatures, whose results the sweeps pass to the core's gendpdePairUpdate).
- *
- * frictionFactor is the Ito term of the friction: the update uses gamma (1 + frictionFactor) with noise
- * sigma^2 = 2 gamma k_B Theta_ij, frictionFactor = k_B (beta_i^2/C_i + beta_j^2/C_j)/(beta_i + beta_j)^2,
- * beta = 1/theta ((k_B/C_V)(beta_i^2 + beta_j^2)/(beta_i + beta_j)^2 when both particles have the same C_V).
- * Why (derivation: docs/theory.md section 7): Theta_ij depends on eps_i and eps_j, which every random kick changes
- * (mechanical heating), so the noise of the momentum equation is multiplicative. Its equilibrium, the microcanonical
- * density prod_i eps_i^(C_i/k_B) on the energy shell (from which T_kin = <1/theta>^-1 and the Gamma law of eps_i
- * follow), is stationary only if the noise is read post-point (Haenggi-Klimontovich); a pair update draws the noise
- * with the temperatures it starts from (Ito), which needs the drift (1/2) d(b^2)/du, b^2 the variance rate of the
- * relative velocity u. Worked out, that drift is the factor above (k_B/(2 C_V) for equal temperatures). Without it
- * the kinetic temperature exceeds the harmonic-mean temperature by k_B/(2 C_V): 4.0% for liquid argon's
- * C_V = 12.51 k_B, as measured (python/tests/test_integrator_physics.py). In the isothermal limit C_V -> infinity it
- * vanishes.
- */
-struct PairTemperatures {
-    double pairThermalEnergy;              // k_B Theta_ij, 1/Theta_ij = (1/theta_i + 1/theta_j)/2 (energy)
-    double inverseTemperatureDifference;   // 1/theta_i - 1/theta_j (1/temperature)
-    double frictionFactor;                 // the Ito term above (dimensionless)
-};
-
-inline PairTemperatures pairTemperatures(double energyI, double energyJ, double heatCapacityI, double heatCapacityJ,
-                                         double boltzmann) {
-    PairTemperatures result;
-    gendpdePairTemperatures(energyI, energyJ, heatCapacityI, heatCapacityJ, boltzmann, &result.pairThermalEnergy,
-                            &result.inverseTemperatureDifference, &result.frictionFactor);
-    return result;
-}
-
 } // namespace Physics
 } // namespace GenDPDEPlugin
 

@@ -265,7 +265,8 @@ void CommonIntegrateGenDPDEStepKernel::uploadTypeTables(const GenDPDEIntegrator&
         particleClass.resize(cc.getNumAtoms(), 0); // padding atoms
         atomType.upload(particleClass);
     }
-    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *typeTables); // as the host platforms' sweep
+    std::vector<double> noise;
+    const PairSweepParameters p(integrator, terms, cutoff, seed, 0, *typeTables, noise); // as the host's sweep
     std::vector<double> pairParameters;
     for (int ab = 0; ab < p.numClasses * p.numClasses; ab++)
         pairParameters.insert(pairParameters.end(),

@@ -89,7 +89,7 @@ void CpuIntegrateGenDPDEStepKernel::sweepBlocks(ContextImpl& context, PairView p
     const std::vector<int>& groupStart = sweepOrder.getGroupStart();
     const int* blockStart = sweepOrder.getBlockStart().data();
     typeTables->update(integrator);
-    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
+    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables, sweepNoise);
     gatherSweepState(context, integrator, parameters, threads, pairs.getPositions());
     if constexpr (!std::is_same<Geometry, StoredPairGeometry>::value)
         geometry.slotPosition = layout.slotPositions.data();

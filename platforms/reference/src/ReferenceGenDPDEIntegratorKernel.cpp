@@ -106,7 +106,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView p
     buildSweepOrder(context, pairs, 1);
     const std::vector<int>& order = sweepOrder.getOrder();
     typeTables->update(integrator);
-    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables);
+    PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables, sweepNoise);
     gatherSweepState(context, integrator, parameters, 1);
     // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies stay
     // those before the step; positions have not moved yet), and the error names the particle and the step.

@@ -102,6 +102,7 @@ protected:
     std::vector<double> inverseMasses, internalEnergies;
     GenDPDESweepOrder sweepOrder;
     SweepLayout layout;   // the sweep's particle data in sweepOrder's cell order, during a sweep
+    std::vector<double> sweepNoise;   // the noise amplitudes of the step's pair updates (PairSweepParameters)
     // docs/theory.md section 11: sigma(n_i) at the densities internalEnergies belong to, if known.
     std::vector<double> densityEntropies;
     bool densityEntropiesKnown = false;

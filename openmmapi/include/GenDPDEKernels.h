@@ -21,7 +21,6 @@ class ComputeArray;
 
 namespace GenDPDEPlugin {
 
-class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
 class CommonGenDPDECellGrid;      // platforms/common/src/CommonGenDPDECellGrid.h
 class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
 struct CommonGenDPDEThermalArrays;   // platforms/common/src/CommonGenDPDEThermalArrays.h
@@ -39,9 +38,9 @@ struct GenDPDEObservables {
 
 /**
  * The pairs a force kernel found in its last evaluation, lent to the integrator kernel of the same platform so that
- * its sweep need not search them again. Each platform's integrator asks for the form it can use (a host list, a
- * device cell grid) and gets null for any other, so any force kernel can meet any integrator kernel: without a source
- * it can use, the integrator finds the pairs itself.
+ * its sweep need not search them again (the Common platforms' device cell grid). An integrator kernel gets null for a
+ * form it cannot use, so any force kernel can meet any integrator kernel: without a source it can use, the integrator
+ * finds the pairs itself.
  */
 class GenDPDEPairSource {
 public:
@@ -52,8 +51,6 @@ public:
     long long getStepCount() const { return foundStep; }
     /** Whether the source holds the pairs within this range (nm) found at this step, which a sweep may then reuse. */
     bool holdsPairsFor(double cutoff, long long step) const { return foundCutoff == cutoff && foundStep == step; }
-    /** The pairs as a list on the host (Reference, CPU), or null. */
-    virtual GenDPDEHostPairList* getHostPairList() { return nullptr; }
     /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
     virtual CommonGenDPDECellGrid* getDeviceCellGrid() { return nullptr; }
     /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */

@@ -22,7 +22,6 @@ class ComputeArray;
 namespace GenDPDEPlugin {
 
 class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
-class CommonGenDPDECellGrid;      // platforms/common/src/CommonGenDPDECellGrid.h
 class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
 struct CommonGenDPDEThermalArrays;   // platforms/common/src/CommonGenDPDEThermalArrays.h
 
@@ -39,9 +38,9 @@ struct GenDPDEObservables {
 
 /**
  * The pairs a force kernel found in its last evaluation, lent to the integrator kernel of the same platform so that
- * its sweep need not search them again. Each platform's integrator asks for the form it can use (a host list, a
- * device cell grid) and gets null for any other, so any force kernel can meet any integrator kernel: without a source
- * it can use, the integrator finds the pairs itself.
+ * its sweep need not search them again. Each platform's integrator asks for the form it can use (a host list; the
+ * device platforms' sweep keeps its own candidates) and gets null for any other, so any force kernel can meet any
+ * integrator kernel: without a source it can use, the integrator finds the pairs itself.
  */
 class GenDPDEPairSource {
 public:
@@ -54,8 +53,6 @@ public:
     bool holdsPairsFor(double cutoff, long long step) const { return foundCutoff == cutoff && foundStep == step; }
     /** The pairs as a list on the host (Reference, CPU), or null. */
     virtual GenDPDEHostPairList* getHostPairList() { return nullptr; }
-    /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
-    virtual CommonGenDPDECellGrid* getDeviceCellGrid() { return nullptr; }
     /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */
     virtual CommonGenDPDEForceChecks* getDeviceChecks() { return nullptr; }
 
@@ -194,6 +191,16 @@ public:
     }
     virtual int getSeed() const = 0;
     virtual void setSeed(int seed) = 0;
+    /**
+     * The positions (nm, by particle index) and periodic box vectors (nm) at which the sweep's order was last built
+     * (GenDPDESweepDefinition.h), for a checkpoint; false if no order is built.
+     */
+    virtual bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) { return false; }
+    /**
+     * The next step builds the sweep's order from these positions (nm, by particle index) and box vectors (nm)
+     * instead of its own, then applies the build rule against them (a checkpoint's build).
+     */
+    virtual void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) {}
 };
 
 } // namespace GenDPDEPlugin

@@ -652,7 +652,7 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
     parity = 1 - parity;
 }
 
-bool CommonGenDPDEBlockSweep::getBuild(std::vector<Vec3>& positions, Vec3 box[3]) {
+bool CommonGenDPDEBlockSweep::getBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
     if (!built)
         return false;
     std::vector<double> values;

@@ -75,12 +75,17 @@ public:
      * The positions (nm, by original index) and box vectors (nm) of the last build, or of the given build not made
      * yet; false if there is none.
      */
-    bool getBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]);
+    bool getBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const;
     /**
      * The next step builds the order from these positions (nm, by original index) and box vectors (nm) instead of its
      * own, then applies the build rule against them.
      */
     void setBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]);
+    /** Forget the order: the next step builds it at its own positions. */
+    void forget() {
+        built = false;
+        givenPending = false;
+    }
     /**
      * The run stopped at step haltStep of the run (its state rolled back): a build the host asked for at that step or
      * later is asked for again; orderIncomplete: the run stopped because a block had more levels than levelLimit()

@@ -441,7 +441,7 @@ double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& conte
     return sum.sum();
 }
 
-bool CommonIntegrateGenDPDEStepKernel::getSweepBuild(std::vector<Vec3>& positions, Vec3 box[3]) {
+bool CommonIntegrateGenDPDEStepKernel::getSweepBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
     ContextSelector selector(cc);
     return sweep != nullptr && sweep->getBuild(positions, box);
 }
@@ -450,4 +450,9 @@ void CommonIntegrateGenDPDEStepKernel::setSweepBuild(const std::vector<Vec3>& po
     ContextSelector selector(cc);
     if (sweep != nullptr)
         sweep->setBuild(positions, box);
+}
+
+void CommonIntegrateGenDPDEStepKernel::forgetSweepOrder() {
+    if (sweep != nullptr)
+        sweep->forget();
 }

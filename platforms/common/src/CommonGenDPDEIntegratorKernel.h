@@ -53,8 +53,9 @@ public:
     void forgetDensityEntropies() override { entropiesKnown = false; }
     int getSeed() const override { return seed; }
     void setSeed(int seed) override { this->seed = seed; }
-    bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) override;
+    bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const override;
     void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) override;
+    void forgetSweepOrder() override;
     /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
     static const int pollInterval = 256;
 

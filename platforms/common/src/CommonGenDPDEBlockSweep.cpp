@@ -219,7 +219,7 @@ void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* b
     if (box != nullptr) {
         const double candidate = SweepDefinition::candidateRange(range);
         const std::array<int, 3> cells =
-                GenDPDESweepOrder::cellCounts(BoxGeometry::perpendicularWidths(box), candidate, true);
+                GenDPDESweepOrder::cellCounts(BoxGeometry::perpendicularWidths(box), range, true);
         const double perCell = numParticles / (double) (cells[0] * cells[1] * cells[2]);
         const double density = numParticles / (box[0][0] * box[1][1] * box[2][2]);
         int regionCells = 1, blockCells = 1;
@@ -453,7 +453,7 @@ void CommonGenDPDEBlockSweep::allocate() {
 
 void CommonGenDPDEBlockSweep::setCells(const Vec3& extent) {
     const std::array<int, 3> cells =
-            GenDPDESweepOrder::cellCounts(extent, SweepDefinition::candidateRange(range), periodic);
+            GenDPDESweepOrder::cellCounts(extent, range, periodic); // (cells of the candidate range)
     const long long total = (long long) cells[0] * cells[1] * cells[2];
     if (total > 100000000)
         throw OpenMMException("GenDPDE: the particles span " + std::to_string(total)
@@ -655,11 +655,18 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
 bool CommonGenDPDEBlockSweep::getBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
     if (!built)
         return false;
-    std::vector<double> values;
-    buildPosition.download(values, true);
     positions.resize(cc.getNumAtoms());
-    for (size_t i = 0; i < positions.size(); i++)
-        positions[i] = Vec3(values[4 * i], values[4 * i + 1], values[4 * i + 2]);
+    if (mixedIsDouble(cc)) {
+        std::vector<mm_double4> values;
+        buildPosition.download(values);
+        for (size_t i = 0; i < positions.size(); i++)
+            positions[i] = Vec3(values[i].x, values[i].y, values[i].z);
+    } else {
+        std::vector<mm_float4> values;
+        buildPosition.download(values);
+        for (size_t i = 0; i < positions.size(); i++)
+            positions[i] = Vec3(values[i].x, values[i].y, values[i].z);
+    }
     for (int k = 0; k < 3; k++)
         box[k] = buildBox[k];
     return true;
@@ -667,13 +674,20 @@ bool CommonGenDPDEBlockSweep::getBuild(std::vector<Vec3>& positions, Vec3 box[3]
 
 void CommonGenDPDEBlockSweep::setBuild(const std::vector<Vec3>& positions, const Vec3 box[3]) {
     if ((int) positions.size() != cc.getNumAtoms())
-        throw OpenMMException("GenDPDEIntegrator: " + std::to_string(positions.size())
-                              + " sweep build positions for " + std::to_string(cc.getNumAtoms()) + " particles");
-    std::vector<double> values(4 * positions.size(), 0.0);
-    for (size_t i = 0; i < positions.size(); i++)
-        for (int k = 0; k < 3; k++)
-            values[4 * i + k] = positions[i][k];
-    buildPosition.upload(values, true);
+        throw OpenMMException("GenDPDEIntegrator: the sweep's build positions are for "
+                              + std::to_string(positions.size()) + " particles; the System has "
+                              + std::to_string(cc.getNumAtoms()));
+    if (mixedIsDouble(cc)) {
+        std::vector<mm_double4> values(positions.size());
+        for (size_t i = 0; i < positions.size(); i++)
+            values[i] = mm_double4(positions[i][0], positions[i][1], positions[i][2], 0.0);
+        buildPosition.upload(values);
+    } else {
+        std::vector<mm_float4> values(positions.size());
+        for (size_t i = 0; i < positions.size(); i++)
+            values[i] = mm_float4((float) positions[i][0], (float) positions[i][1], (float) positions[i][2], 0.0f);
+        buildPosition.upload(values);
+    }
     for (int k = 0; k < 3; k++)
         buildBox[k] = box[k];
     built = true;

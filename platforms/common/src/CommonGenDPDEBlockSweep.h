@@ -131,8 +131,8 @@ private:
     OpenMM::Vec3 buildBox[3], buildLow, buildExtent;
     std::array<int, 3> gridCells = {0, 0, 0}, blocks = {0, 0, 0};
     std::vector<int> rankOfBlock, groupStart;   // GenDPDESweepOrder::blockRanks of the current grid
-    OpenMM::ComputeArray flags, buildPosition, slotOfAtom, atomCell, cellCount, cellFill, cellStart, sortedAtom,
-            bounds, levelMasks;
+    OpenMM::ComputeArray flags, buildPosition, slotOfAtom, atomCell, cellCount, cellFill, cellStart, sortedAtom, bounds,
+            levelMasks;
     OpenMM::ComputeArray header, blockAtoms, pairScratch, blockPairs, levelStart, failureParticle, failureEnergy;
     OpenMM::ComputeKernel checkKernel, boundsKernel, assignKernel, scanKernel, fillKernel, sortKernel, orderKernel,
             sweepKernel;

@@ -17,7 +17,8 @@ namespace GenDPDEPlugin {
 
 /**
  * The cell grid of GenDPDEForce's device kernels (kernels/gendpdeCells.cc), rebuilt on the device at every evaluation:
- * cells at least the pair range wide (GenDPDESweepOrder::cellCounts; periodic: in the reduced box's fractional
+ * cells at least the candidate range wide (GenDPDESweepOrder::cellCounts: 1.1 R, so that the neighbour list's
+ * search over the 27 cells around a particle finds every pair within 1.1 R; periodic: in the reduced box's fractional
  * coordinates, open: over the particles' bounding box), the particles listed cell by cell and by original index inside
  * a cell, with their positions copied into that order. (The integrator's sweep keeps cells of its own, of the
  * candidate range, made at its builds: CommonGenDPDEBlockSweep.)

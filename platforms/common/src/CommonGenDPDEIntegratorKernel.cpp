@@ -345,8 +345,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         step.seed = (unsigned int) seed;
         step.step = cc.getStepCount();
         step.stepIndex = stepIndex;
-        sweep->run(step, energies, atomType, pairTable, heatCapacityTable, typeTables->getTable().numClasses,
-                   status);
+        sweep->run(step, energies, atomType, pairTable, heatCapacityTable, typeTables->getTable().numClasses, status);
     }
     {
         using namespace FinishArgument;

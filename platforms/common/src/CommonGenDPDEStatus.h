@@ -17,7 +17,7 @@ namespace GenDPDEPlugin {
  */
 namespace DeviceStatus {
 enum Word {
-    Halted,           // 0 while the run goes on; else why it stopped: HaltUnstable, HaltSweep, HaltForce or HaltLevels
+    Halted,           // 0 while the run goes on; else why it stopped (a Reason)
     HaltStep,         // the step, counted from the start of the run, at which it stopped
     Unstable,         // the smallest original index of a particle whose step was unstable (NoValue if none)
     FailedRank,       // the smallest sweep rank of a block whose sweep made an internal energy <= 0 (NoValue)

@@ -267,14 +267,18 @@ def test_a_pair_without_friction_reads_its_stream_as_openmm_does(lammps, tmp_pat
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
-def test_restart_continues_the_run(lammps, tmp_path):
-    """A run of 20 steps written to a restart file after 10 and continued by another lmp (read_restart: positions,
-    velocities, internal energies and entropies, the step) ends where OpenMM's 20 steps end, to rounding."""
+@pytest.mark.parametrize("steps, restart_at", [(20, 10), (40, 30)])
+def test_restart_continues_the_run(lammps, tmp_path, steps, restart_at):
+    """A run written to a restart file after ``restart_at`` steps and continued by another lmp (read_restart:
+    positions, velocities, internal energies and entropies, the step, and each atom's position at the sweep order's
+    last build, from which the continued run makes the same order again) ends where OpenMM's uninterrupted run ends,
+    to rounding: after 10 steps (the order of step 0 kept) and after 30 (one built again on the way: an order made
+    anew from the positions at the restart would move particles by ~1e-5 nm)."""
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
-    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
-                                                          velocities, 2, restart_at=10)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, steps, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, steps,
+                                                          velocities, 2, restart_at=restart_at)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -330,17 +334,48 @@ def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
-def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
-    """With neighbour lists LAMMPS does not rebuild in time (a skin of 0.001 nm, checked every 1000 steps), the sweep's
-    pairs would miss some: fix gendpde stops with an error naming the atom and the step, not a silent wrong step."""
+def test_a_skin_below_a_tenth_of_the_range_is_refused(lammps, tmp_path):
+    """The sweep's candidates reach 0.1 R beyond R and the order is built again once an atom has moved 0.05 R: with
+    a skin of 0.001 nm (< 0.1 R) LAMMPS's lists and ghosts would miss pairs before that, so fix gendpde stops at the
+    start with an error naming the skin and the least it takes."""
     scene = Scene(GenDPDEForce.VB)
     texts = scene.lammps(tmp_path, velocities=start_velocities(scene), skin=0.001)
     script = texts.commands(*SECTIONS[:-1]) + "run 50\n"
     assert "neighbor 0.001 bin\nneigh_modify every 1 delay 0 check yes" in script
-    script = script.replace("neigh_modify every 1 delay 0 check yes", "neigh_modify every 1000 delay 0 check no")
     result = run_lammps(tmp_path, script, check=False)
     assert result.returncode != 0
-    assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout
+    least = 0.1 * texts.cutoff
+    assert f"the neighbour skin 0.001 is below {least!r} = 0.1 R" in result.stdout, result.stdout[-2000:]
+
+
+def neighbour_list_builds(log):
+    """LAMMPS's count of neighbour-list builds in a run (its log's "Neighbor list builds = N")."""
+    return int(log.split("Neighbor list builds = ")[1].split()[0])
+
+
+@pytest.mark.parametrize("settings, builds", [("every 1 delay 0 check yes", "some"),
+                                              ("every 1 delay 0 check no", "every step"),
+                                              ("every 1000 delay 0 check no", "some")])
+def test_the_order_is_built_by_its_rule_whatever_lammps_lists_do(lammps, tmp_path, settings, builds):
+    """The sweep's order is built at the start and when an atom has moved 0.05 R since its build (the rule OpenMM's
+    platforms follow), whenever LAMMPS builds its lists: with LAMMPS's check (skin/2 = 0.05 R: its lists are built
+    at the order's builds), with lists built at every step (the order kept, its atoms found again by ID) and with
+    lists LAMMPS would build every 1000 steps only (the fix makes it build them at the order's builds), 40 isoenergetic
+    steps on 2 ranks end where OpenMM's end, to rounding. The run does build the order again (some atom moves 0.05 R
+    in 40 steps): an order built at another step would move particles by ~1e-5 nm."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 40, velocities)
+
+    def lists(script):
+        assert "neigh_modify every 1 delay 0 check yes" in script
+        return script.replace("neigh_modify every 1 delay 0 check yes", f"neigh_modify {settings}")
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 40,
+                                                          velocities, 2, edit=lists)
+    count = neighbour_list_builds((tmp_path / "log.lammps").read_text())
+    assert count == 40 if builds == "every step" else 1 <= count < 40
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
 def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):

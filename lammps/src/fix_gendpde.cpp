@@ -491,7 +491,7 @@ void FixGenDPDE::sweep()
   for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
     std::fill(modified.begin(), modified.begin() + nall, 0);
     for (int rank = colour_start[colour]; rank < colour_start[colour + 1]; rank++)
-      sweep_pairs(&sweep_list[block_rank_start[rank]],
+      sweep_pairs(sweep_list.data() + block_rank_start[rank],
                   block_rank_start[rank + 1] - block_rank_start[rank], isoenergetic);
     comm_phase = COLOUR;
     comm->reverse_comm_fix(this, 5);

@@ -10,6 +10,7 @@
 #include "openmm/serialization/XmlSerializer.h"
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -71,33 +72,41 @@ void testSerializationHoldsNoLiveState() {
 }
 
 /**
- * The integrator's data in a checkpoint of version 3 (docs/integrator.md): the end of the stream, magic, version,
- * seed, count, energies, coverage, checksum (FNV-1a, 64 bits), magic. Written again here to make checkpoints that are
- * well formed but say something else.
+ * The integrator's data in a checkpoint of version 4 (docs/integrator.md) whose sweep order is built: the end of the
+ * stream, magic, version, seed, count, energies, the build (flag 1, box, positions), coverage, checksum (FNV-1a, 64
+ * bits), magic. Written again here to make checkpoints that are well formed but say something else.
  */
 struct CheckpointTail {
     static const size_t header = 4 * sizeof(std::int32_t);   // magic, version, seed, count
     static const size_t trailer = sizeof(std::int32_t) + sizeof(std::uint64_t) + sizeof(std::int32_t);
     size_t start;   // where the integrator's data begins
     int numParticles;
+    static size_t buildBytes(int numParticles) {
+        return sizeof(std::int32_t) + (9 + 3 * numParticles) * sizeof(double);
+    }
     CheckpointTail(const std::string& bytes, int numParticles) :
-            start(bytes.size() - header - numParticles * sizeof(double) - trailer), numParticles(numParticles) {}
+            start(bytes.size() - header - numParticles * sizeof(double) - buildBytes(numParticles) - trailer),
+            numParticles(numParticles) {}
     size_t energiesAt() const { return start + header; }
-    size_t coverageAt() const { return energiesAt() + numParticles * sizeof(double); }
+    size_t buildAt() const { return energiesAt() + numParticles * sizeof(double); }
+    /** Where the build's position of particle i begins (after the flag and the box). */
+    size_t buildPositionAt(int i) const { return buildAt() + sizeof(std::int32_t) + (9 + 3 * i) * sizeof(double); }
+    size_t coverageAt() const { return buildAt() + buildBytes(numParticles); }
+    /** FNV-1a (64 bits) of bytes[from, to), continuing from hash. */
+    static std::uint64_t hashOf(const std::string& bytes, size_t from, size_t to,
+                                std::uint64_t hash = 14695981039346656037ULL) {
+        for (size_t i = from; i < to; i++) {
+            hash ^= (unsigned char) bytes[i];
+            hash *= 1099511628211ULL;
+        }
+        return hash;
+    }
     /** The checkpoint with its checksum computed again over what it now holds (its coverage word must be 0 or 1). */
     std::string resealed(std::string bytes) const {
         std::int32_t coverage;
         std::memcpy(&coverage, &bytes[coverageAt()], sizeof(coverage));
-        std::uint64_t hash = 14695981039346656037ULL;
-        auto add = [&](size_t from, size_t to) {
-            for (size_t i = from; i < to; i++) {
-                hash ^= (unsigned char) bytes[i];
-                hash *= 1099511628211ULL;
-            }
-        };
-        if (coverage == 1)
-            add(0, start); // OpenMM's part: the whole stream before the integrator's data
-        add(start, coverageAt() + sizeof(std::int32_t));
+        std::uint64_t hash = hashOf(bytes, 0, coverage == 1 ? start : 0); // OpenMM's part: all before the integrator's
+        hash = hashOf(bytes, start, coverageAt() + sizeof(std::int32_t), hash);
         std::memcpy(&bytes[coverageAt() + sizeof(std::int32_t)], &hash, sizeof(hash));
         return bytes;
     }
@@ -159,6 +168,18 @@ void testCheckpointsAreValidated() {
         std::memcpy(&corrupt[tail.energiesAt() + 5 * sizeof(double)], &bad, sizeof(double));
         refused(tail.resealed(corrupt), {"corrupt", "particle 5"}, "corrupt internal energy");
     }
+    // ... or a position of the sweep order's build that is not finite.
+    for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+        std::string corrupt = bytes;
+        std::memcpy(&corrupt[tail.buildPositionAt(3) + sizeof(double)], &bad, sizeof(double));
+        refused(tail.resealed(corrupt), {"corrupt", "sweep order's build", "not finite"}, "corrupt build position");
+    }
+    {
+        std::string corrupt = bytes;
+        const std::int32_t flag = 2;
+        std::memcpy(&corrupt[tail.buildAt()], &flag, sizeof(flag));
+        refused(corrupt, {"corrupt", "build flag is 2"}, "corrupt build flag");
+    }
     {
         std::string future = bytes;
         const std::int32_t version = 9;
@@ -172,15 +193,16 @@ void testCheckpointsAreValidated() {
     std::stringstream foreign;
     other.createCheckpoint(foreign);
     refused(foreign.str(), {"GenDPDEIntegrator"}, "another integrator's checkpoint");
-    // Version 2 (magic, version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a
-    // flag byte, count, energies) are still read.
+    // Version 3 (magic, version, seed, count, energies, coverage, checksum, magic: no build), version 2 (magic,
+    // version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a flag byte, count,
+    // energies) are still read.
     const std::string openmmPart = bytes.substr(0, tail.start);
     const std::string energyBytes = bytes.substr(tail.energiesAt(), numParticles * sizeof(double));
     const std::int32_t magic = *(const std::int32_t*) &bytes[tail.start], count = numParticles;
-    for (std::int32_t version : {1, 2}) {
+    for (std::int32_t version : {1, 2, 3}) {
         const std::int32_t olderSeed = 4240 + version;
         std::string older = openmmPart;
-        if (version == 2)
+        if (version >= 2)
             older.append((const char*) &magic, sizeof(magic));
         older.append((const char*) &version, sizeof(version));
         older.append((const char*) &olderSeed, sizeof(olderSeed));
@@ -188,7 +210,13 @@ void testCheckpointsAreValidated() {
             older.push_back(1);
         older.append((const char*) &count, sizeof(count));
         older.append(energyBytes);
-        if (version == 2)
+        if (version == 3) {
+            const std::int32_t coverage = 0; // the integrator's data only
+            older.append((const char*) &coverage, sizeof(coverage));
+            const std::uint64_t hash = CheckpointTail::hashOf(older, openmmPart.size(), older.size());
+            older.append((const char*) &hash, sizeof(hash));
+        }
+        if (version >= 2)
             older.append((const char*) &magic, sizeof(magic));
         std::stringstream olderStream(older);
         context.loadCheckpoint(olderStream);
@@ -224,7 +252,7 @@ void testStatesAreValidated() {
     const size_t start = xml.find("internalEnergies=\"") + 18;
     const std::string firstValue = xml.substr(start, xml.find(' ', start) - start);
     const std::vector<std::pair<std::string, std::vector<std::string>>> cases = {
-            {replaced("GenDPDEIntegratorVersion=\"2\"", "GenDPDEIntegratorVersion=\"9\""), {"version 9"}},
+            {replaced("GenDPDEIntegratorVersion=\"3\"", "GenDPDEIntegratorVersion=\"9\""), {"version 9"}},
             {replaced(firstValue + " ", firstValue + " garbage "), {"'garbage'", "not a number"}},
             {replaced(firstValue + " ", "nan "), {"corrupt", "particle 0"}},
             {replaced(firstValue + " ", "-0x1p+0 "), {"corrupt", "particle 0", "-1"}},

@@ -1,19 +1,21 @@
 /* SPDX-License-Identifier: MIT
  * Copyright (c) 2026 The openmm-gendpde developers */
-/* GenDPDESweepOrder, the order of the pair updates every platform follows (docs/theory.md section 6): each pair
- * exactly once; blocks of one colour share no particle (what makes the parallel sweep equal to the sequential one);
- * a pure function of positions, box and pairs (periodic images, thread count); the plain sequence when the box is
- * too small for blocks. The pairs come from an O(N^2) search written here. */
+/* GenDPDESweepOrder, the order of the pair updates every platform follows (docs/theory.md section 6), made from the
+ * candidates (pairs closer than 1.1 R at the build): each candidate exactly once; blocks of one colour share no
+ * particle and the pairs of one level of a block share none (what makes the parallel sweeps equal to the sequential
+ * one); the order element by element as the definition states it, written out here (cells, blocks, colours, greedy
+ * levels with sets); a pure function of positions, box and candidates (periodic images, thread count); one block
+ * when the box is too small for blocks. The candidates come from an O(N^2) search written here. */
 
 #include "TestScenes.h"
 #include "TestUtilities.h"
 #include "internal/BoxGeometry.h"
 #include "internal/GenDPDESweepOrder.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cmath>
-#include <numeric>
-#include <random>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -22,6 +24,9 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 using namespace TestScenes;
+
+/** The reach of the candidates for the scenes' pair range. */
+const double candidates = SweepDefinition::candidateRange(cutoff);
 
 struct Pairs {
     std::vector<int> ij;   // i0, j0, i1, j1, ...
@@ -56,7 +61,8 @@ GenDPDESweepOrder buildOrder(const Scene& scene, const std::vector<Vec3>& positi
 }
 
 void checkProperties(const Scene& scene, const std::string& label) {
-    const Pairs pairs = findPairs(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff);
+    const Pairs pairs =
+            findPairs(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), candidates);
     const GenDPDESweepOrder order = buildOrder(scene, scene.positions, pairs);
     // Each pair exactly once.
     std::vector<int> seen(order.getOrder());
@@ -64,8 +70,8 @@ void checkProperties(const Scene& scene, const std::string& label) {
     for (int k = 0; k < pairs.size(); k++)
         if ((int) seen.size() != pairs.size() || seen[k] != k)
             throw std::runtime_error(label + ": the order does not hold every pair exactly once");
-    // Blocks of one colour share no particle; pairs inside a block are in increasing first particle per group of
-    // runs (the interleaving keeps each particle's own list in increasing j).
+    // Blocks of one colour share no particle; the levels of a block (its runs of pairs that share no particle, as many
+    // as getBlockLevels() says) cover its sequence.
     const std::vector<int>& groups = order.getGroupStart();
     const std::vector<int>& blocks = order.getBlockStart();
     ASSERT_EQUAL(9, order.getNumGroups());
@@ -74,7 +80,8 @@ void checkProperties(const Scene& scene, const std::string& label) {
         std::vector<int> owner(scene.positions.size(), -1);
         for (int b = groups[g]; b < groups[g + 1]; b++) {
             blocksWithPairs += blocks[b + 1] > blocks[b];
-            std::vector<int> lastPartner(scene.positions.size(), -1);
+            std::set<int> levelParticles;
+            int levels = blocks[b + 1] > blocks[b] ? 1 : 0;
             for (int n = blocks[b]; n < blocks[b + 1]; n++) {
                 const int k = order.getOrder()[n];
                 for (int particle : {pairs.ij[2 * k], pairs.ij[2 * k + 1]}) {
@@ -84,16 +91,23 @@ void checkProperties(const Scene& scene, const std::string& label) {
                                                  + " of group " + std::to_string(g));
                     owner[particle] = b;
                 }
+                // a new level begins where a pair shares a particle with the current one
                 const int i = pairs.ij[2 * k], j = pairs.ij[2 * k + 1];
-                if (j <= lastPartner[i])
-                    throw std::runtime_error(label + ": the pairs of particle " + std::to_string(i)
-                                             + " are out of order in block " + std::to_string(b));
-                lastPartner[i] = j;
+                if (levelParticles.count(i) || levelParticles.count(j)) {
+                    levelParticles.clear();
+                    levels++;
+                }
+                levelParticles.insert(i);
+                levelParticles.insert(j);
             }
+            if (levels > order.getBlockLevels()[b])
+                throw std::runtime_error(label + ": block " + std::to_string(b) + " needs " + std::to_string(levels)
+                                         + " runs of pairs that share no particle; it has "
+                                         + std::to_string(order.getBlockLevels()[b]) + " levels");
         }
     }
     ASSERT_EQUAL(order.getBlockStart().back(), pairs.size());
-    // The extra group (pairs not in adjacent cells) must stay empty for pairs in range.
+    // The extra group (pairs not in adjacent cells) must stay empty for candidates.
     ASSERT_EQUAL(blocks[groups[8]], blocks[groups[9]]);
     if (order.getNumCells()[0] >= 8 && blocksWithPairs < 64)
         throw std::runtime_error(label + ": expected the pairs to spread over many blocks");
@@ -117,7 +131,7 @@ void testProperties() {
 /** Moving particles by lattice vectors (another periodic image) or sharing the work among threads changes nothing. */
 void testPureFunction() {
     Scene scene = makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, true, 5);
-    const Pairs pairs = findPairs(scene.positions, scene.box, true, cutoff);
+    const Pairs pairs = findPairs(scene.positions, scene.box, true, candidates);
     const std::vector<int> reference = buildOrder(scene, scene.positions, pairs).getOrder();
     std::vector<Vec3> shifted = scene.positions;
     for (size_t i = 0; i < shifted.size(); i++)
@@ -127,40 +141,22 @@ void testPureFunction() {
         ASSERT(reference == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
 }
 
-/** A box that holds fewer than four cells along every direction is one block: the plain sequence, the pairs in
- *  (i, j) order with the lists of four consecutive particles interleaved. */
-void testSmallBoxIsTheSequentialOrder() {
+std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box[3], bool periodic, double range,
+                              const Pairs& pairs);
+
+/** A box that holds fewer than four cells along every direction is one block: the candidates by their greedy levels
+ *  over the whole list, as the definition states it (definedOrder below). */
+void testSmallBoxIsOneBlock() {
     Scene scene = makeLatticeLiquid(3, referenceDensity, 0.2, GenDPDEForce::VB, true, 6);
-    const Pairs pairs = findPairs(scene.positions, scene.box, true, cutoff);
+    const Pairs pairs = findPairs(scene.positions, scene.box, true, candidates);
     const GenDPDESweepOrder order = buildOrder(scene, scene.positions, pairs);
     for (int k = 0; k < 3; k++)
         ASSERT(order.getNumCells()[k] <= 2);
-    // The interleaving written out independently: for each group of four consecutive first particles present,
-    // rank by rank.
-    std::vector<int> expected, firsts;
-    for (int k = 0; k < pairs.size(); k++)
-        if (firsts.empty() || firsts.back() != pairs.ij[2 * k])
-            firsts.push_back(pairs.ij[2 * k]);
-    for (size_t g = 0; g < firsts.size(); g += 4) {
-        std::vector<std::vector<int>> lists;
-        for (size_t f = g; f < std::min(firsts.size(), g + 4); f++) {
-            lists.emplace_back();
-            for (int k = 0; k < pairs.size(); k++)
-                if (pairs.ij[2 * k] == firsts[f])
-                    lists.back().push_back(k);
-        }
-        for (size_t rank = 0;; rank++) {
-            bool any = false;
-            for (const std::vector<int>& list : lists)
-                if (rank < list.size()) {
-                    expected.push_back(list[rank]);
-                    any = true;
-                }
-            if (!any)
-                break;
-        }
-    }
-    ASSERT(expected == order.getOrder());
+    int blocksWithPairs = 0;
+    for (size_t b = 0; b + 1 < order.getBlockStart().size(); b++)
+        blocksWithPairs += order.getBlockStart()[b + 1] > order.getBlockStart()[b];
+    ASSERT_EQUAL(1, blocksWithPairs);
+    ASSERT(definedOrder(scene.positions, scene.box, true, cutoff, pairs) == order.getOrder());
 }
 
 /** The cell of each particle as the definition states it (docs/theory.md section 6), written out here. */
@@ -188,9 +184,9 @@ std::vector<std::array<int, 3>> definedCells(const std::vector<Vec3>& positions,
 }
 
 /**
- * The order by its definition, with none of build()'s machinery: each pair's key (colour, block index) from its home
- * cell, a stable sort of the (i, j)-sorted pairs by key, then the lists of four consecutive first particles of each
- * block interleaved.
+ * The order by its definition, with none of build()'s machinery: each candidate's key (colour, block index) from its
+ * home cell (cells at least 1.1 R wide), a stable sort of the (i, j)-sorted candidates by key, then each block's
+ * greedy levels.
  */
 std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box[3], bool periodic, double range,
                               const Pairs& pairs) {
@@ -228,77 +224,39 @@ std::vector<int> definedOrder(const std::vector<Vec3>& positions, const Vec3 box
         size_t end = start;
         while (end < sorted.size() && key[sorted[end]] == key[sorted[start]])
             end++;
-        // One block: its first particles' lists, four at a time, rank by rank.
-        std::vector<std::vector<int>> lists;
+        // One block: each pair (in (i, j) order) at the smallest level neither particle has yet, then the block's
+        // pairs by level, in (i, j) order within a level.
+        std::map<int, std::set<int>> levelsOf;
+        std::vector<std::pair<int, int>> byLevel; // (level, pair)
         for (size_t m = start; m < end; m++) {
-            if (m == start || pairs.ij[2 * sorted[m]] != pairs.ij[2 * sorted[m - 1]])
-                lists.emplace_back();
-            lists.back().push_back(sorted[m]);
+            const int k = sorted[m];
+            std::set<int>& li = levelsOf[pairs.ij[2 * k]];
+            std::set<int>& lj = levelsOf[pairs.ij[2 * k + 1]];
+            int level = 0;
+            while (li.count(level) || lj.count(level))
+                level++;
+            li.insert(level);
+            lj.insert(level);
+            byLevel.emplace_back(level, k);
         }
-        for (size_t g = 0; g < lists.size(); g += 4)
-            for (size_t rank = 0;; rank++) {
-                bool any = false;
-                for (size_t f = g; f < std::min(lists.size(), g + 4); f++)
-                    if (rank < lists[f].size()) {
-                        order.push_back(lists[f][rank]);
-                        any = true;
-                    }
-                if (!any)
-                    break;
-            }
+        std::stable_sort(byLevel.begin(), byLevel.end(),
+                         [](const std::pair<int, int>& a, const std::pair<int, int>& b) { return a.first < b.first; });
+        for (const std::pair<int, int>& pair : byLevel)
+            order.push_back(pair.second);
         start = end;
     }
     return order;
 }
 
 /** build() gives the order of the definition, element by element, for any number of threads. */
-/**
- * The order of pairs stored by rows (the CPU platform's list): the rows in a shuffled order, each row the pairs of
- * its particle with larger ones in increasing order; mapped back to the (i, j) list's indices.
- */
-std::vector<int> orderOfPairsStoredByRows(const Scene& scene, const Pairs& pairs, int numThreads, int seed,
-                                          GenDPDESweepOrder::RowReading reading) {
-    const int numParticles = scene.positions.size();
-    std::vector<int> particleOfRow(numParticles);
-    std::iota(particleOfRow.begin(), particleOfRow.end(), 0);
-    std::shuffle(particleOfRow.begin(), particleOfRow.end(), std::mt19937(seed));
-    std::vector<int> rowPairStart(numParticles + 1, 0);
-    std::vector<std::vector<int>> pairsOfParticle(numParticles); // indices into the (i, j) list
-    for (int k = 0; k < pairs.size(); k++)
-        pairsOfParticle[pairs.ij[2 * k]].push_back(k);
-    Pairs stored;
-    std::vector<int> listIndex; // of each stored pair
-    for (int row = 0; row < numParticles; row++) {
-        rowPairStart[row] = listIndex.size();
-        for (int k : pairsOfParticle[particleOfRow[row]]) {
-            stored.ij.push_back(pairs.ij[2 * k]);
-            stored.ij.push_back(pairs.ij[2 * k + 1]);
-            listIndex.push_back(k);
-        }
-    }
-    rowPairStart[numParticles] = listIndex.size();
-    GenDPDESweepOrder order;
-    order.setRowReading(reading);
-    order.build(scene.positions, scene.box, scene.force->usesPeriodicBoundaryConditions(), cutoff, stored.size(),
-                stored.ij.data(), stored.ij.data() + 1, 2, numThreads, rowPairStart.data());
-    std::vector<int> result;
-    for (int k : order.getOrder())
-        result.push_back(listIndex[k]);
-    return result;
-}
-
 void testOrderIsTheDefinition() {
     auto check = [](const Scene& scene) {
         const bool periodic = scene.force->usesPeriodicBoundaryConditions();
-        const Pairs pairs = findPairs(scene.positions, scene.box, periodic, cutoff);
+        const Pairs pairs = findPairs(scene.positions, scene.box, periodic, candidates);
         const std::vector<int> expected = definedOrder(scene.positions, scene.box, periodic, cutoff, pairs);
         ASSERT_EQUAL((int) expected.size(), pairs.size());
-        for (int numThreads : {1, 2}) {
+        for (int numThreads : {1, 2, 3})
             ASSERT(expected == buildOrder(scene, scene.positions, pairs, numThreads).getOrder());
-            for (auto reading : {GenDPDESweepOrder::RowReading::ParticleOrder,
-                                 GenDPDESweepOrder::RowReading::StorageOrder, GenDPDESweepOrder::RowReading::BySize})
-                ASSERT(expected == orderOfPairsStoredByRows(scene, pairs, numThreads, 10 + numThreads, reading));
-        }
     };
     for (bool periodic : {true, false}) {
         check(makeLatticeLiquid(16, referenceDensity, 0.3, GenDPDEForce::VB, periodic, 7));
@@ -314,7 +272,7 @@ int main() {
     return runTestProgram([]() {
         testProperties();
         testPureFunction();
-        testSmallBoxIsTheSequentialOrder();
+        testSmallBoxIsOneBlock();
         testOrderIsTheDefinition();
     });
 }

@@ -355,9 +355,11 @@ private:
     void checkTypePair(int index, int type1, int type2, double friction, double heatConduction) const;
     /**
      * Read a checkpoint's integrator data (any version) and check all of it: the checksum, the end, the internal
-     * energies (checkInternalEnergies). Changes nothing; throws what is wrong.
+     * energies (checkInternalEnergies), the sweep order's build (positions and box, nm; built: whether the checkpoint
+     * holds one). Changes nothing; throws what is wrong.
      */
-    void readCheckpoint(std::istream& stream, int& seed, std::vector<double>& energies) const;
+    void readCheckpoint(std::istream& stream, int& seed, std::vector<double>& energies,
+                        std::vector<OpenMM::Vec3>& buildPositions, OpenMM::Vec3 buildBox[3], bool& built) const;
     /** Refuse a checkpoint's or State's internal energies unless they are a valid state for the bound Context. */
     void checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const;
     void requireTemperatures() const;

@@ -194,6 +194,19 @@ public:
     }
     virtual int getSeed() const = 0;
     virtual void setSeed(int seed) = 0;
+    /**
+     * The positions (nm, by particle index) and periodic box vectors (nm) at which the sweep's order was last built
+     * (docs/theory.md section 6), for a checkpoint: false if no order is built.
+     */
+    virtual bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const { return false; }
+    /**
+     * Make the next step build the sweep's order from these positions (nm, by particle index) and box vectors (nm)
+     * instead of its own, then apply the rule of rebuilds against them as usual: a run continued from a checkpoint
+     * follows the order of the uninterrupted run. Forgets the current order.
+     */
+    virtual void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) {}
+    /** Forget the sweep's order: the next step builds it at its own positions (a State was set). */
+    virtual void forgetSweepOrder() {}
 };
 
 } // namespace GenDPDEPlugin

@@ -10,6 +10,7 @@
 #include "openmm/OpenMMException.h"
 #include "openmm/serialization/SerializationNode.h"
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -19,13 +20,14 @@
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-// Checkpoints (docs/integrator.md). Version 3: magic, version, seed in use, count, the internal energies (binary,
-// exact), what the checksum covers (0: this data, 1: also OpenMM's part of the checkpoint before it, from its header),
-// the checksum (FNV-1a, 64 bits), and the magic again as an end mark; nothing may follow. Version 2 had no coverage
-// and no checksum; version 1 (0.1.x) no magic: version, seed, a flag byte, count, energies. Both are still read.
+// Checkpoints (docs/integrator.md). Version 4: magic, version, seed in use, count, the internal energies (binary,
+// exact), whether the sweep's order is built (0 or 1) and if so the box vectors (9 doubles) and positions (3 count
+// doubles) of its build, what the checksum covers (0: this data, 1: also OpenMM's part of the checkpoint before it, from its header),
+// the checksum (FNV-1a, 64 bits), and the magic again as an end mark; nothing may follow. Version 3 had no build
+// (a run continued from it builds the order at its first step); version 2 no coverage and no checksum; version 1 (0.1.x) no magic: version, seed, a flag byte, count, energies. Both are still read.
 namespace {
-const std::int32_t checkpointMagic = 0x45504447;   // "GDPE"
-const std::int32_t checkpointVersion = 3;
+const std::int32_t checkpointMagic = 0x45504447; // "GDPE"
+const std::int32_t checkpointVersion = 4;
 // The header of OpenMM's checkpoints (ContextImpl::createCheckpoint writes these bytes and their terminating NUL).
 const char openmmCheckpointHeader[] = "OpenMM Binary Checkpoint\n";
 const std::int32_t coversIntegratorData = 0, coversWholeCheckpoint = 1;
@@ -50,14 +52,31 @@ bool openmmPart(const std::string& content, size_t end, std::string& part) {
     return true;
 }
 
-/** The checksum of version 3: OpenMM's part (if covered), then the integrator's data up to the coverage word. */
+/** The sweep order's build in a checkpoint (version 4): its positions and box, if an order is built. */
+struct SweepBuild {
+    std::int32_t built = 0;
+    Vec3 box[3];
+    std::vector<Vec3> positions;
+};
+
+/**
+ * The checksum of versions 3 and 4: OpenMM's part (if covered), then the integrator's data up to the coverage word
+ * (build: null for version 3).
+ */
 std::uint64_t checkpointChecksum(const std::string* openmm, std::int32_t version, std::int32_t seed,
-                                 const std::vector<double>& energies, std::int32_t coverage) {
+                                 const std::vector<double>& energies, const SweepBuild* build, std::int32_t coverage) {
     std::uint64_t hash = fnv1a(openmm != nullptr ? openmm->data() : nullptr, openmm != nullptr ? openmm->size() : 0);
     const std::int32_t count = energies.size();
     for (std::int32_t word : {checkpointMagic, version, seed, count})
         hash = fnv1a(&word, sizeof(word), hash);
     hash = fnv1a(energies.data(), energies.size() * sizeof(double), hash);
+    if (build != nullptr) {
+        hash = fnv1a(&build->built, sizeof(build->built), hash);
+        if (build->built) {
+            hash = fnv1a(build->box, sizeof(build->box), hash);
+            hash = fnv1a(build->positions.data(), build->positions.size() * sizeof(Vec3), hash);
+        }
+    }
     return fnv1a(&coverage, sizeof(coverage), hash);
 }
 
@@ -72,7 +91,7 @@ void readOrFail(std::istream& stream, T& value, const char* what) {
 
 void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
-    const std::vector<double>& energies = k.getInternalEnergies();   // C_V theta_i at the current positions
+    const std::vector<double>& energies = k.getInternalEnergies(); // C_V theta_i at the current positions
     // OpenMM's part is covered where the stream's buffer can be read back (a string buffer: Python's
     // Context.createCheckpoint, Simulation.saveCheckpoint, Context.reinitialize).
     std::string openmm;
@@ -82,21 +101,29 @@ void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
         if (here != std::streampos(-1) && openmmPart(buffer->str(), (size_t) here, openmm))
             coverage = coversWholeCheckpoint;
     }
+    SweepBuild build;
+    build.built = k.getSweepBuild(build.positions, build.box) ? 1 : 0;
     const std::int32_t version = checkpointVersion, seed = k.getSeed(), count = energies.size();
     const std::uint64_t checksum = checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version,
-                                                      seed, energies, coverage);
+                                                      seed, energies, &build, coverage);
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
     stream.write((const char*) &version, sizeof(version));
     stream.write((const char*) &seed, sizeof(seed));
     stream.write((const char*) &count, sizeof(count));
     stream.write((const char*) energies.data(), sizeof(double) * count);
+    stream.write((const char*) &build.built, sizeof(build.built));
+    if (build.built) {
+        stream.write((const char*) build.box, sizeof(build.box));
+        stream.write((const char*) build.positions.data(), sizeof(Vec3) * count);
+    }
     stream.write((const char*) &coverage, sizeof(coverage));
     stream.write((const char*) &checksum, sizeof(checksum));
     stream.write((const char*) &checkpointMagic, sizeof(checkpointMagic));
 }
 
-void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std::vector<double>& energies) const {
-    const std::streampos start = stream.tellg();   // where the integrator's data begins (-1: the stream cannot tell)
+void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std::vector<double>& energies,
+                                       std::vector<Vec3>& buildPositions, Vec3 buildBox[3], bool& built) const {
+    const std::streampos start = stream.tellg(); // where the integrator's data begins (-1: the stream cannot tell)
     std::int32_t first, version, seed, count;
     readOrFail(stream, first, "header");
     if (first == checkpointMagic)
@@ -126,6 +153,21 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
         if (!stream)
             throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its internal energies (truncated)");
     }
+    SweepBuild build;
+    if (version >= 4) {
+        readOrFail(stream, build.built, "sweep order's build");
+        if (build.built != 0 && build.built != 1)
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint is corrupt (its sweep order's build flag is "
+                                  + std::to_string(build.built) + ")");
+        if (build.built) {
+            readOrFail(stream, build.box, "sweep order's build");
+            build.positions.resize(count);
+            stream.read((char*) build.positions.data(), sizeof(Vec3) * count);
+            if (!stream)
+                throw OpenMMException("GenDPDEIntegrator: the checkpoint ends before its sweep order's build "
+                                      "(truncated)");
+        }
+    }
     if (version >= 3) {
         std::int32_t coverage;
         std::uint64_t checksum;
@@ -154,7 +196,8 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
                                       "cannot be read back from this stream (a checkpoint is read from a string or a "
                                       "file holding it alone)");
         }
-        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies, coverage)
+        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies,
+                               version >= 4 ? &build : nullptr, coverage)
             != checksum)
             throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint is corrupt: its checksum does not "
                                               "match its contents (")
@@ -174,14 +217,25 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
         throw OpenMMException("GenDPDEIntegrator: the checkpoint continues after its end (corrupt, or more than one "
                               "checkpoint in the stream)");
     checkInternalEnergies(energies, "the checkpoint");
+    for (const Vec3& r : build.positions)
+        if (!(std::isfinite(r[0]) && std::isfinite(r[1]) && std::isfinite(r[2])))
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint is corrupt (a position of its sweep order's build "
+                                  "is not finite)");
     seedRead = seed;
+    built = build.built != 0;
+    buildPositions.swap(build.positions);
+    std::copy(build.box, build.box + 3, buildBox);
 }
 
 void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     int seed;
     std::vector<double> energies;
+    std::vector<Vec3> buildPositions;
+    Vec3 buildBox[3];
+    bool built = false;
     try {
-        readCheckpoint(stream, seed, energies);   // everything read and checked before anything changes
+        // everything read and checked before anything changes
+        readCheckpoint(stream, seed, energies, buildPositions, buildBox, built);
     } catch (...) {
         // OpenMM restored the checkpoint's positions, velocities and parameters before asking for this part, and
         // says nothing of it once this part is refused: for the particles' thermal state that is a move of the
@@ -192,22 +246,63 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(seed);
     k.setInternalEnergies(energies);
+    if (built)
+        k.setSweepBuild(buildPositions, buildBox); // the order of the uninterrupted run
+    else
+        k.forgetSweepOrder();
     applyThermalRule(ThermalEvent::EnergiesSet);
 }
 
-// States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies as exact hex floats.
-// Version 2 dropped version 1's temperaturesSet flag (an unset state is all zeros), which is still accepted.
+// States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies and the sweep order's
+// build (box vectors, then positions, if an order is built) as exact hex floats. Version 3 added the build (a State
+// of version 2 or 1 makes the next step build the order at its own positions); version 2 dropped version 1's
+// temperaturesSet flag (an unset state is all zeros), which is still accepted.
+namespace {
+void appendHexFloat(std::string& text, double value) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof(buffer), "%a ", value);
+    text += buffer;
+}
+
+/** The hex floats ("%a") of a State's property, separated by white space, read without streams (StrictXml). */
+std::vector<double> hexFloats(const std::string& text, const std::string& what) {
+    std::vector<double> values;
+    for (size_t start = text.find_first_not_of(" \t\n\r"); start != std::string::npos;
+         start = text.find_first_not_of(" \t\n\r", start)) {
+        const size_t end = std::min(text.size(), text.find_first_of(" \t\n\r", start));
+        const std::string token = text.substr(start, end - start);
+        char* parsedEnd;
+        const double value = std::strtod(token.c_str(), &parsedEnd);
+        if (parsedEnd == token.c_str() || *parsedEnd != '\0')
+            throw OpenMMException("GenDPDEIntegrator: the State's " + what + " are corrupt: '" + token + "' (entry "
+                                  + std::to_string(values.size()) + ") is not a number");
+        values.push_back(value);
+        start = end;
+    }
+    return values;
+}
+} // namespace
+
 void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
     const IntegrateGenDPDEStepKernel& k = boundKernel();
     std::string text;
-    char buffer[40];
-    for (double e : k.getInternalEnergies()) {
-        std::snprintf(buffer, sizeof(buffer), "%a ", e);
-        text += buffer;
-    }
-    node.setIntProperty("GenDPDEIntegratorVersion", 2);
+    for (double e : k.getInternalEnergies())
+        appendHexFloat(text, e);
+    node.setIntProperty("GenDPDEIntegratorVersion", 3);
     node.setIntProperty("seedInUse", k.getSeed());
     node.setStringProperty("internalEnergies", text);
+    std::vector<Vec3> positions;
+    Vec3 box[3];
+    std::string build;
+    if (k.getSweepBuild(positions, box)) {
+        for (int v = 0; v < 3; v++)
+            for (int d = 0; d < 3; d++)
+                appendHexFloat(build, box[v][d]);
+        for (const Vec3& r : positions)
+            for (int d = 0; d < 3; d++)
+                appendHexFloat(build, r[d]);
+    }
+    node.setStringProperty("sweepBuild", build);
 }
 
 void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
@@ -217,28 +312,41 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
         throw OpenMMException("GenDPDEIntegrator: the State does not hold GenDPDEIntegrator parameters (it was saved "
                               "with another integrator, or without getIntegratorParameters=True)");
     const int version = StrictXml::integer(node, "GenDPDEIntegrator State", "GenDPDEIntegratorVersion");
-    if (version < 1 || version > 2)
+    if (version < 1 || version > 3)
         throw OpenMMException("GenDPDEIntegrator: the State holds integrator parameters of version "
-                              + std::to_string(version) + "; this build reads versions 1 to 2");
-    // The energies: hex floats ("%a") separated by spaces, read without streams (StrictXml::parseWhole says why).
-    std::vector<double> energies;
-    const std::string& text = node.getStringProperty("internalEnergies");
-    for (size_t start = text.find_first_not_of(" \t\n\r"); start != std::string::npos;
-         start = text.find_first_not_of(" \t\n\r", start)) {
-        const size_t end = std::min(text.size(), text.find_first_of(" \t\n\r", start));
-        const std::string token = text.substr(start, end - start);
-        char* parsedEnd;
-        const double value = std::strtod(token.c_str(), &parsedEnd);
-        if (parsedEnd == token.c_str() || *parsedEnd != '\0')
-            throw OpenMMException("GenDPDEIntegrator: the State's internal energies are corrupt: '" + token
-                                  + "' (entry " + std::to_string(energies.size()) + ") is not a number");
-        energies.push_back(value);
-        start = end;
-    }
+                              + std::to_string(version) + "; this build reads versions 1 to 3");
+    const std::vector<double> energies = hexFloats(node.getStringProperty("internalEnergies"), "internal energies");
     const int seed = StrictXml::integer(node, "GenDPDEIntegrator State", "seedInUse");
     checkInternalEnergies(energies, "the State");
+    std::vector<double> build;
+    if (version >= 3) {
+        if (!node.hasProperty("sweepBuild"))
+            throw OpenMMException(
+                    "GenDPDEIntegrator: the State's integrator parameters (version 3) have no sweepBuild");
+        build = hexFloats(node.getStringProperty("sweepBuild"), "sweep order's build");
+        const size_t expected = 9 + 3 * energies.size();
+        if (!build.empty() && build.size() != expected)
+            throw OpenMMException("GenDPDEIntegrator: the State's sweep order's build holds "
+                                  + std::to_string(build.size()) + " numbers; " + std::to_string(expected)
+                                  + " (a box and " + std::to_string(energies.size())
+                                  + " positions) or none are allowed");
+        for (double value : build)
+            if (!std::isfinite(value))
+                throw OpenMMException("GenDPDEIntegrator: the State's sweep order's build is corrupt (a number is not "
+                                      "finite)");
+    }
     IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(seed);
     k.setInternalEnergies(energies);
+    if (!build.empty()) {
+        Vec3 box[3];
+        std::vector<Vec3> positions(energies.size());
+        for (int v = 0; v < 3; v++)
+            box[v] = Vec3(build[3 * v], build[3 * v + 1], build[3 * v + 2]);
+        for (size_t i = 0; i < positions.size(); i++)
+            positions[i] = Vec3(build[9 + 3 * i], build[9 + 3 * i + 1], build[9 + 3 * i + 2]);
+        k.setSweepBuild(positions, box); // the order of the uninterrupted run
+    } else
+        k.forgetSweepOrder(); // the next step builds it at the State's positions
     applyThermalRule(ThermalEvent::EnergiesSet);
 }

@@ -7,17 +7,17 @@
 #include "internal/ParallelFor.h"
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
 
-using SweepDefinition::interleaveRuns;
 using SweepDefinition::numColours;
 
 std::array<int, 3> GenDPDESweepOrder::cellCounts(const Vec3& extent, double range, bool periodic) {
     std::array<int, 3> cells;
     for (int k = 0; k < 3; k++)
-        cells[k] = SweepDefinition::cellCount(extent[k], range, periodic);
+        cells[k] = SweepDefinition::cellCount(extent[k], SweepDefinition::candidateRange(range), periodic);
     return cells;
 }
 
@@ -97,59 +97,41 @@ void GenDPDESweepOrder::sortParticlesByCell() {
     }
 }
 
+long long GenDPDESweepOrder::criticalPath() const {
+    long long path = 0;
+    for (int g = 0; g < getNumGroups(); g++) {
+        int most = 0;
+        for (int b = groupStart[g]; b < groupStart[g + 1]; b++)
+            most = std::max(most, blockLevels[b]);
+        path += most;
+    }
+    return path;
+}
+
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic, double range,
-                              int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads,
-                              const int* rowPairStart) {
+                              int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads) {
     computeCells(positions, boxVectors, periodic, range, numThreads);
     sortParticlesByCell();
-
-    // The pairs as runs: runs of 4096 consecutive pairs of an (i, j)-ordered list; or, stored by rows, one run per row,
-    // read in storage order (then each block's runs are put in order of their first particles below) or in particle
-    // order (each run then the pairs of particle `run`, and the blocks come out in (i, j) order).
-    const bool byRows = (rowPairStart != nullptr);
-    const bool storageOrder = byRows
-            && (rowReading == RowReading::StorageOrder
-                || (rowReading == RowReading::BySize && numPairs >= storageOrderFromPairs));
-    if (storageOrder) {
-        const int numRows = positions.size();
-        runBound.resize(2 * (size_t) numRows);
-        for (int r = 0; r < numRows; r++) {
-            runBound[2 * r] = rowPairStart[r];
-            runBound[2 * r + 1] = rowPairStart[r + 1];
-        }
-    } else if (byRows) {
-        const int numParticles = positions.size();
-        runBound.assign(2 * (size_t) numParticles, 0); // (a particle without pairs: an empty run)
-        for (int r = 0; r < numParticles; r++)
-            if (rowPairStart[r + 1] > rowPairStart[r]) {
-                const int i = pairI[(size_t) rowPairStart[r] * stride];
-                runBound[2 * i] = rowPairStart[r];
-                runBound[2 * i + 1] = rowPairStart[r + 1];
-            }
-    } else {
-        runBound.resize(2 * (size_t) numRanges(numPairs, 4096));
-        for (size_t r = 0; 2 * r < runBound.size(); r++) {
-            runBound[2 * r] = r * 4096;
-            runBound[2 * r + 1] = std::min(numPairs, (int) (r + 1) * 4096);
-        }
-    }
-    const int numRuns = runBound.size() / 2;
-
     // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
     // pairs whose cells are not adjacent.
-    int rank = blockRanks(numBlocks, rankOfBlock, groupStart);
-    const int extraRank = rank++;
-    groupStart.push_back(rank);
+    int numRanks = blockRanks(numBlocks, rankOfBlock, groupStart);
+    const int extraRank = numRanks++;
+    groupStart.push_back(numRanks);
+    rankPairs(numPairs, pairI, pairJ, stride, extraRank, numThreads);
+    sortByRank(numPairs, numRanks, numThreads);
+    orderLevels(pairI, pairJ, stride, numThreads);
+}
 
-    // Each pair's rank. Along each direction the home cell is the one the other follows (d = c_j - c_i, taken
-    // modulo n_k into [-1, 1] if periodic); a pair with |d| > 1 along some direction goes to the extra rank. (Stored:
-    // computing it again where the sort reads it, in the runs' order, reaches the cells at random and cost 1.12x the
-    // two-thread step at 32,000 particles.)
+void GenDPDESweepOrder::rankPairs(int numPairs, const int* pairI, const int* pairJ, int stride, int extraRank,
+                                  int numThreads) {
+    // Along each direction the home cell is the one the other follows (d = c_j - c_i, taken modulo n_k into [-1, 1] if
+    // periodic); a pair with |d| > 1 along some direction goes to the extra rank.
     resizeBuffer(pairRank, numPairs);
     const std::array<int, 3>* cell = particleCell.data();
     const int* blockRank = rankOfBlock.data();
     int* rankOfPair = pairRank.data();
     const std::array<int, 3> cells = numCells, blocks = numBlocks;
+    const bool periodic = this->periodic;
     parallelFor(numThreads, numPairs, 4096, [=](int begin, int end) {
         for (int k = begin; k < end; k++) {
             const std::array<int, 3>& ci = cell[pairI[(size_t) k * stride]];
@@ -166,29 +148,27 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
             rankOfPair[k] = adjacent ? blockRank[(block[2] * blocks[1] + block[1]) * blocks[0] + block[0]] : extraRank;
         }
     });
+}
 
-    // A stable counting sort by rank, reading the runs one after another: counts per range of runs, then each range
-    // writes its pairs from its own offsets (the result does not depend on the ranges). Each block then holds its
-    // pairs in (i, j) order, or, rows read in storage order, as runs of one first particle each (increasing j within a
-    // run, the runs in storage order), which the last pass puts in order of i. (The first particles are kept beside
-    // the sorted pairs: reading them per block instead, at random, cost 1.03-1.06x the step at 256,000 particles.)
-    const int numRanks = rank;
-    const int numRunRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
-    const int runsPerRange = numRanges(numRuns, numRunRanges);
-    rangeCount.assign((size_t) numRunRanges * numRanks, 0);
+void GenDPDESweepOrder::sortByRank(int numPairs, int numRanks, int numThreads) {
+    // A stable counting sort by rank over ranges of consecutive pairs: counts per range, then each range writes its
+    // pairs from its own offsets (the result does not depend on the ranges). Each block then holds its pairs in (i, j)
+    // order, the candidates' order.
+    const int numPairRanges = std::max(1, std::min(64, numRanges(numPairs, 4096)));
+    const int pairsPerRange = numRanges(numPairs, numPairRanges);
+    rangeCount.assign((size_t) numPairRanges * numRanks, 0);
     int* count = rangeCount.data();
-    const int* bound = runBound.data();
-    parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
+    const int* rankOfPair = pairRank.data();
+    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int run = r * runsPerRange; run < std::min(numRuns, (r + 1) * runsPerRange); run++)
-                for (int k = bound[2 * run]; k < bound[2 * run + 1]; k++)
-                    count[(size_t) r * numRanks + rankOfPair[k]]++;
+            for (int k = r * pairsPerRange; k < std::min(numPairs, (r + 1) * pairsPerRange); k++)
+                count[(size_t) r * numRanks + rankOfPair[k]]++;
     });
     blockStart.assign(numRanks + 1, 0);
     int total = 0;
     for (int s = 0; s < numRanks; s++) {
         blockStart[s] = total;
-        for (int r = 0; r < numRunRanges; r++) {
+        for (int r = 0; r < numPairRanges; r++) {
             const int n = count[(size_t) r * numRanks + s];
             count[(size_t) r * numRanks + s] = total; // now the range's first position in rank s
             total += n;
@@ -196,49 +176,64 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     }
     blockStart[numRanks] = total;
     resizeBuffer(order, numPairs);
-    resizeBuffer(sortedFirst, numPairs);
-    int* sortedPairs = order.data(); // (sorted in place by the pass below)
-    int* firstOfSorted = sortedFirst.data(); // their first particles, for the pass below to read in order
-    const bool runIsParticle = byRows && !storageOrder;
-    parallelFor(numThreads, numRunRanges, 1, [=](int rangeBegin, int rangeEnd) {
+    int* sorted = order.data();
+    parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int run = r * runsPerRange; run < std::min(numRuns, (r + 1) * runsPerRange); run++)
-                for (int k = bound[2 * run]; k < bound[2 * run + 1]; k++) {
-                    const int position = count[(size_t) r * numRanks + rankOfPair[k]]++;
-                    sortedPairs[position] = k;
-                    firstOfSorted[position] = runIsParticle ? run : pairI[(size_t) k * stride];
-                }
+            for (int k = r * pairsPerRange; k < std::min(numPairs, (r + 1) * pairsPerRange); k++)
+                sorted[count[(size_t) r * numRanks + rankOfPair[k]]++] = k;
     });
+}
 
-    // Within each block, the runs of one first particle in increasing order of it (pairs stored by rows) and the
-    // lists of four consecutive first particles interleaved, block by block in place.
+void GenDPDESweepOrder::orderLevels(const int* pairI, const int* pairJ, int stride, int numThreads) {
+    // Within each block (its pairs in (i, j) order), the levels (SweepDefinition::assignLevels) and the pairs sorted by
+    // level, stably: block by block in place.
+    const int numRanks = blockStart.size() - 1;
+    blockLevels.assign(numRanks, 0);
+    const int numParticles = particleCell.size();
     parallelFor(numThreads, numRanks, 8, [&](int begin, int end) {
-        // a copy of the block's sorted pairs, (first particle, start) of each run of a block, and the block's pairs with
-        // their runs in order: scratch of the size of a block, kept by each thread (a step allocates nothing)
-        thread_local std::vector<int> blockCopy, listed, first;
-        thread_local std::vector<std::pair<int, int>> runs;
+        // scratch of the size of a block (and each particle's number within its block), kept by each thread
+        thread_local std::vector<int> localOf, localI, localJ, level, levelCount, blockCopy;
+        thread_local std::vector<int> touched, degree;
+        thread_local std::vector<std::uint64_t> used;
+        if ((int) localOf.size() < numParticles)
+            localOf.assign(numParticles, -1);
         for (int s = begin; s < end; s++) {
             const int start = blockStart[s], count = blockStart[s + 1] - start;
-            blockCopy.assign(&order[start], &order[start] + count);
-            const int* blockPairs = blockCopy.data();
-            const int* blockFirst = &sortedFirst[start];
-            if (std::is_sorted(blockFirst, blockFirst + count)) {
-                interleaveRuns(blockPairs, blockFirst, count, &order[start]);
+            if (count == 0)
                 continue;
-            }
-            runs.clear();
-            for (int k = 0; k < count; k++)
-                if (k == 0 || blockFirst[k] != blockFirst[k - 1])
-                    runs.emplace_back(blockFirst[k], k);
-            std::sort(runs.begin(), runs.end());
-            listed.clear();
-            first.clear();
-            for (const std::pair<int, int>& run : runs)
-                for (int k = run.second; k < count && blockFirst[k] == run.first; k++) {
-                    listed.push_back(blockPairs[k]);
-                    first.push_back(run.first);
+            localI.resize(count);
+            localJ.resize(count);
+            touched.clear();
+            degree.clear();
+            for (int k = 0; k < count; k++) {
+                const int pair = order[start + k];
+                for (int end2 = 0; end2 < 2; end2++) {
+                    const int particle = (end2 == 0 ? pairI : pairJ)[(size_t) pair * stride];
+                    if (localOf[particle] < 0) {
+                        localOf[particle] = touched.size();
+                        touched.push_back(particle);
+                        degree.push_back(0);
+                    }
+                    degree[localOf[particle]]++;
+                    (end2 == 0 ? localI : localJ)[k] = localOf[particle];
                 }
-            interleaveRuns(listed.data(), first.data(), count, &order[start]);
+            }
+            const int words = SweepDefinition::levelWords(*std::max_element(degree.begin(), degree.end()));
+            used.assign(touched.size() * words, 0);
+            level.resize(count);
+            const int numLevels = SweepDefinition::assignLevels(localI.data(), localJ.data(), count, words, used.data(),
+                                                                level.data());
+            blockLevels[s] = numLevels;
+            levelCount.assign(numLevels + 1, 0);
+            for (int k = 0; k < count; k++)
+                levelCount[level[k] + 1]++;
+            for (int l = 0; l < numLevels; l++)
+                levelCount[l + 1] += levelCount[l];
+            blockCopy.assign(&order[start], &order[start] + count);
+            for (int k = 0; k < count; k++)
+                order[start + levelCount[level[k]]++] = blockCopy[k];
+            for (int particle : touched)
+                localOf[particle] = -1;
         }
     });
 }

@@ -4,9 +4,9 @@
 #define GENDPDE_PAIR_SWEEP_H_
 
 /* The pair updates of GenDPDEIntegrator's sweep (docs/theory.md sections 5-7) for the host platforms (Reference,
- * CPU): the loop over a run of pairs in sweep order (GenDPDESweepOrder), written once. A platform calls it on the
- * whole sequence (Reference) or on the blocks of one colour in parallel (CPU): blocks of one colour share no
- * particle, so the result is the same. */
+ * CPU): the loop over a run of candidates in sweep order (GenDPDESweepOrder), written once. A platform calls it on
+ * the whole sequence (one thread) or on the blocks of one colour in parallel: blocks of one colour share no particle,
+ * so the result is the same. */
 
 #include "gendpde/CounterRandom.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
@@ -67,7 +67,7 @@ class SweepLayout {
 public:
     /**
      * Copy velocities, internal energies (null: none), inverse masses, classes (null: one class) and positions (null:
-     * none; the pairs carry their geometry) into cell order, on this many threads; the velocities of particles with
+     * none) into cell order, on this many threads; the velocities of particles with
      * mass advanced on the way by forces (kJ/mol/nm) over kickTime (ps), v + F (kickTime / m), as a kick computes
      * it (the step's first half kick: the particles' own velocities stay as they were until scatter()).
      */
@@ -126,84 +126,61 @@ public:
     std::vector<int> slotClasses;
 };
 
-/** The geometry of pairs that carry it (Reference's ParticlePair: delta = r_i - r_j and r). */
-struct StoredPairGeometry {
-    template <class Pair>
-    void operator()(const Pair& pair, int, int, OpenMM::Vec3& delta, double& r) const {
-        delta = pair.delta;
-        r = pair.r;
-    }
-    const OpenMM::Vec3* positions() const { return nullptr; }
+/**
+ * A candidate of the sweep, in sweep order: its two particles (i < j: the random stream's key) and their slots in the
+ * sweep's layout (SweepLayout::slots at the order's build).
+ */
+struct SweepPair {
+    int i, j, slotI, slotJ;
 };
 
 /**
- * The geometry of pairs that carry only their particles (the CPU platform's IndexPair), recomputed from positions in
- * slot order (SweepLayout::slotPositions) as the pairs were found: delta = nearestImage(r_i - r_j), r = sqrt(delta .
- * delta), the same operations on the same values, so the same bits.
+ * Ask for the memory the sweep reaches soon: the slots of the pair 8 places ahead. The pairs are read in sequence,
+ * but the particles they reach are at random in memory; without this, each pair of 256,000 particles waited for main
+ * memory. Always inlined: GCC deems a function that only prefetches free of effects and deletes its calls.
  */
-template <class NearestImage>
-struct SlotPositionGeometry {
-    const OpenMM::Vec3* slotPosition;
-    NearestImage nearestImage;
-    template <class Pair>
-    void operator()(const Pair&, int si, int sj, OpenMM::Vec3& delta, double& r) const {
-        delta = nearestImage(slotPosition[si] - slotPosition[sj]);
-        r = std::sqrt(delta.dot(delta));
-    }
-    const OpenMM::Vec3* positions() const { return slotPosition; }
-};
-
-/**
- * Ask for the memory the sweep reaches soon: the pair 16 places ahead, and the slots of the pair 8 places ahead
- * (whose pair was asked for 8 places ago). The pairs are reached in sweep order, at random in memory; without this,
- * each pair of 256,000 particles waited for main memory (the sweep ran 2.6x slower per pair than at 32,000). Always
- * inlined: GCC deems a function that only prefetches free of effects and deletes its calls.
- */
-template <class Pair>
-__attribute__((always_inline)) inline void prefetchAhead(const Pair* pairs, const int* order, int n, int count,
-                                                         const int* slot, const OpenMM::Vec3* velocities,
-                                                         const double* energies, const OpenMM::Vec3* positions) {
-    if (n + 16 < count)
-        __builtin_prefetch(&pairs[order[n + 16]]);
+__attribute__((always_inline)) inline void prefetchAhead(const SweepPair* pairs, int n, int count,
+                                                         const OpenMM::Vec3* velocities, const double* energies,
+                                                         const OpenMM::Vec3* positions) {
     if (n + 8 < count) {
-        const Pair& ahead = pairs[order[n + 8]];
-        const int si = slot[ahead.i], sj = slot[ahead.j];
-        __builtin_prefetch(&velocities[si]);
-        __builtin_prefetch(&velocities[sj]);
+        const SweepPair& ahead = pairs[n + 8];
+        __builtin_prefetch(&velocities[ahead.slotI]);
+        __builtin_prefetch(&velocities[ahead.slotJ]);
+        __builtin_prefetch(&positions[ahead.slotI]);
+        __builtin_prefetch(&positions[ahead.slotJ]);
         if (energies != nullptr) {
-            __builtin_prefetch(&energies[si]);
-            __builtin_prefetch(&energies[sj]);
-        }
-        if (positions != nullptr) {
-            __builtin_prefetch(&positions[si]);
-            __builtin_prefetch(&positions[sj]);
+            __builtin_prefetch(&energies[ahead.slotI]);
+            __builtin_prefetch(&energies[ahead.slotJ]);
         }
     }
 }
 
 /**
- * The sweep's pairs order[0..count) (indices into pairs, whose elements have i and j; their delta and r come from
- * geometry: StoredPairGeometry or SlotPositionGeometry), each by the core's pair step (gendpdeSweepPair,
- * GenDPDESweepPair.h, as on the device and in LAMMPS) with the random stream keyed on (i, j): in the Isoenergetic
- * mode (p.terms.internalEnergies) full GenDPDE, dissipative and random momenta with sigma^2 = 2 gamma k_B Theta_ij,
- * mechanical heating split equally and heat conduction, at the temperatures the particles have when the pair is
- * reached; otherwise the DPD thermostat of the Isothermal mode, whose heat goes to the bath. Particle i's data is at
- * slot[i] of inverseMasses, velocities, energies (null in the Isothermal mode) and p's classes (SweepLayout).
- * Returns the position in order of the first pair after which an internal energy is <= 0 (the sweep stops there;
- * the caller restores the state), or -1.
+ * The sweep's candidates pairs[0..count) in sweep order (GenDPDESweepOrder), each closer than the cutoff at these
+ * positions updated by the core's pair step (gendpdeSweepPair, GenDPDESweepPair.h, as on the device and in LAMMPS)
+ * with the random stream keyed on (i, j); the others skipped. The geometry: delta = nearestImage(r_i - r_j) from
+ * positions (by slot), updated if delta . delta < R^2. In the Isoenergetic mode (p.terms.internalEnergies) full
+ * GenDPDE, dissipative and random momenta with sigma^2 = 2 gamma k_B Theta_ij, mechanical heating split equally and
+ * heat conduction, at the temperatures the particles have when the pair is reached; otherwise the DPD thermostat of
+ * the Isothermal mode, whose heat goes to the bath. The particles' data are by slot (SweepLayout): inverseMasses,
+ * velocities, energies (null in the Isothermal mode) and p's classes. Returns the position in pairs of the first pair
+ * after which an internal energy is <= 0 (the sweep stops there; the caller restores the state), or -1.
  */
-template <class Pair, class Geometry>
-int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, int count, const PairSweepParameters& p,
-               const int* slot, const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
+template <class NearestImage>
+int sweepPairs(const SweepPair* pairs, int count, NearestImage nearestImage, const OpenMM::Vec3* positions,
+               const PairSweepParameters& p, const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
     const int dissipation = p.terms.dissipation, conduction = p.terms.conduction;
     const int internalEnergies = p.terms.internalEnergies ? 1 : 0;
+    const double cutoff2 = p.cutoff * p.cutoff;
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, order, n, count, slot, velocities, energies, geometry.positions());
-        const Pair& pair = pairs[order[n]];
-        const int i = slot[pair.i], j = slot[pair.j];
-        OpenMM::Vec3 delta;
-        double r;
-        geometry(pair, i, j, delta, r);
+        prefetchAhead(pairs, n, count, velocities, energies, positions);
+        const SweepPair& pair = pairs[n];
+        const int i = pair.slotI, j = pair.slotJ;
+        const OpenMM::Vec3 delta = nearestImage(positions[i] - positions[j]);
+        const double r2 = delta.dot(delta);
+        if (!(r2 < cutoff2))
+            continue;
+        const double r = std::sqrt(r2);
         const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
         CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
         const int failed = Physics::gendpdeSweepPair(
@@ -218,14 +195,9 @@ int sweepPairs(const Pair* pairs, const Geometry& geometry, const int* order, in
     return -1;
 }
 
-/**
- * The particle whose internal energy failed in the pair order[failed] (i if eps_i <= 0, else j), with particle i's
- * energy at slot[i].
- */
-template <class Pair>
-int failedParticle(const Pair* pairs, const int* order, int failed, const int* slot, const double* energies) {
-    const Pair& pair = pairs[order[failed]];
-    return energies[slot[pair.i]] > 0.0 ? pair.j : pair.i;
+/** The particle whose internal energy failed in this pair (i if eps_i <= 0, else j), with energies by slot. */
+inline int failedParticle(const SweepPair& pair, const double* energies) {
+    return energies[pair.slotI] > 0.0 ? pair.j : pair.i;
 }
 
 } // namespace GenDPDEPlugin

@@ -10,63 +10,62 @@
 namespace GenDPDEPlugin {
 
 /**
- * The order of the pair updates in GenDPDEIntegrator's sweep (docs/theory.md section 6), defined once here for every
- * platform. Every platform applies the pair updates in exactly this sequence (a parallel one may run the blocks of
- * one colour at the same time, since they share no particle), so every platform follows the same trajectory.
+ * The order of the pair updates in GenDPDEIntegrator's sweep (docs/theory.md section 6), made on the host platforms
+ * from the definition every engine follows (gendpde/GenDPDESweepDefinition.h). Every platform applies the pair
+ * updates in exactly this sequence (a parallel one may run the blocks of one colour, or the pairs of one level of a
+ * block, at the same time: they share no particle), so every platform follows the same trajectory.
  *
- * Cells: the box (periodic: fractional coordinates of the wrapped positions; open: the bounding box of the
- * particles) is cut into n_k cells along each direction k, each at least (1 + 1e-9) R wide (perpendicular width),
- * so two particles closer than R are in the same or adjacent cells. Periodic: n_k is a multiple of 4 (or 2 or 1
- * when the box holds fewer than 4 cells), so that the blocks below have an even count along k and their parity is
- * consistent across the boundary.
+ * The order is made at a build from the candidate pairs, those closer than candidateRange(R) = 1.1 R at the build's
+ * positions, and kept until some particle has moved more than half the skin (0.05 R) or the box has changed; each
+ * step then updates, in this order, the candidates closer than R at its own positions.
+ *
+ * Cells: the box (periodic: fractional coordinates; open: the bounding box of the particles at the build) is cut into
+ * n_k cells along each direction k, each at least (1 + 1e-9) 1.1 R wide (perpendicular width), so the two particles of
+ * a candidate are in the same or adjacent cells. Periodic: n_k is a multiple of 4 (or 2 or 1 when the box holds fewer
+ * than 4 cells), so that the blocks below have an even count along k and their parity is consistent across the
+ * boundary.
  *
  * Blocks and colours: a pair's home cell is, along each direction, the lower of its two cells (the one the other
  * follows, modulo n_k when periodic); its block is the 2x2x2 group of cells that holds the home cell, (h_x/2, h_y/2,
  * h_z/2); its colour is the parity of the block, (b_x mod 2) + 2 (b_y mod 2) + 4 (b_z mod 2). A block's pairs touch
- * cells home..home+1 only, so two blocks of one colour never share a particle. A pair whose cells are not adjacent
- * (impossible for pairs closer than R; kept for robustness) goes to a last group of its own, run alone.
+ * the particles of cells home..home+1 at the build only, so two blocks of one colour never share a particle, however
+ * the particles move afterwards. A pair whose cells are not adjacent (impossible for candidates; kept for robustness)
+ * goes to a last group of its own, run alone.
  *
- * The sequence: colours 0 to 7, within a colour the blocks by index (b_z n_y + b_y) n_x + b_x, within a block the
- * block's pairs in (i, j) order with the lists of each four consecutive distinct first particles interleaved (the
- * first pair of each, then the second of each, ...), so that consecutive updates rarely share a particle. The order
- * is a pure function of the positions, the box and the set of pairs: it does not depend on how the pairs were found,
- * on the number of threads, or on any history.
+ * The sequence: colours 0 to 7, within a colour the blocks by index (b_z n_y + b_y) n_x + b_x, within a block its
+ * levels: the block's pairs taken in (i, j) order, each pair's level is the smallest that no earlier pair of either
+ * particle has (SweepDefinition::assignLevels), and the block runs level 0, level 1, ..., each level in (i, j) order.
+ * The order is a pure function of the build's positions, its box and its candidates: it does not depend on how the
+ * candidates were found, on the number of threads, or on any other history.
  */
 class GenDPDESweepOrder {
 public:
     /**
-     * Build the order for the pairs (pairI[k stride], pairJ[k stride]), k < numPairs, i < j, all closer than range
-     * (nm), at these positions (nm) and box vectors (used only if periodic). The pairs are in (i, j) order, or, if
-     * rowPairStart is given, stored by rows: row r holds pairs rowPairStart[r] ... rowPairStart[r + 1] - 1, all of
-     * one first particle, in increasing j; one row per particle, the rows in any order (the CPU platform's cell
-     * order; read as getRowReading() says). The order is the same either way and holds indices into the pairs as
-     * stored. numThreads threads share the work; the result is the same for any number.
+     * Build the order for the candidates (pairI[k stride], pairJ[k stride]), k < numPairs, i < j, in (i, j) order,
+     * all closer than candidateRange(range) at these positions (nm; the build's) and box vectors (used only if
+     * periodic), for pairs range R = range (nm). numThreads threads share the work; the result is the same for any
+     * number.
      */
     void build(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
-               double range, int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads = 1,
-               const int* rowPairStart = nullptr);
-    /**
-     * How build() reads pairs stored by rows (the order is the same; only the speed differs): in particle order, the
-     * rows at random in memory when the particles are numbered at random in space, each block's pairs then in (i, j)
-     * order; or in storage order (cell order), each block's runs of one first particle then sorted by it. BySize (the
-     * default): storage order from storageOrderFromPairs pairs, where reading rows at random costs more than the sort
-     * (docs/performance.md, "Where a step's time goes").
-     */
-    enum class RowReading { BySize, ParticleOrder, StorageOrder };
-    static const int storageOrderFromPairs = 1000000;
-    void setRowReading(RowReading reading) { rowReading = reading; }
-    RowReading getRowReading() const { return rowReading; }
+               double range, int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads = 1);
     /** The number of groups run one after another: the colours, then possibly the group of non-adjacent pairs. */
     int getNumGroups() const { return groupStart.size() - 1; }
     /** The blocks of group g are blocks groupStart[g] .. groupStart[g + 1] - 1 (in this numbering). */
     const std::vector<int>& getGroupStart() const { return groupStart; }
     /** The pairs of block b are order[blockStart[b]] ... order[blockStart[b + 1] - 1], in sweep order. */
     const std::vector<int>& getBlockStart() const { return blockStart; }
-    /** Pair indices (into the pair list given to build()) in sweep order. */
+    /** The number of levels of block b: the dependent updates it takes with its levels run one after another. */
+    const std::vector<int>& getBlockLevels() const { return blockLevels; }
+    /**
+     * The critical path of the sweep: the sum over the groups of the most levels of any block of the group (what a
+     * device that runs all blocks of a colour at once, level after level, waits for).
+     */
+    long long criticalPath() const;
+    /** Pair indices (into the candidates given to build()) in sweep order. */
     const std::vector<int>& getOrder() const { return order; }
     /**
      * The number of cells along each direction for a region of these widths (nm: the perpendicular widths of a
-     * periodic box, or the extent of the particles' bounding box) and pair range (nm), as build() chooses them.
+     * periodic box, or the extent of the particles' bounding box) and pair range R (nm), as build() chooses them.
      */
     static std::array<int, 3> cellCounts(const OpenMM::Vec3& extent, double range, bool periodic);
     /**
@@ -90,12 +89,14 @@ private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                       double range, int numThreads);
     void sortParticlesByCell();
+    void rankPairs(int numPairs, const int* pairI, const int* pairJ, int stride, int extraRank, int numThreads);
+    void sortByRank(int numPairs, int numRanks, int numThreads);
+    void orderLevels(const int* pairI, const int* pairJ, int stride, int numThreads);
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
-    RowReading rowReading = RowReading::BySize;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, order, sortedFirst;
-    std::vector<int> cellCount, particlesByCell, slotOfParticle, runBound;
+    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, blockLevels, order;
+    std::vector<int> cellCount, particlesByCell, slotOfParticle;
 };
 
 } // namespace GenDPDEPlugin

@@ -191,6 +191,11 @@ public:
     int getNumCandidates() const { return candidateStart.back(); }
     /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
     const std::vector<int>& getCellOrder() const { return cellParticles; }
+    /** Forget the candidates: the next refresh() builds them whatever the positions. */
+    void invalidate() { built = false; }
+    /** The positions (nm, as given to refresh()) and box vectors of the last build of the candidates. */
+    const std::vector<OpenMM::Vec3>& getBuiltPositions() const { return builtPositions; }
+    const OpenMM::Vec3* getBuiltBox() const { return builtBox; }
     /** How many times the candidates have been built: a change means new candidates. */
     long long getBuildCount() const { return buildCount; }
     double getCutoff() const { return cutoff; }

@@ -4,7 +4,9 @@
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "gendpde/CounterRandom.h"
+#include "internal/Buffers.h"
 #include "internal/FixedOrderSum.h"
+#include "internal/ParallelFor.h"
 #include "internal/GenDPDEPhysics.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
@@ -46,16 +48,77 @@ GenDPDEThermalState ReferenceIntegrateGenDPDEStepKernel::getThermalState(const G
     return state;
 }
 
-PairView ReferenceIntegrateGenDPDEStepKernel::currentPairs(ContextImpl& context, GenDPDEPairSource* pairSource,
-                                                           int numThreads) {
-    // The source, if any, was evaluated at the current positions just before this step (see execute()).
-    GenDPDEHostPairList* list = pairSource != nullptr ? pairSource->getHostPairList() : nullptr;
-    if (list != nullptr && pairSource->holdsPairsFor(cutoff, context.getStepCount()))
-        return list->getPairs(numThreads);
+bool ReferenceIntegrateGenDPDEStepKernel::getSweepBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
+    if (!pendingBuildPositions.empty()) {
+        positions = pendingBuildPositions;
+        std::copy(pendingBuildBox, pendingBuildBox + 3, box);
+        return true;
+    }
+    if (orderBuild < 0)
+        return false;
+    positions = neighborList->getBuiltPositions();
+    std::copy(neighborList->getBuiltBox(), neighborList->getBuiltBox() + 3, box);
+    return true;
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::setSweepBuild(const std::vector<Vec3>& positions, const Vec3 box[3]) {
+    if (positions.size() != inverseMasses.size())
+        throw OpenMMException("GenDPDEIntegrator: the sweep's build positions are for "
+                              + std::to_string(positions.size()) + " particles; the System has "
+                              + std::to_string(inverseMasses.size()));
+    pendingBuildPositions = positions;
+    std::copy(box, box + 3, pendingBuildBox);
+    orderBuild = -1;
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::forgetSweepOrder() {
+    pendingBuildPositions.clear();
+    orderBuild = -1;
+    if (neighborList != nullptr)
+        neighborList->invalidate();
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::updateSweepOrder(ContextImpl& context, int numThreads) {
     const Vec3* box = extractBoxVectors(context);
     if (context.getSystem().usesPeriodicBoundaryConditions())
         BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
-    return neighborList->update(extractPositions(context), box, numThreads);
+    if (!pendingBuildPositions.empty()) {
+        // a checkpoint's build: the order of the uninterrupted run, kept or rebuilt by the rule against its positions
+        neighborList->invalidate();
+        neighborList->refresh(pendingBuildPositions, pendingBuildBox, numThreads);
+        buildSweepOrder(numThreads);
+        pendingBuildPositions.clear();
+    }
+    neighborList->refresh(extractPositions(context), box, numThreads);
+    if (neighborList->getBuildCount() != orderBuild)
+        buildSweepOrder(numThreads);
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(int numThreads) {
+    // The candidates in (i, j) order, the order made from them at the list's build, and the candidates copied into
+    // that order with their slots.
+    const int numParticles = inverseMasses.size();
+    candidates.resize(neighborList->getNumCandidates());
+    IndexPair* next = candidates.data();
+    for (int i = 0; i < numParticles; i++)
+        for (int j : neighborList->candidatesOf(i))
+            *next++ = {i, j};
+    const int* first = candidates.empty() ? nullptr : &candidates[0].i;
+    sweepOrder.build(neighborList->getBuiltPositions(), neighborList->getBuiltBox(), neighborList->isPeriodic(), cutoff,
+                     candidates.size(), first, first != nullptr ? first + 1 : nullptr, 2, numThreads);
+    const std::vector<int>& order = sweepOrder.getOrder();
+    const int* slot = sweepOrder.getSlots().data();
+    resizeBuffer(orderedPairs, order.size());
+    SweepPair* ordered = orderedPairs.data();
+    const IndexPair* candidate = candidates.data();
+    const int* sequence = order.data();
+    parallelFor(numThreads, order.size(), 4096, [=](int begin, int end) {
+        for (int n = begin; n < end; n++) {
+            const IndexPair& pair = candidate[sequence[n]];
+            ordered[n] = {pair.i, pair.j, slot[pair.i], slot[pair.j]};
+        }
+    });
+    orderBuild = neighborList->getBuildCount();
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
@@ -97,51 +160,68 @@ void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context
         throwUnstable(context, unstable, stepSize, maxDisplacement);
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, PairView pairs, std::vector<Vec3>& velocities,
+void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vector<Vec3>& velocities,
                                                 const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
-    // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows.
-    if (pairs.holdsIndexPairs())   // (the CPU platform sweeps its IndexPairs itself)
-        throw OpenMMException("GenDPDEIntegrator: internal error: Reference's sweep was given pairs without geometry");
+    // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows: the colours
+    // one after another, the blocks of a colour in parallel (on one thread, the whole sequence in one loop, whose
+    // prefetches run on across the blocks).
+    const int threads = numThreads(context);
     const long long step = context.getStepCount();
-    buildSweepOrder(context, pairs, 1);
-    const std::vector<int>& order = sweepOrder.getOrder();
+    updateSweepOrder(context, threads);
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables, sweepNoise);
-    gatherSweepState(context, integrator, parameters, 1);
-    // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies stay
-    // those before the step; positions have not moved yet), and the error names the particle and the step.
-    const int failed = sweepPairs(pairs.begin(), StoredPairGeometry(), order.data(), order.size(), parameters,
-                                  layout.slots, layout.slotInverseMasses.data(), layout.slotVelocities.data(),
-                                  terms.internalEnergies ? layout.slotEnergies.data() : nullptr);
-    if (failed >= 0)
-        failSweep(pairs, order, failed, step);
-    layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, 1);
-}
-
-void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(ContextImpl& context, PairView pairs, int numThreads) {
-    const int stride = pairs.indexStride();
-    const int* first = pairs.size() > 0 ? pairs.firstIndices() : nullptr; // (each pair's j follows its i)
-    sweepOrder.build(extractPositions(context), extractBoxVectors(context),
-                     context.getSystem().usesPeriodicBoundaryConditions(), cutoff, pairs.size(), first,
-                     first != nullptr ? first + 1 : nullptr, stride, numThreads, pairs.getRowPairStart());
+    gatherSweepState(context, integrator, parameters, threads);
+    const double* inverseMass = layout.slotInverseMasses.data();
+    const Vec3* position = layout.slotPositions.data();
+    Vec3* v = layout.slotVelocities.data();
+    double* energy = terms.internalEnergies ? layout.slotEnergies.data() : nullptr;
+    const SweepPair* pairs = orderedPairs.data();
+    withNearestImage(neighborList->isPeriodic() ? &neighborList->getBox() : nullptr, [&](auto nearestImage) {
+        if (threads == 1) {
+            // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies
+            // stay those before the step; positions have not moved yet), and the error names the particle and the
+            // step.
+            const int failed =
+                    sweepPairs(pairs, orderedPairs.size(), nearestImage, position, parameters, inverseMass, v, energy);
+            if (failed >= 0)
+                failSweep(failed, step);
+            return;
+        }
+        const std::vector<int>& groupStart = sweepOrder.getGroupStart();
+        const int* blockStart = sweepOrder.getBlockStart().data();
+        for (int group = 0; group < sweepOrder.getNumGroups(); group++) {
+            const int firstBlock = groupStart[group], numBlocks = groupStart[group + 1] - firstBlock;
+            blockFailure.assign(numBlocks, -1);
+            int* failure = blockFailure.data();
+            parallelFor(threads, numBlocks, 1, [=](int begin, int end) {
+                for (int b = firstBlock + begin; b < firstBlock + end; b++) {
+                    const int failed = sweepPairs(pairs + blockStart[b], blockStart[b + 1] - blockStart[b],
+                                                  nearestImage, position, parameters, inverseMass, v, energy);
+                    if (failed >= 0)
+                        failure[b - firstBlock] = blockStart[b] + failed;
+                }
+            });
+            // The first failing pair of the sequence: in the first block (of this first failing colour) that failed.
+            for (int failed : blockFailure)
+                if (failed >= 0)
+                    failSweep(failed, step);
+        }
+    });
+    layout.scatter(velocities, terms.internalEnergies ? internalEnergies.data() : nullptr, threads);
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(ContextImpl& context, const GenDPDEIntegrator& integrator,
-                                                           PairSweepParameters& parameters, int numThreads,
-                                                           const Vec3* positions) {
+                                                           PairSweepParameters& parameters, int numThreads) {
     const bool classes = parameters.numClasses > 1;
     layout.gather(sweepOrder, extractVelocities(context), extractForces(context), 0.5 * integrator.getStepSize(),
                   parameters.terms.internalEnergies ? internalEnergies.data() : nullptr, inverseMasses.data(),
-                  classes ? parameters.particleClass : nullptr, numThreads, positions);
+                  classes ? parameters.particleClass : nullptr, numThreads, extractPositions(context).data());
     if (classes)
         parameters.particleClass = layout.slotClasses.data();
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::failSweep(PairView pairs, const std::vector<int>& order, int failed,
-                                                    long long step) {
-    const int particle = pairs.holdsIndexPairs()
-            ? failedParticle(pairs.getIndexPairs(), order.data(), failed, layout.slots, layout.slotEnergies.data())
-            : failedParticle(pairs.begin(), order.data(), failed, layout.slots, layout.slotEnergies.data());
+void ReferenceIntegrateGenDPDEStepKernel::failSweep(int failed, long long step) {
+    const int particle = failedParticle(orderedPairs[failed], layout.slotEnergies.data());
     const double value = layout.slotEnergies[layout.slots[particle]];
     throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, value, step));
 }
@@ -165,7 +245,7 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
         kick(context, velocities, forces, dt);
     else {
         // (the first half kick inside the sweep, on the sweep's copies: a failed sweep leaves the state untouched)
-        sweep(context, currentPairs(context, pairSource, numThreads(context)), velocities, integrator, terms);
+        sweep(context, velocities, integrator, terms);
         kick(context, velocities, forces, 0.5 * dt);
     }
     drift(context, extractPositions(context), velocities, dt);

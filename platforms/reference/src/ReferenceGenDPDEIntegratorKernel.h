@@ -16,9 +16,9 @@ namespace GenDPDEPlugin {
 
 /**
  * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md sections 5-7): half kick,
- * pair sweep at fixed positions, half kick, drift. The pairs come from the pair source the API found
- * (GenDPDEIntegratorUtilities::findPairSource: a GenDPDEForce evaluated at these positions just before) if it
- * offers them as a host list for this step and range, else from a neighbor list of the integrator's own.
+ * pair sweep at fixed positions, half kick, drift. The sweep's order (GenDPDESweepOrder) is made from the candidates
+ * of a neighbour list of the integrator's own (within 1.1 R, rebuilt when a particle has moved more than 0.05 R or the
+ * box has changed: the definition's rule) whenever that list is built, and kept until the next build.
  */
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
@@ -44,14 +44,12 @@ public:
     void forgetDensityEntropies() override { densityEntropiesKnown = false; }
     int getSeed() const override { return seed; }
     void setSeed(int seed) override { this->seed = seed; }
+    bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const override;
+    void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) override;
+    void forgetSweepOrder() override;
 
 protected:
     // The stages of a step (execute() is the one home of their sequence); a parallel platform overrides them.
-    /**
-     * The pairs closer than the cutoff at the current positions: the source's if it lends them as a host list found
-     * at this step with this range, else from our own list; on this many threads.
-     */
-    PairView currentPairs(OpenMM::ContextImpl& context, GenDPDEPairSource* pairSource, int numThreads);
     /** The threads each stage may use (1; the CPU platform's "Threads"). */
     virtual int numThreads(OpenMM::ContextImpl& context) const { return 1; }
     /**
@@ -61,12 +59,14 @@ protected:
     virtual void checkStepIsStable(OpenMM::ContextImpl& context, double stepSize, double maxDisplacement);
     /**
      * The step's first half kick, applied as the velocities are copied into the sweep's layout, then the pair updates
-     * in the order of GenDPDESweepOrder (Isoenergetic or Isothermal), then the results copied back. If an internal
-     * energy would become <= 0, throw: nothing has been copied back, so the velocities and internal energies are those
-     * before the step.
+     * in the order of GenDPDESweepOrder (Isoenergetic or Isothermal), then the results copied back: the colours one
+     * after another, the blocks of a colour at the same time on numThreads(context) threads (they share no
+     * particle), each block's pairs in order by one thread. If an internal energy would become <= 0, throw, naming
+     * the first failing pair's particle in the sequence: nothing has been copied back, so the velocities and internal
+     * energies are those before the step.
      */
-    virtual void sweep(OpenMM::ContextImpl& context, PairView pairs, std::vector<OpenMM::Vec3>& velocities,
-                       const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms);
+    void sweep(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
+               const GenDPDEStepTerms& terms);
     /** v += timeStep F/m for every particle with mass. */
     virtual void kick(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& velocities,
                       const std::vector<OpenMM::Vec3>& forces, double timeStep);
@@ -81,32 +81,42 @@ protected:
     /** Particle i's kinetic energy with on-step velocities (kJ/mol); 0 for a massless particle. */
     double kineticEnergy(int i, const std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces,
                          double halfStep) const;
-    /** Build sweepOrder for these pairs at the current positions, on this many threads. */
-    void buildSweepOrder(OpenMM::ContextImpl& context, PairView pairs, int numThreads);
+    /**
+     * Refresh the neighbour list at the current positions (after a build from the positions of setSweepBuild(), if
+     * any) and make the sweep's order from its candidates whenever it was built: sweepOrder and orderedPairs.
+     */
+    void updateSweepOrder(OpenMM::ContextImpl& context, int numThreads);
+    /** Make sweepOrder and orderedPairs from the neighbour list's candidates at its last build. */
+    void buildSweepOrder(int numThreads);
     /**
      * Copy what the sweep reads into layout (the order's cell order), the velocities given the step's first half
      * kick (the context's forces, half of the integrator's step) on the way, and point parameters at the copied
-     * classes. The sweep then works on layout's arrays; layout.scatter() copies its results back. positions (by
-     * particle index): the geometry of pairs that do not carry it (PairView::getPositions()), or null.
+     * classes. The sweep then works on layout's arrays (the positions too); layout.scatter() copies its results back.
      */
     void gatherSweepState(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
-                          PairSweepParameters& parameters, int numThreads, const OpenMM::Vec3* positions = nullptr);
+                          PairSweepParameters& parameters, int numThreads);
     /**
-     * The sweep's failure at position failed of the order (the sweep's state still in layout, nothing copied back):
+     * The sweep's failure at position failed of orderedPairs (the sweep's state still in layout, nothing copied back):
      * throw, naming the particle and the step.
      */
-    [[noreturn]] void failSweep(PairView pairs, const std::vector<int>& order, int failed, long long step);
+    [[noreturn]] void failSweep(int failed, long long step);
     double cutoff = 0.0;
     int seed = 0;
     std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
     std::vector<double> inverseMasses, internalEnergies;
     GenDPDESweepOrder sweepOrder;
+    std::vector<IndexPair> candidates;   // the neighbour list's candidates at the order's build, in (i, j) order
+    std::vector<SweepPair> orderedPairs;   // the candidates in sweep order, with their slots in layout
+    long long orderBuild = -1;           // the neighbour list's build count the order was made at
+    std::vector<OpenMM::Vec3> pendingBuildPositions;   // setSweepBuild(): the next order's build, if not empty
+    OpenMM::Vec3 pendingBuildBox[3];
+    std::vector<int> blockFailure;   // per block of the running colour: position of the failing pair, or -1
     SweepLayout layout;   // the sweep's particle data in sweepOrder's cell order, during a sweep
     std::vector<double> sweepNoise;   // the noise amplitudes of the step's pair updates (PairSweepParameters)
     // docs/theory.md section 11: sigma(n_i) at the densities internalEnergies belong to, if known.
     std::vector<double> densityEntropies;
     bool densityEntropiesKnown = false;
-    std::unique_ptr<NeighborList> neighborList;   // used when no GenDPDEForce's pairs can be reused
+    std::unique_ptr<NeighborList> neighborList;   // the sweep's candidates (null without pair terms)
 };
 
 } // namespace GenDPDEPlugin

@@ -476,8 +476,19 @@ void FixGenDPDE::sweep()
                  update->ntimestep - 1);
     build_order(false);
     build_pending = false;
-  } else if (neighbor->lastcall != indexed_at)
-    remap_order();
+  } else if (neighbor->lastcall != indexed_at) {
+    // the subdomains changed (fix balance): the same order made again from the build's positions
+    // for the new ones; else the same pairs found again
+    bool moved = false;
+    for (int d = 0; d < 3; d++)
+      moved |= domain->sublo[d] != build_sublo[d] || domain->subhi[d] != build_subhi[d];
+    int any = 0, local = moved ? 1 : 0;
+    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any)
+      build_order(true);
+    else
+      remap_order();
+  }
 
   // Each owner's velocity and energy eps/mvv2e (the pair updates' units: kinetic energies m v^2/2),
   // to every ghost.
@@ -549,6 +560,10 @@ void FixGenDPDE::build_order(bool from_stored)
     }
   }
   has_build = 1;
+  for (int d = 0; d < 3; d++) {
+    build_sublo[d] = domain->sublo[d];
+    build_subhi[d] = domain->subhi[d];
+  }
   check_atom_ids();
   prepare_cells();
   rank_blocks();

@@ -384,6 +384,27 @@ def test_the_order_is_built_by_its_rule_whatever_lammps_lists_do(lammps, tmp_pat
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
+def test_subdomains_that_move_during_the_run(lammps, tmp_path):
+    """fix balance moving the boundary between 2 ranks every 5 steps (atoms weighted by x, so there is always an
+    imbalance to correct): the sweep's blocks go to the ranks that now hold their centres, its order stays the one of
+    its build (made again from the positions of the build for the new subdomains), and 60 isoenergetic steps end where
+    OpenMM's end, to rounding."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 60, velocities)
+
+    def balanced(script):
+        return script + ("variable weight atom 1.0+2.0*x/lx\n"
+                         "fix balance all balance 5 1.0 shift x 10 1.0 weight var weight\n"
+                         'fix report all print 5 "rebalanced $(f_balance[2])"\n')
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 60,
+                                                          velocities, 2, edit=balanced)
+    reports = [line for line in (tmp_path / "log.lammps").read_text().splitlines() if line.startswith("rebalanced")]
+    assert len(reports) == 13 and all(line.split()[1] != "0" for line in reports[1:])
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
 def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):
     """4 ranks as slabs along z (processors 1 1 4), each 1.23 nm thick against a ghost cutoff of 1.95 nm (1.5 sweep
     cells + the skin): the sweep's exchanges then reach past the neighbouring rank (two hops), and the trajectory is

@@ -32,15 +32,15 @@ g++ -std=c++17 -I"$root/platforms/common/src" -I"$root/core/include" -o "$work/s
 "$work/status" > "$work/status.h"
 for precision in single mixed double; do
     case $precision in
-        single) real=float; mixed=float; flag="";;
-        mixed) real=float; mixed=double; flag="#define USE_MIXED_PRECISION 1";;
-        double) real=double; mixed=double; flag="#define USE_DOUBLE_PRECISION 1";;
+        single) real=float; mixed=float; flag=""; words=4;;
+        mixed) real=float; mixed=double; flag="#define USE_MIXED_PRECISION 1"; words=8;;
+        double) real=double; mixed=double; flag="#define USE_DOUBLE_PRECISION 1"; words=8;;
     esac
     {
         echo "$flag"
         printf '#define %s %s\n' NUM_ATOMS 1000 PADDED_NUM_ATOMS 1024 SCAN_GROUP_SIZE 256 BOUNDS_GROUP_SIZE 128 \
             USE_PERIODIC 1 GENDPDE_DOUBLE_RANDOM 1 SWEEP_MAX_PARTICLES 192 SWEEP_BLOCKS_PER_GROUP 4 \
-            SWEEP_BLOCK_THREADS 32
+            SWEEP_BLOCK_THREADS 32 SWEEP_LEVEL_WORDS $words
         cat "$work/status.h"
         for n in 2 3 4; do
             echo "#define make_real$n make_$real$n"

@@ -35,11 +35,13 @@ class IntegrateGenDPDEStepKernel;
  * v_n = v + (dt/2) F/m. Over a run this is the sequence [velocity Verlet(dt)] [pair updates(dt)] repeated, with
  * one force evaluation per step.
  *
- * Pair updates. The pairs are visited sequentially at fixed positions in a fixed order, a pure function of the
- * positions, the box and the set of pairs (docs/theory.md section 6): the pairs grouped by 2 x 2 x 2 blocks of cells
- * at least the pair range wide, the blocks in eight colours (two blocks of one colour share no particle, so a
- * parallel platform runs them at once with the same result), within a block sorted by (i, j) with i < j and the
- * lists of each four consecutive first particles interleaved (so that consecutive updates rarely share a particle).
+ * Pair updates. The pairs are visited sequentially at fixed positions in a fixed order (docs/theory.md section 6),
+ * made at a build from the candidate pairs (closer than 1.1 R) and kept until some particle has moved more than
+ * 0.05 R from its position at the build or the box changes; each step updates, in that order, the candidates closer
+ * than R. The order: the candidates grouped by 2 x 2 x 2 blocks of cells at least 1.1 R wide, the blocks in eight
+ * colours (two blocks of one colour share no particle, so a parallel platform runs them at once with the same
+ * result), within a block the greedy levels of its pairs taken in (i, j) order (pairs of one level share no
+ * particle, so a device runs a level at once).
  * Each update is the two-stage update of Lisal et al.: an explicit half (half the friction and half
  * the random impulse) followed by an implicit half solved exactly for the final relative velocity, i.e. a
  * Crank-Nicolson step of the pair's relative motion along e_ij, which keeps the stationary variance of the pair's

@@ -21,8 +21,6 @@ class ComputeArray;
 
 namespace GenDPDEPlugin {
 
-class GenDPDEHostPairList;        // platforms/reference/src/NeighborList.h
-class CommonGenDPDECellGrid;      // platforms/common/src/CommonGenDPDECellGrid.h
 class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
 struct CommonGenDPDEThermalArrays;   // platforms/common/src/CommonGenDPDEThermalArrays.h
 
@@ -38,37 +36,15 @@ struct GenDPDEObservables {
 };
 
 /**
- * The pairs a force kernel found in its last evaluation, lent to the integrator kernel of the same platform so that
- * its sweep need not search them again. Each platform's integrator asks for the form it can use (a host list, a
- * device cell grid) and gets null for any other, so any force kernel can meet any integrator kernel: without a source
- * it can use, the integrator finds the pairs itself.
+ * What a force kernel lends the integrator kernel of the same platform (the name is historical: the sweeps now keep
+ * candidates of their own): the force's checks on the device (the Common platforms), which a run of steps may defer.
+ * An integrator kernel gets null for what it cannot use, so any force kernel can meet any integrator kernel.
  */
 class GenDPDEPairSource {
 public:
     virtual ~GenDPDEPairSource() {}
-    /** The range within which the source holds every pair (nm); 0 before any evaluation. */
-    double getCutoff() const { return foundCutoff; }
-    /** The Context's step count at the evaluation that found the pairs: they are those of that step's positions. */
-    long long getStepCount() const { return foundStep; }
-    /** Whether the source holds the pairs within this range (nm) found at this step, which a sweep may then reuse. */
-    bool holdsPairsFor(double cutoff, long long step) const { return foundCutoff == cutoff && foundStep == step; }
-    /** The pairs as a list on the host (Reference, CPU), or null. */
-    virtual GenDPDEHostPairList* getHostPairList() { return nullptr; }
-    /** The pairs as the device cell grid of OpenMM's Common platforms (OpenCL, CUDA), or null. */
-    virtual CommonGenDPDECellGrid* getDeviceCellGrid() { return nullptr; }
     /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */
     virtual CommonGenDPDEForceChecks* getDeviceChecks() { return nullptr; }
-
-protected:
-    /** An evaluation has just found every pair closer than cutoff (nm) at the positions of this step. */
-    void pairsFound(double cutoff, long long step) {
-        foundCutoff = cutoff;
-        foundStep = step;
-    }
-
-private:
-    double foundCutoff = 0.0;
-    long long foundStep = -1;
 };
 
 /**
@@ -139,9 +115,8 @@ public:
      * One step. The forces of the integration groups at the current positions have just been computed.
      *
      * @param terms        what the step contains (GenDPDEIntegratorUtilities::stepTerms)
-     * @param pairSource   the pairs of a GenDPDEForce just evaluated with the pair range as its cutoff
-     *                     (GenDPDEIntegratorUtilities::findPairSource), which the sweep may reuse if it is of a form
-     *                     this kernel can use and belongs to this step, or null: then the kernel finds the pairs
+     * @param pairSource   what a GenDPDEForce with the pair range as its cutoff lends this kernel
+     *                     (GenDPDEIntegratorUtilities::findPairSource; its device checks), or null
      */
     virtual void execute(OpenMM::ContextImpl& context, const GenDPDEIntegrator& integrator,
                          const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) = 0;

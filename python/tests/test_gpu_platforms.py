@@ -227,3 +227,36 @@ def test_equilibrium_identities_in_mixed_precision(name):
     reduced = (c * temperatures / harmonic[:, None])[::25].ravel()
     assert stats.kstest(reduced, stats.gamma(c + 1).cdf).pvalue > 1e-3
     assert stats.kstest(reduced, stats.gamma(c).cdf).pvalue < 1e-6
+
+
+@pytest.mark.parametrize("name", GPU_PLATFORMS)
+def test_a_pair_listed_two_cells_apart_is_found_when_it_comes_in_range(name):
+    """The neighbour list's candidates (closer than 1.1 R at its build) come from the 27 cells around each particle,
+    so the cells must be at least 1.1 R wide. They were R wide (the force's grid was the sweep's, at R): in a box 4.2 R
+    wide (4 cells of 1.05 R) two particles 1.06 R apart in cells 0 and 2 were not listed, and after each moved 0.045 R
+    towards the other (less than half the skin: no rebuild) the pair at 0.97 R was left out of the energy. Reference
+    (its own cells of 1.1 R) gives the energy with the pair; the pair's energy is far above double precision's
+    rounding."""
+    cutoff = 1.0
+    edge = 4.2 * cutoff
+    system = openmm.System()
+    system.setDefaultPeriodicBoxVectors(openmm.Vec3(edge, 0, 0), openmm.Vec3(0, edge, 0), openmm.Vec3(0, 0, edge))
+    for _ in range(2):
+        system.addParticle(40.0)
+    force = GenDPDEForce(cutoff)
+    force.setNonbondedMethod(GenDPDEForce.CutoffPeriodic)
+    system.addForce(force)
+    start = np.array([[1.04, 2.0, 2.0], [2.10, 2.0, 2.0]]) * cutoff
+    context = gpu_context(system, start, name, "double", openmm.VerletIntegrator(0.001))
+    speed = 0.005 * cutoff / 0.001   # 0.005 R per step, towards each other
+    context.setVelocities(np.array([[speed, 0, 0], [-speed, 0, 0]]))
+    context.getIntegrator().step(9)   # 0.045 R each: the list is kept
+    positions = context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+    separation = positions[1, 0] - positions[0, 0]
+    assert 0.95 * cutoff < separation < 0.99 * cutoff
+    device, _ = energy_and_forces(context)
+    reference, _ = energy_and_forces(make_context(system, positions, openmm.Platform.getPlatformByName("Reference")))
+    lone, _ = energy_and_forces(make_context(system, np.array([[1.0, 1.0, 1.0], [3.0, 3.0, 3.0]]) * cutoff,
+                                             openmm.Platform.getPlatformByName("Reference")))
+    assert abs(reference - lone) > 1e-6 * abs(reference)   # the pair counts
+    assert device == pytest.approx(reference, rel=1e-12, abs=1e-12)

@@ -163,22 +163,25 @@ def test_a_refused_checkpoint_changes_nothing(damage):
 def test_a_slab_whose_surface_particle_is_not_integrated_stops_at_once():
     # Before: a V-C slab in vacuum of the expanding argon at dt* = 0.01 (the bulk liquid's step, ~3x the one
     # stability.suggest_time_step gives a slab) ran on silently while a surface particle's temperature swung by
-    # factors of 2-20 per step, until the conserved energy jumped by +365 kJ/mol at step 2250 (the particle at 0.2 K),
-    # and the run stopped much later naming another particle, or never (OpenCL). Now the first step that changes a
-    # particle's temperature by more than a factor 2 by its motion alone stops the run, naming it, before the jump.
+    # factors of 2-20 per step, until the conserved energy jumped by +365 kJ/mol in one go (at step 2250 with the
+    # sweep order of 0.2-0.4; the particle at 0.2 K), and the run stopped much later naming another particle, or never
+    # (OpenCL). Now the first step that changes a particle's temperature by more than a factor 2 by its motion alone
+    # stops the run, naming it, before any jump: the conserved energy at the stop is within 5 kJ/mol of its value
+    # 100-200 steps earlier (the slab's steady drift at this step is at most ~2 kJ/mol per 100 steps, measured; the
+    # jump was 365). When the run goes bad depends on the trajectory (the current order stops at step 4548).
     positions, box, thickness = slab_positions(cells=(4, 4, 4))
     slab, context = argon_model(positions, box, "VC", platform="CPU")
     slab.force.setEquationOfState(GenDPDEForce.TaitThermalExpansion, [0.955, 125.7])
     context.reinitialize(preserveState=True)
     integrator = slab.integrator
-    start = integrator.getConservedEnergy().value_in_unit(KJ)
+    energies = [integrator.getConservedEnergy().value_in_unit(KJ)]
     with pytest.raises(openmm.OpenMMException, match=r"the temperature of particle (\d+) went from .* more than a "
                                                      r"factor 2, at step (\d+)") as error:
-        integrator.step(4000)
-    step = context.getState().getStepCount()
-    assert 1000 < step < 2300
-    # The energy had not jumped yet (a stable slab drifts by a few kJ/mol over such a run).
-    assert abs(integrator.getConservedEnergy().value_in_unit(KJ) - start) < 30
+        for _ in range(80):
+            integrator.step(100)
+            energies.append(integrator.getConservedEnergy().value_in_unit(KJ))
+    assert len(energies) >= 2
+    assert abs(integrator.getConservedEnergy().value_in_unit(KJ) - energies[-2]) < 5
     # The particle named is at a free surface: its density well below the liquid's (4.27 nm^-3).
     particle = int(str(error.value).split("particle ")[1].split()[0])
     assert slab.force.getParticleDensities(context)[particle].value_in_unit(PER_NM3) < 2.0

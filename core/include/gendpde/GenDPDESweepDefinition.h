@@ -27,7 +27,7 @@ namespace SweepDefinition {
  * the skin from its position at the build (or the box has changed). Until then no pair outside the candidates can
  * come closer than R: two particles approach each other by at most the skin.
  */
-const double skinFraction = 0.1;
+constexpr double skinFraction = 0.1;
 
 /** The reach of the candidate pairs (nm, or any length unit): (1 + skinFraction) R for pair range R. */
 inline double candidateRange(double range) {

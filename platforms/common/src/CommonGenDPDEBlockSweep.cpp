@@ -3,8 +3,9 @@
 #include "CommonGenDPDEBlockSweep.h"
 #include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEKernelSources.h"
-#include "internal/BoxGeometry.h"
 #include "gendpde/CounterRandom.h"
+#include "gendpde/GenDPDESweepDefinition.h"
+#include "internal/BoxGeometry.h"
 #include "internal/GenDPDESweepOrder.h"
 #include "openmm/OpenMMException.h"
 #include <algorithm>
@@ -16,25 +17,79 @@ using namespace OpenMM;
 
 namespace {
 
+const int scanGroupSize = 256;
+const int boundsGroupSize = 128;
+
 /** The arguments of kernels/gendpdeSweep.cc's kernels, in the order of their parameters. */
+namespace CheckArgument {
+enum {
+    Posq,
+    PosqCorrection,
+    AtomIndex,
+    BuildPosition,
+    BoxA,
+    BoxB,
+    BoxC,
+    Limit2,
+    Parity,
+    HostBuild,
+    HostCapture,
+    Flags,
+    SlotOfAtom,
+    Status,
+    Count
+};
+}
+namespace BoundsArgument {
+enum { Flags, Parity, Status, Posq, PosqCorrection, SlotOfAtom, BuildPosition, Bounds, Count };
+}
+namespace AssignArgument {
+enum {
+    Flags,
+    Parity,
+    Status,
+    Posq,
+    PosqCorrection,
+    SlotOfAtom,
+    BuildPosition,
+    BoxA,
+    BoxB,
+    BoxC,
+    Low,
+    Extent,
+    Cells,
+    AtomCell,
+    CellCount,
+    Count
+};
+}
+namespace ScanArgument {
+enum { Flags, Parity, Status, CellCount, CellStart, NumCells, Count };
+}
+namespace FillArgument {
+enum { Flags, Parity, Status, AtomCell, CellStart, CellFill, SortedAtom, Count };
+}
+namespace SortArgument {
+enum { Flags, Parity, Status, NumCells, CellStart, CellFill, SortedAtom, Count };
+}
 namespace OrderArgument {
 enum {
+    Flags,
+    Parity,
+    StepIndex,
     Cells,
     Blocks,
     CellStart,
     SortedAtom,
-    SortedSlot,
-    Posq,
-    PosqCorrection,
+    BuildPosition,
     BoxA,
     BoxB,
     BoxC,
-    Cutoff,
+    CandidateRange,
     PairCapacity,
     Status,
     Header,
     BlockAtoms,
-    BlockSlots,
     PairScratch,
     BlockPairs,
     LevelStart,
@@ -49,13 +104,18 @@ enum {
     Blocks,
     Header,
     BlockAtoms,
-    BlockSlots,
     LevelStart,
     BlockPairs,
     PairCapacity,
     CellStart,
     SortedAtom,
-    SortedSlot,
+    BuildPosition,
+    BuildA,
+    BuildB,
+    BuildC,
+    CandidateRange,
+    LevelMasks,
+    SlotOfAtom,
     Posq,
     PosqCorrection,
     Velm,
@@ -97,8 +157,10 @@ int setting(const char* name, int otherwise) {
 
 CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDPDEProfiler& profiler,
                                                  const std::map<std::string, std::string>& defines,
-                                                 const std::string& sources, int localMemory) :
-        cc(cc), profiler(profiler), defines(defines), sources(sources), localMemory(localMemory) {
+                                                 const std::string& sources, bool periodic, double range,
+                                                 int localMemory) :
+        cc(cc), profiler(profiler), defines(defines), sources(sources), periodic(periodic), range(range),
+        localMemory(localMemory) {
     // One block per group where threads of a warp do not run in step (CPUs); else several blocks of one warp each,
     // as many as local memory holds, since OpenMM launches a bounded number of groups.
     blockThreads = setting("GENDPDE_SWEEP_BLOCK_THREADS", cc.getSIMDWidth() >= 32 ? cc.getSIMDWidth() : 64);
@@ -111,32 +173,51 @@ CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDP
     zigguratX.upload(std::vector<double>(table.x, table.x + 257), true);
     zigguratF.upload(std::vector<double>(table.f, table.f + 257), true);
     zigguratRatio.upload(std::vector<double>(table.ratio, table.ratio + 256), true);
+    // The build: its flags, positions (by original index), cells; each particle's slot.
+    const int numAtoms = cc.getNumAtoms();
+    const int mixedSize = mixedIsDouble(cc) ? sizeof(double) : sizeof(float);
+    flags.initialize<int>(cc, 4, "gendpdeSweepBuildFlags");
+    flags.upload(std::vector<int>(4, 0));
+    buildPosition.initialize(cc, numAtoms, 4 * mixedSize, "gendpdeSweepBuildPosition");
+    slotOfAtom.initialize<int>(cc, numAtoms, "gendpdeSweepSlotOfAtom");
+    atomCell.initialize<int>(cc, numAtoms, "gendpdeSweepAtomCell");
+    sortedAtom.initialize<int>(cc, numAtoms, "gendpdeSweepSortedAtom");
+    cellCount.initialize<int>(cc, 1, "gendpdeSweepCellCount");
+    cellFill.initialize<int>(cc, 1, "gendpdeSweepCellFill");
+    cellStart.initialize<int>(cc, 2, "gendpdeSweepCellStart");
+    bounds.initialize(cc, 6, mixedSize, "gendpdeSweepBounds");
+    levelMasks.initialize<int>(cc, (size_t) numAtoms * levelWords(), "gendpdeSweepLevelMasks");
     header.initialize<mm_int4>(cc, 1, "gendpdeSweepHeader");
     blockAtoms.initialize<int>(cc, 1, "gendpdeSweepAtoms");
-    blockSlots.initialize<int>(cc, 1, "gendpdeSweepSlots");
     pairScratch.initialize<mm_int2>(cc, 1, "gendpdeSweepScratch");
-    blockPairs.initialize<mm_int2>(cc, 1, "gendpdeSweepPairs");
+    blockPairs.initialize<int>(cc, 1, "gendpdeSweepPairs");
     levelStart.initialize<int>(cc, 1, "gendpdeSweepLevels");
     failureParticle.initialize<int>(cc, 1, "gendpdeSweepFailure");
-    failureEnergy.initialize(cc, 1, mixedIsDouble(cc) ? sizeof(double) : sizeof(float), "gendpdeSweepFailureEnergy");
+    failureEnergy.initialize(cc, 1, mixedSize, "gendpdeSweepFailureEnergy");
+}
+
+int CommonGenDPDEBlockSweep::levelWords() const {
+    // The masks of used levels take the space of a particle's position (a mixed4) once its pairs are listed.
+    return mixedIsDouble(cc) ? 8 : 4;
 }
 
 int CommonGenDPDEBlockSweep::bytesPerParticle() const {
-    // orderBlocks: six ints and a mixed4 per particle; sweepBlocks: a mixed4, a mixed and three ints.
+    // orderBlocks: four ints and a mixed4 per particle; sweepBlocks: a mixed4, a mixed and three ints.
     const int mixedSize = mixedIsDouble(cc) ? 8 : 4;
-    return std::max(6 * 4 + 4 * mixedSize, 3 * 4 + 5 * mixedSize);
+    return std::max(4 * 4 + 4 * mixedSize, 3 * 4 + 5 * mixedSize);
 }
 
 int CommonGenDPDEBlockSweep::particleLimit() const {
-    // The group's other local arrays take under 1 kB.
+    // The group's other local arrays take under 1 kB; ranks within a region are 16 bits.
     return std::min(65535, 32 * ((localMemory - 1024) / bytesPerParticle() / 32));
 }
 
-void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* box, double range) {
-    // Periodic: the mean number of particles in a region of up to 3x3x3 cells and of pairs in a block of 2x2x2, with
-    // room for fluctuations; open boundaries (the occupied cells are not known yet): room for a dense liquid.
+void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* box) {
+    // Periodic: the mean number of particles in a region of up to 3x3x3 cells and of candidates in a block of 2x2x2,
+    // with room for fluctuations; open boundaries (the occupied cells are not known yet): room for a dense liquid.
     int particles = 256, pairs = 1024;
     if (box != nullptr) {
+        const double candidate = SweepDefinition::candidateRange(range);
         const std::array<int, 3> cells =
                 GenDPDESweepOrder::cellCounts(BoxGeometry::perpendicularWidths(box), range, true);
         const double perCell = numParticles / (double) (cells[0] * cells[1] * cells[2]);
@@ -147,7 +228,8 @@ void CommonGenDPDEBlockSweep::estimateCapacities(int numParticles, const Vec3* b
             blockCells *= std::min(2, cells[k]);
         }
         const double region = regionCells * perCell;
-        const double blockPairs = blockCells * perCell * (2.0 * M_PI / 3.0) * range * range * range * density;
+        const double blockPairs =
+                blockCells * perCell * (2.0 * M_PI / 3.0) * candidate * candidate * candidate * density;
         particles = roundUp(1.2 * region + 5 * std::sqrt(region) + 16, 32);
         pairs = roundUp(1.3 * blockPairs + 8 * std::sqrt(blockPairs) + 64, 64);
     }
@@ -171,6 +253,8 @@ bool CommonGenDPDEBlockSweep::adjustCapacities(int mostParticles, int mostPairs)
         compile();
         changed = true;
     }
+    if (changed && built)
+        givenPending = true; // the slabs are new: the same build again, into them
     return changed;
 }
 
@@ -182,29 +266,123 @@ void CommonGenDPDEBlockSweep::compile() {
     programDefines["SWEEP_MAX_PARTICLES"] = cc.intToString(maxParticles);
     programDefines["SWEEP_BLOCKS_PER_GROUP"] = cc.intToString(blocksPerGroup);
     programDefines["SWEEP_BLOCK_THREADS"] = cc.intToString(blockThreads);
+    programDefines["SWEEP_LEVEL_WORDS"] = cc.intToString(levelWords());
     ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::GenDPDESweepPair
                                                        + CommonGenDPDEKernelSources::gendpdeSweep,
                                                programDefines);
+    checkKernel = program->createKernel("checkSweepBuild");
+    {
+        using namespace CheckArgument;
+        KernelArguments(checkKernel, "checkSweepBuild")
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .array(AtomIndex, cc.getAtomIndexArray())
+                .array(BuildPosition, buildPosition)
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Limit2)
+                .later(Parity)
+                .later(HostBuild)
+                .later(HostCapture)
+                .array(Flags, flags)
+                .array(SlotOfAtom, slotOfAtom)
+                .later(Status)
+                .done(Count);
+    }
+    boundsKernel = program->createKernel("findSweepBounds");
+    {
+        using namespace BoundsArgument;
+        KernelArguments(boundsKernel, "findSweepBounds")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(Status)
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .array(SlotOfAtom, slotOfAtom)
+                .array(BuildPosition, buildPosition)
+                .array(Bounds, bounds)
+                .done(Count);
+    }
+    assignKernel = program->createKernel("assignSweepCells");
+    {
+        using namespace AssignArgument;
+        KernelArguments(assignKernel, "assignSweepCells")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(Status)
+                .array(Posq, cc.getPosq())
+                .array(PosqCorrection, cc.getPosqCorrection())
+                .array(SlotOfAtom, slotOfAtom)
+                .array(BuildPosition, buildPosition)
+                .later(BoxA)
+                .later(BoxB)
+                .later(BoxC)
+                .later(Low)
+                .later(Extent)
+                .later(Cells)
+                .array(AtomCell, atomCell)
+                .later(CellCount)
+                .done(Count);
+    }
+    scanKernel = program->createKernel("scanSweepCells");
+    {
+        using namespace ScanArgument;
+        KernelArguments(scanKernel, "scanSweepCells")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(Status)
+                .later(CellCount)
+                .later(CellStart)
+                .later(NumCells)
+                .done(Count);
+    }
+    fillKernel = program->createKernel("fillSweepCells");
+    {
+        using namespace FillArgument;
+        KernelArguments(fillKernel, "fillSweepCells")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(Status)
+                .array(AtomCell, atomCell)
+                .later(CellStart)
+                .later(CellFill)
+                .array(SortedAtom, sortedAtom)
+                .done(Count);
+    }
+    sortKernel = program->createKernel("sortSweepCells");
+    {
+        using namespace SortArgument;
+        KernelArguments(sortKernel, "sortSweepCells")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(Status)
+                .later(NumCells)
+                .later(CellStart)
+                .later(CellFill)
+                .array(SortedAtom, sortedAtom)
+                .done(Count);
+    }
     orderKernel = program->createKernel("orderBlocks");
     {
         using namespace OrderArgument;
         KernelArguments(orderKernel, "orderBlocks")
+                .array(Flags, flags)
+                .later(Parity)
+                .later(StepIndex)
                 .later(Cells)
                 .later(Blocks)
                 .later(CellStart)
-                .later(SortedAtom)
-                .later(SortedSlot)
-                .array(Posq, cc.getPosq())
-                .array(PosqCorrection, cc.getPosqCorrection())
+                .array(SortedAtom, sortedAtom)
+                .array(BuildPosition, buildPosition)
                 .later(BoxA)
                 .later(BoxB)
                 .later(BoxC)
-                .later(Cutoff)
+                .later(CandidateRange)
                 .later(PairCapacity)
                 .later(Status)
                 .later(Header)
                 .later(BlockAtoms)
-                .later(BlockSlots)
                 .later(PairScratch)
                 .later(BlockPairs)
                 .later(LevelStart)
@@ -220,13 +398,18 @@ void CommonGenDPDEBlockSweep::compile() {
                 .later(Blocks)
                 .later(Header)
                 .later(BlockAtoms)
-                .later(BlockSlots)
                 .later(LevelStart)
                 .later(BlockPairs)
                 .later(PairCapacity)
                 .later(CellStart)
-                .later(SortedAtom)
-                .later(SortedSlot)
+                .array(SortedAtom, sortedAtom)
+                .array(BuildPosition, buildPosition)
+                .later(BuildA)
+                .later(BuildB)
+                .later(BuildC)
+                .later(CandidateRange)
+                .array(LevelMasks, levelMasks)
+                .array(SlotOfAtom, slotOfAtom)
                 .array(Posq, cc.getPosq())
                 .array(PosqCorrection, cc.getPosqCorrection())
                 .array(Velm, cc.getVelm())
@@ -256,11 +439,10 @@ void CommonGenDPDEBlockSweep::compile() {
 }
 
 void CommonGenDPDEBlockSweep::allocate() {
-    // The slabs of every block: its region's particles, its pairs (twice: the sequence, then by level), its levels.
+    // The slabs of every block: its region's particles, its pairs (twice: in (i, j) order, then by level), its levels.
     const size_t ranks = std::max(1, numRanks);
     header.resize(ranks);
     blockAtoms.resize(ranks * maxParticles);
-    blockSlots.resize(ranks * maxParticles);
     pairScratch.resize(ranks * pairCapacity);
     blockPairs.resize(ranks * pairCapacity);
     levelStart.resize(ranks * (pairCapacity + 1));
@@ -269,36 +451,165 @@ void CommonGenDPDEBlockSweep::allocate() {
     allocatedRanks = numRanks;
 }
 
-void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepStep& step, ArrayInterface& energies,
-                                  ArrayInterface& atomType, ArrayInterface& pairTable,
-                                  ArrayInterface& heatCapacityTable, int numClasses, ArrayInterface& status) {
-    const std::array<int, 3>& cells = grid.getNumCells();
-    if (cells != gridCells) {
-        gridCells = cells;
-        blocks = {(cells[0] + 1) / 2, (cells[1] + 1) / 2, (cells[2] + 1) / 2};
-        numRanks = GenDPDESweepOrder::blockRanks(blocks, rankOfBlock, groupStart);
+void CommonGenDPDEBlockSweep::setCells(const Vec3& extent) {
+    const std::array<int, 3> cells =
+            GenDPDESweepOrder::cellCounts(extent, range, periodic); // (cells of the candidate range)
+    const long long total = (long long) cells[0] * cells[1] * cells[2];
+    if (total > 100000000)
+        throw OpenMMException("GenDPDE: the particles span " + std::to_string(total)
+                              + " cells of the sweep's candidate range; more than 1e8 cells are not supported on this "
+                                "platform (is the system blowing apart?)");
+    if (cells == gridCells)
+        return;
+    gridCells = cells;
+    blocks = {(cells[0] + 1) / 2, (cells[1] + 1) / 2, (cells[2] + 1) / 2};
+    numRanks = GenDPDESweepOrder::blockRanks(blocks, rankOfBlock, groupStart);
+    if ((long long) cellCount.getSize() < total || !countersCleared) {
+        // The counters start at zero; afterwards the scan and the sort leave them zero (no clearing launches).
+        if ((long long) cellCount.getSize() < total) {
+            cellCount.resize(total);
+            cellFill.resize(total);
+            cellStart.resize(total + 1);
+        }
+        countersCleared = true;
+        cc.clearBuffer(cellCount);
+        cc.clearBuffer(cellFill);
+        profiler.launched();
+        profiler.launched();
     }
-    if (allocatedRanks != numRanks)
-        allocate();
-    const mm_int4 cellsArgument = grid.getCellsArgument();
-    const mm_int4 blocksArgument(blocks[0], blocks[1], blocks[2], numRanks);
+}
+
+void CommonGenDPDEBlockSweep::setBoxArguments(ComputeKernel& kernel, int index, const Vec3 box[3]) const {
+    // w: the inverse of the diagonal element, for the nearest image (as CommonGenDPDECellGrid::setBoxArguments).
+    for (int k = 0; k < 3; k++)
+        setVector4(kernel, index + k, mixedIsDouble(cc), box[k][0], box[k][1], box[k][2], 1.0 / box[k][k]);
+}
+
+void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& energies, ArrayInterface& atomType,
+                                  ArrayInterface& pairTable, ArrayInterface& heatCapacityTable, int numClasses,
+                                  ArrayInterface& status) {
+    // The build rule (GenDPDESweepDefinition.h): the host asks for a build from the step's positions at the first
+    // step and when the box has changed, for one from given positions after setBuild(); the device adds one when a
+    // particle has moved too far.
+    if (step.stepIndex == 0)
+        lastAskedStep = -1; // a new run of steps
+    Vec3 box[3];
+    cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
+    bool newBox = false;
+    if (built && periodic)
+        for (int k = 0; k < 3; k++)
+            newBox = newBox || box[k] != buildBox[k];
+    const bool hostCapture = !built || newBox, hostBuild = givenPending && !hostCapture;
+    if (hostCapture || hostBuild) {
+        lastAskedStep = step.stepIndex;
+        lastAskedGiven = hostBuild;
+    }
+    if (hostCapture) {
+        for (int k = 0; k < 3; k++)
+            buildBox[k] = box[k];
+        built = true;
+    }
+    givenPending = false;
+    const int numAtoms = cc.getNumAtoms();
     {
-        using namespace OrderArgument;
-        orderKernel->setArg(Cells, cellsArgument);
-        orderKernel->setArg(Blocks, blocksArgument);
-        orderKernel->setArg(CellStart, grid.cellStart);
-        orderKernel->setArg(SortedAtom, grid.sortedAtom);
-        orderKernel->setArg(SortedSlot, grid.sortedSlot);
-        grid.setBoxArguments(orderKernel, BoxA, true);
-        setMixed(cc, orderKernel, Cutoff, step.cutoff);
-        orderKernel->setArg(PairCapacity, pairCapacity);
-        orderKernel->setArg(Status, status);
-        orderKernel->setArg(Header, header);
-        orderKernel->setArg(BlockAtoms, blockAtoms);
-        orderKernel->setArg(BlockSlots, blockSlots);
-        orderKernel->setArg(PairScratch, pairScratch);
-        orderKernel->setArg(BlockPairs, blockPairs);
-        orderKernel->setArg(LevelStart, levelStart);
+        using namespace CheckArgument;
+        setBoxArguments(checkKernel, BoxA, box);
+        setMixed(cc, checkKernel, Limit2, SweepDefinition::rebuildDisplacement2(range));
+        checkKernel->setArg(Parity, parity);
+        checkKernel->setArg(HostBuild, hostBuild ? 1 : 0);
+        checkKernel->setArg(HostCapture, hostCapture ? 1 : 0);
+        checkKernel->setArg(Status, status);
+    }
+    profiler.time("sweep build check", [&]() { profiler.launch(checkKernel, numAtoms); });
+    bool mayBuild = true;
+    Vec3 low, extent;
+    if (periodic)
+        extent = BoxGeometry::perpendicularWidths(buildBox);
+    else {
+        // Open boundaries: the cells follow the build positions' bounding box, which the host must read.
+        std::vector<int> found;
+        profiler.transfer();
+        flags.download(found);
+        mayBuild = found[2 * parity] != 0;
+        if (mayBuild) {
+            using namespace BoundsArgument;
+            boundsKernel->setArg(Parity, parity);
+            boundsKernel->setArg(Status, status);
+            profiler.launch(boundsKernel, boundsGroupSize, boundsGroupSize);
+            std::vector<double> corners;
+            profiler.transfer();
+            bounds.download(corners, true);
+            low = Vec3(corners[0], corners[1], corners[2]);
+            extent = Vec3(corners[3], corners[4], corners[5]) - low;
+        }
+    }
+    if (mayBuild) {
+        setCells(extent);
+        if (allocatedRanks != numRanks)
+            allocate();
+    }
+    const mm_int4 cellsArgument(gridCells[0], gridCells[1], gridCells[2], gridCells[0] * gridCells[1] * gridCells[2]);
+    const mm_int4 blocksArgument(blocks[0], blocks[1], blocks[2], numRanks);
+    const int groupSize = blocksPerGroup * blockThreads;
+    if (mayBuild) {
+        {
+            using namespace AssignArgument;
+            assignKernel->setArg(Parity, parity);
+            assignKernel->setArg(Status, status);
+            setBoxArguments(assignKernel, BoxA, buildBox);
+            setMixed4(cc, assignKernel, Low, low[0], low[1], low[2], 0.0);
+            setMixed4(cc, assignKernel, Extent, extent[0], extent[1], extent[2], 0.0);
+            assignKernel->setArg(Cells, cellsArgument);
+            assignKernel->setArg(CellCount, cellCount);
+        }
+        {
+            using namespace ScanArgument;
+            scanKernel->setArg(Parity, parity);
+            scanKernel->setArg(Status, status);
+            scanKernel->setArg(CellCount, cellCount);
+            scanKernel->setArg(CellStart, cellStart);
+            scanKernel->setArg(NumCells, cellsArgument.w);
+        }
+        {
+            using namespace FillArgument;
+            fillKernel->setArg(Parity, parity);
+            fillKernel->setArg(Status, status);
+            fillKernel->setArg(CellStart, cellStart);
+            fillKernel->setArg(CellFill, cellFill);
+        }
+        {
+            using namespace SortArgument;
+            sortKernel->setArg(Parity, parity);
+            sortKernel->setArg(Status, status);
+            sortKernel->setArg(NumCells, cellsArgument.w);
+            sortKernel->setArg(CellStart, cellStart);
+            sortKernel->setArg(CellFill, cellFill);
+        }
+        {
+            using namespace OrderArgument;
+            orderKernel->setArg(Parity, parity);
+            orderKernel->setArg(StepIndex, step.stepIndex);
+            orderKernel->setArg(Cells, cellsArgument);
+            orderKernel->setArg(Blocks, blocksArgument);
+            orderKernel->setArg(CellStart, cellStart);
+            setBoxArguments(orderKernel, BoxA, buildBox);
+            setMixed(cc, orderKernel, CandidateRange, SweepDefinition::candidateRange(range));
+            orderKernel->setArg(PairCapacity, pairCapacity);
+            orderKernel->setArg(Status, status);
+            orderKernel->setArg(Header, header);
+            orderKernel->setArg(BlockAtoms, blockAtoms);
+            orderKernel->setArg(PairScratch, pairScratch);
+            orderKernel->setArg(BlockPairs, blockPairs);
+            orderKernel->setArg(LevelStart, levelStart);
+        }
+        const int groups = (numRanks + blocksPerGroup - 1) / blocksPerGroup;
+        profiler.time("sweep order build (if due)", [&]() {
+            profiler.launch(assignKernel, numAtoms);
+            profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
+            profiler.launch(fillKernel, numAtoms);
+            profiler.launch(sortKernel, std::max(1, cellsArgument.w));
+            profiler.launch(orderKernel, groups * groupSize, groupSize);
+        });
     }
     {
         using namespace SweepArgument;
@@ -306,15 +617,14 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
         sweepKernel->setArg(Blocks, blocksArgument);
         sweepKernel->setArg(Header, header);
         sweepKernel->setArg(BlockAtoms, blockAtoms);
-        sweepKernel->setArg(BlockSlots, blockSlots);
         sweepKernel->setArg(LevelStart, levelStart);
         sweepKernel->setArg(BlockPairs, blockPairs);
         sweepKernel->setArg(PairCapacity, pairCapacity);
-        sweepKernel->setArg(CellStart, grid.cellStart);
-        sweepKernel->setArg(SortedAtom, grid.sortedAtom);
-        sweepKernel->setArg(SortedSlot, grid.sortedSlot);
+        sweepKernel->setArg(CellStart, cellStart);
+        setBoxArguments(sweepKernel, BuildA, buildBox);
+        setMixed(cc, sweepKernel, CandidateRange, SweepDefinition::candidateRange(range));
         sweepKernel->setArg(Energies, energies);
-        grid.setBoxArguments(sweepKernel, BoxA, true);
+        setBoxArguments(sweepKernel, BoxA, box);
         setMixed4(cc, sweepKernel, Parameters, step.cutoff, step.stepSize, std::sqrt(step.stepSize), step.boltzmann);
         sweepKernel->setArg(AtomType, atomType);
         sweepKernel->setArg(PairTable, pairTable);
@@ -329,9 +639,6 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
         sweepKernel->setArg(Failure, failureParticle);
         sweepKernel->setArg(FailureEnergy, failureEnergy);
     }
-    const int groupSize = blocksPerGroup * blockThreads;
-    const int groups = (numRanks + blocksPerGroup - 1) / blocksPerGroup;
-    profiler.time("sweep order (all blocks)", [&]() { profiler.launch(orderKernel, groups * groupSize, groupSize); });
     profiler.time("sweep (8 colours)", [&]() {
         for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
             const int ranks = groupStart[colour + 1] - groupStart[colour];
@@ -342,6 +649,63 @@ void CommonGenDPDEBlockSweep::run(CommonGenDPDECellGrid& grid, const BlockSweepS
             profiler.launch(sweepKernel, groupSize * ((ranks + blocksPerGroup - 1) / blocksPerGroup), groupSize);
         }
     });
+    parity = 1 - parity;
+}
+
+bool CommonGenDPDEBlockSweep::getBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
+    if (!built)
+        return false;
+    positions.resize(cc.getNumAtoms());
+    if (mixedIsDouble(cc)) {
+        std::vector<mm_double4> values;
+        buildPosition.download(values);
+        for (size_t i = 0; i < positions.size(); i++)
+            positions[i] = Vec3(values[i].x, values[i].y, values[i].z);
+    } else {
+        std::vector<mm_float4> values;
+        buildPosition.download(values);
+        for (size_t i = 0; i < positions.size(); i++)
+            positions[i] = Vec3(values[i].x, values[i].y, values[i].z);
+    }
+    for (int k = 0; k < 3; k++)
+        box[k] = buildBox[k];
+    return true;
+}
+
+void CommonGenDPDEBlockSweep::setBuild(const std::vector<Vec3>& positions, const Vec3 box[3]) {
+    if ((int) positions.size() != cc.getNumAtoms())
+        throw OpenMMException("GenDPDEIntegrator: the sweep's build positions are for "
+                              + std::to_string(positions.size()) + " particles; the System has "
+                              + std::to_string(cc.getNumAtoms()));
+    if (mixedIsDouble(cc)) {
+        std::vector<mm_double4> values(positions.size());
+        for (size_t i = 0; i < positions.size(); i++)
+            values[i] = mm_double4(positions[i][0], positions[i][1], positions[i][2], 0.0);
+        buildPosition.upload(values);
+    } else {
+        std::vector<mm_float4> values(positions.size());
+        for (size_t i = 0; i < positions.size(); i++)
+            values[i] = mm_float4((float) positions[i][0], (float) positions[i][1], (float) positions[i][2], 0.0f);
+        buildPosition.upload(values);
+    }
+    for (int k = 0; k < 3; k++)
+        buildBox[k] = box[k];
+    built = true;
+    givenPending = true;
+}
+
+void CommonGenDPDEBlockSweep::runHalted(int haltStep, bool orderIncomplete) {
+    // The steps from haltStep on did nothing: a build the host asked for then is asked for again; an order left
+    // incomplete (too many levels) is built again from its positions.
+    if (orderIncomplete && built)
+        givenPending = true;
+    else if (lastAskedStep >= haltStep) {
+        if (lastAskedGiven)
+            givenPending = true;
+        else
+            built = false;
+    }
+    lastAskedStep = -1;
 }
 
 void CommonGenDPDEBlockSweep::failure(int rank, int& particle, double& energy) {

@@ -44,7 +44,7 @@ CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, CommonGenDPDEPr
     scanTotal.initialize<int>(cc, 1, "gendpdeScanTotal");
 }
 
-std::map<std::string, std::string> CommonGenDPDECellGrid::defines() const {
+std::map<std::string, std::string> CommonGenDPDECellGrid::programDefines(ComputeContext& cc, bool periodic) {
     std::map<std::string, std::string> result;
     result["NUM_ATOMS"] = cc.intToString(cc.getNumAtoms());
     result["PADDED_NUM_ATOMS"] = cc.intToString(cc.getPaddedNumAtoms());

@@ -16,17 +16,21 @@
 namespace GenDPDEPlugin {
 
 /**
- * The cell grid of the GenDPDE device kernels (kernels/gendpdeCells.cc), rebuilt on the device at every evaluation:
- * GenDPDESweepOrder's cells (at least the pair range wide; periodic: in the reduced box's fractional coordinates,
- * open: over the particles' bounding box), the particles listed cell by cell and by original index inside a cell,
- * with their positions copied into that order. The force's gathers and the integrator's sweep order both read it.
+ * The cell grid of GenDPDEForce's device kernels (kernels/gendpdeCells.cc), rebuilt on the device at every evaluation:
+ * cells at least the candidate range wide (GenDPDESweepOrder::cellCounts: 1.1 R, so that the neighbour list's
+ * search over the 27 cells around a particle finds every pair within 1.1 R; periodic: in the reduced box's fractional
+ * coordinates, open: over the particles' bounding box), the particles listed cell by cell and by original index inside
+ * a cell, with their positions copied into that order. (The integrator's sweep keeps cells of its own, of the
+ * candidate range, made at its builds: CommonGenDPDEBlockSweep.)
  */
 class CommonGenDPDECellGrid {
 public:
     /** range: the pair range R (nm); the profiler counts the grid's launches and transfers with its owner's. */
     CommonGenDPDECellGrid(OpenMM::ComputeContext& cc, CommonGenDPDEProfiler& profiler, bool periodic, double range);
     /** The defines the grid's kernels need (add the program's own, then compile cells + the program's source). */
-    std::map<std::string, std::string> defines() const;
+    std::map<std::string, std::string> defines() const { return programDefines(cc, periodic); }
+    /** The defines of a program that includes kernels/gendpdeCells.cc, periodic or not. */
+    static std::map<std::string, std::string> programDefines(OpenMM::ComputeContext& cc, bool periodic);
     /** Create the grid's kernels from a program compiled from kernels/gendpdeCells.cc (and more). */
     void createKernels(OpenMM::ComputeProgram program);
     /** Rebuild at the current positions (the context must be current). */

@@ -145,7 +145,6 @@ void CommonCalcGenDPDEForceKernel::densityPass() {
     for (int k = 0; k < 3; k++)
         listBox[k] = box[k];
     profiler.time("densities, particle state", [&]() { profiler.launch(densityKernel, cc.getNumAtoms()); });
-    pairsFound(cutoff, cc.getStepCount());
 }
 
 void CommonCalcGenDPDEForceKernel::setDeferred(bool deferred) {

@@ -36,7 +36,6 @@ public:
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
     GenDPDEPairSource* getPairSource() override { return this; }
     // GenDPDEPairSource: the cell grid of the last evaluation (the integrator's sweep reuses it at the same positions).
-    CommonGenDPDECellGrid* getDeviceCellGrid() override { return grid.get(); }
     CommonGenDPDEForceChecks* getDeviceChecks() override { return this; }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override;
     // CommonGenDPDEForceChecks

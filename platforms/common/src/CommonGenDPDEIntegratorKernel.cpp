@@ -94,8 +94,7 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
     pairTable.initialize(cc, 1, 4 * mixedSize, "gendpdePairTable");
     heatCapacityTable.initialize(cc, 1, mixedSize, "gendpdeHeatCapacityTable");
 
-    grid.reset(new CommonGenDPDECellGrid(cc, profiler, periodic, cutoff > 0.0 ? cutoff : 1.0));
-    std::map<std::string, std::string> defines = grid->defines();
+    std::map<std::string, std::string> defines = CommonGenDPDECellGrid::programDefines(cc, periodic);
     for (const auto& define : DeviceStatus::defines())
         defines[define.first] = define.second;
     if (cc.getSupportsDoublePrecision())
@@ -104,13 +103,12 @@ void CommonIntegrateGenDPDEStepKernel::initialize(ContextImpl& context, const Ge
             + CommonGenDPDEKernelSources::gendpdeCells + CommonGenDPDEKernelSources::gendpdeRandom
             + CommonGenDPDEKernelSources::gendpdeStatus;
     ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::gendpdeIntegrator, defines);
-    grid->createKernels(program);
     createStepKernels(program);
     if (cutoff > 0.0) {
-        sweep.reset(new CommonGenDPDEBlockSweep(cc, profiler, defines, sources, localMemory));
+        sweep.reset(new CommonGenDPDEBlockSweep(cc, profiler, defines, sources, periodic, cutoff, localMemory));
         Vec3 box[3];
         context.getSystem().getDefaultPeriodicBoxVectors(box[0], box[1], box[2]);
-        sweep->estimateCapacities(context.getSystem().getNumParticles(), periodic ? box : nullptr, cutoff);
+        sweep->estimateCapacities(context.getSystem().getNumParticles(), periodic ? box : nullptr);
     }
 }
 
@@ -339,13 +337,6 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
             cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
             BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box); // a barostat may have shrunk it
         }
-        // The cells of the force just evaluated at these positions with this range, if its source lends them (the
-        // same grid as GenDPDESweepOrder's: it depends only on positions, box and range); else the integrator's own.
-        CommonGenDPDECellGrid* cellGrid = pairSource != nullptr ? pairSource->getDeviceCellGrid() : nullptr;
-        if (cellGrid == nullptr || !pairSource->holdsPairsFor(cutoff, cc.getStepCount())) {
-            cellGrid = grid.get();
-            profiler.time("cell grid (own)", [&]() { grid->build(); });
-        }
         BlockSweepStep step;
         step.cutoff = cutoff;
         step.stepSize = dt;
@@ -354,8 +345,7 @@ void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDP
         step.seed = (unsigned int) seed;
         step.step = cc.getStepCount();
         step.stepIndex = stepIndex;
-        sweep->run(*cellGrid, step, energies, atomType, pairTable, heatCapacityTable, typeTables->getTable().numClasses,
-                   status);
+        sweep->run(step, energies, atomType, pairTable, heatCapacityTable, typeTables->getTable().numClasses, status);
     }
     {
         using namespace FinishArgument;
@@ -395,7 +385,7 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     status.download(words);
     profiler.setCounters(words[MostParticles], words[MostPairs], words[Streamed],
                          std::vector<int>(&words[Levels], &words[Levels] + 8),
-                         sweep != nullptr ? sweep->getNumRanks() : 0);
+                         sweep != nullptr ? sweep->getNumRanks() : 0, words[Builds]);
     if (sweep != nullptr && words[Streamed] > streamedBlocks) {
         // Blocks beyond the capacities were streamed (correct, slower): make room for what was seen.
         streamedBlocks = words[Streamed];
@@ -408,6 +398,8 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
     resetStatusWords(words);
     status.upload(words);
     const long long step = runStartStep + found[HaltStep];
+    if (sweep != nullptr)
+        sweep->runHalted(found[HaltStep], found[Halted] == HaltLevels);
     double time = runStartTime;
     for (int k = 0; k < found[HaltStep]; k++)
         time += runStepSize; // as the steps added it
@@ -420,6 +412,11 @@ void CommonIntegrateGenDPDEStepKernel::readStatus(ContextImpl& context, const Ge
         deferredChecks->throwErrors(context, found[ForceNonFinite], found[ForceInvalid], step);
     if (found[Halted] == HaltUnstable)
         throwUnstable(context, found[Unstable], runStepSize, step);
+    if (found[Halted] == HaltLevels)
+        throw OpenMMException("GenDPDEIntegrator: at step " + std::to_string(step)
+                              + " a block of the sweep's order needs more than " + std::to_string(sweep->levelLimit())
+                              + " levels, the limit of this platform (" + context.getPlatform().getName()
+                              + ", this precision); the particles are packed more densely than the sweep supports");
     int particle;
     double energy;
     sweep->failure(found[FailedRank], particle, energy);
@@ -441,4 +438,20 @@ double CommonIntegrateGenDPDEStepKernel::computeKineticEnergy(ContextImpl& conte
     for (double e : perAtom)
         sum.add(e);
     return sum.sum();
+}
+
+bool CommonIntegrateGenDPDEStepKernel::getSweepBuild(std::vector<Vec3>& positions, Vec3 box[3]) const {
+    ContextSelector selector(cc);
+    return sweep != nullptr && sweep->getBuild(positions, box);
+}
+
+void CommonIntegrateGenDPDEStepKernel::setSweepBuild(const std::vector<Vec3>& positions, const Vec3 box[3]) {
+    ContextSelector selector(cc);
+    if (sweep != nullptr)
+        sweep->setBuild(positions, box);
+}
+
+void CommonIntegrateGenDPDEStepKernel::forgetSweepOrder() {
+    if (sweep != nullptr)
+        sweep->forget();
 }

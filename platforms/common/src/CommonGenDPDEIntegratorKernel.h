@@ -19,8 +19,8 @@ namespace GenDPDEPlugin {
 
 /**
  * GenDPDEIntegrator on OpenMM's Common compute platforms: a step is startStep (the checks, a copy of the state, the
- * first kick; kernels/gendpdeIntegrator.cc), the coloured Shardlow sweep in GenDPDESweepOrder's sequence
- * (CommonGenDPDEBlockSweep), and finishStep (second kick and drift). Internal energies live on the device in `mixed`
+ * first kick; kernels/gendpdeIntegrator.cc), the coloured Shardlow sweep in the order of GenDPDESweepDefinition.h,
+ * made once per build (CommonGenDPDEBlockSweep), and finishStep (second kick and drift). Internal energies live on the device in `mixed`
  * precision, indexed by original particle index.
  *
  * A run of steps (GenDPDEIntegrator::step(n), between beginSteps() and finishSteps()) never waits for the device: a
@@ -53,6 +53,9 @@ public:
     void forgetDensityEntropies() override { entropiesKnown = false; }
     int getSeed() const override { return seed; }
     void setSeed(int seed) override { this->seed = seed; }
+    bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const override;
+    void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) override;
+    void forgetSweepOrder() override;
     /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
     static const int pollInterval = 256;
 
@@ -80,7 +83,6 @@ private:
     CommonGenDPDEForceChecks* deferredChecks = nullptr;
     GenDPDEStepTerms runTerms;
     double runStepSize = 0.0;
-    std::unique_ptr<CommonGenDPDECellGrid> grid; // own cells, when no force's can be reused
     std::unique_ptr<CommonGenDPDEBlockSweep> sweep;
     int streamedBlocks = 0;
     OpenMM::ComputeArray energies, savedEnergies, savedVelm, status, noForceErrors, kinetic;

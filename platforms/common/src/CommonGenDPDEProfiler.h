@@ -55,6 +55,8 @@ public:
                 total += count;
             }
             std::fprintf(stderr, " (critical path %d levels)\n", total);
+            std::fprintf(stderr, "GenDPDE %s, sweep order: %d builds in %ld steps (%.4f per step)\n", owner.c_str(),
+                         builds, steps, steps > 0 ? builds / (double) steps : 0.0);
         }
         for (const std::string& line : notes)
             std::fprintf(stderr, "GenDPDE %s, %s\n", owner.c_str(), line.c_str());
@@ -88,8 +90,10 @@ public:
     void transfer() { transfers++; }
     /** One more step (integrator) or evaluation (force). */
     void countStep() { steps++; }
-    /** The sweep's counters, as the status words give them. */
-    void setCounters(int mostParticles, int mostPairs, int streamed, const std::vector<int>& levels, int blocks) {
+    /** The sweep's counters, as the status words give them (builds: the orders built since the Context was made). */
+    void setCounters(int mostParticles, int mostPairs, int streamed, const std::vector<int>& levels, int blocks,
+                     int builds) {
+        this->builds = builds;
         this->mostParticles = mostParticles;
         this->mostPairs = mostPairs;
         this->streamed = streamed;
@@ -112,7 +116,7 @@ private:
     bool enabled;
     std::map<std::string, Total> parts;
     long steps = 0, launches = 0, transfers = 0;
-    int mostParticles = 0, mostPairs = 0, streamed = 0, blocks = 0;
+    int mostParticles = 0, mostPairs = 0, streamed = 0, blocks = 0, builds = 0;
     std::vector<int> levels;
     std::vector<std::string> notes;
 };

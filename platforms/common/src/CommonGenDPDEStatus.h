@@ -17,7 +17,7 @@ namespace GenDPDEPlugin {
  */
 namespace DeviceStatus {
 enum Word {
-    Halted,           // 0 while the run goes on; else why it stopped: HaltUnstable, HaltSweep or HaltForce
+    Halted,           // 0 while the run goes on; else why it stopped (a Reason)
     HaltStep,         // the step, counted from the start of the run, at which it stopped
     Unstable,         // the smallest original index of a particle whose step was unstable (NoValue if none)
     FailedRank,       // the smallest sweep rank of a block whose sweep made an internal energy <= 0 (NoValue)
@@ -26,10 +26,11 @@ enum Word {
     Streamed,         // blocks swept by the streaming path since the Context was created (capacities exceeded)
     MostParticles,    // the most particles in a block's region, and
     MostPairs,        // the most pairs of a block, since the Context was created
+    Builds,           // the sweep orders built since the Context was created
     Levels,           // 8 words: per colour, the most levels of a block in the last step (counters)
     Size = Levels + 8
 };
-enum Reason { Running = 0, HaltUnstable = 1, HaltSweep = 2, HaltForce = 3 };
+enum Reason { Running = 0, HaltUnstable = 1, HaltSweep = 2, HaltForce = 3, HaltLevels = 4 };
 /** "None yet" for the words set by an atomic minimum. */
 const int NoValue = 0x7FFFFFFF;
 
@@ -44,10 +45,12 @@ inline std::map<std::string, std::string> defines() {
             {"STATUS_STREAMED", std::to_string(Streamed)},
             {"STATUS_MOST_PARTICLES", std::to_string(MostParticles)},
             {"STATUS_MOST_PAIRS", std::to_string(MostPairs)},
+            {"STATUS_BUILDS", std::to_string(Builds)},
             {"STATUS_LEVELS", std::to_string(Levels)},
             {"HALT_UNSTABLE", std::to_string(HaltUnstable)},
             {"HALT_SWEEP", std::to_string(HaltSweep)},
             {"HALT_FORCE", std::to_string(HaltForce)},
+            {"HALT_LEVELS", std::to_string(HaltLevels)},
             {"NO_VALUE", std::to_string(NoValue)}};
 }
 } // namespace DeviceStatus

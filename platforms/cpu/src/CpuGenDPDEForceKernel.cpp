@@ -158,8 +158,6 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     rowMomentForce.resize(moments ? numParticles : 0);
     Vec3* momentOf = rowMoment.data();
     Vec3* momentForceOf = rowMomentForce.data();
-    resizeBuffer(listedFlags, layout.getNeighbors().size());
-    char* listed = listedFlags.data();
     const ParticleModel model(*this, context);
     const int* typeOf = types->getParticleTypeIndices().data();
     const RowGatherAvx2::Rows* vectorRows = vectorRowsOrNull();
@@ -168,7 +166,7 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
     withRowGather([&](auto gather) {
         parallelFor(threads, numParticles, rowChunk, [=](int begin, int end) {
             if (vectorRows != nullptr)
-                RowGatherAvx2::densities(*vectorRows, begin, end, density, listed);
+                RowGatherAvx2::densities(*vectorRows, begin, end, density);
             else
                 for (int s = begin; s < end; s++) {
                     double n0 = 0.0;
@@ -181,7 +179,6 @@ double CpuCalcGenDPDEForceKernel::computeDensitiesAndEnergy(ContextImpl& context
                         n0 += gather.weightTerm(r, in);
                         if (moments)
                             g += gather.momentTerm(d, r, in);
-                        listed[m] = gather.listed(r2); // read by collectPairs()
                     }
                     density[s] = n0;
                     if (moments)
@@ -345,63 +342,4 @@ double CpuCalcGenDPDEForceKernel::computePairForces(ContextImpl& context, std::v
     }
     // W summed over the particles in index order, as Reference sums it
     return FixedOrderSum::parallelSum(threads, numRows, [rowW, rowOf](int i) { return rowW[rowOf[i]]; }, chunkSums);
-}
-
-PairView CpuCalcGenDPDEForceKernel::collectPairs(int threads) {
-    // The entries the last density pass marked in the upper parts of the rows, stored by rows in row (cell) order,
-    // so that the sweep, which reaches the pairs block by block, reads nearby memory (the pairs of a particle with
-    // larger ones, in increasing order of the other particle, as Reference's list has them): each row's count, each
-    // range of rows' total, then each row writes its pairs from its first position: two indices each (IndexPair),
-    // whose geometry the sweep recomputes.
-    const int numRows = layout.getNumRows();
-    const int numChunks = numRanges(numRows, rowChunk);
-    const int* particleOf = layout.getParticle().data();
-    const int* rowStart = layout.getRowStart().data();
-    const int* upperStart = layout.getUpperStart().data();
-    const char* listed = listedFlags.data();
-    rowPairStart.resize(numRows + 1);
-    int* pairStart = rowPairStart.data();
-    pairOffset.assign(numChunks + 1, 0);
-    int* offset = pairOffset.data();
-    parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            int total = 0;
-            for (int s = c * rowChunk; s < std::min(numRows, (c + 1) * rowChunk); s++) {
-                int count = 0;
-                for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
-                    count += listed[m];
-                pairStart[s] = count;
-                total += count;
-            }
-            offset[c + 1] = total;
-        }
-    });
-    for (int c = 0; c < numChunks; c++)
-        pairOffset[c + 1] += pairOffset[c];
-    parallelFor(threads, numChunks, 1, [=](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++) {
-            int next = offset[c];
-            for (int s = c * rowChunk; s < std::min(numRows, (c + 1) * rowChunk); s++) {
-                const int count = pairStart[s];
-                pairStart[s] = next;
-                next += count;
-            }
-        }
-    });
-    rowPairStart[numRows] = pairOffset[numChunks];
-    resizeBuffer(pairs, pairOffset[numChunks]);
-    IndexPair* pair = pairs.data();
-    const int* neighbors = layout.getNeighbors().data();
-    parallelFor(threads, numRows, rowChunk, [=](int begin, int end) {
-        for (int s = begin; s < end; s++) {
-            IndexPair* next = pair + pairStart[s];
-            for (int m = upperStart[s]; m < rowStart[s + 1]; m++)
-                if (listed[m])
-                    *next++ = {particleOf[s], particleOf[neighbors[m]]};
-        }
-    });
-    // The sweep recomputes each pair's geometry from the positions the rows were read from (the layout's are copies
-    // of these) with the nearest-image rule of the gathers (withRowGather).
-    return PairView(pairs.data(), pairs.size(), rowPairStart.data(), neighborList->getRefreshedPositions().data(),
-                    neighborList->isPeriodic() ? &neighborList->getBox() : nullptr);
 }

@@ -25,31 +25,14 @@ namespace GenDPDEPlugin {
  *   Reference's;
  * - the energy and the virial are summed in fixed chunks (FixedOrderSum).
  *
- * It lends the integrator its pairs (collectPairs()), collected on the platform's threads.
- *
  * On one thread and below 131,072 particles it runs Reference's passes instead (the same results by construction):
- * the gathers evaluate each pair from both of its particles and the integrator then needs the pairs collected from the
- * rows, which pays only when threads share the work or when the particles no longer fit in the caches
- * (docs/performance.md, "One thread").
+ * the gathers evaluate each pair from both of its particles, which pays only when threads share the work or when the
+ * particles no longer fit in the caches (docs/performance.md, "One thread").
  */
 class CpuCalcGenDPDEForceKernel : public ReferenceCalcGenDPDEForceKernel {
 public:
     CpuCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             ReferenceCalcGenDPDEForceKernel(name, platform) {}
-    /**
-     * GenDPDEHostPairList: the pairs of the last evaluation, collected on this many threads (collectPairs()), or
-     * Reference's list where the evaluation ran Reference's passes.
-     */
-    PairView getPairs(int numThreads) override {
-        return sequential ? neighborList->getPairs() : collectPairs(numThreads);
-    }
-    /**
-     * The pairs closer than the cutoff at the positions of the last evaluation (the pair list the integrator
-     * sweeps), on this many threads: stored by rows in the rows' cell order (PairView), each row's pairs those of its
-     * particle with larger ones, in increasing order of the other particle; IndexPairs, with the positions and box of
-     * their geometry.
-     */
-    PairView collectPairs(int threads);
 
 protected:
     double computeDensitiesAndEnergy(OpenMM::ContextImpl& context) override;
@@ -86,10 +69,6 @@ private:
     };
     std::vector<int> rangeFirstBad;
     std::vector<RangeFailure> rangeFailures;
-    std::vector<char> listedFlags; // per row entry: a pair closer than the cutoff (upper parts only)
-    // collectPairs(): the first pair of each range of rows and of each row (and the end); the pairs.
-    std::vector<int> pairOffset, rowPairStart;
-    std::vector<IndexPair> pairs;
 };
 
 } // namespace GenDPDEPlugin

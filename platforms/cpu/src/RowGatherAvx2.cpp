@@ -87,7 +87,7 @@ GENDPDE_AVX2 inline __m256d inRangeMask(const RowGatherAvx2::Rows& rows, const L
     return _mm256_and_pd(listedMask(rows, lanes), _mm256_cmp_pd(lanes.r, _mm256_set1_pd(rows.cutoff), _CMP_LT_OQ));
 }
 
-GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int end, double* density, char* listed) {
+GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int end, double* density) {
     alignas(32) double weight[4];
     for (int s = begin; s < end; s++) {
         double n0 = 0.0;
@@ -98,11 +98,8 @@ GENDPDE_AVX2 void densitiesAvx2(const RowGatherAvx2::Rows& rows, int begin, int 
             const __m256d w = Lanes4::gendpdeDensityWeight(lanes.r, _mm256_set1_pd(rows.inverseCutoff),
                                                            _mm256_set1_pd(rows.valueScale));
             _mm256_store_pd(weight, _mm256_and_pd(inRangeMask(rows, lanes), w));
-            const int listedBits = _mm256_movemask_pd(listedMask(rows, lanes));
-            for (int k = 0; k < count; k++) {
+            for (int k = 0; k < count; k++)
                 n0 += weight[k];
-                listed[m + k] = (listedBits >> k) & 1;
-            }
         }
         density[s] = n0;
     }
@@ -167,8 +164,8 @@ bool RowGatherAvx2::enabled() {
     return result;
 }
 
-void RowGatherAvx2::densities(const Rows& rows, int begin, int end, double* density, char* listed) {
-    densitiesAvx2(rows, begin, end, density, listed);
+void RowGatherAvx2::densities(const Rows& rows, int begin, int end, double* density) {
+    densitiesAvx2(rows, begin, end, density);
 }
 
 void RowGatherAvx2::forces(const Rows& rows, const double* coefficient, int begin, int end, Vec3* force,

@@ -34,8 +34,8 @@ struct Rows {
     double valueScale, derivativeScale;   // of Physics::DensityWeight
 };
 
-/** n0 of rows [begin, end) (nm^-3) into density[s]; listed[m] = whether entry m is closer than the cutoff. */
-void densities(const Rows& rows, int begin, int end, double* density, char* listed);
+/** n0 of rows [begin, end) (nm^-3) into density[s]. */
+void densities(const Rows& rows, int begin, int end, double* density);
 
 /**
  * The force on rows [begin, end): force[s] starts at its value on entry and gains the row's terms in order;

@@ -3,6 +3,7 @@
 #ifndef GENDPDE_NEIGHBOR_LIST_H_
 #define GENDPDE_NEIGHBOR_LIST_H_
 
+#include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/BoxGeometry.h"
 #include "openmm/Vec3.h"
 
@@ -76,67 +77,23 @@ struct ParticlePair {
     double r;
 };
 
-/**
- * A pair of the CPU platform's sweep list: its two particles (i < j) only, 8 bytes where a ParticlePair takes 40. The
- * sweep recomputes delta = r_i - r_j and r from the positions the pair was found at (PairView::getPositions()), with
- * the arithmetic that found it, so the values are the same to the last bit.
- */
+/** A pair of particles (i < j) without its geometry: the integrator's candidates (8 bytes where a ParticlePair takes 40). */
 struct IndexPair {
     int i, j;
 };
 
-/**
- * A read-only view of the pairs found by NeighborList::update() (in (i, j) order) or a force kernel's (maybe stored by
- * rows: row r holds the pairs rowPairStart[r] ... rowPairStart[r + 1] - 1, those of one first particle, in increasing
- * j; one row per particle, the rows in any order), valid until the next update. The pairs are ParticlePairs, or
- * IndexPairs with the positions (by particle index) and the box (null: not periodic) their geometry comes from.
- */
+/** A read-only view of the pairs found by NeighborList::update(), in (i, j) order, valid until the next update. */
 class PairView {
 public:
-    PairView(const ParticlePair* first, size_t count, const int* rowPairStart = nullptr) :
-            first(first), count(count), rowPairStart(rowPairStart) {}
-    PairView(const IndexPair* first, size_t count, const int* rowPairStart, const OpenMM::Vec3* positions,
-             const PeriodicBox* box) :
-            first(nullptr), indexPairs(first), count(count), rowPairStart(rowPairStart), positions(positions),
-            box(box) {}
-    /** Null if the pairs are in (i, j) order, else where each row's pairs begin (one more than the rows). */
-    const int* getRowPairStart() const { return rowPairStart; }
-    /** Whether the pairs are IndexPairs (getIndexPairs()) rather than ParticlePairs (begin()). */
-    bool holdsIndexPairs() const { return indexPairs != nullptr; }
+    PairView(const ParticlePair* first, size_t count) : first(first), count(count) {}
     const ParticlePair* begin() const { return first; }
     const ParticlePair* end() const { return first + count; }
-    const IndexPair* getIndexPairs() const { return indexPairs; }
-    /** IndexPairs: the positions (nm, by particle index) and the box (null if not periodic) of their geometry. */
-    const OpenMM::Vec3* getPositions() const { return positions; }
-    const PeriodicBox* getBox() const { return box; }
     size_t size() const { return count; }
     const ParticlePair& operator[](size_t index) const { return first[index]; }
-    /** The first particle of the first pair, and the ints from one pair's i to the next's (its j follows its i). */
-    const int* firstIndices() const { return indexPairs != nullptr ? &indexPairs->i : &first->i; }
-    int indexStride() const {
-        static_assert(sizeof(ParticlePair) % sizeof(int) == 0 && sizeof(IndexPair) == 2 * sizeof(int),
-                      "pairs are read with an int stride");
-        return indexPairs != nullptr ? 2 : (int) (sizeof(ParticlePair) / sizeof(int));
-    }
 
 private:
     const ParticlePair* first;
-    const IndexPair* indexPairs = nullptr;
     size_t count;
-    const int* rowPairStart;
-    const OpenMM::Vec3* positions = nullptr;
-    const PeriodicBox* box = nullptr;
-};
-
-/**
- * The host form of a GenDPDEPairSource (GenDPDEKernels.h): the pairs a force kernel of the Reference or CPU platform
- * found in its last evaluation, for the integrator kernel of the same platform.
- */
-class GenDPDEHostPairList {
-public:
-    virtual ~GenDPDEHostPairList() {}
-    /** The pairs closer than the cutoff at the positions of the last evaluation (in (i, j) order or by rows). */
-    virtual PairView getPairs(int numThreads) = 0;
 };
 
 /**
@@ -157,8 +114,11 @@ public:
  */
 class NeighborList {
 public:
-    /** The skin the kernels use, as a fraction of the cutoff: candidates within 1.1 R, rebuilt after 0.05 R. */
-    static constexpr double defaultSkinFraction = 0.1;
+    /**
+     * The skin the kernels use, as a fraction of the cutoff: candidates within 1.1 R, rebuilt after 0.05 R (the sweep
+     * order's rule, SweepDefinition, which the integrator's list applies).
+     */
+    static constexpr double defaultSkinFraction = SweepDefinition::skinFraction;
     NeighborList(double cutoff, double skin, bool periodic);
     /** The pairs at these positions (box ignored unless periodic). Rebuilds the candidate list only when needed. */
     PairView update(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], int numThreads = 1);

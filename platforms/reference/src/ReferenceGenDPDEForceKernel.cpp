@@ -178,7 +178,6 @@ double ReferenceCalcGenDPDEForceKernel::execute(ContextImpl& context, bool inclu
     double energy = computeDensitiesAndEnergy(context);
     if (includeForces)
         computePairForces(context, &extractForces(context), nullptr);
-    pairsFound(cutoff, context.getStepCount());
     return energy;
 }
 
@@ -201,7 +200,6 @@ const GenDPDEObservables& ReferenceCalcGenDPDEForceKernel::getObservables(Contex
     observables.virial = computePairForces(context, nullptr, particleVirials ? &observables.particleVirials : nullptr);
     if (!particleVirials)
         observables.particleVirials.clear();
-    pairsFound(cutoff, context.getStepCount());
     observables.primitiveDensities = primitiveDensity;
     observables.volumes = volume;
     observables.pressures = pressure;

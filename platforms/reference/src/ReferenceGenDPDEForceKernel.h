@@ -17,11 +17,9 @@ namespace GenDPDEPlugin {
  * Reference (double precision, single thread) evaluation of GenDPDEForce, docs/theory.md sections 2-4:
  * one sweep over the pairs for the primitive densities (and, for estimators that read them, the first moments), one
  * pass over the particles for their states (the physics core's gendpdeParticleState), and one sweep over the pairs
- * for the forces and the virial. It lends its pairs to the integrator kernel (GenDPDEPairSource, as a host list).
+ * for the forces and the virial.
  */
-class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel,
-                                        public GenDPDEPairSource,
-                                        public GenDPDEHostPairList {
+class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
 public:
     ReferenceCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             CalcGenDPDEForceKernel(name, platform) {}
@@ -29,16 +27,11 @@ public:
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
-    GenDPDEPairSource* getPairSource() override { return this; }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override {
         if (dependsOnTemperature)
             integratorKernel.keepThermalState(thermalEnergy, densityEntropy);
         return dependsOnTemperature;
     }
-    // GenDPDEPairSource: the neighbor list of the last evaluation.
-    GenDPDEHostPairList* getHostPairList() override { return this; }
-    // GenDPDEHostPairList: the pairs of the neighbor list's most recent evaluation.
-    PairView getPairs(int numThreads) override { return neighborList->getPairs(); }
 
 protected:
     /**

@@ -107,13 +107,12 @@ KERNEL void assignCells(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* R
 }
 
 /**
- * Exclusive prefix sums of counts[0..n) into starts[0..n] (the total also into totalOut[totalIndex]), in one work
- * group of SCAN_GROUP_SIZE threads: each thread sums a contiguous range, the range totals are scanned, then each range
- * is written. The counts are left zero, ready for the next count.
+ * Exclusive prefix sums of counts[0..n) into starts[0..n], in one work group of SCAN_GROUP_SIZE threads (partial:
+ * SCAN_GROUP_SIZE ints of local memory): each thread sums a contiguous range, the range totals are scanned, then each
+ * range is written. The counts are left zero, ready for the next count. Returns the total (to thread 0).
  */
-KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts, int n,
-                          GLOBAL int* RESTRICT totalOut, int totalIndex) {
-    LOCAL int partial[SCAN_GROUP_SIZE];
+inline DEVICE int scanInGroup(LOCAL_ARG int* partial, GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts,
+                              int n) {
     const int perThread = (n + SCAN_GROUP_SIZE - 1)/SCAN_GROUP_SIZE;
     const int begin = min(n, (int) LOCAL_ID*perThread), end = min(n, begin + perThread);
     int sum = 0;
@@ -129,7 +128,6 @@ KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT star
             total += value;
         }
         starts[n] = total;
-        totalOut[totalIndex] = total;
     }
     SYNC_THREADS;
     int running = partial[LOCAL_ID];
@@ -138,6 +136,16 @@ KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT star
         running += counts[i];
         counts[i] = 0;
     }
+    return starts[n];
+}
+
+/** scanInGroup's prefix sums, the total also into totalOut[totalIndex]. */
+KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts, int n,
+                          GLOBAL int* RESTRICT totalOut, int totalIndex) {
+    LOCAL int partial[SCAN_GROUP_SIZE];
+    const int total = scanInGroup(partial, counts, starts, n);
+    if (LOCAL_ID == 0)
+        totalOut[totalIndex] = total;
 }
 
 /** List each slot in its cell (in any order; sortCells orders them and clears cellFill again). cellFill zero before. */

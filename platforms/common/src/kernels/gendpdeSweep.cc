@@ -1,29 +1,43 @@
 /* SPDX-License-Identifier: MIT
  * Copyright (c) 2026 The openmm-gendpde developers */
-/* The Shardlow sweep of GenDPDEIntegrator on the device, in the sequence of GenDPDESweepOrder (docs/theory.md
- * section 6), with parallel work inside each block:
+/* The Shardlow sweep of GenDPDEIntegrator on the device, in the order of GenDPDESweepDefinition.h (docs/theory.md
+ * section 6): made once per build from the candidate pairs (closer than candidateRange(R) at the build's positions)
+ * and kept while no particle has moved more than half the skin from its build position and the box is the same.
  *
- *   orderBlocks   every block in one launch: the particles of the block's region (the up to 3x3x3 cells its
- *                 pairs can touch) staged in local memory by original index (each one's rank found by binary search
- *                 in the other cells, whose particles are listed by index); each particle's partners in the block,
- *                 sought only in the region cells that can pair with it, in (i, j) order, the lists of each four
- *                 consecutive first particles interleaved (the host's sequence); then each pair's level, one more
- *                 than the levels of the latest earlier pairs of its two particles, and the pairs grouped by level
- *                 into the block's slab (sequence position kept).
- *   sweepBlocks   one launch per colour: the region's velocities and internal energies staged in local memory, the
- *                 levels one after another, the pairs of a level at the same time.
+ * Every step:
+ *   checkSweepBuild  each particle's slot by original index (atom reordering moves slots, not the order), and the
+ *                    step's build flags: build when the host asks (first step, new box, build positions given) or
+ *                    when some particle is farther than sqrt(rebuildDisplacement2(R)) from its build position
+ *                    (nearest image: OpenMM may wrap positions between builds); capture the step's positions as the
+ *                    build's unless the host gave them.
+ *   sweepBlocks      one launch per colour: each block's velocities and internal energies staged in local memory,
+ *                    the levels one after another, the pairs of a level at the same time, each updated only if it is
+ *                    closer than R at the step's positions.
+ * At a build only (every other step these return at once, on the device, from the flags; nothing waits for the
+ * host but the bounding box of open boundaries):
+ *   findSweepBounds, assignSweepCells, scanSweepCells, fillSweepCells, sortSweepCells
+ *                    the cells of the build positions (>= candidateRange(R) wide), particles by original index
+ *                    inside a cell; kept until the next build.
+ *   orderBlocks      every block in one launch: the particles of the block's region (the up to 3x3x3 cells its pairs
+ *                    can touch) staged in local memory by original index; each particle's candidates in the block in
+ *                    (i, j) order; each pair's level by SweepDefinition::assignLevels's greedy rule (the smallest
+ *                    level that no earlier pair of either particle has, in (i, j) order); the pairs grouped by level,
+ *                    (i, j) order within a level, into the block's slab.
  *
- * The pairs of a level share no particle, and every pair comes after all the earlier pairs of its particles, so each
- * particle sees its updates in the order of the sequence with the same inputs: the result is the sequential sweep's
- * to the last bit. A block whose region holds more than SWEEP_MAX_PARTICLES particles, or more pairs than its slab
- * (pairCapacity), is swept by one thread that streams its pairs in sequence from the cell grid (any size; slower).
+ * The pairs of a level share no particle, so running them at the same time gives the sequence's result to the last
+ * bit. A block whose region holds more than SWEEP_MAX_PARTICLES particles, or more candidates than its slab
+ * (pairCapacity), is swept by one thread that finds its candidates and their levels again from the build's cells at
+ * every step (any size; slower), with the levels kept per particle in levelMasks (blocks of one colour share no
+ * particle). More than 32 SWEEP_LEVEL_WORDS levels in a block stop the run (HALT_LEVELS).
  *
  * A work group sweeps SWEEP_BLOCKS_PER_GROUP blocks at once, SWEEP_BLOCK_THREADS threads each (OpenMM launches a
  * bounded number of work groups, so that is how many blocks run together); every barrier is the whole group's, so
  * the blocks of a group go through their levels together. Pairs of a block are stored as (i << 16) | j in region
- * ranks (position in the region's list, by original index). Defines: SWEEP_BLOCKS_PER_GROUP, SWEEP_BLOCK_THREADS,
- * SWEEP_MAX_PARTICLES, the STATUS_* words (CommonGenDPDEStatus.h); after gendpdeCells.cc, gendpdeRandom.cc and the
- * sweep's pair step (GenDPDESweepPair.h), with the physics core in `mixed`. */
+ * ranks (position in the region's list, by original index). Build flags: flags[2 p] build, flags[2 p + 1] capture,
+ * for the step's parity p (each step's check clears the next step's pair). Defines: SWEEP_BLOCKS_PER_GROUP,
+ * SWEEP_BLOCK_THREADS, SWEEP_MAX_PARTICLES, SWEEP_LEVEL_WORDS, the STATUS_* words (CommonGenDPDEStatus.h); after
+ * gendpdeCells.cc, gendpdeRandom.cc, gendpdeStatus.cc and the sweep's pair step (GenDPDESweepPair.h), with the physics
+ * core in `mixed`. */
 
 #define SWEEP_GROUP_SIZE (SWEEP_BLOCKS_PER_GROUP*SWEEP_BLOCK_THREADS)
 
@@ -92,13 +106,181 @@ inline DEVICE int3 blockOfRank(int rank, int4 blocks) {
 }
 
 /**
- * The partners of particle i (region rank) in its block: the later particles of the region cells that can hold a pair
- * of the block with it, closer than the cutoff. Returns their number; their ranks go to partners[n].x, in the order
- * found, unless partners is null.
+ * The step's build flags (parity p: flags[2 p] build, flags[2 p + 1] capture) and each particle's slot
+ * (slotOfAtom[original index]). hostBuild: build (from buildPosition, unless a particle is too far from it);
+ * hostCapture: build from the step's positions. Otherwise a build, from the step's positions, when some particle is
+ * farther than sqrt(limit2) from buildPosition (nearest image in the step's box).
+ */
+KERNEL void checkSweepBuild(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
+        GLOBAL const int* RESTRICT atomIndex, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB,
+        mixed4 boxC, mixed limit2, int parity, int hostBuild, int hostCapture, GLOBAL int* RESTRICT flags,
+        GLOBAL int* RESTRICT slotOfAtom, GLOBAL const int* RESTRICT status) {
+    if (GLOBAL_ID == 0) {
+        flags[2*(1 - parity)] = 0;
+        flags[2*(1 - parity) + 1] = 0;
+    }
+    if (status[STATUS_HALTED] != 0)
+        return;
+    if (GLOBAL_ID == 0 && (hostBuild || hostCapture)) {
+        flags[2*parity] = 1;
+        if (hostCapture)
+            flags[2*parity + 1] = 1;
+    }
+    for (int s = GLOBAL_ID; s < NUM_ATOMS; s += GLOBAL_SIZE) {
+        const int atom = atomIndex[s];
+        slotOfAtom[atom] = s;
+        if (!hostCapture) {
+            const mixed3 d = mixedPairDelta(loadMixedPosition(posq, posqCorrection, s), trimTo3(buildPosition[atom]),
+                                            boxA, boxB, boxC);
+            if (dot(d, d) > limit2) {
+                flags[2*parity] = 1;
+                flags[2*parity + 1] = 1;
+            }
+        }
+    }
+}
+
+/** Whether this step builds the order (and the run goes on). */
+inline DEVICE bool building(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status) {
+    return flags[2*parity] != 0 && status[STATUS_HALTED] == 0;
+}
+
+/** The build position of a particle: the step's (stored as the build's) when capturing, else the stored one. */
+inline DEVICE mixed3 buildPositionOf(int atom, int capture, GLOBAL const real4* RESTRICT posq,
+        GLOBAL const real4* RESTRICT posqCorrection, GLOBAL const int* RESTRICT slotOfAtom,
+        GLOBAL const mixed4* RESTRICT buildPosition) {
+    return capture ? loadMixedPosition(posq, posqCorrection, slotOfAtom[atom]) : trimTo3(buildPosition[atom]);
+}
+
+/** Open boundaries, at a build: the bounding box of the build positions, bounds = (low.xyz, high.xyz); one group. */
+KERNEL void findSweepBounds(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+        GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
+        GLOBAL const int* RESTRICT slotOfAtom, GLOBAL const mixed4* RESTRICT buildPosition,
+        GLOBAL mixed* RESTRICT bounds) {
+    LOCAL mixed lowest[3*BOUNDS_GROUP_SIZE];
+    LOCAL mixed highest[3*BOUNDS_GROUP_SIZE];
+    if (!building(flags, parity, status))
+        return;
+    const int capture = flags[2*parity + 1];
+    mixed3 low = buildPositionOf(0, capture, posq, posqCorrection, slotOfAtom, buildPosition), high = low;
+    for (int i = LOCAL_ID; i < NUM_ATOMS; i += LOCAL_SIZE) {
+        const mixed3 r = buildPositionOf(i, capture, posq, posqCorrection, slotOfAtom, buildPosition);
+        low = make_mixed3(min(low.x, r.x), min(low.y, r.y), min(low.z, r.z));
+        high = make_mixed3(max(high.x, r.x), max(high.y, r.y), max(high.z, r.z));
+    }
+    lowest[3*LOCAL_ID] = low.x;
+    lowest[3*LOCAL_ID + 1] = low.y;
+    lowest[3*LOCAL_ID + 2] = low.z;
+    highest[3*LOCAL_ID] = high.x;
+    highest[3*LOCAL_ID + 1] = high.y;
+    highest[3*LOCAL_ID + 2] = high.z;
+    SYNC_THREADS;
+    if (LOCAL_ID < 3) {
+        mixed a = lowest[LOCAL_ID], b = highest[LOCAL_ID];
+        for (int t = 1; t < LOCAL_SIZE; t++) {
+            a = min(a, lowest[3*t + LOCAL_ID]);
+            b = max(b, highest[3*t + LOCAL_ID]);
+        }
+        bounds[LOCAL_ID] = a;
+        bounds[3 + LOCAL_ID] = b;
+    }
+}
+
+/**
+ * At a build: each particle's build position (the step's, stored, when capturing), its cell in the build's box
+ * (boxA..C; open boundaries: low, extent) by original index, and the number of particles per cell (cellCount zero).
+ */
+KERNEL void assignSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+        GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
+        GLOBAL const int* RESTRICT slotOfAtom, GLOBAL mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB,
+        mixed4 boxC, mixed4 low, mixed4 extent, int4 cells, GLOBAL int* RESTRICT atomCell,
+        GLOBAL int* RESTRICT cellCount) {
+    if (!building(flags, parity, status))
+        return;
+    const int capture = flags[2*parity + 1];
+    for (int atom = GLOBAL_ID; atom < NUM_ATOMS; atom += GLOBAL_SIZE) {
+        const mixed3 r = buildPositionOf(atom, capture, posq, posqCorrection, slotOfAtom, buildPosition);
+        if (capture)
+            buildPosition[atom] = make_mixed4(r.x, r.y, r.z, 0);
+        const int cell = cellIndex(cellOfPosition(r, boxA, boxB, boxC, low, extent, cells), cells);
+        atomCell[atom] = cell;
+        ATOMIC_ADD(&cellCount[cell], 1);
+    }
+}
+
+/** At a build: the cells' first entries (scanInGroup; cellCount left zero). One group of SCAN_GROUP_SIZE. */
+KERNEL void scanSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+        GLOBAL int* RESTRICT cellCount, GLOBAL int* RESTRICT cellStart, int numCells) {
+    LOCAL int partial[SCAN_GROUP_SIZE];
+    if (!building(flags, parity, status))
+        return;
+    scanInGroup(partial, cellCount, cellStart, numCells);
+}
+
+/** At a build: each particle listed in its cell, in any order (cellFill zero before). */
+KERNEL void fillSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+        GLOBAL const int* RESTRICT atomCell, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
+        GLOBAL int* RESTRICT sortedAtom) {
+    if (!building(flags, parity, status))
+        return;
+    for (int atom = GLOBAL_ID; atom < NUM_ATOMS; atom += GLOBAL_SIZE) {
+        const int cell = atomCell[atom];
+        sortedAtom[cellStart[cell] + ATOMIC_ADD(&cellFill[cell], 1)] = atom;
+    }
+}
+
+/** At a build: each cell's particles by original index (insertion sort: a cell holds a few); cellFill zero again. */
+KERNEL void sortSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+        int numCells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
+        GLOBAL int* RESTRICT sortedAtom) {
+    if (!building(flags, parity, status))
+        return;
+    for (int cell = GLOBAL_ID; cell < numCells; cell += GLOBAL_SIZE) {
+        const int begin = cellStart[cell], end = cellStart[cell + 1];
+        cellFill[cell] = 0;
+        for (int k = begin + 1; k < end; k++) {
+            const int atom = sortedAtom[k];
+            int m = k - 1;
+            while (m >= begin && sortedAtom[m] > atom) {
+                sortedAtom[m + 1] = sortedAtom[m];
+                m--;
+            }
+            sortedAtom[m + 1] = atom;
+        }
+    }
+}
+
+/**
+ * name(usedI, usedJ): the greedy level of a pair whose particles have used the levels in masks usedI, usedJ
+ * (SWEEP_LEVEL_WORDS words each, in this address space; SweepDefinition::assignLevels): the smallest level in
+ * neither, now marked in both; -1 if all are used.
+ */
+#define GENDPDE_GREEDY_LEVEL(name, space) \
+inline DEVICE int name(space unsigned int* usedI, space unsigned int* usedJ) { \
+    for (int w = 0; w < SWEEP_LEVEL_WORDS; w++) { \
+        const unsigned int free = ~(usedI[w] | usedJ[w]); \
+        if (free != 0) { \
+            int bit = 0; \
+            while (((free >> bit) & 1u) == 0) \
+                bit++; \
+            usedI[w] |= 1u << bit; \
+            usedJ[w] |= 1u << bit; \
+            return 32*w + bit; \
+        } \
+    } \
+    return -1; \
+}
+GENDPDE_GREEDY_LEVEL(greedyLevelLocal, LOCAL_ARG)
+GENDPDE_GREEDY_LEVEL(greedyLevelGlobal, GLOBAL)
+
+/**
+ * The candidates of particle i (region rank) in its block: the later particles of the region cells that can hold a
+ * pair of the block with it, closer than sqrt(range2) at the build positions. Returns their number; their ranks go to
+ * partners[n].x, in the order found, unless partners is null.
  */
 inline DEVICE int blockPartners(int i, int numParticles, LOCAL_ARG const int* regionStart,
         LOCAL_ARG const int* regionCode, LOCAL_ARG const int* rankInRegion, LOCAL_ARG const int* codeOf,
-        LOCAL_ARG const mixed4* positionOf, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed cutoff2,
+        LOCAL_ARG const mixed4* positionOf, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed range2,
         GLOBAL int2* partners) {
     const mixed3 ri = trimTo3(positionOf[i]);
     const int codeI = codeOf[i];
@@ -110,7 +292,7 @@ inline DEVICE int blockPartners(int i, int numParticles, LOCAL_ARG const int* re
             const int j = rankInRegion[k];
             if (j > i) {
                 const mixed3 d = mixedPairDelta(ri, trimTo3(positionOf[j]), boxA, boxB, boxC);
-                if (dot(d, d) < cutoff2) {
+                if (dot(d, d) < range2) {
                     if (partners != 0)
                         partners[count].x = j;
                     count++;
@@ -122,48 +304,47 @@ inline DEVICE int blockPartners(int i, int numParticles, LOCAL_ARG const int* re
 }
 
 /**
- * Each block's sweep order, SWEEP_BLOCKS_PER_GROUP blocks per work group: header[rank] = (particles in the region,
- * pairs, levels, 1 if the block must be streamed), blockAtoms/blockSlots[rank SWEEP_MAX_PARTICLES + k] the region's
- * particles by original index, levelStart[rank (pairCapacity + 1) + l] the first entry of level l in
- * blockPairs[rank pairCapacity + ...] = ((i << 16) | j, sequence position). pairScratch holds the sequence while the
- * levels are found.
+ * At a build: each block's order, SWEEP_BLOCKS_PER_GROUP blocks per work group, from the build's cells (cellStart,
+ * sortedAtom), positions (buildPosition, by original index) and box (boxA..C), for candidates closer than
+ * candidateRange: header[rank] = (particles in the region, pairs, levels, 1 if the block must be streamed),
+ * blockAtoms[rank SWEEP_MAX_PARTICLES + k] the region's particles by original index, levelStart[rank (pairCapacity +
+ * 1) + l] the first entry of level l in blockPairs[rank pairCapacity + ...] = (i << 16) | j. pairScratch holds the
+ * pairs in (i, j) order with their levels while they are grouped. Counts the build (status[STATUS_BUILDS]).
  */
-KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cellStart,
-        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
-        GLOBAL const real4* RESTRICT posqCorrection, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed cutoff,
+KERNEL void orderBlocks(GLOBAL const int* RESTRICT flags, int parity, int stepIndex, int4 cells, int4 blocks,
+        GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedAtom,
+        GLOBAL const mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed candidateRange,
         int pairCapacity, GLOBAL int* RESTRICT status, GLOBAL int4* RESTRICT header, GLOBAL int* RESTRICT blockAtoms,
-        GLOBAL int* RESTRICT blockSlots, GLOBAL int2* RESTRICT pairScratch, GLOBAL int2* RESTRICT blockPairs,
-        GLOBAL int* RESTRICT levelStart) {
+        GLOBAL int2* RESTRICT pairScratch, GLOBAL int* RESTRICT blockPairs, GLOBAL int* RESTRICT levelStart) {
     LOCAL int regionCells[27*SWEEP_BLOCKS_PER_GROUP], regionCodes[27*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int regionStarts[28*SWEEP_BLOCKS_PER_GROUP], sharedValues[4*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int firstPairs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], codes[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
+    // Per particle (by rank): its position (then, once the pairs are listed, its mask of used levels: SWEEP_LEVEL_WORDS
+    // words fit in a mixed4), its pair count, first pair and code; the rank of each particle in region order.
     LOCAL mixed4 positions[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    // Per particle (by rank): its pair count, run, first pair and code (the level of its latest pair at the end); the
-    // rank of each particle in region order; the particle of each run.
     LOCAL int pairCounts[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], ranks[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int runs[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    LOCAL int runParticles[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
-    if (status[STATUS_HALTED] != 0)
+    if (!building(flags, parity, status))
         return;
+    if (GLOBAL_ID == 0)
+        status[STATUS_BUILDS]++;
     const int sub = LOCAL_ID/SWEEP_BLOCK_THREADS, lane = LOCAL_ID%SWEEP_BLOCK_THREADS;
     LOCAL_ARG int* regionCell = regionCells + 27*sub;
     LOCAL_ARG int* regionCode = regionCodes + 27*sub;
     LOCAL_ARG int* regionStart = regionStarts + 28*sub;
-    LOCAL_ARG int* shared = sharedValues + 4*sub;   // particles, pairs, runs
+    LOCAL_ARG int* shared = sharedValues + 4*sub;   // particles, pairs
     LOCAL_ARG int* firstPair = firstPairs + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG int* codeOf = codes + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG mixed4* positionOf = positions + SWEEP_MAX_PARTICLES*sub;
+    LOCAL_ARG unsigned int* levelMask = (LOCAL_ARG unsigned int*) (positions + SWEEP_MAX_PARTICLES*sub);
     LOCAL_ARG int* pairCount = pairCounts + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG int* rankInRegion = ranks + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* runOf = runs + SWEEP_MAX_PARTICLES*sub;
-    LOCAL_ARG int* runParticle = runParticles + SWEEP_MAX_PARTICLES*sub;
-    const mixed cutoff2 = cutoff*cutoff;
+    const mixed range2 = candidateRange*candidateRange;
     for (int base = GROUP_ID*SWEEP_BLOCKS_PER_GROUP; base < blocks.w; base += NUM_GROUPS*SWEEP_BLOCKS_PER_GROUP) {
         // Every thread passes every barrier; a block with nothing (left) to do runs its loops zero times.
         const int rank = base + sub;
         const bool active = (rank < blocks.w);
         GLOBAL int2* scratch = pairScratch + (size_t) rank*pairCapacity;
-        GLOBAL int2* pairs = blockPairs + (size_t) rank*pairCapacity;
+        GLOBAL int* pairs = blockPairs + (size_t) rank*pairCapacity;
         GLOBAL int* levels = levelStart + (size_t) rank*(pairCapacity + 1);
         if (active && lane == 0) {
             const int3 block = blockOfRank(rank, blocks);
@@ -196,7 +377,7 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             int r = 0;
             while (regionStart[r + 1] <= k)
                 r++;
-            const int m = cellStart[regionCell[r]] + k - regionStart[r], atom = sortedAtom[m], slot = sortedSlot[m];
+            const int atom = sortedAtom[cellStart[regionCell[r]] + k - regionStart[r]];
             int position = k - regionStart[r];
             for (int c = 0; c < 27 && regionStart[c] < numParticles; c++) {
                 if (c == r)
@@ -213,31 +394,24 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
                 position += low - first;
             }
             codeOf[position] = regionCode[r];
-            const mixed3 position3 = loadMixedPosition(posq, posqCorrection, slot);
-            positionOf[position] = make_mixed4(position3.x, position3.y, position3.z, 0);
+            positionOf[position] = buildPosition[atom];
             blockAtoms[(size_t) rank*SWEEP_MAX_PARTICLES + position] = atom;
-            blockSlots[(size_t) rank*SWEEP_MAX_PARTICLES + position] = slot;
             rankInRegion[k] = position;
         }
         SYNC_THREADS;
-        // Each particle's pairs with later particles of the block, counted.
+        // Each particle's candidates among the later particles of the block, counted.
         for (int i = lane; i < numParticles; i += SWEEP_BLOCK_THREADS)
             pairCount[i] = blockPartners(i, numParticles, regionStart, regionCode, rankInRegion, codeOf, positionOf,
-                                         boxA, boxB, boxC, cutoff2, 0);
+                                         boxA, boxB, boxC, range2, 0);
         SYNC_THREADS;
-        // First pair of each particle's list; runs (particles with pairs) in order.
+        // The first pair of each particle's list: the pairs in (i, j) order.
         if (numParticles > 0 && lane == 0) {
-            int total = 0, numRuns = 0;
+            int total = 0;
             for (int i = 0; i < numParticles; i++) {
                 firstPair[i] = total;
                 total += pairCount[i];
-                if (pairCount[i] > 0) {
-                    runOf[i] = numRuns;
-                    runParticle[numRuns++] = i;
-                }
             }
             shared[1] = total;
-            shared[2] = numRuns;
             ATOMIC_MAX(&status[STATUS_MOST_PAIRS], total);
             if (total > pairCapacity) {
                 header[rank] = make_int4(numParticles, total, 0, 1);
@@ -246,15 +420,15 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
         }
         SYNC_THREADS;
         const bool ordered = (numParticles > 0 && shared[1] <= pairCapacity);
-        const int numPairs = (ordered ? shared[1] : 0), numRuns = (ordered ? shared[2] : 0);
+        const int numPairs = (ordered ? shared[1] : 0);
         const int listed = (ordered ? numParticles : 0);
-        // Each particle's partners in (i, j) order, in pairs[] (free until the levels): listed, then sorted by j.
+        // Each particle's candidates in (i, j) order, in the scratch slab: listed, then sorted by j.
         for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
             if (pairCount[i] == 0)
                 continue;
-            GLOBAL int2* partners = pairs + firstPair[i];
+            GLOBAL int2* partners = scratch + firstPair[i];
             const int n = blockPartners(i, numParticles, regionStart, regionCode, rankInRegion, codeOf, positionOf,
-                                        boxA, boxB, boxC, cutoff2, partners);
+                                        boxA, boxB, boxC, range2, partners);
             for (int m = 1; m < n; m++) {   // insertion sort: a few dozen partners
                 const int j = partners[m].x;
                 int q = m - 1;
@@ -266,45 +440,38 @@ KERNEL void orderBlocks(int4 cells, int4 blocks, GLOBAL const int* RESTRICT cell
             }
         }
         SYNC_THREADS;
-        // The sequence: pair k of run r in group g (runs 4g .. 4g + 3) comes after the pairs of rank < k of the
-        // group's runs and the pairs of rank k of the group's earlier runs (GenDPDESweepOrder's interleaveRuns).
-        for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS) {
-            if (pairCount[i] == 0)
-                continue;
-            const int run = runOf[i], firstRun = run - (run & 3), endRun = min(firstRun + 4, numRuns);
-            const int groupStart = firstPair[runParticle[firstRun]];
-            for (int k = 0; k < pairCount[i]; k++) {
-                int position = groupStart;
-                for (int q = firstRun; q < endRun; q++) {
-                    const int length = pairCount[runParticle[q]];
-                    position += min(length, k) + (q < run && length > k ? 1 : 0);
-                }
-                scratch[position] = make_int2((i << 16) | pairs[firstPair[i] + k].x, 0);
-            }
-        }
-        SYNC_THREADS;
+        // The positions are no longer needed: their space holds each particle's mask of used levels.
+        for (int k = lane; k < listed*SWEEP_LEVEL_WORDS; k += SWEEP_BLOCK_THREADS)
+            levelMask[k] = 0;
         if (ordered)
             for (int l = lane; l <= numPairs; l += SWEEP_BLOCK_THREADS)
                 levels[l] = 0;
-        for (int i = lane; i < listed; i += SWEEP_BLOCK_THREADS)
-            codeOf[i] = 0;   // now: one more than the level of the particle's latest pair
         SYNC_THREADS;
-        // Levels, counted per level, then the pairs grouped by level (in sequence order within a level).
+        // The levels by the greedy rule, in (i, j) order, counted per level; then the pairs grouped by level ((i, j)
+        // order within a level).
         if (ordered && lane == 0) {
             int numLevels = 0;
-            for (int n = 0; n < numPairs; n++) {
-                const int pair = scratch[n].x, i = pair >> 16, j = pair & 0xFFFF;
-                const int level = max(codeOf[i], codeOf[j]);
-                codeOf[i] = codeOf[j] = level + 1;
-                scratch[n].y = level;
-                levels[level + 1]++;
-                numLevels = max(numLevels, level + 1);
-            }
+            bool tooMany = false;
+            for (int i = 0; i < numParticles && !tooMany; i++)
+                for (int n = firstPair[i]; n < firstPair[i] + pairCount[i]; n++) {
+                    const int j = scratch[n].x;
+                    const int level = greedyLevelLocal(levelMask + i*SWEEP_LEVEL_WORDS, levelMask + j*SWEEP_LEVEL_WORDS);
+                    if (level < 0) {   // more levels than the masks hold: the run stops
+                        haltRun(status, HALT_LEVELS, stepIndex);
+                        tooMany = true;
+                        break;
+                    }
+                    scratch[n] = make_int2((i << 16) | j, level);
+                    levels[level + 1]++;
+                    numLevels = max(numLevels, level + 1);
+                }
+            if (tooMany)
+                numLevels = 0;
             for (int l = 0; l < numLevels; l++)
                 levels[l + 1] += levels[l];
-            for (int n = 0; n < numPairs; n++) {
+            for (int n = 0; n < numPairs && numLevels > 0; n++) {
                 const int2 entry = scratch[n];
-                pairs[levels[entry.y]++] = make_int2(entry.x, n);
+                pairs[levels[entry.y]++] = entry.x;
             }
             for (int l = numLevels; l > 0; l--)
                 levels[l] = levels[l - 1];
@@ -367,49 +534,51 @@ inline DEVICE int nextOfRegion(const StreamRegion* region, int* next, unsigned i
     return best < 0 ? -1 : next[best]++;
 }
 
-/** A run of a streamed block: particle i's pairs with later particles of the block, one at a time. */
+/** Particle i's candidates in a streamed block, later particles of the block in index order, one at a time. */
 typedef struct {
     int next[27];            // a cursor per region cell
     unsigned int mask;       // the region cells whose particles can pair with i in this block
-    int i, slotI, j, slotJ;  // original indices and slots; j < 0 once the run is exhausted
-    mixed3 ri, d;            // r_i, and r_i - r_j of the current pair
+    int i, j;                // original indices; j < 0 once the run is exhausted
+    mixed3 ri;               // i's build position
 } StreamRun;
 
-/** Advance a run to its next pair (j = -1 if none). */
+/** Advance a run to its next candidate (j = -1 if none), closer than sqrt(range2) at the build positions. */
 inline DEVICE void nextPartner(const StreamRegion* region, StreamRun* run, GLOBAL const int* RESTRICT sortedAtom,
-        GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
-        GLOBAL const real4* RESTRICT posqCorrection, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed cutoff2) {
+        GLOBAL const mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed range2) {
     int which;
     run->j = -1;
     for (int m = nextOfRegion(region, run->next, run->mask, sortedAtom, &which); m >= 0;
              m = nextOfRegion(region, run->next, run->mask, sortedAtom, &which)) {
-        if (sortedAtom[m] <= run->i)
+        const int atom = sortedAtom[m];
+        if (atom <= run->i)
             continue;
-        const mixed3 d = mixedPairDelta(run->ri, loadMixedPosition(posq, posqCorrection, sortedSlot[m]), boxA, boxB,
-                                        boxC);
-        if (dot(d, d) < cutoff2) {
-            run->j = sortedAtom[m];
-            run->slotJ = sortedSlot[m];
-            run->d = d;
+        const mixed3 d = mixedPairDelta(run->ri, trimTo3(buildPosition[atom]), boxA, boxB, boxC);
+        if (dot(d, d) < range2) {
+            run->j = atom;
             return;
         }
     }
 }
 
 /**
- * The sweep of one block by one thread, its pairs streamed in sequence from the cell grid (any number of particles
- * and pairs: for blocks beyond the capacities of orderBlocks). Returns the sequence position of the first pair after
- * which an internal energy is <= 0, with that particle and its energy, or -1.
+ * The sweep of one block by one thread (for blocks beyond the capacities of orderBlocks; any number of particles and
+ * pairs): the candidates found again from the build's cells (cellStart, sortedAtom), positions and box (build*), in
+ * (i, j) order, their greedy levels kept per particle in levelMasks (by original index, SWEEP_LEVEL_WORDS words each;
+ * no other block of the colour touches these particles); one pass to count the levels, then one pass per level that
+ * updates that level's pairs closer than the cutoff at the step's positions. Returns the sequence position of the first
+ * pair after which an internal energy is <= 0, with that particle and its energy, or -1; -2 if the block needs more
+ * levels than the masks hold.
  */
 DEVICE int streamBlock(int3 block, int4 cells, GLOBAL const int* RESTRICT cellStart,
-        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
+        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 buildA,
+        mixed4 buildB, mixed4 buildC, mixed candidate2, GLOBAL unsigned int* RESTRICT levelMasks,
+        GLOBAL const int* RESTRICT slotOfAtom, GLOBAL const real4* RESTRICT posq,
         GLOBAL const real4* RESTRICT posqCorrection, GLOBAL mixed4* RESTRICT velm, GLOBAL mixed* RESTRICT energies,
         mixed4 boxA, mixed4 boxB, mixed4 boxC, GLOBAL const int* RESTRICT atomType, SweepConstants c,
         GLOBAL const mixed4* RESTRICT pairTable, GLOBAL const mixed* RESTRICT heatCapacityTable,
         GLOBAL const randomReal* RESTRICT zigguratX, GLOBAL const randomReal* RESTRICT zigguratF,
         GLOBAL const randomReal* RESTRICT zigguratRatio, int* failedParticle, mixed* failedEnergy) {
     StreamRegion region;
-    int firstNext[27];
     int alongX[3], alongY[3], alongZ[3];
     const int nx = regionAxis(block.x, cells.x, alongX), ny = regionAxis(block.y, cells.y, alongY);
     const int nz = regionAxis(block.z, cells.z, alongZ);
@@ -420,83 +589,93 @@ DEVICE int streamBlock(int3 block, int4 cells, GLOBAL const int* RESTRICT cellSt
                 const int cell = (alongZ[lz]*cells.y + alongY[ly])*cells.x + alongX[lx];
                 region.cell[region.count] = cell;
                 region.code[region.count] = offsetCode(lx, ly, lz);
-                region.end[region.count] = cellStart[cell + 1];
-                firstNext[region.count++] = cellStart[cell];
+                region.end[region.count++] = cellStart[cell + 1];
             }
     const mixed cutoff2 = c.cutoff*c.cutoff;
-    StreamRun runs[4];
-    int position = 0, which;
-    while (true) {
-        // Up to four runs: the next particles in index order that have a pair in this block.
-        int numRuns = 0;
-        while (numRuns < 4) {
-            const int m = nextOfRegion(&region, firstNext, 0xFFFFFFFFu, sortedAtom, &which);
-            if (m < 0)
-                break;
-            StreamRun* run = &runs[numRuns];
-            run->mask = 0;
+    int position = 0, numLevels = 0;
+    for (int level = -1; level < numLevels; level++) {
+        // A pass over the candidates in (i, j) order, from no level used.
+        for (int q = 0; q < region.count; q++)
+            for (int m = cellStart[region.cell[q]]; m < region.end[q]; m++)
+                for (int w = 0; w < SWEEP_LEVEL_WORDS; w++)
+                    levelMasks[(size_t) sortedAtom[m]*SWEEP_LEVEL_WORDS + w] = 0;
+        int firstNext[27], which;
+        for (int q = 0; q < region.count; q++)
+            firstNext[q] = cellStart[region.cell[q]];
+        for (int m = nextOfRegion(&region, firstNext, 0xFFFFFFFFu, sortedAtom, &which); m >= 0;
+                 m = nextOfRegion(&region, firstNext, 0xFFFFFFFFu, sortedAtom, &which)) {
+            StreamRun run;
+            run.mask = 0;
             for (int q = 0; q < region.count; q++) {
-                run->next[q] = cellStart[region.cell[q]];
+                run.next[q] = cellStart[region.cell[q]];
                 if (pairOfBlock(region.code[which], region.code[q]))
-                    run->mask |= 1u << q;
+                    run.mask |= 1u << q;
             }
-            run->i = sortedAtom[m];
-            run->slotI = sortedSlot[m];
-            run->ri = loadMixedPosition(posq, posqCorrection, run->slotI);
-            nextPartner(&region, run, sortedAtom, sortedSlot, posq, posqCorrection, boxA, boxB, boxC, cutoff2);
-            if (run->j >= 0)
-                numRuns++;
-        }
-        if (numRuns == 0)
-            return -1;
-        // Interleaved: the next pair of each run in turn.
-        bool any = true;
-        while (any) {
-            any = false;
-            for (int r = 0; r < numRuns; r++) {
-                StreamRun* run = &runs[r];
-                if (run->j < 0)
+            run.i = sortedAtom[m];
+            run.ri = trimTo3(buildPosition[run.i]);
+            for (nextPartner(&region, &run, sortedAtom, buildPosition, buildA, buildB, buildC, candidate2);
+                     run.j >= 0;
+                     nextPartner(&region, &run, sortedAtom, buildPosition, buildA, buildB, buildC, candidate2)) {
+                const int i = run.i, j = run.j;
+                const int pairLevel = greedyLevelGlobal(levelMasks + (size_t) i*SWEEP_LEVEL_WORDS,
+                                                        levelMasks + (size_t) j*SWEEP_LEVEL_WORDS);
+                if (pairLevel < 0)
+                    return -2;
+                if (level < 0) {
+                    numLevels = max(numLevels, pairLevel + 1);
                     continue;
-                any = true;
-                mixed4 vi = velm[run->slotI], vj = velm[run->slotJ];
+                }
+                if (pairLevel != level)
+                    continue;
+                const int slotI = slotOfAtom[i], slotJ = slotOfAtom[j];
+                const mixed3 d = mixedPairDelta(loadMixedPosition(posq, posqCorrection, slotI),
+                                                loadMixedPosition(posq, posqCorrection, slotJ), boxA, boxB, boxC);
+                if (!(dot(d, d) < cutoff2)) {
+                    position++;
+                    continue;
+                }
+                mixed4 vi = velm[slotI], vj = velm[slotJ];
                 mixed ei = 0, ej = 0;
                 if (c.internalEnergies) {
-                    ei = energies[run->i];
-                    ej = energies[run->j];
+                    ei = energies[i];
+                    ej = energies[j];
                 }
-                const bool failed = pairUpdate(run->i, run->j, run->d, atomType[run->i], atomType[run->j], &vi, &vj,
-                        &ei, &ej, c, pairTable, heatCapacityTable, zigguratX, zigguratF, zigguratRatio);
-                velm[run->slotI] = vi;
-                velm[run->slotJ] = vj;
+                const bool failed = pairUpdate(i, j, d, atomType[i], atomType[j], &vi, &vj, &ei, &ej, c, pairTable,
+                                               heatCapacityTable, zigguratX, zigguratF, zigguratRatio);
+                velm[slotI] = vi;
+                velm[slotJ] = vj;
                 if (c.internalEnergies) {
-                    energies[run->i] = ei;
-                    energies[run->j] = ej;
+                    energies[i] = ei;
+                    energies[j] = ej;
                 }
                 if (failed) {
-                    *failedParticle = (ei > 0 ? run->j : run->i);
+                    *failedParticle = (ei > 0 ? j : i);
                     *failedEnergy = (ei > 0 ? ej : ei);
                     return position;
                 }
                 position++;
-                nextPartner(&region, run, sortedAtom, sortedSlot, posq, posqCorrection, boxA, boxB, boxC, cutoff2);
             }
         }
     }
+    return -1;
 }
 
 /**
  * One colour of the sweep: the blocks of ranks firstRank .. firstRank + numRanks - 1, SWEEP_BLOCKS_PER_GROUP per work
- * group, each level by level (orderBlocks) or, when orderBlocks could not hold it, streamed by one thread.
+ * group, each level by level (orderBlocks) or, when orderBlocks could not hold it, streamed by one thread. Each pair
+ * of the order is updated only if it is closer than the cutoff at the step's positions (posq, boxA..C).
  * parameters = (cutoff, dt, sqrt(dt), k_B); terms bit 0: dissipation, bit 1: conduction, bit 2: internal energies.
  * A block after which an internal energy is <= 0 records the first such pair of its sequence (failure[rank] =
  * particle, failureEnergy[rank] = its energy) and stops the run (HALT_SWEEP; FAILED_RANK the smallest failed rank);
- * finishStep then rolls the step back.
+ * finishStep then rolls the step back. The build's cells, positions and box (build*, candidateRange) serve the
+ * streamed blocks.
  */
 KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GLOBAL const int4* RESTRICT header,
-        GLOBAL const int* RESTRICT blockAtoms, GLOBAL const int* RESTRICT blockSlots,
-        GLOBAL const int* RESTRICT levelStart, GLOBAL const int2* RESTRICT blockPairs, int pairCapacity,
-        GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT sortedAtom,
-        GLOBAL const int* RESTRICT sortedSlot, GLOBAL const real4* RESTRICT posq,
+        GLOBAL const int* RESTRICT blockAtoms, GLOBAL const int* RESTRICT levelStart,
+        GLOBAL const int* RESTRICT blockPairs, int pairCapacity, GLOBAL const int* RESTRICT cellStart,
+        GLOBAL const int* RESTRICT sortedAtom, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 buildA,
+        mixed4 buildB, mixed4 buildC, mixed candidateRange, GLOBAL unsigned int* RESTRICT levelMasks,
+        GLOBAL const int* RESTRICT slotOfAtom, GLOBAL const real4* RESTRICT posq,
         GLOBAL const real4* RESTRICT posqCorrection, GLOBAL mixed4* RESTRICT velm, GLOBAL mixed* RESTRICT energies,
         mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed4 parameters, GLOBAL const int* RESTRICT atomType,
         GLOBAL const mixed4* RESTRICT pairTable, GLOBAL const mixed* RESTRICT heatCapacityTable, int numClasses,
@@ -529,6 +708,7 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
     c.seed = seed;
     c.stepLow = stepLow;
     c.stepHigh = stepHigh;
+    const mixed cutoff2 = c.cutoff*c.cutoff;
     for (int base = GROUP_ID*SWEEP_BLOCKS_PER_GROUP; base < numRanks; base += NUM_GROUPS*SWEEP_BLOCKS_PER_GROUP) {
         // Every thread passes every barrier; a block with nothing (left) to do runs its loops zero times.
         const int rank = firstRank + base + sub;
@@ -538,10 +718,13 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
             // Beyond the capacities: one thread streams the block's pairs in sequence.
             int particle;
             mixed energy;
-            const int failed = streamBlock(blockOfRank(rank, blocks), cells, cellStart, sortedAtom, sortedSlot, posq,
+            const int failed = streamBlock(blockOfRank(rank, blocks), cells, cellStart, sortedAtom, buildPosition,
+                    buildA, buildB, buildC, candidateRange*candidateRange, levelMasks, slotOfAtom, posq,
                     posqCorrection, velm, energies, boxA, boxB, boxC, atomType, c, pairTable, heatCapacityTable,
                     zigguratX, zigguratF, zigguratRatio, &particle, &energy);
-            if (failed >= 0) {
+            if (failed == -2)
+                haltRun(status, HALT_LEVELS, stepIndex);
+            else if (failed >= 0) {
                 failure[rank] = particle;
                 failureEnergy[rank] = energy;
                 ATOMIC_MIN(&status[STATUS_FAILED_RANK], rank);
@@ -550,9 +733,8 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
         }
         const int numParticles = (info.w == 0 ? info.x : 0), numLevels = (info.w == 0 ? info.z : 0);
         GLOBAL const int* particleAtom = blockAtoms + (size_t) rank*SWEEP_MAX_PARTICLES;
-        GLOBAL const int* particleSlot = blockSlots + (size_t) rank*SWEEP_MAX_PARTICLES;
         for (int k = lane; k < numParticles; k += SWEEP_BLOCK_THREADS) {
-            const int atom = particleAtom[k], slot = particleSlot[k];
+            const int atom = particleAtom[k], slot = slotOfAtom[atom];
             velocityOf[k] = velm[slot];
             energyOf[k] = (c.internalEnergies ? energies[atom] : 0);
             typeOf[k] = atomType[atom];
@@ -567,34 +749,36 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
         int groupLevels = 0;
         for (int b = 0; b < SWEEP_BLOCKS_PER_GROUP; b++)
             groupLevels = max(groupLevels, levelCounts[b]);
-        // The levels in turn; after a failure only the pairs before it in the sequence still matter (a later pair
-        // never precedes an earlier one of the same particle), and the first failing pair is the one reported.
+        // The levels in turn; after a failure only the pairs before it in the sequence (the level order, as stored)
+        // still matter (a later pair never precedes an earlier one of the same particle), and the first failing pair
+        // is the one reported.
         GLOBAL const int* levels = levelStart + (size_t) rank*(pairCapacity + 1);
-        GLOBAL const int2* pairs = blockPairs + (size_t) rank*pairCapacity;
+        GLOBAL const int* pairs = blockPairs + (size_t) rank*pairCapacity;
         int myFailure = NO_VALUE, myParticle = -1;
         mixed myEnergy = 0;
         for (int level = 0; level < groupLevels; level++) {
             const int end = (level < numLevels ? levels[level + 1] : 0);
             for (int n = (level < numLevels ? levels[level] : 0) + lane; n < end; n += SWEEP_BLOCK_THREADS) {
-                const int2 entry = pairs[n];
-                if (entry.y > firstFailures[sub])
+                if (n > firstFailures[sub])
                     continue;
-                const int i = entry.x >> 16, j = entry.x & 0xFFFF;
-                mixed4 vi = velocityOf[i], vj = velocityOf[j];
-                mixed ei = energyOf[i], ej = energyOf[j];
+                const int entry = pairs[n], i = entry >> 16, j = entry & 0xFFFF;
                 const mixed3 d = mixedPairDelta(loadMixedPosition(posq, posqCorrection, slotOf[i]),
                                                 loadMixedPosition(posq, posqCorrection, slotOf[j]), boxA, boxB, boxC);
+                if (!(dot(d, d) < cutoff2))
+                    continue;   // a candidate beyond the cutoff at this step
+                mixed4 vi = velocityOf[i], vj = velocityOf[j];
+                mixed ei = energyOf[i], ej = energyOf[j];
                 const bool failed = pairUpdate(atomOf[i], atomOf[j], d, typeOf[i], typeOf[j], &vi, &vj, &ei, &ej, c,
                         pairTable, heatCapacityTable, zigguratX, zigguratF, zigguratRatio);
                 velocityOf[i] = vi;
                 velocityOf[j] = vj;
                 energyOf[i] = ei;
                 energyOf[j] = ej;
-                if (failed && entry.y < myFailure) {
-                    myFailure = entry.y;
+                if (failed && n < myFailure) {
+                    myFailure = n;
                     myParticle = (ei > 0 ? atomOf[j] : atomOf[i]);
                     myEnergy = (ei > 0 ? ej : ei);
-                    ATOMIC_MIN(&firstFailures[sub], entry.y);
+                    ATOMIC_MIN(&firstFailures[sub], n);
                 }
             }
             SYNC_THREADS;

@@ -1,0 +1,58 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
+"""The sweep's order is made at builds and kept between them (docs/theory.md section 6): the rule that decides a
+build, checked against the trajectory itself. A State carries the positions of the order's last build
+(``sweepBuild``); they must be the positions of the last step at which some particle had moved more than half the
+skin (0.05 R) from its position at the build before, computed here from the positions of every step."""
+
+import re
+
+import numpy as np
+import openmm
+import pytest
+from conftest import GPU_PLATFORMS
+from helpers import TEMPERATURE, argon_integrator, lattice_liquid
+from openmm import unit
+
+#: The skin of the candidates as a fraction of R, and the displacement^2 that makes a build: (skin/2)^2, computed as
+#: the definition computes it (gendpde/GenDPDESweepDefinition.h), so that the comparison below is exact.
+SKIN_FRACTION = 0.1
+
+
+def sweep_build(context, num_particles):
+    """(box (3 x 3), positions (N x 3)) of the sweep order's last build, from a State's integrator parameters."""
+    state = context.getState(getIntegratorParameters=True)
+    text = re.search(r'sweepBuild="([^"]*)"', openmm.XmlSerializer.serialize(state)).group(1)
+    values = np.array([float.fromhex(token) for token in text.split()])
+    assert values.size == 9 + 3 * num_particles
+    return values[:9].reshape(3, 3), values[9:].reshape(-1, 3)
+
+
+@pytest.mark.parametrize("name", ["Reference", "CPU"] + [pytest.param(name, marks=pytest.mark.gpu)
+                                                         for name in GPU_PLATFORMS])
+def test_the_order_is_built_when_a_particle_has_moved_half_the_skin(name):
+    system, force, positions = lattice_liquid(5, seed=3)
+    cutoff = force.getCutoffDistance().value_in_unit(unit.nanometer)
+    skin = SKIN_FRACTION * cutoff
+    limit = 0.25 * skin * skin
+    integrator = argon_integrator(0.01 * unit.picosecond)
+    integrator.setRandomNumberSeed(17)
+    integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
+    platform = openmm.Platform.getPlatformByName(name)
+    context = openmm.Context(system, integrator, platform)
+    context.setPositions(positions)
+    context.setVelocitiesToTemperature(3 * TEMPERATURE * unit.kelvin, 18)   # hot: builds every few steps
+    build, builds = None, 0
+    for _ in range(60):
+        x = context.getState(getPositions=True).getPositions(asNumpy=True).value_in_unit(unit.nanometer)
+        if build is not None:
+            d = x - build
+            moved = (d[:, 0] * d[:, 0] + d[:, 1] * d[:, 1]) + d[:, 2] * d[:, 2]
+        if build is None or np.any(moved > limit):
+            build, builds = x, builds + 1
+        integrator.step(1)
+    box, positions_at_build = sweep_build(context, system.getNumParticles())
+    assert 3 <= builds <= 30   # the rule is exercised: neither every step nor once
+    assert np.array_equal(positions_at_build, build)
+    expected_box = context.getState().getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    assert np.array_equal(box, expected_box)

@@ -142,7 +142,6 @@ class FixGenDPDE : public Fix {
   int has_build = 0;
   double build_boxlo[3] = {0.0, 0.0, 0.0}, build_boxhi[3] = {0.0, 0.0, 0.0};
   double build_sublo[3] = {0.0, 0.0, 0.0}, build_subhi[3] = {0.0, 0.0, 0.0};    // the blocks'
-
   bool setup_pending = false;    // the first sweep of a run: build, or rebuild the kept order
   bool build_pending = false;    // the rule fired after the last drift
   bigint indexed_at = -1;        // neighbor->lastcall when the order's local indices were set

@@ -294,6 +294,19 @@ def test_restart_continues_the_run(lammps, tmp_path, steps, restart_at):
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
+def test_a_second_run_command_continues_the_order(lammps, tmp_path):
+    """run 30 then run 30 in one input: the second run's first step makes the order of the first run's last build
+    again (from each atom's position at that build) rather than a new one from its own positions, as OpenMM's
+    integrator keeps its order between step() calls: the 60 steps end where OpenMM's end, to rounding."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 60, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 30,
+                                                          velocities, 2, edit=lambda script: script + "run 30\n")
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
 @pytest.mark.parametrize("change, words", [
     (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vd 1.35 #"), "density estimator 'vd'"),
     (("pair_coeff 1 1 Tait", "pair_coeff 1 1 Tait 1.0 #"), "law Tait takes 4 parameters"),

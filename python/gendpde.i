@@ -336,6 +336,13 @@ int sweepCellCount(double extent, double range, bool periodic) {
         throw OpenMM::OpenMMException("sweepCellCount: the extent and the range must be > 0");
     return SweepDefinition::cellCount(extent, range, periodic);
 }
+/** The reach of the sweep's candidate pairs for this pair range, (1 + skin fraction) R = 1.1 R: the sweep's cells
+ *  are at least this wide (GenDPDESweepDefinition.h). */
+double sweepCandidateRange(double range) {
+    if (!(range > 0.0))
+        throw OpenMM::OpenMMException("sweepCandidateRange: the range must be > 0");
+    return SweepDefinition::candidateRange(range);
+}
 /** The fewest sweep cells per direction that a sweep split across subdomains (the LAMMPS fix) takes. */
 int sweepMinCellsAcrossSubdomains() {
     return SweepDefinition::minCellsAcrossSubdomains;

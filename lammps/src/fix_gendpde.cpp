@@ -166,14 +166,19 @@ FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   peratom_flag = 1;
   size_peratom_cols = 0;
   peratom_freq = 1;
-  comm_forward = 7;
+  comm_forward = 5;
   comm_reverse = 5;
+  // the sweep's order asks LAMMPS to build its lists at the steps it is built at (post_integrate)
+  force_reneighbor = 1;
+  next_reneighbor = -1;
+  create_attribute = 1;
   grow_arrays(atom->nmax);
   atom->add_callback(Atom::GROW);
   atom->add_callback(Atom::RESTART);
   for (int i = 0; i < atom->nlocal; i++) {
     energy[i] = 0.0;
     entropy[i] = std::numeric_limits<double>::quiet_NaN();
+    set_arrays(i);
   }
 }
 
@@ -183,11 +188,13 @@ FixGenDPDE::~FixGenDPDE()
   atom->delete_callback(id, Atom::RESTART);
   memory->destroy(energy);
   memory->destroy(entropy);
+  memory->destroy(build_x);
+  memory->destroy(build_image);
 }
 
 int FixGenDPDE::setmask()
 {
-  return INITIAL_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
+  return INITIAL_INTEGRATE | POST_INTEGRATE | FINAL_INTEGRATE | PRE_FORCE;
 }
 
 void FixGenDPDE::init()
@@ -260,6 +267,15 @@ void FixGenDPDE::setup_pre_force(int /*vflag*/)
         FLERR,
         "fix gendpde: the internal energies are not set: give initial T (or read a restart file)");
   if (mode != CONSERVATIVE) {
+    // The sweep's candidates (pairs closer than 1.1 R at the order's build) and its ghosts hold
+    // while no atom has moved more than 0.05 R since the build; the fix makes LAMMPS build its
+    // lists then, so a skin of 0.1 R keeps LAMMPS's own lists (and its check, skin/2) complete.
+    const double least = SweepDefinition::skinFraction * pair_range;
+    if (!(neighbor->skin >= least))
+      error->all(FLERR,
+                 "fix gendpde: the neighbour skin {} is below {} = 0.1 R (R = {}), which the "
+                 "sweep's order needs: neighbor {} bin",
+                 neighbor->skin, least, pair_range, least);
     const double need = ghost_need();
     for (int d = 0; d < 3; d++)
       if (comm->cutghost[d] < need)
@@ -269,6 +285,9 @@ void FixGenDPDE::setup_pre_force(int /*vflag*/)
             "the skin): comm_modify cutoff {}",
             comm->cutghost[d], need, need);
   }
+  // the first sweep of the run builds the order (or the kept one again: sweep)
+  setup_pending = true;
+  build_pending = false;
 }
 
 double FixGenDPDE::ghost_need() const
@@ -356,19 +375,61 @@ void FixGenDPDE::kick()
 
 /* ---------------------------------------------------------------------- */
 
+void FixGenDPDE::post_integrate()
+{
+  // The rule of the order's builds, after the drift (before LAMMPS decides whether to build its
+  // lists): when it fires, LAMMPS builds them at this step and the next sweep builds the order from
+  // these positions.
+  if (!(terms.dissipation || terms.conduction) || setup_pending) return;
+  if (rule_fires()) {
+    build_pending = true;
+    next_reneighbor = update->ntimestep;
+  }
+}
+
+bool FixGenDPDE::rule_fires()
+{
+  // Whether the order must be built (GenDPDESweepDefinition.h): there is none, the box has changed,
+  // or some atom has moved more than rebuildDisplacement2(R) from its position at the build (or has
+  // none: it came later). A global OR over the ranks.
+  int fires = has_build ? 0 : 1;
+  for (int d = 0; d < 3; d++)
+    if (domain->boxlo[d] != build_boxlo[d] || domain->boxhi[d] != build_boxhi[d]) fires = 1;
+  const double limit = SweepDefinition::rebuildDisplacement2(pair_range);
+  double **x = atom->x;
+  const imageint *image = atom->image;
+  const int *mask = atom->mask;
+  const double *prd = domain->prd;
+  for (int i = 0; i < atom->nlocal && !fires; i++) {
+    if (!(mask[i] & groupbit)) continue;
+    const int now[3] = {(int) (image[i] & IMGMASK) - IMGMAX,
+                        (int) (image[i] >> IMGBITS & IMGMASK) - IMGMAX,
+                        (int) (image[i] >> IMG2BITS) - IMGMAX};
+    double moved2 = 0.0;
+    for (int d = 0; d < 3; d++) {
+      const double delta = x[i][d] + (now[d] - build_image[i][d]) * prd[d] - build_x[i][d];
+      moved2 += delta * delta;
+    }
+    if (!(moved2 <= limit)) fires = 1;    // (NaN: no build position)
+  }
+  int any = 0;
+  MPI_Allreduce(&fires, &any, 1, MPI_INT, MPI_MAX, world);
+  return any != 0;
+}
+
 void FixGenDPDE::prepare_cells()
 {
-  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them), and this rank's
-  // blocks: those whose centre, boxlo + (2b + 1.5) w, is in the subdomain.
-  const double range = pair_range;
+  // The sweep's cells (SweepDefinition, as GenDPDESweepOrder computes them: at least 1.1 R wide),
+  // and this rank's blocks: those whose centre, boxlo + (2b + 1.5) w, is in the subdomain.
+  const double reach = SweepDefinition::candidateRange(pair_range);
   for (int d = 0; d < 3; d++) {
-    num_cells[d] = SweepDefinition::cellCount(domain->prd[d], range, true);
+    num_cells[d] = SweepDefinition::cellCount(domain->prd[d], reach, true);
     if (num_cells[d] < SweepDefinition::minCellsAcrossSubdomains)
       error->all(FLERR,
-                 "fix gendpde: the box is {} wide along {}, less than {} pair ranges R = {}: too "
-                 "small for "
-                 "the sweep across subdomains",
-                 domain->prd[d], "xyz"[d], SweepDefinition::minCellsAcrossSubdomains, range);
+                 "fix gendpde: the box is {} wide along {}, less than {} candidate ranges 1.1 R = "
+                 "{} (R = {}): too small for the sweep across subdomains",
+                 domain->prd[d], "xyz"[d], SweepDefinition::minCellsAcrossSubdomains, reach,
+                 pair_range);
     cell_width[d] = domain->prd[d] / num_cells[d];
     const double lo = domain->sublo[d], hi = domain->subhi[d], base = domain->boxlo[d],
                  w = cell_width[d];
@@ -389,7 +450,6 @@ void FixGenDPDE::sweep()
   const double mvv2e = force->mvv2e;
   if (sweep_energy.size() < (size_t) nall) {
     sweep_energy.resize(nall);
-    extended_cell.resize(3 * (size_t) nall);
     modified.resize(nall);
     touched.resize(nall);
   }
@@ -400,65 +460,51 @@ void FixGenDPDE::sweep()
                  "fix gendpde: the ghost cutoff {} is below what the sweep needs, {}: comm_modify "
                  "cutoff {}",
                  comm->cutghost[d], need, need);
-  prepare_cells();
 
-  // Each owner's cell from its wrapped position (as OpenMM computes it), its velocity and energy
-  // eps/mvv2e (the pair updates' units: kinetic energies m v^2/2), to every ghost.
-  const bool isoenergetic = (mode == ISOENERGETIC);
-  double **x = atom->x;
-  for (int i = 0; i < nlocal; i++) {
-    sweep_energy[i] = isoenergetic ? energy[i] / mvv2e : 0.0;
+  // The order: built at the first sweep of a run (from the positions of its last build if the run
+  // continues one and the rule does not fire: the next run command, or a restart file) or after
+  // the rule fired (LAMMPS then built its lists at the previous step); kept otherwise, its local
+  // indices found again by atom ID when LAMMPS built its lists for reasons of its own.
+  if (setup_pending) {
+    build_order(!rule_fires());
+    setup_pending = build_pending = false;
+  } else if (build_pending) {
+    if (neighbor->lastcall != update->ntimestep - 1)
+      error->all(FLERR,
+                 "fix gendpde: LAMMPS did not build its neighbour lists at step {} as the "
+                 "sweep's order asked",
+                 update->ntimestep - 1);
+    build_order(false);
+    build_pending = false;
+  } else if (neighbor->lastcall != indexed_at) {
+    // the subdomains changed (fix balance): the same order made again from the build's positions
+    // for the new ones; else the same pairs found again
+    bool moved = false;
     for (int d = 0; d < 3; d++)
-      extended_cell[3 * i + d] = SweepDefinition::periodicCell(
-          (x[i][d] - domain->boxlo[d]) / domain->prd[d], num_cells[d]);
+      moved |= domain->sublo[d] != build_sublo[d] || domain->subhi[d] != build_subhi[d];
+    int any = 0, local = moved ? 1 : 0;
+    MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, world);
+    if (any)
+      build_order(true);
+    else
+      remap_order();
   }
-  comm_phase = 0;
-  comm->forward_comm_fix(this, 7);
-  // Each particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it
-  // where it is.
-  for (int i = 0; i < nall; i++)
-    for (int d = 0; d < 3; d++) {
-      const int owner = extended_cell[3 * i + d];
-      const double approximate = std::floor((x[i][d] - domain->boxlo[d]) / cell_width[d]);
-      const double images = std::nearbyint((approximate - owner) / num_cells[d]);
-      extended_cell[3 * i + d] = owner + num_cells[d] * (int) images;
-    }
-  if (neighbor->lastcall != candidates_built_at) {
-    check_atom_ids();
-    rank_blocks();
-    find_candidates();
-    candidates_built_at = neighbor->lastcall;
-    built_positions.resize(3 * (size_t) nlocal);
-    for (int i = 0; i < nlocal; i++)
-      for (int d = 0; d < 3; d++) built_positions[3 * i + d] = x[i][d];
-  } else {
-    // The candidates (and the ghosts) hold only while every particle has moved less than half the
-    // skin since LAMMPS built its lists, which neigh_modify every 1 delay 0 check yes guarantees;
-    // other settings may not.
-    const double limit = 0.25 * neighbor->skin * neighbor->skin;
-    for (int i = 0; i < nlocal; i++) {
-      const double dx = x[i][0] - built_positions[3 * i], dy = x[i][1] - built_positions[3 * i + 1],
-                   dz = x[i][2] - built_positions[3 * i + 2];
-      if (!(dx * dx + dy * dy + dz * dz <= limit))
-        error->one(
-            FLERR,
-            "fix gendpde: atom {} has moved {} since the last neighbour list at step {}, more than "
-            "half "
-            "the skin: the sweep's pairs are no longer complete; use neigh_modify every 1 delay 0 "
-            "check yes",
-            atom->tag[i], std::sqrt(dx * dx + dy * dy + dz * dz), update->ntimestep);
-    }
-  }
-  order_pairs();
+
+  // Each owner's velocity and energy eps/mvv2e (the pair updates' units: kinetic energies m v^2/2),
+  // to every ghost.
+  const bool isoenergetic = (mode == ISOENERGETIC);
+  for (int i = 0; i < nlocal; i++) sweep_energy[i] = isoenergetic ? energy[i] / mvv2e : 0.0;
+  comm_phase = START;
+  comm->forward_comm_fix(this, 4);
   std::fill(touched.begin(), touched.begin() + nall, 0);
   // Colour by colour: this rank's blocks of the colour, then the ghosts' new values to their owners
   // and back out.
   for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
     std::fill(modified.begin(), modified.begin() + nall, 0);
     for (int rank = colour_start[colour]; rank < colour_start[colour + 1]; rank++)
-      sweep_pairs(&sweep_list[block_rank_start[rank]],
+      sweep_pairs(sweep_list.data() + block_rank_start[rank],
                   block_rank_start[rank + 1] - block_rank_start[rank], isoenergetic);
-    comm_phase = 1;
+    comm_phase = COLOUR;
     comm->reverse_comm_fix(this, 5);
     comm->forward_comm_fix(this, 5);
   }
@@ -467,11 +513,134 @@ void FixGenDPDE::sweep()
       if (touched[i]) energy[i] = sweep_energy[i] * mvv2e;
 }
 
+void FixGenDPDE::build_order(bool from_stored)
+{
+  // The order from the positions of its build: the current ones (LAMMPS has just built its lists),
+  // or (from_stored) those each atom keeps from the last build, which every ghost takes from its
+  // owner shifted as LAMMPS shifts positions, so that the order is the one that build made.
+  const int nlocal = atom->nlocal, nall = nlocal + atom->nghost;
+  double **x = atom->x;
+  const imageint *image = atom->image;
+  if (sweep_x.size() < 3 * (size_t) nall) {
+    sweep_x.resize(3 * (size_t) nall);
+    extended_cell.resize(3 * (size_t) nall);
+  }
+  if (from_stored) {
+    const double *prd = domain->prd;
+    for (int i = 0; i < nlocal; i++) {
+      const int now[3] = {(int) (image[i] & IMGMASK) - IMGMAX,
+                          (int) (image[i] >> IMGBITS & IMGMASK) - IMGMAX,
+                          (int) (image[i] >> IMG2BITS) - IMGMAX};
+      for (int d = 0; d < 3; d++) {
+        const int shift = build_image[i][d] - now[d];
+        // (an atom outside the fix's group may have none: it takes no part)
+        if (!std::isfinite(build_x[i][d]))
+          sweep_x[3 * i + d] = x[i][d];
+        else
+          sweep_x[3 * i + d] = shift == 0 ? build_x[i][d] : build_x[i][d] + shift * prd[d];
+      }
+    }
+    comm_phase = POSITIONS;
+    comm->forward_comm_fix(this, 3);
+  } else {
+    for (int i = 0; i < nall; i++)
+      for (int d = 0; d < 3; d++) sweep_x[3 * i + d] = x[i][d];
+    for (int i = 0; i < nlocal; i++) {
+      const int now[3] = {(int) (image[i] & IMGMASK) - IMGMAX,
+                          (int) (image[i] >> IMGBITS & IMGMASK) - IMGMAX,
+                          (int) (image[i] >> IMG2BITS) - IMGMAX};
+      for (int d = 0; d < 3; d++) {
+        build_x[i][d] = x[i][d];
+        build_image[i][d] = now[d];
+      }
+    }
+    for (int d = 0; d < 3; d++) {
+      build_boxlo[d] = domain->boxlo[d];
+      build_boxhi[d] = domain->boxhi[d];
+    }
+  }
+  has_build = 1;
+  for (int d = 0; d < 3; d++) {
+    build_sublo[d] = domain->sublo[d];
+    build_subhi[d] = domain->subhi[d];
+  }
+  check_atom_ids();
+  prepare_cells();
+  rank_blocks();
+  // Each owner's cell from its wrapped position (as OpenMM computes it), to every ghost; then each
+  // particle's cell in this rank's frame: its owner's cell plus the multiple of n that puts it where
+  // it is.
+  for (int i = 0; i < nlocal; i++)
+    for (int d = 0; d < 3; d++)
+      extended_cell[3 * i + d] = SweepDefinition::periodicCell(
+          (sweep_x[3 * i + d] - domain->boxlo[d]) / domain->prd[d], num_cells[d]);
+  comm_phase = CELLS;
+  comm->forward_comm_fix(this, 3);
+  for (int i = 0; i < nall; i++)
+    for (int d = 0; d < 3; d++) {
+      const int owner = extended_cell[3 * i + d];
+      const double approximate =
+          std::floor((sweep_x[3 * i + d] - domain->boxlo[d]) / cell_width[d]);
+      const double images = std::nearbyint((approximate - owner) / num_cells[d]);
+      extended_cell[3 * i + d] = owner + num_cells[d] * (int) images;
+    }
+  find_candidates();
+  order_blocks();
+  indexed_at = neighbor->lastcall;
+}
+
+void FixGenDPDE::remap_order()
+{
+  // LAMMPS built its lists at a step the rule did not choose (neigh_modify settings of its own, a
+  // restart file written): the order stays, its particles are found again by atom ID, each at its
+  // image nearest its block's centre (each is within 1.5 cells + 0.05 R of it, inside the ghost
+  // cutoff; its other images are at least 2.5 cells farther).
+  const int nall = atom->nlocal + atom->nghost;
+  const tagint *tag = atom->tag;
+  double **x = atom->x;
+  std::vector<int> &by_tag = bin_next;    // (scratch) local indices sorted by atom ID
+  by_tag.resize(nall);
+  for (int i = 0; i < nall; i++) by_tag[i] = i;
+  std::sort(by_tag.begin(), by_tag.end(), [&](int a, int b) {
+    return tag[a] < tag[b];
+  });
+  const int num_blocks = colour_start.back();
+  auto nearest = [&](std::uint32_t index, const double *centre) {
+    const tagint id = (tagint) index + 1;
+    auto first = std::lower_bound(by_tag.begin(), by_tag.end(), id, [&](int a, tagint value) {
+      return tag[a] < value;
+    });
+    int best = -1;
+    double best2 = 0.0;
+    for (auto it = first; it != by_tag.end() && tag[*it] == id; ++it) {
+      double r2 = 0.0;
+      for (int d = 0; d < 3; d++) r2 += (x[*it][d] - centre[d]) * (x[*it][d] - centre[d]);
+      if (best < 0 || r2 < best2) {
+        best = *it;
+        best2 = r2;
+      }
+    }
+    if (best < 0)
+      error->one(FLERR,
+                 "fix gendpde: atom {} of the sweep's order is not on this rank or its ghosts at "
+                 "step {}",
+                 id, update->ntimestep);
+    return best;
+  };
+  for (int r = 0; r < num_blocks; r++)
+    for (int k = block_rank_start[r]; k < block_rank_start[r + 1]; k++) {
+      SweepPair &pair = sweep_list[k];
+      pair.li = nearest(pair.i, &block_centre[3 * r]);
+      pair.lj = nearest(pair.j, &block_centre[3 * r]);
+    }
+  indexed_at = neighbor->lastcall;
+}
+
 void FixGenDPDE::check_atom_ids()
 {
   // A pair's random numbers are keyed on its particles' indices, atom ID - 1, as 32-bit numbers (as
   // OpenMM's particle indices): a larger ID (possible with -DLAMMPS_BIGBIG) would share the streams
-  // of another particle. Refused here, whenever LAMMPS has built its lists (atoms may have come).
+  // of another particle. Refused here, at each build of the order (atoms may have come).
   const std::int64_t max_id = std::int64_t(1) << 32;
   for (int i = 0; i < atom->nlocal; i++)
     if ((std::int64_t) atom->tag[i] > max_id)
@@ -484,38 +653,38 @@ void FixGenDPDE::check_atom_ids()
 
 void FixGenDPDE::find_candidates()
 {
-  // The particles within a skin of this rank's cells (no other can reach them before the next
-  // neighbour list: each moves less than skin/2), binned in cells at least R + skin wide; their
-  // pairs closer than R + skin, found when LAMMPS has built its own lists.
+  // The candidates of this rank's blocks: the pairs closer than candidateRange(R) = 1.1 R at the
+  // build's positions among the particles (local or ghost) in the cells those blocks cover, binned
+  // in bins at least 1.1 R wide.
   //
   // Not a neighbour list requested from LAMMPS: a half list with ghosts (newton off, ghost = 1)
-  // gives the same candidates (the sweep's dumps are byte for byte the same) but costs more. LAMMPS
-  // builds neighbours for every ghost out to the ghost cutoff (1.5 sweep cells + skin on every
-  // side), while the sweep needs the pairs of the particles near this rank's blocks only (about one
-  // cell more than the subdomain): at 32,000 particles on one rank, 1.72 against 1.25 atoms per
-  // owned atom, and the list's build (NPairHalfBinNewtoffGhost, 7.1% of the step) with the copy of
-  // its pairs (1.4%) took 8.5% of the step against 3.6% here (perf, 200 steps; 6.8% with bins of
-  // R + skin): 3-5% more per step (docs/lammps.md).
+  // would give the same candidates but costs more. LAMMPS builds neighbours for every ghost out to
+  // the ghost cutoff (1.5 sweep cells + skin on every side), while the sweep needs the pairs of the
+  // particles in the cells of this rank's blocks only (about one cell more than the subdomain).
   const int nall = atom->nlocal + atom->nghost;
-  double **x = atom->x;
+  const double *p = sweep_x.data();
   const tagint *tag = atom->tag;
   const int *mask = atom->mask;
-  const double reach = pair_range + neighbor->skin, reach2 = reach * reach;
+  const double reach = SweepDefinition::candidateRange(pair_range), reach2 = reach * reach;
   double low[3], high[3];
   int bins[3];
-  const double margin = neighbor->skin + 1e-9 * pair_range;
+  const double margin = 1e-9 * pair_range;
   for (int d = 0; d < 3; d++) {
     low[d] = domain->boxlo[d] + grid_low[d] * cell_width[d] - margin;
     high[d] = domain->boxlo[d] + (grid_low[d] + grid_count[d]) * cell_width[d] + margin;
-    bins[d] = std::max(1, (int) ((high[d] - low[d]) / reach));
+    bins[d] = std::max(1, (int) ((high[d] - low[d]) / (reach + 2 * margin)));
   }
   bin_head.assign((size_t) bins[0] * bins[1] * bins[2], -1);
   bin_next.assign(nall, -1);
   auto bin_of = [&](int i, int *b) {
     for (int d = 0; d < 3; d++) {
-      if (!(x[i][d] >= low[d] && x[i][d] <= high[d])) return false;
+      const int cell = extended_cell[3 * i + d] - grid_low[d];
+      if (cell < 0 || cell >= grid_count[d]) return false;
+      // (clamped: a position rounded just outside its cell stays in a bin next to its cell's)
       b[d] = std::max(
-          0, std::min(bins[d] - 1, (int) ((x[i][d] - low[d]) / (high[d] - low[d]) * bins[d])));
+          0,
+          std::min(bins[d] - 1,
+                   (int) std::floor((p[3 * i + d] - low[d]) / (high[d] - low[d]) * bins[d])));
     }
     return true;
   };
@@ -542,24 +711,19 @@ void FixGenDPDE::find_candidates()
                 if (other < home) continue;
                 for (int b = (other == home ? bin_next[a] : bin_head[other]); b >= 0;
                      b = bin_next[b]) {
-                  const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1],
-                               dz = x[a][2] - x[b][2];
+                  const double dx = p[3 * a] - p[3 * b], dy = p[3 * a + 1] - p[3 * b + 1],
+                               dz = p[3 * a + 2] - p[3 * b + 2];
                   if (!(dx * dx + dy * dy + dz * dz < reach2)) continue;
+                  const int group = block_rank_of(a, b);
+                  if (group < 0) continue;
                   // (atom IDs 1 ... 2^32: check_atom_ids)
                   const auto ta = (std::uint32_t) (tag[a] - 1), tb = (std::uint32_t) (tag[b] - 1);
-                  candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, 0}
-                                               : SweepPair{tb, ta, b, a, 0});
+                  candidates.push_back(ta < tb ? SweepPair{ta, tb, a, b, group}
+                                               : SweepPair{tb, ta, b, a, group});
                 }
               }
       }
-  // By the block each candidate is in now (the others last), then in (i, j) order, the order that
-  // defines the sweep within a block: each step reads a block's particles together, and the pairs
-  // that are still in the same block come out in order.
-  const int num_blocks = colour_start.back();
-  for (SweepPair &candidate : candidates) {
-    const int rank = block_rank_of(candidate.li, candidate.lj);
-    candidate.group = rank >= 0 ? rank : num_blocks;
-  }
+  // By block, then in (i, j) order.
   std::sort(candidates.begin(), candidates.end(), [](const SweepPair &p, const SweepPair &q) {
     return p.group < q.group || (p.group == q.group && pair_key(p) < pair_key(q));
   });
@@ -582,97 +746,88 @@ int FixGenDPDE::block_rank_of(int a, int b) const
 void FixGenDPDE::rank_blocks()
 {
   // The ranks of this rank's blocks: colour by colour, by index within a colour (any order within a
-  // colour gives the same result: its blocks share no particle).
+  // colour gives the same result: its blocks share no particle); and their centres.
   const int num_blocks = block_count[0] * block_count[1] * block_count[2];
   rank_of_block.assign(num_blocks, 0);
+  block_centre.assign(3 * (size_t) num_blocks, 0.0);
   colour_start.assign(SweepDefinition::numColours + 1, 0);
   int rank = 0;
   for (int colour = 0; colour < SweepDefinition::numColours; colour++) {
     colour_start[colour] = rank;
     for (int b = 0; b < num_blocks; b++) {
-      const int bx = block_low[0] + b % block_count[0],
-                by = block_low[1] + (b / block_count[0]) % block_count[1];
-      const int bz = block_low[2] + b / (block_count[0] * block_count[1]);
-      if (SweepDefinition::blockColour(bx, by, bz) == colour) rank_of_block[b] = rank++;
+      const int index[3] = {block_low[0] + b % block_count[0],
+                            block_low[1] + (b / block_count[0]) % block_count[1],
+                            block_low[2] + b / (block_count[0] * block_count[1])};
+      if (SweepDefinition::blockColour(index[0], index[1], index[2]) != colour) continue;
+      for (int d = 0; d < 3; d++)
+        block_centre[3 * rank + d] = domain->boxlo[d] + (2 * index[d] + 1.5) * cell_width[d];
+      rank_of_block[b] = rank++;
     }
   }
   colour_start[SweepDefinition::numColours] = rank;
 }
 
-void FixGenDPDE::order_pairs()
+void FixGenDPDE::order_blocks()
 {
-  // Each candidate closer than R goes to the block of its home cell, if that block is this rank's.
-  // A block's pairs are those of its group of candidates still in it (in (i, j) order), merged in
-  // (i, j) order with the few that moved in from other groups since the candidates were found; then
-  // the lists of four consecutive first particles are interleaved.
+  // The order within each block (SweepDefinition::assignLevels): its candidates in (i, j) order,
+  // each at the lowest level none of its particles' earlier pairs has; the sequence level 0, level
+  // 1, ..., each level in (i, j) order.
   const int num_blocks = colour_start.back();
-  double **x = atom->x;
-  const double range2 = pair_range * pair_range;
-  const int count = candidates.size();
-  pair_block_rank.resize(count);
+  const int count = candidates.size(), nall = atom->nlocal + atom->nghost;
   block_rank_start.assign(num_blocks + 1, 0);
-  moved_in.assign(num_blocks, 0);
-  for (int k = 0; k < count; k++) {
-    const SweepPair &p = candidates[k];
-    const int a = p.li, b = p.lj;
-    const double dx = x[a][0] - x[b][0], dy = x[a][1] - x[b][1], dz = x[a][2] - x[b][2];
-    const int rank = dx * dx + dy * dy + dz * dz < range2 ? block_rank_of(a, b) : -1;
-    if (rank >= 0) {
-      block_rank_start[rank + 1]++;
-      moved_in[rank] += (rank != p.group);
-    }
-    pair_block_rank[k] = rank;
-  }
+  for (const SweepPair &p : candidates) block_rank_start[p.group + 1]++;
   for (int r = 0; r < num_blocks; r++) block_rank_start[r + 1] += block_rank_start[r];
-  const int total = block_rank_start[num_blocks];
-  block_pairs.resize(total);
-  block_first.resize(total);
-  block_order.resize(total);
-  std::vector<int> &next =
-      bin_next;    // (scratch: the next place of a block's own pairs, then of those moved in)
-  next.resize(2 * (size_t) num_blocks);
+  sweep_list.resize(count);
+  slot_of.assign(nall, -1);
+  std::vector<int> members, by_level;
   for (int r = 0; r < num_blocks; r++) {
-    next[2 * r] = block_rank_start[r];
-    next[2 * r + 1] = block_rank_start[r + 1] - moved_in[r];
+    const int start = block_rank_start[r], size = block_rank_start[r + 1] - start;
+    // the block's particles numbered 0, 1, ... and each one's number of pairs
+    members.clear();
+    local_i.resize(size);
+    local_j.resize(size);
+    degree.clear();
+    for (int k = 0; k < size; k++) {
+      const SweepPair &p = candidates[start + k];
+      for (int end = 0; end < 2; end++) {
+        const int particle = end == 0 ? p.li : p.lj;
+        if (slot_of[particle] < 0) {
+          slot_of[particle] = members.size();
+          members.push_back(particle);
+          degree.push_back(0);
+        }
+        degree[slot_of[particle]]++;
+        (end == 0 ? local_i : local_j)[k] = slot_of[particle];
+      }
+    }
+    const int max_degree = degree.empty() ? 0 : *std::max_element(degree.begin(), degree.end());
+    const int words = SweepDefinition::levelWords(max_degree);
+    level_masks.assign((size_t) members.size() * words, 0);
+    level_of.resize(size);
+    const int num_levels = SweepDefinition::assignLevels(
+        local_i.data(), local_j.data(), size, words, level_masks.data(), level_of.data());
+    // counting sort by level, stable: (i, j) order within a level
+    by_level.assign(num_levels + 1, 0);
+    for (int k = 0; k < size; k++) by_level[level_of[k] + 1]++;
+    for (int l = 0; l < num_levels; l++) by_level[l + 1] += by_level[l];
+    for (int k = 0; k < size; k++)
+      sweep_list[start + by_level[level_of[k]]++] = candidates[start + k];
+    for (int particle : members) slot_of[particle] = -1;
   }
-  for (int k = 0; k < count; k++) {
-    const int rank = pair_block_rank[k];
-    if (rank >= 0) block_pairs[next[2 * rank + (rank != candidates[k].group)]++] = k;
-  }
-  auto by_pair = [&](int p, int q) {
-    return pair_key(candidates[p]) < pair_key(candidates[q]);
-  };
-  for (int r = 0; r < num_blocks; r++) {
-    if (moved_in[r] == 0) continue;
-    int *begin = &block_pairs[block_rank_start[r]];
-    int *middle = &block_pairs[block_rank_start[r + 1] - moved_in[r]],
-        *end = &block_pairs[0] + block_rank_start[r + 1];
-    std::sort(middle, end, by_pair);
-    std::inplace_merge(begin, middle, end, by_pair);
-  }
-  // (interleaveRuns compares first particles for equality only: an index >= 2^31 may wrap to a
-  // negative int and still compares right)
-  for (int k = 0; k < total; k++) block_first[k] = (int) candidates[block_pairs[k]].i;
-  for (int r = 0; r < num_blocks; r++)
-    SweepDefinition::interleaveRuns(
-        &block_pairs[block_rank_start[r]], &block_first[block_rank_start[r]],
-        block_rank_start[r + 1] - block_rank_start[r], &block_order[block_rank_start[r]]);
-  // the pairs themselves in sweep order: the sweep reads them one after the other
-  sweep_list.resize(total);
-  for (int k = 0; k < total; k++) sweep_list[k] = candidates[block_order[k]];
 }
 
 void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergetic)
 {
   // The pair updates (docs/theory.md sections 5-7): the core's pair step, as on every OpenMM
   // platform, with the run's terms (any pair of types with friction, with conduction), as
-  // GenDPDEIntegrator decides them.
+  // GenDPDEIntegrator decides them, for each candidate closer than R at this step's positions.
   double **x = atom->x, **v = atom->v;
   const tagint *tag = atom->tag;
   const double *rmass = atom->rmass;
   const int *type = atom->type;
   const int ntypes = atom->ntypes;
-  const double range = pair_range, mvv2e = force->mvv2e, boltzmann = force->boltz / mvv2e;
+  const double range = pair_range, range2 = range * range, mvv2e = force->mvv2e,
+               boltzmann = force->boltz / mvv2e;
   const double dt = update->dt, sqrt_dt = std::sqrt(dt);
   const std::uint64_t step = (std::uint64_t) (update->ntimestep - 1);
   const double *inverse_mass_of_type = pair_tables.inverse_mass.data(),
@@ -693,7 +848,9 @@ void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergeti
     const SweepPair &pair = pairs[k];
     const int i = pair.li, j = pair.lj;
     const double dx = x[i][0] - x[j][0], dy = x[i][1] - x[j][1], dz = x[i][2] - x[j][2];
-    const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    if (!(r2 < range2)) continue;
+    const double r = std::sqrt(r2);
     const double inverse_mass_i = rmass ? 1.0 / rmass[i] : inverse_mass_of_type[type[i]];
     const double inverse_mass_j = rmass ? 1.0 / rmass[j] : inverse_mass_of_type[type[j]];
     const int ab = type[i] * (ntypes + 1) + type[j];
@@ -718,18 +875,22 @@ void FixGenDPDE::sweep_pairs(const SweepPair *pairs, int count, bool isoenergeti
 
 /* ---------------------------------------------------------------------- */
 
-// The exchanges of the sweep. At its start (comm_phase 0) every ghost gets its owner's velocity,
-// energy and cell. After each colour only what the colour changed travels: a flag per particle,
-// then its velocity and energy if it was updated (on its rank, or received), so the reverse
-// exchange carries the ghosts a block updated to their owners and the forward one the owners' new
-// values out to every ghost.
+// The exchanges of the sweep. At its start (START) every ghost gets its owner's velocity and energy.
+// After each colour (COLOUR) only what the colour changed travels: a flag per particle, then its
+// velocity and energy if it was updated (on its rank, or received), so the reverse exchange carries
+// the ghosts a block updated to their owners and the forward one the owners' new values out to
+// every ghost. At a build every ghost gets its owner's cell (CELLS) and, when the order is made
+// again from the positions of its build, that position shifted as LAMMPS shifts the ghost's
+// (POSITIONS).
 
 int FixGenDPDE::pack_state(int i, double *buf) const
 {
-  // A particle's velocity and energy (and, at the sweep's start, its cell) for an exchange; after a
-  // colour only if the colour changed it, behind a flag.
   int m = 0;
-  if (comm_phase == 1) {
+  if (comm_phase == CELLS) {
+    for (int d = 0; d < 3; d++) buf[m++] = extended_cell[3 * i + d];
+    return m;
+  }
+  if (comm_phase == COLOUR) {
     buf[m++] = modified[i];
     if (!modified[i]) return m;
   }
@@ -738,8 +899,6 @@ int FixGenDPDE::pack_state(int i, double *buf) const
   buf[m++] = vi[1];
   buf[m++] = vi[2];
   buf[m++] = sweep_energy[i];
-  if (comm_phase == 0)
-    for (int d = 0; d < 3; d++) buf[m++] = extended_cell[3 * i + d];
   return m;
 }
 
@@ -749,7 +908,15 @@ int FixGenDPDE::unpack_state(int i, const double *buf)
   // a particle, so it gets exactly the bits the updating rank computed; it is then marked changed,
   // to be sent on in a later swap.
   int m = 0;
-  if (comm_phase == 1) {
+  if (comm_phase == CELLS) {
+    for (int d = 0; d < 3; d++) extended_cell[3 * i + d] = (int) buf[m++];
+    return m;
+  }
+  if (comm_phase == POSITIONS) {
+    for (int d = 0; d < 3; d++) sweep_x[3 * i + d] = buf[m++];
+    return m;
+  }
+  if (comm_phase == COLOUR) {
     if (buf[m++] == 0.0) return m;
     modified[i] = touched[i] = 1;
   }
@@ -758,14 +925,21 @@ int FixGenDPDE::unpack_state(int i, const double *buf)
   vi[1] = buf[m++];
   vi[2] = buf[m++];
   sweep_energy[i] = buf[m++];
-  if (comm_phase == 0)
-    for (int d = 0; d < 3; d++) extended_cell[3 * i + d] = (int) buf[m++];
   return m;
 }
 
-int FixGenDPDE::pack_forward_comm(int n, int *list, double *buf, int /*pbc_flag*/, int * /*pbc*/)
+int FixGenDPDE::pack_forward_comm(int n, int *list, double *buf, int pbc_flag, int *pbc)
 {
   int m = 0;
+  if (comm_phase == POSITIONS) {
+    // as AtomVec::pack_comm shifts positions (an orthogonal box: init)
+    double shift[3] = {0.0, 0.0, 0.0};
+    if (pbc_flag)
+      for (int d = 0; d < 3; d++) shift[d] = pbc[d] * domain->prd[d];
+    for (int k = 0; k < n; k++)
+      for (int d = 0; d < 3; d++) buf[m++] = sweep_x[3 * list[k] + d] + shift[d];
+    return m;
+  }
   for (int k = 0; k < n; k++) m += pack_state(list[k], buf + m);
   return m;
 }
@@ -806,6 +980,8 @@ void FixGenDPDE::grow_arrays(int nmax)
 {
   memory->grow(energy, nmax, "fix_gendpde:energy");
   memory->grow(entropy, nmax, "fix_gendpde:entropy");
+  memory->grow(build_x, nmax, 3, "fix_gendpde:build_x");
+  memory->grow(build_image, nmax, 3, "fix_gendpde:build_image");
   vector_atom = energy;
 }
 
@@ -813,28 +989,48 @@ void FixGenDPDE::copy_arrays(int i, int j, int /*delflag*/)
 {
   energy[j] = energy[i];
   entropy[j] = entropy[i];
+  for (int d = 0; d < 3; d++) {
+    build_x[j][d] = build_x[i][d];
+    build_image[j][d] = build_image[i][d];
+  }
 }
 
+void FixGenDPDE::set_arrays(int i)
+{
+  // an atom that came after the order's build (create_atoms, fix deposit, ...): no position at the
+  // build, so the next rule check builds the order
+  for (int d = 0; d < 3; d++) {
+    build_x[i][d] = std::numeric_limits<double>::quiet_NaN();
+    build_image[i][d] = 0;
+  }
+}
+
+// Per atom: eps_i, sigma_i, the position at the order's build and the image flags then (as
+// doubles: exact).
 int FixGenDPDE::pack_exchange(int i, double *buf)
 {
-  buf[0] = energy[i];
-  buf[1] = entropy[i];
-  return 2;
+  int m = 0;
+  buf[m++] = energy[i];
+  buf[m++] = entropy[i];
+  for (int d = 0; d < 3; d++) buf[m++] = build_x[i][d];
+  for (int d = 0; d < 3; d++) buf[m++] = build_image[i][d];
+  return m;
 }
 
 int FixGenDPDE::unpack_exchange(int nlocal, double *buf)
 {
-  energy[nlocal] = buf[0];
-  entropy[nlocal] = buf[1];
-  return 2;
+  int m = 0;
+  energy[nlocal] = buf[m++];
+  entropy[nlocal] = buf[m++];
+  for (int d = 0; d < 3; d++) build_x[nlocal][d] = buf[m++];
+  for (int d = 0; d < 3; d++) build_image[nlocal][d] = (int) buf[m++];
+  return m;
 }
 
 int FixGenDPDE::pack_restart(int i, double *buf)
 {
-  buf[0] = 3;    // (the count first: other fixes' unpack_restart skip it so)
-  buf[1] = energy[i];
-  buf[2] = entropy[i];
-  return 3;
+  buf[0] = 9;    // (the count first: other fixes' unpack_restart skip it so)
+  return 1 + pack_exchange(i, buf + 1);
 }
 
 void FixGenDPDE::unpack_restart(int nlocal, int nth)
@@ -842,34 +1038,54 @@ void FixGenDPDE::unpack_restart(int nlocal, int nth)
   double **extra = atom->extra;
   int m = 0;
   for (int i = 0; i < nth; i++) m += static_cast<int>(extra[nlocal][m]);
-  m++;
-  energy[nlocal] = extra[nlocal][m++];
-  entropy[nlocal] = extra[nlocal][m++];
+  const int count = static_cast<int>(extra[nlocal][m]);
+  if (count >= 9)
+    unpack_exchange(nlocal, &extra[nlocal][m + 1]);
+  else {
+    // a restart file of an earlier version: eps_i and sigma_i only (the order is built anew)
+    energy[nlocal] = extra[nlocal][m + 1];
+    entropy[nlocal] = extra[nlocal][m + 2];
+    set_arrays(nlocal);
+  }
 }
 
 int FixGenDPDE::size_restart(int /*nlocal*/)
 {
-  return 3;
+  return 9;
 }
 
 int FixGenDPDE::maxsize_restart()
 {
-  return 3;
+  return 9;
 }
 
 void FixGenDPDE::write_restart(FILE *fp)
 {
+  // energies_set + 2 has_build, then (if has_build) the box of the order's build
   if (comm->me == 0) {
-    const int size = sizeof(double);
-    const double value = energies_set;
+    double values[7] = {(double) (energies_set + 2 * has_build)};
+    for (int d = 0; d < 3; d++) {
+      values[1 + d] = build_boxlo[d];
+      values[4 + d] = build_boxhi[d];
+    }
+    const int count = has_build ? 7 : 1;
+    const int size = count * sizeof(double);
     fwrite(&size, sizeof(int), 1, fp);
-    fwrite(&value, sizeof(double), 1, fp);
+    fwrite(values, sizeof(double), count, fp);
   }
 }
 
 void FixGenDPDE::restart(char *buf)
 {
-  energies_set = (int) ((double *) buf)[0];
+  const double *values = (const double *) buf;
+  const int flags = (int) values[0];
+  energies_set = flags & 1;
+  has_build = (flags >> 1) & 1;
+  if (has_build)
+    for (int d = 0; d < 3; d++) {
+      build_boxlo[d] = values[1 + d];
+      build_boxhi[d] = values[4 + d];
+    }
 }
 
 /* ----------------------------------------------------------------------
@@ -895,6 +1111,8 @@ void *FixGenDPDE::extract(const char *name, int &dim)
 
 double FixGenDPDE::memory_usage()
 {
-  return (double) atom->nmax * 2 * sizeof(double) +
-      sweep_energy.size() * (sizeof(double) + 5 * sizeof(int) + 2);
+  return (double) atom->nmax * (5 * sizeof(double) + 3 * sizeof(int)) +
+      sweep_energy.size() * (sizeof(double) + 2) +
+      (sweep_x.size() + block_centre.size()) * sizeof(double) + extended_cell.size() * sizeof(int) +
+      sweep_list.capacity() * sizeof(SweepPair) + candidates.capacity() * sizeof(SweepPair);
 }

@@ -32,14 +32,20 @@
                              variable of each particle's T
 
    The sweep runs across subdomains in the order every OpenMM platform of
-   openmm-gendpde follows (GenDPDESweepDefinition.h): cells at least R
-   wide, 2x2x2 blocks in eight colours; a rank updates the blocks whose
-   centre is in its subdomain (every particle of such a block is within 1.5
-   cells of it: ghosts), and after each colour the ghosts' new velocities
-   and energies go to their owners and back out to every ghost. Blocks of
-   one colour share no particle and each pair's random numbers are keyed on
-   its particles' IDs and the step, so the sweep does not depend on the
-   number of ranks.
+   openmm-gendpde follows (GenDPDESweepDefinition.h), made once per build
+   from the candidate pairs (closer than 1.1 R at the build's positions):
+   cells at least 1.1 R wide, 2x2x2 blocks in eight colours, within a
+   block greedy levels of its candidates in (i, j) order. The order is
+   built at the first step of a run and when the box has changed or an
+   atom has moved more than 0.05 R since the build (the fix then makes
+   LAMMPS build its lists at that step: neighbor skin >= 0.1 R); each step
+   updates, in that order, the candidates closer than R. A rank updates
+   the blocks whose centre is in its subdomain (every particle of such a
+   block is within 1.5 cells of it: ghosts), and after each colour the
+   ghosts' new velocities and energies go to their owners and back out to
+   every ghost. Blocks of one colour share no particle and each pair's
+   random numbers are keyed on its particles' IDs and the step, so the
+   sweep does not depend on the number of ranks.
 
    pair_style gendpde reads the thermal state by name (extract):
    internal_energy, entropy (per atom), heat_capacity (per type),
@@ -68,11 +74,13 @@ class FixGenDPDE : public Fix {
   void init() override;
   void setup_pre_force(int) override;
   void initial_integrate(int) override;
+  void post_integrate() override;
   void final_integrate() override;
   void reset_dt() override;
   double compute_scalar() override;
   void grow_arrays(int) override;
   void copy_arrays(int, int, int) override;
+  void set_arrays(int) override;
   int pack_exchange(int, double *) override;
   int unpack_exchange(int, double *) override;
   int pack_restart(int, double *) override;
@@ -107,12 +115,14 @@ class FixGenDPDE : public Fix {
   double pair_range = 0.0;
   int pair_thermal = 0;
 
-  // The sweep (see the header comment).
+  // The sweep (see the header comment). Its order of pair updates is made once per build
+  // (GenDPDESweepDefinition.h): at the first step of a run, and when the box has changed or some
+  // atom has moved more than rebuildDisplacement2(R) from its position at the build (the rule,
+  // checked after each drift; the fix then makes LAMMPS build its lists at that step).
   struct SweepPair {
     std::uint32_t i, j;    // atom ID - 1 of the two particles, i < j: the stream's indices
     int li, lj;            // their local indices (local or ghost)
-    // the rank of the block it was in when found (the number of blocks: none of this rank's)
-    int group;
+    int group;    // the rank of its block on this rank (the number of blocks: none of this rank's)
   };
   static std::uint64_t pair_key(const SweepPair &p) { return (std::uint64_t) p.i << 32 | p.j; }
   int num_cells[3];
@@ -120,20 +130,29 @@ class FixGenDPDE : public Fix {
   int block_low[3], block_count[3];    // this rank's blocks
   int grid_low[3], grid_count[3];      // the extended cells they cover
   std::vector<double> sweep_energy;    // eps / mvv2e, local and ghost
-  std::vector<int> extended_cell;      // each particle's cell in this rank's frame
+  std::vector<double> sweep_x;         // the build's positions, local and ghost (at a build)
+  std::vector<int> extended_cell;      // each particle's cell in this rank's frame (at a build)
   std::vector<char> modified, touched;
-  // Candidates: the pairs closer than R + skin among the particles near this rank's blocks, by the
-  // block they were in, then by (i, j); found again when LAMMPS has built its neighbour lists again
-  // (every particle has then moved less than skin/2).
-  std::vector<SweepPair> candidates;
-  bigint candidates_built_at = -1;
+  // Per atom (travelling with it, in restart files): its position at the order's build (wrapped as
+  // LAMMPS had it then; NaN: none) and its image flags then.
+  double **build_x = nullptr;
+  int **build_image = nullptr;
+  // The build's box, and whether there is an order (saved in restart files: a continued run rebuilds
+  // the same order from the positions at its build).
+  int has_build = 0;
+  double build_boxlo[3] = {0.0, 0.0, 0.0}, build_boxhi[3] = {0.0, 0.0, 0.0};
+  double build_sublo[3] = {0.0, 0.0, 0.0}, build_subhi[3] = {0.0, 0.0, 0.0};    // the blocks'
+  bool setup_pending = false;    // the first sweep of a run: build, or rebuild the kept order
+  bool build_pending = false;    // the rule fired after the last drift
+  bigint indexed_at = -1;        // neighbor->lastcall when the order's local indices were set
+  std::vector<SweepPair> candidates;    // (scratch of a build)
   std::vector<int> bin_head, bin_next;
-  std::vector<double> built_positions;    // the local particles' positions then
-  // Each step: the pairs closer than R of each block (by block rank: colour by colour), in sweep
-  // order
-  std::vector<int> rank_of_block, block_rank_start, colour_start, pair_block_rank;
-  std::vector<int> block_pairs, block_first, block_order, moved_in;
+  // The order: this rank's blocks by rank (colour by colour), each block's pairs in sweep order
+  std::vector<int> rank_of_block, block_rank_start, colour_start;
+  std::vector<double> block_centre;     // by block rank (3 each)
   std::vector<SweepPair> sweep_list;    // the pairs in sweep order
+  std::vector<int> slot_of, local_i, local_j, level_of, degree;
+  std::vector<std::uint64_t> level_masks;
   struct PairTables {
     std::vector<double> inverse_mass, heat_capacity, conduction, noise;    // by type, type pair
   } pair_tables;
@@ -142,19 +161,23 @@ class FixGenDPDE : public Fix {
   struct {
     int dissipation = 0, conduction = 0;
   } terms;
-  // 0: velocities, energies and cells (start of the sweep); 1: velocities and energies
-  int comm_phase = 0;
+  // what the sweep's exchanges carry (pack_state)
+  enum CommPhase { START = 0, COLOUR = 1, CELLS = 2, POSITIONS = 3 };
+  int comm_phase = START;
   void kick();
   void make_pair_tables();
   int pack_state(int i, double *buf) const;
   int unpack_state(int i, const double *buf);
   void sweep();
+  bool rule_fires();
+  void build_order(bool from_stored);
+  void remap_order();
   void prepare_cells();
   void rank_blocks();
   void check_atom_ids();
   void find_candidates();
   int block_rank_of(int a, int b) const;
-  void order_pairs();
+  void order_blocks();
   void sweep_pairs(const SweepPair *pairs, int count, bool isoenergetic);
   double ghost_need() const;
 };

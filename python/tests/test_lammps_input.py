@@ -17,9 +17,10 @@ from openmm import unit
 from openmmgendpde import GenDPDEForce
 from openmmgendpde.__main__ import main
 from openmmgendpde.analysis.pressure import virial_tensor
+from openmmgendpde.gendpde import sweepCandidateRange
 from openmmgendpde.models.fluid import ARGON_EXPANDING, coarse_grain
 from openmmgendpde.models.fluid_files import load_parameters, save_parameters
-from openmmgendpde.models.lammps_files import lammps_input, round_up, thermo_table
+from openmmgendpde.models.lammps_files import lammps_input, round_up, sweep_cells, thermo_table
 
 FIGURES = pathlib.Path(__file__).resolve().parents[2] / "docs" / "figures"
 ARGON_FILE = str(FIGURES / "calibrated-argon-model.toml")
@@ -178,15 +179,25 @@ def test_the_numbers_are_the_model_parameters_in_metal_units(model_file, tmp_pat
     assert float(command(commands, "timestep")[0]) == pytest.approx(0.01 * time_unit, rel=1e-12)
 
 
+def test_the_sweep_cells_are_at_least_the_candidates_reach_wide():
+    """The fix's sweep cells are at least the candidates' reach, sweepCandidateRange(R) = 1.1 R, wide (the core's
+    candidateRange, R + 0.1 R): a box 4.3 R wide holds 4 cells of R but not of 1.1 R, and the writer refuses it, as
+    the fix would; 4.5 R holds 4; 8.5 R holds 8 cells of R but only 7 of 1.1 R, so 4; 8.9 R holds 8."""
+    assert sweepCandidateRange(1.0) == 1.1 and sweepCandidateRange(2.5) == 2.5 + 0.1 * 2.5
+    with pytest.raises(ValueError, match="needs at least 4 cells of 1.1 R"):
+        sweep_cells(4.3, 1.0)
+    assert sweep_cells(4.5, 1.0) == 4 and sweep_cells(8.5, 1.0) == 4 and sweep_cells(8.9, 1.0) == 8
+
+
 def test_the_ghost_cutoff_by_hand(tmp_path):
-    """Argon at 2048 particles: a box of 78.247 Å and R = 10.3755 Å hold m = 7 sweep cells, so 4 of width L/4 =
-    19.56 Å; the skin is 0.1 R = 1.03755 Å rounded up to 1.038, and the ghosts 1.5 x 19.56 + 1.038 = 30.381 Å,
-    rounded up to 30.39 Å; with --skin 2.5: 31.843 -> 31.85."""
+    """Argon at 2048 particles: a box of 78.247 Å and R = 10.3755 Å hold m = 6 sweep cells at least 1.1 R =
+    11.413 Å wide, so 4 of width L/4 = 19.56 Å; the skin is 0.1 R = 1.03755 Å rounded up to 1.038, and the ghosts
+    1.5 x 19.56 + 1.038 = 30.381 Å, rounded up to 30.39 Å; with --skin 2.5: 31.843 -> 31.85."""
     data, commands = written(tmp_path, ARGON_FILE)
     edge = data["box"][0][1]
     cutoff = float(command(commands, "pair_style")[1])
     assert data["atoms"] == 2048 and 78.24 < edge < 78.25 and 10.375 < cutoff < 10.376
-    assert math.floor(edge / cutoff) == 7
+    assert math.floor(edge / (1.1 * cutoff)) == 6
     assert 30.38 < 1.5 * edge / 4 + 1.038 <= 30.39
     assert command(commands, "neighbor") == ["1.038", "bin"]
     assert command(commands, "comm_modify") == ["cutoff", "30.39"]

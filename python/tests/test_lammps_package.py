@@ -75,6 +75,11 @@ def read_dump(path):
     return table[np.argsort(table[:, 0])]
 
 
+def neighbour_list_builds(log):
+    """LAMMPS's count of neighbour-list builds in a run (its log's "Neighbor list builds = N")."""
+    return int(log.split("Neighbor list builds = ")[1].split()[0])
+
+
 class Scene:
     """A liquid in OpenMM (System, force, positions) and its LAMMPS input in lj units (see the module docstring)."""
 
@@ -191,7 +196,8 @@ def openmm_trajectory(scene, mode, steps, velocities, step_size=0.004, temperatu
 def lammps_trajectory(scene, directory, mode, steps, velocities, ranks, step_size=0.004, restart_at=None,
                       temperatures=None, edit=lambda script: script):
     """Positions and internal energies (fix gendpde's per-atom vector) after ``steps`` steps of the fix in ``mode``;
-    with ``restart_at``, the run stops there, writes a restart file, and a second lmp reads it and runs the rest;
+    with ``restart_at``, the run stops there, writes a restart file (its log: log.first.lammps), and a second lmp
+    reads it and runs the rest;
     ``temperatures``: each particle's initial temperature (K), through an atomfile variable (initial v_theta);
     ``edit``: what changes the written script (text) before it runs."""
     integrator = scene.integrator(mode, step_size)
@@ -206,6 +212,7 @@ thermo 10
         run_lammps(directory, script + f"run {steps}\n" + finish, ranks)
     else:
         run_lammps(directory, script + f"run {restart_at}\nwrite_restart state.restart\n", ranks)
+        (directory / "log.lammps").rename(directory / "log.first.lammps")
         resumed = scene.lammps(directory, integrator, restart="state.restart")
         run_lammps(directory, resumed.commands(*SECTIONS[:-2]) + output + f"run {steps - restart_at}\n" + finish,
                    ranks)
@@ -225,14 +232,16 @@ MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIn
 @pytest.mark.parametrize("ranks", [1, 2, 4])
 @pytest.mark.parametrize("mode_name", ["isoenergetic", "isothermal"])
 def test_trajectory_follows_reference(lammps, tmp_path, mode_name, ranks):
-    """fix gendpde's sweep across subdomains is GenDPDEIntegrator's (same order of pair updates, same random numbers):
-    after 30 steps every position and internal energy is OpenMM's to rounding, 1e-12 nm and 1e-12 relative, with 1, 2
-    or 4 ranks. A pair updated out of order, twice, never, or with another random number moves particles by ~1e-5 nm
-    in one step."""
+    """fix gendpde's sweep across subdomains is GenDPDEIntegrator's (same order of pair updates, built at the same
+    steps, same random numbers): after 60 steps (the order built at the start and once more on the way, when an atom
+    has moved 0.05 R) every position and internal energy is OpenMM's to rounding, 1e-12 nm and 1e-12 relative, with 1,
+    2 or 4 ranks. A pair updated out of order, twice, never, or with another random number moves particles by ~1e-5
+    nm in one step."""
     scene = Scene(GenDPDEForce.VB)
     velocities = start_velocities(scene)
-    positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 30, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 30, velocities, ranks)
+    positions, energies, _ = openmm_trajectory(scene, MODES[mode_name], 60, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, MODES[mode_name], 60, velocities, ranks)
+    assert neighbour_list_builds((tmp_path / "log.lammps").read_text()) >= 1   # (the order was built again)
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     if energies is not None:
         assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
@@ -267,14 +276,33 @@ def test_a_pair_without_friction_reads_its_stream_as_openmm_does(lammps, tmp_pat
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
-def test_restart_continues_the_run(lammps, tmp_path):
-    """A run of 20 steps written to a restart file after 10 and continued by another lmp (read_restart: positions,
-    velocities, internal energies and entropies, the step) ends where OpenMM's 20 steps end, to rounding."""
+@pytest.mark.parametrize("steps, restart_at", [(20, 10), (60, 56)])
+def test_restart_continues_the_run(lammps, tmp_path, steps, restart_at):
+    """A run written to a restart file after ``restart_at`` steps and continued by another lmp (read_restart:
+    positions, velocities, internal energies and entropies, the step, and each atom's position at the sweep order's
+    last build, from which the continued run makes the same order again) ends where OpenMM's uninterrupted run ends,
+    to rounding: after 10 steps (the order of step 0 kept) and after 56 (one built again on the way, at step 51-54:
+    an order made anew from the positions at the restart would move particles by ~1e-5 nm)."""
     scene = Scene(GenDPDEForce.VB, two_types=True)
     velocities = start_velocities(scene)
-    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 20, velocities)
-    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 20,
-                                                          velocities, 2, restart_at=10)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, steps, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, steps,
+                                                          velocities, 2, restart_at=restart_at)
+    if restart_at > 50:
+        assert neighbour_list_builds((tmp_path / "log.first.lammps").read_text()) >= 1
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+def test_a_second_run_command_continues_the_order(lammps, tmp_path):
+    """run 30 then run 30 in one input: the second run's first step makes the order of the first run's last build
+    again (from each atom's position at that build) rather than a new one from its own positions, as OpenMM's
+    integrator keeps its order between step() calls: the 60 steps end where OpenMM's end, to rounding."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 60, velocities)
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 30,
+                                                          velocities, 2, edit=lambda script: script + "run 30\n")
     assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
@@ -330,17 +358,64 @@ def test_each_particle_s_initial_temperature_from_an_atomfile(lammps, tmp_path):
     assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
-def test_a_run_whose_lists_go_stale_stops(lammps, tmp_path):
-    """With neighbour lists LAMMPS does not rebuild in time (a skin of 0.001 nm, checked every 1000 steps), the sweep's
-    pairs would miss some: fix gendpde stops with an error naming the atom and the step, not a silent wrong step."""
+def test_a_skin_below_a_tenth_of_the_range_is_refused(lammps, tmp_path):
+    """The sweep's candidates reach 0.1 R beyond R and the order is built again once an atom has moved 0.05 R: with
+    a skin of 0.001 nm (< 0.1 R) LAMMPS's lists and ghosts would miss pairs before that, so fix gendpde stops at the
+    start with an error naming the skin and the least it takes."""
     scene = Scene(GenDPDEForce.VB)
     texts = scene.lammps(tmp_path, velocities=start_velocities(scene), skin=0.001)
     script = texts.commands(*SECTIONS[:-1]) + "run 50\n"
     assert "neighbor 0.001 bin\nneigh_modify every 1 delay 0 check yes" in script
-    script = script.replace("neigh_modify every 1 delay 0 check yes", "neigh_modify every 1000 delay 0 check no")
     result = run_lammps(tmp_path, script, check=False)
     assert result.returncode != 0
-    assert "since the last neighbour list at step" in result.stdout and "more than half the skin" in result.stdout
+    least = 0.1 * texts.cutoff
+    assert f"the neighbour skin 0.001 is below {least!r} = 0.1 R" in result.stdout, result.stdout[-2000:]
+
+
+@pytest.mark.parametrize("settings, builds", [("every 1 delay 0 check yes", "some"),
+                                              ("every 1 delay 0 check no", "every step"),
+                                              ("every 1000 delay 0 check no", "some")])
+def test_the_order_is_built_by_its_rule_whatever_lammps_lists_do(lammps, tmp_path, settings, builds):
+    """The sweep's order is built at the start and when an atom has moved 0.05 R since its build (the rule OpenMM's
+    platforms follow), whenever LAMMPS builds its lists: with LAMMPS's check (skin/2 = 0.05 R: its lists are built
+    at the order's builds), with lists built at every step (the order kept, its atoms found again by ID) and with
+    lists LAMMPS would build every 1000 steps only (the fix makes it build them at the order's builds), 60 isoenergetic
+    steps on 2 ranks end where OpenMM's end, to rounding. The run does build the order again (some atom moves 0.05 R
+    in 60 steps): an order built at another step would move particles by ~1e-5 nm."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 60, velocities)
+
+    def lists(script):
+        assert "neigh_modify every 1 delay 0 check yes" in script
+        return script.replace("neigh_modify every 1 delay 0 check yes", f"neigh_modify {settings}")
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 60,
+                                                          velocities, 2, edit=lists)
+    count = neighbour_list_builds((tmp_path / "log.lammps").read_text())
+    assert count == 60 if builds == "every step" else 1 <= count < 60
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
+
+
+def test_subdomains_that_move_during_the_run(lammps, tmp_path):
+    """fix balance moving the boundary between 2 ranks every 5 steps (atoms weighted by x, so there is always an
+    imbalance to correct): the sweep's blocks go to the ranks that now hold their centres, its order stays the one of
+    its build (made again from the positions of the build for the new subdomains), and 60 isoenergetic steps end where
+    OpenMM's end, to rounding."""
+    scene = Scene(GenDPDEForce.VB)
+    velocities = start_velocities(scene)
+    positions, energies, _ = openmm_trajectory(scene, GenDPDEIntegrator.Isoenergetic, 60, velocities)
+
+    def balanced(script):
+        return script + ("variable weight atom 1.0+2.0*x/lx\n"
+                         "fix balance all balance 5 1.0 shift x 10 1.0 weight var weight\n"
+                         'fix report all print 5 "rebalanced $(f_balance[2])"\n')
+    lammps_positions, lammps_energies = lammps_trajectory(scene, tmp_path, GenDPDEIntegrator.Isoenergetic, 60,
+                                                          velocities, 2, edit=balanced)
+    reports = [line for line in (tmp_path / "log.lammps").read_text().splitlines() if line.startswith("rebalanced")]
+    assert len(reports) == 13 and all(line.split()[1] != "0" for line in reports[1:])
+    assert np.max(np.abs(lammps_positions - positions)) <= 1e-12
+    assert np.max(np.abs(lammps_energies / energies - 1)) <= 1e-12
 
 
 def test_subdomains_thinner_than_the_ghost_cutoff(lammps, tmp_path):

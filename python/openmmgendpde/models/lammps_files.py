@@ -21,10 +21,11 @@ the plugin's OpenMM platforms (their lists hold candidates within 1.1 R, rebuilt
 which scales with the model's length, unlike LAMMPS's metal default of 2 Å (0.2 R for argon's R = 10.4 Å, 0.24 R
 for water's 8.3 Å: more pairs in the list for nothing). ``comm_modify cutoff GHOST``: the fix's sweep over pairs
 needs ghosts 1.5 sweep-cell widths plus the skin around each subdomain; the sweep's cells and that cutoff come from
-the physics core (GenDPDESweepDefinition.h, through the bindings: sweepCellCount, sweepGhostCutoff,
-sweepMinCellsAcrossSubdomains), the functions fix gendpde calls, so the two cannot differ; GHOST is the core's value
-rounded up to 4 significant digits (ghost_cutoff). The box must be at least sweepMinCellsAcrossSubdomains() = 4
-cells, so about 4 R, wide.
+the physics core (GenDPDESweepDefinition.h, through the bindings: sweepCandidateRange, sweepCellCount,
+sweepGhostCutoff, sweepMinCellsAcrossSubdomains), the functions fix gendpde calls, so the two cannot differ; GHOST is
+the core's value rounded up to 4 significant digits (ghost_cutoff). The sweep's cells are at least the candidates'
+reach, 1.1 R, wide, and the box must be at least sweepMinCellsAcrossSubdomains() = 4 cells, so about 4.4 R, wide.
+The fix requires a skin of at least 0.1 R (its order is built again once an atom has moved 0.05 R).
 """
 
 import dataclasses
@@ -35,7 +36,7 @@ import numpy as np
 from openmm import unit
 
 from ..api import GenDPDEForce
-from ..gendpde import sweepCellCount, sweepGhostCutoff, sweepMinCellsAcrossSubdomains
+from ..gendpde import sweepCandidateRange, sweepCellCount, sweepGhostCutoff, sweepMinCellsAcrossSubdomains
 from ..internal.files import atomic_write
 from .lammps_script import (
     DATA_FILE,
@@ -77,15 +78,16 @@ def default_skin(cutoff):
 
 
 def sweep_cells(width, cutoff, length="Å"):
-    """The fix's sweep cells across a periodic box ``width`` for the cutoff R (the core's sweepCellCount, as fix
-    gendpde counts them); ValueError where fewer than sweepMinCellsAcrossSubdomains() fit (``length``: the unit
-    the message names)."""
-    cells = sweepCellCount(width, cutoff, True)
+    """The fix's sweep cells across a periodic box ``width`` for the cutoff R (the core's sweepCellCount for the
+    candidates' reach sweepCandidateRange(R) = 1.1 R, as fix gendpde counts them); ValueError where fewer than
+    sweepMinCellsAcrossSubdomains() fit (``length``: the unit the message names)."""
+    reach = sweepCandidateRange(cutoff)
+    cells = sweepCellCount(width, reach, True)
     least = sweepMinCellsAcrossSubdomains()
     if cells < least:
         raise ValueError(f"the box is {width:.6g} {length} wide, {width / cutoff:.3f} R for the cutoff R = "
-                         f"{cutoff:.6g} {length}; LAMMPS's fix gendpde needs at least {least} R "
-                         f"({least * cutoff:.6g} {length}): use more particles")
+                         f"{cutoff:.6g} {length}; LAMMPS's fix gendpde needs at least {least} cells of 1.1 R "
+                         f"({least * reach:.6g} {length}): use more particles")
     return cells
 
 

@@ -22,6 +22,7 @@ class ComputeArray;
 namespace GenDPDEPlugin {
 
 class CommonGenDPDEForceChecks;   // platforms/common/src/CommonGenDPDEForceChecks.h
+class NeighborList;               // platforms/reference/src/NeighborList.h
 struct CommonGenDPDEThermalArrays;   // platforms/common/src/CommonGenDPDEThermalArrays.h
 
 /** Per-particle observables of a GenDPDEForce at one configuration (OpenMM units). */
@@ -36,15 +37,21 @@ struct GenDPDEObservables {
 };
 
 /**
- * What a force kernel lends the integrator kernel of the same platform (the name is historical: the sweeps now keep
- * candidates of their own): the force's checks on the device (the Common platforms), which a run of steps may defer.
- * An integrator kernel gets null for what it cannot use, so any force kernel can meet any integrator kernel.
+ * What a force kernel lends the integrator kernel of the same platform: the force's checks on the device (the Common
+ * platforms), which a run of steps may defer; its neighbour list on the host, whose candidates a sweep order built at
+ * the same positions may take. An integrator kernel gets null for what it cannot use, so any force kernel can meet any
+ * integrator kernel.
  */
 class GenDPDEPairSource {
 public:
     virtual ~GenDPDEPairSource() {}
     /** The force's checks on the device, which an integrator kernel of the Common platforms may defer, or null. */
     virtual CommonGenDPDEForceChecks* getDeviceChecks() { return nullptr; }
+    /**
+     * The force's neighbour list on the host platforms (Reference, CPU), or null: a sweep order built at the positions
+     * the list was last built at may take its candidates instead of searching them again.
+     */
+    virtual const NeighborList* getHostNeighborList() const { return nullptr; }
 };
 
 /**

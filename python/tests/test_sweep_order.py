@@ -56,3 +56,33 @@ def test_the_order_is_built_when_a_particle_has_moved_half_the_skin(name):
     assert np.array_equal(positions_at_build, build)
     expected_box = context.getState().getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
     assert np.array_equal(box, expected_box)
+
+
+@pytest.mark.parametrize("name", ["Reference", "CPU"])
+def test_a_force_evaluated_elsewhere_between_steps_changes_nothing(name):
+    """The host sweep takes the candidates of the GenDPDEForce's list when that list was built at the positions of
+    the order's build (the same candidates), but its builds follow the rule alone: an evaluation at other positions
+    between steps (which rebuilds the force's list there, and again when the positions come back) leaves the
+    trajectory bit for bit that of the undisturbed run."""
+    def run(disturb):
+        system, force, positions = lattice_liquid(5, seed=3)
+        integrator = argon_integrator(0.01 * unit.picosecond)
+        integrator.setRandomNumberSeed(17)
+        integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
+        context = openmm.Context(system, integrator, openmm.Platform.getPlatformByName(name))
+        context.setPositions(positions)
+        context.setVelocitiesToTemperature(3 * TEMPERATURE * unit.kelvin, 18)
+        for step in range(40):
+            if disturb and step % 7 == 3:
+                here = context.getState(getPositions=True).getPositions(asNumpy=True)
+                context.setPositions(here[np.random.default_rng(step).permutation(len(here))])
+                context.getState(getEnergy=True)
+                context.setPositions(here)
+                context.getState(getEnergy=True)
+            integrator.step(1)
+        state = context.getState(getPositions=True, getVelocities=True)
+        return (state.getPositions(asNumpy=True)._value, state.getVelocities(asNumpy=True)._value,
+                np.asarray(integrator.getInternalEnergies()._value))
+
+    for undisturbed, disturbed in zip(run(False), run(True)):
+        assert np.array_equal(undisturbed, disturbed)

@@ -7,6 +7,7 @@
 #include "internal/BoxGeometry.h"
 #include "openmm/Vec3.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -151,6 +152,20 @@ public:
     int getNumCandidates() const { return candidateStart.back(); }
     /** The particles sorted by cell at the last build (neighbors in space are neighbors in this order). */
     const std::vector<int>& getCellOrder() const { return cellParticles; }
+    /**
+     * Whether this list's candidates are those that `other` (a list of the same cutoff, skin and boundaries) would find
+     * at these positions (nm) and box: it was last built at exactly these positions (and box, if periodic).
+     */
+    bool holdsCandidatesAt(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3],
+                           const NeighborList& other) const {
+        if (!built || cutoff != other.cutoff || skin != other.skin || periodic != other.periodic
+            || builtPositions.size() != positions.size())
+            return false;
+        if (periodic && !(boxVectors[0] == builtBox[0] && boxVectors[1] == builtBox[1] && boxVectors[2] == builtBox[2]))
+            return false;
+        return std::equal(positions.begin(), positions.end(), builtPositions.begin(),
+                          [](const OpenMM::Vec3& a, const OpenMM::Vec3& b) { return a == b; });
+    }
     /** Forget the candidates: the next refresh() builds them whatever the positions. */
     void invalidate() { built = false; }
     /** The positions (nm, as given to refresh()) and box vectors of the last build of the candidates. */

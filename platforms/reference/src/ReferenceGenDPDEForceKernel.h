@@ -19,7 +19,7 @@ namespace GenDPDEPlugin {
  * pass over the particles for their states (the physics core's gendpdeParticleState), and one sweep over the pairs
  * for the forces and the virial.
  */
-class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel {
+class ReferenceCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel, public GenDPDEPairSource {
 public:
     ReferenceCalcGenDPDEForceKernel(std::string name, const OpenMM::Platform& platform) :
             CalcGenDPDEForceKernel(name, platform) {}
@@ -27,6 +27,8 @@ public:
     double execute(OpenMM::ContextImpl& context, bool includeForces, bool includeEnergy) override;
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
+    GenDPDEPairSource* getPairSource() override { return this; }
+    const NeighborList* getHostNeighborList() const override { return neighborList.get(); }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override {
         if (dependsOnTemperature)
             integratorKernel.keepThermalState(thermalEnergy, densityEntropy);

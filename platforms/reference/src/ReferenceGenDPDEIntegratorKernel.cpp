@@ -4,6 +4,7 @@
 #include "ReferenceKernelAccess.h"
 #include "internal/BoxGeometry.h"
 #include "gendpde/CounterRandom.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/Buffers.h"
 #include "internal/FixedOrderSum.h"
 #include "internal/ParallelFor.h"
@@ -11,6 +12,7 @@
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 
 using namespace GenDPDEPlugin;
@@ -54,10 +56,10 @@ bool ReferenceIntegrateGenDPDEStepKernel::getSweepBuild(std::vector<Vec3>& posit
         std::copy(pendingBuildBox, pendingBuildBox + 3, box);
         return true;
     }
-    if (orderBuild < 0)
+    if (!orderBuilt)
         return false;
-    positions = neighborList->getBuiltPositions();
-    std::copy(neighborList->getBuiltBox(), neighborList->getBuiltBox() + 3, box);
+    positions = buildPositions;
+    std::copy(buildBox, buildBox + 3, box);
     return true;
 }
 
@@ -68,44 +70,79 @@ void ReferenceIntegrateGenDPDEStepKernel::setSweepBuild(const std::vector<Vec3>&
                               + std::to_string(inverseMasses.size()));
     pendingBuildPositions = positions;
     std::copy(box, box + 3, pendingBuildBox);
-    orderBuild = -1;
+    orderBuilt = false;
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::forgetSweepOrder() {
     pendingBuildPositions.clear();
-    orderBuild = -1;
-    if (neighborList != nullptr)
-        neighborList->invalidate();
+    orderBuilt = false;
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::updateSweepOrder(ContextImpl& context, int numThreads) {
+bool ReferenceIntegrateGenDPDEStepKernel::orderIsStale(const std::vector<Vec3>& positions, const Vec3 box[3],
+                                                       int numThreads) const {
+    // The definition's rule (SweepDefinition): a new box, or a particle farther than half the skin from its position
+    // at the build.
+    if (!orderBuilt || positions.size() != buildPositions.size())
+        return true;
+    if (neighborList->isPeriodic() && !(box[0] == buildBox[0] && box[1] == buildBox[1] && box[2] == buildBox[2]))
+        return true;
+    const double limit = SweepDefinition::rebuildDisplacement2(cutoff);
+    const Vec3* now = positions.data();
+    const Vec3* then = buildPositions.data();
+    std::atomic<bool> moved(false);
+    std::atomic<bool>* anyMoved = &moved;
+    parallelFor(numThreads, positions.size(), 8192, [=](int begin, int end) {
+        bool found = false;
+        for (int i = begin; i < end; i++) {
+            const Vec3 d = now[i] - then[i];
+            found |= d.dot(d) > limit;
+        }
+        if (found)
+            anyMoved->store(true, std::memory_order_relaxed);
+    });
+    return moved.load();
+}
+
+void ReferenceIntegrateGenDPDEStepKernel::updateSweepOrder(ContextImpl& context, GenDPDEPairSource* pairSource,
+                                                           int numThreads) {
+    const std::vector<Vec3>& positions = extractPositions(context);
     const Vec3* box = extractBoxVectors(context);
     if (context.getSystem().usesPeriodicBoundaryConditions())
-        BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box);   // a barostat may have shrunk it
+        BoxGeometry::checkCutoffAgainstBox("GenDPDEIntegrator", cutoff, box); // a barostat may have shrunk it
     if (!pendingBuildPositions.empty()) {
         // a checkpoint's build: the order of the uninterrupted run, kept or rebuilt by the rule against its positions
-        neighborList->invalidate();
-        neighborList->refresh(pendingBuildPositions, pendingBuildBox, numThreads);
-        buildSweepOrder(numThreads);
+        buildSweepOrder(pendingBuildPositions, pendingBuildBox, nullptr, numThreads);
         pendingBuildPositions.clear();
     }
-    neighborList->refresh(extractPositions(context), box, numThreads);
-    if (neighborList->getBuildCount() != orderBuild)
-        buildSweepOrder(numThreads);
+    if (!orderIsStale(positions, box, numThreads))
+        return;
+    // The candidates of a GenDPDEForce's list built at exactly these positions and box are the same as our own list's
+    // would be (the same class and settings): borrowed, they save a search.
+    const NeighborList* list = pairSource != nullptr ? pairSource->getHostNeighborList() : nullptr;
+    if (list != nullptr && !list->holdsCandidatesAt(positions, box, *neighborList))
+        list = nullptr;
+    buildSweepOrder(positions, box, list, numThreads);
 }
 
-void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(int numThreads) {
-    // The candidates in (i, j) order, the order made from them at the list's build, and the candidates copied into
-    // that order with their slots.
+void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(const std::vector<Vec3>& positions, const Vec3 box[3],
+                                                          const NeighborList* list, int numThreads) {
+    // The candidates in (i, j) order (of the list given, built at these positions, or of our own list built now), the
+    // order made from them, and the candidates copied into that order with their slots.
+    if (list == nullptr) {
+        neighborList->invalidate();
+        neighborList->refresh(positions, box, numThreads);
+        list = neighborList.get();
+    }
     const int numParticles = inverseMasses.size();
-    candidates.resize(neighborList->getNumCandidates());
+    candidates.resize(list->getNumCandidates());
     IndexPair* next = candidates.data();
     for (int i = 0; i < numParticles; i++)
-        for (int j : neighborList->candidatesOf(i))
+        for (int j : list->candidatesOf(i))
             *next++ = {i, j};
     const int* first = candidates.empty() ? nullptr : &candidates[0].i;
-    sweepOrder.build(neighborList->getBuiltPositions(), neighborList->getBuiltBox(), neighborList->isPeriodic(), cutoff,
-                     candidates.size(), first, first != nullptr ? first + 1 : nullptr, 2, numThreads);
+    const bool periodic = neighborList->isPeriodic();
+    sweepOrder.build(positions, box, periodic, cutoff, candidates.size(), first, first != nullptr ? first + 1 : nullptr,
+                     2, numThreads);
     const std::vector<int>& order = sweepOrder.getOrder();
     const int* slot = sweepOrder.getSlots().data();
     resizeBuffer(orderedPairs, order.size());
@@ -118,7 +155,11 @@ void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(int numThreads) {
             ordered[n] = {pair.i, pair.j, slot[pair.i], slot[pair.j]};
         }
     });
-    orderBuild = neighborList->getBuildCount();
+    buildPositions = positions;
+    std::copy(box, box + 3, buildBox);
+    if (periodic)
+        sweepBox = PeriodicBox(box);
+    orderBuilt = true;
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::kick(ContextImpl& context, std::vector<Vec3>& velocities,
@@ -161,13 +202,14 @@ void ReferenceIntegrateGenDPDEStepKernel::checkStepIsStable(ContextImpl& context
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vector<Vec3>& velocities,
-                                                const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms) {
+                                                const GenDPDEIntegrator& integrator, const GenDPDEStepTerms& terms,
+                                                GenDPDEPairSource* pairSource) {
     // docs/theory.md sections 5-7, pair by pair at fixed positions, in the order every platform follows: the colours
     // one after another, the blocks of a colour in parallel (on one thread, the whole sequence in one loop, whose
     // prefetches run on across the blocks).
     const int threads = numThreads(context);
     const long long step = context.getStepCount();
-    updateSweepOrder(context, threads);
+    updateSweepOrder(context, pairSource, threads);
     typeTables->update(integrator);
     PairSweepParameters parameters(integrator, terms, cutoff, seed, step, *typeTables, sweepNoise);
     gatherSweepState(context, integrator, parameters, threads);
@@ -176,7 +218,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vecto
     Vec3* v = layout.slotVelocities.data();
     double* energy = terms.internalEnergies ? layout.slotEnergies.data() : nullptr;
     const SweepPair* pairs = orderedPairs.data();
-    withNearestImage(neighborList->isPeriodic() ? &neighborList->getBox() : nullptr, [&](auto nearestImage) {
+    withNearestImage(neighborList->isPeriodic() ? &sweepBox : nullptr, [&](auto nearestImage) {
         if (threads == 1) {
             // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies
             // stay those before the step; positions have not moved yet), and the error names the particle and the
@@ -245,7 +287,7 @@ void ReferenceIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const Ge
         kick(context, velocities, forces, dt);
     else {
         // (the first half kick inside the sweep, on the sweep's copies: a failed sweep leaves the state untouched)
-        sweep(context, velocities, integrator, terms);
+        sweep(context, velocities, integrator, terms, pairSource);
         kick(context, velocities, forces, 0.5 * dt);
     }
     drift(context, extractPositions(context), velocities, dt);

@@ -16,9 +16,10 @@ namespace GenDPDEPlugin {
 
 /**
  * Reference (double precision, single thread) step of GenDPDEIntegrator (docs/theory.md sections 5-7): half kick,
- * pair sweep at fixed positions, half kick, drift. The sweep's order (GenDPDESweepOrder) is made from the candidates
- * of a neighbour list of the integrator's own (within 1.1 R, rebuilt when a particle has moved more than 0.05 R or the
- * box has changed: the definition's rule) whenever that list is built, and kept until the next build.
+ * pair sweep at fixed positions, half kick, drift. The sweep's order (GenDPDESweepOrder) is made when the definition's
+ * rule asks (a particle moved more than 0.05 R from its position at the last build, or a new box) from the candidates
+ * within 1.1 R: a GenDPDEForce's list's if that list was built at the same positions (the same candidates), else a
+ * list of the integrator's own; it is kept until the next build.
  */
 class ReferenceIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
 public:
@@ -66,7 +67,7 @@ protected:
      * energies are those before the step.
      */
     void sweep(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& velocities, const GenDPDEIntegrator& integrator,
-               const GenDPDEStepTerms& terms);
+               const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource);
     /** v += timeStep F/m for every particle with mass. */
     virtual void kick(OpenMM::ContextImpl& context, std::vector<OpenMM::Vec3>& velocities,
                       const std::vector<OpenMM::Vec3>& forces, double timeStep);
@@ -82,12 +83,19 @@ protected:
     double kineticEnergy(int i, const std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces,
                          double halfStep) const;
     /**
-     * Refresh the neighbour list at the current positions (after a build from the positions of setSweepBuild(), if
-     * any) and make the sweep's order from its candidates whenever it was built: sweepOrder and orderedPairs.
+     * Make the sweep's order again (sweepOrder and orderedPairs) if the definition's rule asks for it at the current
+     * positions (after a build at the positions of setSweepBuild(), if any), from the candidates of the pair source's
+     * host list if it was built at exactly these positions and box, else of our own list.
      */
-    void updateSweepOrder(OpenMM::ContextImpl& context, int numThreads);
-    /** Make sweepOrder and orderedPairs from the neighbour list's candidates at its last build. */
-    void buildSweepOrder(int numThreads);
+    void updateSweepOrder(OpenMM::ContextImpl& context, GenDPDEPairSource* pairSource, int numThreads);
+    /** Whether the rule asks for a build at these positions and box: none yet, a new box, or a particle moved. */
+    bool orderIsStale(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3], int numThreads) const;
+    /**
+     * Make sweepOrder and orderedPairs at these positions (nm) and box from the candidates of list (built at exactly
+     * these positions and box) or, if null, of our own list built now.
+     */
+    void buildSweepOrder(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3],
+                         const NeighborList* list, int numThreads);
     /**
      * Copy what the sweep reads into layout (the order's cell order), the velocities given the step's first half
      * kick (the context's forces, half of the integrator's step) on the way, and point parameters at the copied
@@ -107,7 +115,10 @@ protected:
     GenDPDESweepOrder sweepOrder;
     std::vector<IndexPair> candidates;   // the neighbour list's candidates at the order's build, in (i, j) order
     std::vector<SweepPair> orderedPairs;   // the candidates in sweep order, with their slots in layout
-    long long orderBuild = -1;           // the neighbour list's build count the order was made at
+    bool orderBuilt = false;
+    std::vector<OpenMM::Vec3> buildPositions;   // the positions (nm) and box of the order's build
+    OpenMM::Vec3 buildBox[3];
+    PeriodicBox sweepBox;   // the box of the order's build (periodic only), for the sweep's nearest images
     std::vector<OpenMM::Vec3> pendingBuildPositions;   // setSweepBuild(): the next order's build, if not empty
     OpenMM::Vec3 pendingBuildBox[3];
     std::vector<int> blockFailure;   // per block of the running colour: position of the failing pair, or -1
@@ -116,7 +127,7 @@ protected:
     // docs/theory.md section 11: sigma(n_i) at the densities internalEnergies belong to, if known.
     std::vector<double> densityEntropies;
     bool densityEntropiesKnown = false;
-    std::unique_ptr<NeighborList> neighborList;   // the sweep's candidates (null without pair terms)
+    std::unique_ptr<NeighborList> neighborList;   // the sweep's own candidates (null without pair terms)
 };
 
 } // namespace GenDPDEPlugin

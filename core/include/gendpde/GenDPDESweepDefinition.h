@@ -99,34 +99,6 @@ inline int blockColour(int bx, int by, int bz) {
 }
 
 /**
- * The order within a block: copy its pairs listed[0..count) (sorted by their first particles first[0..count)) to
- * output, with the lists of each four consecutive distinct first particles interleaved: the first pair of each list,
- * then the second of each, ...
- */
-inline void interleaveRuns(const int* listed, const int* first, int count, int* output) {
-    int next = 0, start = 0;
-    while (start < count) {
-        // Up to four runs of equal first particle, starting at `start`.
-        int runStart[5], numRuns = 0, end = start;
-        while (numRuns < 4 && end < count) {
-            runStart[numRuns++] = end;
-            const int particle = first[end];
-            while (end < count && first[end] == particle)
-                end++;
-        }
-        runStart[numRuns] = end;
-        int longest = 0;
-        for (int r = 0; r < numRuns; r++)
-            longest = std::max(longest, runStart[r + 1] - runStart[r]);
-        for (int rank = 0; rank < longest; rank++)
-            for (int r = 0; r < numRuns; r++)
-                if (runStart[r] + rank < runStart[r + 1])
-                    output[next++] = listed[runStart[r] + rank];
-        start = end;
-    }
-}
-
-/**
  * The number of 64-bit words per particle that assignLevels needs when no particle has more than maxDegree pairs in a
  * block: greedy levels are below 2 maxDegree - 1.
  */

@@ -32,7 +32,7 @@
 # the image's pytest) and, time permitting, the benchmarks at N = 1,000,188. A stage that fails or runs out of time
 # is reported as such and the run goes on with the stages that do not need it.
 #
-#   devtools/gpu_checks.sh dry-run OUTDIR --tiny   the dry run with 1,000 and 500 particles and short timings (a
+#   devtools/gpu_checks.sh dry-run OUTDIR --tiny   the dry run with 864 and 500 particles and short timings (a
 #                                        check that every stage runs end to end, not a measurement)
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -141,7 +141,7 @@ else
     ctest_filter=OpenCLGenDPDESweep
     export POCL_CACHE_DIR=/tmp/gendpde-dry-pocl
     if [ "$tiny" = --tiny ]; then
-        large=1000
+        large=864
         small=500
     fi
 fi
@@ -222,19 +222,22 @@ python_tests() {
 }
 # time_steps.py: N particles, the state melted on the device itself; ms per Isoenergetic step, then the profile.
 throughput() {   # N [precisions after mixed]
+    set -o pipefail   # (a function runs in a bash of its own: a failed time_steps.py must fail the stage)
     local n=$1 state=/tmp/gendpde-state-$1.npz ms precision
     shift
     ms=$("$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
          --melt-platform "$platform" --precision mixed --what step --count "$steps" | tail -n 1) || return 1
+    [ -n "$ms" ] || return 1
     echo "N = $n, $platform mixed: $ms ms per Isoenergetic step = $("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") \
 particle-steps/s"
-    GENDPDE_PROFILE=1 "$python" benchmarks/time_steps.py --state "$state" --platform "$platform" --precision mixed \
-        --what step --count "$profile_steps" 2> "/tmp/gendpde-profile-$n.txt" || return 1
+    GENDPDE_PROFILE=1 "$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
+        --precision mixed --what step --count "$profile_steps" 2> "/tmp/gendpde-profile-$n.txt" || return 1
     cat "/tmp/gendpde-profile-$n.txt"
     "$python" devtools/profile_summary.py "/tmp/gendpde-profile-$n.txt" "N = $n, $platform mixed" || return 1
     for precision in "$@"; do   # (the state melted in mixed precision: the same liquid)
-        ms=$("$python" benchmarks/time_steps.py --state "$state" --platform "$platform" --precision "$precision" \
-             --what step --count "$steps" | tail -n 1) || return 1
+        ms=$("$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
+             --precision "$precision" --what step --count "$steps" | tail -n 1) || return 1
+        [ -n "$ms" ] || return 1
         echo "N = $n, $platform $precision: $ms ms per Isoenergetic step = \
 $("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") particle-steps/s"
     done
@@ -262,10 +265,10 @@ figures() {   # the lines of a stage's log that go into the summary
     grep -h "particle-steps/s\|^profile\|per particle\|^|" "$logs/$1.log" 2>/dev/null | sed 's/^/    /' | tee -a "$summary"
 }
 if stage install 90 install && stage build 240 build_plugin; then
-    stage throughput-large 90 throughput $large; figures throughput-large
-    stage benchmarks-small 110 benchmarks $small; figures benchmarks-small
-    stage throughput-small 60 throughput $small single double; figures throughput-small
-    stage memory 40 device_memory; figures memory
+    stage throughput-large 100 throughput $large; figures throughput-large
+    stage benchmarks-small 150 benchmarks $small; figures benchmarks-small
+    stage throughput-small 75 throughput $small single double; figures throughput-small
+    stage memory 45 device_memory; figures memory
     stage tests 150 cpp_tests
     stage python-tests 90 python_tests
     stage benchmarks-large 150 benchmarks $large; figures benchmarks-large

@@ -25,10 +25,14 @@ def process_memory_mib():
         text = subprocess.run(["nvidia-smi", "--query-compute-apps=pid,used_memory", "--format=csv,noheader,nounits"],
                               capture_output=True, text=True, check=True).stdout
         for line in text.splitlines():
-            pid, used = (field.strip() for field in line.split(","))
-            if int(pid) == os.getpid():
-                return float(used), "GPU memory (nvidia-smi)"
-        return 0.0, "GPU memory (nvidia-smi; this process not listed)"
+            fields = [field.strip() for field in line.split(",")]
+            if len(fields) == 2 and fields[0] == str(os.getpid()) and fields[1].isdigit():
+                return float(fields[1]), "GPU memory of this process (nvidia-smi)"
+        # In a container nvidia-smi may not see this process's id: the memory used on the device instead (a lent
+        # GPU runs nothing else).
+        text = subprocess.run(["nvidia-smi", "--query-gpu=memory.used", "--format=csv,noheader,nounits", "-i", "0"],
+                              capture_output=True, text=True, check=True).stdout
+        return float(text.split()[0]), "GPU memory used on device 0 (nvidia-smi; this process not listed)"
     with open("/proc/self/status") as status:
         for line in status:
             if line.startswith("VmRSS:"):

@@ -14,6 +14,7 @@
 #include "openmm/internal/ContextImpl.h"
 #include <cmath>
 #include <cstdlib>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -301,8 +302,9 @@ void CommonIntegrateGenDPDEStepKernel::beginSteps(ContextImpl& context, const Ge
     if (sweep != nullptr)
         sweep->beginRun();
     sharesBuild = false;
-    if (deferredChecks != nullptr && sweep != nullptr && terms.pairSweep
-        && std::getenv("GENDPDE_NO_SHARED_BUILD") == nullptr) {
+    const char* apart = std::getenv("GENDPDE_NO_SHARED_BUILD"); // (a developer's setting: set, not "" or "0")
+    const bool keepApart = apart != nullptr && std::string(apart) != "" && std::string(apart) != "0";
+    if (deferredChecks != nullptr && sweep != nullptr && terms.pairSweep && !keepApart) {
         ArrayInterface* listRebuild = deferredChecks->shareBuild(this, cutoff);
         sharesBuild = (listRebuild != nullptr);
         sweep->setSharedList(listRebuild);

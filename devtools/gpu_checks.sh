@@ -23,17 +23,20 @@
 # or the image's NVIDIA wheels), build (this plugin and its C++ tests against that OpenMM), then the figures of issue
 # 52 first: throughput at N = 1,000,188 (liquid argon, V-B, R* = 1.6839, Isoenergetic steps, mixed precision, then
 # the per-part profile, GENDPDE_PROFILE, summed up by devtools/profile_summary.py: launches, host transfers and order
-# builds per step, the critical path in levels, the sweep's time per level), the package's benchmarks at N = 108,000
-# (benchmark-integrator: every mode against VerletIntegrator and DPDIntegrator, the Isothermal step against
-# DPDIntegrator; benchmark-force: against CustomGBForce), throughput at N = 108,000 (mixed, with its profile, then
-# single and double), the device memory per particle (nvidia-smi's count for this process, two sizes), then the
+# builds per step, the critical path in levels, the sweep's time per level), throughput at N = 108,000 (mixed, with
+# its profile, then single and double), the device memory per particle (devtools/device_memory.py: nvidia-smi's
+# count, two sizes), the package's benchmarks at N = 108,000 (benchmark-integrator: every mode against
+# VerletIntegrator, the Isothermal step against DPDIntegrator; benchmark-force: against CustomGBForce), then the
 # correctness checks: tests (ctest -R CUDA: the shared tests in each precision, the comparison with Reference, the
 # sweep), python-tests (pytest's GPU tier of test_gpu_platforms.py and test_sweep_order.py for the platform, with
 # the image's pytest) and, time permitting, the benchmarks at N = 1,000,188. A stage that fails or runs out of time
-# is reported as such and the run goes on with the stages that do not need it.
+# is reported as such and the run goes on with the stages that do not need it; stages the budget leaves no time for
+# are reported SKIPPED (then a second run with --tests-first).
 #
 #   devtools/gpu_checks.sh dry-run OUTDIR --tiny   the dry run with 864 and 500 particles and short timings (a
 #                                        check that every stage runs end to end, not a measurement)
+#   devtools/gpu_checks.sh run OUTDIR --tests-first   the correctness checks before the figures (for a second run
+#                                        when the budget cut them off the first)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -63,11 +66,11 @@ prepare)
     ;;
 run|dry-run)
     mode=$1
-    out=${2:?"usage: devtools/gpu_checks.sh $1 OUTDIR [--tiny]"}
+    out=${2:?"usage: devtools/gpu_checks.sh $1 OUTDIR [--tiny | --tests-first]"}
     tiny=${3:-}
     ;;
 *)
-    echo "usage: devtools/gpu_checks.sh prepare | run OUTDIR | dry-run OUTDIR [--tiny]" >&2
+    echo "usage: devtools/gpu_checks.sh prepare | run OUTDIR [--tests-first] | dry-run OUTDIR [--tiny]" >&2
     exit 2
     ;;
 esac
@@ -264,12 +267,16 @@ note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
 figures() {   # the lines of a stage's log that go into the summary
     grep -h "particle-steps/s\|^profile\|per particle\|^|" "$logs/$1.log" 2>/dev/null | sed 's/^/    /' | tee -a "$summary"
 }
+correctness() {
+    stage tests 120 cpp_tests
+    stage python-tests 60 python_tests
+}
 if stage install 90 install && stage build 240 build_plugin; then
-    stage throughput-large 100 throughput $large; figures throughput-large
-    stage benchmarks-small 150 benchmarks $small; figures benchmarks-small
-    stage throughput-small 75 throughput $small single double; figures throughput-small
-    stage memory 45 device_memory; figures memory
-    stage tests 150 cpp_tests
-    stage python-tests 90 python_tests
+    [ "$tiny" = --tests-first ] && correctness
+    stage throughput-large 90 throughput $large; figures throughput-large
+    stage throughput-small 60 throughput $small single double; figures throughput-small
+    stage memory 40 device_memory; figures memory
+    stage benchmarks-small 120 benchmarks $small; figures benchmarks-small
+    [ "$tiny" = --tests-first ] || correctness
     stage benchmarks-large 150 benchmarks $large; figures benchmarks-large
 fi

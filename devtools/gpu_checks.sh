@@ -20,13 +20,23 @@
 #
 # Stages (run): env (the GPU, the image's tools and libraries), install (the wheels, with --no-index, into a prefix
 # on PYTHONPATH, so that the image's packages stay visible; libOpenMMCUDA finds cuFFT and NVRTC in the CUDA toolkit
-# or the image's NVIDIA wheels), build (this plugin and its C++ tests against that OpenMM), tests (ctest -R CUDA:
-# the shared tests in each precision, the comparison with Reference, the sweep), python-tests (pytest's GPU tier of
-# test_gpu_platforms.py for the platform, with the image's pytest), throughput at N = 1e6 (Isoenergetic
-# steps, mixed precision, then the per-part profile and counts, GENDPDE_PROFILE), the package's benchmarks at
-# N = 1e5 (benchmark-integrator: every mode against VerletIntegrator and DPDIntegrator; benchmark-force: against
-# CustomGBForce) and, time permitting, at N = 1e6. A stage that fails or runs out of time is reported as such and
-# the run goes on with the stages that do not need it.
+# or the image's NVIDIA wheels), build (this plugin and its C++ tests against that OpenMM), then the figures of issue
+# 52 first: throughput at N = 1,000,188 (liquid argon, V-B, R* = 1.6839, Isoenergetic steps, mixed precision, then
+# the per-part profile, GENDPDE_PROFILE, summed up by devtools/profile_summary.py: launches, host transfers and order
+# builds per step, the critical path in levels, the sweep's time per level), throughput at N = 108,000 (mixed, with
+# its profile, then single and double), the device memory per particle (devtools/device_memory.py: nvidia-smi's
+# count, two sizes), the package's benchmarks at N = 108,000 (benchmark-integrator: every mode against
+# VerletIntegrator, the Isothermal step against DPDIntegrator; benchmark-force: against CustomGBForce), then the
+# correctness checks: tests (ctest -R CUDA: the shared tests in each precision, the comparison with Reference, the
+# sweep), python-tests (pytest's GPU tier of test_gpu_platforms.py and test_sweep_order.py for the platform, with
+# the image's pytest) and, time permitting, the benchmarks at N = 1,000,188. A stage that fails or runs out of time
+# is reported as such and the run goes on with the stages that do not need it; stages the budget leaves no time for
+# are reported SKIPPED (then a second run with --tests-first).
+#
+#   devtools/gpu_checks.sh dry-run OUTDIR --tiny   the dry run with 864 and 500 particles and short timings (a
+#                                        check that every stage runs end to end, not a measurement)
+#   devtools/gpu_checks.sh run OUTDIR --tests-first   the correctness checks before the figures (for a second run
+#                                        when the budget cut them off the first)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -56,10 +66,11 @@ prepare)
     ;;
 run|dry-run)
     mode=$1
-    out=${2:?"usage: devtools/gpu_checks.sh $1 OUTDIR"}
+    out=${2:?"usage: devtools/gpu_checks.sh $1 OUTDIR [--tiny | --tests-first]"}
+    tiny=${3:-}
     ;;
 *)
-    echo "usage: devtools/gpu_checks.sh prepare | run OUTDIR | dry-run OUTDIR" >&2
+    echo "usage: devtools/gpu_checks.sh prepare | run OUTDIR [--tests-first] | dry-run OUTDIR [--tiny]" >&2
     exit 2
     ;;
 esac
@@ -132,6 +143,19 @@ else
     small=500
     ctest_filter=OpenCLGenDPDESweep
     export POCL_CACHE_DIR=/tmp/gendpde-dry-pocl
+    if [ "$tiny" = --tiny ]; then
+        large=864
+        small=500
+    fi
+fi
+# Steps timed per throughput measurement and rounds of the benchmarks (few in the tiny dry run: a check, not figures).
+steps=50
+profile_steps=20
+rounds=3
+if [ "$tiny" = --tiny ]; then
+    steps=5
+    profile_steps=5
+    rounds=1
 fi
 prefix=/tmp/gendpde-gpu-prefix
 build=/tmp/gendpde-gpu-build
@@ -196,46 +220,63 @@ cpp_tests() {
 }
 # The Python side on the device: the GPU tier's platform comparisons (test_gpu_platforms.py) for this platform.
 python_tests() {
-    "$python" -m pytest -m gpu -q -k "$platform" "$root/python/tests/test_gpu_platforms.py"
+    "$python" -m pytest -m gpu -q -k "$platform" "$root/python/tests/test_gpu_platforms.py" \
+        "$root/python/tests/test_sweep_order.py"
 }
 # time_steps.py: N particles, the state melted on the device itself; ms per Isoenergetic step, then the profile.
-throughput() {
-    local n=$1 state=/tmp/gendpde-state-$1.npz ms
+throughput() {   # N [precisions after mixed]
+    set -o pipefail   # (a function runs in a bash of its own: a failed time_steps.py must fail the stage)
+    local n=$1 state=/tmp/gendpde-state-$1.npz ms precision
+    shift
     ms=$("$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
-         --melt-platform "$platform" --precision mixed --what step --count 50 | tail -n 1) || return 1
+         --melt-platform "$platform" --precision mixed --what step --count "$steps" | tail -n 1) || return 1
+    [ -n "$ms" ] || return 1
     echo "N = $n, $platform mixed: $ms ms per Isoenergetic step = $("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") \
 particle-steps/s"
-    GENDPDE_PROFILE=1 "$python" benchmarks/time_steps.py --state "$state" --platform "$platform" --precision mixed \
-        --what step --count 20
+    GENDPDE_PROFILE=1 "$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
+        --precision mixed --what step --count "$profile_steps" 2> "/tmp/gendpde-profile-$n.txt" || return 1
+    cat "/tmp/gendpde-profile-$n.txt"
+    "$python" devtools/profile_summary.py "/tmp/gendpde-profile-$n.txt" "N = $n, $platform mixed" || return 1
+    for precision in "$@"; do   # (the state melted in mixed precision: the same liquid)
+        ms=$("$python" benchmarks/time_steps.py --state "$state" --particles "$n" --platform "$platform" \
+             --precision "$precision" --what step --count "$steps" | tail -n 1) || return 1
+        [ -n "$ms" ] || return 1
+        echo "N = $n, $platform $precision: $ms ms per Isoenergetic step = \
+$("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") particle-steps/s"
+    done
 }
 benchmarks() {
     local n=$1
     "$python" -m openmmgendpde benchmark-integrator --platform "$platform" --precision mixed --particles "$n" \
-        --rounds 3 || return 1
+        --rounds "$rounds" || return 1
     "$python" -m openmmgendpde benchmark-force --platform "$platform" --precision mixed --particles "$n" \
-        --cutoffs 1.6839 --rounds 3
+        --cutoffs 1.6839 --rounds "$rounds"
+}
+# The device memory a Context holds per particle: nvidia-smi's count for this process with a Context of each size
+# (the difference over the difference in particles: the CUDA context itself cancels); without nvidia-smi (the dry
+# run on PoCL, where the device is this machine's memory) the growth of the resident set instead.
+device_memory() {
+    "$python" devtools/device_memory.py --platform "$platform" --precision mixed --particles "$small" "$large"
 }
 
-export python wheels platform ctest_filter prefix build site root
-export -f environment cuda_libraries install build_plugin cpp_tests python_tests throughput benchmarks
+export python wheels platform ctest_filter prefix build site root steps profile_steps rounds small large
+export -f environment cuda_libraries install build_plugin cpp_tests python_tests throughput benchmarks device_memory
 stage env 30 environment
 export LD_LIBRARY_PATH=$(cuda_libraries)${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
+figures() {   # the lines of a stage's log that go into the summary
+    grep -h "particle-steps/s\|^profile\|per particle\|^|" "$logs/$1.log" 2>/dev/null | sed 's/^/    /' | tee -a "$summary"
+}
+correctness() {
+    stage tests 120 cpp_tests
+    stage python-tests 60 python_tests
+}
 if stage install 90 install && stage build 240 build_plugin; then
-    stage tests 180 cpp_tests
-    stage python-tests 90 python_tests
-    if stage throughput-large 100 throughput $large; then
-        grep -h "particle-steps/s\|critical path\|launches and" "$logs/throughput-large.log" | sed 's/^/    /' \
-            | tee -a "$summary"
-    fi
-    if stage benchmarks-small 150 benchmarks $small; then
-        sed -n '/^|/p' "$logs/benchmarks-small.log" | sed 's/^/    /' | tee -a "$summary"
-    fi
-    if stage throughput-small 60 throughput $small; then
-        grep -h "particle-steps/s\|critical path\|launches and" "$logs/throughput-small.log" | sed 's/^/    /' \
-            | tee -a "$summary"
-    fi
-    if stage benchmarks-large 150 benchmarks $large; then
-        sed -n '/^|/p' "$logs/benchmarks-large.log" | sed 's/^/    /' | tee -a "$summary"
-    fi
+    [ "$tiny" = --tests-first ] && correctness
+    stage throughput-large 90 throughput $large; figures throughput-large
+    stage throughput-small 60 throughput $small single double; figures throughput-small
+    stage memory 40 device_memory; figures memory
+    stage benchmarks-small 120 benchmarks $small; figures benchmarks-small
+    [ "$tiny" = --tests-first ] || correctness
+    stage benchmarks-large 150 benchmarks $large; figures benchmarks-large
 fi

@@ -86,3 +86,52 @@ def test_a_force_evaluated_elsewhere_between_steps_changes_nothing(name):
 
     for undisturbed, disturbed in zip(run(False), run(True)):
         assert np.array_equal(undisturbed, disturbed)
+
+
+@pytest.mark.gpu
+@pytest.mark.parametrize("name", GPU_PLATFORMS)
+@pytest.mark.parametrize("precision", ["mixed", "double"])
+def test_the_force_sharing_the_orders_build_changes_no_bit(name, precision, monkeypatch):
+    """On the GPU platforms a GenDPDEForce with the sweep's pair range makes its neighbour list from the sweep order's
+    build during the integrator's runs of steps (one check, one grid); GENDPDE_NO_SHARED_BUILD (read at each run)
+    makes each keep its own. The force sums by original index over the pairs closer than R whatever its list holds, so
+    the two trajectories must be the same to the last bit (the potential energy, summed in the cells' order, to its
+    rounding), through builds, runs of several lengths, evaluations between runs (the force's own list) and atom
+    reordering."""
+    system, force, positions = lattice_liquid(5, seed=3)
+    # A zero CustomNonbondedForce with a cutoff makes OpenMM reorder the atoms (every 250 steps).
+    spacer = openmm.CustomNonbondedForce("0")
+    spacer.setNonbondedMethod(openmm.CustomNonbondedForce.CutoffPeriodic)
+    spacer.setCutoffDistance(0.5 * force.getCutoffDistance())
+    for _ in range(system.getNumParticles()):
+        spacer.addParticle([])
+    system.addForce(spacer)
+    platform = openmm.Platform.getPlatformByName(name)
+    results = []
+    for shared in (True, False):
+        if shared:
+            monkeypatch.delenv("GENDPDE_NO_SHARED_BUILD", raising=False)
+        else:
+            monkeypatch.setenv("GENDPDE_NO_SHARED_BUILD", "1")
+        integrator = argon_integrator(0.01 * unit.picosecond)
+        integrator.setRandomNumberSeed(17)
+        integrator.setParticleTemperatures([TEMPERATURE] * system.getNumParticles())
+        context = openmm.Context(system, integrator, platform, {"Precision": precision})
+        context.setPositions(positions)
+        context.setVelocitiesToTemperature(3 * TEMPERATURE * unit.kelvin, 18)   # hot: builds every few steps
+        energies = []
+        for count in (1, 7, 20, 3, 29, 250):
+            integrator.step(count)
+            state = context.getState(getEnergy=True, getForces=True)   # an evaluation of the force's own
+            energies.append(state.getPotentialEnergy().value_in_unit(unit.kilojoule_per_mole))
+        state = context.getState(getPositions=True, getVelocities=True, getForces=True)
+        results.append((np.array(energies), state.getPositions(asNumpy=True)._value,
+                        state.getVelocities(asNumpy=True)._value, state.getForces(asNumpy=True)._value,
+                        np.array(integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole)),
+                        sweep_build(context, system.getNumParticles())[1]))
+        del context
+    # The potential energy is summed per thread in the order of the cells the list was last built from (the order's
+    # or the force's own): its last bits may differ; nothing that moves the particles reads it.
+    np.testing.assert_allclose(results[0][0], results[1][0], rtol=1e-12)
+    for a, b in zip(results[0][1:], results[1][1:]):
+        assert np.array_equal(a, b)

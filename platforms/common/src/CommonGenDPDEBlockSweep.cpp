@@ -37,6 +37,10 @@ enum {
     Flags,
     SlotOfAtom,
     Status,
+    ListRebuild,
+    ListForced,
+    ForceErrors,
+    ClearForceErrors,
     Count
 };
 }
@@ -194,6 +198,8 @@ CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDP
     levelStart.initialize<int>(cc, 1, "gendpdeSweepLevels");
     failureParticle.initialize<int>(cc, 1, "gendpdeSweepFailure");
     failureEnergy.initialize(cc, 1, mixedSize, "gendpdeSweepFailureEnergy");
+    placeholder.initialize<int>(cc, 2, "gendpdeSweepPlaceholder"); // a force's flags where no force shares
+    placeholder.upload(std::vector<int>(2, 0));
 }
 
 int CommonGenDPDEBlockSweep::levelWords() const {
@@ -288,6 +294,10 @@ void CommonGenDPDEBlockSweep::compile() {
                 .array(Flags, flags)
                 .array(SlotOfAtom, slotOfAtom)
                 .later(Status)
+                .later(ListRebuild)
+                .later(ListForced)
+                .later(ForceErrors)
+                .later(ClearForceErrors)
                 .done(Count);
     }
     boundsKernel = program->createKernel("findSweepBounds");
@@ -485,13 +495,12 @@ void CommonGenDPDEBlockSweep::setBoxArguments(ComputeKernel& kernel, int index, 
         setVector4(kernel, index + k, mixedIsDouble(cc), box[k][0], box[k][1], box[k][2], 1.0 / box[k][k]);
 }
 
-void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& energies, ArrayInterface& atomType,
-                                  ArrayInterface& pairTable, ArrayInterface& heatCapacityTable, int numClasses,
-                                  ArrayInterface& status) {
+void CommonGenDPDEBlockSweep::prepare(int stepIndex, ArrayInterface& status, ArrayInterface* listRebuild,
+                                      bool listForced, ArrayInterface* forceErrors) {
     // The build rule (GenDPDESweepDefinition.h): the host asks for a build from the step's positions at the first
     // step and when the box has changed, for one from given positions after setBuild(); the device adds one when a
     // particle has moved too far.
-    if (step.stepIndex == 0)
+    if (stepIndex == 0)
         lastAskedStep = -1; // a new run of steps
     Vec3 box[3];
     cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
@@ -501,7 +510,7 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
             newBox = newBox || box[k] != buildBox[k];
     const bool hostCapture = !built || newBox, hostBuild = givenPending && !hostCapture;
     if (hostCapture || hostBuild) {
-        lastAskedStep = step.stepIndex;
+        lastAskedStep = stepIndex;
         lastAskedGiven = hostBuild;
     }
     if (hostCapture) {
@@ -519,9 +528,14 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
         checkKernel->setArg(HostBuild, hostBuild ? 1 : 0);
         checkKernel->setArg(HostCapture, hostCapture ? 1 : 0);
         checkKernel->setArg(Status, status);
+        ArrayInterface* rebuildMark = (listRebuild != nullptr ? listRebuild : sharedListRebuild);
+        checkKernel->setArg(ListRebuild, rebuildMark != nullptr ? *rebuildMark : placeholder);
+        checkKernel->setArg(ListForced, listForced ? 1 : 0);
+        checkKernel->setArg(ForceErrors, forceErrors != nullptr ? *forceErrors : placeholder);
+        checkKernel->setArg(ClearForceErrors, forceErrors != nullptr ? 1 : 0);
     }
     profiler.time("sweep build check", [&]() { profiler.launch(checkKernel, numAtoms); });
-    bool mayBuild = true;
+    mayBuild = true;
     Vec3 low, extent;
     if (periodic)
         extent = BoxGeometry::perpendicularWidths(buildBox);
@@ -548,9 +562,7 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
         if (allocatedRanks != numRanks)
             allocate();
     }
-    const mm_int4 cellsArgument(gridCells[0], gridCells[1], gridCells[2], gridCells[0] * gridCells[1] * gridCells[2]);
-    const mm_int4 blocksArgument(blocks[0], blocks[1], blocks[2], numRanks);
-    const int groupSize = blocksPerGroup * blockThreads;
+    const mm_int4 cellsArgument = getCellsArgument();
     if (mayBuild) {
         {
             using namespace AssignArgument;
@@ -585,6 +597,40 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
             sortKernel->setArg(CellStart, cellStart);
             sortKernel->setArg(CellFill, cellFill);
         }
+        profiler.time("sweep cells (if due)", [&]() {
+            profiler.launch(assignKernel, numAtoms);
+            profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
+            profiler.launch(fillKernel, numAtoms);
+            profiler.launch(sortKernel, std::max(1, cellsArgument.w));
+        });
+    }
+    prepared = true;
+}
+
+CommonGenDPDESharedGrid CommonGenDPDEBlockSweep::sharedGrid() {
+    CommonGenDPDESharedGrid grid;
+    grid.cells = getCellsArgument();
+    grid.cellStart = &cellStart;
+    grid.sortedAtom = &sortedAtom;
+    grid.atomCell = &atomCell;
+    grid.buildPosition = &buildPosition;
+    grid.slotOfAtom = &slotOfAtom;
+    return grid;
+}
+
+void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& energies, ArrayInterface& atomType,
+                                  ArrayInterface& pairTable, ArrayInterface& heatCapacityTable, int numClasses,
+                                  ArrayInterface& status) {
+    // The step's check and cells, unless a GenDPDEForce that shares the build launched them for this step.
+    if (!prepared)
+        prepare(step.stepIndex, status, nullptr, false, nullptr);
+    prepared = false;
+    Vec3 box[3];
+    cc.getPeriodicBoxVectors(box[0], box[1], box[2]);
+    const mm_int4 cellsArgument = getCellsArgument();
+    const mm_int4 blocksArgument(blocks[0], blocks[1], blocks[2], numRanks);
+    const int groupSize = blocksPerGroup * blockThreads;
+    if (mayBuild) {
         {
             using namespace OrderArgument;
             orderKernel->setArg(Parity, parity);
@@ -603,13 +649,8 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
             orderKernel->setArg(LevelStart, levelStart);
         }
         const int groups = (numRanks + blocksPerGroup - 1) / blocksPerGroup;
-        profiler.time("sweep order build (if due)", [&]() {
-            profiler.launch(assignKernel, numAtoms);
-            profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
-            profiler.launch(fillKernel, numAtoms);
-            profiler.launch(sortKernel, std::max(1, cellsArgument.w));
-            profiler.launch(orderKernel, groups * groupSize, groupSize);
-        });
+        profiler.time("sweep order build (if due)",
+                      [&]() { profiler.launch(orderKernel, groups * groupSize, groupSize); });
     }
     {
         using namespace SweepArgument;
@@ -697,6 +738,7 @@ void CommonGenDPDEBlockSweep::setBuild(const std::vector<Vec3>& positions, const
 void CommonGenDPDEBlockSweep::runHalted(int haltStep, bool orderIncomplete) {
     // The steps from haltStep on did nothing: a build the host asked for then is asked for again; an order left
     // incomplete (too many levels) is built again from its positions.
+    prepared = false;
     if (orderIncomplete && built)
         givenPending = true;
     else if (lastAskedStep >= haltStep) {

@@ -4,6 +4,7 @@
 #define COMMON_GENDPDE_BLOCK_SWEEP_H_
 
 #include "CommonGenDPDECellGrid.h"
+#include "CommonGenDPDEForceChecks.h"
 #include "CommonGenDPDEProfiler.h"
 #include "openmm/common/ComputeArray.h"
 #include "openmm/common/ComputeContext.h"
@@ -32,7 +33,8 @@ struct BlockSweepStep {
  * sweeps its blocks, one work group per block, level by level, updating the candidates closer than R. The build's
  * kernels run every step and return at once, on the device, when no build is due; nothing waits for the host but,
  * with open boundaries, the build flag and the build's bounding box. The result is the sequential sweep's to the
- * last bit.
+ * last bit. A GenDPDEForce of the same pair range shares the build during a run of steps (prepare(): the check and
+ * the cells, launched before its evaluation of the step; its neighbour list is made from these cells at each build).
  *
  * Capacities: a block's region (at most maxParticles particles, a compile-time size of local memory) and its slab of
  * pairs (pairCapacity). A block beyond either is swept by a single thread that finds its candidates and levels again
@@ -64,9 +66,22 @@ public:
      */
     bool adjustCapacities(int mostParticles, int mostPairs);
     /**
-     * One step's sweep: build the order if the build rule asks (or build positions were given), then sweep the
-     * pairs of the order closer than R, colour by colour, at the current positions. atomType: each particle's class
-     * by original index (GenDPDETypes.h), the index into the tables by class.
+     * The first part of a step, at its positions: the build check and, where a build is due, the build's cells. A
+     * GenDPDEForce that shares the build calls it (through the integrator kernel, CommonGenDPDEBuildSource) before
+     * its evaluation of the step, with its list's rebuild mark (set where the order is built, or if listForced) and
+     * its error flags (cleared); otherwise run() does, marking the shared list (setSharedList) if there is one.
+     */
+    void prepare(int stepIndex, OpenMM::ArrayInterface& status, OpenMM::ArrayInterface* listRebuild, bool listForced,
+                 OpenMM::ArrayInterface* forceErrors);
+    /** The cells of the last build, for a force that shares it. */
+    CommonGenDPDESharedGrid sharedGrid();
+    /** The rebuild mark of the list of a force that shares the builds during this run of steps, or null. */
+    void setSharedList(OpenMM::ArrayInterface* listRebuild) { sharedListRebuild = listRebuild; }
+    /**
+     * One step's sweep: prepare() unless done for this step, build the order if the build rule asks (or build
+     * positions were given), then sweep the pairs of the order closer than R, colour by colour, at the current
+     * positions. atomType: each particle's class by original index (GenDPDETypes.h), the index into the tables by
+     * class.
      */
     void run(const BlockSweepStep& step, OpenMM::ArrayInterface& energies, OpenMM::ArrayInterface& atomType,
              OpenMM::ArrayInterface& pairTable, OpenMM::ArrayInterface& heatCapacityTable, int numClasses,
@@ -85,7 +100,10 @@ public:
     void forget() {
         built = false;
         givenPending = false;
+        prepared = false;
     }
+    /** A new run of steps: no step is prepared yet. */
+    void beginRun() { prepared = false; }
     /**
      * The run stopped at step haltStep of the run (its state rolled back): a build the host asked for at that step or
      * later is asked for again; orderIncomplete: the run stopped because a block had more levels than levelLimit()
@@ -114,6 +132,9 @@ private:
     /** The cells of a build in this box (periodic) or over these bounds (open), and the blocks' ranks. */
     void setCells(const OpenMM::Vec3& extent);
     void setBoxArguments(OpenMM::ComputeKernel& kernel, int index, const OpenMM::Vec3 box[3]) const;
+    OpenMM::mm_int4 getCellsArgument() const {
+        return OpenMM::mm_int4(gridCells[0], gridCells[1], gridCells[2], gridCells[0] * gridCells[1] * gridCells[2]);
+    }
     OpenMM::ComputeContext& cc;
     CommonGenDPDEProfiler& profiler;
     std::map<std::string, std::string> defines;
@@ -128,6 +149,9 @@ private:
     bool built = false, givenPending = false, lastAskedGiven = false;
     bool countersCleared = false; // cellCount and cellFill hold zeros (kept so by the kernels that use them)
     int lastAskedStep = -1, parity = 0;
+    bool prepared = false, mayBuild = false; // prepare() ran for the coming run(); whether that step may build
+    OpenMM::ArrayInterface* sharedListRebuild = nullptr;
+    OpenMM::ComputeArray placeholder;
     OpenMM::Vec3 buildBox[3], buildLow, buildExtent;
     std::array<int, 3> gridCells = {0, 0, 0}, blocks = {0, 0, 0};
     std::vector<int> rankOfBlock, groupStart;   // GenDPDESweepOrder::blockRanks of the current grid

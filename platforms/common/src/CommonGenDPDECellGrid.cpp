@@ -17,13 +17,13 @@ const int boundsGroupSize = 128;
 
 /** The arguments of kernels/gendpdeCells.cc's kernels, in the order of their parameters. */
 namespace AssignArgument {
-enum { Posq, PosqCorrection, BoxA, BoxB, BoxC, Low, Extent, Cells, SlotCell, CellCount, Count };
+enum { Gate, Posq, PosqCorrection, BoxA, BoxB, BoxC, Low, Extent, Cells, SlotCell, CellCount, Count };
 }
 namespace ScanArgument {
-enum { Counts, Starts, Size, TotalOut, TotalIndex, Count };
+enum { Gate, Counts, Starts, Size, TotalOut, TotalIndex, Count };
 }
 namespace SortArgument {
-enum { Cells, CellStart, CellFill, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count };
+enum { Gate, Cells, CellStart, CellFill, SortedSlot, AtomIndex, SortedAtom, SortedCell, Posq, SortedPos, Count };
 }
 
 } // namespace
@@ -42,6 +42,8 @@ CommonGenDPDECellGrid::CommonGenDPDECellGrid(ComputeContext& cc, CommonGenDPDEPr
     sortedPos.initialize(cc, numAtoms, cc.getPosq().getElementSize(), "gendpdeSortedPos");
     bounds.initialize(cc, 6, mixedIsDouble(cc) ? sizeof(double) : sizeof(float), "gendpdeBounds");
     scanTotal.initialize<int>(cc, 1, "gendpdeScanTotal");
+    always.initialize<int>(cc, 1, "gendpdeGridAlways");
+    always.upload(std::vector<int>(1, 1));
 }
 
 std::map<std::string, std::string> CommonGenDPDECellGrid::programDefines(ComputeContext& cc, bool periodic) {
@@ -64,6 +66,7 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     {
         using namespace AssignArgument;
         KernelArguments(assignKernel, "assignCells")
+                .later(Gate)
                 .array(Posq, cc.getPosq())
                 .array(PosqCorrection, cc.getPosqCorrection())
                 .later(BoxA)
@@ -80,6 +83,7 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     {
         using namespace ScanArgument;
         KernelArguments(scanKernel, "exclusiveScan")
+                .later(Gate)
                 .later(Counts)
                 .later(Starts)
                 .later(Size)
@@ -88,6 +92,7 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
                 .done(Count);
     }
     fillKernel = program->createKernel("fillCells");
+    fillKernel->addArg(); // the gate
     fillKernel->addArg(slotCell);
     fillKernel->addArg(cellStart);
     fillKernel->addArg(cellFill);
@@ -96,6 +101,7 @@ void CommonGenDPDECellGrid::createKernels(ComputeProgram program) {
     {
         using namespace SortArgument;
         KernelArguments(sortKernel, "sortCells")
+                .later(Gate)
                 .later(Cells)
                 .array(CellStart, cellStart)
                 .array(CellFill, cellFill)
@@ -117,7 +123,11 @@ void CommonGenDPDECellGrid::setBoxArguments(ComputeKernel& kernel, int index, bo
         setVector4(kernel, index + k, asDouble, box[k][0], box[k][1], box[k][2], 1.0 / box[k][k]);
 }
 
-void CommonGenDPDECellGrid::build() {
+void CommonGenDPDECellGrid::build(ArrayInterface& rebuild, bool forced) {
+    // Periodic: the cells depend on the box alone, and a new box forces a list build; the grid is built on the device
+    // when the list is (rebuild[0]). Open boundaries: the cells follow the particles' bounding box, read by the host
+    // at every evaluation, so the grid is built at every evaluation.
+    ArrayInterface& gate = periodic ? rebuild : always;
     // The region the cells divide, as GenDPDESweepOrder::computeCells chooses it (the same cells, so the same order).
     Vec3 low, extent;
     if (periodic) {
@@ -132,7 +142,11 @@ void CommonGenDPDECellGrid::build() {
         low = Vec3(corners[0], corners[1], corners[2]);
         extent = Vec3(corners[3], corners[4], corners[5]) - low;
     }
+    const std::array<int, 3> previous = numCells;
     numCells = GenDPDESweepOrder::cellCounts(extent, range, periodic);
+    if (periodic && built && numCells != previous && !forced)
+        throw OpenMMException("GenDPDE: internal error: the cell grid changed without a rebuild of the list");
+    built = true;
     const long long total = (long long) numCells[0] * numCells[1] * numCells[2];
     if (total > 100000000)
         throw OpenMMException(
@@ -153,19 +167,23 @@ void CommonGenDPDECellGrid::build() {
         cleared = true;
     }
     const mm_int4 cells = getCellsArgument();
+    assignKernel->setArg(AssignArgument::Gate, gate);
     setBoxArguments(assignKernel, AssignArgument::BoxA, true);
     setMixed4(cc, assignKernel, AssignArgument::Low, low[0], low[1], low[2], 0.0);
     setMixed4(cc, assignKernel, AssignArgument::Extent, extent[0], extent[1], extent[2], 0.0);
     assignKernel->setArg(AssignArgument::Cells, cells);
     const int numAtoms = cc.getNumAtoms();
     profiler.launch(assignKernel, numAtoms);
+    scanKernel->setArg(ScanArgument::Gate, gate);
     scanKernel->setArg(ScanArgument::Counts, cellCount);
     scanKernel->setArg(ScanArgument::Starts, cellStart);
     scanKernel->setArg(ScanArgument::Size, (int) total);
     scanKernel->setArg(ScanArgument::TotalOut, scanTotal);
     scanKernel->setArg(ScanArgument::TotalIndex, 0);
     profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
+    fillKernel->setArg(0, gate);
     profiler.launch(fillKernel, numAtoms);
+    sortKernel->setArg(SortArgument::Gate, gate);
     sortKernel->setArg(SortArgument::Cells, cells);
     profiler.launch(sortKernel, (int) total);
 }

@@ -16,7 +16,8 @@
 namespace GenDPDEPlugin {
 
 /**
- * The cell grid of GenDPDEForce's device kernels (kernels/gendpdeCells.cc), rebuilt on the device at every evaluation:
+ * The cell grid of GenDPDEForce's device kernels (kernels/gendpdeCells.cc), built on the device when the neighbour
+ * list is (periodic; open boundaries: at every evaluation) and kept until then:
  * cells at least the candidate range wide (GenDPDESweepOrder::cellCounts: 1.1 R, so that the neighbour list's
  * search over the 27 cells around a particle finds every pair within 1.1 R; periodic: in the reduced box's fractional
  * coordinates, open: over the particles' bounding box), the particles listed cell by cell and by original index inside
@@ -33,8 +34,11 @@ public:
     static std::map<std::string, std::string> programDefines(OpenMM::ComputeContext& cc, bool periodic);
     /** Create the grid's kernels from a program compiled from kernels/gendpdeCells.cc (and more). */
     void createKernels(OpenMM::ComputeProgram program);
-    /** Rebuild at the current positions (the context must be current). */
-    void build();
+    /**
+     * Rebuild at the current positions if rebuild[0] != 0 on the device when the kernels run (the list's mark; open
+     * boundaries: always). forced: the host has asked for a list build (the cells may change only then).
+     */
+    void build(OpenMM::ArrayInterface& rebuild, bool forced);
     /** (n_x, n_y, n_z, n_x n_y n_z) of the last build, as a kernel argument. */
     OpenMM::mm_int4 getCellsArgument() const {
         return OpenMM::mm_int4(numCells[0], numCells[1], numCells[2], numCells[0] * numCells[1] * numCells[2]);
@@ -56,8 +60,9 @@ private:
     bool periodic;
     double range;
     std::array<int, 3> numCells;
+    bool built = false;     // a build was launched
     bool cleared = false;   // cellCount and cellFill hold zeros (kept so by the kernels that use them)
-    OpenMM::ComputeArray cellCount, cellFill, slotCell, bounds, scanTotal;
+    OpenMM::ComputeArray cellCount, cellFill, slotCell, bounds, scanTotal, always;
     OpenMM::ComputeKernel findBoundsKernel, assignKernel, scanKernel, fillKernel, sortKernel;
 };
 

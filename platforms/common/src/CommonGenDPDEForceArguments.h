@@ -49,6 +49,31 @@ enum {
     Count
 };
 }
+namespace SharedBuildArgument {
+enum {
+    Cells,
+    CellStart,
+    OrderAtom,
+    AtomCell,
+    SlotOfAtom,
+    OrderPosition,
+    BoxA,
+    BoxB,
+    BoxC,
+    Cutoff,
+    ListRange,
+    Capacity,
+    Rebuild,
+    SortedSlot,
+    SortedAtom,
+    SortedCell,
+    BuildPosition,
+    ListCount,
+    Neighbours,
+    Errors,
+    Count
+};
+}
 /** The leading arguments of every pass (NEIGHBOUR_ARGUMENTS). */
 namespace NeighbourArgument {
 enum {

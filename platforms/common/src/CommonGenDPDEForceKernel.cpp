@@ -48,25 +48,18 @@ void CommonCalcGenDPDEForceKernel::copyParametersToContext(ContextImpl& context,
     readParameters(force);
 }
 
-void CommonCalcGenDPDEForceKernel::setModelArguments() {
+void CommonCalcGenDPDEForceKernel::setModelArguments(const mm_int4& cells, ArrayInterface& cellStart) {
     // The constants of the physics core (gendpdeDensityWeightScales, gendpdeEstimatorConstants), computed on the host.
     const Physics::DensityWeight weight(cutoff);
     const Physics::VolumeEstimator constants(estimator, cutoff, cutoff / cutoffScaling);
-    const mm_int4 cells = grid->getCellsArgument();
     for (ComputeKernel* kernel : {&densityKernel, &forceKernel, &virialKernel}) {
         using namespace NeighbourArgument;
         (*kernel)->setArg(Neighbours, neighbours);
         (*kernel)->setArg(Capacity, listCapacity);
         (*kernel)->setArg(Cells, cells);
+        (*kernel)->setArg(CellStart, cellStart);
         grid->setBoxArguments(*kernel, BoxA, false);
     }
-    buildKernel->setArg(BuildArgument::Cells, cells);
-    grid->setBoxArguments(buildKernel, BuildArgument::BoxA, false);
-    setReal(cc, buildKernel, BuildArgument::Cutoff, cutoff);
-    setReal(cc, buildKernel, BuildArgument::ListRange, (1 + listSkin) * cutoff);
-    buildKernel->setArg(BuildArgument::Capacity, listCapacity);
-    buildKernel->setArg(BuildArgument::Neighbours, neighbours);
-    setReal(cc, checkKernel, CheckArgument::MaxDrift, 0.5 * listSkin * cutoff);
     for (auto kernelAndIndex : {std::make_pair(&densityKernel, (int) DensityArgument::Model),
                                 std::make_pair(&forceKernel, (int) ForceArgument::Model),
                                 std::make_pair(&virialKernel, (int) VirialArgument::Model)})
@@ -134,13 +127,47 @@ void CommonCalcGenDPDEForceKernel::densityPass() {
         *needsRebuild = true;
     }
     profiler.countStep();
-    profiler.time("cell grid", [&]() { grid->build(); });
-    setModelArguments();
-    profiler.time("neighbour list", [&]() {
-        checkKernel->setArg(CheckArgument::ForceRebuild, *needsRebuild ? 1 : 0);
-        profiler.launch(checkKernel, cc.getNumAtoms());
-        profiler.launch(buildKernel, cc.getNumAtoms());
-    });
+    const bool forced = *needsRebuild;
+    if (buildSource != nullptr) {
+        // A build shared with the integrator's sweep: its check (by the order's rule) marks the list too, and the
+        // list is made from the order's cells (the integrator's profile counts the check and the cells).
+        const CommonGenDPDESharedGrid shared = buildSource->prepareBuild(rebuild, errors, forced);
+        setModelArguments(shared.cells, *shared.cellStart);
+        {
+            using namespace SharedBuildArgument;
+            sharedBuildKernel->setArg(Cells, shared.cells);
+            sharedBuildKernel->setArg(CellStart, *shared.cellStart);
+            sharedBuildKernel->setArg(OrderAtom, *shared.sortedAtom);
+            sharedBuildKernel->setArg(AtomCell, *shared.atomCell);
+            sharedBuildKernel->setArg(SlotOfAtom, *shared.slotOfAtom);
+            sharedBuildKernel->setArg(OrderPosition, *shared.buildPosition);
+            grid->setBoxArguments(sharedBuildKernel, BoxA, false);
+            setReal(cc, sharedBuildKernel, Cutoff, cutoff);
+            setReal(cc, sharedBuildKernel, ListRange, (1 + listSkin) * cutoff);
+            sharedBuildKernel->setArg(Capacity, listCapacity);
+            sharedBuildKernel->setArg(Neighbours, neighbours);
+        }
+        profiler.time("neighbour list build (if due)", [&]() { profiler.launch(sharedBuildKernel, cc.getNumAtoms()); });
+    } else {
+        // The list's check marks a build on the device; the grid (periodic) and the list are built only then.
+        setReal(cc, checkKernel, CheckArgument::MaxDrift, 0.5 * listSkin * cutoff);
+        profiler.time("neighbour list check", [&]() {
+            checkKernel->setArg(CheckArgument::ForceRebuild, forced ? 1 : 0);
+            profiler.launch(checkKernel, cc.getNumAtoms());
+        });
+        profiler.time("cell grid (at list builds)", [&]() { grid->build(rebuild, forced); });
+        setModelArguments(grid->getCellsArgument(), grid->cellStart); // (the cells of this build)
+        {
+            using namespace BuildArgument;
+            buildKernel->setArg(Cells, grid->getCellsArgument());
+            grid->setBoxArguments(buildKernel, BoxA, false);
+            setReal(cc, buildKernel, Cutoff, cutoff);
+            setReal(cc, buildKernel, ListRange, (1 + listSkin) * cutoff);
+            buildKernel->setArg(Capacity, listCapacity);
+            buildKernel->setArg(Neighbours, neighbours);
+        }
+        profiler.time("neighbour list build (if due)", [&]() { profiler.launch(buildKernel, cc.getNumAtoms()); });
+    }
     *needsRebuild = false;
     for (int k = 0; k < 3; k++)
         listBox[k] = box[k];
@@ -157,6 +184,22 @@ void CommonCalcGenDPDEForceKernel::setDeferred(bool deferred) {
         growList(found[2]);
     }
     this->deferred = deferred;
+}
+
+ArrayInterface* CommonCalcGenDPDEForceKernel::shareBuild(CommonGenDPDEBuildSource* source, double range) {
+    // Either way the list is built again at the next evaluation: from the shared cells, or from its own grid
+    // (the shared list's rows belong to the order's build, whose cells the own grid does not hold).
+    if (source == nullptr) {
+        if (buildSource != nullptr)
+            *needsRebuild = true;
+        buildSource = nullptr;
+        return nullptr;
+    }
+    if (!periodic || dependsOnTemperature || range != cutoff)
+        return nullptr;
+    buildSource = source;
+    *needsRebuild = true;
+    return &rebuild;
 }
 
 void CommonCalcGenDPDEForceKernel::growList(int mostNeighbours) {
@@ -180,6 +223,7 @@ void CommonCalcGenDPDEForceKernel::throwErrors(ContextImpl& context, int nonFini
     if (status == GENDPDE_PARTICLE_NO_NEIGHBOR)
         throw OpenMMException(GenDPDEForceErrors::noNeighbor(particle, cutoff, step));
     const Physics::LocalEquationOfState& law = lawByType[types->getParticleTypeIndices()[particle]];
+    shareBuild(nullptr, 0.0); // (the pass below is not a step's: its own check and grid)
     // The density of the particle at these positions (the flags came from an evaluation at them; the atoms may have
     // been reordered since, so the pass runs again).
     densityPass();

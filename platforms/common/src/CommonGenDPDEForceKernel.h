@@ -21,7 +21,7 @@ namespace GenDPDEPlugin {
  * A particle whose state is invalid (no neighbour under V-A, an overflowing equation of state, a non-finite position)
  * stops the evaluation with the Reference platform's error, naming the particle and the step, or, while a
  * GenDPDEIntegrator's run of steps defers these checks (CommonGenDPDEForceChecks), stops that run on the device. It
- * lends its cell grid and its checks to the integrator kernel (GenDPDEPairSource).
+ * lends its checks to the integrator kernel (GenDPDEPairSource).
  */
 class CommonCalcGenDPDEForceKernel : public CalcGenDPDEForceKernel,
                                      public GenDPDEPairSource,
@@ -35,13 +35,14 @@ public:
     void copyParametersToContext(OpenMM::ContextImpl& context, const GenDPDEForce& force) override;
     const GenDPDEObservables& getObservables(OpenMM::ContextImpl& context, bool particleVirials) override;
     GenDPDEPairSource* getPairSource() override { return this; }
-    // GenDPDEPairSource: the cell grid of the last evaluation (the integrator's sweep reuses it at the same positions).
+    // GenDPDEPairSource: the force's checks, which an integrator's run of steps defers.
     CommonGenDPDEForceChecks* getDeviceChecks() override { return this; }
     bool giveThermalState(IntegrateGenDPDEStepKernel& integratorKernel) override;
     // CommonGenDPDEForceChecks
     void setDeferred(bool deferred) override;
     OpenMM::ArrayInterface& getErrorFlags() override { return errors; }
     void throwErrors(OpenMM::ContextImpl& context, int nonFinite, int invalid, long long step) override;
+    OpenMM::ArrayInterface* shareBuild(CommonGenDPDEBuildSource* source, double range) override;
 
 private:
     class ForceInfo;
@@ -58,6 +59,7 @@ private:
     void allocateArrays(const OpenMM::System& system);
     void uploadVolumeTables();
     void createListKernels(OpenMM::ComputeProgram& program);
+    void createSharedListKernel(OpenMM::ComputeProgram& program);
     void createDensityKernel(OpenMM::ComputeProgram& program);
     void createForceKernels(OpenMM::ComputeProgram& program);
     /**
@@ -67,7 +69,8 @@ private:
     void computeDensities(OpenMM::ContextImpl& context);
     /** The cell grid, the neighbour list (rebuilt if needed) and the density pass, without waiting for the device. */
     void densityPass();
-    void setModelArguments();
+    /** The passes' arguments for cells of this size, starting at cellStart (the own grid's or the shared one's). */
+    void setModelArguments(const OpenMM::mm_int4& cells, OpenMM::ArrayInterface& cellStart);
     /** Point the density pass at the integrator's thermal state (laws that depend on temperature). */
     void setThermalArguments(OpenMM::ContextImpl& context);
     /** The per-type tables of the laws from the parameters read last. */
@@ -96,7 +99,8 @@ private:
     // Laws that depend on temperature: C_V theta_i and sigma(n_i) by original index (mixed), for the integrator; a
     // placeholder of one element (and for the integrator's arrays) when no law does.
     OpenMM::ComputeArray thermalEnergyOut, densityEntropyOut, placeholderInt;
-    OpenMM::ComputeKernel checkKernel, buildKernel, densityKernel, forceKernel, virialKernel;
+    OpenMM::ComputeKernel checkKernel, buildKernel, sharedBuildKernel, densityKernel, forceKernel, virialKernel;
+    CommonGenDPDEBuildSource* buildSource = nullptr; // the integrator's, while this force shares its build
     GenDPDEObservables observables;
     CommonGenDPDEProfiler profiler;
 };

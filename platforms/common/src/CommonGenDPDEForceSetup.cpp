@@ -62,6 +62,7 @@ void CommonCalcGenDPDEForceKernel::initialize(const System& system, const GenDPD
                               defines);
     grid->createKernels(program);
     createListKernels(program);
+    createSharedListKernel(program);
     createDensityKernel(program);
     createForceKernels(program);
     // Atom reordering moves particles between slots, which the list holds: it is rebuilt after.
@@ -175,6 +176,33 @@ void CommonCalcGenDPDEForceKernel::createListKernels(ComputeProgram& program) {
                 .array(Errors, errors)
                 .done(Count);
     }
+}
+
+void CommonCalcGenDPDEForceKernel::createSharedListKernel(ComputeProgram& program) {
+    sharedBuildKernel = program->createKernel("buildSharedList");
+    using namespace SharedBuildArgument;
+    KernelArguments(sharedBuildKernel, "buildSharedList")
+            .later(Cells)
+            .later(CellStart)
+            .later(OrderAtom)
+            .later(AtomCell)
+            .later(SlotOfAtom)
+            .later(OrderPosition)
+            .later(BoxA)
+            .later(BoxB)
+            .later(BoxC)
+            .later(Cutoff)
+            .later(ListRange)
+            .later(Capacity)
+            .array(Rebuild, rebuild)
+            .array(SortedSlot, grid->sortedSlot)
+            .array(SortedAtom, grid->sortedAtom)
+            .array(SortedCell, grid->sortedCell)
+            .array(BuildPosition, buildPosition)
+            .array(ListCount, listCount)
+            .later(Neighbours)
+            .array(Errors, errors)
+            .done(Count);
 }
 
 void CommonCalcGenDPDEForceKernel::createDensityKernel(ComputeProgram& program) {

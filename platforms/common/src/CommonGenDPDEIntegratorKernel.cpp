@@ -13,6 +13,8 @@
 #include "openmm/common/ContextSelector.h"
 #include "openmm/internal/ContextImpl.h"
 #include <cmath>
+#include <cstdlib>
+#include <string>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -296,6 +298,23 @@ void CommonIntegrateGenDPDEStepKernel::beginSteps(ContextImpl& context, const Ge
     deferredChecks = (pairSource != nullptr ? pairSource->getDeviceChecks() : nullptr);
     if (deferredChecks != nullptr)
         deferredChecks->setDeferred(true);
+    // One build for the force's list and the sweep's order, where the force can share it.
+    if (sweep != nullptr)
+        sweep->beginRun();
+    sharesBuild = false;
+    const char* apart = std::getenv("GENDPDE_NO_SHARED_BUILD"); // (a developer's setting: set, not "" or "0")
+    const bool keepApart = apart != nullptr && std::string(apart) != "" && std::string(apart) != "0";
+    if (deferredChecks != nullptr && sweep != nullptr && terms.pairSweep && !keepApart) {
+        ArrayInterface* listRebuild = deferredChecks->shareBuild(this, cutoff);
+        sharesBuild = (listRebuild != nullptr);
+        sweep->setSharedList(listRebuild);
+    }
+}
+
+CommonGenDPDESharedGrid CommonIntegrateGenDPDEStepKernel::prepareBuild(ArrayInterface& listRebuild,
+                                                                       ArrayInterface& forceErrors, bool listForced) {
+    sweep->prepare((int) (cc.getStepCount() - runStartStep), status, &listRebuild, listForced, &forceErrors);
+    return sweep->sharedGrid();
 }
 
 void CommonIntegrateGenDPDEStepKernel::execute(ContextImpl& context, const GenDPDEIntegrator& integrator,
@@ -374,6 +393,11 @@ void CommonIntegrateGenDPDEStepKernel::finishSteps(ContextImpl& context, const G
 
 void CommonIntegrateGenDPDEStepKernel::endRun() {
     inRun = false;
+    if (sharesBuild) {
+        deferredChecks->shareBuild(nullptr, 0.0);
+        sweep->setSharedList(nullptr);
+        sharesBuild = false;
+    }
     if (deferredChecks != nullptr)
         deferredChecks->setDeferred(false);
 }

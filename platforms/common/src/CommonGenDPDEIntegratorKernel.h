@@ -29,8 +29,12 @@ namespace GenDPDEPlugin {
  * the host reads the status words after the run (and every pollInterval steps, to stop a long run early), resets
  * the step count and time to the failing step (whose state the device kept, rolling back the step's changes), and
  * throws the Reference platform's error, naming the particle and the step.
+ *
+ * In a run of steps with a GenDPDEForce of the same pair range (periodic, laws that do not depend on temperature) the
+ * two share one build (CommonGenDPDEBuildSource): the force's evaluation of each step launches the sweep's build check
+ * and cells, and makes its neighbour list from the order's cells whenever the order is built.
  */
-class CommonIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel {
+class CommonIntegrateGenDPDEStepKernel : public IntegrateGenDPDEStepKernel, public CommonGenDPDEBuildSource {
 public:
     /** @param localMemory  the local memory a work group may use on this device (bytes) */
     CommonIntegrateGenDPDEStepKernel(std::string name, const OpenMM::Platform& platform, OpenMM::ComputeContext& cc,
@@ -56,6 +60,9 @@ public:
     bool getSweepBuild(std::vector<OpenMM::Vec3>& positions, OpenMM::Vec3 box[3]) const override;
     void setSweepBuild(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 box[3]) override;
     void forgetSweepOrder() override;
+    // CommonGenDPDEBuildSource
+    CommonGenDPDESharedGrid prepareBuild(OpenMM::ArrayInterface& listRebuild, OpenMM::ArrayInterface& forceErrors,
+                                         bool listForced) override;
     /** Steps between two reads of the status words inside a run (so that a failed run stops early). */
     static const int pollInterval = 256;
 
@@ -81,6 +88,7 @@ private:
     double runStartTime = 0.0;
     int stepsSincePoll = 0;
     CommonGenDPDEForceChecks* deferredChecks = nullptr;
+    bool sharesBuild = false; // the force of deferredChecks shares the sweep's build in this run
     GenDPDEStepTerms runTerms;
     double runStepSize = 0.0;
     std::unique_ptr<CommonGenDPDEBlockSweep> sweep;

@@ -94,10 +94,18 @@ KERNEL void findBounds(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RE
     }
 }
 
+/*
+ * The grid's kernels take gate first: they build only when gate[0] != 0 (the neighbour list's rebuild mark, set on the
+ * device by checkList, or an array holding 1 where the grid is built at every evaluation), and otherwise return at
+ * once, so that the grid of the last list build is kept without the host knowing when that was.
+ */
+
 /** Each slot's cell, and the number of particles per cell (cellCount cleared before). */
-KERNEL void assignCells(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
+KERNEL void assignCells(GLOBAL const int* RESTRICT gate, GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
                         mixed4 boxA, mixed4 boxB, mixed4 boxC, mixed4 low, mixed4 extent, int4 cells,
                         GLOBAL int* RESTRICT slotCell, GLOBAL int* RESTRICT cellCount) {
+    if (gate[0] == 0)
+        return;
     for (int slot = GLOBAL_ID; slot < NUM_ATOMS; slot += GLOBAL_SIZE) {
         int cell = cellIndex(cellOfPosition(loadMixedPosition(posq, posqCorrection, slot), boxA, boxB, boxC, low,
                                             extent, cells), cells);
@@ -140,17 +148,21 @@ inline DEVICE int scanInGroup(LOCAL_ARG int* partial, GLOBAL int* RESTRICT count
 }
 
 /** scanInGroup's prefix sums, the total also into totalOut[totalIndex]. */
-KERNEL void exclusiveScan(GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts, int n,
-                          GLOBAL int* RESTRICT totalOut, int totalIndex) {
+KERNEL void exclusiveScan(GLOBAL const int* RESTRICT gate, GLOBAL int* RESTRICT counts, GLOBAL int* RESTRICT starts,
+                          int n, GLOBAL int* RESTRICT totalOut, int totalIndex) {
     LOCAL int partial[SCAN_GROUP_SIZE];
+    if (gate[0] == 0)
+        return;
     const int total = scanInGroup(partial, counts, starts, n);
     if (LOCAL_ID == 0)
         totalOut[totalIndex] = total;
 }
 
 /** List each slot in its cell (in any order; sortCells orders them and clears cellFill again). cellFill zero before. */
-KERNEL void fillCells(GLOBAL const int* RESTRICT slotCell, GLOBAL const int* RESTRICT cellStart,
+KERNEL void fillCells(GLOBAL const int* RESTRICT gate, GLOBAL const int* RESTRICT slotCell, GLOBAL const int* RESTRICT cellStart,
                       GLOBAL int* RESTRICT cellFill, GLOBAL int* RESTRICT sortedSlot) {
+    if (gate[0] == 0)
+        return;
     for (int slot = GLOBAL_ID; slot < NUM_ATOMS; slot += GLOBAL_SIZE) {
         int cell = slotCell[slot];
         sortedSlot[cellStart[cell] + ATOMIC_ADD(&cellFill[cell], 1)] = slot;
@@ -159,13 +171,16 @@ KERNEL void fillCells(GLOBAL const int* RESTRICT slotCell, GLOBAL const int* RES
 
 /**
  * Order each cell's particles by original index (insertion sort: a cell holds a few particles), and copy their
- * original indices and positions (real precision, for the force loops) into cell order; cellFill zero again.
+ * original indices and positions (real precision: the positions of the build, which buildList reads) into cell
+ * order; cellFill zero again.
  */
-KERNEL void sortCells(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
+KERNEL void sortCells(GLOBAL const int* RESTRICT gate, int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
                       GLOBAL int* RESTRICT sortedSlot,
                       GLOBAL const int* RESTRICT atomIndex, GLOBAL int* RESTRICT sortedAtom,
                       GLOBAL int* RESTRICT sortedCell, GLOBAL const real4* RESTRICT posq,
                       GLOBAL real4* RESTRICT sortedPos) {
+    if (gate[0] == 0)
+        return;
     for (int cell = GLOBAL_ID; cell < cells.w; cell += GLOBAL_SIZE) {
         const int begin = cellStart[cell], end = cellStart[cell + 1];
         cellFill[cell] = 0;

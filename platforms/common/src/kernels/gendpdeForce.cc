@@ -3,15 +3,20 @@
 /* GenDPDEForce on the device (docs/theory.md sections 2-4), over a neighbour list with a skin:
  *   checkList         the error flags cleared; the list marked for a rebuild if any particle has moved more than
  *                     half the skin since it was built (or the host asks);
- *   buildList         (only when marked) each particle's neighbours closer than R + skin, from the cell grid of
- *                     gendpdeCells.cc, by original index;
+ *   (the grid)        (only when marked: the kernels of gendpdeCells.cc return at once otherwise) the cell grid at
+ *                     the list's build positions, kept until the next build;
+ *   buildList         (only when marked) each particle's neighbours closer than R + skin, from that grid, by
+ *                     original index; or buildSharedList, from the cells of the integrator's sweep order when the
+ *                     force shares its build (a run of steps of a GenDPDEIntegrator with the same pair range), whose
+ *                     check (checkSweepBuild, gendpdeSweep.cc) then takes checkList's place;
  *   computeDensities  n0_i = sum_j w(r_ij) (and the first moments g_i for estimators that read them), then the
  *                     particle's state: V_i, pi_i, f(n_i) (energy), pi_i dV_i/dn0_i and q_i = 2 pi_i dV_i/dG_i g_i,
  *   computeForces     F_i = sum_j [pi_i V'_i + pi_j V'_j] w'(r_ij) e_ij + H(d_ij)(q_i - q_j),
  *   computeVirials    (observables only) each particle's half of sum_j r_ij . F_ij and of sum_j F_ij r_ij^T.
- * One thread per particle in the cell grid's order (a function of the positions alone), each gathering over its
- * listed neighbours (or, for a particle with more neighbours than the list holds, over the particles of the 27
- * cells around it, visited by original index too);
+ * One thread per particle in the order of the cell grid of the last build, each gathering over its listed
+ * neighbours at the current positions (posq; or, for a particle with more neighbours than the list holds, over the
+ * particles of the 27 cells around its build cell, which hold every particle within 1.1 R of its build position, so
+ * every one closer than R now: no particle has moved more than 0.05 R; visited by original index too);
  * every pair is computed by both its particles, so no thread writes another particle's sums. A particle's sums run
  * over its neighbours closer than R by original index whichever way they are found: the results do not depend on the
  * list's history (when it was rebuilt), so a run continued from a checkpoint repeats the uninterrupted one bit for
@@ -97,6 +102,71 @@ KERNEL void buildList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL c
     }
 }
 
+/**
+ * The list of a build shared with the integrator's sweep (CommonGenDPDEBuildSource: the same pair range, periodic),
+ * when marked: from the sweep's cells at its build positions (cellStart, orderAtom: the particles cell by cell, by
+ * original index in a cell; atomCell, orderPosition (mixed), slotOfAtom: by original index), each particle's
+ * neighbours closer than listRange at the build positions, by original index, as buildList makes them from the
+ * force's own grid; and the order the passes walk (sortedSlot, sortedAtom, sortedCell: the sweep's cell order). The
+ * sweep's rule, checked before every evaluation that shares it, keeps every particle within half the skin of its
+ * build position, so the list holds every pair closer than R.
+ */
+KERNEL void buildSharedList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL const int* RESTRICT orderAtom,
+        GLOBAL const int* RESTRICT atomCell, GLOBAL const int* RESTRICT slotOfAtom,
+        GLOBAL const mixed4* RESTRICT orderPosition, real4 boxA, real4 boxB, real4 boxC, real cutoff, real listRange,
+        int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL int* RESTRICT sortedSlot,
+        GLOBAL int* RESTRICT sortedAtom, GLOBAL int* RESTRICT sortedCell, GLOBAL real4* RESTRICT buildPosition,
+        GLOBAL int* RESTRICT listCount, GLOBAL int* RESTRICT neighbours, GLOBAL int* RESTRICT errors) {
+    if (rebuild[0] == 0)
+        return;
+    if (GLOBAL_ID == 0) {
+        errors[3] = errors[4] = 0;
+        errors[5]++;
+    }
+    const real range2 = listRange*listRange, cutoff2 = cutoff*cutoff;
+    for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
+        const int atom = orderAtom[k], s = slotOfAtom[atom], homeCell = atomCell[atom];
+        const mixed4 own = orderPosition[atom];
+        const real3 ri = make_real3((real) own.x, (real) own.y, (real) own.z);
+        const int3 home = cellCoordinates(homeCell, cells);
+        int count = 0, inRange = 0;
+        GLOBAL int* list = neighbours + (size_t) s*capacity;
+        FOR_EACH_NEIGHBOUR_CELL(home, cells, cx, cy, cz, cell) {
+            for (int m = cellStart[cell]; m < cellStart[cell + 1]; m++) {
+                const int other = orderAtom[m];
+                const mixed4 p = orderPosition[other];
+                const real3 d = pairDelta(ri, make_real3((real) p.x, (real) p.y, (real) p.z), boxA, boxB, boxC);
+                if (m != k && dot(d, d) < range2) {
+                    if (count < capacity)
+                        list[count] = other; // (original indices while sorting, slots after)
+                    count++;
+                    inRange += (dot(d, d) < cutoff2 ? 1 : 0);
+                }
+            }
+        }
+        const int listed = min(count, capacity);
+        for (int n = 1; n < listed; n++) {
+            const int value = list[n];
+            int m = n - 1;
+            while (m >= 0 && list[m] > value) {
+                list[m + 1] = list[m];
+                m--;
+            }
+            list[m + 1] = value;
+        }
+        for (int n = 0; n < listed; n++)
+            list[n] = slotOfAtom[list[n]];
+        sortedSlot[k] = s;
+        sortedAtom[k] = atom;
+        sortedCell[k] = homeCell;
+        buildPosition[s] = make_real4(ri.x, ri.y, ri.z, 0);
+        listCount[s] = count;
+        ATOMIC_MAX(&errors[2], count);
+        ATOMIC_ADD(&errors[3], count);
+        ATOMIC_ADD(&errors[4], inRange);
+    }
+}
+
 /** The density pass's terms of one pair (d = r_i - r_j) closer than the cutoff: w(r) and, with moments, d phi(r)/r. */
 inline DEVICE void addDensityTerms(real3 d, real4 model, int moments, real* n0, real3* g) {
     const real r2 = dot(d, d);
@@ -173,8 +243,9 @@ inline DEVICE int nextNeighbour(NeighbourCursor* c, real3 ri, real3* d, GLOBAL c
     if (best < 0)
         return -1;
     c->lastAtom = bestAtom;
-    *d = pairDelta(ri, trimTo3(sortedPos[best]), boxA, boxB, boxC);
-    return sortedSlot[best];
+    const int slot = sortedSlot[best];
+    *d = pairDelta(ri, trimTo3(posq[slot]), boxA, boxB, boxC);
+    return slot;
 }
 
 /* The arguments every pass takes to walk the neighbours (the list, and the cell grid for overflowed particles). */
@@ -221,7 +292,7 @@ KERNEL void computeDensities(NEIGHBOUR_ARGUMENTS, GLOBAL const int* RESTRICT ato
     mixed energy = 0;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const int s = sortedSlot[k], atom = atomIndex[s];
-        const real3 ri = trimTo3(sortedPos[k]);
+        const real3 ri = trimTo3(posq[s]);
         if (!(isfinite(ri.x) && isfinite(ri.y) && isfinite(ri.z)))
             ATOMIC_MIN(&errors[0], atom);
         real n0 = 0;
@@ -273,7 +344,7 @@ KERNEL void computeForces(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* R
         int moments, GLOBAL const real4* RESTRICT momentForce, GLOBAL mm_long* RESTRICT forceBuffers) {
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const int s = sortedSlot[k];
-        const real3 ri = trimTo3(sortedPos[k]);
+        const real3 ri = trimTo3(posq[s]);
         const real ci = forceCoefficient[s];
         const real3 qi = (moments ? trimTo3(momentForce[s]) : make_real3(0, 0, 0));
 #ifdef USE_DOUBLE_PRECISION
@@ -317,7 +388,7 @@ KERNEL void computeVirials(NEIGHBOUR_ARGUMENTS, real4 model, GLOBAL const real* 
         GLOBAL real* RESTRICT particleVirialTensor) {
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const int s = sortedSlot[k];
-        const real3 ri = trimTo3(sortedPos[k]);
+        const real3 ri = trimTo3(posq[s]);
         const real ci = forceCoefficient[s];
         const real3 qi = (moments ? trimTo3(momentForce[s]) : make_real3(0, 0, 0));
         real sum = 0;

@@ -110,19 +110,28 @@ inline DEVICE int3 blockOfRank(int rank, int4 blocks) {
  * (slotOfAtom[original index]). hostBuild: build (from buildPosition, unless a particle is too far from it);
  * hostCapture: build from the step's positions. Otherwise a build, from the step's positions, when some particle is
  * farther than sqrt(limit2) from buildPosition (nearest image in the step's box).
+ * A GenDPDEForce that shares the build (its neighbour list made from this build's cells, CommonGenDPDEBuildSource):
+ * listRebuild[0] = 1 where the order is built, or if listForced; forceErrors[0..1] cleared when clearForceErrors
+ * (that force's own check, which this one replaces, cleared them). Otherwise both point at placeholders.
  */
 KERNEL void checkSweepBuild(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
         GLOBAL const int* RESTRICT atomIndex, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB,
         mixed4 boxC, mixed limit2, int parity, int hostBuild, int hostCapture, GLOBAL int* RESTRICT flags,
-        GLOBAL int* RESTRICT slotOfAtom, GLOBAL const int* RESTRICT status) {
+        GLOBAL int* RESTRICT slotOfAtom, GLOBAL const int* RESTRICT status, GLOBAL int* RESTRICT listRebuild,
+        int listForced, GLOBAL int* RESTRICT forceErrors, int clearForceErrors) {
     if (GLOBAL_ID == 0) {
         flags[2*(1 - parity)] = 0;
         flags[2*(1 - parity) + 1] = 0;
+        if (clearForceErrors)
+            forceErrors[0] = forceErrors[1] = 0x7FFFFFFF;
+        if (listForced)
+            listRebuild[0] = 1;
     }
     if (status[STATUS_HALTED] != 0)
         return;
     if (GLOBAL_ID == 0 && (hostBuild || hostCapture)) {
         flags[2*parity] = 1;
+        listRebuild[0] = 1;
         if (hostCapture)
             flags[2*parity + 1] = 1;
     }
@@ -135,6 +144,7 @@ KERNEL void checkSweepBuild(GLOBAL const real4* RESTRICT posq, GLOBAL const real
             if (dot(d, d) > limit2) {
                 flags[2*parity] = 1;
                 flags[2*parity + 1] = 1;
+                listRebuild[0] = 1;
             }
         }
     }

@@ -28,16 +28,21 @@ bool NeighborList::needsRebuild(const std::vector<Vec3>& positions, const Vec3 b
         return true;
     if (periodic && !(boxVectors[0] == builtBox[0] && boxVectors[1] == builtBox[1] && boxVectors[2] == builtBox[2]))
         return true;
-    const double limit = 0.25 * skin * skin;   // (skin/2)^2: two particles approach each other by at most skin
-    const Vec3* now = positions.data();
-    const Vec3* then = builtPositions.data();
+    return anyMovedFarther(positions, builtPositions, 0.25 * skin * skin, numThreads);   // (skin/2)^2: two particles
+            // approach by at most skin
+}
+
+bool NeighborList::anyMovedFarther(const std::vector<Vec3>& now, const std::vector<Vec3>& then, double limit2,
+                                   int numThreads) {
+    const Vec3* current = now.data();
+    const Vec3* before = then.data();
     std::atomic<bool> moved(false);
     std::atomic<bool>* anyMoved = &moved;
-    parallelFor(numThreads, positions.size(), 8192, [=](int begin, int end) {
+    parallelFor(numThreads, now.size(), 8192, [=](int begin, int end) {
         bool found = false;
         for (int i = begin; i < end; i++) {
-            const Vec3 d = now[i] - then[i];
-            found |= d.dot(d) > limit;
+            const Vec3 d = current[i] - before[i];
+            found |= d.dot(d) > limit2;
         }
         if (found)
             anyMoved->store(true, std::memory_order_relaxed);

@@ -166,6 +166,12 @@ public:
         return std::equal(positions.begin(), positions.end(), builtPositions.begin(),
                           [](const OpenMM::Vec3& a, const OpenMM::Vec3& b) { return a == b; });
     }
+    /**
+     * Whether some particle is farther from its place in `then` than sqrt(limit2) (nm) in `now` (the same size; plain
+     * differences, no periodic images), on this many threads: the rule of rebuilds.
+     */
+    static bool anyMovedFarther(const std::vector<OpenMM::Vec3>& now, const std::vector<OpenMM::Vec3>& then,
+                                double limit2, int numThreads);
     /** Forget the candidates: the next refresh() builds them whatever the positions. */
     void invalidate() { built = false; }
     /** The positions (nm, as given to refresh()) and box vectors of the last build of the candidates. */

@@ -12,7 +12,6 @@
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 using namespace GenDPDEPlugin;
@@ -86,21 +85,8 @@ bool ReferenceIntegrateGenDPDEStepKernel::orderIsStale(const std::vector<Vec3>& 
         return true;
     if (neighborList->isPeriodic() && !(box[0] == buildBox[0] && box[1] == buildBox[1] && box[2] == buildBox[2]))
         return true;
-    const double limit = SweepDefinition::rebuildDisplacement2(cutoff);
-    const Vec3* now = positions.data();
-    const Vec3* then = buildPositions.data();
-    std::atomic<bool> moved(false);
-    std::atomic<bool>* anyMoved = &moved;
-    parallelFor(numThreads, positions.size(), 8192, [=](int begin, int end) {
-        bool found = false;
-        for (int i = begin; i < end; i++) {
-            const Vec3 d = now[i] - then[i];
-            found |= d.dot(d) > limit;
-        }
-        if (found)
-            anyMoved->store(true, std::memory_order_relaxed);
-    });
-    return moved.load();
+    return NeighborList::anyMovedFarther(positions, buildPositions, SweepDefinition::rebuildDisplacement2(cutoff),
+                                         numThreads);
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::updateSweepOrder(ContextImpl& context, GenDPDEPairSource* pairSource,

@@ -65,17 +65,12 @@ inline DEVICE int3 cellCoordinates(int index, int4 cells) {
     return make_int3(index%cells.x, (index/cells.x)%cells.y, index/(cells.x*cells.y));
 }
 
-/** The bounding box of the particles (open boundaries): one work group; bounds = (low.xyz, high.xyz). */
-KERNEL void findBounds(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
-                       GLOBAL mixed* RESTRICT bounds) {
-    LOCAL mixed lowest[3*BOUNDS_GROUP_SIZE];
-    LOCAL mixed highest[3*BOUNDS_GROUP_SIZE];
-    mixed3 low = loadMixedPosition(posq, posqCorrection, 0), high = low;
-    for (int i = LOCAL_ID; i < NUM_ATOMS; i += LOCAL_SIZE) {
-        mixed3 r = loadMixedPosition(posq, posqCorrection, i);
-        low = make_mixed3(min(low.x, r.x), min(low.y, r.y), min(low.z, r.z));
-        high = make_mixed3(max(high.x, r.x), max(high.y, r.y), max(high.z, r.z));
-    }
+/**
+ * The work group's bounding box from each thread's (low, high): bounds = (low.xyz, high.xyz). lowest and highest:
+ * local scratch of 3 LOCAL_SIZE each.
+ */
+inline DEVICE void reduceBounds(mixed3 low, mixed3 high, LOCAL_ARG mixed* lowest, LOCAL_ARG mixed* highest,
+                                GLOBAL mixed* RESTRICT bounds) {
     lowest[3*LOCAL_ID] = low.x;
     lowest[3*LOCAL_ID + 1] = low.y;
     lowest[3*LOCAL_ID + 2] = low.z;
@@ -92,6 +87,20 @@ KERNEL void findBounds(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RE
         bounds[LOCAL_ID] = a;
         bounds[3 + LOCAL_ID] = b;
     }
+}
+
+/** The bounding box of the particles (open boundaries): one work group; bounds = (low.xyz, high.xyz). */
+KERNEL void findBounds(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
+                       GLOBAL mixed* RESTRICT bounds) {
+    LOCAL mixed lowest[3*BOUNDS_GROUP_SIZE];
+    LOCAL mixed highest[3*BOUNDS_GROUP_SIZE];
+    mixed3 low = loadMixedPosition(posq, posqCorrection, 0), high = low;
+    for (int i = LOCAL_ID; i < NUM_ATOMS; i += LOCAL_SIZE) {
+        mixed3 r = loadMixedPosition(posq, posqCorrection, i);
+        low = make_mixed3(min(low.x, r.x), min(low.y, r.y), min(low.z, r.z));
+        high = make_mixed3(max(high.x, r.x), max(high.y, r.y), max(high.z, r.z));
+    }
+    reduceBounds(low, high, lowest, highest, bounds);
 }
 
 /*

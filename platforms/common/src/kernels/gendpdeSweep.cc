@@ -178,22 +178,7 @@ KERNEL void findSweepBounds(GLOBAL const int* RESTRICT flags, int parity, GLOBAL
         low = make_mixed3(min(low.x, r.x), min(low.y, r.y), min(low.z, r.z));
         high = make_mixed3(max(high.x, r.x), max(high.y, r.y), max(high.z, r.z));
     }
-    lowest[3*LOCAL_ID] = low.x;
-    lowest[3*LOCAL_ID + 1] = low.y;
-    lowest[3*LOCAL_ID + 2] = low.z;
-    highest[3*LOCAL_ID] = high.x;
-    highest[3*LOCAL_ID + 1] = high.y;
-    highest[3*LOCAL_ID + 2] = high.z;
-    SYNC_THREADS;
-    if (LOCAL_ID < 3) {
-        mixed a = lowest[LOCAL_ID], b = highest[LOCAL_ID];
-        for (int t = 1; t < LOCAL_SIZE; t++) {
-            a = min(a, lowest[3*t + LOCAL_ID]);
-            b = max(b, highest[3*t + LOCAL_ID]);
-        }
-        bounds[LOCAL_ID] = a;
-        bounds[3 + LOCAL_ID] = b;
-    }
+    reduceBounds(low, high, lowest, highest, bounds);
 }
 
 /**

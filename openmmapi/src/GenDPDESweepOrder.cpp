@@ -97,17 +97,6 @@ void GenDPDESweepOrder::sortParticlesByCell() {
     }
 }
 
-long long GenDPDESweepOrder::criticalPath() const {
-    long long path = 0;
-    for (int g = 0; g < getNumGroups(); g++) {
-        int most = 0;
-        for (int b = groupStart[g]; b < groupStart[g + 1]; b++)
-            most = std::max(most, blockLevels[b]);
-        path += most;
-    }
-    return path;
-}
-
 void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 boxVectors[3], bool periodic, double range,
                               int numPairs, const int* pairI, const int* pairJ, int stride, int numThreads) {
     computeCells(positions, boxVectors, periodic, range, numThreads);

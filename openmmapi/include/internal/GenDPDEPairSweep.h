@@ -66,15 +66,14 @@ struct PairSweepParameters {
 class SweepLayout {
 public:
     /**
-     * Copy velocities, internal energies (null: none), inverse masses, classes (null: one class) and positions (null:
-     * none) into cell order, on this many threads; the velocities of particles with
-     * mass advanced on the way by forces (kJ/mol/nm) over kickTime (ps), v + F (kickTime / m), as a kick computes
-     * it (the step's first half kick: the particles' own velocities stay as they were until scatter()).
+     * Copy positions, velocities, internal energies (null: none), inverse masses and classes (null: one class) into
+     * cell order, on this many threads; the velocities of particles with mass advanced on the way by forces
+     * (kJ/mol/nm) over kickTime (ps), v + F (kickTime / m), as a kick computes it (the step's first half kick: the
+     * particles' own velocities stay as they were until scatter()).
      */
-    void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& velocities,
-                const std::vector<OpenMM::Vec3>& forces, double kickTime, const double* energies,
-                const double* inverseMasses, const int* classes, int numThreads,
-                const OpenMM::Vec3* positions = nullptr) {
+    void gather(const GenDPDESweepOrder& order, const std::vector<OpenMM::Vec3>& positions,
+                const std::vector<OpenMM::Vec3>& velocities, const std::vector<OpenMM::Vec3>& forces, double kickTime,
+                const double* energies, const double* inverseMasses, const int* classes, int numThreads) {
         slots = order.getSlots().data();
         particles = order.getParticlesByCell().data();
         const int n = order.getParticlesByCell().size();
@@ -82,9 +81,10 @@ public:
         slotInverseMasses.resize(n);
         slotEnergies.resize(energies != nullptr ? n : 0);
         slotClasses.resize(classes != nullptr ? n : 0);
-        slotPositions.resize(positions != nullptr ? n : 0);
+        slotPositions.resize(n);
         OpenMM::Vec3* sx = slotPositions.data();
         const int* particle = particles;
+        const OpenMM::Vec3* x = positions.data();
         const OpenMM::Vec3* v = velocities.data();
         const OpenMM::Vec3* f = forces.data();
         OpenMM::Vec3* sv = slotVelocities.data();
@@ -100,8 +100,7 @@ public:
                     se[s] = energies[i];
                 if (classes != nullptr)
                     sc[s] = classes[i];
-                if (positions != nullptr)
-                    sx[s] = positions[i];
+                sx[s] = x[i];
             }
         });
     }

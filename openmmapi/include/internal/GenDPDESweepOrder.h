@@ -56,11 +56,6 @@ public:
     const std::vector<int>& getBlockStart() const { return blockStart; }
     /** The number of levels of block b: the dependent updates it takes with its levels run one after another. */
     const std::vector<int>& getBlockLevels() const { return blockLevels; }
-    /**
-     * The critical path of the sweep: the sum over the groups of the most levels of any block of the group (what a
-     * device that runs all blocks of a colour at once, level after level, waits for).
-     */
-    long long criticalPath() const;
     /** Pair indices (into the candidates given to build()) in sweep order. */
     const std::vector<int>& getOrder() const { return order; }
     /**

@@ -174,9 +174,6 @@ public:
                                 double limit2, int numThreads);
     /** Forget the candidates: the next refresh() builds them whatever the positions. */
     void invalidate() { built = false; }
-    /** The positions (nm, as given to refresh()) and box vectors of the last build of the candidates. */
-    const std::vector<OpenMM::Vec3>& getBuiltPositions() const { return builtPositions; }
-    const OpenMM::Vec3* getBuiltBox() const { return builtBox; }
     /** How many times the candidates have been built: a change means new candidates. */
     long long getBuildCount() const { return buildCount; }
     double getCutoff() const { return cutoff; }

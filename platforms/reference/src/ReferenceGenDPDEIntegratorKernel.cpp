@@ -241,9 +241,9 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vecto
 void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(ContextImpl& context, const GenDPDEIntegrator& integrator,
                                                            PairSweepParameters& parameters, int numThreads) {
     const bool classes = parameters.numClasses > 1;
-    layout.gather(sweepOrder, extractVelocities(context), extractForces(context), 0.5 * integrator.getStepSize(),
-                  parameters.terms.internalEnergies ? internalEnergies.data() : nullptr, inverseMasses.data(),
-                  classes ? parameters.particleClass : nullptr, numThreads, extractPositions(context).data());
+    layout.gather(sweepOrder, extractPositions(context), extractVelocities(context), extractForces(context),
+                  0.5 * integrator.getStepSize(), parameters.terms.internalEnergies ? internalEnergies.data() : nullptr,
+                  inverseMasses.data(), classes ? parameters.particleClass : nullptr, numThreads);
     if (classes)
         parameters.particleClass = layout.slotClasses.data();
 }

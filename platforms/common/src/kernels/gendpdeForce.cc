@@ -45,6 +45,25 @@ KERNEL void checkList(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RES
     }
 }
 
+/** Whether the list is being rebuilt (rebuild[0] set); if so, the build's counters restarted (errors[3], errors[4]) and
+ *  the builds counted (errors[5]). */
+inline DEVICE bool startListBuild(GLOBAL const int* RESTRICT rebuild, GLOBAL int* RESTRICT errors) {
+    if (rebuild[0] == 0)
+        return false;
+    if (GLOBAL_ID == 0) {
+        errors[3] = errors[4] = 0;
+        errors[5]++;
+    }
+    return true;
+}
+
+/** One particle's row counted: the largest row (errors[2]), the entries (errors[3]) and those closer than R (4). */
+inline DEVICE void countListRow(int count, int inRange, GLOBAL int* RESTRICT errors) {
+    ATOMIC_MAX(&errors[2], count);
+    ATOMIC_ADD(&errors[3], count);
+    ATOMIC_ADD(&errors[4], inRange);
+}
+
 /**
  * The list, when marked for a rebuild: the neighbours (slots) of the particle in slot s closer than listRange, by
  * original index, are neighbours[s capacity + n], n < min(listCount[s], capacity); buildPosition[s] its position.
@@ -58,12 +77,8 @@ KERNEL void buildList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL c
         int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL real4* RESTRICT buildPosition,
         GLOBAL int* RESTRICT listCount,
         GLOBAL int* RESTRICT neighbours, GLOBAL int* RESTRICT errors) {
-    if (rebuild[0] == 0)
+    if (!startListBuild(rebuild, errors))
         return;
-    if (GLOBAL_ID == 0) {
-        errors[3] = errors[4] = 0;
-        errors[5]++;
-    }
     const real range2 = listRange*listRange, cutoff2 = cutoff*cutoff;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const real4 position = sortedPos[k];
@@ -96,9 +111,7 @@ KERNEL void buildList(int4 cells, GLOBAL const int* RESTRICT cellStart, GLOBAL c
         }
         buildPosition[s] = position;
         listCount[s] = count;
-        ATOMIC_MAX(&errors[2], count);
-        ATOMIC_ADD(&errors[3], count);
-        ATOMIC_ADD(&errors[4], inRange);
+        countListRow(count, inRange, errors);
     }
 }
 
@@ -117,12 +130,8 @@ KERNEL void buildSharedList(int4 cells, GLOBAL const int* RESTRICT cellStart, GL
         int capacity, GLOBAL const int* RESTRICT rebuild, GLOBAL int* RESTRICT sortedSlot,
         GLOBAL int* RESTRICT sortedAtom, GLOBAL int* RESTRICT sortedCell, GLOBAL real4* RESTRICT buildPosition,
         GLOBAL int* RESTRICT listCount, GLOBAL int* RESTRICT neighbours, GLOBAL int* RESTRICT errors) {
-    if (rebuild[0] == 0)
+    if (!startListBuild(rebuild, errors))
         return;
-    if (GLOBAL_ID == 0) {
-        errors[3] = errors[4] = 0;
-        errors[5]++;
-    }
     const real range2 = listRange*listRange, cutoff2 = cutoff*cutoff;
     for (int k = GLOBAL_ID; k < NUM_ATOMS; k += GLOBAL_SIZE) {
         const int atom = orderAtom[k], s = slotOfAtom[atom], homeCell = atomCell[atom];
@@ -161,9 +170,7 @@ KERNEL void buildSharedList(int4 cells, GLOBAL const int* RESTRICT cellStart, GL
         sortedCell[k] = homeCell;
         buildPosition[s] = make_real4(ri.x, ri.y, ri.z, 0);
         listCount[s] = count;
-        ATOMIC_MAX(&errors[2], count);
-        ATOMIC_ADD(&errors[3], count);
-        ATOMIC_ADD(&errors[4], inRange);
+        countListRow(count, inRange, errors);
     }
 }
 

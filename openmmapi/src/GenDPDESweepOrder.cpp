@@ -103,43 +103,35 @@ void GenDPDESweepOrder::build(const std::vector<Vec3>& positions, const Vec3 box
     sortParticlesByCell();
     // Ranks: the blocks in sweep order (colour by colour, by block index within a colour), then one rank for the
     // pairs whose cells are not adjacent.
-    int numRanks = blockRanks(numBlocks, rankOfBlock, groupStart);
-    const int extraRank = numRanks++;
+    const int numRanks = blockRanks(numBlocks, rankOfBlock, groupStart) + 1;
     groupStart.push_back(numRanks);
-    rankPairs(numPairs, pairI, pairJ, stride, extraRank, numThreads);
-    sortByRank(numPairs, numRanks, numThreads);
+    sortByRank(numPairs, pairI, pairJ, stride, numRanks, numThreads);
     orderLevels(pairI, pairJ, stride, numThreads);
 }
 
-void GenDPDESweepOrder::rankPairs(int numPairs, const int* pairI, const int* pairJ, int stride, int extraRank,
-                                  int numThreads) {
-    // Along each direction the home cell is the one the other follows (d = c_j - c_i, taken modulo n_k into [-1, 1] if
-    // periodic); a pair with |d| > 1 along some direction goes to the extra rank.
-    resizeBuffer(pairRank, numPairs);
+void GenDPDESweepOrder::sortByRank(int numPairs, const int* pairI, const int* pairJ, int stride, int numRanks,
+                                   int numThreads) {
+    // The rank of pair k: along each direction the home cell is the one the other follows (d = c_j - c_i, taken
+    // modulo n_k into [-1, 1] if periodic); a pair with |d| > 1 along some direction has the extra rank, the last.
     const std::array<int, 3>* cell = particleCell.data();
     const int* blockRank = rankOfBlock.data();
-    int* rankOfPair = pairRank.data();
     const std::array<int, 3> cells = numCells, blocks = numBlocks;
     const bool periodic = this->periodic;
-    parallelFor(numThreads, numPairs, 4096, [=](int begin, int end) {
-        for (int k = begin; k < end; k++) {
-            const std::array<int, 3>& ci = cell[pairI[(size_t) k * stride]];
-            const std::array<int, 3>& cj = cell[pairJ[(size_t) k * stride]];
-            int block[3];
-            bool adjacent = true;
-            for (int dim = 0; dim < 3; dim++) {
-                int d = cj[dim] - ci[dim];
-                if (periodic)
-                    d += (d < -1 ? cells[dim] : 0) - (d > 1 ? cells[dim] : 0);
-                adjacent = adjacent & ((unsigned) (d + 1) <= 2u);
-                block[dim] = (d == -1 ? cj[dim] : ci[dim]) >> 1;
-            }
-            rankOfPair[k] = adjacent ? blockRank[(block[2] * blocks[1] + block[1]) * blocks[0] + block[0]] : extraRank;
+    const int extraRank = numRanks - 1;
+    auto rankOf = [=](int k) {
+        const std::array<int, 3>& ci = cell[pairI[(size_t) k * stride]];
+        const std::array<int, 3>& cj = cell[pairJ[(size_t) k * stride]];
+        int block[3];
+        bool adjacent = true;
+        for (int dim = 0; dim < 3; dim++) {
+            int d = cj[dim] - ci[dim];
+            if (periodic)
+                d += (d < -1 ? cells[dim] : 0) - (d > 1 ? cells[dim] : 0);
+            adjacent = adjacent & ((unsigned) (d + 1) <= 2u);
+            block[dim] = (d == -1 ? cj[dim] : ci[dim]) >> 1;
         }
-    });
-}
-
-void GenDPDESweepOrder::sortByRank(int numPairs, int numRanks, int numThreads) {
+        return adjacent ? blockRank[(block[2] * blocks[1] + block[1]) * blocks[0] + block[0]] : extraRank;
+    };
     // A stable counting sort by rank over ranges of consecutive pairs: counts per range, then each range writes its
     // pairs from its own offsets (the result does not depend on the ranges). Each block then holds its pairs in (i, j)
     // order, the candidates' order.
@@ -147,11 +139,14 @@ void GenDPDESweepOrder::sortByRank(int numPairs, int numRanks, int numThreads) {
     const int pairsPerRange = numRanges(numPairs, numPairRanges);
     rangeCount.assign((size_t) numPairRanges * numRanks, 0);
     int* count = rangeCount.data();
-    const int* rankOfPair = pairRank.data();
+    std::vector<int> pairRank(numPairs); // (the build's scratch: not kept between builds)
+    int* rankOfPair = pairRank.data();
     parallelFor(numThreads, numPairRanges, 1, [=](int rangeBegin, int rangeEnd) {
         for (int r = rangeBegin; r < rangeEnd; r++)
-            for (int k = r * pairsPerRange; k < std::min(numPairs, (r + 1) * pairsPerRange); k++)
+            for (int k = r * pairsPerRange; k < std::min(numPairs, (r + 1) * pairsPerRange); k++) {
+                rankOfPair[k] = rankOf(k);
                 count[(size_t) r * numRanks + rankOfPair[k]]++;
+            }
     });
     blockStart.assign(numRanks + 1, 0);
     int total = 0;

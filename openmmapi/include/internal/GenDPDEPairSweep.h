@@ -126,11 +126,12 @@ public:
 };
 
 /**
- * A candidate of the sweep, in sweep order: its two particles (i < j: the random stream's key) and their slots in the
- * sweep's layout (SweepLayout::slots at the order's build).
+ * A candidate of the sweep, in sweep order: the slots of its two particles in the sweep's layout (SweepLayout::slots
+ * at the order's build), slotI that of the lower index: the particles i < j (SweepLayout::particles of the slots) key
+ * the pair's random stream.
  */
 struct SweepPair {
-    int i, j, slotI, slotJ;
+    int slotI, slotJ;
 };
 
 /**
@@ -140,13 +141,15 @@ struct SweepPair {
  */
 __attribute__((always_inline)) inline void prefetchAhead(const SweepPair* pairs, int n, int count,
                                                          const OpenMM::Vec3* velocities, const double* energies,
-                                                         const OpenMM::Vec3* positions) {
+                                                         const OpenMM::Vec3* positions, const int* particles) {
     if (n + 8 < count) {
         const SweepPair& ahead = pairs[n + 8];
         __builtin_prefetch(&velocities[ahead.slotI]);
         __builtin_prefetch(&velocities[ahead.slotJ]);
         __builtin_prefetch(&positions[ahead.slotI]);
         __builtin_prefetch(&positions[ahead.slotJ]);
+        __builtin_prefetch(&particles[ahead.slotI]);
+        __builtin_prefetch(&particles[ahead.slotJ]);
         if (energies != nullptr) {
             __builtin_prefetch(&energies[ahead.slotI]);
             __builtin_prefetch(&energies[ahead.slotJ]);
@@ -163,16 +166,18 @@ __attribute__((always_inline)) inline void prefetchAhead(const SweepPair* pairs,
  * heat conduction, at the temperatures the particles have when the pair is reached; otherwise the DPD thermostat of
  * the Isothermal mode, whose heat goes to the bath. The particles' data are by slot (SweepLayout): inverseMasses,
  * velocities, energies (null in the Isothermal mode) and p's classes. Returns the position in pairs of the first pair
- * after which an internal energy is <= 0 (the sweep stops there; the caller restores the state), or -1.
+ * after which an internal energy is <= 0 (the sweep stops there; the caller restores the state), or -1. particles:
+ * the particle of each slot (SweepLayout::particles), for the random streams' keys.
  */
 template <class NearestImage>
 int sweepPairs(const SweepPair* pairs, int count, NearestImage nearestImage, const OpenMM::Vec3* positions,
-               const PairSweepParameters& p, const double* inverseMasses, OpenMM::Vec3* velocities, double* energies) {
+               const int* particles, const PairSweepParameters& p, const double* inverseMasses,
+               OpenMM::Vec3* velocities, double* energies) {
     const int dissipation = p.terms.dissipation, conduction = p.terms.conduction;
     const int internalEnergies = p.terms.internalEnergies ? 1 : 0;
     const double cutoff2 = p.cutoff * p.cutoff;
     for (int n = 0; n < count; n++) {
-        prefetchAhead(pairs, n, count, velocities, energies, positions);
+        prefetchAhead(pairs, n, count, velocities, energies, positions, particles);
         const SweepPair& pair = pairs[n];
         const int i = pair.slotI, j = pair.slotJ;
         const OpenMM::Vec3 delta = nearestImage(positions[i] - positions[j]);
@@ -181,7 +186,7 @@ int sweepPairs(const SweepPair* pairs, int count, NearestImage nearestImage, con
             continue;
         const double r = std::sqrt(r2);
         const int a = p.classOf(i), b = p.classOf(j), ab = a * p.numClasses + b;
-        CounterRandom::PairStream random(p.seed, p.step, pair.i, pair.j);
+        CounterRandom::PairStream random(p.seed, p.step, particles[i], particles[j]);
         const int failed = Physics::gendpdeSweepPair(
                 dissipation, conduction, internalEnergies, delta[0], delta[1], delta[2], r, p.cutoff, inverseMasses[i],
                 inverseMasses[j], &velocities[i][0], &velocities[j][0], internalEnergies ? &energies[i] : nullptr,
@@ -194,9 +199,12 @@ int sweepPairs(const SweepPair* pairs, int count, NearestImage nearestImage, con
     return -1;
 }
 
-/** The particle whose internal energy failed in this pair (i if eps_i <= 0, else j), with energies by slot. */
-inline int failedParticle(const SweepPair& pair, const double* energies) {
-    return energies[pair.slotI] > 0.0 ? pair.j : pair.i;
+/**
+ * The particle whose internal energy failed in this pair (i if eps_i <= 0, else j), with energies and particles by
+ * slot.
+ */
+inline int failedParticle(const SweepPair& pair, const double* energies, const int* particles) {
+    return particles[energies[pair.slotI] > 0.0 ? pair.slotJ : pair.slotI];
 }
 
 } // namespace GenDPDEPlugin

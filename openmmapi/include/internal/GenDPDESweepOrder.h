@@ -56,8 +56,13 @@ public:
     const std::vector<int>& getBlockStart() const { return blockStart; }
     /** The number of levels of block b: the dependent updates it takes with its levels run one after another. */
     const std::vector<int>& getBlockLevels() const { return blockLevels; }
-    /** Pair indices (into the candidates given to build()) in sweep order. */
+    /** Pair indices (into the candidates given to build()) in sweep order (empty after releaseOrder()). */
     const std::vector<int>& getOrder() const { return order; }
+    /**
+     * Free the order's memory (4 bytes per pair) once the caller has put its pairs in that order: the blocks, groups
+     * and slots stay; the next build() allocates it again.
+     */
+    void releaseOrder() { std::vector<int>().swap(order); }
     /**
      * The number of cells along each direction for a region of these widths (nm: the perpendicular widths of a
      * periodic box, or the extent of the particles' bounding box) and pair range R (nm), as build() chooses them.
@@ -84,13 +89,13 @@ private:
     void computeCells(const std::vector<OpenMM::Vec3>& positions, const OpenMM::Vec3 boxVectors[3], bool periodic,
                       double range, int numThreads);
     void sortParticlesByCell();
-    void rankPairs(int numPairs, const int* pairI, const int* pairJ, int stride, int extraRank, int numThreads);
-    void sortByRank(int numPairs, int numRanks, int numThreads);
+    /** Sort the pairs by rank into order (stably) and set blockStart; the ranks are the sort's scratch. */
+    void sortByRank(int numPairs, const int* pairI, const int* pairJ, int stride, int numRanks, int numThreads);
     void orderLevels(const int* pairI, const int* pairJ, int stride, int numThreads);
     std::array<int, 3> numCells, numBlocks;
     bool periodic = false;
     std::vector<std::array<int, 3>> particleCell;
-    std::vector<int> pairRank, rankOfBlock, rangeCount, groupStart, blockStart, blockLevels, order;
+    std::vector<int> rankOfBlock, rangeCount, groupStart, blockStart, blockLevels, order;
     std::vector<int> cellCount, particlesByCell, slotOfParticle;
 };
 

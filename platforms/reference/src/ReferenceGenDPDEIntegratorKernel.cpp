@@ -119,28 +119,31 @@ void ReferenceIntegrateGenDPDEStepKernel::buildSweepOrder(const std::vector<Vec3
         neighborList->refresh(positions, box, numThreads);
         list = neighborList.get();
     }
+    // The candidates in (i, j) order (a build's scratch, as is the order: 12 bytes per pair, freed when the ordered
+    // pairs are made), the order made from them, and the candidates copied into that order as pairs of slots.
     const int numParticles = inverseMasses.size();
-    candidates.resize(list->getNumCandidates());
+    const int numCandidates = list->getNumCandidates();
+    std::vector<IndexPair> candidates(numCandidates);
     IndexPair* next = candidates.data();
     for (int i = 0; i < numParticles; i++)
         for (int j : list->candidatesOf(i))
             *next++ = {i, j};
     const int* first = candidates.empty() ? nullptr : &candidates[0].i;
     const bool periodic = neighborList->isPeriodic();
-    sweepOrder.build(positions, box, periodic, cutoff, candidates.size(), first, first != nullptr ? first + 1 : nullptr,
-                     2, numThreads);
-    const std::vector<int>& order = sweepOrder.getOrder();
-    const int* slot = sweepOrder.getSlots().data();
-    resizeBuffer(orderedPairs, order.size());
+    sweepOrder.build(positions, box, periodic, cutoff, numCandidates, first, first != nullptr ? first + 1 : nullptr, 2,
+                     numThreads);
+    resizeBuffer(orderedPairs, numCandidates);
     SweepPair* ordered = orderedPairs.data();
     const IndexPair* candidate = candidates.data();
-    const int* sequence = order.data();
-    parallelFor(numThreads, order.size(), 4096, [=](int begin, int end) {
+    const int* sequence = sweepOrder.getOrder().data();
+    const int* slot = sweepOrder.getSlots().data();
+    parallelFor(numThreads, numCandidates, 4096, [=](int begin, int end) {
         for (int n = begin; n < end; n++) {
             const IndexPair& pair = candidate[sequence[n]];
-            ordered[n] = {pair.i, pair.j, slot[pair.i], slot[pair.j]};
+            ordered[n] = {slot[pair.i], slot[pair.j]};
         }
     });
+    sweepOrder.releaseOrder();
     buildPositions = positions;
     std::copy(box, box + 3, buildBox);
     if (periodic)
@@ -201,6 +204,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vecto
     gatherSweepState(context, integrator, parameters, threads);
     const double* inverseMass = layout.slotInverseMasses.data();
     const Vec3* position = layout.slotPositions.data();
+    const int* particle = layout.particles;
     Vec3* v = layout.slotVelocities.data();
     double* energy = terms.internalEnergies ? layout.slotEnergies.data() : nullptr;
     const SweepPair* pairs = orderedPairs.data();
@@ -209,8 +213,8 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vecto
             // If an internal energy would become <= 0, nothing is copied back (the velocities and internal energies
             // stay those before the step; positions have not moved yet), and the error names the particle and the
             // step.
-            const int failed =
-                    sweepPairs(pairs, orderedPairs.size(), nearestImage, position, parameters, inverseMass, v, energy);
+            const int failed = sweepPairs(pairs, orderedPairs.size(), nearestImage, position, particle, parameters,
+                                          inverseMass, v, energy);
             if (failed >= 0)
                 failSweep(failed, step);
             return;
@@ -224,7 +228,7 @@ void ReferenceIntegrateGenDPDEStepKernel::sweep(ContextImpl& context, std::vecto
             parallelFor(threads, numBlocks, 1, [=](int begin, int end) {
                 for (int b = firstBlock + begin; b < firstBlock + end; b++) {
                     const int failed = sweepPairs(pairs + blockStart[b], blockStart[b + 1] - blockStart[b],
-                                                  nearestImage, position, parameters, inverseMass, v, energy);
+                                                  nearestImage, position, particle, parameters, inverseMass, v, energy);
                     if (failed >= 0)
                         failure[b - firstBlock] = blockStart[b] + failed;
                 }
@@ -249,7 +253,7 @@ void ReferenceIntegrateGenDPDEStepKernel::gatherSweepState(ContextImpl& context,
 }
 
 void ReferenceIntegrateGenDPDEStepKernel::failSweep(int failed, long long step) {
-    const int particle = failedParticle(orderedPairs[failed], layout.slotEnergies.data());
+    const int particle = failedParticle(orderedPairs[failed], layout.slotEnergies.data(), layout.particles);
     const double value = layout.slotEnergies[layout.slots[particle]];
     throw OpenMMException(GenDPDEIntegratorUtilities::nonPositiveEnergyMessage(particle, value, step));
 }

@@ -113,7 +113,6 @@ protected:
     std::unique_ptr<IntegratorTypeTables> typeTables;   // the particle types given to initialize(), and the tables
     std::vector<double> inverseMasses, internalEnergies;
     GenDPDESweepOrder sweepOrder;
-    std::vector<IndexPair> candidates;   // the neighbour list's candidates at the order's build, in (i, j) order
     std::vector<SweepPair> orderedPairs;   // the candidates in sweep order, with their slots in layout
     bool orderBuilt = false;
     std::vector<OpenMM::Vec3> buildPositions;   // the positions (nm) and box of the order's build

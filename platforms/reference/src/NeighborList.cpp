@@ -154,28 +154,47 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads,
     for (int m = 0; m < numParticles; m++)
         cellPositions[m] = r[cellParticles[m]];
     candidateStart.assign(numParticles + 1, 0);
+    // The search runs through the particles in cell order, so that consecutive particles scan the same cells (in
+    // index order, with the particles numbered at random, each one's cells are a new place in memory: at 500,000
+    // particles the search took 2.5 times as long per particle as at 32,000). Each range of the cell order writes its
+    // particles' rows into its own scratch; the rows are then copied into the ranges of particle indices, which keep
+    // them between builds.
     const int numChunks = numRanges(numParticles, particleChunk);
-    chunkCandidates.resize(numChunks);
+    std::vector<std::vector<int>> cellOrderRows(numChunks);
+    std::vector<std::int64_t> rowLocation(numParticles); // (range of the cell order) << 32 | offset in its scratch
     parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
         for (int c = chunkBegin; c < chunkEnd; c++)
             findCandidates(r, cellPositions, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk),
-                           neighborCells, chunkCandidates[c]);
+                           neighborCells, cellOrderRows[c], (std::int64_t) c << 32, rowLocation);
     });
     for (int i = 0; i < numParticles; i++)
         candidateStart[i + 1] += candidateStart[i];
+    chunkCandidates.resize(numChunks);
+    parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            const int begin = c * particleChunk, end = std::min(numParticles, (c + 1) * particleChunk);
+            resizeBuffer(chunkCandidates[c], candidateStart[end] - candidateStart[begin]);
+            int* out = chunkCandidates[c].data();
+            for (int i = begin; i < end; i++) {
+                const std::vector<int>& rows = cellOrderRows[rowLocation[i] >> 32];
+                const int* row = rows.data() + (rowLocation[i] & 0xFFFFFFFF);
+                out = std::copy(row, row + (candidateStart[i + 1] - candidateStart[i]), out);
+            }
+        }
+    });
 }
 
 void NeighborList::findCandidates(const std::vector<Vec3>& r, const std::vector<Vec3>& cellPositions, int begin,
                                   int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
-                                  std::vector<int>& found) {
+                                  std::vector<int>& found, std::int64_t range, std::vector<std::int64_t>& rowLocation) {
     // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted. Every particle of
-    // the surrounding cells is written and kept only if it is one (no branch: which are is close to random). `found`
-    // keeps its capacity from build to build and grows by a quarter when it must (a rebuild allocates nothing, and
-    // the buffers hold little more than the candidates).
+    // the surrounding cells is written and kept only if it is one (no branch: which are is close to random).
     const double listCutoff = cutoff + skin, listCutoff2 = listCutoff * listCutoff;
     size_t size = 0;
     found.resize(found.capacity());
-    for (int i = begin; i < end; i++) {
+    for (int m = begin; m < end; m++) {
+        const int i = cellParticles[m];
+        const Vec3 ri = cellPositions[m];
         int cell = particleCell[i];
         int cz = cell % numCells[2], cy = (cell / numCells[2]) % numCells[1], cx = cell / (numCells[2] * numCells[1]);
         const size_t first = size;
@@ -189,17 +208,17 @@ void NeighborList::findCandidates(const std::vector<Vec3>& r, const std::vector<
                         found.resize(found.capacity());
                     }
                     int* out = found.data();
-                    for (int m = cellBegin; m < cellEnd; m++) {
-                        const int j = cellParticles[m];
-                        const Vec3 d = periodic ? box.nearestImage(r[i] - cellPositions[m]) : r[i] - cellPositions[m];
+                    for (int n = cellBegin; n < cellEnd; n++) {
+                        const int j = cellParticles[n];
+                        const Vec3 d = periodic ? box.nearestImage(ri - cellPositions[n]) : ri - cellPositions[n];
                         out[size] = j;
                         size += (j > i) & (d.dot(d) < listCutoff2);
                     }
                 }
         std::sort(found.begin() + first, found.begin() + size);
         candidateStart[i + 1] = size - first;
+        rowLocation[i] = range | (std::int64_t) first;
     }
-    found.resize(size);
 }
 
 template <class Displacement>

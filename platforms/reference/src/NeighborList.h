@@ -5,6 +5,7 @@
 
 #include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/BoxGeometry.h"
+#include <cstdint>
 #include "openmm/Vec3.h"
 
 #include <algorithm>
@@ -200,10 +201,14 @@ private:
      */
     void collectCandidates(const std::vector<OpenMM::Vec3>& positions, int numThreads,
                            std::vector<OpenMM::Vec3>& cellPositions);
-    /** The candidates of particles begin .. end - 1 into `found` (their counts in candidateStart[i + 1]). */
+    /**
+     * The candidates of the particles at places begin .. end - 1 of the cell order, their rows one after another into
+     * `found`: the count of particle i's in candidateStart[i + 1], where its row begins in rowLocation[i] (range, the
+     * range's number shifted left by 32 bits, or the row's offset in `found`).
+     */
     void findCandidates(const std::vector<OpenMM::Vec3>& positions, const std::vector<OpenMM::Vec3>& cellPositions,
                         int begin, int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
-                        std::vector<int>& found);
+                        std::vector<int>& found, std::int64_t range, std::vector<std::int64_t>& rowLocation);
     /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
     template <class Displacement>
     void collectPairs(int numParticles, Displacement displacement, int numThreads);
@@ -219,9 +224,9 @@ private:
     std::vector<OpenMM::Vec3> wrappedPositions; // positions wrapped into the box (periodic only)
     /** Particles per range when threads share the work (fixed, so ranges do not depend on the thread count). */
     static const int particleChunk = 256;
-    // The candidates, kept as the ranges of particles found them (not copied into one array: that would hold them
-    // twice): those of particles [c particleChunk, (c + 1) particleChunk) in chunkCandidates[c]; candidateStart[i]: the
-    // candidates of the particles before i.
+    // The candidates by ranges of particle indices (not in one array: that would hold them twice while it is made):
+    // those of particles [c particleChunk, (c + 1) particleChunk) in chunkCandidates[c]; candidateStart[i]: the
+    // candidates of the particles before i. (A build finds them in cell order, into scratch it frees afterwards.)
     std::vector<int> candidateStart;
     std::vector<std::vector<int>> chunkCandidates;
     std::array<int, 3> numCells; // the cell grid of the last build

@@ -51,6 +51,20 @@ def give_types(model, count, entries=True):
             integrator.addTypePair(a, b, integrator.getFriction(), integrator.getHeatConduction())
 
 
+def print_per_step(integrator, count, num_particles):
+    """count steps, each timed alone; prints the median, the slow steps (> 1.5 x the median) and their extra cost."""
+    times = []
+    for _ in range(count):
+        start = time.perf_counter()
+        integrator.step(1)
+        times.append(1e3 * (time.perf_counter() - start))
+    median = float(np.median(times))
+    slow = [(k, t) for k, t in enumerate(times) if t > 1.5 * median]
+    extra = float(np.mean([t - median for _, t in slow])) if slow else 0.0
+    print(f"median step {median:.3f} ms ({1e3 * median / num_particles:.3f} us per particle); {len(slow)} slow steps "
+          f"{[k for k, _ in slow]}, {extra:.1f} ms more each ({1e3 * extra / num_particles:.2f} us per particle)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--state", required=True, help=".npz file of the state (made if absent)")
@@ -70,6 +84,10 @@ def main():
                              "tables differ")
     parser.add_argument("--no-type-entries", action="store_true",
                         help="give the --types no entries: every type uses the force's and integrator's parameters")
+    parser.add_argument("--per-step", action="store_true",
+                        help="time each step alone (--what step) and first print the median step, the steps that "
+                             "took more than 1.5 times as long (those that built the neighbour list and the sweep "
+                             "order) and what they cost more than the median, in ms and in us per particle")
     parser.add_argument("--memory", action="store_true", help="also print the peak resident memory (MB)")
     parser.add_argument("--heap", action="store_true",
                         help="also print the heap the Context holds per particle after its first 10 steps (bytes; "
@@ -99,7 +117,9 @@ def main():
         gc.collect()
         heap = (allocated_bytes() - heap_before) / num_particles
     start = time.perf_counter()
-    if arguments.what == "step":
+    if arguments.what == "step" and arguments.per_step:
+        print_per_step(model.integrator, arguments.count, num_particles)
+    elif arguments.what == "step":
         model.integrator.step(arguments.count)
     else:
         for _ in range(arguments.count):

@@ -231,7 +231,7 @@ private:
     std::vector<std::vector<int>> chunkCandidates;
     std::array<int, 3> numCells; // the cell grid of the last build
     std::vector<int> cellStart, cellParticles, particleCell;
-    // Scratch of a build, kept so that a rebuild allocates nothing: each cell's next place. (The unit-cell coordinates
+    // Scratch of a build kept between builds: each cell's next place. (The unit-cell coordinates
     // and the positions in cell order use builtPositions' buffer, build().)
     std::vector<int> cellFill;
     const std::vector<OpenMM::Vec3>* currentPositions = nullptr; // those of the last refresh (not periodic)

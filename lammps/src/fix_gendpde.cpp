@@ -769,7 +769,7 @@ void FixGenDPDE::rank_blocks()
 
 void FixGenDPDE::order_blocks()
 {
-  // The order within each block (SweepDefinition::assignLevels): its candidates in (i, j) order,
+  // The order within each block (SweepDefinition::orderBlock): its candidates in (i, j) order,
   // each at the lowest level none of its particles' earlier pairs has; the sequence level 0, level
   // 1, ..., each level in (i, j) order.
   const int num_blocks = colour_start.back();
@@ -779,40 +779,17 @@ void FixGenDPDE::order_blocks()
   for (int r = 0; r < num_blocks; r++) block_rank_start[r + 1] += block_rank_start[r];
   sweep_list.resize(count);
   slot_of.assign(nall, -1);
-  std::vector<int> members, by_level;
   for (int r = 0; r < num_blocks; r++) {
     const int start = block_rank_start[r], size = block_rank_start[r + 1] - start;
-    // the block's particles numbered 0, 1, ... and each one's number of pairs
-    members.clear();
-    local_i.resize(size);
-    local_j.resize(size);
-    degree.clear();
-    for (int k = 0; k < size; k++) {
-      const SweepPair &p = candidates[start + k];
-      for (int end = 0; end < 2; end++) {
-        const int particle = end == 0 ? p.li : p.lj;
-        if (slot_of[particle] < 0) {
-          slot_of[particle] = members.size();
-          members.push_back(particle);
-          degree.push_back(0);
-        }
-        degree[slot_of[particle]]++;
-        (end == 0 ? local_i : local_j)[k] = slot_of[particle];
-      }
-    }
-    const int max_degree = degree.empty() ? 0 : *std::max_element(degree.begin(), degree.end());
-    const int words = SweepDefinition::levelWords(max_degree);
-    level_masks.assign((size_t) members.size() * words, 0);
-    level_of.resize(size);
-    const int num_levels = SweepDefinition::assignLevels(
-        local_i.data(), local_j.data(), size, words, level_masks.data(), level_of.data());
-    // counting sort by level, stable: (i, j) order within a level
-    by_level.assign(num_levels + 1, 0);
-    for (int k = 0; k < size; k++) by_level[level_of[k] + 1]++;
-    for (int l = 0; l < num_levels; l++) by_level[l + 1] += by_level[l];
-    for (int k = 0; k < size; k++)
-      sweep_list[start + by_level[level_of[k]]++] = candidates[start + k];
-    for (int particle : members) slot_of[particle] = -1;
+    const SweepPair *pairs = candidates.data() + start;
+    place.resize(size);
+    SweepDefinition::orderBlock(
+        size,
+        [&](int k, int end) {
+          return end == 0 ? pairs[k].li : pairs[k].lj;
+        },
+        slot_of.data(), block_scratch, place.data());
+    for (int k = 0; k < size; k++) sweep_list[start + place[k]] = pairs[k];
   }
 }
 

@@ -62,6 +62,7 @@ FixStyle(gendpde,FixGenDPDE);
 #define LMP_FIX_GENDPDE_H
 
 #include "fix.h"
+#include "gendpde/GenDPDESweepDefinition.h"
 
 namespace LAMMPS_NS {
 
@@ -151,8 +152,8 @@ class FixGenDPDE : public Fix {
   std::vector<int> rank_of_block, block_rank_start, colour_start;
   std::vector<double> block_centre;     // by block rank (3 each)
   std::vector<SweepPair> sweep_list;    // the pairs in sweep order
-  std::vector<int> slot_of, local_i, local_j, level_of, degree;
-  std::vector<std::uint64_t> level_masks;
+  std::vector<int> slot_of, place;      // (scratch of order_blocks)
+  GenDPDEPlugin::SweepDefinition::BlockScratch block_scratch;
   struct PairTables {
     std::vector<double> inverse_mass, heat_capacity, conduction, noise;    // by type, type pair
   } pair_tables;

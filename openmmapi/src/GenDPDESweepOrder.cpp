@@ -176,48 +176,22 @@ void GenDPDESweepOrder::orderLevels(const int* pairI, const int* pairJ, int stri
     const int numParticles = particleCell.size();
     parallelFor(numThreads, numRanks, 8, [&](int begin, int end) {
         // scratch of the size of a block (and each particle's number within its block), kept by each thread
-        thread_local std::vector<int> localOf, localI, localJ, level, levelCount, blockCopy;
-        thread_local std::vector<int> touched, degree;
-        thread_local std::vector<std::uint64_t> used;
+        thread_local std::vector<int> localOf, place, blockCopy;
+        thread_local SweepDefinition::BlockScratch scratch;
         if ((int) localOf.size() < numParticles)
             localOf.assign(numParticles, -1);
         for (int s = begin; s < end; s++) {
             const int start = blockStart[s], count = blockStart[s + 1] - start;
             if (count == 0)
                 continue;
-            localI.resize(count);
-            localJ.resize(count);
-            touched.clear();
-            degree.clear();
-            for (int k = 0; k < count; k++) {
-                const int pair = order[start + k];
-                for (int end2 = 0; end2 < 2; end2++) {
-                    const int particle = (end2 == 0 ? pairI : pairJ)[(size_t) pair * stride];
-                    if (localOf[particle] < 0) {
-                        localOf[particle] = touched.size();
-                        touched.push_back(particle);
-                        degree.push_back(0);
-                    }
-                    degree[localOf[particle]]++;
-                    (end2 == 0 ? localI : localJ)[k] = localOf[particle];
-                }
-            }
-            const int words = SweepDefinition::levelWords(*std::max_element(degree.begin(), degree.end()));
-            used.assign(touched.size() * words, 0);
-            level.resize(count);
-            const int numLevels = SweepDefinition::assignLevels(localI.data(), localJ.data(), count, words, used.data(),
-                                                                level.data());
-            blockLevels[s] = numLevels;
-            levelCount.assign(numLevels + 1, 0);
+            const int* pairs = &order[start];
+            place.resize(count);
+            blockLevels[s] = SweepDefinition::orderBlock(
+                    count, [&](int k, int end2) { return (end2 == 0 ? pairI : pairJ)[(size_t) pairs[k] * stride]; },
+                    localOf.data(), scratch, place.data());
+            blockCopy.assign(pairs, pairs + count);
             for (int k = 0; k < count; k++)
-                levelCount[level[k] + 1]++;
-            for (int l = 0; l < numLevels; l++)
-                levelCount[l + 1] += levelCount[l];
-            blockCopy.assign(&order[start], &order[start] + count);
-            for (int k = 0; k < count; k++)
-                order[start + levelCount[level[k]]++] = blockCopy[k];
-            for (int particle : touched)
-                localOf[particle] = -1;
+                order[start + place[k]] = blockCopy[k];
         }
     });
 }

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace GenDPDEPlugin {
 namespace SweepDefinition {
@@ -134,6 +135,56 @@ inline int assignLevels(const int* localI, const int* localJ, int count, int wor
         level[k] = l;
         numLevels = std::max(numLevels, l + 1);
     }
+    return numLevels;
+}
+
+/** What orderBlock needs besides its arguments, kept by the caller from block to block (it allocates nothing once
+ *  large enough). */
+struct BlockScratch {
+    std::vector<int> members, degree, localI, localJ, level, levelStart;
+    std::vector<std::uint64_t> used;
+};
+
+/**
+ * The order within one block: its pairs k = 0 .. count - 1 in (i, j) order, pair k's particles particle(k, 0) and
+ * particle(k, 1) (any indices, below the size of localOf), are numbered within the block in the order they first
+ * appear, given their levels (assignLevels) and sorted by level, stably: place[k] receives pair k's place in the
+ * block's sweep order. localOf: -1 for every index on entry, and again on return. Returns the number of levels.
+ */
+template <class Particle>
+int orderBlock(int count, Particle particle, int* localOf, BlockScratch& scratch, int* place) {
+    std::vector<int>& members = scratch.members;
+    std::vector<int>& degree = scratch.degree;
+    members.clear();
+    degree.clear();
+    scratch.localI.resize(count);
+    scratch.localJ.resize(count);
+    int maxDegree = 0;
+    for (int k = 0; k < count; k++)
+        for (int end = 0; end < 2; end++) {
+            const int i = particle(k, end);
+            if (localOf[i] < 0) {
+                localOf[i] = members.size();
+                members.push_back(i);
+                degree.push_back(0);
+            }
+            maxDegree = std::max(maxDegree, ++degree[localOf[i]]);
+            (end == 0 ? scratch.localI : scratch.localJ)[k] = localOf[i];
+        }
+    const int words = levelWords(maxDegree);
+    scratch.used.assign(members.size() * words, 0);
+    scratch.level.resize(count);
+    const int numLevels = assignLevels(scratch.localI.data(), scratch.localJ.data(), count, words, scratch.used.data(),
+                                       scratch.level.data());
+    scratch.levelStart.assign(numLevels + 1, 0);
+    for (int k = 0; k < count; k++)
+        scratch.levelStart[scratch.level[k] + 1]++;
+    for (int l = 0; l < numLevels; l++)
+        scratch.levelStart[l + 1] += scratch.levelStart[l];
+    for (int k = 0; k < count; k++)
+        place[k] = scratch.levelStart[scratch.level[k]]++;
+    for (int i : members)
+        localOf[i] = -1;
     return numLevels;
 }
 

@@ -153,6 +153,10 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads,
     cellPositions.resize(numParticles);
     for (int m = 0; m < numParticles; m++)
         cellPositions[m] = r[cellParticles[m]];
+    // (the last build's candidates per particle: room for about as many in each range's scratch)
+    const double perParticle = candidateStart.size() == (size_t) numParticles + 1
+            ? candidateStart.back() / std::max(1.0, (double) numParticles)
+            : 0;
     candidateStart.assign(numParticles + 1, 0);
     // The search runs through the particles in cell order, so that consecutive particles scan the same cells (in
     // index order, with the particles numbered at random, each one's cells are a new place in memory: at 500,000
@@ -163,9 +167,11 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads,
     std::vector<std::vector<int>> cellOrderRows(numChunks);
     std::vector<std::int64_t> rowLocation(numParticles); // (range of the cell order) << 32 | offset in its scratch
     parallelFor(numThreads, numChunks, 1, [&](int chunkBegin, int chunkEnd) {
-        for (int c = chunkBegin; c < chunkEnd; c++)
-            findCandidates(r, cellPositions, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk),
+        for (int c = chunkBegin; c < chunkEnd; c++) {
+            cellOrderRows[c].reserve((size_t) (1.1 * perParticle * particleChunk) + 64);
+            findCandidates(cellPositions, c * particleChunk, std::min(numParticles, (c + 1) * particleChunk),
                            neighborCells, cellOrderRows[c], (std::int64_t) c << 32, rowLocation);
+        }
     });
     for (int i = 0; i < numParticles; i++)
         candidateStart[i + 1] += candidateStart[i];
@@ -184,8 +190,8 @@ void NeighborList::collectCandidates(const std::vector<Vec3>& r, int numThreads,
     });
 }
 
-void NeighborList::findCandidates(const std::vector<Vec3>& r, const std::vector<Vec3>& cellPositions, int begin,
-                                  int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
+void NeighborList::findCandidates(const std::vector<Vec3>& cellPositions, int begin, int end,
+                                  const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
                                   std::vector<int>& found, std::int64_t range, std::vector<std::int64_t>& rowLocation) {
     // Candidates of each particle: all j > i whose nearest image is within cutoff + skin, sorted. Every particle of
     // the surrounding cells is written and kept only if it is one (no branch: which are is close to random).

@@ -206,9 +206,9 @@ private:
      * `found`: the count of particle i's in candidateStart[i + 1], where its row begins in rowLocation[i] (range, the
      * range's number shifted left by 32 bits, or the row's offset in `found`).
      */
-    void findCandidates(const std::vector<OpenMM::Vec3>& positions, const std::vector<OpenMM::Vec3>& cellPositions,
-                        int begin, int end, const std::array<std::vector<std::vector<int>>, 3>& neighborCells,
-                        std::vector<int>& found, std::int64_t range, std::vector<std::int64_t>& rowLocation);
+    void findCandidates(const std::vector<OpenMM::Vec3>& cellPositions, int begin, int end,
+                        const std::array<std::vector<std::vector<int>>, 3>& neighborCells, std::vector<int>& found,
+                        std::int64_t range, std::vector<std::int64_t>& rowLocation);
     /** Fill the pair buffer from the candidates, with `displacement(i, j)` giving r_i - r_j. */
     template <class Displacement>
     void collectPairs(int numParticles, Displacement displacement, int numThreads);

@@ -115,7 +115,8 @@ struct CheckpointTail {
 /**
  * A checkpoint with its last bytes missing, or bytes appended, or any one byte changed, or written by another
  * integrator, or holding a bad internal energy, is refused and leaves the integrator's state (seed, internal
- * energies) untouched. A checkpoint written to a string stream covers OpenMM's part too. Versions 1 and 2 are read.
+ * energies) untouched. A checkpoint written to a string stream covers OpenMM's part too. Versions 1 and 2 (no
+ * checksum) are refused; version 3 is read.
  */
 void testCheckpointsAreValidated() {
     Run run(4, 34);
@@ -193,9 +194,10 @@ void testCheckpointsAreValidated() {
     std::stringstream foreign;
     other.createCheckpoint(foreign);
     refused(foreign.str(), {"GenDPDEIntegrator"}, "another integrator's checkpoint");
-    // Version 3 (magic, version, seed, count, energies, coverage, checksum, magic: no build), version 2 (magic,
-    // version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a flag byte, count,
-    // energies) are still read.
+    // Version 3 (magic, version, seed, count, energies, coverage, checksum, magic: no build) is still read. Version 2
+    // (magic, version, seed, count, energies, magic; no checksum) and version 1 (0.1.x: version, seed, a flag byte,
+    // count, energies) are refused, named: without a checksum, an internal energy 16 times too large (a damaged
+    // byte) would be read as a valid state. A refused checkpoint stops the run; the good one below goes on.
     const std::string openmmPart = bytes.substr(0, tail.start);
     const std::string energyBytes = bytes.substr(tail.energiesAt(), numParticles * sizeof(double));
     const std::int32_t magic = *(const std::int32_t*) &bytes[tail.start], count = numParticles;
@@ -219,8 +221,12 @@ void testCheckpointsAreValidated() {
         if (version >= 2)
             older.append((const char*) &magic, sizeof(magic));
         std::stringstream olderStream(older);
-        context.loadCheckpoint(olderStream);
-        ASSERT_EQUAL(olderSeed, run.integrator.getSeedInUse());
+        if (version == 3) {
+            context.loadCheckpoint(olderStream);
+            ASSERT_EQUAL(olderSeed, run.integrator.getSeedInUse());
+        } else
+            assertThrowsMentioning([&]() { context.loadCheckpoint(olderStream); },
+                                   {"version " + std::to_string(version), "no checksum", "saveState"});
     }
     std::stringstream reload(bytes);
     context.loadCheckpoint(reload);

@@ -84,7 +84,11 @@ class IntegrateGenDPDEStepKernel;
  *
  * A step in which a particle would move farther than the pair range R (or by a non-finite amount), or in which a
  * force is not finite, is refused before anything changes, with an error naming the particle and the step: the
- * simulation has become unstable (reduce the step size).
+ * simulation has become unstable (reduce the step size). A run that fails so (or whose checkpoint the integrator
+ * refused after OpenMM restored its part) stays stopped on every platform: step(), createCheckpoint() and
+ * getState(getIntegratorParameters) raise, naming the failure, until a checkpoint or State saved before it is loaded;
+ * positions that are not finite, or more than 1000 box lengths outside a periodic box, are refused when set
+ * (docs/integrator.md, "Simulations that go bad").
  *
  * Particle types (docs/types.md). Every particle has a type, an integer (0 unless set). A particle's type is one
  * setting: set the types on the System's GenDPDEForce and the integrator takes them from it when the Context is
@@ -327,6 +331,23 @@ private:
      * words on every platform (the first check to see it may be OpenMM's own, which names neither).
      */
     void requireFinitePositions() const;
+    // ---- A run that went bad (docs/integrator.md, "When a run goes bad"). The failure that stopped the run: the
+    // message of a step() that failed, or of a checkpoint that was refused after OpenMM had restored its part; empty
+    // if none. Until a checkpoint or a State with integrator parameters is loaded (or the Context is reinitialized
+    // without its state), step() refuses to go on and no checkpoint or State of this state can be made, on every
+    // platform alike: a move (setPositions() to the same positions) cannot clear it.
+    std::string stoppedBy;
+    /** Throw, naming the failure and the way on, if a failure stopped the run (what: what was asked). */
+    void requireRunNotStopped(const std::string& what) const;
+    /** Stop the run on this failure (a step's, or a refused checkpoint's); returns the message to throw. */
+    std::string stopRun(const std::string& failure);
+    // Positions set from outside that no step may start from (the message naming the first bad particle; empty if
+    // none): a coordinate that is not finite, or, in a periodic box, one farther than maxBoxLengths box lengths from
+    // the box, beyond which the platforms' periodic wrapping (double, mixed, single precision) no longer agrees.
+    std::string refusedPositions;
+    static constexpr double maxBoxLengths = 1000.0;
+    /** Check the positions just set (Context.setPositions(), setState()); throw, and keep the refusal, if bad. */
+    void checkSetPositions();
     // The bound Context's GenDPDEForce whose laws depend on temperature (its Impl), or null if it has none.
     const GenDPDEForceImpl* thermalForce = nullptr;
     bool adiabaticPositionChanges = false;

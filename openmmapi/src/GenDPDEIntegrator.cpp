@@ -307,6 +307,8 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
             : nullptr;
     entropyState = EntropyState::Unknown;
     positionsSet = false;
+    stoppedBy.clear(); // a new Context state (reinitialize() without preserving the state)
+    refusedPositions.clear();
     lawUpdatesSeen = 0;
     forcesCurrent = false;
     context = &contextRef;
@@ -333,6 +335,9 @@ void GenDPDEIntegrator::requireTemperatures() const {
 void GenDPDEIntegrator::step(int steps) {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
+    requireRunNotStopped("step");
+    if (!refusedPositions.empty())
+        throw OpenMMException("GenDPDEIntegrator: cannot step from the positions set: " + refusedPositions);
     requireTemperatures();
     requireBoundTypes();
     if (cutoff != boundCutoff) {
@@ -385,10 +390,26 @@ void GenDPDEIntegrator::step(int steps) {
             evaluateStepForces(true);
             rememberForces();
         }
-    } catch (const OpenMMException&) {
-        requireFinitePositions();
-        throw;
+    } catch (const OpenMMException& error) {
+        std::string failure = error.what();
+        try {
+            requireFinitePositions(); // (OpenMM's own check may have seen it first, naming neither particle nor step)
+        } catch (const OpenMMException& nonFinite) {
+            failure = nonFinite.what();
+        }
+        throw OpenMMException(stopRun(failure));
     }
+}
+
+std::string GenDPDEIntegrator::stopRun(const std::string& failure) {
+    stoppedBy = failure;
+    return failure + GenDPDEIntegratorUtilities::stoppedRunAdvice;
+}
+
+void GenDPDEIntegrator::requireRunNotStopped(const std::string& what) const {
+    if (!stoppedBy.empty())
+        throw OpenMMException("GenDPDEIntegrator: cannot " + what + ": the run stopped (" + stoppedBy + ")"
+                              + GenDPDEIntegratorUtilities::stoppedRunAdvice);
 }
 
 double GenDPDEIntegrator::computeKineticEnergy() {

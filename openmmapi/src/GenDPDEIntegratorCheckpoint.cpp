@@ -24,7 +24,9 @@ using namespace OpenMM;
 // exact), whether the sweep's order is built (0 or 1) and if so the box vectors (9 doubles) and positions (3 count
 // doubles) of its build, what the checksum covers (0: this data, 1: also OpenMM's part of the checkpoint before it, from its header),
 // the checksum (FNV-1a, 64 bits), and the magic again as an end mark; nothing may follow. Version 3 had no build
-// (a run continued from it builds the order at its first step); version 2 no coverage and no checksum; version 1 (0.1.x) no magic: version, seed, a flag byte, count, energies. Both are still read.
+// (a run continued from it builds the order at its first step) and is still read. Versions 2 (no coverage, no
+// checksum) and 1 (0.1.x, no magic: version, seed, a flag byte, count, energies) are refused, named: without a
+// checksum their values cannot be checked.
 namespace {
 const std::int32_t checkpointMagic = 0x45504447; // "GDPE"
 const std::int32_t checkpointVersion = 4;
@@ -90,6 +92,7 @@ void readOrFail(std::istream& stream, T& value, const char* what) {
 } // namespace
 
 void GenDPDEIntegrator::createCheckpoint(std::ostream& stream) const {
+    requireRunNotStopped("create a checkpoint");
     const IntegrateGenDPDEStepKernel& k = boundKernel();
     const std::vector<double>& energies = k.getInternalEnergies(); // C_V theta_i at the current positions
     // OpenMM's part is covered where the stream's buffer can be read back (a string buffer: Python's
@@ -133,15 +136,21 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
     else
         throw OpenMMException("GenDPDEIntegrator: the checkpoint holds no GenDPDEIntegrator data (it was written by "
                               "another integrator, or is corrupt)");
+    if (version == 1 || version == 2)
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint holds integrator data of version "
+                              + std::to_string(version)
+                              + (version == 1 ? " (openmm-gendpde 0.1)" : " (an early 0.2 development build)")
+                              + ", which has no checksum: its internal energies cannot be told from corrupt ones, so "
+                                "this build reads versions 3 to "
+                              + std::to_string(checkpointVersion)
+                              + " only. To go on from it, load it with the "
+                                "openmm-gendpde that wrote it and save a State (Simulation.saveState()), which this "
+                                "build reads");
     if (version < 1 || version > checkpointVersion)
         throw OpenMMException("GenDPDEIntegrator: the checkpoint holds integrator data of version "
-                              + std::to_string(version) + "; this build reads versions 1 to "
+                              + std::to_string(version) + "; this build reads versions 3 to "
                               + std::to_string(checkpointVersion));
     readOrFail(stream, seed, "random seed");
-    if (version == 1) {
-        char unusedFlag;
-        readOrFail(stream, unusedFlag, "flags");
-    }
     readOrFail(stream, count, "particle count");
     const int numParticles = context->getSystem().getNumParticles();
     if (count != numParticles)
@@ -168,51 +177,47 @@ void GenDPDEIntegrator::readCheckpoint(std::istream& stream, int& seedRead, std:
                                       "(truncated)");
         }
     }
-    if (version >= 3) {
-        std::int32_t coverage;
-        std::uint64_t checksum;
-        readOrFail(stream, coverage, "checksum");
-        readOrFail(stream, checksum, "checksum");
-        if (coverage != coversIntegratorData && coverage != coversWholeCheckpoint)
-            throw OpenMMException("GenDPDEIntegrator: the checkpoint is corrupt (its checksum's coverage word is "
-                                  + std::to_string(coverage) + ")");
-        std::string openmm;
-        if (coverage == coversWholeCheckpoint) {
-            // OpenMM's part, read back from the stream (a string or a file).
-            std::string content;
-            if (start != std::streampos(-1)) {
-                const std::streampos after = stream.tellg();
-                content.resize((size_t) start);
-                stream.seekg(0);
-                stream.read(&content[0], content.size());
-                const bool read = (bool) stream;
-                stream.clear();
-                stream.seekg(after);
-                if (!read)
-                    content.clear();
-            }
-            if (!openmmPart(content, content.size(), openmm))
-                throw OpenMMException("GenDPDEIntegrator: the checkpoint's checksum covers OpenMM's part of it, which "
-                                      "cannot be read back from this stream (a checkpoint is read from a string or a "
-                                      "file holding it alone)");
+    std::int32_t coverage;
+    std::uint64_t checksum;
+    readOrFail(stream, coverage, "checksum");
+    readOrFail(stream, checksum, "checksum");
+    if (coverage != coversIntegratorData && coverage != coversWholeCheckpoint)
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint is corrupt (its checksum's coverage word is "
+                              + std::to_string(coverage) + ")");
+    std::string openmm;
+    if (coverage == coversWholeCheckpoint) {
+        // OpenMM's part, read back from the stream (a string or a file).
+        std::string content;
+        if (start != std::streampos(-1)) {
+            const std::streampos after = stream.tellg();
+            content.resize((size_t) start);
+            stream.seekg(0);
+            stream.read(&content[0], content.size());
+            const bool read = (bool) stream;
+            stream.clear();
+            stream.seekg(after);
+            if (!read)
+                content.clear();
         }
-        if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies,
-                               version >= 4 ? &build : nullptr, coverage)
-            != checksum)
-            throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint is corrupt: its checksum does not "
-                                              "match its contents (")
-                                  + (coverage == coversWholeCheckpoint ? "OpenMM's part and "
-                                                                         "the integrator's data"
-                                                                       : "the integrator's data")
-                                  + "); it was changed or damaged "
-                                    "since it was written");
+        if (!openmmPart(content, content.size(), openmm))
+            throw OpenMMException("GenDPDEIntegrator: the checkpoint's checksum covers OpenMM's part of it, which "
+                                  "cannot be read back from this stream (a checkpoint is read from a string or a "
+                                  "file holding it alone)");
     }
-    if (version >= 2) {
-        std::int32_t end;
-        readOrFail(stream, end, "end mark");
-        if (end != checkpointMagic)
-            throw OpenMMException("GenDPDEIntegrator: the checkpoint's integrator data has no end mark (corrupt)");
-    }
+    if (checkpointChecksum(coverage == coversWholeCheckpoint ? &openmm : nullptr, version, seed, energies,
+                           version >= 4 ? &build : nullptr, coverage)
+        != checksum)
+        throw OpenMMException(std::string("GenDPDEIntegrator: the checkpoint is corrupt: its checksum does not "
+                                          "match its contents (")
+                              + (coverage == coversWholeCheckpoint ? "OpenMM's part and "
+                                                                     "the integrator's data"
+                                                                   : "the integrator's data")
+                              + "); it was changed or damaged "
+                                "since it was written");
+    std::int32_t end;
+    readOrFail(stream, end, "end mark");
+    if (end != checkpointMagic)
+        throw OpenMMException("GenDPDEIntegrator: the checkpoint's integrator data has no end mark (corrupt)");
     if (stream.peek() != std::char_traits<char>::eof())
         throw OpenMMException("GenDPDEIntegrator: the checkpoint continues after its end (corrupt, or more than one "
                               "checkpoint in the stream)");
@@ -236,12 +241,15 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     try {
         // everything read and checked before anything changes
         readCheckpoint(stream, seed, energies, buildPositions, buildBox, built);
-    } catch (...) {
+    } catch (const OpenMMException& error) {
         // OpenMM restored the checkpoint's positions, velocities and parameters before asking for this part, and
         // says nothing of it once this part is refused: for the particles' thermal state that is a move of the
-        // particles (applyThermalRule); the integrator's own state is unchanged.
+        // particles (applyThermalRule); the integrator's own state is unchanged. The run stops there: those
+        // positions belong to a checkpoint that was refused.
         stateChanged(State::Positions);
-        throw;
+        throw OpenMMException(stopRun(std::string(error.what())
+                                      + "; the Context now holds the refused checkpoint's positions, velocities, box "
+                                        "and parameters (OpenMM restores its part of a checkpoint first)"));
     }
     IntegrateGenDPDEStepKernel& k = boundKernel();
     k.setSeed(seed);
@@ -251,6 +259,7 @@ void GenDPDEIntegrator::loadCheckpoint(std::istream& stream) {
     else
         k.forgetSweepOrder();
     applyThermalRule(ThermalEvent::EnergiesSet);
+    stoppedBy.clear(); // a whole saved state: the run goes on from it
 }
 
 // States (getState(getIntegratorParameters=True), Simulation.saveState): the internal energies and the sweep order's
@@ -284,6 +293,7 @@ std::vector<double> hexFloats(const std::string& text, const std::string& what) 
 } // namespace
 
 void GenDPDEIntegrator::serializeParameters(SerializationNode& node) const {
+    requireRunNotStopped("save its parameters in a State");
     const IntegrateGenDPDEStepKernel& k = boundKernel();
     std::string text;
     for (double e : k.getInternalEnergies())
@@ -349,4 +359,5 @@ void GenDPDEIntegrator::deserializeParameters(const SerializationNode& node) {
     } else
         k.forgetSweepOrder(); // the next step builds it at the State's positions
     applyThermalRule(ThermalEvent::EnergiesSet);
+    stoppedBy.clear(); // a whole saved state (Context.setState() sets the rest first): the run goes on from it
 }

@@ -92,6 +92,14 @@ public:
     static bool checksStepTemperatures(const GenDPDEIntegrator& integrator) {
         return integrator.checkingStepTemperatures;
     }
+    /**
+     * What follows the failure that stops a run (GenDPDEIntegrator::stopRun), and every later refusal: the way on
+     * (docs/integrator.md, "When a run goes bad").
+     */
+    static constexpr const char* stoppedRunAdvice =
+            ". This Context takes no step from this state, and makes no checkpoint or State of it: load a checkpoint "
+            "or State saved before the failure (Context.loadCheckpoint() or setState(); Simulation.loadCheckpoint() "
+            "or loadState()) and, if the run became unstable, reduce the step size";
     /** The errors a step reports (every platform uses the same words). */
     static std::string nonFinitePositionMessage(int particle, const OpenMM::Vec3& position, long long step);
     static std::string nonFiniteForceMessage(int particle, const OpenMM::Vec3& force, long long step);

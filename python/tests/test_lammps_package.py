@@ -315,6 +315,11 @@ def test_a_second_run_command_continues_the_order(lammps, tmp_path):
     (("comm_modify cutoff", "comm_modify cutoff 1.2 #"), "the ghost cutoff 1.2 is below what the sweep needs"),
     (("variable mode index isoenergetic", "variable mode index adiabatic"), "mode 'adiabatic'"),
     (("initial ${initial}", ""), "the internal energies are not set"),
+    # GenDPDEForce's range of f_cut, [1, 100] (ParameterRanges.h), not merely > 0
+    (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vb 0.5 #"),
+     "cutoff scaling f_cut = 0.5 is not allowed: it must be in [1, 100]"),
+    (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vb 100.5 #"),
+     "cutoff scaling f_cut = 100.5 is not allowed: it must be in [1, 100]"),
 ])
 def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     """Bad input stops LAMMPS with its ERROR line naming the problem (exit status 1), not a crash."""

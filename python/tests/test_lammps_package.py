@@ -374,16 +374,16 @@ def test_a_box_that_changes_during_a_run_is_refused(lammps, tmp_path, other, sty
 def test_a_restart_read_under_another_fix_id_is_refused(lammps, tmp_path):
     """read_restart then fix gendpde under another ID than the fix that wrote the file: LAMMPS matches a fix's
     restart data by ID, so the internal energies saved would be left unused and set again from ``initial`` (the
-    conserved energy jumps). The fix stops at its definition with an error naming the ID of the saved state; under
-    that ID the run continues (test_restart_continues_the_run)."""
+    conserved energy jumps). The fix stops at its definition with an error naming the ID of the saved state (2 ranks);
+    under that ID the run continues (test_restart_continues_the_run)."""
     scene = Scene(GenDPDEForce.VB)
     integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
     texts = scene.lammps(tmp_path, integrator, start_velocities(scene))
-    run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + "run 10\nwrite_restart state.restart\n")
+    run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + "run 10\nwrite_restart state.restart\n", ranks=2)
     resumed = scene.lammps(tmp_path, integrator, restart="state.restart").commands(*SECTIONS[:-1])
     assert "fix integrate all gendpde" in resumed and "read_restart state.restart" in resumed
     renamed = resumed.replace("fix integrate all gendpde", "fix other all gendpde").replace("f_integrate", "f_other")
-    result = run_lammps(tmp_path, renamed + "run 10\n", check=False)
+    result = run_lammps(tmp_path, renamed + "run 10\n", ranks=2, check=False)
     assert result.returncode == 1, result.stdout[-2000:]
     assert ("fix gendpde: the restart file holds the state of fix integrate (style gendpde)" in result.stdout
             and "fix other" in result.stdout), result.stdout[-2000:]

@@ -77,7 +77,7 @@ FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   if (lmp->citeme) lmp->citeme->add(cite_gendpde);
   if (narg < 5)
     error->all(FLERR,
-               "Illegal fix gendpde command: fix ID group gendpde mode seed keyword values ...");
+               "Illegal fix gendpde command: fix ID all gendpde mode seed keyword values ...");
   // Every atom: the sweep, the internal energies and the conserved energy are the whole system's
   // (atoms outside a group would feel the pair forces, stay frozen and take no part in the sweep).
   if (strcmp(group->names[igroup], "all") != 0)
@@ -241,7 +241,7 @@ void FixGenDPDE::init()
   // The fix is the time integrator of its atoms: another fix that integrates any of them (fix nve,
   // nvt, npt, a second fix gendpde, ...) would move them twice per step, which LAMMPS only warns
   // about. In the modes with the sweep, a fix that changes the box's size or shape during a run (a
-  // barostat, fix deform) is refused: the sweep's cells and its ghost cutoff are those of the box at
+  // barostat, fix deform) is refused: the sweep's cells and ghost cutoff are those of the box at
   // the run's start (fix balance, which moves only the subdomains, runs).
   for (int k = 0; k < modify->nfix; k++) {
     const Fix *other = modify->fix[k];

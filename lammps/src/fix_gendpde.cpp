@@ -27,8 +27,10 @@
 #include "error.h"
 #include "force.h"
 #include "gendpde_core.h"
+#include "group.h"
 #include "input.h"
 #include "memory.h"
+#include "modify.h"
 #include "neighbor.h"
 #include "pair.h"
 #include "update.h"
@@ -75,7 +77,15 @@ FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   if (lmp->citeme) lmp->citeme->add(cite_gendpde);
   if (narg < 5)
     error->all(FLERR,
-               "Illegal fix gendpde command: fix ID group gendpde mode seed keyword values ...");
+               "Illegal fix gendpde command: fix ID all gendpde mode seed keyword values ...");
+  // Every atom: the sweep, the internal energies and the conserved energy are the whole system's
+  // (atoms outside a group would feel the pair forces, stay frozen and take no part in the sweep).
+  if (strcmp(group->names[igroup], "all") != 0)
+    error->all(FLERR,
+               "fix gendpde: group '{}' is not allowed: it must be all (the fix integrates every "
+               "atom; its sweep and internal energies are the whole system's)",
+               group->names[igroup]);
+  check_restart_id();
   const std::string name = arg[3];
   if (name == "isoenergetic")
     mode = ISOENERGETIC;
@@ -182,6 +192,35 @@ FixGenDPDE::FixGenDPDE(LAMMPS *lmp, int narg, char **arg) : Fix(lmp, narg, arg)
   }
 }
 
+namespace {
+// The fixes' per-atom restart data that read_restart has read and not yet given to a fix: LAMMPS
+// keeps their IDs, styles and whether a fix took them in protected members of Modify, which a class
+// derived from it may name (pointers to members of Modify; no object of this class is made).
+struct RestartRecords : Modify {
+  static char **Modify::*ids() { return &RestartRecords::id_restart_peratom; }
+  static char **Modify::*styles() { return &RestartRecords::style_restart_peratom; }
+  static int *Modify::*used() { return &RestartRecords::used_restart_peratom; }
+};
+}    // namespace
+
+void FixGenDPDE::check_restart_id()
+{
+  // LAMMPS gives a fix the state a restart file holds only under the ID of the fix that wrote it:
+  // under another ID the internal energies would be left unused and set again from initial (the
+  // conserved energy jumps). Refused, naming the ID.
+  if (modify->nfix_restart_peratom == 0) return;
+  char **ids = modify->*RestartRecords::ids(), **styles = modify->*RestartRecords::styles();
+  const int *used = modify->*RestartRecords::used();
+  for (int k = 0; k < modify->nfix_restart_peratom; k++)
+    if (!used[k] && strcmp(styles[k], style) == 0 && strcmp(ids[k], id) != 0)
+      error->all(FLERR,
+                 "fix gendpde: the restart file holds the state of fix {} (style {}), its "
+                 "internal energies and sweep order, which LAMMPS gives only to a fix of that "
+                 "ID: define fix {} ... gendpde instead of fix {} (under another ID the internal "
+                 "energies would be set again from initial)",
+                 ids[k], styles[k], ids[k], id);
+}
+
 FixGenDPDE::~FixGenDPDE()
 {
   atom->delete_callback(id, Atom::GROW);
@@ -199,6 +238,33 @@ int FixGenDPDE::setmask()
 
 void FixGenDPDE::init()
 {
+  // The fix is the time integrator of its atoms: another fix that integrates any of them (fix nve,
+  // nvt, npt, a second fix gendpde, ...) would move them twice per step, which LAMMPS only warns
+  // about. In the modes with the sweep, a fix that changes the box's size or shape during a run (a
+  // barostat, fix deform) is refused: the sweep's cells and ghost cutoff are those of the box at
+  // the run's start (fix balance, which moves only the subdomains, runs).
+  for (int k = 0; k < modify->nfix; k++) {
+    const Fix *other = modify->fix[k];
+    if (other == this) continue;
+    if (other->time_integrate) {
+      int local = 0, any = 0;
+      for (int i = 0; i < atom->nlocal && !local; i++)
+        if ((atom->mask[i] & groupbit) && (atom->mask[i] & other->groupbit)) local = 1;
+      MPI_Allreduce(&local, &any, 1, MPI_INT, MPI_MAX, world);
+      if (any)
+        error->all(FLERR,
+                   "fix gendpde: fix {} (style {}) also integrates atoms of group {}, which would "
+                   "move twice per step: fix gendpde must be their only time integrator (its modes "
+                   "are its thermostats; unfix {})",
+                   other->id, other->style, group->names[igroup], other->id);
+    }
+    if (mode != CONSERVATIVE && (other->box_change & (BOX_CHANGE_SIZE | BOX_CHANGE_SHAPE)))
+      error->all(FLERR,
+                 "fix gendpde: fix {} (style {}) changes the box during a run, which the {} mode "
+                 "does not allow: the sweep's cells and ghost cutoff are those of the box at the "
+                 "run's start (change the box between runs: change_box)",
+                 other->id, other->style, mode == ISOTHERMAL ? "isothermal" : "isoenergetic");
+  }
   dtv = update->dt;
   dtf = 0.5 * update->dt * force->ftm2v;
   // pair_style gendpde's range R and whether its laws depend on temperature, by name

@@ -20,7 +20,8 @@
    of the pair terms at fixed positions, then velocity Verlet, as
    GenDPDEIntegrator steps, with each particle's internal energy.
 
-   fix ID group gendpde mode seed keyword values ...
+   fix ID all gendpde mode seed keyword values ...   (group all: the fix is
+                                                     every atom's only integrator)
      mode   isoenergetic | isothermal | conservative
      seed   random seed, 0 ... 2147483647
      heat_capacity I C       C_V of type(s) I (energy/temperature)
@@ -28,7 +29,8 @@
      conduction I J kappa    kappa of type pair(s) I J (energy temperature/time)
      temperature T           bath temperature of the isothermal mode
      initial T | v_name      internal energies C_V T at the first run (not
-                             after a restart); v_name: an atom-style
+                             after a restart, which needs the writing
+                             fix's ID); v_name: an atom-style
                              variable of each particle's T
 
    The sweep runs across subdomains in the order every OpenMM platform of
@@ -165,6 +167,7 @@ class FixGenDPDE : public Fix {
   // what the sweep's exchanges carry (pack_state)
   enum CommPhase { START = 0, COLOUR = 1, CELLS = 2, POSITIONS = 3 };
   int comm_phase = START;
+  void check_restart_id();
   void kick();
   void make_pair_tables();
   int pack_state(int i, double *buf) const;

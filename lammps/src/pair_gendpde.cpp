@@ -126,11 +126,14 @@ void PairGenDPDE::settings(int narg, char **arg)
   estimator = found->coreId;
   // the partition of unity (V-B, and V-C: V-B with a surface correction) is Colella et al.'s
   if (lmp->citeme && estimator != GENDPDE_ESTIMATOR_VA) lmp->citeme->add(cite_gendpde_vb);
+  // f_cut is dimensionless: GenDPDEForce's range (ParameterRanges.h) holds in any units
   fcut = utils::numeric(FLERR, arg[2], false, lmp);
-  if (!(fcut > 0.0))
-    error->all(FLERR,
-               "pair_style gendpde: cutoff scaling f_cut = {} is not allowed: it must be > 0",
-               arg[2]);
+  const EquationsOfState::Parameter scaling{"f_cut", "cutoff scaling f_cut",
+                                            ParameterChecks::Ranges::cutoffScaling};
+  std::string rule;
+  if (!EquationsOfState::allowedInAnyUnits(scaling, fcut, rule))
+    error->all(FLERR, "pair_style gendpde: {} = {} is not allowed: it must be {} (GenDPDEForce's)",
+               scaling.description, arg[2], rule);
   background = narg == 5 ? utils::numeric(FLERR, arg[4], false, lmp) : 0.0;
   if (!(background >= 0.0 && std::isfinite(background)))
     error->all(FLERR,

@@ -22,6 +22,7 @@
      R          pair range (distance units)
      estimator  va | vb | vc  (the density estimators V-A, V-B, V-C)
      f_cut      cutoff scaling: the estimators' reduced range is R/f_cut
+                (in [1, 100], GenDPDEForce's range)
      p_b        background pressure (energy/volume units, >= 0)
    pair_coeff I I law parameters ...
      one law per type with its parameters, as GenDPDEForce::setEquationOfState

@@ -315,6 +315,14 @@ def test_a_second_run_command_continues_the_order(lammps, tmp_path):
     (("comm_modify cutoff", "comm_modify cutoff 1.2 #"), "the ghost cutoff 1.2 is below what the sweep needs"),
     (("variable mode index isoenergetic", "variable mode index adiabatic"), "mode 'adiabatic'"),
     (("initial ${initial}", ""), "the internal energies are not set"),
+    # GenDPDEForce's range of f_cut, [1, 100] (ParameterRanges.h), not merely > 0
+    (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vb 0.5 #"),
+     "cutoff scaling f_cut = 0.5 is not allowed: it must be in [1, 100]"),
+    (("pair_style gendpde", "pair_style gendpde 1.0375518240000001 vb 100.5 #"),
+     "cutoff scaling f_cut = 100.5 is not allowed: it must be in [1, 100]"),
+    # the fix integrates every atom: a group would leave the others frozen and out of the sweep
+    (("fix integrate all gendpde", "group some id <= 256\nfix integrate some gendpde"),
+     "fix gendpde: group 'some' is not allowed: it must be all"),
 ])
 def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     """Bad input stops LAMMPS with its ERROR line naming the problem (exit status 1), not a crash."""
@@ -324,6 +332,61 @@ def test_bad_input_gives_a_lammps_error(lammps, tmp_path, change, words):
     result = run_lammps(tmp_path, script.replace(change[0], change[1], 1), check=False)
     assert result.returncode == 1, result.stdout[-2000:]
     assert "ERROR" in result.stdout and words in result.stdout, result.stdout[-2000:]
+
+
+@pytest.mark.parametrize("mode_name", ["isoenergetic", "conservative"])
+@pytest.mark.parametrize("other, style", [
+    ("fix again all nve", "nve"),
+    ("fix again all npt temp 1.0 1.0 0.4 iso 0.0 0.0 4.0", "npt"),
+    ("fix again all gendpde isothermal 5 temperature 1.0", "gendpde"),
+])
+def test_a_second_time_integrator_is_refused(lammps, tmp_path, mode_name, other, style):
+    """Another fix that integrates the same atoms (fix nve, a thermostat-barostat such as npt, a second fix gendpde)
+    would move each atom twice per step, which LAMMPS only warns about: fix gendpde stops before the run with an
+    error naming that fix, on 2 ranks, in a mode with the sweep and in one without."""
+    scene = Scene(GenDPDEForce.VB)
+    script = scene.lammps(tmp_path, velocities=start_velocities(scene)).commands(*SECTIONS[:-1])
+    assert "variable mode index isoenergetic" in script
+    script = script.replace("variable mode index isoenergetic", f"variable mode index {mode_name}")
+    script += other + "\nrun 5\n"
+    result = run_lammps(tmp_path, script, ranks=2, check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    assert f"fix gendpde: fix again (style {style}) also integrates" in result.stdout, result.stdout[-2000:]
+
+
+@pytest.mark.parametrize("other, style", [("fix baro all press/berendsen iso 0.0 0.0 1.0", "press/berendsen"),
+                                          ("fix stretch all deform 1 x scale 1.01", "deform")])
+def test_a_box_that_changes_during_a_run_is_refused(lammps, tmp_path, other, style):
+    """A barostat or fix deform changes the box during the run; the sweep's cells and ghost cutoff are those of the
+    box at the run's start, so fix gendpde stops before the run with an error naming that fix (it used to stop at
+    the first step with a message about the ghost cutoff). A fix that moves only the subdomains (fix balance) runs:
+    test_subdomains_that_move_during_the_run."""
+    scene = Scene(GenDPDEForce.VB)
+    script = scene.lammps(tmp_path, velocities=start_velocities(scene)).commands(*SECTIONS[:-1])
+    result = run_lammps(tmp_path, script + other + "\nrun 5\n", check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    name = other.split()[1]
+    assert f"fix gendpde: fix {name} (style {style}) changes the box during a run" in result.stdout, \
+        result.stdout[-2000:]
+    assert "is below what the sweep needs" not in result.stdout
+
+
+def test_a_restart_read_under_another_fix_id_is_refused(lammps, tmp_path):
+    """read_restart then fix gendpde under another ID than the fix that wrote the file: LAMMPS matches a fix's
+    restart data by ID, so the internal energies saved would be left unused and set again from ``initial`` (the
+    conserved energy jumps). The fix stops at its definition with an error naming the ID of the saved state (2 ranks);
+    under that ID the run continues (test_restart_continues_the_run)."""
+    scene = Scene(GenDPDEForce.VB)
+    integrator = scene.integrator(GenDPDEIntegrator.Isoenergetic)
+    texts = scene.lammps(tmp_path, integrator, start_velocities(scene))
+    run_lammps(tmp_path, texts.commands(*SECTIONS[:-1]) + "run 10\nwrite_restart state.restart\n", ranks=2)
+    resumed = scene.lammps(tmp_path, integrator, restart="state.restart").commands(*SECTIONS[:-1])
+    assert "fix integrate all gendpde" in resumed and "read_restart state.restart" in resumed
+    renamed = resumed.replace("fix integrate all gendpde", "fix other all gendpde").replace("f_integrate", "f_other")
+    result = run_lammps(tmp_path, renamed + "run 10\n", ranks=2, check=False)
+    assert result.returncode == 1, result.stdout[-2000:]
+    assert ("fix gendpde: the restart file holds the state of fix integrate (style gendpde)" in result.stdout
+            and "fix other" in result.stdout), result.stdout[-2000:]
 
 
 

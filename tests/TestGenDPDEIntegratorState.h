@@ -296,9 +296,9 @@ void testBlownUpStepIsRefused() {
 
 /**
  * One message per event, the same words on every platform: a force that is not finite (another Force's, here a
- * CustomExternalForce whose parameter is NaN; the GPU platforms see it through their fixed-point forces) and a
- * position that is not finite (set by the user; OpenMM's own checks name neither particle nor step) stop the step
- * before anything changes, naming the particle and the step.
+ * CustomExternalForce whose parameter is NaN; the GPU platforms see it through their fixed-point forces) stops the
+ * step before anything changes, naming the particle and the step; a position that is not finite (set by the user;
+ * OpenMM's own checks name neither particle nor step) is refused when set, naming the particle, and no step starts.
  */
 void testNonFiniteValuesAreNamedAlike() {
     {
@@ -318,11 +318,11 @@ void testNonFiniteValuesAreNamedAlike() {
         Context& context = run.start();
         std::vector<Vec3> positions = run.scene.positions;
         positions[5] = Vec3(std::nan(""), 0, 0);
-        context.setPositions(positions);
+        assertThrowsMentioning([&]() { context.setPositions(positions); },
+                               {"GenDPDEIntegrator: the position set for particle 5 is not finite (nan, 0, 0)"});
         assertThrowsMentioning([&]() { run.integrator.step(1); },
-                               {"GenDPDEIntegrator: the position of particle 5 is "
-                                "not finite (nan, 0, 0) at step 0; the step was not "
-                                "applied"});
+                               {"cannot step from the positions set", "particle 5 is not finite (nan, 0, 0)"});
+        ASSERT_EQUAL(0, (int) context.getStepCount());
     }
 }
 

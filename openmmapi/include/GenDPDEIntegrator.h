@@ -13,7 +13,9 @@
 namespace GenDPDEPlugin {
 
 class GenDPDEForceImpl;
+class GenDPDEPairSource;
 class IntegrateGenDPDEStepKernel;
+struct GenDPDEStepTerms;
 
 /**
  * The energy-conserving integrator of generalised DPD (GenDPDE). Each particle i carries an internal (thermal)
@@ -348,6 +350,32 @@ private:
     static constexpr double maxBoxLengths = 1000.0;
     /** Check the positions just set (Context.setPositions(), setState()); throw, and keep the refusal, if bad. */
     void checkSetPositions();
+    /** Run steps (step()'s body between the energy guard's looks; a failure stops the run). */
+    void runSteps(int steps, const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource);
+    // ---- The energy guard (GenDPDEIntegratorEnergyGuard.cpp; docs/integrator.md, "Simulations that go bad"). In
+    // the Isoenergetic and Conservative modes the conserved energy E = K + U + sum eps of the last mark is compared
+    // with E every energyGuardSteps steps after it, however step() calls split them: a change of more than
+    // energyGuardLimit of the energy the mode moves (K + sum eps, or K in the Conservative mode; the larger of the two
+    // ends) stops the run. Every change of the Context from outside the dynamics, and a Force's move of the particles
+    // (a barostat), sets the mark again.
+    struct EnergyParts {
+        double kinetic = 0.0, potential = 0.0, internal = 0.0; // kJ/mol
+    };
+    struct EnergyMark {
+        bool set = false;
+        long long step = 0;
+        double conserved = 0.0, moved = 0.0; // kJ/mol
+    };
+    static constexpr int energyGuardSteps = 100;
+    static constexpr double energyGuardLimit = 0.1;
+    EnergyMark energyMark;
+    /** K, U of the integration force groups and sum eps now (an evaluation that changes nothing). */
+    EnergyParts energyParts();
+    /** The energy the mode moves (kJ/mol). */
+    double movedEnergy(const EnergyParts& parts) const;
+    void markEnergy();
+    /** Compare the conserved energy with the mark (if enough steps have passed); stop the run if it drifted. */
+    void checkEnergyDrift();
     // The bound Context's GenDPDEForce whose laws depend on temperature (its Impl), or null if it has none.
     const GenDPDEForceImpl* thermalForce = nullptr;
     bool adiabaticPositionChanges = false;

@@ -309,6 +309,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     positionsSet = false;
     stoppedBy.clear(); // a new Context state (reinitialize() without preserving the state)
     refusedPositions.clear();
+    energyMark.set = false;
     lawUpdatesSeen = 0;
     forcesCurrent = false;
     context = &contextRef;
@@ -357,6 +358,24 @@ void GenDPDEIntegrator::step(int steps) {
     // the pairs of that step.
     GenDPDEPairSource* pairSource =
             terms.pairSweep ? GenDPDEIntegratorUtilities::findPairSource(*context, *this, pairRange) : nullptr;
+    // The energy guard (GenDPDEIntegratorEnergyGuard.cpp) looks at the conserved energy every energyGuardSteps steps
+    // after its mark, however the steps are split into calls.
+    const bool guarded = mode != Isothermal;
+    if (guarded && !energyMark.set)
+        markEnergy();
+    for (int done = 0; done < steps;) {
+        int run = steps - done;
+        if (guarded && energyMark.set)
+            run = (int) std::min<long long>(
+                    run, std::max<long long>(1, energyMark.step + energyGuardSteps - context->getStepCount()));
+        runSteps(run, terms, pairSource);
+        done += run;
+        if (guarded)
+            checkEnergyDrift();
+    }
+}
+
+void GenDPDEIntegrator::runSteps(int steps, const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource) {
     IntegrateGenDPDEStepKernel& stepKernel = boundKernel();
     stepKernel.beginSteps(*context, *this, terms, pairSource);
     // With a law that depends on temperature, every step starts from the thermal state of its positions, fixed before
@@ -419,15 +438,20 @@ double GenDPDEIntegrator::computeKineticEnergy() {
 double GenDPDEIntegrator::getConservedEnergy() {
     if (context == nullptr)
         throw OpenMMException("GenDPDEIntegrator: this integrator is not bound to a Context");
+    const EnergyParts parts = energyParts();
+    return parts.kinetic + parts.potential + parts.internal;
+}
+
+GenDPDEIntegrator::EnergyParts GenDPDEIntegrator::energyParts() {
     const bool forcesWereCurrent = forcesAreCurrent();
-    double potential = context->calcForcesAndEnergy(true, true, getIntegrationForceGroups());
+    EnergyParts parts;
+    parts.potential = context->calcForcesAndEnergy(true, true, getIntegrationForceGroups());
     if (forcesWereCurrent)
         rememberForces(); // the same forces again: the next step still needs no evaluation
-    double kinetic = computeKineticEnergy();
-    double internal = 0.0;
+    parts.kinetic = computeKineticEnergy();
     for (double e : boundKernel().getInternalEnergies())
-        internal += e;
-    return kinetic + potential + internal;
+        parts.internal += e;
+    return parts;
 }
 
 void GenDPDEIntegrator::checkInternalEnergies(const std::vector<double>& energies, const std::string& source) const {

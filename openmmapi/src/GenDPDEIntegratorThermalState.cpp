@@ -29,6 +29,7 @@ void GenDPDEIntegrator::stateChanged(State::DataType changed) {
     if (context == nullptr)
         return;
     forcesCurrent = false;
+    energyMark.set = false; // the conserved energy changed from outside the dynamics: the guard marks it again
     if (changed == State::Positions) {
         checkSetPositions();
         applyThermalRule(ThermalEvent::PositionsSet);
@@ -44,6 +45,7 @@ void GenDPDEIntegrator::stateChanged(State::DataType changed) {
 
 void GenDPDEIntegrator::applyThermalRule(ThermalEvent event) {
     forcesCurrent = false; // every event changes the forces or what they act on
+    energyMark.set = false; // and may change the conserved energy: the guard marks it again
     if (context == nullptr || thermalForce == nullptr || event == ThermalEvent::ParametersChanged)
         return;
     IntegrateGenDPDEStepKernel& k = boundKernel();

@@ -176,3 +176,48 @@ def test_positions_within_the_limit_are_wrapped_alike(platform):
     context.setPositions(shifted)
     outside = force.getParticleDensities(context).value_in_unit(openmm.unit.nanometer**-3)
     assert np.allclose(outside, inside, rtol=1e-8, atol=0)
+
+
+def background_pressure_run(platform, background_pressure):
+    system, force, positions = lattice_liquid(6)
+    force.setBackgroundPressure(background_pressure)
+    integrator = argon_integrator(0.01)
+    integrator.setTemperature(TEMPERATURE)
+    integrator.setRandomNumberSeed(3)
+    context = openmm.Context(system, integrator, platform)
+    context.setPositions(positions)
+    context.setVelocitiesToTemperature(TEMPERATURE, 1)
+    return integrator, context
+
+
+def test_a_run_whose_step_no_longer_integrates_the_forces_stops(platform):
+    # Before: a background pressure of 1e6 kJ/mol/nm^3 (allowed: it is a model parameter) at argon's step dt* = 0.01
+    # ran on silently: in 300 steps the mean temperature rose from 137 K to ~1e5 K while the conserved energy fell by
+    # ~1700 kJ/mol per particle in the first 20 steps (K + sum eps was 15 per particle): the step no longer resolves
+    # the forces. Now the energy guard stops it at its first look, step 100 (the drift there: ~18% of K + sum eps).
+    integrator, context = background_pressure_run(platform, 1e6)
+    with pytest.raises(openmm.OpenMMException, match=r"the conserved energy K \+ U \+ sum eps changed by .* between "
+                                                     r"step 0 and step 100, more than 10% .* particle \d+ has the "
+                                                     r"largest kinetic energy") as error:
+        integrator.step(300)
+    assert STOPPED in str(error.value)
+    assert context.getState().getStepCount() == 100
+    with pytest.raises(openmm.OpenMMException, match="the run stopped"):
+        integrator.step(1)
+
+
+def test_heat_the_dynamics_integrates_does_not_stop_the_run():
+    # The guard looks at the conserved energy, not the temperature: with a background pressure of 1e3 kJ/mol/nm^3
+    # the lattice's structure releases p_b (V_box - sum V_i) as heat (the mean temperature rises from 137 K to ~207 K
+    # in 300 steps, measured) while E drifts by 0.02% of K + sum eps, well integrated: it runs on, in calls of any
+    # length (the looks fall at steps 100, 200, 300 either way).
+    for calls in ([300], [7] * 43):
+        integrator, context = background_pressure_run(openmm.Platform.getPlatformByName("Reference"), 1e3)
+        start = integrator.getConservedEnergy().value_in_unit(openmm.unit.kilojoule_per_mole)
+        for steps in calls:
+            integrator.step(steps)
+        drift = integrator.getConservedEnergy().value_in_unit(openmm.unit.kilojoule_per_mole) - start
+        kinetic = context.getState(getEnergy=True).getKineticEnergy().value_in_unit(openmm.unit.kilojoule_per_mole)
+        moved = kinetic + sum(integrator.getInternalEnergies().value_in_unit(openmm.unit.kilojoule_per_mole))
+        assert abs(drift) < 1e-3 * moved   # (measured: 0.6 kJ/mol of ~3000)
+        assert integrator.getParticleTemperatures().value_in_unit(openmm.unit.kelvin).mean() > 180

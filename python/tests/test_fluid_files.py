@@ -383,3 +383,41 @@ def test_a_fluid_out_of_range_ends_in_one_line_before_anything_runs(command, cha
         main([command, "--quick", "--fluid", str(path)])
     assert str(exit_.value).startswith(f"error: {command}: ") and message in str(exit_.value)
     assert "\n" not in str(exit_.value)
+
+
+@pytest.mark.parametrize("name, text", [("fluid.toml", b'name = "water \xff"\n'),
+                                        ("fluid.json", b'{"name": "water \xff"}')])
+def test_a_fluid_file_that_is_not_utf8_is_refused_naming_the_file(name, text, tmp_path):
+    """A fluid file that is not UTF-8 text (TOML and JSON are): ValueError naming the file and the byte, and calibrate
+    --fluid FILE ends in that one line (issue 54: the error was Python's UnicodeDecodeError without the file)."""
+    path = tmp_path / name
+    path.write_bytes(text)
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert str(path) in str(error.value) and "must be UTF-8 text (byte b'\\xff'" in str(error.value)
+    result = subprocess.run([sys.executable, "-m", "openmmgendpde", "calibrate", "--quick", "--fluid", str(path)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and "Traceback" not in result.stderr
+    assert f"error: calibrate: {path}: not a valid" in result.stderr.splitlines()[-1]
+
+
+def test_a_negative_zero_in_a_model_file_reads_as_zero(tmp_path):
+    """-0.0 where a sign means nothing (the reference pressure, a law's parameter, a fluid's pressure) reads as +0.0:
+    the model read back, and written again, says 0.0, not -0.0 (issue 54)."""
+    path = str(tmp_path / "model.toml")
+    save_parameters(coarse_grain(WATER, 4, neighbors=20).with_law("TaitThermalExpansion", thermal_pressure=0.0),
+                    path)
+    text = open(path).read()
+    zeroed = "\n".join("reference_pressure = -0.0" if line.startswith("reference_pressure = ") else
+                       'pressure = "-0.0 Pa"' if line.startswith("pressure = ") else line
+                       for line in text.splitlines())
+    assert zeroed.count("-0.0") == 2 and "{beta = 0.0," in zeroed
+    zeroed = zeroed.replace("{beta = 0.0,", "{beta = -0.0,")
+    with open(path, "w") as stream:
+        stream.write(zeroed)
+    parameters = load_parameters(path)
+    signs = [math.copysign(1, value) for value in (parameters.reference_pressure, parameters.law_parameters[0],
+                                                   parameters.fluid.in_openmm()["pressure"])]
+    assert signs == [1, 1, 1]
+    save_parameters(parameters, path)
+    assert "-0.0" not in open(path).read()

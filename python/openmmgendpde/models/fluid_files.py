@@ -110,7 +110,7 @@ def quantity(text, name="quantity"):
     magnitude = parsed.magnitude
     if not (isinstance(magnitude, numbers.Real) and math.isfinite(magnitude)):
         raise ValueError(f"{name} = {text!r} is not allowed; its value must be a finite number")
-    result = float(magnitude) * unit.dimensionless
+    result = (float(magnitude) + 0.0) * unit.dimensionless   # (+ 0.0: -0.0 reads as 0.0; its sign means nothing)
     for base, exponent in parsed.unit_items():
         if base not in _BASE_UNITS:
             raise ValueError(f"{name} = {text!r} is not allowed; its unit may use only mass, length, time, amount "
@@ -136,10 +136,13 @@ def _read(path):
             with open(path, "rb") as stream:
                 return tomllib.load(stream)
         if extension == ".json":
-            with open(path) as stream:
+            with open(path, encoding="utf-8") as stream:
                 return json.load(stream)
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as error:
         raise ValueError(f"{path}: not a valid {extension[1:].upper()} file: {error}") from None
+    except UnicodeDecodeError as error:   # (TOML and JSON files are UTF-8 text)
+        raise ValueError(f"{path}: not a valid {extension[1:].upper()} file: it must be UTF-8 text (byte "
+                         f"{error.object[error.start:error.start + 1]!r} at offset {error.start} is not)") from None
     raise ValueError(f"{path}: a fluid file must be .toml or .json")
 
 
@@ -285,13 +288,14 @@ def load_parameters(path):
 
 
 def _number(given, name, where):
-    """given[name] as a float: finite, and > 0 but for the reference pressure; ValueError naming it."""
+    """given[name] as a float: finite, and > 0 but for the reference pressure (-0.0 read as 0.0); ValueError naming
+    it."""
     value = given[name]
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
     if name != "reference_pressure" and not value > 0:
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be > 0")
-    return float(value)
+    return float(value) + 0.0
 
 
 def _law(given, where):
@@ -326,7 +330,7 @@ def _signed(table, name, where):
     value = table[name]
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
-    return float(value)
+    return float(value) + 0.0   # (-0.0 read as 0.0: the sign of a zero means nothing)
 
 
 def _checked_law(law, values, where):

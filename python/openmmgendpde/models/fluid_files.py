@@ -6,7 +6,8 @@ calibrated model can be built again (docs/fluids.md, "Fluid files").
 A fluid file holds the properties of a Fluid, each a string "value unit" in the syntax of pint (the units library
 of the scientific Python stack: "997.05 kg/m^3", "0.4525e-9 1/Pa", "74.44 J/(mol K)", "0.89 mPa s",
 "0.6065 W/(m K)", "18.015 g/mol"; per molecule or per mole, as a Fluid takes them), except heat_capacity, which may
-also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s),
+also be a plain number in k_B per molecule, and tait_exponent and bulk_modulus_derivative ((dK_T/dP)_T: gamma_T is
+it where given, properties.Fluid), plain numbers; self_diffusion (m^2/s),
 speed_of_sound (m/s) and surface_tension (N/m, liquid-vapour) are optional, properties the model is not fitted to
 that calibrate (surface_tension: slab) measures back:
 
@@ -150,7 +151,7 @@ def fluid_from_table(table, source="fluid"):
     """A Fluid from a table (dict) of a fluid file; ValueError naming ``source`` and the bad entry."""
     if not isinstance(table, dict):
         raise ValueError(f"{source}: expected a table of properties, got {type(table).__name__}")
-    known = set(_SI_UNITS) | set(_OPTIONAL_UNITS) | {"name", "tait_exponent"}
+    known = set(_SI_UNITS) | set(_OPTIONAL_UNITS) | {"name", "tait_exponent", "bulk_modulus_derivative"}
     unknown = sorted(set(table) - known)
     if unknown:
         raise ValueError(f"{source}: unknown entries {unknown}; a fluid has {sorted(known)}")
@@ -173,11 +174,12 @@ def fluid_from_table(table, source="fluid"):
                     raise ValueError(f"{name} = {given!r} is not allowed; its unit must be compatible with "
                                      f"{units[name][0]}" + (" (per molecule or per mole)" if molar else
                                                             " (not per mole: the property is not molar)")) from None
-        if "tait_exponent" in table:
-            exponent = table["tait_exponent"]
-            if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
-                raise ValueError(f"tait_exponent = {exponent!r} is not allowed; it must be a number > 1")
-            values["tait_exponent"] = float(exponent)
+        for name in ("tait_exponent", "bulk_modulus_derivative"):
+            if name in table:
+                exponent = table[name]
+                if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
+                    raise ValueError(f"{name} = {exponent!r} is not allowed; it must be a number > 1")
+                values[name] = float(exponent)
         return Fluid(**values)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
@@ -204,6 +206,8 @@ def fluid_table(fluid):
         else:
             table[name] = f"{_in_si(given, name, target)!r} {text}"
     table["tait_exponent"] = float(fluid.tait_exponent)
+    if fluid.bulk_modulus_derivative is not None:
+        table["bulk_modulus_derivative"] = float(fluid.bulk_modulus_derivative)
     return table
 
 

@@ -309,9 +309,12 @@ class Stages:
         the thermal expansion's last measurement, or, for a law without a thermal pressure, measured here
         (expansion.thermal_pressure_coefficient: runs at T0 -+ 8%). Returns the thermodynamics."""
         calibration, final = self.calibration, equilibrium(self.calibration.parameters)
-        if self.thermo_parameters != final or self.bulk_parameters != final:
-            self.stage("The written model measured again (a later stage moved f_cut, pi0 or beta): the thermodynamics "
-                       "and n dP/dn")
+        again = [name for name, measured in (("the thermodynamics", self.thermo_parameters), ("n dP/dn",
+                                                                                           self.bulk_parameters))
+                 if measured != final]
+        if again:
+            self.stage(f"The written model: {' and '.join(again)} measured again (a later stage moved f_cut, pi0 or "
+                       f"beta)")
         if self.thermo_parameters != final:
             thermo = self.thermodynamics()
         if self.bulk_parameters != final:

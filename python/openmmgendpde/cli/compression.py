@@ -113,7 +113,8 @@ def add_arguments(parser):
                              "write --compressions=-0.02,0,0.02)")
     parser.add_argument("--particles", type=fcc_particles, default=2048, help="4 m^3 particles (default 2048)")
     parser.add_argument("--quick", action="store_true",
-                        help="500 particles, 40 frames 25 steps apart (a functional check in about a minute)")
+                        help="500 particles, 40 frames 25 steps apart (a functional check: 6 s measured on 2 "
+                             "shared cores)")
     parser.add_argument("--frames", type=integer(2), default=150, help="frames per box (default 150)")
     parser.add_argument("--interval", type=integer(1), default=50, help="steps between frames (default 50)")
     parser.add_argument("--cutoff-scaling", type=number(at_least=1.0), help="f_cut instead of the model's")

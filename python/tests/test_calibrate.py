@@ -418,3 +418,5 @@ def test_the_report_is_a_measurement_of_the_written_model(fluid, molecules, monk
     sound = math.sqrt((modulus + temperature * thermal**2 / (n * heat)) / (n * written.mass * 1e-3 / N_A))
     row = next(name for name in results if name.startswith("not fitted: speed of sound"))
     assert results[row]["model"] == pytest.approx(sound, rel=1e-9)
+    assert json.loads(path.read_text())["thermal_pressure_mpa_per_k"][0] == pytest.approx(
+        mpa(expected["thermal_pressure"]), rel=1e-9)

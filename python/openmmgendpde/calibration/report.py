@@ -105,7 +105,8 @@ def calibration_rows(stages, thermo, mapped):
 
 def calibration_record(stages, results, missed, wall_time):
     """What calibrate --json writes: the fluid, the coarse-graining, the parameters before and after (reduced), the
-    runs of every iteration, the results by label and what missed."""
+    runs of every iteration, the thermal pressure (dP/dT)_n of the written model (MPa/K, its standard error) that the
+    speed of sound is derived with, the results by label and what missed."""
     mapped, final, m = stages.mapped, stages.calibration.parameters, stages.measured
     return {"fluid": mapped.fluid.name, "molecules_per_particle": mapped.molecules_per_particle,
             "estimator": stages.calibration.estimator, "particles": stages.plan.particles,
@@ -116,6 +117,7 @@ def calibration_record(stages, results, missed, wall_time):
             "bulk_modulus_runs": [[x, mpa(v.value), mpa(v.error)] for x, v in m["bulk_runs"]],
             "friction_runs": [[x, mpa_s(v.value), mpa_s(v.error)] for x, v in m["viscosity_runs"]],
             "heat_conduction_runs": [[x, w_mk(v.value), w_mk(v.error)] for x, v in m["conductivity_runs"]],
+            "thermal_pressure_mpa_per_k": [mpa(m["thermal_pressure"].value), mpa(m["thermal_pressure"].error)],
             "calibrated": final.reduced(), "results": results,
             "missed": [str(miss) for miss in missed], "missed_properties": missed_properties(missed)}
 

@@ -34,8 +34,11 @@ ROWS = [
      "thermal conductivity, wave, kappa as mapped (W/(m K))"),
     ("thermal conductivity, heat flux (W/(m K))", "thermal conductivity, heat flux (W/(m K))", None),
     ("not fitted: self-diffusion (1e-9 m^2/s)", "not fitted: self-diffusion (1e-9 m^2/s)", None),
-    ("not fitted: speed of sound (m/s)", "not fitted: speed of sound, from n dP/dn (m/s)", None),
+    ("not fitted: speed of sound (m/s)", "not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)", None),
 ]
+#: Rows that records written before issue 54 name otherwise (the speed of sound then took the kinetic (dP/dT)_n).
+EARLIER_ROWS = {"not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)":
+                "not fitted: speed of sound, from n dP/dn (m/s)"}
 
 
 def _missed(record):
@@ -71,16 +74,17 @@ def main():
         cells = [label]
         for record in records:
             results = record["results"]
-            if calibrated not in results:
+            row = calibrated if calibrated in results else EARLIER_ROWS.get(calibrated, calibrated)
+            if row not in results:
                 cells += ["", "", ""]
                 continue
             # (P - P0) kappa_T: the bulk modulus target is 1/kappa_T (MPa)
             compressibility = 1 / results["bulk modulus n dP/dn (MPa)"]["target"]
             pressure = label.startswith("pressure")
-            target = results[calibrated]["target"]
+            target = results[row]["target"]
             cells.append("-" if target is None or math.isnan(target) else f"{target:.4g}")
             cells.append(_cell(results.get(mapped) if mapped else None, compressibility, pressure))
-            cells.append(_cell(results[calibrated], compressibility, pressure))
+            cells.append(_cell(results[row], compressibility, pressure))
         print("| " + " | ".join(cells) + " |")
     print()
     for name, record in zip(names, records):

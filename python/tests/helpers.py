@@ -81,11 +81,19 @@ def assert_rejected_without_change(obj, call, fragments):
     assert openmm.XmlSerializer.serialize(obj) == before
 
 
+def made_up_thermal_pressure(self, seed=None):
+    """Calibration.thermal_pressure made up: (dP/dT)_n = 3 n0 k_B (argon's, kinetic and structural, docs/fluids.md),
+    standard error 1%."""
+    from openmmgendpde.calibration.calibration import Measured
+    from openmmgendpde.models.fluid import KB
+    return Measured(3 * self.parameters.density * KB, 0.03 * self.parameters.density * KB)
+
+
 def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
     """Replace calibrate's simulations (Calibration's measurements) by made-up ones, for tests of the command
     around them: the pressure reads P0 + ``pressure_offset``/kappa_T while pi0 is ``mapped``'s and P0 once it moved;
-    f_cut is 'tuned' to 1.3; c_U reads 0.5 k_B; the bulk modulus and the transport coefficients read their targets;
-    the thermal expansion of a fluid that has one is not measured."""
+    f_cut is 'tuned' to 1.3; c_U reads 0.5 k_B; the bulk modulus and the transport coefficients read their targets,
+    (dP/dT)_n 3 n0 k_B (made_up_thermal_pressure); the thermal expansion of a fluid that has one is not measured."""
     import openmmgendpde.calibration.calibrate as calibrate
     from openmmgendpde.calibration.calibration import Calibration, Measured
     from openmmgendpde.models.fluid import KB
@@ -110,6 +118,7 @@ def fake_calibration(monkeypatch, mapped, pressure_offset=0.0):
     monkeypatch.setattr(Calibration, "thermodynamics", thermodynamics)
     monkeypatch.setattr(Calibration, "bulk_modulus",
                         lambda self: (Measured(self.parameters.targets()["bulk_modulus"], 1.0), Measured(1.0, 0.01)))
+    monkeypatch.setattr(Calibration, "thermal_pressure", made_up_thermal_pressure)
     for name, target in (("shear_viscosity", "shear_viscosity"), ("steady_viscosity", "shear_viscosity"),
                          ("thermal_conductivity", "thermal_conductivity"),
                          ("steady_conductivity", "thermal_conductivity")):

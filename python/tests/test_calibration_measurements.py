@@ -109,17 +109,59 @@ def test_conduction_wave_decays_at_the_rate_of_the_lattice_sum():
 
 
 def test_speed_of_sound_of_an_ideal_monatomic_gas():
-    """calibrate.speed_of_sound with K_T = n k_B T and the heat capacity of the motion alone (c = 3 k_B/2): the ideal
+    """calibrate.speed_of_sound with K_T = n k_B T, (dP/dT)_n = n k_B and the heat capacity of the motion alone
+    (c = 3 k_B/2): the ideal
     monatomic gas, c = sqrt(5 k_B T/(3 m)) (argon atoms at 300 K: 322.6 m/s, computed here in SI)."""
     from openmmgendpde.calibration.calibration import Measured
     from openmmgendpde.calibration.report import speed_of_sound
     from openmmgendpde.models.fluid import KB
     gas = dataclasses.replace(coarse_grain(ARGON, 1, neighbors=20), heat_capacity=0.0, temperature=300.0,
                               mass=39.948)
-    result = speed_of_sound(gas, Measured(gas.density * KB * 300.0, 0.0), 1.5 * KB)
+    result = speed_of_sound(gas, Measured(gas.density * KB * 300.0, 0.0), Measured(gas.density * KB, 0.0), 1.5 * KB)
     expected = math.sqrt(5 * 1.380649e-23 * 300.0 / (3 * 39.948 * 1.66053906660e-27))   # m/s
     assert result.value * 1e3 == pytest.approx(expected, rel=1e-6)
     assert expected == pytest.approx(322.6, abs=0.1)
+
+
+@pytest.mark.parametrize("thermal", [0.0, 1.0, 5.0])
+def test_the_adiabatic_modulus_is_the_slope_of_the_pressure_along_an_adiabat(thermal):
+    """thermodynamics.adiabatic_bulk_modulus (and the speed of sound calibrate derives from it) against finite
+    differences on an equation of state made from a free energy, so that its adiabats are known exactly: per
+    particle f(n, T) = c_v T (1 - ln T) + phi(n) - T psi(n), with the Tait energy phi (the model's law at T0:
+    n^2 phi' = B_T ((n/n0)^gamma_T - 1) + pi0) and psi(n) = -k_B ln n - b n/n0^2 (the kinetic n k_B T and a thermal
+    pressure b T (n/n0)^2 of the structure's or the law's kind; b = ``thermal`` n0 k_B). P = n^2 df/dn, s = -df/dT =
+    c_v ln T + psi(n): along the adiabat through (n0, T0), T(n) = T0 exp((psi(n0) - psi(n))/c_v), and n dP/dn there
+    (a central difference of 1e-5 n0) is K_S. Water's model (n0, T0, B_T, gamma_T, pi0; c_v of 4 molecules, 74.44
+    J/(mol K) each). Expected to 1e-7 (the difference's truncation ~1e-10 of K_S, its rounding ~1e-9). K_T and
+    (dP/dT)_n given to the code are finite differences of P too."""
+    from openmmgendpde.analysis.thermodynamics import adiabatic_bulk_modulus
+    from openmmgendpde.calibration.calibration import Measured
+    from openmmgendpde.calibration.report import speed_of_sound
+    from openmmgendpde.models.fluid import KB, WATER
+    water = coarse_grain(WATER, 4, neighbors=20)
+    n0, t0, gamma, modulus, pi0 = (water.density, water.temperature, water.tait_exponent, water.bulk_modulus,
+                                   water.reference_pressure)
+    c_v, b = 4 * 74.44e-3, thermal * n0 * KB   # kJ/mol/K per particle; kJ/mol/nm^3/K
+
+    def psi(n):
+        return -KB * math.log(n) - b * n / n0**2
+
+    def pressure(n, t):
+        return modulus * ((n / n0) ** gamma - 1) + pi0 + n * KB * t + b * t * (n / n0) ** 2
+
+    def adiabat(n):
+        return t0 * math.exp((psi(n0) - psi(n)) / c_v)
+
+    h = 1e-5 * n0
+    expected = n0 * (pressure(n0 + h, adiabat(n0 + h)) - pressure(n0 - h, adiabat(n0 - h))) / (2 * h)
+    isothermal = n0 * (pressure(n0 + h, t0) - pressure(n0 - h, t0)) / (2 * h)
+    slope = (pressure(n0, t0 + 1e-3) - pressure(n0, t0 - 1e-3)) / 2e-3
+    assert slope == pytest.approx(n0 * KB + b, rel=1e-8)
+    assert adiabatic_bulk_modulus(n0, t0, isothermal, slope, c_v) == pytest.approx(expected, rel=1e-7)
+    sound = speed_of_sound(water, Measured(isothermal, 0.0), Measured(slope, 0.0), c_v)
+    assert sound.value == pytest.approx(math.sqrt(expected / (n0 * water.mass)), rel=1e-7)
+    if thermal:   # (the thermal pressure matters here: with the kinetic n k_B alone, K_S falls short)
+        assert abs(adiabatic_bulk_modulus(n0, t0, isothermal, n0 * KB, c_v) / expected - 1) > 1e-4
 
 
 @pytest.mark.validation

@@ -185,3 +185,30 @@ def test_a_script_failure_ends_in_one_line():
                              "one_line_errors('x.py')\nraise openmm.OpenMMException('the step was not applied')"],
                             capture_output=True, text=True, timeout=60)
     assert result.returncode == 1 and result.stderr == "error: x.py: the step was not applied\n"
+
+
+@pytest.mark.parametrize("extra, option", [(["--fluid", "argon"], "--fluid argon"),
+                                           (["--fluid", "water"], "--fluid water"),
+                                           (["--neighbors", "30"], "--neighbors 30.0"),
+                                           (["--molecules-per-particle", "2"], "--molecules-per-particle 2.0")])
+def test_compression_refuses_the_options_of_a_fluid_with_a_model(extra, option, tmp_path, monkeypatch):
+    """`compression --model M --fluid F` (or the fluid's coarse-graining): a one-line error, status 1, before anything
+    runs (issue 54: --fluid was ignored and the model's fluid compressed, status 0), even where --fluid names the
+    default fluid. --model alone compresses exactly the model file's parameters (the study's arguments checked here:
+    the study itself is replaced)."""
+    from openmmgendpde.models.fluid import ARGON, coarse_grain
+    from openmmgendpde.models.fluid_files import load_parameters, save_parameters
+    from openmmgendpde.studies import compression
+    path = str(tmp_path / "model.toml")
+    save_parameters(coarse_grain(ARGON, 5, neighbors=20), path)
+    monkeypatch.setattr(openmm, "Context", lambda *a, **k: pytest.fail("a simulation started"))
+    with pytest.raises(SystemExit) as exit_:
+        main(["compression", "--quick", "--model", path] + extra)
+    assert str(exit_.value) == (f"error: compression: {option} is not allowed with --model {path}: a model file holds "
+                                f"its fluid and every parameter; give one of --model and --fluid")
+    compressed = []
+    monkeypatch.setattr(compression, "compress", lambda parameters, *arguments, **keywords: compressed.append(
+        parameters) or pytest.fail("compressed"))
+    with pytest.raises(pytest.fail.Exception):
+        main(["compression", "--quick", "--model", path])
+    assert compressed == [load_parameters(path)]

@@ -383,3 +383,79 @@ def test_a_fluid_out_of_range_ends_in_one_line_before_anything_runs(command, cha
         main([command, "--quick", "--fluid", str(path)])
     assert str(exit_.value).startswith(f"error: {command}: ") and message in str(exit_.value)
     assert "\n" not in str(exit_.value)
+
+
+@pytest.mark.parametrize("name, text", [("fluid.toml", b'name = "water \xff"\n'),
+                                        ("fluid.json", b'{"name": "water \xff"}')])
+def test_a_fluid_file_that_is_not_utf8_is_refused_naming_the_file(name, text, tmp_path):
+    """A fluid file that is not UTF-8 text (TOML and JSON are): ValueError naming the file and the byte, and calibrate
+    --fluid FILE ends in that one line (issue 54: the error was Python's UnicodeDecodeError without the file)."""
+    path = tmp_path / name
+    path.write_bytes(text)
+    with pytest.raises(ValueError) as error:
+        load_fluid(str(path))
+    assert str(path) in str(error.value) and "must be UTF-8 text (byte b'\\xff'" in str(error.value)
+    result = subprocess.run([sys.executable, "-m", "openmmgendpde", "calibrate", "--quick", "--fluid", str(path)],
+                            capture_output=True, text=True, timeout=120)
+    assert result.returncode == 1 and "Traceback" not in result.stderr
+    assert f"error: calibrate: {path}: not a valid" in result.stderr.splitlines()[-1]
+
+
+def test_a_negative_zero_in_a_model_file_reads_as_zero(tmp_path):
+    """-0.0 where a sign means nothing (the reference pressure, a law's parameter, a fluid's pressure) reads as +0.0:
+    the model read back, and written again, says 0.0, not -0.0 (issue 54)."""
+    path = str(tmp_path / "model.toml")
+    save_parameters(coarse_grain(WATER, 4, neighbors=20).with_law("TaitThermalExpansion", thermal_pressure=0.0),
+                    path)
+    text = open(path).read()
+    zeroed = "\n".join("reference_pressure = -0.0" if line.startswith("reference_pressure = ") else
+                       'pressure = "-0.0 Pa"' if line.startswith("pressure = ") else line
+                       for line in text.splitlines())
+    assert zeroed.count("-0.0") == 2 and "{beta = 0.0," in zeroed
+    zeroed = zeroed.replace("{beta = 0.0,", "{beta = -0.0,")
+    with open(path, "w") as stream:
+        stream.write(zeroed)
+    parameters = load_parameters(path)
+    signs = [math.copysign(1, value) for value in (parameters.reference_pressure, parameters.law_parameters[0],
+                                                   parameters.fluid.in_openmm()["pressure"])]
+    assert signs == [1, 1, 1]
+    save_parameters(parameters, path)
+    assert "-0.0" not in open(path).read()
+
+
+def test_gamma_t_is_the_fluid_s_bulk_modulus_derivative_where_given(tmp_path):
+    """gamma_T's rule (issue 54): a fluid file's bulk_modulus_derivative, (dK_T/dP)_T, a measured property, is gamma_T
+    (the Tait law's dK/dP is gamma_T: K = gamma_T B_T (n/n0)^gamma_T, P = B_T ((n/n0)^gamma_T - 1) + const): water
+    with 6 maps to gamma_T = 6 and B_T = 1/(6 kappa_T) = 2209.9/6 MPa (kappa_T = 0.4525/GPa), and the Tait law's dK/dP
+    at n0, by a central difference of the law written out here, is 6; a tait_exponent that differs is refused naming
+    both, an equal one accepted; a value <= 1 refused. Without either, gamma_T stays 7."""
+    from openmmgendpde.calibration.report import mpa
+    table = {key: value for key, value in WATER_TABLE.items() if key != "tait_exponent"}
+    path = tmp_path / "fluid.json"
+    path.write_text(json.dumps(dict(table, bulk_modulus_derivative=6)))
+    parameters = coarse_grain(load_fluid(str(path)), 4, neighbors=20)
+    assert parameters.tait_exponent == 6.0
+    assert mpa(parameters.bulk_modulus) == pytest.approx(1e3 / 0.4525 / 6, rel=1e-9)
+    n0, gamma, modulus = parameters.density, parameters.tait_exponent, parameters.bulk_modulus
+
+    def tait(n):   # (pressure, n dP/dn) of the law
+        return modulus * ((n / n0) ** gamma - 1), gamma * modulus * (n / n0) ** gamma
+    h = 1e-5 * n0
+    (p_low, k_low), (p_high, k_high) = tait(n0 - h), tait(n0 + h)
+    assert (k_high - k_low) / (p_high - p_low) == pytest.approx(6.0, rel=1e-8)
+    again = fluid_from_table(fluid_table(load_fluid(str(path))))   # (written, read back)
+    assert again.tait_exponent == again.bulk_modulus_derivative == 6.0
+    path.write_text(json.dumps(dict(table, bulk_modulus_derivative=6, tait_exponent=6)))
+    assert load_fluid(str(path)).tait_exponent == 6.0
+    for extra, message in [({"bulk_modulus_derivative": 6, "tait_exponent": 7},
+                            "tait_exponent = 7.0 is not allowed with bulk_modulus_derivative = 6.0: gamma_T is the "
+                            "fluid's (dK_T/dP)_T"),
+                           ({"bulk_modulus_derivative": 1}, "bulk_modulus_derivative = 1.0 is not allowed; it must be "
+                                                            "a finite number > 1"),
+                           ({"bulk_modulus_derivative": "6"}, "bulk_modulus_derivative = '6' is not allowed")]:
+        path.write_text(json.dumps(dict(table, **extra)))
+        with pytest.raises(ValueError) as error:
+            load_fluid(str(path))
+        assert str(path) in str(error.value) and message in str(error.value)
+    path.write_text(json.dumps(table))
+    assert load_fluid(str(path)).tait_exponent == 7.0

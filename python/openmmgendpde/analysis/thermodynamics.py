@@ -202,3 +202,13 @@ def heat_capacity_per_particle(internal_heat_capacity, configurational=0.0):
     them). ``internal_heat_capacity``: C_V (kJ/mol/K)."""
     kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
     return internal_heat_capacity + 2.5 * kb + configurational
+
+
+def adiabatic_bulk_modulus(density, temperature, bulk_modulus, thermal_pressure, heat_capacity):
+    """K_S = n (dP/dn)_s of a fluid at number density n (``density``, nm^-3) and T (K) from its isothermal
+    K_T = n (dP/dn)_T (``bulk_modulus``, kJ/mol/nm^3), its thermal pressure coefficient (dP/dT)_n
+    (``thermal_pressure``, kJ/mol/nm^3/K) and its isochoric heat capacity per particle c_v (``heat_capacity``,
+    kJ/mol/K): K_S = K_T + T (dP/dT)_n^2/(n c_v). (At fixed entropy per particle, ds = c_v dT/T + (dP/dT)_n d(1/n)
+    by a Maxwell relation, so (dT/dn)_s = T (dP/dT)_n/(n^2 c_v), and (dP/dn)_s = (dP/dn)_T + (dP/dT)_n (dT/dn)_s.)
+    The speed of sound is sqrt(K_S/rho)."""
+    return bulk_modulus + temperature * thermal_pressure**2 / (density * heat_capacity)

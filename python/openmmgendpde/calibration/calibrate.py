@@ -21,7 +21,15 @@
    how the particle densities follow the true one, (n/n-bar) d n-bar/d n (1 would let the Tait modulus through);
    B_T iterated on it (Calibration.iterate), then f_cut and pi0 again if B_T moved. Where the response is small
    (water at 20 neighbours without its background pressure: ~0.2) B_T does not move it, and the iteration fails
-   saying what to change (FAILURE_ADVICE).
+   saying what to change (FAILURE_ADVICE). A law that depends on temperature then has its beta iterated on the
+   measured (dP/dT)_V (thermal_expansion_rows).
+   The report is the written model's: every equilibrium number in it (n-bar, P, c_v, the temperatures, n dP/dn and
+   the response) is measured on the parameters that --output writes; where a later stage moved f_cut, pi0 or beta
+   after one was measured (f_cut and pi0 follow a new B_T, beta comes last), it is measured again
+   (Stages.written_model). The speed of sound is derived from them, not measured: c^2 = K_S/rho with
+   K_S = K_T + T (dP/dT)_n^2/(n c_v) (thermodynamics.adiabatic_bulk_modulus), K_T the measured n dP/dn, c_v the
+   model's, and (dP/dT)_n the model's own thermal pressure, measured: the thermal expansion's last measurement, or
+   for a law without one runs at T0 -+ 8% (Calibration.thermal_pressure: the kinetic n k_B and the structure's).
 5. The transport coefficients, iterated (Calibration.iterate: a proportional step, then secant steps on the
    measured responses, until within 5% or one standard error (_settled); at most plan.transport_runs measurements;
    a secant whose intercept, the coefficient without the pair term, lies above the target stops the iteration: no
@@ -45,7 +53,9 @@
    The number of runs and the wall time are printed.
 
 --fluid takes a built-in name or a fluid file (fluid_files); --output writes the calibrated model as a model file.
---quick: 500 particles and short runs (a functional check in about a minute); the default: 2048 particles.
+--quick: 500 particles and short runs, a functional check: 1.2-1.6 min measured here (`time python -m openmmgendpde
+calibrate --quick`: water 93 s on the Reference platform, 78 s with --platform CPU; --fluid argon 71 s, the example
+nitrogen 72 s; 2 cores shared with other work), more on a busier machine. The default: 2048 particles.
 """
 
 import dataclasses
@@ -112,18 +122,19 @@ def estimated_steps(plan, estimator):
     runs = plan.frames * plan.interval
     tuning = plan.tuning_iterations * (equilibration + runs) if estimator_of(estimator).reads_cutoff_scaling else 0
     waves = 2 * plan.transport_runs * plan.replicas * (equilibration + plan.wave_steps)
-    return tuning + (plan.pressure_rounds + 2) * (equilibration + runs) + waves
+    thermal_pressure = 2 * (plan.melt + plan.melt // 2 + runs)   # (written_model: (dP/dT)_n of a law without one)
+    return tuning + (plan.pressure_rounds + 2) * (equilibration + runs) + thermal_pressure + waves
 
 
-def thermal_expansion_rows(calibration, plan, platform, seed, report=print):
+def thermal_expansion_rows(calibration, plan, platform, seed, report=print, history=None):
     """The rows of the thermal expansion coefficient alpha = kappa_T (dP/dT)_V (1e-3/K), as mapped and after beta was
     iterated on the measured slope (expansion.measure, expansion.iterated: at least one correction, then more until
     alpha is within 5% or one standard error (_settled), at most EXPANSION_RUNS measurements; the last beta is kept
-    in the calibration's parameters): (name, target, Measured) each."""
-    runs = dict(num_particles=plan.particles, melt_steps=plan.melt, steps=plan.frames * plan.interval,
-                sample_every=plan.interval, platform=platform, seed=seed, estimator=calibration.estimator,
-                time_step=plan.time_step)
-    history = [expansion.measure(calibration.parameters, **runs)]
+    in the calibration's parameters): (name, target, Measured) each. ``history``: a list that receives the
+    measurements (expansion.ThermalExpansion, the last of the beta kept)."""
+    runs = calibration.expansion_runs(platform, seed, plan)
+    history = [] if history is None else history
+    history.append(expansion.measure(calibration.parameters, **runs))
     while len(history) < EXPANSION_RUNS:
         last = history[-1]
         if len(history) > 1 and _settled(Measured(last.alpha, last.alpha_error), last.target_alpha):
@@ -152,6 +163,9 @@ class Stages:
         self.pressures = []    # (pi0, measured P) of each round, f_cut tuned
         self.failures = []     # results.Miss of the iterations that failed
         self.measured = {}     # what the report's rows need, by name
+        # The parameters that the last thermodynamics and the n dP/dn kept were measured on (equilibrium(): those that
+        # the equilibrium depends on), and the last measurement of the thermal expansion (ThermalExpansion).
+        self.thermo_parameters = self.bulk_parameters = self.expansion = None
 
     def stage(self, text):
         self.report(f"[{time.monotonic() - self.started:6.0f} s] {text}")
@@ -169,7 +183,7 @@ class Stages:
             self.stage(f"Round {len(self.pressures) + 1} of f_cut and pi0: f_cut tuned so that n-bar = n0 "
                        f"({calibration.estimator}), then P measured")
             scaling = calibration.tune_cutoff_scaling(first_iterations if round_ == 0 else 2)
-            thermo = calibration.thermodynamics(pressure_error=PRESSURE_ERROR * targets["bulk_modulus"])
+            thermo = self.thermodynamics()
             pressure = thermo["pressure"]
             self.pressures.append((calibration.parameters.reference_pressure, pressure))
             self.report(f"  f_cut = {scaling:.4f}, pi0 = {calibration.parameters.reference_pressure:.6g} "
@@ -217,11 +231,12 @@ class Stages:
         self.failures += Miss.of_iteration(Property.BULK_MODULUS, failure)
         kept = [x for x, _ in runs].index(calibration.parameters.bulk_modulus)   # (the response of the B_T kept)
         self.measured.update(bulk=bulk, bulk_runs=runs, response=responses[kept])
+        self.bulk_parameters = equilibrium(calibration.parameters)   # (only B_T moved in the iteration)
         if calibration.parameters.bulk_modulus != before:   # the structure and the pressure follow B_T
             return self.pressure_rounds(2, 2)
         if calibration.parameters.heat_capacity != self.mapped.heat_capacity:
             self.stage("The thermodynamics measured again with the calibrated C_V")
-            thermo = calibration.thermodynamics(pressure_error=PRESSURE_ERROR * self.targets["bulk_modulus"])
+            thermo = self.thermodynamics()
             # A law that depends on temperature feels C_V in the structure (its entropy term is dressed by 1 + k_B/C_V,
             # docs/theory.md section 11): where the pressure moved past half its tolerance, f_cut and pi0 again.
             miss = abs(thermo["pressure"].value - self.targets["pressure"]) / self.targets["bulk_modulus"]
@@ -235,8 +250,11 @@ class Stages:
         if self.calibration.parameters.thermal_pressure is not None:
             self.stage(f"Thermal expansion: (dP/dT)_V at n0, runs at T0 -+ {100 * expansion.DELTA:g}%; beta iterated "
                        f"on the measured slope (at most {EXPANSION_RUNS} measurements)")
+            history = []
             self.measured["expansion_rows"] = thermal_expansion_rows(
-                self.calibration, self.plan, self.calibration.platform.getName(), seed, self.report)
+                self.calibration, self.plan, self.calibration.platform.getName(), seed, self.report, history)
+            if history:
+                self.expansion = (equilibrium(self.calibration.parameters), history[-1])
 
     def transport(self):
         """The friction and the heat conduction iterated on the wave decays (a fluid that expands: the conduction on
@@ -280,6 +298,48 @@ class Stages:
                              conductivity=conductivity, conductivity_runs=conductivity_runs, heat_flux=heat_flux,
                              expanding=expanding)
 
+    def thermodynamics(self):
+        """Calibration.thermodynamics at n0, its pressure to PRESSURE_ERROR/kappa_T, recording the parameters."""
+        thermo = self.calibration.thermodynamics(pressure_error=PRESSURE_ERROR * self.targets["bulk_modulus"])
+        self.thermo_parameters = equilibrium(self.calibration.parameters)
+        return thermo
+
+    def written_model(self, thermo, seed):
+        """Every equilibrium property of the report measured on the parameters calibrate writes: the thermodynamics
+        and n dP/dn measured again where a later stage moved a parameter that the equilibrium depends on (f_cut and
+        pi0 after B_T, beta after both), and the thermal pressure coefficient (dP/dT)_n that the speed of sound needs:
+        the thermal expansion's last measurement, or, for a law without a thermal pressure, measured here
+        (expansion.thermal_pressure_coefficient: runs at T0 -+ 8%). Returns the thermodynamics."""
+        calibration, final = self.calibration, equilibrium(self.calibration.parameters)
+        again = [name for name, measured in (("the thermodynamics", self.thermo_parameters), ("n dP/dn",
+                                                                                           self.bulk_parameters))
+                 if measured != final]
+        if again:
+            self.stage(f"The written model: {' and '.join(again)} measured again (a later stage moved f_cut, pi0 or "
+                       f"beta)")
+        if self.thermo_parameters != final:
+            thermo = self.thermodynamics()
+        if self.bulk_parameters != final:
+            bulk, response = calibration.bulk_modulus()
+            self.report(f"  n dP/dn = {mpa(bulk.value):.5g} +- {mpa(bulk.error):.2g} MPa (the B_T iteration's, before "
+                        f"the last stages: {mpa(self.measured['bulk'].value):.5g} +- "
+                        f"{mpa(self.measured['bulk'].error):.2g}), response {response.value:.3f} +- "
+                        f"{response.error:.3f}")
+            self.measured.update(bulk=bulk, response=response)
+            self.bulk_parameters = final
+        if self.expansion is not None and self.expansion[0] == final:
+            slope = self.expansion[1]
+            per_mpa = 1 / expansion.MPA_PER_OPENMM_PRESSURE
+            thermal = Measured(slope.slope * per_mpa, slope.slope_error * per_mpa)
+        else:
+            self.stage(f"Thermal pressure (dP/dT)_n at n0 for the speed of sound: runs at T0 -+ "
+                       f"{100 * expansion.DELTA:g}%")
+            thermal = calibration.thermal_pressure(seed)
+        self.report(f"  (dP/dT)_n = {mpa(thermal.value):.4g} +- {mpa(thermal.error):.2g} MPa/K (kinetic n0 k_B: "
+                    f"{mpa(calibration.parameters.density * KB):.4g})")
+        self.measured["thermal_pressure"] = thermal
+        return thermo
+
     def run(self, seed):
         """Every stage in order; the last thermodynamics and the first round's (the mapped pressure)."""
         thermo = mapped = self.pressure_rounds(self.plan.pressure_rounds, self.plan.tuning_iterations)
@@ -288,6 +348,7 @@ class Stages:
         self.heat_capacity(thermo)
         thermo = self.bulk_modulus(thermo)
         self.thermal_expansion(seed)
+        thermo = self.written_model(thermo, seed)
         self.transport()
         return thermo, mapped
 
@@ -323,6 +384,13 @@ def calibrate(parameters, estimator="VB", plan=Plan(), platform="Reference", see
     record = calibration_record(stages, results, missed, wall_time)
     return CalibrationResult(stages.mapped, calibration.parameters, estimator, plan, rows, results, missed, record,
                              calibration.runs, calibration.melt_steps, wall_time, stages.measured["expanding"])
+
+
+def equilibrium(parameters):
+    """The parameters that a model's equilibrium depends on: all but the friction and the heat conduction, which
+    set its dynamics only (GenDPDE's equilibrium distribution does not depend on them): two models with equal
+    equilibrium() have the same thermodynamics."""
+    return dataclasses.replace(parameters, friction=1.0, heat_conduction=1.0)
 
 
 __all__ = ["CalibrationResult", "Stages", "StageFailure", "calibrate", "estimated_steps", "thermal_expansion_rows"]

@@ -25,6 +25,7 @@ from ..api import GenDPDEIntegrator, estimator_of
 from ..internal import forked
 from ..models.fluid import KB
 from ..models.melting import switch_after_melting
+from .expansion import thermal_pressure_coefficient
 from .iteration import (  # noqa: F401  (the iterations' names, as this module had them)
     FAILURE_ADVICE,
     MAX_STEP,
@@ -279,6 +280,24 @@ class Calibration(TransportMeasurements, Iterations):
             result["self_diffusion"] = Measured(*self_diffusion(
                 [s.time.value_in_unit(unit.picosecond) for s in samples], positions))
         return result
+
+    def expansion_runs(self, platform=None, seed=None, plan=None):
+        """The runs of expansion.measure and expansion.thermal_pressure_coefficient in a calibration: a cube of
+        plan.particles, plan.melt steps of melt, plan.frames samples plan.interval steps apart (``plan``, default the
+        calibration's), on ``platform`` (a name; default the calibration's) with ``seed`` (default the
+        calibration's)."""
+        plan = plan or self.plan
+        return dict(num_particles=plan.particles, melt_steps=plan.melt, steps=plan.frames * plan.interval,
+                    sample_every=plan.interval,
+                    platform=platform or self.platform.getName(), seed=self.seed if seed is None else seed,
+                    estimator=self.estimator, time_step=plan.time_step)
+
+    def thermal_pressure(self, seed=None):
+        """The thermal pressure coefficient (dP/dT)_n at n0 (kJ/mol/nm^3/K, Measured): the kinetic n k_B, the law's
+        own thermal pressure and the structure's, from runs at T0 -+ 8% (expansion.thermal_pressure_coefficient,
+        expansion_runs)."""
+        _, _, value, error = thermal_pressure_coefficient(self.parameters, **self.expansion_runs(seed=seed))
+        return Measured(value, error)
 
     def correct_reference_pressure(self, reference_pressure):
         """Set pi0 (kJ/mol/nm^3). With n-bar = n0 the particles' density fluctuations raise <pi(n_i)> above pi(n0)

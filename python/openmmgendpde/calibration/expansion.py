@@ -136,22 +136,13 @@ def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4
     """ThermalExpansion of the model ``parameters`` (GenDPDEParameters with a thermal law), from runs at
     T0 -+ ``delta`` K (default: 8% of T0, 10 K for the liquid argon: the slope's error from the mean temperatures
     falls as 1/delta)."""
-    delta = DELTA * parameters.temperature if delta is None else delta
-    fluid = parameters.fluid
-    minus, plus = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps,
-                          sample_every, platform, seed + k, estimator=estimator, time_step=time_step)
-                   for k, sign in enumerate((-1, 1))]
+    minus, plus, per_kelvin, error = thermal_pressure_coefficient(
+        parameters, num_particles, delta, melt_steps, steps, sample_every, platform, seed, estimator, time_step)
     t_minus, t_plus = minus.temperature.mean, plus.temperature.mean
     p_minus, p_plus = minus.pressure, plus.pressure
     to_mpa = MPA_PER_OPENMM_PRESSURE
-    slope = (p_plus.mean - p_minus.mean) / (t_plus - t_minus) * to_mpa
-    # The errors of all four means, P's and T's (an error of a mean temperature moves the slope as P's does),
-    # summed as if independent (a run's P and T fluctuate together through the kinetic energy: an upper bound).
-    per_kelvin = slope / to_mpa
-    slope_error = math.hypot(p_plus.standard_error, p_minus.standard_error,
-                             per_kelvin * plus.temperature.standard_error,
-                             per_kelvin * minus.temperature.standard_error) / (t_plus - t_minus) * to_mpa
-    f = fluid.in_openmm()
+    slope, slope_error = per_kelvin * to_mpa, error * to_mpa
+    f = parameters.fluid.in_openmm()
     kappa = f["compressibility"] / MPA_PER_OPENMM_PRESSURE   # 1/MPa
     target_alpha = f["thermal_expansion"]
     return ThermalExpansion(
@@ -162,6 +153,26 @@ def measure(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4
         slope=slope, slope_error=slope_error, target_slope=target_alpha / kappa,
         alpha=kappa * slope, alpha_error=kappa * slope_error, target_alpha=target_alpha,
         thermal_pressure=parameters.thermal_pressure)
+
+
+def thermal_pressure_coefficient(parameters, num_particles=4000, delta=None, melt_steps=1000, steps=4000,
+                                 sample_every=20, platform="CPU", seed=1, estimator="VB", time_step=0.01):
+    """(the run at T0 - ``delta``, the run at T0 + ``delta`` (EquilibriumRun each, at n0), (dP/dT)_n between them
+    (kJ/mol/nm^3/K), its standard error) of the model ``parameters``, any law (default delta: 8% of T0, 10 K for
+    the liquid argon: the slope's error from the mean temperatures falls as 1/delta). The temperatures are the runs'
+    mean kinetic temperatures."""
+    delta = DELTA * parameters.temperature if delta is None else delta
+    minus, plus = [run_at(parameters, num_particles, parameters.temperature + sign * delta, melt_steps, steps,
+                          sample_every, platform, seed + k, estimator=estimator, time_step=time_step)
+                   for k, sign in enumerate((-1, 1))]
+    t_minus, t_plus = minus.temperature.mean, plus.temperature.mean
+    slope = (plus.pressure.mean - minus.pressure.mean) / (t_plus - t_minus)
+    # The errors of all four means, P's and T's (an error of a mean temperature moves the slope as P's does),
+    # summed as if independent (a run's P and T fluctuate together through the kinetic energy: an upper bound).
+    error = math.hypot(plus.pressure.standard_error, minus.pressure.standard_error,
+                       slope * plus.temperature.standard_error, slope * minus.temperature.standard_error) / (
+        t_plus - t_minus)
+    return minus, plus, slope, error
 
 
 #: The molecules per particle of thermal-expansion where --molecules-per-particle is not given.

@@ -8,7 +8,8 @@ import math
 import numpy as np
 from openmm import unit
 
-from ..models.fluid import CONDUCTIVITY, KB, VISCOSITY
+from ..analysis.thermodynamics import adiabatic_bulk_modulus
+from ..models.fluid import CONDUCTIVITY, VISCOSITY
 from .calibration import Measured
 from .results import PRESSURE_ROWS, Property, comparison, missed_properties
 
@@ -17,6 +18,8 @@ from .results import PRESSURE_ROWS, Property, comparison, missed_properties
 FEW_SAMPLES = 20
 #: A property the model is not fitted to, measured back (the particles' self-diffusion against the molecules').
 UNFITTED_DIFFUSION_ROW = "not fitted: self-diffusion (1e-9 m^2/s)"
+#: The speed of sound derived from the written model's measured n dP/dn, (dP/dT)_n and c_v (speed_of_sound).
+SOUND_ROW = "not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)"
 
 
 def mpa(value):
@@ -49,17 +52,19 @@ def scaled(measured, factor):
     return Measured(measured.value * factor, measured.error * factor, measured.samples)
 
 
-def speed_of_sound(parameters, bulk_modulus, heat_capacity):
-    """The model's speed of sound (nm/ps) from its measured isothermal n dP/dn (Measured, kJ/mol/nm^3) and its
-    isochoric heat capacity per particle c (kJ/mol/K; Calibration.heat_capacity): c_s^2 = K_S/rho with
-    K_S = K_T + T (dP/dT)_n^2/(n c), the kinetic (dP/dT)_n = n k_B only: the configurational part, measured for
-    argon (5 atoms per particle) between T0 (1 -+ 5%), is 2x the kinetic one (0.182 MPa/K in all), and makes K_S/K_T
-    1.007 instead of 1.0007 there, below the error of K_T. The error is K_T's, propagated."""
+def speed_of_sound(parameters, bulk_modulus, thermal_pressure, heat_capacity):
+    """The model's speed of sound (nm/ps, Measured) at n0 and T0, derived from its measured isothermal n dP/dn
+    (``bulk_modulus``, Measured, kJ/mol/nm^3), its measured thermal pressure coefficient (dP/dT)_n
+    (``thermal_pressure``, Measured, kJ/mol/nm^3/K: the kinetic n k_B, the law's own and the structure's) and its
+    isochoric heat capacity per particle (kJ/mol/K; Calibration.heat_capacity): c_s^2 = K_S/rho, K_S =
+    thermodynamics.adiabatic_bulk_modulus. The error is K_T's and (dP/dT)_n's, propagated as independent."""
     n, t = parameters.density, parameters.temperature
-    adiabatic = bulk_modulus.value + n * KB**2 * t / heat_capacity
+    adiabatic = adiabatic_bulk_modulus(n, t, bulk_modulus.value, thermal_pressure.value, heat_capacity)
     rho = n * parameters.mass
     value = math.sqrt(adiabatic / rho)
-    return Measured(value, bulk_modulus.error / (2 * rho * value))
+    error = math.hypot(bulk_modulus.error,
+                       2 * t * thermal_pressure.value * thermal_pressure.error / (n * heat_capacity))
+    return Measured(value, error / (2 * rho * value))
 
 
 def calibration_rows(stages, thermo, mapped):
@@ -93,15 +98,15 @@ def calibration_rows(stages, thermo, mapped):
         *m["expansion_rows"],
         (UNFITTED_DIFFUSION_ROW, m2_s(targets["self_diffusion"]) if targets.get("self_diffusion") else math.nan,
          scaled(thermo["self_diffusion"], m2_s(1.0))),
-        ("not fitted: speed of sound, from n dP/dn (m/s)",
-         targets["speed_of_sound"] * 1e3 if targets.get("speed_of_sound") else math.nan,
-         scaled(speed_of_sound(final, m["bulk"], thermo["heat_capacity"].value), 1e3)),
+        (SOUND_ROW, targets["speed_of_sound"] * 1e3 if targets.get("speed_of_sound") else math.nan,
+         scaled(speed_of_sound(final, m["bulk"], m["thermal_pressure"], thermo["heat_capacity"].value), 1e3)),
     ]
 
 
 def calibration_record(stages, results, missed, wall_time):
     """What calibrate --json writes: the fluid, the coarse-graining, the parameters before and after (reduced), the
-    runs of every iteration, the results by label and what missed."""
+    runs of every iteration, the thermal pressure (dP/dT)_n of the written model (MPa/K, its standard error) that the
+    speed of sound is derived with, the results by label and what missed."""
     mapped, final, m = stages.mapped, stages.calibration.parameters, stages.measured
     return {"fluid": mapped.fluid.name, "molecules_per_particle": mapped.molecules_per_particle,
             "estimator": stages.calibration.estimator, "particles": stages.plan.particles,
@@ -112,6 +117,7 @@ def calibration_record(stages, results, missed, wall_time):
             "bulk_modulus_runs": [[x, mpa(v.value), mpa(v.error)] for x, v in m["bulk_runs"]],
             "friction_runs": [[x, mpa_s(v.value), mpa_s(v.error)] for x, v in m["viscosity_runs"]],
             "heat_conduction_runs": [[x, w_mk(v.value), w_mk(v.error)] for x, v in m["conductivity_runs"]],
+            "thermal_pressure_mpa_per_k": [mpa(m["thermal_pressure"].value), mpa(m["thermal_pressure"].error)],
             "calibrated": final.reduced(), "results": results,
             "missed": [str(miss) for miss in missed], "missed_properties": missed_properties(missed)}
 

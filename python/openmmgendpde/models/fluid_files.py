@@ -6,7 +6,8 @@ calibrated model can be built again (docs/fluids.md, "Fluid files").
 A fluid file holds the properties of a Fluid, each a string "value unit" in the syntax of pint (the units library
 of the scientific Python stack: "997.05 kg/m^3", "0.4525e-9 1/Pa", "74.44 J/(mol K)", "0.89 mPa s",
 "0.6065 W/(m K)", "18.015 g/mol"; per molecule or per mole, as a Fluid takes them), except heat_capacity, which may
-also be a plain number in k_B per molecule, and tait_exponent, a plain number; self_diffusion (m^2/s),
+also be a plain number in k_B per molecule, and tait_exponent and bulk_modulus_derivative ((dK_T/dP)_T: gamma_T is
+it where given, properties.Fluid), plain numbers; self_diffusion (m^2/s),
 speed_of_sound (m/s) and surface_tension (N/m, liquid-vapour) are optional, properties the model is not fitted to
 that calibrate (surface_tension: slab) measures back:
 
@@ -110,7 +111,7 @@ def quantity(text, name="quantity"):
     magnitude = parsed.magnitude
     if not (isinstance(magnitude, numbers.Real) and math.isfinite(magnitude)):
         raise ValueError(f"{name} = {text!r} is not allowed; its value must be a finite number")
-    result = float(magnitude) * unit.dimensionless
+    result = (float(magnitude) + 0.0) * unit.dimensionless   # (+ 0.0: -0.0 reads as 0.0; its sign means nothing)
     for base, exponent in parsed.unit_items():
         if base not in _BASE_UNITS:
             raise ValueError(f"{name} = {text!r} is not allowed; its unit may use only mass, length, time, amount "
@@ -136,10 +137,13 @@ def _read(path):
             with open(path, "rb") as stream:
                 return tomllib.load(stream)
         if extension == ".json":
-            with open(path) as stream:
+            with open(path, encoding="utf-8") as stream:
                 return json.load(stream)
     except (tomllib.TOMLDecodeError, json.JSONDecodeError) as error:
         raise ValueError(f"{path}: not a valid {extension[1:].upper()} file: {error}") from None
+    except UnicodeDecodeError as error:   # (TOML and JSON files are UTF-8 text)
+        raise ValueError(f"{path}: not a valid {extension[1:].upper()} file: it must be UTF-8 text (byte "
+                         f"{error.object[error.start:error.start + 1]!r} at offset {error.start} is not)") from None
     raise ValueError(f"{path}: a fluid file must be .toml or .json")
 
 
@@ -147,7 +151,7 @@ def fluid_from_table(table, source="fluid"):
     """A Fluid from a table (dict) of a fluid file; ValueError naming ``source`` and the bad entry."""
     if not isinstance(table, dict):
         raise ValueError(f"{source}: expected a table of properties, got {type(table).__name__}")
-    known = set(_SI_UNITS) | set(_OPTIONAL_UNITS) | {"name", "tait_exponent"}
+    known = set(_SI_UNITS) | set(_OPTIONAL_UNITS) | {"name", "tait_exponent", "bulk_modulus_derivative"}
     unknown = sorted(set(table) - known)
     if unknown:
         raise ValueError(f"{source}: unknown entries {unknown}; a fluid has {sorted(known)}")
@@ -170,11 +174,12 @@ def fluid_from_table(table, source="fluid"):
                     raise ValueError(f"{name} = {given!r} is not allowed; its unit must be compatible with "
                                      f"{units[name][0]}" + (" (per molecule or per mole)" if molar else
                                                             " (not per mole: the property is not molar)")) from None
-        if "tait_exponent" in table:
-            exponent = table["tait_exponent"]
-            if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
-                raise ValueError(f"tait_exponent = {exponent!r} is not allowed; it must be a number > 1")
-            values["tait_exponent"] = float(exponent)
+        for name in ("tait_exponent", "bulk_modulus_derivative"):
+            if name in table:
+                exponent = table[name]
+                if isinstance(exponent, bool) or not isinstance(exponent, numbers.Real):
+                    raise ValueError(f"{name} = {exponent!r} is not allowed; it must be a number > 1")
+                values[name] = float(exponent)
         return Fluid(**values)
     except ValueError as error:
         raise ValueError(f"{source}: {error}") from None
@@ -201,6 +206,8 @@ def fluid_table(fluid):
         else:
             table[name] = f"{_in_si(given, name, target)!r} {text}"
     table["tait_exponent"] = float(fluid.tait_exponent)
+    if fluid.bulk_modulus_derivative is not None:
+        table["bulk_modulus_derivative"] = float(fluid.bulk_modulus_derivative)
     return table
 
 
@@ -285,13 +292,14 @@ def load_parameters(path):
 
 
 def _number(given, name, where):
-    """given[name] as a float: finite, and > 0 but for the reference pressure; ValueError naming it."""
+    """given[name] as a float: finite, and > 0 but for the reference pressure (-0.0 read as 0.0); ValueError naming
+    it."""
     value = given[name]
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
     if name != "reference_pressure" and not value > 0:
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be > 0")
-    return float(value)
+    return float(value) + 0.0
 
 
 def _law(given, where):
@@ -326,7 +334,7 @@ def _signed(table, name, where):
     value = table[name]
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not math.isfinite(value):
         raise ValueError(f"{where}: {name} = {value!r} is not allowed; it must be a finite number")
-    return float(value)
+    return float(value) + 0.0   # (-0.0 read as 0.0: the sign of a zero means nothing)
 
 
 def _checked_law(law, values, where):

@@ -68,6 +68,9 @@ def heat_capacity_per_molecule(value):
     return _positive("heat_capacity", per_molecule, value)
 
 
+#: gamma_T of a Fluid that gives neither tait_exponent nor bulk_modulus_derivative: 7, the exponent of the Tait
+#: equation commonly used for water (a model choice, not a measured property).
+DEFAULT_TAIT_EXPONENT = 7.0
 #: The OpenMM units of a Fluid's properties (heat_capacity and tait_exponent aside).
 _PROPERTY_UNITS = {"temperature": unit.kelvin, "pressure": PRESSURE, "mass_density": MASS_DENSITY,
                    "compressibility": COMPRESSIBILITY, "shear_viscosity": VISCOSITY,
@@ -87,7 +90,11 @@ class Fluid:
     or per mole), except heat_capacity, which may also be a number in k_B per molecule. Every property must be
     finite and > 0 but the pressure (finite, of either sign), and tait_exponent > 1: a Fluid that is not raises
     ValueError naming the property, its value and what is allowed. The optional properties (self_diffusion,
-    speed_of_sound, surface_tension) are not fitted, only measured back; None where not known."""
+    speed_of_sound, surface_tension) are not fitted, only measured back; None where not known.
+
+    gamma_T (tait_exponent) is the fluid's (dK_T/dP)_T where that is given (bulk_modulus_derivative, a plain number:
+    the Tait law's K = n dP/dn = gamma_T B_T (n/n0)^gamma_T has dK/dP = gamma_T exactly), else tait_exponent as
+    given, else DEFAULT_TAIT_EXPONENT (7); both given must be equal."""
     name: str
     temperature: unit.Quantity            # T0
     pressure: unit.Quantity               # P0
@@ -97,13 +104,25 @@ class Fluid:
     shear_viscosity: unit.Quantity        # eta
     thermal_conductivity: unit.Quantity   # lambda
     molar_mass: unit.Quantity             # M
-    tait_exponent: float = 7.0            # gamma_T of the Tait equation (a model choice: 7 for water, 6 for argon)
+    tait_exponent: float = None           # gamma_T of the Tait equation (None: bulk_modulus_derivative, else 7)
     self_diffusion: unit.Quantity = None  # the molecules' self-diffusion coefficient: not fitted, measured back
     speed_of_sound: unit.Quantity = None  # not fitted: compared with the model's (from its measured n dP/dn)
     surface_tension: unit.Quantity = None  # liquid-vapour; not fitted: compared with a slab's (`slab`)
     thermal_expansion: unit.Quantity = None  # alpha (1/K): if given, the model's law is TaitThermalExpansion
+    bulk_modulus_derivative: float = None  # (dK_T/dP)_T, a measured property: if given, gamma_T is it
 
     def __post_init__(self):
+        derivative = self.bulk_modulus_derivative
+        if derivative is not None:
+            if isinstance(derivative, bool) or not (isinstance(derivative, numbers.Real) and 1 < derivative < math.inf):
+                raise ValueError(f"bulk_modulus_derivative = {derivative!r} is not allowed; it must be a finite "
+                                 f"number > 1 (the fluid's (dK_T/dP)_T, which the Tait exponent gamma_T is)")
+            if self.tait_exponent is not None and self.tait_exponent != derivative:
+                raise ValueError(f"tait_exponent = {self.tait_exponent!r} is not allowed with bulk_modulus_derivative "
+                                 f"= {derivative!r}: gamma_T is the fluid's (dK_T/dP)_T (the Tait law's dK/dP); give "
+                                 f"one of them, or both equal")
+        if self.tait_exponent is None:
+            object.__setattr__(self, "tait_exponent", DEFAULT_TAIT_EXPONENT if derivative is None else derivative)
         self.in_openmm()
 
     def in_openmm(self):

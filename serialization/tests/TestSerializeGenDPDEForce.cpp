@@ -5,6 +5,7 @@
 #include "TestUtilities.h"
 #include "OpenMM.h"
 #include "openmm/serialization/XmlSerializer.h"
+#include <cmath>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -190,6 +191,18 @@ void testStrictReading() {
     std::unique_ptr<GenDPDEForce> copy(XmlSerializer::deserialize<GenDPDEForce>(exponent));
     ASSERT_EQUAL(1.25, copy->getCutoffDistance());
     refused("cutoff=\"1.25\"", "cutoff=\"Infinity\"", {"cutoff", "inf"});
+    // An integer as OpenMM writes one (issue 54: "04" read as version 4), -0 read as 0 (it was kept as -0.0 and
+    // written back as "-0"), and an element without a name named as such (it was "the <> element has a child <>").
+    refused("version=\"4\"", "version=\"04\"", {"version = '04'", "no leading zero"});
+    refused("version=\"4\"", "version=\"+4\"", {"version = '+4'"});
+    refused("law=\"1\"", "law=\"-0\"", {"law = '-0'"});
+    refused("<TypeEquationsOfState>", "<TypeEquationsOfState><></>", {"an element without a name (<>)"});
+    std::stringstream negativeZero(edited(force, "backgroundPressure=\"0\"", "backgroundPressure=\"-0\""));
+    std::unique_ptr<GenDPDEForce> zero(XmlSerializer::deserialize<GenDPDEForce>(negativeZero));
+    ASSERT(!std::signbit(zero->getBackgroundPressure()));
+    std::stringstream written;
+    XmlSerializer::serialize<GenDPDEForce>(zero.get(), "Force", written);
+    ASSERT(written.str().find("backgroundPressure=\"0\"") != std::string::npos);
 }
 
 int main() {

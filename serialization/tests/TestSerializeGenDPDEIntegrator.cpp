@@ -139,7 +139,7 @@ void testStrictReading() {
     refused("friction=\"1644.8\"", "friction=\"1644.8kg\"", {"friction = '1644.8kg'"});
     refused("mode=\"2\"", "mode=\"1.5\"", {"mode = '1.5'", "not an integer"});
     refused("adiabaticPositionChanges=\"1\"", "adiabaticPositionChanges=\"yes\"",
-            {"adiabaticPositionChanges = 'yes'", "0 or 1"});
+            {"adiabaticPositionChanges = 'yes'", "0 or 1 (or false or true)"}); // what is read, all of it
     refused("version=\"4\"", "version=\"3\"", {"version 3", "property 'adiabaticPositionChanges'"});
     refused("t=\"120\"", "t=\"120 K\"", {"Particle.t = '120 K'"});
     refused("<InternalEnergies/>", "<InternalEnergies><Particle e=\"1\"/></InternalEnergies>",

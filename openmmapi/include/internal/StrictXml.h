@@ -71,16 +71,22 @@ inline double number(const OpenMM::SerializationNode& node, const std::string& o
     double result;
     if (!parseWhole(value, result))
         refuse(node, owner, name, value, "a number");
-    return result;
+    return result + 0.0; // -0 is 0: no parameter's zero has a sign, and it is written back as "0"
 }
 
-/** A property holding an integer: the whole text, within the range of int. */
+/**
+ * A property holding an integer: the whole text in the form OpenMM writes it (decimal digits without leading zeros,
+ * '-' for a negative value: "04", "+4" and "-0" are refused), within the range of int.
+ */
 inline int integer(const OpenMM::SerializationNode& node, const std::string& owner, const std::string& name,
                    const std::string& allowed = "an integer") {
     const std::string value = text(node, owner, name);
+    const size_t digits = (!value.empty() && value[0] == '-') ? 1 : 0;
+    const bool canonical = value.size() > digits && value[digits] != '+'
+            && (value[digits] != '0' || (value.size() == 1 && digits == 0));
     long long result;
-    if (!parseWhole(value, result) || result < INT_MIN || result > INT_MAX)
-        refuse(node, owner, name, value, allowed);
+    if (!canonical || !parseWhole(value, result) || result < INT_MIN || result > INT_MAX)
+        refuse(node, owner, name, value, allowed + " (written as OpenMM writes one: no sign but '-', no leading zero)");
     return (int) result;
 }
 
@@ -91,7 +97,12 @@ inline bool boolean(const OpenMM::SerializationNode& node, const std::string& ow
         return true;
     if (value == "0" || value == "false")
         return false;
-    refuse(node, owner, name, value, "0 or 1");
+    refuse(node, owner, name, value, "a flag: 0 or 1 (or false or true)");
+}
+
+/** How a message names an element: <name>, or the root element, whose name OpenMM's reader does not pass on. */
+inline std::string elementName(const std::string& name) {
+    return name.empty() ? "an element without a name (<>)" : "<" + name + ">";
 }
 
 /**
@@ -101,8 +112,8 @@ inline bool boolean(const OpenMM::SerializationNode& node, const std::string& ow
  */
 inline void requireOnly(const OpenMM::SerializationNode& node, const std::string& owner, int version,
                         const std::vector<std::string>& properties, const std::vector<std::string>& children) {
-    const std::string where =
-            owner + " XML (version " + std::to_string(version) + "): the <" + node.getName() + "> element";
+    const std::string where = owner + " XML (version " + std::to_string(version)
+            + "): " + (node.getName().empty() ? "the root element" : "the <" + node.getName() + "> element");
     for (const auto& property : node.getProperties())
         if (property.first != "type"
             && std::find(properties.begin(), properties.end(), property.first) == properties.end())
@@ -111,8 +122,8 @@ inline void requireOnly(const OpenMM::SerializationNode& node, const std::string
                                             "not define (corrupt, mislabelled, or written by a later version)");
     for (const OpenMM::SerializationNode& child : node.getChildren())
         if (std::find(children.begin(), children.end(), child.getName()) == children.end())
-            throw OpenMM::OpenMMException(where + " has a child <" + child.getName()
-                                          + "> that this version does "
+            throw OpenMM::OpenMMException(where + " has a child " + elementName(child.getName())
+                                          + " that this version does "
                                             "not define (corrupt, mislabelled, or written by a later version)");
 }
 

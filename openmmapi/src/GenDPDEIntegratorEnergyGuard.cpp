@@ -45,7 +45,8 @@ void GenDPDEIntegrator::checkEnergyDrift() {
     const double conserved = parts.kinetic + parts.potential + parts.internal;
     const double moved = movedEnergy(parts);
     // (a floor of k_B x 1 K per particle, for a system at rest, whose E moves by rounding alone)
-    const double scale = std::max({energyMark.moved, moved, Physics::Boltzmann * context->getSystem().getNumParticles()});
+    const double scale =
+            std::max({energyMark.moved, moved, Physics::Boltzmann * context->getSystem().getNumParticles()});
     const double drift = conserved - energyMark.conserved;
     if (!(std::fabs(drift) <= energyGuardLimit * scale)) {
         // The particle with the largest kinetic energy, where the runaway shows.

@@ -410,6 +410,27 @@ def test_lammps_runs_the_written_input_as_openmm_runs_the_model(tmp_path):
 
 
 @pytest.mark.lammps
+def test_the_conserved_energy_column_is_the_total_in_lj_units(tmp_path):
+    """--units lj holds OpenMM's own numbers (kJ/mol, nm, ps, amu, k_B T with OpenMM's k_B): at step 0 the script's
+    v_conserved is OpenMM's K + U + sum eps (Reference, the same lattice and velocities) to 1e-9. Before, lj units'
+    default thermo normalisation divided etotal by the 500 atoms while f_integrate (in the variable) stayed the total:
+    v_conserved was the internal energy plus 1/500 of K + U."""
+    if not (LMP.exists() and PLUGIN.exists()):
+        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
+    main(["lammps-input", ARGON_FILE, "--particles", "500", "--steps", "0", "--units", "lj", "--output",
+          str(tmp_path)])
+    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
+    row = thermo_table(result.stdout)[0]
+    model = load_parameters(ARGON_FILE).liquid(500, seed=1)
+    context = model.context("Reference", seed=1)
+    assert context.getSystem().getNumParticles() == 500
+    conserved = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+    assert row["v_conserved"] == pytest.approx(conserved, rel=1e-9)
+
+
+@pytest.mark.lammps
 def test_lammps_energy_and_virial_pressure_with_a_background_pressure(tmp_path):
     """Water's model has a background pressure p_b: U gains p_b V_box and the virial -3 p_b V_box
     (GenDPDEForce.setBackgroundPressure). lmp at step 0: the potential energy is OpenMM's (Reference) converted to

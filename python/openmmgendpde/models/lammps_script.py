@@ -196,7 +196,8 @@ def closing_sections(script):
     return {
         "output": section(
             "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
-            "thermo_modify format float %.15g",
+            "# norm no: totals, as f_integrate is (lj units would divide the thermo energies by the atom count)",
+            "thermo_modify norm no format float %.15g",
             "thermo ${thermo}"),
         "run": section("run ${steps}"),
     }

@@ -35,6 +35,7 @@ ROWS = [
     ("thermal conductivity, heat flux (W/(m K))", "thermal conductivity, heat flux (W/(m K))", None),
     ("not fitted: self-diffusion (1e-9 m^2/s)", "not fitted: self-diffusion (1e-9 m^2/s)", None),
     ("not fitted: speed of sound (m/s)", "not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)", None),
+    ("measured: speed of sound, sound wave (m/s)", "measured: speed of sound, sound wave (m/s)", None),
 ]
 #: Rows that records written before issue 54 name otherwise (the speed of sound then took the kinetic (dP/dT)_n).
 EARLIER_ROWS = {"not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)":

@@ -420,3 +420,45 @@ def test_the_report_is_a_measurement_of_the_written_model(fluid, molecules, monk
     assert results[row]["model"] == pytest.approx(sound, rel=1e-9)
     assert json.loads(path.read_text())["thermal_pressure_mpa_per_k"][0] == pytest.approx(
         mpa(expected["thermal_pressure"]), rel=1e-9)
+
+
+@pytest.mark.parametrize("quick", [False, True])
+def test_calibrate_reports_the_sound_wave_beside_the_derived_speed(monkeypatch, tmp_path, quick):
+    """calibrate on made-up measurements (helpers.fake_calibration), the sound wave made up to read 1.02 x the speed it
+    is given: without --quick the row "measured: speed of sound, sound wave (m/s)" follows the derived row and reads
+    1.02 x it (so the wave runs on the derived speed, in m/s like it), its samples the replicas (4, Plan's); with
+    --quick the wave is not run and its row is absent. The derived speed is independent of the wave: sqrt(K_S/rho)
+    from the made-up K_T (the target), (dP/dT)_n = 3 n0 k_B and c_v, computed here in SI."""
+    from helpers import fake_calibration
+
+    from openmmgendpde.calibration.calibration import Calibration, Measured
+    from openmmgendpde.calibration.report import SOUND_ROW, SOUND_WAVE_ROW
+    mapped = coarse_grain(WATER, 4, neighbors=20)
+    fake_calibration(monkeypatch, mapped)
+    given = []
+
+    def sound_speed(self, estimate):
+        assert not quick, "the sound wave ran with --quick"
+        given.append(estimate)
+        return Measured(1.02 * estimate, 0.01 * estimate, self.plan.replicas)
+
+    monkeypatch.setattr(Calibration, "sound_speed", sound_speed)
+    path = tmp_path / "calibration.json"
+    main(["calibrate", "--fluid", "water", "--json", str(path)] + (["--quick"] if quick else []))
+    results = json.loads(path.read_text())["results"]
+    names = list(results)
+    derived = results[SOUND_ROW]["model"]
+    t = mapped.targets()
+    n, temperature, mass = t["density"] * 1e27, t["temperature"], mapped.mass * 1e-3 / N_A
+    modulus = t["bulk_modulus"] * 1e3 * 1e27 / N_A                       # Pa
+    thermal, heat = 3 * n * K_B, results[Property.HEAT_CAPACITY.label]["model"] * mass   # Pa/K; J/K per particle
+    assert derived == pytest.approx(math.sqrt((modulus + temperature * thermal**2 / (n * heat)) / (n * mass)), rel=1e-9)
+    if quick:
+        assert SOUND_WAVE_ROW not in results and given == []
+        return
+    assert given == [pytest.approx(derived * 1e-3, rel=1e-12)]
+    assert names.index(SOUND_WAVE_ROW) == names.index(SOUND_ROW) + 1
+    assert results[SOUND_WAVE_ROW]["model"] == pytest.approx(1.02 * derived, rel=1e-12)
+    assert results[SOUND_WAVE_ROW]["error"] == pytest.approx(0.01 * derived, rel=1e-12)
+    assert results[SOUND_WAVE_ROW]["samples"] == 4
+    assert results[SOUND_WAVE_ROW]["target"] == results[SOUND_ROW]["target"] == pytest.approx(1496.7)

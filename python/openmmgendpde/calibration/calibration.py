@@ -65,10 +65,14 @@ class Plan:
     transport_runs: int = 4       # measurements per transport coefficient while iterating gamma or kappa, at most
     steady_cells: tuple = (4, 4, 16)   # the box of the waves and steady flows: FCC cells, elongated in z
     steady_time: float = 1.0      # their run lengths, as a multiple of transport.py's defaults
+    sound_wave: bool = True       # the speed of sound measured by a sound wave (waves.sound_speed)
+    sound_cells: tuple = (3, 3, 48)    # its box (waves.sound_cells: widened for the cutoff)
+    sound_periods: float = 2.0    # the periods of the wave followed
 
 
 QUICK = Plan(particles=500, melt=400, melt_block=500, frames=60, interval=25, tuning_iterations=3, replicas=3,
-             wave_steps=600, pressure_rounds=2, bulk_runs=2, transport_runs=3, steady_cells=(3, 3, 12), steady_time=0.4)
+             wave_steps=600, pressure_rounds=2, bulk_runs=2, transport_runs=3, steady_cells=(3, 3, 12), steady_time=0.4,
+             sound_wave=False)
 
 
 #: The smallest C_V (kJ/mol/K) match_heat_capacity sets: k_B. Each eps_i/(k_B T) follows a Gamma law of shape

@@ -20,6 +20,8 @@ FEW_SAMPLES = 20
 UNFITTED_DIFFUSION_ROW = "not fitted: self-diffusion (1e-9 m^2/s)"
 #: The speed of sound derived from the written model's measured n dP/dn, (dP/dT)_n and c_v (speed_of_sound).
 SOUND_ROW = "not fitted: speed of sound, from n dP/dn, (dP/dT)_n and c_v (m/s)"
+#: The same speed measured directly: a standing sound wave (waves.sound_speed; not with --quick).
+SOUND_WAVE_ROW = "measured: speed of sound, sound wave (m/s)"
 
 
 def mpa(value):
@@ -73,6 +75,7 @@ def calibration_rows(stages, thermo, mapped):
     targets, final, m = stages.targets, stages.calibration.parameters, stages.measured
     expanding, conductivity_target = m["expanding"], w_mk(targets["thermal_conductivity"])
     heat = j_kgk(1.0, final)
+    sound_target = targets["speed_of_sound"] * 1e3 if targets.get("speed_of_sound") else math.nan
     return [
         (Property.DENSITY, targets["density"], thermo["density"]),
         (PRESSURE_ROWS[0], mpa(targets["pressure"]), scaled(mapped["pressure"], mpa(1.0))),
@@ -98,8 +101,8 @@ def calibration_rows(stages, thermo, mapped):
         *m["expansion_rows"],
         (UNFITTED_DIFFUSION_ROW, m2_s(targets["self_diffusion"]) if targets.get("self_diffusion") else math.nan,
          scaled(thermo["self_diffusion"], m2_s(1.0))),
-        (SOUND_ROW, targets["speed_of_sound"] * 1e3 if targets.get("speed_of_sound") else math.nan,
-         scaled(speed_of_sound(final, m["bulk"], m["thermal_pressure"], thermo["heat_capacity"].value), 1e3)),
+        (SOUND_ROW, sound_target, scaled(m["sound"], 1e3)),
+        *([] if m["sound_wave"] is None else [(SOUND_WAVE_ROW, sound_target, scaled(m["sound_wave"], 1e3))]),
     ]
 
 

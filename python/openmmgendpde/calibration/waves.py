@@ -2,7 +2,8 @@
 # Copyright (c) 2026 The openmm-gendpde developers
 """The transport coefficients of a Calibration measured: the decays of a transverse velocity wave (the shear
 viscosity) and of an energy wave (the thermal conductivity) along the long box of the steady flows, and the steady
-flows themselves (analysis.transport: Poiseuille flow, a heat flux between slabs)."""
+flows themselves (analysis.transport: Poiseuille flow, a heat flux between slabs); and the speed of sound, by the
+oscillation of a standing sound wave in a longer box."""
 
 import math
 
@@ -13,10 +14,22 @@ from ..analysis.transport import heat_flux_conductivity, poiseuille_viscosity
 from ..models.fluid import KB
 from .results import Measured
 
+#: The sound wave's velocity amplitude over the speed of sound (sound_speed), which is also the density wave's
+#: relative amplitude: small enough to be linear (the frequency moves at second order in it; the wave's energy warms
+#: argon by 0.3%), large enough to stand out of the mode's thermal noise: 2 <v_z sin(k z)> fluctuates by sqrt(2/N)
+#: of the thermal velocity sqrt(k_B T/m), 0.034 of it in 1728 particles, 0.075-0.09 of this amplitude (argon, water:
+#: v_th/c = 0.11, 0.13).
+SOUND_MACH = 0.05
+#: Samples of the sound wave's amplitude per period.
+SOUND_SAMPLES = 40
+#: The damping per period (2 pi a/omega) above which sound_speed's line warns: water's wave in 3 x 3 x 24 cells damped
+#: by 0.74-2.51 and its replicas scattered by 8%; in 3 x 3 x 48 cells by 0.47-1.09, within 3% (docs/fluids.md).
+SOUND_DAMPING = 1.5
+
 
 class TransportMeasurements:
-    """The transport measurements of a Calibration (a mix-in: it runs replicas through self.replicas and steps through
-    self._step; its heat capacity is self.heat_capacity())."""
+    """The transport measurements and the sound wave of a Calibration (a mix-in: it runs replicas through
+    self.replicas and steps through self._step; its heat capacity is self.heat_capacity())."""
 
     def _wave_rate(self, amplitude_of, perturb, diffusivity):
         """The decay rate (1/ps) of a wave along z of the box of plan.steady_cells (the steady flows' box, so that
@@ -100,6 +113,53 @@ class TransportMeasurements:
         return Measured(rate * factor, error * factor, replicas)
 
 
+    def sound_speed(self, estimate):
+        """The speed of sound (nm/ps, Measured) measured directly: a standing sound wave v_z = A sin(k z) laid on
+        the equilibrium velocities of an Isoenergetic run (so the wave is adiabatic) in the long box of sound_cells
+        (k = 2 pi/L_z), its amplitude J(t) = 2 <v_z sin(k z)> followed over plan.sound_periods periods of
+        ``estimate`` (nm/ps: the derived speed), SOUND_SAMPLES a period, and fitted with
+        exp(-a t) (B cos(omega t) + C sin(omega t)) (damped_cosine); c = sqrt(omega^2 + a^2)/k, the damping's
+        correction (the roots of the linearised equations, omega^2 = c^2 k^2 - (Gamma k^2/2)^2, a = Gamma k^2/2).
+        A = SOUND_MACH ``estimate``. Each of plan.replicas replicas gives a speed: their mean and its standard error.
+        The wave must be long: its damping per period, 2 pi a/omega = pi Gamma k/c, falls as 1/L_z. In 3 x 3 x 48
+        cells it was 0.26-0.44 (argon) and 0.47-1.09 (water), and the replicas read within 1% (argon) and 3% (water)
+        of their mean; in 3 x 3 x 24 cells water's damped by up to 2.5 per period and its replicas scattered by 8%
+        (docs/fluids.md). A line reports each replica's speed and damping."""
+        def one(index, model, context):
+            edge = model.system.getDefaultPeriodicBoxVectors()[2][2].value_in_unit(unit.nanometer)
+            k = 2 * math.pi / edge
+            step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
+            period = edge / estimate
+            interval = max(1, round(period / SOUND_SAMPLES / step))
+            frames = round(self.plan.sound_periods * period / (interval * step))
+            z = model_positions(context)[:, 2]
+            velocities = context.getState(getVelocities=True).getVelocities(asNumpy=True).value_in_unit(
+                unit.nanometer / unit.picosecond)
+            velocities[:, 2] += SOUND_MACH * estimate * np.sin(k * z)
+            context.setVelocities(velocities)
+            times, amplitudes = [], []
+            for n in range(frames + 1):
+                if n:
+                    self._step(model.integrator, interval)
+                state = context.getState(getPositions=True, getVelocities=True)
+                times.append(state.getTime().value_in_unit(unit.picosecond))
+                z = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)[:, 2]
+                vz = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)[:, 2]
+                amplitudes.append(2 * np.mean(vz * np.sin(k * z)))
+            omega, rate = damped_cosine(np.array(times) - times[0], np.array(amplitudes), estimate * k)
+            return math.sqrt(omega**2 + rate**2) / k, 2 * math.pi * rate / omega
+
+        cells = sound_cells(self.parameters, self.plan)
+        runs = self.replicas(cells)(one)
+        speeds = [speed for speed, _ in runs]
+        dampings = [damping for _, damping in runs]
+        self.report(f"  sound wave in {cells[0]} x {cells[1]} x {cells[2]} cells: c = "
+                    + ", ".join(f"{1e3 * speed:.1f}" for speed in speeds) + " m/s (damping per period "
+                    + ", ".join(f"{damping:.2f}" for damping in dampings) + ")"
+                    + (f"; a damping above {SOUND_DAMPING:g} per period: the wave dies out before its frequency is "
+                       f"read, a longer box is needed (Plan.sound_cells)" if max(dampings) > SOUND_DAMPING else ""))
+        return Measured(float(np.mean(speeds)), float(np.std(speeds, ddof=1) / math.sqrt(len(speeds))), len(speeds))
+
     def steady_viscosity(self):
         """eta by periodic Poiseuille flow (transport.poiseuille_viscosity) in boxes of plan.steady_cells."""
         time = self.plan.steady_time
@@ -128,3 +188,39 @@ def _decay_rate(times, amplitudes):
     end = max(end, 3)
     slope = np.polyfit(times[:end], np.log(np.abs(amplitudes[:end] / start)), 1)[0]
     return -slope
+
+
+def sound_cells(parameters, plan):
+    """The FCC cells of the sound wave's box: plan.sound_cells, widened across (x, y) where that is less than twice
+    the cutoff (ModelParameters.liquid refuses such a box) and lengthened alike, so that L_z/L_x stays."""
+    nx, ny, nz = plan.sound_cells
+    cell = (4 / parameters.density) ** (1 / 3)
+    across = max(nx, ny, math.floor(2 * parameters.cutoff / cell) + 1)
+    return across, across, round(nz * across / max(nx, ny))
+
+
+def damped_cosine(times, values, omega):
+    """(omega, a) of the least-squares fit of values = exp(-a t) (B cos(omega t) + C sin(omega t)) at ``times``,
+    searched from ``omega`` (the expected angular frequency) over [omega/2, 2 omega] and a in [0, omega/2): B and C
+    solved exactly for each (omega, a) (linear least squares), the pair on a grid, refined by grids around the best."""
+    times, values = np.asarray(times, dtype=float), np.asarray(values, dtype=float)
+
+    def residuals(omegas, rates):
+        w, r = np.meshgrid(omegas, rates, indexing="ij")
+        decay = np.exp(-r[..., None] * times)
+        basis = np.stack([decay * np.cos(w[..., None] * times), decay * np.sin(w[..., None] * times)], axis=-1)
+        gram = np.einsum("...ti,...tj->...ij", basis, basis)
+        projection = np.einsum("...ti,t->...i", basis, values)
+        coefficients = np.linalg.solve(gram, projection[..., None])[..., 0]
+        return np.sum(values**2) - np.einsum("...i,...i->...", coefficients, projection)
+
+    low, high, rate_high = 0.5 * omega, 2.0 * omega, 0.5 * omega
+    omegas, rates = np.linspace(low, high, 301), np.linspace(0.0, rate_high, 101)
+    for _ in range(6):
+        sums = residuals(omegas, rates)
+        i, j = np.unravel_index(np.argmin(sums), sums.shape)
+        best_omega, best_rate = omegas[i], rates[j]
+        step_omega, step_rate = omegas[1] - omegas[0], rates[1] - rates[0]
+        omegas = np.linspace(best_omega - 2 * step_omega, best_omega + 2 * step_omega, 41)
+        rates = np.linspace(max(0.0, best_rate - 2 * step_rate), best_rate + 2 * step_rate, 41)
+    return float(best_omega), float(best_rate)

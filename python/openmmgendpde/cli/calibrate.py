@@ -165,7 +165,8 @@ def add_arguments(parser):
                         help="the density estimator (default VB; VC is VB with free surfaces)")
     parser.add_argument("--particles", type=fcc_particles, help="4 m^3 particles (default 2048; --quick 500)")
     parser.add_argument("--quick", action="store_true", help="500 particles and short runs (a functional check: "
-                        "1.2-1.6 min measured on 2 shared cores, more on a busier machine)")
+                        "1.2-1.6 min measured on 2 shared cores, more on a busier machine); the speed of sound is "
+                        "derived only, not measured by a sound wave as without --quick")
     parser.add_argument("--time-step", type=POSITIVE, help="dt* in the model's reduced time (default 0.01; smaller "
                         "where an internal energy would become negative: "
                         "openmmgendpde.calibration.stability.suggest_time_step gives one for a model)")

@@ -215,7 +215,7 @@ def test_the_sound_wave_says_when_it_dies_out_too_fast_to_be_read(dampings, warn
 
 
 @pytest.mark.validation
-@pytest.mark.parametrize("fluid, molecules", [(ARGON, 5), (WATER, 4)], ids=["argon", "water"])
+@pytest.mark.parametrize("fluid, molecules", [(ARGON, 5)], ids=["argon"])
 def test_a_sound_wave_travels_at_the_speed_derived_from_the_equation_of_state(fluid, molecules):
     """Calibration.sound_speed (a standing sound wave in 3 x 3 x 48 FCC cells, 1728 particles, followed over two
     periods; 6 replicas) against the adiabatic speed sqrt(K_S/rho) derived (report.speed_of_sound) from the same
@@ -229,7 +229,9 @@ def test_a_sound_wave_travels_at_the_speed_derived_from_the_equation_of_state(fl
     14.4 against 1444.6 +- 7.3; the tolerance is 1.9% and 4.5%. A wavelength 3% off (k x 0.97 in the speed) read argon
     668.6 and failed. What this cannot tell apart: the adiabatic speed from the isothermal sqrt(K_T/rho), 0.5%
     (argon) and 0.09% (water) below it (K_S - K_T = T (dP/dT)_n^2/(n c_v) is small in a liquid). In a box half as
-    long (k twice) the wave damps twice as much per period, and water's fits scattered (docs/fluids.md)."""
+    long (k twice) the wave damps twice as much per period, and water's fits scattered (docs/fluids.md). Water runs
+    with (WATER, 4) as a parameter; it is left out here to keep the suite's time (each fluid costs ~3 minutes of one
+    core)."""
     from scipy.stats import t
 
     from openmmgendpde.calibration.calibration import QUICK, Calibration

@@ -381,20 +381,29 @@ LMP = pathlib.Path(os.environ.get("GENDPDE_LMP", ROOT / "build/lammps/lammps/lmp
 PLUGIN = pathlib.Path(os.environ.get("GENDPDE_LAMMPS_PLUGIN", ROOT / "build/lammps/plugin/gendpdeplugin.so"))
 
 
+def write_input(tmp_path, model_file, *options):
+    """lammps-input of ``model_file`` with ``options`` into tmp_path (the LAMMPS package must be built)."""
+    if not (LMP.exists() and PLUGIN.exists()):
+        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
+    main(["lammps-input", model_file, *options, "--output", str(tmp_path)])
+
+
+def run_lammps(tmp_path):
+    """lmp with the plugin on tmp_path/in.gendpde: the thermo rows by step."""
+    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
+                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
+    return thermo_table(result.stdout)
+
+
 @pytest.mark.lammps
 def test_lammps_runs_the_written_input_as_openmm_runs_the_model(tmp_path):
     """lmp with the plugin on the files of the argon model (500 particles, 20 steps): at step 0 the potential energy
     and the internal energies are OpenMM's (Reference, the same lattice, velocities and T0) converted to eV; the kinetic
     energy differs by LAMMPS's mvv2e (6.3e-8 below the exact 10/(e N_A)); after 20 steps the three agree to 1e-6 (the
     engines' k_B differ by 1.13e-6), and the conserved energy holds."""
-    if not (LMP.exists() and PLUGIN.exists()):
-        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
-    main(["lammps-input", ARGON_FILE, "--particles", "500", "--steps", "20", "--thermo", "20", "--output",
-          str(tmp_path)])
-    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
-                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    rows = thermo_table(result.stdout)
+    write_input(tmp_path, ARGON_FILE, "--particles", "500", "--steps", "20", "--thermo", "20")
+    rows = run_lammps(tmp_path)
     model = load_parameters(ARGON_FILE).liquid(500, seed=1)
     context = model.context("Reference", seed=1)
     for step, tolerance in ((0, 1e-12), (20, 1e-6)):
@@ -415,14 +424,8 @@ def test_the_conserved_energy_column_is_the_total_in_lj_units(tmp_path):
     v_conserved is OpenMM's K + U + sum eps (Reference, the same lattice and velocities) to 1e-9. Before, lj units'
     default thermo normalisation divided etotal by the 500 atoms while f_integrate (in the variable) stayed the total:
     v_conserved was the internal energy plus 1/500 of K + U."""
-    if not (LMP.exists() and PLUGIN.exists()):
-        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
-    main(["lammps-input", ARGON_FILE, "--particles", "500", "--steps", "0", "--units", "lj", "--output",
-          str(tmp_path)])
-    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
-                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    row = thermo_table(result.stdout)[0]
+    write_input(tmp_path, ARGON_FILE, "--particles", "500", "--steps", "0", "--units", "lj")
+    row = run_lammps(tmp_path)[0]
     model = load_parameters(ARGON_FILE).liquid(500, seed=1)
     context = model.context("Reference", seed=1)
     assert context.getSystem().getNumParticles() == 500
@@ -437,19 +440,14 @@ def test_lammps_energy_and_virial_pressure_with_a_background_pressure(tmp_path):
     eV to 1e-12, and the virial pressure (compute pressure NULL virial) is OpenMM's virial W/(3V) to 1e-6 (LAMMPS's
     metal pressure factor nktv2p is 8.4e-8 off the exact one); without the box term the pressure would be off by
     p_b = 3,499 bar."""
-    if not (LMP.exists() and PLUGIN.exists()):
-        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
-    main(["lammps-input", WATER_FILE, "--particles", "500", "--steps", "0", "--output", str(tmp_path)])
+    write_input(tmp_path, WATER_FILE, "--particles", "500", "--steps", "0")
     script = (tmp_path / "in.gendpde").read_text()
     lines = [line + " c_virialPressure" if line.startswith("thermo_style custom") else line
              for line in script.splitlines()]
     thermo = next(k for k, line in enumerate(lines) if line.startswith("thermo_style"))
     lines.insert(thermo, "compute virialPressure all pressure NULL virial")
     (tmp_path / "in.gendpde").write_text("\n".join(lines) + "\n")
-    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
-                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    row = thermo_table(result.stdout)[0]
+    row = run_lammps(tmp_path)[0]
     model = load_parameters(WATER_FILE).liquid(500, seed=1)
     assert model.force.getBackgroundPressure().value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3) > 0
     context = model.context("Reference", seed=1)
@@ -469,20 +467,14 @@ def test_lammps_in_real_units_takes_pressures_as_energy_per_volume(tmp_path):
     68,568 times too large), the internal energies sum N C_V T0, the virial pressure (compute pressure NULL virial,
     atm) is OpenMM's virial W/(3V) to 1e-6 (LAMMPS's real nktv2p is 1.2e-7 below the exact factor), and after 20
     steps the conserved energy holds."""
-    if not (LMP.exists() and PLUGIN.exists()):
-        pytest.fail(f"the LAMMPS package is not built ({LMP}, {PLUGIN}): run lammps/build.sh")
-    main(["lammps-input", WATER_FILE, "--particles", "500", "--steps", "20", "--thermo", "20", "--units", "real",
-          "--output", str(tmp_path)])
+    write_input(tmp_path, WATER_FILE, "--particles", "500", "--steps", "20", "--thermo", "20", "--units", "real")
     script = (tmp_path / "in.gendpde").read_text().replace(
         "thermo_style custom step temp pe ke etotal f_integrate v_conserved press",
         "compute virialPressure all pressure NULL virial\n"
         "thermo_style custom step temp pe ke etotal f_integrate v_conserved press c_virialPressure")
     assert "units real" in script and "c_virialPressure" in script
     (tmp_path / "in.gendpde").write_text(script)
-    result = subprocess.run([str(LMP), "-var", "plugin", str(PLUGIN), "-in", "in.gendpde", "-log", "none"],
-                            cwd=tmp_path, capture_output=True, text=True, timeout=300)
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    rows = thermo_table(result.stdout)
+    rows = run_lammps(tmp_path)
     parameters = load_parameters(WATER_FILE)
     model = parameters.liquid(500, seed=1)
     assert model.force.getBackgroundPressure().value_in_unit(unit.kilojoule_per_mole / unit.nanometer**3) > 0

@@ -217,27 +217,26 @@ def test_the_sound_wave_says_when_it_dies_out_too_fast_to_be_read(dampings, warn
 @pytest.mark.validation
 @pytest.mark.parametrize("fluid, molecules", [(ARGON, 5)], ids=["argon"])
 def test_a_sound_wave_travels_at_the_speed_derived_from_the_equation_of_state(fluid, molecules):
-    """Calibration.sound_speed (a standing sound wave in 3 x 3 x 48 FCC cells, 1728 particles, followed over two
-    periods; 6 replicas) against the adiabatic speed sqrt(K_S/rho) derived (report.speed_of_sound) from the same
-    model's measured n dP/dn (boxes at n0 (1 -+ 5%)), thermal pressure (dP/dT)_n (runs at T0 -+ 8%) and c_v (C_V +
-    2.5 k_B + c_U, c_U from the fluctuation of U), in 500-particle cubes (--quick's runs): the equation of state,
-    measured without any wave. Liquid argon is the published model (5 atoms per particle, R* = 1.6839: 20
-    neighbours), water calibrate's mapping at 4 molecules per particle. Expected: equal within t(0.995, 5) = 4.03
-    combined standard errors (the wave's from its 6 replicas' scatter, whose standard error is itself uncertain, so
-    Student's t; the derived one's from n dP/dn and (dP/dT)_n), about a 1% chance of failing if both are right. Measured
-    here (seed 3, the CPU platform): argon 648.5 +- 1.8 m/s (wave) against 645.9 +- 2.4 (derived), water 1445.3 +-
-    14.4 against 1444.6 +- 7.3; the tolerance is 1.9% and 4.5%. A wavelength 3% off (k x 0.97 in the speed) read argon
-    668.6 and failed. What this cannot tell apart: the adiabatic speed from the isothermal sqrt(K_T/rho), 0.5%
-    (argon) and 0.09% (water) below it (K_S - K_T = T (dP/dT)_n^2/(n c_v) is small in a liquid). In a box half as
-    long (k twice) the wave damps twice as much per period, and water's fits scattered (docs/fluids.md). Water runs
-    with (WATER, 4) as a parameter; it is left out here to keep the suite's time (each fluid costs ~3 minutes of one
-    core)."""
+    """Calibration.sound_speed (a standing sound wave followed over two periods; 6 replicas) against the adiabatic
+    speed sqrt(K_S/rho) derived (report.speed_of_sound) from the same model's measured n dP/dn (boxes at n0 (1 -+ 5%)),
+    thermal pressure (dP/dT)_n (runs at T0 -+ 8%) and c_v (C_V + 2.5 k_B + c_U, c_U from the fluctuation of U), in
+    500-particle cubes (--quick's runs): the equation of state, measured without any wave. Liquid argon, the published
+    model (5 atoms per particle, R* = 1.6839: 20 neighbours), in 3 x 3 x 24 FCC cells (864 particles): half the length
+    of calibrate's box (Plan.sound_cells, 3 x 3 x 48, chosen for water's damping), so that the test costs ~45 s
+    instead of ~150 s; argon's wave still damps by only 0.5-1.1 per period there. Expected: equal within t(0.995, 5) =
+    4.03 combined standard errors (the wave's from its 6 replicas' scatter, whose standard error is itself uncertain,
+    so Student's t; the derived one's from n dP/dn and (dP/dT)_n), about a 1% chance of failing if both are right.
+    Measured here (seed 3, the CPU platform): 645.3 +- 4.2 m/s (wave) against 645.9 +- 2.4 (derived): the tolerance,
+    19.5 m/s, is 3.0%, so a wave that read a wavelength or a period 3% off fails. In calibrate's box: 648.5 +- 1.8
+    (argon) and water (WATER, 4) 1445.3 +- 14.4 against 1444.6 +- 7.3 (docs/fluids.md). What this cannot tell
+    apart: the adiabatic speed from the isothermal sqrt(K_T/rho), 0.5% (argon) and 0.09% (water) below it
+    (K_S - K_T = T (dP/dT)_n^2/(n c_v) is small in a liquid)."""
     from scipy.stats import t
 
     from openmmgendpde.calibration.calibration import QUICK, Calibration
     from openmmgendpde.calibration.report import speed_of_sound
     parameters = coarse_grain(fluid, molecules, neighbors=20)
-    plan = dataclasses.replace(QUICK, replicas=6, sound_wave=True)
+    plan = dataclasses.replace(QUICK, replicas=6, sound_wave=True, sound_cells=(3, 3, 24))
     calibration = Calibration(parameters, "VB", plan, "CPU", seed=3, report=print)
     bulk, _ = calibration.bulk_modulus()
     derived = speed_of_sound(parameters, bulk, calibration.thermal_pressure(5),

@@ -5,6 +5,7 @@
 
 #include "openmm/Integrator.h"
 #include "openmm/Kernel.h"
+#include <climits>
 #include <iosfwd>
 #include <map>
 #include <string>
@@ -357,13 +358,14 @@ private:
     // with E every energyGuardSteps steps after it, however step() calls split them: a change of more than
     // energyGuardLimit of the energy the mode moves (K + sum eps, or K in the Conservative mode; the larger of the two
     // ends) stops the run. Every change of the Context from outside the dynamics, and a Force's move of the particles
-    // (a barostat), sets the mark again.
+    // (a barostat), sets the mark again, no sooner than energyGuardSteps steps after the last evaluation.
     struct EnergyParts {
         double kinetic = 0.0, potential = 0.0, internal = 0.0; // kJ/mol
     };
     struct EnergyMark {
         bool set = false;
-        long long step = 0;
+        long long step = 0; // of the mark
+        long long evaluated = LLONG_MIN / 2; // the step of the guard's last evaluation (none yet)
         double conserved = 0.0, moved = 0.0; // kJ/mol
     };
     static constexpr int energyGuardSteps = 100;
@@ -373,8 +375,15 @@ private:
     EnergyParts energyParts();
     /** The energy the mode moves (kJ/mol). */
     double movedEnergy(const EnergyParts& parts) const;
-    void markEnergy();
-    /** Compare the conserved energy with the mark (if enough steps have passed); stop the run if it drifted. */
+    /** The mark: these energies (an evaluation at the current step). */
+    void markEnergy(const EnergyParts& parts);
+    /** Whether energyGuardSteps steps have passed since the guard's last evaluation. */
+    bool energyGuardMayEvaluate() const;
+    /** At the start of step(): a mark where there is none and an evaluation is allowed. */
+    void startEnergyGuard();
+    /** How many of the remaining steps to run before the guard's next look or mark. */
+    int energyGuardRun(int remaining) const;
+    /** After a run: the look (compare with the mark, stop the run if E drifted, mark again) or a new mark. */
     void checkEnergyDrift();
     // The bound Context's GenDPDEForce whose laws depend on temperature (its Impl), or null if it has none.
     const GenDPDEForceImpl* thermalForce = nullptr;

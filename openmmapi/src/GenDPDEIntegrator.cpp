@@ -309,7 +309,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     positionsSet = false;
     stoppedBy.clear(); // a new Context state (reinitialize() without preserving the state)
     refusedPositions.clear();
-    energyMark.set = false;
+    energyMark = EnergyMark();
     lawUpdatesSeen = 0;
     forcesCurrent = false;
     context = &contextRef;
@@ -361,13 +361,10 @@ void GenDPDEIntegrator::step(int steps) {
     // The energy guard (GenDPDEIntegratorEnergyGuard.cpp) looks at the conserved energy every energyGuardSteps steps
     // after its mark, however the steps are split into calls.
     const bool guarded = mode != Isothermal;
-    if (guarded && !energyMark.set)
-        markEnergy();
+    if (guarded)
+        startEnergyGuard();
     for (int done = 0; done < steps;) {
-        int run = steps - done;
-        if (guarded && energyMark.set)
-            run = (int) std::min<long long>(
-                    run, std::max<long long>(1, energyMark.step + energyGuardSteps - context->getStepCount()));
+        const int run = guarded ? energyGuardRun(steps - done) : steps - done;
         runSteps(run, terms, pairSource);
         done += run;
         if (guarded)

@@ -25,22 +25,40 @@ double GenDPDEIntegrator::movedEnergy(const EnergyParts& parts) const {
     return parts.kinetic + (mode == Isoenergetic ? parts.internal : 0.0);
 }
 
-void GenDPDEIntegrator::markEnergy() {
-    const EnergyParts parts = energyParts();
+void GenDPDEIntegrator::markEnergy(const EnergyParts& parts) {
     energyMark.conserved = parts.kinetic + parts.potential + parts.internal;
     energyMark.moved = movedEnergy(parts);
-    energyMark.step = context->getStepCount();
+    energyMark.step = energyMark.evaluated = context->getStepCount();
     energyMark.set = true;
 }
 
+bool GenDPDEIntegrator::energyGuardMayEvaluate() const {
+    // One evaluation per energyGuardSteps steps at most, however often the Context changes from outside (a parameter
+    // set before every step(1) would otherwise cost an evaluation a step).
+    // (a step count set back, e.g. by an earlier checkpoint, allows one at once)
+    const long long since = context->getStepCount() - energyMark.evaluated;
+    return since < 0 || since >= energyGuardSteps;
+}
+
+void GenDPDEIntegrator::startEnergyGuard() {
+    if (!energyMark.set && energyGuardMayEvaluate())
+        markEnergy(energyParts());
+}
+
+int GenDPDEIntegrator::energyGuardRun(int remaining) const {
+    // Up to the next look (a mark's), or the next evaluation allowed (no mark): at fixed step counts.
+    const long long next = std::min(energyMark.evaluated, context->getStepCount()) + energyGuardSteps;
+    return (int) std::min<long long>(remaining, std::max<long long>(1, next - context->getStepCount()));
+}
+
 void GenDPDEIntegrator::checkEnergyDrift() {
-    if (!energyMark.set) { // a Force moved the particles during the steps (a barostat): a new mark
-        markEnergy();
+    if (!energyGuardMayEvaluate())
+        return;
+    if (!energyMark.set) { // the Context changed, or a Force moved the particles (a barostat): a new mark
+        markEnergy(energyParts());
         return;
     }
     const long long step = context->getStepCount();
-    if (step - energyMark.step < energyGuardSteps)
-        return;
     const EnergyParts parts = energyParts();
     const double conserved = parts.kinetic + parts.potential + parts.internal;
     const double moved = movedEnergy(parts);
@@ -74,7 +92,5 @@ void GenDPDEIntegrator::checkEnergyDrift() {
         energyMark.set = false;
         throw OpenMMException(stopRun(message.str()));
     }
-    energyMark.conserved = conserved;
-    energyMark.moved = moved;
-    energyMark.step = step;
+    markEnergy(parts);
 }

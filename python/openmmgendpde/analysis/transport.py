@@ -191,11 +191,13 @@ def viscosity_from_profiles(profiles, force, density=None, start=0.0, direction=
     length = 2 * bins * float(data["centre"][0]) if box_length is None else float(box_length)
     n = float(np.mean(data["density"][:bins * frames])) if density is None else float(density)
     shape = bin_shape(bins, length)
+    amplitudes, drifts = fit_amplitude(flows, shape)
+    amplitude, amplitude_error = _mean_and_error(amplitudes)
+    if not amplitude * force > 2 * amplitude_error * abs(force):
+        raise ValueError(f"viscosity_from_profiles: the profile's amplitude along {column} is {amplitude:.3g} +- "
+                         f"{amplitude_error:.2g} 1/(nm ps) for F = {force} kJ/mol/nm: no Poiseuille flow along that "
+                         f"direction (the amplitude must have the sign of F and be more than 2 standard errors)")
     eta, error, amplitude, drifts = _viscosity_from_frames(flows, shape, n, force)
-    if not np.isfinite(eta) or eta <= 0:
-        raise ValueError(f"viscosity_from_profiles: the profile's amplitude along {column} is {amplitude:.3g} "
-                         f"1/(nm ps) for F = {force} kJ/mol/nm: no Poiseuille flow along that direction (eta = "
-                         f"{eta:.3g})")
     details = {"force": float(force), "density": n, "box_length": length, "frames": int(kept.sum()),
                "peak_velocity": amplitude * length**2 / 16, "drift": float(np.mean(drifts))}
     return _combine([eta], [error], [flows], length, bins, details)

@@ -22,8 +22,10 @@ class GenDPDEReporter:
 
     step, time, kinetic temperature (in the centre-of-mass frame, 3N - 3 degrees of freedom, since GenDPDE
     conserves momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial
-    pressure P = (2K + W)/(3V) of every force, the conserved energy K + U + sum eps_i and its drift relative to the
-    first report, all as openmmgendpde.analysis.thermodynamics defines them.
+    pressure P = (2K + W)/(3V) of every force but external fields (a body force, any CustomExternalForce: left out,
+    docs/flows.md; one that shares a force group with another force that is not a GenDPDEForce is refused at the
+    first report), the conserved energy K + U + sum eps_i and its drift relative to the first report, all as
+    openmmgendpde.analysis.thermodynamics defines them.
 
     Use it like ``openmm.app.StateDataReporter``: ``simulation.reporters.append(GenDPDEReporter('log.csv', 100))``.
     It reports what the simulation allows and writes ``nan`` for the rest: theta and the conserved energy need a

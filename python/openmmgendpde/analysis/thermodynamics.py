@@ -19,10 +19,12 @@ What can be measured depends on the simulation, and what cannot is reported as N
   particles from outside the fluid and carries no momentum across a surface inside it, so it has no place in the
   pressure of a periodic fluid (its "virial" sum_i r_i . F_i depends on where the origin is and grows as a fluid
   flows along a body force; the group-wise difference also crossed the Poiseuille force's sign flip: one particle
-  there gave -10,834 bar). A group that holds an external field beside another force that is not a GenDPDEForce
-  cannot be split by the group-wise difference, and is refused (an OpenMMException naming both forces): put the
-  field in a force group of its own. K_int removes only the centre of mass's motion, so a flow's kinetic energy is
-  in P (rho <v^2>/3 more; analysis.profiles removes each slice's mean velocity).
+  there moved the pressure of 108 argon particles by -98,688 bar, test_flows.py). A group that holds an external
+  field beside another force that is not a GenDPDEForce cannot be split by the group-wise difference, and is
+  refused (an OpenMMException naming both forces): put the field in a force group of its own. K_int removes only
+  the centre of mass's motion, at the positions' time (with a GenDPDEIntegrator the stored velocities are half a
+  step behind, and a body force's total, unlike the pair forces', need not be zero: its half kick is added), so a
+  flow's kinetic energy is in P (rho <v^2>/3 more; analysis.profiles removes each slice's mean velocity).
 """
 
 import dataclasses

@@ -23,6 +23,7 @@ from openmm import unit
 from openmmgendpde import GenDPDEIntegrator, GenDPDEReporter, StateDataReporter
 from openmmgendpde.analysis.flows import momentum_diffusion_time, poiseuille_shape
 from openmmgendpde.analysis.profiles import ProfileReporter
+from openmmgendpde.analysis.statistics import correlated_mean
 from openmmgendpde.analysis.transport import viscosity_from_profiles
 from openmmgendpde.models.flows import BODY_FORCE_GROUP, poiseuille_body_force
 from openmmgendpde.models.fluid import ARGON, KB, coarse_grain
@@ -85,6 +86,16 @@ def main(argv=None):
     print(f"eta = {result.value:.4g} +- {result.error:.2g} amu/(nm ps) from {result.details['frames']} profiles "
           f"(target {eta_target:.4g}: measured/target = {result.value / eta_target:.3f}); peak "
           f"{result.details['peak_velocity'] / thermal:.3f} v_th; waited {waited:.2f} tau of this eta")
+    # The momentum balance of the steady flow: P_xz = n F (z - L/4) in the lower half, -n F (z - 3L/4) in the upper.
+    profiles = np.genfromtxt(out / "profile.csv", delimiter=",", names=True, comments="#").reshape(-1, args.bins)
+    profiles = profiles[profiles["time"][:, 0] >= start]
+    centre = profiles["centre"][0]
+    required = n * force * np.where(centre < length / 2, centre - length / 4, 3 * length / 4 - centre)
+    carried = correlated_mean(profiles["Pxz"] @ required / (required @ required))
+    print(f"shear stress: the momentum balance needs P_xz = n F (z - L/4) (+-{n * force * length / 4:.3g} kJ/mol/nm^3 "
+          f"at the ends of the lower half); the ProfileReporter's Pxz (kinetic and conservative parts) carries "
+          f"{carried.mean:.2f} +- {carried.standard_error:.2f} of it; the rest is the stress of the dissipative and "
+          f"random pair forces (the integrator's sweep), which no reporter measures")
     log = np.genfromtxt(out / "state.csv", delimiter=",", comments="#")
     print(f"virial pressure {np.mean(log[:, 6]):.1f} bar (mean of {len(log)} reports; the body force left out); "
           f"harmonic-mean theta {log[0, 4]:.2f} -> {log[-1, 4]:.2f} K (viscous heating); the body force's "

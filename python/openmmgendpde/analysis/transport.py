@@ -145,12 +145,15 @@ def poiseuille_viscosity(parameters, replicas, body_force, peak_fraction=0.2, de
                     dict(details[-1], temperature_rise=rises, peak_fraction=peak_fraction))
 
 
-def _viscosity_from_frames(flows, shape, density, force):
+def _viscosity_from_frames(flows, shape, density, force, check=None):
     """(eta, its error, the amplitude A, the drifts c per frame) from binned profiles ``flows`` (frames x bins, nm/ps)
     of a steady Poiseuille flow with the bins' ``shape`` (bin_shape): A from the time series of per-frame fits (their
-    mean is the fit of the averaged profile), its error from the series' statistical inefficiency."""
+    mean is the fit of the averaged profile), its error from the series' statistical inefficiency. ``check(A, its
+    error)``, if given, is called before eta is computed (to refuse a profile without the flow)."""
     amplitudes, drifts = fit_amplitude(flows, shape)
     amplitude, amplitude_error = _mean_and_error(amplitudes)
+    if check is not None:
+        check(amplitude, amplitude_error)
     eta = viscosity_from_amplitude(amplitude, density, force)
     return eta, eta * amplitude_error / amplitude, amplitude, drifts
 
@@ -191,13 +194,15 @@ def viscosity_from_profiles(profiles, force, density=None, start=0.0, direction=
     length = 2 * bins * float(data["centre"][0]) if box_length is None else float(box_length)
     n = float(np.mean(data["density"][:bins * frames])) if density is None else float(density)
     shape = bin_shape(bins, length)
-    amplitudes, drifts = fit_amplitude(flows, shape)
-    amplitude, amplitude_error = _mean_and_error(amplitudes)
-    if not amplitude * force > 2 * amplitude_error * abs(force):
-        raise ValueError(f"viscosity_from_profiles: the profile's amplitude along {column} is {amplitude:.3g} +- "
-                         f"{amplitude_error:.2g} 1/(nm ps) for F = {force} kJ/mol/nm: no Poiseuille flow along that "
-                         f"direction (the amplitude must have the sign of F and be more than 2 standard errors)")
-    eta, error, amplitude, drifts = _viscosity_from_frames(flows, shape, n, force)
+
+    def check(amplitude, amplitude_error):
+        if not amplitude * force > 2 * amplitude_error * abs(force):
+            raise ValueError(f"viscosity_from_profiles: the profile's amplitude along {column} is {amplitude:.3g} +- "
+                             f"{amplitude_error:.2g} 1/(nm ps) for F = {force} kJ/mol/nm: no Poiseuille flow along "
+                             f"that direction (the amplitude must have the sign of F and be more than 2 standard "
+                             f"errors)")
+
+    eta, error, amplitude, drifts = _viscosity_from_frames(flows, shape, n, force, check)
     details = {"force": float(force), "density": n, "box_length": length, "frames": int(kept.sum()),
                "peak_velocity": amplitude * length**2 / 16, "drift": float(np.mean(drifts))}
     return _combine([eta], [error], [flows], length, bins, details)

@@ -145,8 +145,8 @@ class ThermodynamicProbe:
         return (2 * internal_kinetic + virial) / (3 * volume)
 
 
-#: A particle's absolute coordinate in a custom force's energy: x1, y2, z3 ... (CustomCompoundBondForce,
-#: CustomCentroidBondForce), or x, y, z (CustomExternalForce).
+#: A particle's (or a group's centroid's) absolute coordinate in the energy of a CustomCompoundBondForce or
+#: CustomCentroidBondForce: x1, y2, z3 ... (a CustomExternalForce is an external field whatever its expression).
 _COORDINATE = re.compile(r"(?<![A-Za-z0-9_.])[xyz][0-9]+(?![A-Za-z0-9_])")
 
 

@@ -67,18 +67,27 @@ class ThermodynamicProbe:
         self.exact_virial_forces = [f for f in self.gendpde_forces if f.getForceGroup() not in other_groups]
         self.numerical_virial_groups = sorted(other_groups)
 
-    def sample(self, state, context, integrator):
-        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
-        velocities; ``integrator`` the Context's integrator (any type)."""
+    def internal_kinetic_energy(self, state):
+        """K_int = K - |P|^2/(2M) (kJ/mol, a float): the kinetic energy of ``state`` (a State with energies and
+        velocities) in the frame of the centre of mass."""
         kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
         velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
         momentum = self.masses @ velocities
-        internal_kinetic = kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+        return kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+
+    def kinetic_temperature(self, state):
+        """2 K_int/(d k_B) (K, a float) of ``state`` (a State with energies and velocities), d = 3N - 3."""
         kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+        return 2 * self.internal_kinetic_energy(state) / (self.degrees_of_freedom * kb)
+
+    def sample(self, state, context, integrator):
+        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
+        velocities; ``integrator`` the Context's integrator (any type)."""
+        internal_kinetic = self.internal_kinetic_energy(state)
         gendpde = _as_gendpde_integrator(integrator)
         if gendpde is not None:
             theta = gendpde.getParticleTemperatures().value_in_unit(_K)
-            mean, harmonic = np.mean(theta), 1 / np.mean(1 / theta)
+            mean, harmonic = np.mean(theta), harmonic_temperature(theta)
             conserved = gendpde.getConservedEnergy().value_in_unit(_ENERGY)
             is_conserved = gendpde.getMode() != GenDPDEIntegrator.Isothermal
         else:
@@ -88,7 +97,7 @@ class ThermodynamicProbe:
                    if self.gendpde_forces else _NAN)
         return ThermodynamicSample(
             time=state.getTime(),
-            kinetic_temperature=unit.Quantity(2 * internal_kinetic / (self.degrees_of_freedom * kb), _K),
+            kinetic_temperature=unit.Quantity(self.kinetic_temperature(state), _K),
             mean_temperature=unit.Quantity(mean, _K),
             harmonic_temperature=unit.Quantity(harmonic, _K),
             density=unit.Quantity(density, _DENSITY),
@@ -126,6 +135,15 @@ def numerical_virial(context, groups):
         context.setPeriodicBoxVectors(*box)
         context.setPositions(positions)
     return -(energies[0] - energies[1]) / (2 * VIRIAL_SCALING_STEP)
+
+
+def harmonic_temperature(temperatures):
+    """<1/theta_i>^-1 (K, a float) of the particle temperatures ``temperatures`` (K: an array, or a Quantity such
+    as GenDPDEIntegrator.getParticleTemperatures()): the thermodynamic temperature of the particles, which equals the
+    kinetic one in equilibrium (the arithmetic mean is biased high by 1 + k_B/C_V; docs/theory.md section 8)."""
+    if unit.is_quantity(temperatures):
+        temperatures = temperatures.value_in_unit(_K)
+    return float(1 / np.mean(1 / np.asarray(temperatures, dtype=float)))
 
 
 def _as_gendpde_integrator(integrator):

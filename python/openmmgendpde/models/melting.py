@@ -71,9 +71,8 @@ class LiquidTemperatures:
                 f"{'within' if self.converged else 'NOT within'} {self.tolerance:g} standard errors)")
 
 
-def _checked_target(temperature, window_steps, sample_interval, tolerance, max_corrections):
-    """``temperature`` in K (a float); ValueError naming the first argument of bring_to_temperature that is not
-    allowed."""
+def check_window(window_steps, sample_interval, tolerance, max_corrections):
+    """ValueError naming the first of bring_to_temperature's window arguments that is not allowed."""
     for name, value, least in (("window_steps", window_steps, 1), ("sample_interval", sample_interval, 1),
                                ("max_corrections", max_corrections, 0)):
         if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < least:
@@ -84,6 +83,11 @@ def _checked_target(temperature, window_steps, sample_interval, tolerance, max_c
     if isinstance(tolerance, bool) or not isinstance(tolerance, numbers.Real) or not tolerance > 0 \
             or not math.isfinite(tolerance):
         raise ValueError(f"tolerance = {tolerance!r} is not allowed; it must be a finite number > 0 (standard errors)")
+
+
+def _checked_target(temperature, window_steps, sample_interval, tolerance, max_corrections):
+    """``temperature`` in K (a float), after check_window; ValueError naming an argument that is not allowed."""
+    check_window(window_steps, sample_interval, tolerance, max_corrections)
     target = temperature.value_in_unit(unit.kelvin) if unit.is_quantity(temperature) else temperature
     if isinstance(target, bool) or not isinstance(target, numbers.Real) or not 0 < target < math.inf:
         raise ValueError(f"temperature = {temperature!r} is not allowed; it must be a finite temperature > 0 (K)")

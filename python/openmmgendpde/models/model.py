@@ -8,6 +8,8 @@ equilibrium one way (equilibrate, with an Equilibration protocol). The published
 and any fluid (fluid.GenDPDEParameters.liquid) are built here."""
 
 import dataclasses
+import numbers
+import warnings
 
 import numpy as np
 import openmm
@@ -15,9 +17,8 @@ from openmm import app, unit
 
 from ..api import LAWS, GenDPDEForce, GenDPDEIntegrator, law_value
 from ..units import BOLTZMANN
-from . import laws
+from . import laws, melting
 from .lattice import box_volume
-from .melting import melt_then_switch
 
 #: The names of a model's particles in its Topology (atom, element, residue), for PDB files and viewers.
 PARTICLE_NAMES = ("CG", None, "CG")
@@ -194,12 +195,44 @@ class ModelParameters:
 class Equilibration:
     """How a model leaves its lattice: ``thermostat_steps`` steps with the DPD thermostat (Isothermal) at
     ``temperature`` (K; None: the model's T0), velocities and internal energies drawn with ``seed``, then ``mode``
-    and ``settle_steps`` steps in it (the exchange between the motion and the internal energies settles)."""
+    and ``settle_steps`` steps in it (the exchange between the motion and the internal energies settles).
+
+    With ``temperature_window`` > 0 (the Isoenergetic mode only) the liquid is then brought to that temperature
+    (melting.bring_to_temperature: windows of ``temperature_window`` steps sampled every ``sample_interval``, the
+    thermal energies scaled until the harmonic mean of theta_i and the kinetic temperature are within ``tolerance``
+    standard errors of it, at most ``max_corrections`` times): without it an Isoenergetic liquid settles where the
+    energy it had at the switch puts it, 1-1.5 K off T0 for 500 particles (docs/fluids.md, "A liquid ready to run").
+    READY_LIQUID is such a protocol. Bad values raise ValueError naming the field when it is made."""
     thermostat_steps: int
     settle_steps: int = 0
     mode: int = GenDPDEIntegrator.Isoenergetic
     temperature: float = None
     seed: int = 0
+    temperature_window: int = 0
+    sample_interval: int = 20
+    tolerance: float = 2.0
+    max_corrections: int = 4
+
+    def __post_init__(self):
+        for name in ("thermostat_steps", "settle_steps", "temperature_window"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 0:
+                raise ValueError(f"Equilibration: {name} = {value!r} is not allowed; it must be an integer >= 0")
+        if self.temperature_window:
+            if self.mode != GenDPDEIntegrator.Isoenergetic:
+                raise ValueError(f"Equilibration: temperature_window = {self.temperature_window} is not allowed with "
+                                 f"mode = {self.mode}; only an Isoenergetic liquid (mode "
+                                 f"{GenDPDEIntegrator.Isoenergetic}) is brought to the temperature (the Isothermal "
+                                 f"thermostat keeps its bath's); use temperature_window = 0")
+            melting.check_window(self.temperature_window, self.sample_interval, self.tolerance,
+                                 self.max_corrections)
+
+
+#: A liquid ready to run at T0 (Model.simulation(..., equilibration=READY_LIQUID), Model.equilibrate): 3000 steps
+#: with the DPD thermostat (30 time units at the models' default step dt* = 0.01: water's particle densities need
+#: ~25 to reach their plateau, docs/fluids.md), 500 Isoenergetic steps, then windows of 1000 steps until the
+#: harmonic mean of theta_i and the kinetic temperature are within 2 standard errors of T0.
+READY_LIQUID = Equilibration(3000, 500, temperature_window=1000)
 
 
 @dataclasses.dataclass
@@ -213,6 +246,10 @@ class Model:
     topology: app.Topology
     positions: np.ndarray
     parameters: ModelParameters = None
+    #: The melting.LiquidTemperatures of the last equilibration that brought the liquid to its temperature
+    #: (equilibrate or simulation with an Equilibration whose temperature_window > 0); None before.
+    equilibration_report: melting.LiquidTemperatures = dataclasses.field(default=None, repr=False, compare=False,
+                                                                         kw_only=True)
 
     @property
     def num_particles(self):
@@ -252,13 +289,20 @@ class Model:
                                                * unit.kelvin, seed)
         return context
 
-    def simulation(self, platform="Reference", velocity_seed=1, properties=None):
-        """An openmm.app.Simulation of the model at its positions, with Maxwell-Boltzmann velocities at T0
-        (``platform``: its name)."""
+    def simulation(self, platform="Reference", velocity_seed=1, properties=None, equilibration=None):
+        """An openmm.app.Simulation of the model (``platform``: its name, with ``properties``). Without
+        ``equilibration``: at its lattice positions, with Maxwell-Boltzmann velocities at T0 drawn with
+        ``velocity_seed``. With an Equilibration (e.g. READY_LIQUID): velocities drawn at its temperature, then
+        brought off the lattice by it as equilibrate() does (its Context's step count and time then count those
+        steps), so that the Simulation holds a liquid ready to run; the temperatures reached are in
+        equilibration_report."""
+        temperature = self._equilibration_temperature(equilibration)
         simulation = app.Simulation(self.topology, self.system, self.integrator,
                                     openmm.Platform.getPlatformByName(platform), properties)
         simulation.context.setPositions(self.positions)
-        simulation.context.setVelocitiesToTemperature(self.bath_temperature * unit.kelvin, velocity_seed)
+        simulation.context.setVelocitiesToTemperature(temperature * unit.kelvin, velocity_seed)
+        if equilibration is not None:
+            self._leave_lattice(simulation.context, equilibration, temperature)
         return simulation
 
     def wrapped_positions(self, context):
@@ -270,15 +314,41 @@ class Model:
     def equilibrate(self, platform, protocol, properties=None):
         """A Context of the model brought off its lattice by ``protocol`` (an Equilibration): the integrator's bath at
         its temperature, velocities drawn at it, its thermostat steps, then its mode with the internal energies drawn
-        at that temperature (melting.melt_then_switch) and its settle steps."""
-        temperature = self.bath_temperature if protocol.temperature is None else protocol.temperature
-        integrator = self.integrator
-        integrator.setMode(GenDPDEIntegrator.Isothermal)
-        integrator.setTemperature(temperature)
+        at that temperature (melting.melt_then_switch) and its settle steps; with its temperature_window, the liquid
+        then brought to that temperature (melting.bring_to_temperature; the temperatures reached are in
+        equilibration_report, and a RuntimeWarning says so if they are not within its tolerance)."""
+        temperature = self._equilibration_temperature(protocol)
         context = self.context(platform, temperature, protocol.seed, properties)
-        melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
-        integrator.step(protocol.settle_steps)
+        self._leave_lattice(context, protocol, temperature)
         return context
+
+    def _equilibration_temperature(self, protocol):
+        """The temperature (K) of ``protocol`` (an Equilibration, or None: T0); with a protocol the integrator is put
+        in the Isothermal mode with its bath there. ValueError if ``protocol`` is not an Equilibration."""
+        if protocol is None:
+            return self.bath_temperature
+        if not isinstance(protocol, Equilibration):
+            raise ValueError(f"equilibration = {protocol!r} is not allowed; it must be an Equilibration (e.g. "
+                             f"READY_LIQUID) or None")
+        temperature = self.bath_temperature if protocol.temperature is None else protocol.temperature
+        self.integrator.setMode(GenDPDEIntegrator.Isothermal)
+        self.integrator.setTemperature(temperature)
+        return temperature
+
+    def _leave_lattice(self, context, protocol, temperature):
+        """The steps of ``protocol`` (an Equilibration) on ``context`` (a Context of the model) at ``temperature``."""
+        integrator = self.integrator
+        melting.melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
+        integrator.step(protocol.settle_steps)
+        if protocol.temperature_window:
+            report = melting.bring_to_temperature(context, integrator, temperature, protocol.temperature_window,
+                                                  protocol.sample_interval, protocol.tolerance,
+                                                  protocol.max_corrections)
+            self.equilibration_report = report
+            if not report.converged:
+                warnings.warn(f"the liquid did not reach its temperature within {protocol.max_corrections} "
+                              f"corrections: {report}; run longer windows (temperature_window) or more corrections",
+                              RuntimeWarning, stacklevel=3)
 
     def melted(self, platform, mode, melt_steps, settle_steps, temperature=None, seed=0):
         """equilibrate(platform, Equilibration(melt_steps, settle_steps, mode, temperature, seed))."""

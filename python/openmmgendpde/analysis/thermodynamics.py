@@ -146,6 +146,29 @@ def harmonic_temperature(temperatures):
     return float(1 / np.mean(1 / np.asarray(temperatures, dtype=float)))
 
 
+def ensemble_temperature(context, integrator):
+    """The temperature (K, a float) of the ensemble that the liquid in ``context`` samples now, the one a Monte Carlo
+    barostat's acceptance should use: with a GenDPDEIntegrator in its Isothermal mode (or any other integrator that
+    has getTemperature(), a thermostat) the bath's; in its Isoenergetic mode the liquid's own, the harmonic mean of
+    theta_i (its motion and internal energies are one closed system, whose temperature it is: the kinetic
+    temperature equals it in equilibrium, and it is the precise one of the two); in its Conservative mode, where the
+    internal energies exchange nothing, the kinetic temperature of the motion (centre-of-mass frame, 3N - 3).
+    ValueError for an integrator of neither kind."""
+    gendpde = _as_gendpde_integrator(integrator)
+    if gendpde is not None:
+        mode = gendpde.getMode()
+        if mode == GenDPDEIntegrator.Isoenergetic:
+            return harmonic_temperature(gendpde.getParticleTemperatures())
+        if mode == GenDPDEIntegrator.Conservative:
+            state = context.getState(getEnergy=True, getVelocities=True)
+            return ThermodynamicProbe(context.getSystem()).kinetic_temperature(state)
+        return gendpde.getTemperature().value_in_unit(_K)
+    if callable(getattr(integrator, "getTemperature", None)):
+        return integrator.getTemperature().value_in_unit(_K)
+    raise ValueError(f"integrator = a {type(integrator).__name__} is not allowed; the temperature of its ensemble is "
+                     f"known for a GenDPDEIntegrator or an integrator with a thermostat (getTemperature)")
+
+
 def _as_gendpde_integrator(integrator):
     if isinstance(integrator, GenDPDEIntegrator):
         return integrator

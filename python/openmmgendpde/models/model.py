@@ -273,6 +273,27 @@ class Model:
             return self.parameters.temperature
         return self.integrator.getTemperature().value_in_unit(unit.kelvin)
 
+    def add_barostat(self, pressure, frequency=25):
+        """Add an openmm.MonteCarloBarostat at ``pressure`` (a Quantity, or bar) and the model's T0, trying a volume
+        move every ``frequency`` steps, to the System, and return it; before a Context of the model is made. Its
+        temperature is T0, that of the Isothermal mode's bath; in the Isoenergetic mode the liquid is at its own
+        temperature, which reporter.BarostatTemperatureReporter (or set_barostat_temperature, for a Context) keeps
+        the barostat at (docs/fluids.md, "A barostat at the liquid's temperature"). Bad arguments raise ValueError
+        naming the argument, its value and what is allowed, before the System changes."""
+        value = pressure.value_in_unit(unit.bar) if unit.is_quantity(pressure) and \
+            pressure.unit.is_compatible(unit.bar) else pressure
+        if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value):
+            raise ValueError(f"add_barostat: pressure = {pressure!r} is not allowed; it must be a finite pressure (a "
+                             f"Quantity, or bar)")
+        if isinstance(frequency, bool) or not isinstance(frequency, numbers.Integral) or frequency < 1:
+            raise ValueError(f"add_barostat: frequency = {frequency!r} is not allowed; it must be an integer >= 1 "
+                             f"(steps between volume moves)")
+        barostat = openmm.MonteCarloBarostat(float(value) * unit.bar, self.bath_temperature * unit.kelvin,
+                                             int(frequency))
+        self.system.addForce(barostat)
+        barostat._system = self.system   # the System owns the C++ barostat (addForce), as for the model's force
+        return barostat
+
     def context(self, platform="Reference", temperature=None, seed=1, properties=None, positions=None,
                 integrator=None, velocities=True):
         """An openmm.Context of the model (``platform``: an openmm.Platform or its name, with ``properties``) and its

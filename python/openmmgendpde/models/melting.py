@@ -29,6 +29,7 @@ from openmm import unit
 from ..analysis.statistics import CorrelatedMean, correlated_mean
 from ..analysis.thermodynamics import ThermodynamicProbe, harmonic_temperature
 from ..api import GenDPDEIntegrator
+from ..units import BOLTZMANN
 
 
 def switch_after_melting(integrator, temperature, seed, mode=GenDPDEIntegrator.Isoenergetic):
@@ -140,15 +141,39 @@ def bring_to_temperature(context, integrator, temperature, window_steps=1000, sa
         corrections.append(float(factor))
 
 
+def to_mean_thermal_energy(context, integrator, temperature):
+    """Scale the internal energies and the velocities of ``context`` (``integrator``: its GenDPDEIntegrator) so that
+    sum eps_i = sum_i (C_i + k_B) T and the kinetic energy in the centre-of-mass frame is (3N - 3) k_B T/2, their
+    means at ``temperature`` T (K) (C_i = eps_i/theta_i, each particle's heat capacity): after a draw at T
+    (switch_after_melting) the liquid then starts on the energy of T's mean instead of one off it by the draw's
+    fluctuation (a relative 1/sqrt(N (C_V/k_B + 1)) for the internal energies, sqrt(2/(3N - 3)) for the motion; 1.4 and
+    0.5 K for 500 particles of argon). Scaling keeps the law the draw gave the shares: independent Gamma variates of
+    one scale divided by their sum are independent of it (Dirichlet), and so is the direction of Maxwell-Boltzmann
+    velocities (sqrt(m_i) v_i) of their norm. Returns the two factors (internal energies, velocities)."""
+    energies = integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole)
+    theta = integrator.getParticleTemperatures().value_in_unit(unit.kelvin)
+    kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
+    energy_factor = float(np.sum((energies / theta + kb) * temperature) / np.sum(energies))
+    probe = ThermodynamicProbe(context.getSystem())
+    state = context.getState(getEnergy=True, getVelocities=True)
+    kinetic = probe.internal_kinetic_energy(state)
+    velocity_factor = math.sqrt(probe.degrees_of_freedom * kb * temperature / (2 * kinetic))
+    integrator.setInternalEnergies(np.asarray(energies) * energy_factor)
+    context.setVelocities(state.getVelocities(asNumpy=True) * velocity_factor)
+    return energy_factor, velocity_factor
+
+
 def melt_to_temperature(context, integrator, thermostat_steps, temperature, seed, settle_steps=0,
                         window_steps=1000, sample_interval=20, tolerance=2.0, max_corrections=4, step=None):
     """A liquid at ``temperature`` in the Isoenergetic mode: melt_then_switch (``thermostat_steps`` with the DPD
     thermostat at the integrator's bath temperature, then the internal energies drawn at ``temperature`` with
-    ``seed``), ``settle_steps`` Isoenergetic steps, then bring_to_temperature with the other arguments. Returns its
+    ``seed``), the thermal energies put at their mean at ``temperature`` (to_mean_thermal_energy),
+    ``settle_steps`` Isoenergetic steps, then bring_to_temperature with the other arguments. Returns its
     LiquidTemperatures."""
-    _checked_target(temperature, window_steps, sample_interval, tolerance, max_corrections)
+    target = _checked_target(temperature, window_steps, sample_interval, tolerance, max_corrections)
     step = step or integrator.step
     melt_then_switch(integrator, thermostat_steps, temperature, seed, GenDPDEIntegrator.Isoenergetic, step)
+    to_mean_thermal_energy(context, integrator, target)
     step(settle_steps)
     return bring_to_temperature(context, integrator, temperature, window_steps, sample_interval, tolerance,
                                 max_corrections, step)

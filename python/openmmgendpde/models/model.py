@@ -230,9 +230,10 @@ class Equilibration:
 
 #: A liquid ready to run at T0 (Model.simulation(..., equilibration=READY_LIQUID), Model.equilibrate): 3000 steps
 #: with the DPD thermostat (30 time units at the models' default step dt* = 0.01: water's particle densities need
-#: ~25 to reach their plateau, docs/fluids.md), 500 Isoenergetic steps, then windows of 1000 steps until the
-#: harmonic mean of theta_i and the kinetic temperature are within 2 standard errors of T0.
-READY_LIQUID = Equilibration(3000, 500, temperature_window=1000)
+#: ~25 to reach their plateau, docs/fluids.md), the thermal energies put at their mean at T0, 500 Isoenergetic
+#: steps, then windows of 2000 steps until the harmonic mean of theta_i and the kinetic temperature are within 2
+#: standard errors of T0 (for 500 particles of argon ~0.1 K and ~0.4 K).
+READY_LIQUID = Equilibration(3000, 500, temperature_window=2000)
 
 
 @dataclasses.dataclass
@@ -335,9 +336,10 @@ class Model:
     def equilibrate(self, platform, protocol, properties=None):
         """A Context of the model brought off its lattice by ``protocol`` (an Equilibration): the integrator's bath at
         its temperature, velocities drawn at it, its thermostat steps, then its mode with the internal energies drawn
-        at that temperature (melting.melt_then_switch) and its settle steps; with its temperature_window, the liquid
-        then brought to that temperature (melting.bring_to_temperature; the temperatures reached are in
-        equilibration_report, and a RuntimeWarning says so if they are not within its tolerance)."""
+        at that temperature (melting.melt_then_switch) and its settle steps; with its temperature_window, the thermal
+        energies put at their mean at that temperature after the draw and the liquid then brought to it
+        (melting.melt_to_temperature; the temperatures reached are in equilibration_report, and a RuntimeWarning says
+        so if they are not within its tolerance)."""
         temperature = self._equilibration_temperature(protocol)
         context = self.context(platform, temperature, protocol.seed, properties)
         self._leave_lattice(context, protocol, temperature)
@@ -359,12 +361,14 @@ class Model:
     def _leave_lattice(self, context, protocol, temperature):
         """The steps of ``protocol`` (an Equilibration) on ``context`` (a Context of the model) at ``temperature``."""
         integrator = self.integrator
-        melting.melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
-        integrator.step(protocol.settle_steps)
-        if protocol.temperature_window:
-            report = melting.bring_to_temperature(context, integrator, temperature, protocol.temperature_window,
-                                                  protocol.sample_interval, protocol.tolerance,
-                                                  protocol.max_corrections)
+        if not protocol.temperature_window:
+            melting.melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
+            integrator.step(protocol.settle_steps)
+        else:
+            report = melting.melt_to_temperature(context, integrator, protocol.thermostat_steps, temperature,
+                                                 protocol.seed, protocol.settle_steps, protocol.temperature_window,
+                                                 protocol.sample_interval, protocol.tolerance,
+                                                 protocol.max_corrections)
             self.equilibration_report = report
             if not report.converged:
                 warnings.warn(f"the liquid did not reach its temperature within {protocol.max_corrections} "

@@ -1,0 +1,121 @@
+# SPDX-License-Identifier: MIT
+# Copyright (c) 2026 The openmm-gendpde developers
+"""Where an Isoenergetic liquid settles after each way of starting it (docs/fluids.md, "A liquid ready to run"):
+from the lattice (Model.context, Isoenergetic at once), after the melt (models.melting.melt_then_switch, the
+package's protocols), after the melt with the thermal energies put at their mean at T0 (``mean E``:
+models.melting.to_mean_thermal_energy) and as READY_LIQUID leaves it (the melt, the thermal energies at their mean,
+then models.melting.bring_to_temperature). For each
+seed: the harmonic mean of theta_i and the kinetic temperature over a window of Isoenergetic steps (correlated_mean),
+and for the melt the energy at the switch taken apart, each term over the kinetic and internal heat capacity
+C_B = (3N - 3) k_B/2 + N (C_V + k_B) (in K): the draw (sum eps_i - N (C_V + k_B) T0), the motion (K - (3N - 3) k_B
+T0/2) and the structure (minus the rise of the potential energy from the switch to the window's mean).
+
+    python devtools/liquid_start_temperature.py --fluid argon --seeds 1 2 3 4 5
+    python devtools/liquid_start_temperature.py --fluid examples/fluids/water.toml --seeds 1 2 3 4 5
+
+--fluid: argon (the published model, models.argon.liquid_argon), argon-vdw (liquid argon with its thermal
+expansion in the van der Waals law, 5 atoms per particle, 20 neighbours, f_cut as mapped), or a fluid file (4
+molecules per particle, 20 neighbours). 500 particles, dt* = 0.01, the CPU platform with one thread.
+"""
+
+import argparse
+import dataclasses
+import time
+
+import numpy as np
+from openmm import unit
+
+from openmmgendpde.analysis.statistics import correlated_mean
+from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe, harmonic_temperature
+from openmmgendpde.models.argon import liquid_argon
+from openmmgendpde.models.fluid import ARGON_EXPANDING, coarse_grain
+from openmmgendpde.models.fluid_files import load_fluid
+from openmmgendpde.models.melting import melt_then_switch, to_mean_thermal_energy
+from openmmgendpde.models.model import READY_LIQUID
+
+KJ = unit.kilojoule_per_mole
+KB = unit.MOLAR_GAS_CONSTANT_R.value_in_unit(KJ / unit.kelvin)
+CPU = {"Threads": "1"}
+
+
+def model_of(fluid, seed):
+    if fluid == "argon":
+        return liquid_argon(500, seed=seed)
+    if fluid == "argon-vdw":
+        return coarse_grain(ARGON_EXPANDING, 5, neighbors=20, law="VanDerWaals").liquid(500, seed=seed)
+    return coarse_grain(load_fluid(fluid), 4, neighbors=20).liquid(500, seed=seed)
+
+
+def window(context, integrator, steps, interval=20):
+    """(T_harm, T_kin, mean U) over ``steps`` steps, the temperatures CorrelatedMeans (K), U in kJ/mol."""
+    probe = ThermodynamicProbe(context.getSystem())
+    harmonic, kinetic, potential = [], [], []
+    for _ in range(steps // interval):
+        integrator.step(interval)
+        state = context.getState(getEnergy=True, getVelocities=True)
+        kinetic.append(probe.kinetic_temperature(state))
+        harmonic.append(harmonic_temperature(integrator.getParticleTemperatures()))
+        potential.append(state.getPotentialEnergy().value_in_unit(KJ))
+    return correlated_mean(harmonic), correlated_mean(kinetic), float(np.mean(potential))
+
+
+def show(name, seed, t0, harmonic, kinetic, extra=""):
+    print(f"{name:8s} {seed:4d}  T_harm - T0 = {harmonic.mean - t0:+7.2f} +- {harmonic.standard_error:.2f} K   "
+          f"T_kin - T0 = {kinetic.mean - t0:+7.2f} +- {kinetic.standard_error:.2f} K  {extra}", flush=True)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--fluid", default="argon")
+    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
+    parser.add_argument("--melt", type=int, default=READY_LIQUID.thermostat_steps, help="thermostat steps")
+    parser.add_argument("--settle", type=int, default=1000, help="Isoenergetic steps before the window")
+    parser.add_argument("--window", type=int, default=4000, help="Isoenergetic steps measured")
+    arguments = parser.parse_args()
+    start = time.time()
+    for seed in arguments.seeds:
+        model = model_of(arguments.fluid, seed)
+        t0, n = model.bath_temperature, model.num_particles
+        context = model.context("CPU", properties=CPU, seed=seed)
+        model.integrator.step(arguments.settle)
+        show("lattice", seed, t0, *window(context, model.integrator, arguments.window)[:2])
+
+        model = model_of(arguments.fluid, seed)
+        integrator = model.integrator
+        integrator.setMode(integrator.Isothermal)
+        context = model.context("CPU", properties=CPU, seed=seed)
+        melt_then_switch(integrator, arguments.melt, t0, seed)
+        state = context.getState(getEnergy=True)
+        heat_capacity = (3 * n - 3) * KB / 2 + n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB)
+        draw = (integrator.getInternalEnergies().value_in_unit(KJ).sum()
+                - n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB) * t0) / heat_capacity
+        motion = (state.getKineticEnergy().value_in_unit(KJ) - (3 * n - 3) * KB * t0 / 2) / heat_capacity
+        switch_potential = state.getPotentialEnergy().value_in_unit(KJ)
+        integrator.step(arguments.settle)
+        harmonic, kinetic, potential = window(context, integrator, arguments.window)
+        structure = -(potential - switch_potential) / heat_capacity
+        show("melt", seed, t0, harmonic, kinetic, f"draw {draw:+.2f}, motion {motion:+.2f}, structure "
+             f"{structure:+.2f}: sum {draw + motion + structure:+.2f} K")
+
+        model = model_of(arguments.fluid, seed)
+        integrator = model.integrator
+        integrator.setMode(integrator.Isothermal)
+        context = model.context("CPU", properties=CPU, seed=seed)
+        melt_then_switch(integrator, arguments.melt, t0, seed)
+        factors = to_mean_thermal_energy(context, integrator, t0)
+        integrator.step(arguments.settle)
+        show("mean E", seed, t0, *window(context, integrator, arguments.window)[:2],
+             f"eps x {factors[0]:.4f}, v x {factors[1]:.4f}")
+
+        model = model_of(arguments.fluid, seed)
+        context = model.equilibrate("CPU", dataclasses.replace(READY_LIQUID, thermostat_steps=arguments.melt,
+                                                               seed=seed), CPU)
+        report = model.equilibration_report
+        harmonic, kinetic, _ = window(context, model.integrator, arguments.window)
+        show("ready", seed, t0, harmonic, kinetic, f"{len(report.corrections)} corrections "
+             f"({', '.join(f'{c:.4f}' for c in report.corrections)}), {report.steps} steps")
+    print(f"T0 = {t0:.2f} K; {time.time() - start:.0f} s")
+
+
+if __name__ == "__main__":
+    main()

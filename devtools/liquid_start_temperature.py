@@ -64,6 +64,47 @@ def show(name, seed, t0, harmonic, kinetic, extra=""):
           f"T_kin - T0 = {kinetic.mean - t0:+7.2f} +- {kinetic.standard_error:.2f} K  {extra}", flush=True)
 
 
+def melt(arguments, seed, t0, n):
+    model = model_of(arguments.fluid, seed)
+    integrator = model.integrator
+    integrator.setMode(integrator.Isothermal)
+    context = model.context("CPU", properties=CPU, seed=seed)
+    melt_then_switch(integrator, arguments.melt, t0, seed)
+    state = context.getState(getEnergy=True)
+    heat_capacity = (3 * n - 3) * KB / 2 + n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB)
+    draw = (integrator.getInternalEnergies().value_in_unit(KJ).sum()
+            - n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB) * t0) / heat_capacity
+    motion = (state.getKineticEnergy().value_in_unit(KJ) - (3 * n - 3) * KB * t0 / 2) / heat_capacity
+    switch_potential = state.getPotentialEnergy().value_in_unit(KJ)
+    integrator.step(arguments.settle)
+    harmonic, kinetic, potential = window(context, integrator, arguments.window)
+    structure = -(potential - switch_potential) / heat_capacity
+    show("melt", seed, t0, harmonic, kinetic, f"draw {draw:+.2f}, motion {motion:+.2f}, structure "
+         f"{structure:+.2f}: sum {draw + motion + structure:+.2f} K")
+
+
+def mean_energy(arguments, seed, t0):
+    model = model_of(arguments.fluid, seed)
+    integrator = model.integrator
+    integrator.setMode(integrator.Isothermal)
+    context = model.context("CPU", properties=CPU, seed=seed)
+    melt_then_switch(integrator, arguments.melt, t0, seed)
+    factors = to_mean_thermal_energy(context, integrator, t0)
+    integrator.step(arguments.settle)
+    show("mean E", seed, t0, *window(context, integrator, arguments.window)[:2],
+         f"eps x {factors[0]:.4f}, v x {factors[1]:.4f}")
+
+
+def ready(arguments, seed, t0):
+    model = model_of(arguments.fluid, seed)
+    context = model.equilibrate("CPU", dataclasses.replace(READY_LIQUID, thermostat_steps=arguments.melt,
+                                                           seed=seed, tolerance=arguments.tolerance), CPU)
+    report = model.equilibration_report
+    harmonic, kinetic, _ = window(context, model.integrator, arguments.window)
+    show("ready", seed, t0, harmonic, kinetic, f"{len(report.corrections)} corrections "
+         f"({', '.join(f'{c:.4f}' for c in report.corrections)}), {report.steps} steps")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--fluid", default="argon")
@@ -71,49 +112,25 @@ def main():
     parser.add_argument("--melt", type=int, default=READY_LIQUID.thermostat_steps, help="thermostat steps")
     parser.add_argument("--settle", type=int, default=1000, help="Isoenergetic steps before the window")
     parser.add_argument("--window", type=int, default=4000, help="Isoenergetic steps measured")
+    parser.add_argument("--tolerance", type=float, default=READY_LIQUID.tolerance,
+                        help="READY_LIQUID's tolerance (standard errors)")
+    parser.add_argument("--rows", nargs="+", default=["lattice", "melt", "mean-E", "ready"],
+                        choices=["lattice", "melt", "mean-E", "ready"], help="the ways of starting to run")
     arguments = parser.parse_args()
     start = time.time()
     for seed in arguments.seeds:
         model = model_of(arguments.fluid, seed)
         t0, n = model.bath_temperature, model.num_particles
-        context = model.context("CPU", properties=CPU, seed=seed)
-        model.integrator.step(arguments.settle)
-        show("lattice", seed, t0, *window(context, model.integrator, arguments.window)[:2])
-
-        model = model_of(arguments.fluid, seed)
-        integrator = model.integrator
-        integrator.setMode(integrator.Isothermal)
-        context = model.context("CPU", properties=CPU, seed=seed)
-        melt_then_switch(integrator, arguments.melt, t0, seed)
-        state = context.getState(getEnergy=True)
-        heat_capacity = (3 * n - 3) * KB / 2 + n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB)
-        draw = (integrator.getInternalEnergies().value_in_unit(KJ).sum()
-                - n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB) * t0) / heat_capacity
-        motion = (state.getKineticEnergy().value_in_unit(KJ) - (3 * n - 3) * KB * t0 / 2) / heat_capacity
-        switch_potential = state.getPotentialEnergy().value_in_unit(KJ)
-        integrator.step(arguments.settle)
-        harmonic, kinetic, potential = window(context, integrator, arguments.window)
-        structure = -(potential - switch_potential) / heat_capacity
-        show("melt", seed, t0, harmonic, kinetic, f"draw {draw:+.2f}, motion {motion:+.2f}, structure "
-             f"{structure:+.2f}: sum {draw + motion + structure:+.2f} K")
-
-        model = model_of(arguments.fluid, seed)
-        integrator = model.integrator
-        integrator.setMode(integrator.Isothermal)
-        context = model.context("CPU", properties=CPU, seed=seed)
-        melt_then_switch(integrator, arguments.melt, t0, seed)
-        factors = to_mean_thermal_energy(context, integrator, t0)
-        integrator.step(arguments.settle)
-        show("mean E", seed, t0, *window(context, integrator, arguments.window)[:2],
-             f"eps x {factors[0]:.4f}, v x {factors[1]:.4f}")
-
-        model = model_of(arguments.fluid, seed)
-        context = model.equilibrate("CPU", dataclasses.replace(READY_LIQUID, thermostat_steps=arguments.melt,
-                                                               seed=seed), CPU)
-        report = model.equilibration_report
-        harmonic, kinetic, _ = window(context, model.integrator, arguments.window)
-        show("ready", seed, t0, harmonic, kinetic, f"{len(report.corrections)} corrections "
-             f"({', '.join(f'{c:.4f}' for c in report.corrections)}), {report.steps} steps")
+        if "lattice" in arguments.rows:
+            context = model.context("CPU", properties=CPU, seed=seed)
+            model.integrator.step(arguments.settle)
+            show("lattice", seed, t0, *window(context, model.integrator, arguments.window)[:2])
+        if "melt" in arguments.rows:
+            melt(arguments, seed, t0, n)
+        if "mean-E" in arguments.rows:
+            mean_energy(arguments, seed, t0)
+        if "ready" in arguments.rows:
+            ready(arguments, seed, t0)
     print(f"T0 = {t0:.2f} K; {time.time() - start:.0f} s")
 
 

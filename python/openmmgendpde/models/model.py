@@ -274,9 +274,10 @@ class Model:
             return self.parameters.temperature
         return self.integrator.getTemperature().value_in_unit(unit.kelvin)
 
-    def add_barostat(self, pressure, frequency=25):
+    def add_barostat(self, pressure, frequency=25, seed=0):
         """Add an openmm.MonteCarloBarostat at ``pressure`` (a Quantity, or bar) and the model's T0, trying a volume
-        move every ``frequency`` steps, to the System, and return it; before a Context of the model is made. Its
+        move every ``frequency`` steps with random seed ``seed`` (0: chosen when a Context is made), to the System,
+        and return it; before a Context of the model is made. Its
         temperature is T0, that of the Isothermal mode's bath; in the Isoenergetic mode the liquid is at its own
         temperature, which reporter.BarostatTemperatureReporter (or set_barostat_temperature, for a Context) keeps
         the barostat at (docs/fluids.md, "A barostat at the liquid's temperature"). Bad arguments raise ValueError
@@ -289,8 +290,11 @@ class Model:
         if isinstance(frequency, bool) or not isinstance(frequency, numbers.Integral) or frequency < 1:
             raise ValueError(f"add_barostat: frequency = {frequency!r} is not allowed; it must be an integer >= 1 "
                              f"(steps between volume moves)")
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**31:
+            raise ValueError(f"add_barostat: seed = {seed!r} is not allowed; it must be an integer in [0, 2^31)")
         barostat = openmm.MonteCarloBarostat(float(value) * unit.bar, self.bath_temperature * unit.kelvin,
                                              int(frequency))
+        barostat.setRandomNumberSeed(int(seed))
         self.system.addForce(barostat)
         barostat._system = self.system   # the System owns the C++ barostat (addForce), as for the model's force
         return barostat

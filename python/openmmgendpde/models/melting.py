@@ -68,7 +68,7 @@ class LiquidTemperatures:
     def __str__(self):
         return (f"T_harm = {self.harmonic.mean:.2f} +- {self.harmonic.standard_error:.2f} K, T_kin = "
                 f"{self.kinetic.mean:.2f} +- {self.kinetic.standard_error:.2f} K (T0 = {self.temperature:.2f} K; "
-                f"{len(self.corrections)} corrections, {self.steps} steps, "
+                f"{len(self.corrections)} correction{'' if len(self.corrections) == 1 else 's'}, {self.steps} steps, "
                 f"{'within' if self.converged else 'NOT within'} {self.tolerance:g} standard errors)")
 
 

@@ -15,10 +15,10 @@ import argparse
 
 from openmm import unit
 
+from openmmgendpde import BarostatTemperatureReporter
 from openmmgendpde.analysis.statistics import correlated_mean
 from openmmgendpde.analysis.thermodynamics import harmonic_temperature
 from openmmgendpde.models.argon import ARGON_STATE, ARGON_UNITS, liquid_argon
-from openmmgendpde.reporter import BarostatTemperatureReporter
 
 KB = unit.MOLAR_GAS_CONSTANT_R.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 

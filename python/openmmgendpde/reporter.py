@@ -1,8 +1,7 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
 """GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol; and
-BarostatTemperatureReporter (set_barostat_temperature for a Context): a Monte Carlo barostat at the temperature of
-the ensemble the liquid samples."""
+BarostatTemperatureReporter: Monte Carlo barostats at the temperature of the ensemble the liquid samples."""
 
 import openmm
 from openmm import unit
@@ -130,29 +129,14 @@ def _barostat_parameters(system, caller):
     return sorted(names)
 
 
-def set_barostat_temperature(context, integrator=None):
-    """Set the temperature of every Monte Carlo barostat of ``context``'s System (its context parameter, e.g.
-    MonteCarloBarostat.Temperature()) to that of the ensemble the liquid samples now
-    (analysis.thermodynamics.ensemble_temperature of ``integrator``, default the Context's): the bath's T0 in the
-    Isothermal mode, the harmonic mean of theta_i in the Isoenergetic mode, the kinetic temperature in the
-    Conservative mode. The barostat's acceptance, exp(-(dU + P dV - N k_B T ln(V'/V))/(k_B T)), samples the volume
-    at the temperature T it is given; an Isoenergetic liquid is at its own temperature, which its energy sets, not
-    at the bath's (docs/fluids.md, "A barostat at the liquid's temperature"). Returns that temperature (K). An
-    OpenMMException if the System has no Monte Carlo barostat, before anything changes."""
-    names = _barostat_parameters(context.getSystem(), "set_barostat_temperature")
-    temperature = ensemble_temperature(context, context.getIntegrator() if integrator is None else integrator)
-    for name in names:
-        context.setParameter(name, temperature)
-    return temperature
-
-
 class BarostatTemperatureReporter:
     """Keeps the Monte Carlo barostats of a Simulation at the temperature of the ensemble its liquid samples: every
-    ``reportInterval`` steps it sets their temperature (set_barostat_temperature) to the harmonic mean of theta_i
-    in the Isoenergetic mode (the liquid's own temperature), the bath's T0 in the Isothermal mode, the kinetic
-    temperature in the Conservative mode. Use it like OpenMM's reporters, with the barostat's frequency or a small
-    multiple of it: ``simulation.reporters.append(BarostatTemperatureReporter(25))``. It writes nothing; the
-    temperature last set is ``temperature`` (K; None before the first report).
+    ``reportInterval`` steps it sets their temperature (setTemperature) to the harmonic mean of theta_i in the
+    Isoenergetic mode (the liquid's own temperature), the bath's T0 in the Isothermal mode, the kinetic temperature
+    in the Conservative mode. Use it like OpenMM's reporters, with the barostat's frequency or a small multiple of
+    it: ``simulation.reporters.append(BarostatTemperatureReporter(25))``. It writes nothing; the temperature last
+    set is ``temperature`` (K; None before the first report). For a Context without a Simulation, call
+    ``BarostatTemperatureReporter.setTemperature(context)`` between runs of steps.
 
     ``reportInterval``: an integer >= 1, else OpenMMException naming it. A Simulation whose System has no Monte Carlo
     barostat is refused (OpenMMException) at the first report."""
@@ -161,9 +145,26 @@ class BarostatTemperatureReporter:
         self._interval = checked_report_interval("BarostatTemperatureReporter", reportInterval)
         self.temperature = None
 
+    @staticmethod
+    def setTemperature(context, integrator=None):
+        """Set the temperature of every Monte Carlo barostat of ``context``'s System (its context parameter, e.g.
+        MonteCarloBarostat.Temperature(); BAROSTAT_TEMPERATURE_PARAMETERS) to that of the ensemble the liquid
+        samples now (analysis.thermodynamics.ensemble_temperature of ``integrator``, default the Context's): the
+        bath's T0 in the Isothermal mode, the harmonic mean of theta_i in the Isoenergetic mode, the kinetic
+        temperature in the Conservative mode. The barostat's acceptance, exp(-(dU + P dV - N k_B T ln(V'/V))/(k_B
+        T)), samples the volume at the temperature T it is given; an Isoenergetic liquid is at its own temperature,
+        which its energy sets, not at the bath's (docs/fluids.md, "A barostat at the liquid's temperature"). Returns
+        that temperature (K). An OpenMMException if the System has no Monte Carlo barostat, before anything
+        changes."""
+        names = _barostat_parameters(context.getSystem(), "BarostatTemperatureReporter.setTemperature")
+        temperature = ensemble_temperature(context, context.getIntegrator() if integrator is None else integrator)
+        for name in names:
+            context.setParameter(name, temperature)
+        return temperature
+
     def describeNextReport(self, simulation):
         steps = self._interval - simulation.currentStep % self._interval
         return (steps, False, False, False, False)
 
     def report(self, simulation, state):
-        self.temperature = set_barostat_temperature(simulation.context, simulation.integrator)
+        self.temperature = self.setTemperature(simulation.context, simulation.integrator)

@@ -2,7 +2,7 @@
 # Copyright (c) 2026 The openmm-gendpde developers
 """A liquid ready to run (models.melting.bring_to_temperature, Equilibration.temperature_window, READY_LIQUID,
 Model.simulation(equilibration=...)) and a Monte Carlo barostat at the temperature of the liquid's ensemble
-(reporter.BarostatTemperatureReporter, set_barostat_temperature, Model.add_barostat); docs/fluids.md, "A liquid ready
+(BarostatTemperatureReporter, Model.add_barostat); docs/fluids.md, "A liquid ready
 to run"."""
 
 import dataclasses
@@ -14,14 +14,13 @@ import openmm
 import pytest
 from openmm import unit
 
-from openmmgendpde import GenDPDEIntegrator
+from openmmgendpde import BarostatTemperatureReporter, GenDPDEIntegrator
 from openmmgendpde.analysis.statistics import correlated_mean
 from openmmgendpde.models.argon import liquid_argon
 from openmmgendpde.models.fluid import coarse_grain
 from openmmgendpde.models.fluid_files import load_fluid
 from openmmgendpde.models.melting import bring_to_temperature, melt_to_temperature
 from openmmgendpde.models.model import READY_LIQUID, Equilibration
-from openmmgendpde.reporter import BarostatTemperatureReporter, set_barostat_temperature
 
 WATER_FILE = os.path.join(os.path.dirname(__file__), "..", "..", "examples", "fluids", "water.toml")
 KB = unit.MOLAR_GAS_CONSTANT_R.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
@@ -167,9 +166,9 @@ def test_bad_arguments_are_refused_before_anything_runs():
     assert model.system.getNumForces() == 1
     with pytest.raises(openmm.OpenMMException, match="reportInterval = 0 is not allowed"):
         BarostatTemperatureReporter(0)
-    with pytest.raises(openmm.OpenMMException, match="set_barostat_temperature: the System has no Monte Carlo "
-                                                     "barostat"):
-        set_barostat_temperature(context)
+    with pytest.raises(openmm.OpenMMException, match="BarostatTemperatureReporter.setTemperature: the System has no "
+                                                     "Monte Carlo barostat"):
+        BarostatTemperatureReporter.setTemperature(context)
 
 
 def test_the_barostat_follows_the_liquid_s_temperature_in_the_isoenergetic_mode_and_the_bath_s_in_the_isothermal():

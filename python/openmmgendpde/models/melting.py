@@ -12,13 +12,13 @@ melted Context (fluid.FluidModel.melted), calibrate's runs, the slabs of the sla
 Why an Isoenergetic liquid does not settle at T0 after the switch, and what bring_to_temperature does about it
 (docs/fluids.md, "A liquid ready to run"): its total energy E = K + U + sum eps_i is fixed at the switch, and the
 temperature it settles at is the one whose mean energy is E. E at the switch differs from the mean at T0 by (1) the
-structure still relaxing after a short melt (water's potential energy still rises after 1000 thermostat steps), (2)
-the draw: sum eps_i of N particles drawn from their Gamma law is off its mean by a relative
-1/sqrt(N (C_V/k_B + 1)), and K and U by their own fluctuations at that instant (a standard deviation of 1.4 K for
-500 particles of argon, 2.1 K for water, from the draw), and (3) for a law that depends on temperature, the Isothermal melt sampling the configurations of another
-law than the Isoenergetic run (docs/theory.md section 11). Started straight from the lattice, the internal energies
-are C_V T0 (k_B T0 per particle short) and the lattice's potential energy is below the liquid's: ~10 K cold.
-to_mean_thermal_energy removes (2) but for U; bring_to_temperature measures what remains and corrects it."""
+structure still relaxing after the melt, (2) the draw: sum eps_i of N particles drawn from their Gamma law is off its
+mean by a relative 1/sqrt(N (C_V/k_B + 1)), and K and U by their own fluctuations at that instant (the draw alone: a
+standard deviation of 1.4 K for 500 particles of argon, 2.1 K for water), and (3) for a law that depends on
+temperature, the Isothermal melt sampling the configurations of another law than the Isoenergetic run
+(docs/theory.md section 11). Started straight from the lattice, the internal energies are C_V T0 (k_B T0 per
+particle short) and the lattice's potential energy is below the liquid's: ~10 K cold. to_mean_thermal_energy removes
+(2) but for U; bring_to_temperature measures what remains and corrects it."""
 
 import dataclasses
 import math

@@ -4,11 +4,12 @@
 from the lattice (Model.context, Isoenergetic at once), after the melt (models.melting.melt_then_switch, the
 package's protocols), after the melt with the thermal energies put at their mean at T0 (``mean E``:
 models.melting.to_mean_thermal_energy) and as READY_LIQUID leaves it (the melt, the thermal energies at their mean,
-then models.melting.bring_to_temperature). For each
-seed: the harmonic mean of theta_i and the kinetic temperature over a window of Isoenergetic steps (correlated_mean),
-and for the melt the energy at the switch taken apart, each term over the kinetic and internal heat capacity
-C_B = (3N - 3) k_B/2 + N (C_V + k_B) (in K): the draw (sum eps_i - N (C_V + k_B) T0), the motion (K - (3N - 3) k_B
-T0/2) and the structure (minus the rise of the potential energy from the switch to the window's mean).
+then models.melting.bring_to_temperature). For each seed: the harmonic mean of theta_i and the kinetic temperature
+over a window of Isoenergetic steps (correlated_mean), and for the lattice and the melt the energy at the start of
+the Isoenergetic run taken apart, each term over the kinetic and internal heat capacity C_B = (3N - 3) k_B/2 +
+N (C_V + k_B) (in K): the internal energies (sum eps_i - N (C_V + k_B) T0), the motion (K - (3N - 3) k_B T0/2) and
+the structure (minus the rise of the potential energy from the start to the window's mean); their sum is what the
+energy at the start predicts.
 
     python devtools/liquid_start_temperature.py --fluid argon --seeds 1 2 3 4 5
     python devtools/liquid_start_temperature.py --fluid examples/fluids/water.toml --seeds 1 2 3 4 5
@@ -59,28 +60,42 @@ def window(context, integrator, steps, interval=20):
     return correlated_mean(harmonic), correlated_mean(kinetic), float(np.mean(potential))
 
 
+def energy_terms(context, integrator, t0):
+    """At the start of an Isoenergetic run: (C_B in kJ/mol/K, the internal energies' and the motion's excess over
+    their means at T0 in K, the potential energy in kJ/mol)."""
+    n = context.getSystem().getNumParticles()
+    heat_capacity = integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin)
+    total = (3 * n - 3) * KB / 2 + n * (heat_capacity + KB)
+    state = context.getState(getEnergy=True)
+    draw = (integrator.getInternalEnergies().value_in_unit(KJ).sum() - n * (heat_capacity + KB) * t0) / total
+    motion = (state.getKineticEnergy().value_in_unit(KJ) - (3 * n - 3) * KB * t0 / 2) / total
+    return total, draw, motion, state.getPotentialEnergy().value_in_unit(KJ)
+
+
+def taken_apart(start, potential):
+    """The terms of energy_terms in K, with the structure's: minus the rise of the potential energy from the start
+    to ``potential`` (the window's mean), over C_B."""
+    total, draw, motion, start_potential = start
+    structure = -(potential - start_potential) / total
+    return (f"internal energies {draw:+.2f}, motion {motion:+.2f}, structure {structure:+.2f}: sum "
+            f"{draw + motion + structure:+.2f} K")
+
+
 def show(name, seed, t0, harmonic, kinetic, extra=""):
     print(f"{name:8s} {seed:4d}  T_harm - T0 = {harmonic.mean - t0:+7.2f} +- {harmonic.standard_error:.2f} K   "
           f"T_kin - T0 = {kinetic.mean - t0:+7.2f} +- {kinetic.standard_error:.2f} K  {extra}", flush=True)
 
 
-def melt(arguments, seed, t0, n):
+def melt(arguments, seed, t0):
     model = model_of(arguments.fluid, seed)
     integrator = model.integrator
     integrator.setMode(integrator.Isothermal)
     context = model.context("CPU", properties=CPU, seed=seed)
     melt_then_switch(integrator, arguments.melt, t0, seed)
-    state = context.getState(getEnergy=True)
-    heat_capacity = (3 * n - 3) * KB / 2 + n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB)
-    draw = (integrator.getInternalEnergies().value_in_unit(KJ).sum()
-            - n * (integrator.getHeatCapacity().value_in_unit(KJ / unit.kelvin) + KB) * t0) / heat_capacity
-    motion = (state.getKineticEnergy().value_in_unit(KJ) - (3 * n - 3) * KB * t0 / 2) / heat_capacity
-    switch_potential = state.getPotentialEnergy().value_in_unit(KJ)
+    start_energies = energy_terms(context, integrator, t0)
     integrator.step(arguments.settle)
     harmonic, kinetic, potential = window(context, integrator, arguments.window)
-    structure = -(potential - switch_potential) / heat_capacity
-    show("melt", seed, t0, harmonic, kinetic, f"draw {draw:+.2f}, motion {motion:+.2f}, structure "
-         f"{structure:+.2f}: sum {draw + motion + structure:+.2f} K")
+    show("melt", seed, t0, harmonic, kinetic, taken_apart(start_energies, potential))
 
 
 def mean_energy(arguments, seed, t0):
@@ -120,13 +135,15 @@ def main():
     start = time.time()
     for seed in arguments.seeds:
         model = model_of(arguments.fluid, seed)
-        t0, n = model.bath_temperature, model.num_particles
+        t0 = model.bath_temperature
         if "lattice" in arguments.rows:
             context = model.context("CPU", properties=CPU, seed=seed)
+            start_energies = energy_terms(context, model.integrator, t0)
             model.integrator.step(arguments.settle)
-            show("lattice", seed, t0, *window(context, model.integrator, arguments.window)[:2])
+            harmonic, kinetic, potential = window(context, model.integrator, arguments.window)
+            show("lattice", seed, t0, harmonic, kinetic, taken_apart(start_energies, potential))
         if "melt" in arguments.rows:
-            melt(arguments, seed, t0, n)
+            melt(arguments, seed, t0)
         if "mean-E" in arguments.rows:
             mean_energy(arguments, seed, t0)
         if "ready" in arguments.rows:

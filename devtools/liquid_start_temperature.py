@@ -15,8 +15,10 @@ energy at the start predicts.
     python devtools/liquid_start_temperature.py --fluid examples/fluids/water.toml --seeds 1 2 3 4 5
 
 --fluid: argon (the published model, models.argon.liquid_argon), argon-vdw (liquid argon with its thermal
-expansion in the van der Waals law, 5 atoms per particle, 20 neighbours, f_cut as mapped), or a fluid file (4
-molecules per particle, 20 neighbours). 500 particles, dt* = 0.01, the CPU platform with one thread.
+expansion in the van der Waals law, 5 atoms per particle, 20 neighbours, f_cut as mapped), argon-vdw-calibrated
+(the same as calibrate --quick leaves it, python/tests/test_laws.py's run: ~2 min more), or a fluid file (4
+molecules per particle, 20 neighbours); --model FILE: a model file (calibrate --output). 500 particles, dt* = 0.01
+(a model file's own step), the CPU platform with one thread.
 """
 
 import argparse
@@ -30,7 +32,7 @@ from openmmgendpde.analysis.statistics import correlated_mean
 from openmmgendpde.analysis.thermodynamics import ThermodynamicProbe, harmonic_temperature
 from openmmgendpde.models.argon import liquid_argon
 from openmmgendpde.models.fluid import ARGON_EXPANDING, coarse_grain
-from openmmgendpde.models.fluid_files import load_fluid
+from openmmgendpde.models.fluid_files import load_fluid, load_parameters
 from openmmgendpde.models.melting import melt_then_switch, to_mean_thermal_energy
 from openmmgendpde.models.model import READY_LIQUID
 
@@ -39,7 +41,23 @@ KB = unit.MOLAR_GAS_CONSTANT_R.value_in_unit(KJ / unit.kelvin)
 CPU = {"Threads": "1"}
 
 
-def model_of(fluid, seed):
+def calibrated_van_der_waals():
+    """The van der Waals argon's parameters as calibrate --quick writes them (python/tests/test_laws.py's run)."""
+    from openmmgendpde.calibration import calibrate
+    from openmmgendpde.calibration.calibration import QUICK
+    from openmmgendpde.calibration.results import QUICK_CRITERIA
+
+    mapped = coarse_grain(ARGON_EXPANDING, 5, neighbors=20, law="VanDerWaals")
+    return calibrate.calibrate(mapped, "VB", QUICK, "CPU", criteria=QUICK_CRITERIA, report=lambda line: None).parameters
+
+
+def model_of(fluid, seed, model_file=None):
+    if model_file is not None:
+        return load_parameters(model_file).liquid(500, seed=seed)
+    if fluid == "argon-vdw-calibrated":
+        if not hasattr(model_of, "calibrated"):
+            model_of.calibrated = calibrated_van_der_waals()
+        return model_of.calibrated.liquid(500, seed=seed)
     if fluid == "argon":
         return liquid_argon(500, seed=seed)
     if fluid == "argon-vdw":
@@ -87,7 +105,7 @@ def show(name, seed, t0, harmonic, kinetic, extra=""):
 
 
 def melt(arguments, seed, t0):
-    model = model_of(arguments.fluid, seed)
+    model = model_of(arguments.fluid, seed, arguments.model)
     integrator = model.integrator
     integrator.setMode(integrator.Isothermal)
     context = model.context("CPU", properties=CPU, seed=seed)
@@ -99,7 +117,7 @@ def melt(arguments, seed, t0):
 
 
 def mean_energy(arguments, seed, t0):
-    model = model_of(arguments.fluid, seed)
+    model = model_of(arguments.fluid, seed, arguments.model)
     integrator = model.integrator
     integrator.setMode(integrator.Isothermal)
     context = model.context("CPU", properties=CPU, seed=seed)
@@ -111,7 +129,7 @@ def mean_energy(arguments, seed, t0):
 
 
 def ready(arguments, seed, t0):
-    model = model_of(arguments.fluid, seed)
+    model = model_of(arguments.fluid, seed, arguments.model)
     context = model.equilibrate("CPU", dataclasses.replace(READY_LIQUID, thermostat_steps=arguments.melt,
                                                            seed=seed, tolerance=arguments.tolerance), CPU)
     report = model.equilibration_report
@@ -123,6 +141,7 @@ def ready(arguments, seed, t0):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--fluid", default="argon")
+    parser.add_argument("--model", help="a model file (calibrate --output) instead of --fluid")
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3])
     parser.add_argument("--melt", type=int, default=READY_LIQUID.thermostat_steps, help="thermostat steps")
     parser.add_argument("--settle", type=int, default=1000, help="Isoenergetic steps before the window")
@@ -134,7 +153,7 @@ def main():
     arguments = parser.parse_args()
     start = time.time()
     for seed in arguments.seeds:
-        model = model_of(arguments.fluid, seed)
+        model = model_of(arguments.fluid, seed, arguments.model)
         t0 = model.bath_temperature
         if "lattice" in arguments.rows:
             context = model.context("CPU", properties=CPU, seed=seed)

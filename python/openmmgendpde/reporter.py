@@ -1,12 +1,18 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
 """The reporters of GenDPDE simulations, following OpenMM's reporter protocol: GenDPDEReporter (the thermodynamic
-state) and StateDataReporter (OpenMM's, with the conserved energy and the harmonic-mean particle temperature)."""
+state), StateDataReporter (OpenMM's, with the conserved energy and the harmonic-mean particle temperature) and
+BarostatTemperatureReporter (Monte Carlo barostats at the temperature of the ensemble the liquid samples)."""
 
-
+import openmm
 from openmm import app, unit
 
-from .analysis.thermodynamics import ThermodynamicProbe, conserved_energy, particle_temperature_means
+from .analysis.thermodynamics import (
+    ThermodynamicProbe,
+    conserved_energy,
+    ensemble_temperature,
+    particle_temperature_means,
+)
 from .internal.reporting import checked_choice, checked_file, checked_report_interval, open_file
 from .units import ReducedUnits
 
@@ -149,3 +155,65 @@ class StateDataReporter(app.StateDataReporter):
         if self._harmonicTemperature:
             values.append(particle_temperature_means(simulation.integrator)[1])
         return values
+
+
+#: The Monte Carlo barostats of OpenMM, each with the name of the context parameter that holds its temperature.
+BAROSTAT_TEMPERATURE_PARAMETERS = {
+    cls.__name__: cls.Temperature() for cls in (openmm.MonteCarloBarostat, openmm.MonteCarloAnisotropicBarostat,
+                                                openmm.MonteCarloMembraneBarostat, openmm.MonteCarloFlexibleBarostat)}
+
+
+def _barostat_parameters(system, caller):
+    """The temperature parameters of the Monte Carlo barostats of ``system`` (sorted names); an OpenMMException
+    naming ``caller`` if it has none."""
+    names = set()
+    for force in system.getForces():
+        name = BAROSTAT_TEMPERATURE_PARAMETERS.get(type(force).__name__)
+        if name is not None:
+            names.add(name)
+    if not names:
+        kinds = ", ".join(sorted(BAROSTAT_TEMPERATURE_PARAMETERS))
+        raise openmm.OpenMMException(f"{caller}: the System has no Monte Carlo barostat ({kinds}) whose temperature "
+                                     f"could be set; add one first (e.g. Model.add_barostat)")
+    return sorted(names)
+
+
+class BarostatTemperatureReporter:
+    """Keeps the Monte Carlo barostats of a Simulation at the temperature of the ensemble its liquid samples: every
+    ``reportInterval`` steps it sets their temperature (setTemperature) to the harmonic mean of theta_i in the
+    Isoenergetic mode (the liquid's own temperature), the bath's T0 in the Isothermal mode, the kinetic temperature
+    in the Conservative mode. Use it like OpenMM's reporters, with the barostat's frequency or a small multiple of
+    it: ``simulation.reporters.append(BarostatTemperatureReporter(25))``. It writes nothing; the temperature last
+    set is ``temperature`` (K; None before the first report). For a Context without a Simulation, call
+    ``BarostatTemperatureReporter.setTemperature(context)`` between runs of steps.
+
+    ``reportInterval``: an integer >= 1, else OpenMMException naming it. A Simulation whose System has no Monte Carlo
+    barostat is refused (OpenMMException) at the first report."""
+
+    def __init__(self, reportInterval):
+        self._interval = checked_report_interval("BarostatTemperatureReporter", reportInterval)
+        self.temperature = None
+
+    @staticmethod
+    def setTemperature(context, integrator=None):
+        """Set the temperature of every Monte Carlo barostat of ``context``'s System (its context parameter, e.g.
+        MonteCarloBarostat.Temperature(); BAROSTAT_TEMPERATURE_PARAMETERS) to that of the ensemble the liquid
+        samples now (analysis.thermodynamics.ensemble_temperature of ``integrator``, default the Context's): the
+        bath's T0 in the Isothermal mode, the harmonic mean of theta_i in the Isoenergetic mode, the kinetic
+        temperature in the Conservative mode. The barostat's acceptance, exp(-(dU + P dV - N k_B T ln(V'/V))/(k_B
+        T)), samples the volume at the temperature T it is given; an Isoenergetic liquid is at its own temperature,
+        which its energy sets, not at the bath's (docs/fluids.md, "A barostat at the liquid's temperature"). Returns
+        that temperature (K). An OpenMMException if the System has no Monte Carlo barostat, before anything
+        changes."""
+        names = _barostat_parameters(context.getSystem(), "BarostatTemperatureReporter.setTemperature")
+        temperature = ensemble_temperature(context, context.getIntegrator() if integrator is None else integrator)
+        for name in names:
+            context.setParameter(name, temperature)
+        return temperature
+
+    def describeNextReport(self, simulation):
+        steps = self._interval - simulation.currentStep % self._interval
+        return (steps, False, False, False, False)
+
+    def report(self, simulation, state):
+        self.temperature = self.setTemperature(simulation.context, simulation.integrator)

@@ -93,17 +93,30 @@ class ThermodynamicProbe:
         self.exact_virial_forces = [f for f in self.gendpde_forces if f.getForceGroup() not in other_groups]
         self.numerical_virial_groups = sorted(other_groups)
 
-    def sample(self, state, context, integrator):
-        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
-        velocities; ``integrator`` the Context's integrator (any type)."""
+    def internal_kinetic_energy(self, state, context=None, integrator=None):
+        """K_int = K - |P|^2/(2M) (kJ/mol, a float): the kinetic energy of ``state`` (a State with energies and
+        velocities) in the frame of the centre of mass. With the ``context`` and its ``integrator`` (a
+        GenDPDEIntegrator) and external fields in the System, P includes the fields' half kick (_external_impulse)."""
         kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
         velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
         momentum = self.masses @ velocities
-        gendpde = _as_gendpde_integrator(integrator)
+        gendpde = _as_gendpde_integrator(integrator) if integrator is not None else None
         if gendpde is not None and self.external_fields:
             momentum = momentum + self._external_impulse(context, gendpde)
-        internal_kinetic = kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+        return kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
+
+    def kinetic_temperature(self, state, context=None, integrator=None):
+        """2 K_int/(d k_B) (K, a float) of ``state`` (a State with energies and velocities), d = 3N - 3
+        (internal_kinetic_energy)."""
         kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+        return 2 * self.internal_kinetic_energy(state, context, integrator) / (self.degrees_of_freedom * kb)
+
+    def sample(self, state, context, integrator):
+        """A ThermodynamicSample of ``context`` now. ``state`` is a State of ``context`` with energies and
+        velocities; ``integrator`` the Context's integrator (any type)."""
+        internal_kinetic = self.internal_kinetic_energy(state, context, integrator)
+        kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
+        gendpde = _as_gendpde_integrator(integrator)
         mean, harmonic = particle_temperature_means(integrator)
         conserved = conserved_energy(integrator)
         is_conserved = gendpde is not None and gendpde.getMode() != GenDPDEIntegrator.Isothermal
@@ -210,7 +223,7 @@ def particle_temperature_means(integrator):
     if gendpde is None:
         return _NAN, _NAN
     theta = gendpde.getParticleTemperatures().value_in_unit(_K)
-    return float(np.mean(theta)), float(1 / np.mean(1 / theta))
+    return float(np.mean(theta)), harmonic_temperature(theta)
 
 
 def conserved_energy(integrator):
@@ -219,6 +232,38 @@ def conserved_energy(integrator):
     in U (models.flows says what that energy means)."""
     gendpde = _as_gendpde_integrator(integrator)
     return _NAN if gendpde is None else float(gendpde.getConservedEnergy().value_in_unit(_ENERGY))
+
+
+def harmonic_temperature(temperatures):
+    """<1/theta_i>^-1 (K, a float) of the particle temperatures ``temperatures`` (K: an array, or a Quantity such
+    as GenDPDEIntegrator.getParticleTemperatures()): the thermodynamic temperature of the particles, which equals the
+    kinetic one in equilibrium (the arithmetic mean is biased high by 1 + k_B/C_V; docs/theory.md section 8)."""
+    if unit.is_quantity(temperatures):
+        temperatures = temperatures.value_in_unit(_K)
+    return float(1 / np.mean(1 / np.asarray(temperatures, dtype=float)))
+
+
+def ensemble_temperature(context, integrator):
+    """The temperature (K, a float) of the ensemble that the liquid in ``context`` samples now, the one a Monte Carlo
+    barostat's acceptance should use: with a GenDPDEIntegrator in its Isothermal mode (or any other integrator that
+    has getTemperature(), a thermostat) the bath's; in its Isoenergetic mode the liquid's own, the harmonic mean of
+    theta_i (its motion and internal energies are one closed system, whose temperature it is: the kinetic
+    temperature equals it in equilibrium, and it is the precise one of the two); in its Conservative mode, where the
+    internal energies exchange nothing, the kinetic temperature of the motion (centre-of-mass frame, 3N - 3).
+    ValueError for an integrator of neither kind."""
+    gendpde = _as_gendpde_integrator(integrator)
+    if gendpde is not None:
+        mode = gendpde.getMode()
+        if mode == GenDPDEIntegrator.Isoenergetic:
+            return harmonic_temperature(gendpde.getParticleTemperatures())
+        if mode == GenDPDEIntegrator.Conservative:
+            state = context.getState(getEnergy=True, getVelocities=True)
+            return ThermodynamicProbe(context.getSystem()).kinetic_temperature(state, context, gendpde)
+        return gendpde.getTemperature().value_in_unit(_K)
+    if callable(getattr(integrator, "getTemperature", None)):
+        return integrator.getTemperature().value_in_unit(_K)
+    raise ValueError(f"integrator = a {type(integrator).__name__} is not allowed; the temperature of its ensemble is "
+                     f"known for a GenDPDEIntegrator or an integrator with a thermostat (getTemperature)")
 
 
 def _as_gendpde_integrator(integrator):

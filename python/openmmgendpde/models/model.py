@@ -8,6 +8,8 @@ equilibrium one way (equilibrate, with an Equilibration protocol). The published
 and any fluid (fluid.GenDPDEParameters.liquid) are built here."""
 
 import dataclasses
+import numbers
+import warnings
 
 import numpy as np
 import openmm
@@ -15,9 +17,8 @@ from openmm import app, unit
 
 from ..api import LAWS, GenDPDEForce, GenDPDEIntegrator, law_value
 from ..units import BOLTZMANN
-from . import laws
+from . import laws, melting
 from .lattice import box_volume
-from .melting import melt_then_switch
 
 #: The names of a model's particles in its Topology (atom, element, residue), for PDB files and viewers.
 PARTICLE_NAMES = ("CG", None, "CG")
@@ -194,12 +195,46 @@ class ModelParameters:
 class Equilibration:
     """How a model leaves its lattice: ``thermostat_steps`` steps with the DPD thermostat (Isothermal) at
     ``temperature`` (K; None: the model's T0), velocities and internal energies drawn with ``seed``, then ``mode``
-    and ``settle_steps`` steps in it (the exchange between the motion and the internal energies settles)."""
+    and ``settle_steps`` steps in it (the exchange between the motion and the internal energies settles).
+
+    With ``temperature_window`` > 0 (the Isoenergetic mode only) the liquid is then brought to that temperature
+    (melting.bring_to_temperature: windows of ``temperature_window`` steps sampled every ``sample_interval``, the
+    thermal energies scaled until the harmonic mean of theta_i and the kinetic temperature are within ``tolerance``
+    standard errors of it, at most ``max_corrections`` times): without it an Isoenergetic liquid settles where the
+    energy it had at the switch puts it, off T0 by a draw whose standard deviation is 1.4 K for 500 particles of argon
+    and 2.1 K for water (docs/fluids.md, "A liquid ready to run").
+    READY_LIQUID is such a protocol. Bad values raise ValueError naming the field when it is made."""
     thermostat_steps: int
     settle_steps: int = 0
     mode: int = GenDPDEIntegrator.Isoenergetic
     temperature: float = None
     seed: int = 0
+    temperature_window: int = 0
+    sample_interval: int = 20
+    tolerance: float = 2.0
+    max_corrections: int = 4
+
+    def __post_init__(self):
+        for name in ("thermostat_steps", "settle_steps", "temperature_window"):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < 0:
+                raise ValueError(f"Equilibration: {name} = {value!r} is not allowed; it must be an integer >= 0")
+        if self.temperature_window:
+            if self.mode != GenDPDEIntegrator.Isoenergetic:
+                raise ValueError(f"Equilibration: temperature_window = {self.temperature_window} is not allowed with "
+                                 f"mode = {self.mode}; only an Isoenergetic liquid (mode "
+                                 f"{GenDPDEIntegrator.Isoenergetic}) is brought to the temperature (the Isothermal "
+                                 f"thermostat keeps its bath's); use temperature_window = 0")
+            melting.check_window(self.temperature_window, self.sample_interval, self.tolerance,
+                                 self.max_corrections)
+
+
+#: A liquid ready to run at T0 (Model.simulation(..., equilibration=READY_LIQUID), Model.equilibrate): 3000 steps
+#: with the DPD thermostat (30 time units at the models' default step dt* = 0.01: water's particle densities need
+#: ~25 to reach their plateau, docs/fluids.md), the thermal energies put at their mean at T0, 500 Isoenergetic
+#: steps, then windows of 2000 steps until the harmonic mean of theta_i and the kinetic temperature are within 2
+#: standard errors of T0 (for 500 particles of argon ~0.1 K and ~0.4 K).
+READY_LIQUID = Equilibration(3000, 500, temperature_window=2000)
 
 
 @dataclasses.dataclass
@@ -213,6 +248,10 @@ class Model:
     topology: app.Topology
     positions: np.ndarray
     parameters: ModelParameters = None
+    #: The melting.LiquidTemperatures of the last equilibration that brought the liquid to its temperature
+    #: (equilibrate or simulation with an Equilibration whose temperature_window > 0); None before.
+    equilibration_report: melting.LiquidTemperatures = dataclasses.field(default=None, repr=False, compare=False,
+                                                                         kw_only=True)
 
     @property
     def num_particles(self):
@@ -236,6 +275,31 @@ class Model:
             return self.parameters.temperature
         return self.integrator.getTemperature().value_in_unit(unit.kelvin)
 
+    def add_barostat(self, pressure, frequency=25, seed=0):
+        """Add an openmm.MonteCarloBarostat at ``pressure`` (a Quantity, or bar) and the model's T0, trying a volume
+        move every ``frequency`` steps with random seed ``seed`` (0: chosen when a Context is made), to the System,
+        and return it; before a Context of the model is made. Its
+        temperature is T0, that of the Isothermal mode's bath; in the Isoenergetic mode the liquid is at its own
+        temperature, which BarostatTemperatureReporter (or its setTemperature, for a Context) keeps the
+        barostat at (docs/fluids.md, "A barostat at the liquid's temperature"). Bad arguments raise ValueError
+        naming the argument, its value and what is allowed, before the System changes."""
+        value = pressure.value_in_unit(unit.bar) if unit.is_quantity(pressure) and \
+            pressure.unit.is_compatible(unit.bar) else pressure
+        if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value):
+            raise ValueError(f"add_barostat: pressure = {pressure!r} is not allowed; it must be a finite pressure (a "
+                             f"Quantity, or bar)")
+        if isinstance(frequency, bool) or not isinstance(frequency, numbers.Integral) or frequency < 1:
+            raise ValueError(f"add_barostat: frequency = {frequency!r} is not allowed; it must be an integer >= 1 "
+                             f"(steps between volume moves)")
+        if isinstance(seed, bool) or not isinstance(seed, numbers.Integral) or not 0 <= seed < 2**31:
+            raise ValueError(f"add_barostat: seed = {seed!r} is not allowed; it must be an integer in [0, 2^31)")
+        barostat = openmm.MonteCarloBarostat(float(value) * unit.bar, self.bath_temperature * unit.kelvin,
+                                             int(frequency))
+        barostat.setRandomNumberSeed(int(seed))
+        self.system.addForce(barostat)
+        barostat._system = self.system   # the System owns the C++ barostat (addForce), as for the model's force
+        return barostat
+
     def context(self, platform="Reference", temperature=None, seed=1, properties=None, positions=None,
                 integrator=None, velocities=True):
         """An openmm.Context of the model (``platform``: an openmm.Platform or its name, with ``properties``) and its
@@ -252,13 +316,20 @@ class Model:
                                                * unit.kelvin, seed)
         return context
 
-    def simulation(self, platform="Reference", velocity_seed=1, properties=None):
-        """An openmm.app.Simulation of the model at its positions, with Maxwell-Boltzmann velocities at T0
-        (``platform``: its name)."""
+    def simulation(self, platform="Reference", velocity_seed=1, properties=None, equilibration=None):
+        """An openmm.app.Simulation of the model (``platform``: its name, with ``properties``). Without
+        ``equilibration``: at its lattice positions, with Maxwell-Boltzmann velocities at T0 drawn with
+        ``velocity_seed``. With an Equilibration (e.g. READY_LIQUID): velocities drawn at its temperature, then
+        brought off the lattice by it as equilibrate() does (its Context's step count and time then count those
+        steps), so that the Simulation holds a liquid ready to run; the temperatures reached are in
+        equilibration_report."""
+        temperature = self._equilibration_temperature(equilibration)
         simulation = app.Simulation(self.topology, self.system, self.integrator,
                                     openmm.Platform.getPlatformByName(platform), properties)
         simulation.context.setPositions(self.positions)
-        simulation.context.setVelocitiesToTemperature(self.bath_temperature * unit.kelvin, velocity_seed)
+        simulation.context.setVelocitiesToTemperature(temperature * unit.kelvin, velocity_seed)
+        if equilibration is not None:
+            self._leave_lattice(simulation.context, equilibration, temperature)
         return simulation
 
     def wrapped_positions(self, context):
@@ -270,15 +341,44 @@ class Model:
     def equilibrate(self, platform, protocol, properties=None):
         """A Context of the model brought off its lattice by ``protocol`` (an Equilibration): the integrator's bath at
         its temperature, velocities drawn at it, its thermostat steps, then its mode with the internal energies drawn
-        at that temperature (melting.melt_then_switch) and its settle steps."""
-        temperature = self.bath_temperature if protocol.temperature is None else protocol.temperature
-        integrator = self.integrator
-        integrator.setMode(GenDPDEIntegrator.Isothermal)
-        integrator.setTemperature(temperature)
+        at that temperature (melting.melt_then_switch) and its settle steps; with its temperature_window, the thermal
+        energies put at their mean at that temperature after the draw and the liquid then brought to it
+        (melting.melt_to_temperature; the temperatures reached are in equilibration_report, and a RuntimeWarning says
+        so if they are not within its tolerance)."""
+        temperature = self._equilibration_temperature(protocol)
         context = self.context(platform, temperature, protocol.seed, properties)
-        melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
-        integrator.step(protocol.settle_steps)
+        self._leave_lattice(context, protocol, temperature)
         return context
+
+    def _equilibration_temperature(self, protocol):
+        """The temperature (K) of ``protocol`` (an Equilibration, or None: T0); with a protocol the integrator is put
+        in the Isothermal mode with its bath there. ValueError if ``protocol`` is not an Equilibration."""
+        if protocol is None:
+            return self.bath_temperature
+        if not isinstance(protocol, Equilibration):
+            raise ValueError(f"equilibration = {protocol!r} is not allowed; it must be an Equilibration (e.g. "
+                             f"READY_LIQUID) or None")
+        temperature = self.bath_temperature if protocol.temperature is None else protocol.temperature
+        self.integrator.setMode(GenDPDEIntegrator.Isothermal)
+        self.integrator.setTemperature(temperature)
+        return temperature
+
+    def _leave_lattice(self, context, protocol, temperature):
+        """The steps of ``protocol`` (an Equilibration) on ``context`` (a Context of the model) at ``temperature``."""
+        integrator = self.integrator
+        if not protocol.temperature_window:
+            melting.melt_then_switch(integrator, protocol.thermostat_steps, temperature, protocol.seed, protocol.mode)
+            integrator.step(protocol.settle_steps)
+        else:
+            report = melting.melt_to_temperature(context, integrator, protocol.thermostat_steps, temperature,
+                                                 protocol.seed, protocol.settle_steps, protocol.temperature_window,
+                                                 protocol.sample_interval, protocol.tolerance,
+                                                 protocol.max_corrections)
+            self.equilibration_report = report
+            if not report.converged:
+                warnings.warn(f"the liquid did not reach its temperature within {protocol.max_corrections} "
+                              f"corrections: {report}; run longer windows (temperature_window) or more corrections",
+                              RuntimeWarning, stacklevel=3)
 
     def melted(self, platform, mode, melt_steps, settle_steps, temperature=None, seed=0):
         """equilibrate(platform, Equilibration(melt_steps, settle_steps, mode, temperature, seed))."""

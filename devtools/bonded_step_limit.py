@@ -41,9 +41,10 @@ print(f"{'mode':>13} {'omega*':>7} {'k (kJ/mol/nm^2)':>16} {'dt* limit':>10} {'o
 for omega in args.omega:
     # omega_max = 2 sqrt(k/m) for a bead with two bonds (Gershgorin, equal masses)
     stiffness = parameters.mass * (omega / time_unit / 2) ** 2
-    build = (lambda estimator, seed, stiffness=stiffness: polymer_solution(
-        parameters, args.length, args.chains, (5, 5, 5), estimator, time_step=0.005, seed=seed,
-        bond_stiffness=stiffness))
+
+    def build(estimator, seed, stiffness=stiffness):
+        return polymer_solution(parameters, args.length, args.chains, (5, 5, 5), estimator, time_step=0.005,
+                                seed=seed, bond_stiffness=stiffness)
     bound = bonded_frequency(build("VB", 1).system) * time_unit
     for mode in args.modes:
         limit = largest_stable_step(parameters, "VB", mode, platform=args.platform, build=build,

@@ -1,14 +1,15 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
 """The polymer-solution study (docs/soft-matter.md, "A polymer solution"; examples/polymer_solution.py): chains of
-several lengths N in a fluid's liquid (models.polymers), each run with the DPD thermostat at T0 (Isothermal: the
-chains' conformations sample the canonical distribution of the model at T0), their mean-square radius of gyration
-sampled and block-averaged, and the Flory exponent nu of <R_g^2>^(1/2) ~ N^nu fitted (analysis.polymers.flory_fit).
+several lengths N in a fluid's liquid (models.polymers), each run with the DPD thermostat at T0 (Isothermal: the chains'
+conformations sample the canonical distribution of the model at T0), their mean-square radius of gyration sampled and
+averaged with its correlation accounted for, and the Flory exponent nu of <R_g^2>^(1/2) ~ N^nu fitted
+(analysis.polymers.flory_fit).
 
-Each N in its own cube (box_cells: an edge of at least BOX_OVER_CHAIN b0 N^0.6, 1.5-1.6 times the end-to-end distance
-of the longest chains measured, so that a chain rarely meets its own image), with as many chains as give the bead
-fraction ``bead_fraction`` (at least one): dilute (the default 0.04 is a quarter or less of the overlap fraction
-N/(4 pi R_g^3/3) n0^-1 of N <= 40), so that chains rarely meet. The bonded beads' mean density against the solvent's
+Each N in its own cube (box_cells: an edge of at least BOX_OVER_CHAIN b0 N^0.6, 1.5-1.6 times the end-to-end distance of
+the longest chains measured, so that a chain rarely meets its own image), with as many chains as give the bead fraction
+``bead_fraction`` (at least one): dilute (the default 0.04 is a quarter or less of the overlap fraction N/(4 pi R_g^3/3)
+n0^-1 of N <= 40), so that chains rarely meet. The bonded beads' mean density against the solvent's
 (GenDPDEForce.getParticleDensities) is sampled too (docs/soft-matter.md, "Bonded beads and the many-body density")."""
 
 import dataclasses
@@ -18,7 +19,7 @@ import numpy as np
 from openmm import unit
 
 from ..analysis.polymers import bond_lengths, flory_fit, radii_of_gyration_squared
-from ..analysis.statistics import block_average, statistical_inefficiency
+from ..analysis.statistics import correlated_mean
 from ..api import GenDPDEIntegrator
 from ..models.polymers import lattice_bond_length, polymer_solution
 
@@ -28,10 +29,11 @@ BOX_OVER_CHAIN = 1.5
 
 @dataclasses.dataclass(frozen=True)
 class ChainSize:
-    """What one run of chains of ``chain_length`` beads measured (lengths in nm): the root of the mean-square radius
-    of gyration with its standard error (block averages of the chains' mean R_g^2, propagated to the root), the
-    samples taken and their statistical inefficiency g, the mean bond length over the bond's rest length, and the
-    bonded beads' and the solvent's mean density over n0."""
+    """What one run of chains of ``chain_length`` beads measured (lengths in nm): the root of the mean-square radius of
+    gyration with its standard error (analysis.statistics.correlated_mean of the chains' mean R_g^2, sqrt(g s^2/n),
+    propagated to the root), the samples taken and their statistical inefficiency g (samples / g: the independent
+    ones, which make the error itself uncertain by ~1/sqrt(2 samples/g)), the mean bond length over the bond's rest
+    length, and the bonded beads' and the solvent's mean density over n0."""
     chain_length: int
     num_chains: int
     radius_of_gyration: float
@@ -77,12 +79,10 @@ def chain_size(parameters, chain_length, num_chains, cells, time_step=0.05, melt
         density = model.force.getParticleDensities(context).value_in_unit(unit.nanometer**-3) / parameters.density
         beads.append(density[:bonded].mean())
         solvent.append(density[bonded:].mean() if len(density) > bonded else np.nan)
-    radii = np.array(radii)
-    mean, error = block_average(radii, name=f"R_g^2 of N = {chain_length}")
-    root = float(np.sqrt(mean))
-    return ChainSize(chain_length, num_chains, root, float(error / (2 * root)), len(radii),
-                     statistical_inefficiency(radii), float(np.mean(stretch)), float(np.mean(beads)),
-                     float(np.mean(solvent)))
+    mean = correlated_mean(radii)
+    root = float(np.sqrt(mean.mean))
+    return ChainSize(chain_length, num_chains, root, float(mean.standard_error / (2 * root)), len(radii),
+                     mean.inefficiency, float(np.mean(stretch)), float(np.mean(beads)), float(np.mean(solvent)))
 
 
 def flory_study(parameters, chain_lengths, bead_fraction=0.04, progress=None, **options):

@@ -23,6 +23,7 @@ from openmmgendpde.models.model import MONOMER_RESIDUE
 from openmmgendpde.models.polymers import BOND_STIFFNESS, chain_sites, lattice_bond_length, polymer_solution
 
 EXAMPLES = pathlib.Path(__file__).resolve().parents[2] / "examples"
+SOFT_MATTER = pathlib.Path(__file__).resolve().parents[2] / "docs" / "soft-matter.md"
 ARGON = fluid.coarse_grain(fluid.ARGON, 5, neighbors=20)
 KB = unit.MOLAR_GAS_CONSTANT_R.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 
@@ -128,8 +129,9 @@ def _frequencies(system, positions, h=1e-5):
 def test_bonded_frequency_is_exact_for_a_dimer_and_a_ring_and_bounds_the_rest():
     """Analytic cases of Gershgorin's bound on the mass-weighted Hessian: a dimer of equal masses vibrates at
     sqrt(2k/m) and a straight ring (a chain closed through a periodic box) of an even number of equal masses has its
-    highest mode (neighbours in opposite phase along it) at 2 sqrt(k/m): the bound is exact for both. Unequal masses (exact sqrt(k (1/m1 + 1/m2))), a chain with angles: the
-    bound is above the highest frequency of the Hessian of OpenMM's forces (central differences, to 1e-6)."""
+    highest mode (neighbours in opposite phase along it) at 2 sqrt(k/m): the bound is exact for both. Unequal masses
+    (exact sqrt(k (1/m1 + 1/m2))), a chain with angles: the bound is above the highest frequency of the Hessian of
+    OpenMM's forces (central differences, to 1e-6)."""
     k, m, r0 = 5000.0, 40.0, 0.3
     dimer, x = _system([[0, 0, 0], [r0, 0, 0]], [m, m], [(0, 1, r0, k)])
     assert stability.bonded_frequency(dimer) == pytest.approx(math.sqrt(2 * k / m), rel=1e-12)
@@ -272,3 +274,16 @@ def test_the_polymer_example_runs_at_a_small_size():
     assert float(rows[1][2]) > float(rows[0][2])
     nu = float(result.stdout.split("nu = ")[1].split()[0])
     assert math.isfinite(nu)
+
+
+def test_the_polymer_solution_snippet_of_the_docs_runs(tmp_path):
+    """The Python block of docs/soft-matter.md, "A polymer solution", as a user would paste it (200 thermostatted
+    steps of 500 water particles): it prints a radius of gyration of 10 beads between the fully folded and the
+    straight chain's (b0 sqrt(99/12) = 2.87 b0), and writes a PDB file that holds the chains' bonds (CONECT)."""
+    section = SOFT_MATTER.read_text().split("## A polymer solution")[1]
+    code = section.split("```python\n")[1].split("```")[0]
+    result = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, check=True,
+                            timeout=300)
+    radius, b0 = (float(part.split()[0]) for part in result.stdout.split(": ")[1].split("b0 = "))
+    assert 0.3 * b0 < radius < math.sqrt(99 / 12) * b0, result.stdout
+    assert (tmp_path / "chains.pdb").read_text().count("CONECT") >= 45

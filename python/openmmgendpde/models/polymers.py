@@ -2,17 +2,16 @@
 # Copyright (c) 2026 The openmm-gendpde developers
 """Polymer chains in a GenDPDE liquid (docs/soft-matter.md, "A polymer solution"): linear chains of the fluid's own
 particles (same mass, same type: an athermal, good solvent) held together by an openmm.HarmonicBondForce (periodic
-boundaries), optionally stiffened by an openmm.HarmonicAngleForce.
-
-The chains start on the sites of the liquid's FCC lattice, replacing solvent particles, so that the start is at the
-fluid's density: each chain is a self-avoiding walk along the lattice's nearest-neighbour steps, whose length
-(sqrt(2)/n0)^(1/3) = 1.12 n0^(-1/3) is the default rest length b0 of the bonds (the bonds start unstrained). The
-default stiffness k = 100 k_B T0/b0^2 keeps a bond's length within sqrt(k_B T0/k) = 0.1 b0 (rms) of b0, so the chain
-is a string of beads at about the liquid's spacing, and the highest frequency of the bonds, 2 sqrt(k/m), is far below
-the fluid's own (calibration.stability.bonded_frequency). GenDPDEForce keeps no exclusions: bonded beads count in each
+boundaries), optionally stiffened by an openmm.HarmonicAngleForce. The chains start on the sites of the liquid's FCC
+lattice, replacing solvent particles, so that the start is at the fluid's density: each chain is a self-avoiding walk
+along the lattice's nearest-neighbour steps, whose length (sqrt(2)/n0)^(1/3) = 1.12 n0^(-1/3) is the default rest
+length b0 of the bonds (the bonds start unstrained). The default stiffness k = 100 k_B T0/b0^2 keeps a bond's length
+within sqrt(k_B T0/k) = 0.1 b0 (rms) of b0, so the chain is a string of beads at about the liquid's spacing, and the
+step that the bonds' highest frequency 2 sqrt(k/m) allows (calibration.stability.bonded_frequency) is above the
+fluid's own for argon and water (docs/soft-matter.md). GenDPDEForce keeps no exclusions: bonded beads count in each
 other's density and feel the integrator's friction and heat conduction (docs/soft-matter.md, "Bonded beads and the
-many-body density"). The model is built by ModelParameters.build, whose Topology holds the chains and their bonds (PDB
-files show them); the chains are the first particles, in order, and the solvent follows."""
+many-body density"). The model is built by ModelParameters.build, whose Topology holds the chains and their bonds
+(PDB files show them); the chains are the first particles, in order, and the solvent follows."""
 
 import dataclasses
 import math

@@ -22,6 +22,8 @@ from .lattice import box_volume
 
 #: The names of a model's particles in its Topology (atom, element, residue), for PDB files and viewers.
 PARTICLE_NAMES = ("CG", None, "CG")
+#: The residue name of a chain's beads in a model's Topology (ModelParameters.build's ``chains``), one bead a residue.
+MONOMER_RESIDUE = "MON"
 #: Boltzmann's constant in kJ/mol/K.
 _KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 
@@ -166,13 +168,20 @@ class ModelParameters:
         return integrator
 
     def build(self, box, positions, estimator, step_size, seed=0, mode=GenDPDEIntegrator.Isoenergetic,
-              names=PARTICLE_NAMES, model_type=None, **fields):
+              names=PARTICLE_NAMES, model_type=None, chains=(), **fields):
         """The model (``model_type``, default Model, with ``fields``) of these parameters: a System of len(positions)
         particles in the periodic ``box`` (three rows, nm) with one GenDPDEForce of ``estimator`` (a
         GenDPDEForce.DensityEstimator value) and a GenDPDEIntegrator of step ``step_size`` (ps, or a Quantity),
         random seed ``seed`` (0: chosen when a Context is made) and ``mode``, a Topology whose particles are named
-        ``names`` (atom, element, residue), and the ``positions`` (nm, N x 3). The force holds a reference to the
+        ``names`` (atom, element, residue), and the ``positions`` (nm, N x 3). ``chains``: the lengths of the chains
+        that the first particles form, in order (models.polymers); each is a chain of the Topology, one residue
+        MONOMER_RESIDUE per bead and a Topology bond between consecutive beads (the System's bonded forces are the
+        caller's); the other particles follow in one chain, one residue each. The force holds a reference to the
         System, which owns it, so that it stays valid as long as it is used."""
+        bonded = sum(int(length) for length in chains)
+        if bonded > len(positions) or any(int(length) < 1 for length in chains):
+            raise ValueError(f"chains = {list(chains)} is not allowed: each length must be >= 1 and together at most "
+                             f"the {len(positions)} particles")
         box = [openmm.Vec3(*(float(x) for x in row)) for row in box]
         system = openmm.System()
         system.setDefaultPeriodicBoxVectors(*box)
@@ -184,8 +193,14 @@ class ModelParameters:
         integrator = self._integrator(step_size, seed, mode)
         atom, element, residue = names
         topology = app.Topology()
-        chain = topology.addChain()
-        for _ in range(len(positions)):
+        for length in chains:
+            chain = topology.addChain()
+            beads = [topology.addAtom(atom, element, topology.addResidue(MONOMER_RESIDUE, chain))
+                     for _ in range(int(length))]
+            for first, second in zip(beads[:-1], beads[1:]):
+                topology.addBond(first, second)
+        chain = topology.addChain() if len(positions) > bonded else None
+        for _ in range(len(positions) - bonded):
             topology.addAtom(atom, element, topology.addResidue(residue, chain))
         topology.setPeriodicBoxVectors(unit.Quantity(box, unit.nanometer))   # as PDBFile and PDBReporter expect
         return (model_type or Model)(system, force, integrator, topology, np.asarray(positions), self, **fields)

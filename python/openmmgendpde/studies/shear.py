@@ -120,6 +120,18 @@ def shear_run(parameters, interval, cells=(8, 8, 8), estimator=None, time_step=0
     return run
 
 
+def record(run):
+    """A ShearRun as a dict of plain numbers and lists (for JSON), OpenMM units."""
+    result = run.result
+    return {"interval": run.interval, "viscosity": result.viscosity, "error": result.error,
+            "shear_rate": result.shear_rate, "shear_rate_error": result.shear_rate_error,
+            "momentum_flux": result.momentum_flux, "momentum_flux_error": result.momentum_flux_error,
+            "independent_samples": result.independent_samples, "peak_fraction": run.peak_fraction,
+            "measured_time": run.measured_time, "centre": list(result.centre), "profile": list(result.profile),
+            "profile_error": list(result.profile_error), "fitted": [bool(b) for b in result.fitted],
+            "temperature_profile": list(run.temperature_profile)}
+
+
 def flow_curve(parameters, intervals, report=print, **options):
     """[shear_run(parameters, interval, **options) for each of ``intervals``], each with its own seed (the given one
     plus its index)."""

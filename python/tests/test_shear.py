@@ -26,10 +26,10 @@ ARGON_MODEL = coarse_grain(ARGON, 5, neighbors=20)
 _VELOCITY = unit.nanometer / unit.picosecond
 
 
-def _liquid(cells=(3, 3, 6), mode=GenDPDEIntegrator.Isoenergetic, platform="Reference", seed=4):
+def _liquid(cells=(3, 3, 6), mode=GenDPDEIntegrator.Isoenergetic, platform="Reference", seed=4, properties=None):
     """(model, context): the mapped argon model (216 particles by default) melted briefly and run in ``mode``."""
     model = ARGON_MODEL.liquid(cells=cells, mode=GenDPDEIntegrator.Isothermal, seed=seed)
-    return model, model.equilibrate(platform, Equilibration(100, 20, mode, seed=seed))
+    return model, model.equilibrate(platform, Equilibration(100, 20, mode, seed=seed), properties)
 
 
 def _on_step(model, context):
@@ -216,8 +216,8 @@ def test_reverse_shear_viscosity_agrees_with_the_wave_decay_and_poiseuille_flow(
     and Poiseuille flow 0.1946 +- 0.0046 (f = 0.25) and 0.2055 +- 0.0029 (f = 0.4) mPa s; their mean, 0.202 mPa s =
     121.6 amu/(nm ps), with the spread of the three, +- 0.006 mPa s (3.6 amu/(nm ps)), as its error. Tolerance: 3
     combined standard errors (this run's ~5%, and that one)."""
-    openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", "1")
-    run = shear_run(ARGON_MODEL, 25, cells=(8, 8, 8), developed=2.0, measured=5.0, seed=5, report=lambda _: None)
+    run = shear_run(ARGON_MODEL, 25, cells=(8, 8, 8), developed=2.0, measured=5.0, seed=5, properties={"Threads": "1"},
+                    report=lambda _: None)
     reference, reference_error = 121.6, 3.6
     assert run.result.error < 0.08 * run.result.viscosity
     assert run.result.viscosity == pytest.approx(reference, abs=3 * math.hypot(run.result.error, reference_error))
@@ -234,8 +234,8 @@ def test_the_xz_pressure_between_the_slabs_is_the_momentum_flux():
     equal J, which is counted from the swaps alone: independent. The mapped argon model in 4 x 4 x 8 cells (512
     particles), a swap every 20 steps, 27500 steps (2.5 momentum diffusion times of this viscosity, ~17 amu/(nm ps)
     without friction) to develop, 18000 to measure (~12 s). Tolerance: 3 combined standard errors (each ~5%)."""
-    openmm.Platform.getPlatformByName("CPU").setPropertyDefaultValue("Threads", "1")
-    model, context = _liquid(cells=(4, 4, 8), mode=GenDPDEIntegrator.Conservative, platform="CPU", seed=3)
+    model, context = _liquid(cells=(4, 4, 8), mode=GenDPDEIntegrator.Conservative, platform="CPU", seed=3,
+                             properties={"Threads": "1"})
     flow = ReverseShearFlow(20)
     flow.step(context, 27500)
     flow.reset()
@@ -256,3 +256,44 @@ def test_the_xz_pressure_between_the_slabs_is_the_momentum_flux():
     flux_error = correlated_mean(flow.momenta).standard_error * len(flow.momenta) / (2 * flow.area * duration)
     assert stress.standard_error < 0.1 * flux and flux_error < 0.1 * flux
     assert stress.mean == pytest.approx(flux, abs=3 * math.hypot(stress.standard_error, flux_error))
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (["--slabs", "21"], "argument --slabs: 21 is not allowed; it must be an even integer from 4 to 1000"),
+    (["--intervals", "0"], "argument --intervals: 0 is not allowed; it must be an integer >= 1"),
+    (["--measured", "0"], "argument --measured: 0 is not allowed; it must be a finite number > 0"),
+    (["--mode", "conservative"], "argument --mode: invalid choice: 'conservative'"),
+])
+def test_flow_curve_refuses_bad_arguments_before_running(arguments, message, capsys, monkeypatch):
+    """Usage errors (status 2) naming the option, the value and what is allowed; nothing runs."""
+    from openmmgendpde.cli import flow_curve
+    from openmmgendpde.cli.main import main
+    monkeypatch.setattr(flow_curve.study, "flow_curve", lambda *a, **k: pytest.fail("the study ran"))
+    with pytest.raises(SystemExit) as exit_:
+        main(["flow-curve"] + arguments)
+    assert exit_.value.code == 2 and message in capsys.readouterr().err
+
+
+def test_flow_curve_refuses_a_box_without_room_between_the_slabs(monkeypatch):
+    """A margin that leaves fewer than 2 bins in a half: a one-line error naming the options, before any run."""
+    from openmmgendpde.cli import flow_curve
+    from openmmgendpde.cli.main import main
+    monkeypatch.setattr(flow_curve.study, "flow_curve", lambda *a, **k: pytest.fail("the study ran"))
+    with pytest.raises(SystemExit, match="error: flow-curve: the box .* leaves fewer than 2 of 20 bins between the "
+                                         "slabs .* at least 2 nm from them.*--margin"):
+        main(["flow-curve", "--cells", "4", "4", "4", "--margin", "2"])
+
+
+@pytest.mark.validation
+def test_flow_curve_quick_prints_the_table_and_writes_json(tmp_path, capsys):
+    """flow-curve --quick end to end (512 particles, one interval, ~4 s): a table row for interval 25 and a JSON record
+    whose viscosity is J/gamma_dot of its own numbers (rounding)."""
+    import json
+
+    from openmmgendpde.cli.main import main
+    main(["flow-curve", "--quick", "--json", str(tmp_path / "flow.json")])
+    out = capsys.readouterr().out
+    assert "| 25 | " in out and "eta (mPa s)" in out
+    record = json.loads((tmp_path / "flow.json").read_text())["runs"][0]
+    assert record["interval"] == 25 and record["viscosity"] > 0
+    assert record["viscosity"] == pytest.approx(record["momentum_flux"] / record["shear_rate"], rel=1e-12)

@@ -211,12 +211,12 @@ def test_expected_maximum_of_normals_against_its_closed_forms():
 def test_reverse_shear_viscosity_agrees_with_the_wave_decay_and_poiseuille_flow():
     """The mapped argon model (5 molecules per particle, 20 neighbours, V-B, dt* = 0.01, Isoenergetic) in 8 x 8 x 8
     FCC cells (2048 particles), a swap every 25 steps (peak flow ~0.4 v_th, in the Newtonian range of the flow curve in
-    docs/flows.md), 2 momentum diffusion times to develop, 5 to measure (~15 s on one core). Expected: the viscosity
+    docs/flows.md), 2 momentum diffusion times to develop, 4 to measure (~12 s on one core). Expected: the viscosity
     that docs/transport.md measured on the same model and box by two other methods, the wave decay 0.206 +- 0.011 mPa s
     and Poiseuille flow 0.1946 +- 0.0046 (f = 0.25) and 0.2055 +- 0.0029 (f = 0.4) mPa s; their mean, 0.202 mPa s =
     121.6 amu/(nm ps), with the spread of the three, +- 0.006 mPa s (3.6 amu/(nm ps)), as its error. Tolerance: 3
     combined standard errors (this run's ~5%, and that one)."""
-    run = shear_run(ARGON_MODEL, 25, cells=(8, 8, 8), developed=2.0, measured=5.0, seed=5, properties={"Threads": "1"},
+    run = shear_run(ARGON_MODEL, 25, cells=(8, 8, 8), developed=2.0, measured=4.0, seed=5, properties={"Threads": "1"},
                     report=lambda _: None)
     reference, reference_error = 121.6, 3.6
     assert run.result.error < 0.08 * run.result.viscosity
@@ -321,3 +321,25 @@ def test_add_chains_makes_whole_periodic_chains_of_near_neighbours():
         assert np.linalg.norm(d) < 1.0
         assert length.value_in_unit(unit.nanometer) == 0.7
         assert constant.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**2) == 100.0
+
+
+@pytest.mark.validation
+def test_the_shear_flow_example_runs_the_openmm_way_and_measures_the_viscosity():
+    """examples/shear_flow.py at a small size (512 particles, 3500 steps to develop, ~3 tau, 4000 measured; ~10 s):
+    160 swaps in the measured 4000 steps, the profile falling in the first half and rising in the second, and eta
+    within 3 combined standard errors of the viscosity of docs/transport.md's two methods on the same model (121.6 +-
+    3.6 amu/(nm ps), as in test_reverse_shear_viscosity_agrees_with_the_wave_decay_and_poiseuille_flow; the box has
+    the same length along z, so the same k = 2 pi/L)."""
+    import pathlib
+    import re
+    import subprocess
+    import sys
+    script = pathlib.Path(__file__).resolve().parents[2] / "examples" / "shear_flow.py"
+    result = subprocess.run([sys.executable, str(script), "--cells", "4", "4", "8", "--develop", "3500", "--steps",
+                             "4000"], capture_output=True, text=True, check=True, timeout=600)
+    assert "160 swaps" in result.stdout
+    rows = [line.split() for line in result.stdout.splitlines() if re.match(r"^\s*\d+\.\d+\s+[+-]", line)]
+    v = np.array([float(row[1]) for row in rows])
+    assert len(v) == 20 and v[2] > v[5] > v[8] and v[12] < v[15] < v[18]
+    eta, error = (float(x) for x in re.search(r"eta = (\S+) \+- (\S+) amu", result.stdout).groups())
+    assert eta == pytest.approx(121.6, abs=3 * math.hypot(error, 3.6))

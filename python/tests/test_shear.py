@@ -215,12 +215,15 @@ def test_reverse_shear_viscosity_agrees_with_the_wave_decay_and_poiseuille_flow(
     that docs/transport.md measured on the same model and box by two other methods, the wave decay 0.206 +- 0.011 mPa s
     and Poiseuille flow 0.1946 +- 0.0046 (f = 0.25) and 0.2055 +- 0.0029 (f = 0.4) mPa s; their mean, 0.202 mPa s =
     121.6 amu/(nm ps), with the spread of the three, +- 0.006 mPa s (3.6 amu/(nm ps)), as its error. Tolerance: 3
-    combined standard errors (this run's ~5%, and that one)."""
+    combined standard errors, this run's at least 6%: its own error comes from a statistical inefficiency estimated
+    on ~6 correlation times and is itself uncertain (measured: 4 seeds of 8 tau scattered by 4.2% while reporting
+    2.0-6.8%, docs/flows.md; 4 tau: ~6%)."""
     run = shear_run(ARGON_MODEL, 25, cells=(8, 8, 8), developed=2.0, measured=4.0, seed=5, properties={"Threads": "1"},
                     report=lambda _: None)
     reference, reference_error = 121.6, 3.6
-    assert run.result.error < 0.08 * run.result.viscosity
-    assert run.result.viscosity == pytest.approx(reference, abs=3 * math.hypot(run.result.error, reference_error))
+    assert run.result.error < 0.1 * run.result.viscosity
+    error = max(run.result.error, 0.06 * run.result.viscosity)
+    assert run.result.viscosity == pytest.approx(reference, abs=3 * math.hypot(error, reference_error))
     assert 0.2 < run.peak_fraction < 0.7
 
 
@@ -329,7 +332,8 @@ def test_the_shear_flow_example_runs_the_openmm_way_and_measures_the_viscosity()
     160 swaps in the measured 4000 steps, the profile falling in the first half and rising in the second, and eta
     within 3 combined standard errors of the viscosity of docs/transport.md's two methods on the same model (121.6 +-
     3.6 amu/(nm ps), as in test_reverse_shear_viscosity_agrees_with_the_wave_decay_and_poiseuille_flow; the box has
-    the same length along z, so the same k = 2 pi/L)."""
+    the same length along z, so the same k = 2 pi/L), the run's error at least 6.5% (the scatter expected of 3.4 tau,
+    from the 4.2% of 8 tau measured in docs/flows.md)."""
     import pathlib
     import re
     import subprocess
@@ -342,4 +346,4 @@ def test_the_shear_flow_example_runs_the_openmm_way_and_measures_the_viscosity()
     v = np.array([float(row[1]) for row in rows])
     assert len(v) == 20 and v[2] > v[5] > v[8] and v[12] < v[15] < v[18]
     eta, error = (float(x) for x in re.search(r"eta = (\S+) \+- (\S+) amu", result.stdout).groups())
-    assert eta == pytest.approx(121.6, abs=3 * math.hypot(error, 3.6))
+    assert eta == pytest.approx(121.6, abs=3 * math.hypot(max(error, 0.065 * eta), 3.6))

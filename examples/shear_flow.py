@@ -9,7 +9,9 @@ run the OpenMM way: an openmm.app.Simulation with two reporters, ReverseShearFlo
 
 The flow starts at rest and develops as its slowest mode, in tau = rho (L/2)^2/(eta pi^2), ~1200 steps for this
 box length (L = 7.8 nm): --develop 4000 leaves ~3% of it (studies.shear lays the expected profile at the start
-instead, and `python -m openmmgendpde flow-curve` runs that protocol).
+instead, and `python -m openmmgendpde flow-curve` runs that protocol). Expect 0.20 +- 0.02 mPa s: seeds 1, 2 and 3
+gave 139.8 +- 5.9, 118.8 +- 4.9 and 126.8 +- 2.9 amu/(nm ps) (docs/flows.md: a single run's error is itself
+uncertain).
 """
 
 import argparse

@@ -2,8 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
 # Build openmm-gendpde's LAMMPS package: LAMMPS itself (Debian 12's source package, LAMMPS 29 Sep 2021 Update 2,
-# lammps/fetch-source.sh) with MPI (Debian's Open MPI), the PLUGIN package and shared libraries, plus DPD-REACT,
-# MANYBODY and OPT for the benchmarks against LAMMPS's own styles; then the plugin gendpdeplugin.so
+# lammps/fetch-source.sh) with MPI (Debian's Open MPI), the PLUGIN package and shared libraries, MOLECULE (bonds: the
+# polymers' atom styles), plus DPD-REACT, MANYBODY and OPT for the benchmarks against LAMMPS's own styles; then the plugin gendpdeplugin.so
 # (pair_style gendpde, fix gendpde; lammps/CMakeLists.txt). Everything goes into build/lammps/ (git-ignored):
 #   build/lammps/source/   the LAMMPS source       build/lammps/lammps/lmp   the LAMMPS executable (MPI)
 #   build/lammps/plugin/gendpdeplugin.so           the plugin (plugin load ...)
@@ -16,7 +16,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 sizes=smallbig
-packages=(-DPKG_PLUGIN=on -DPKG_DPD-REACT=on -DPKG_MANYBODY=on -DPKG_OPT=on)
+packages=(-DPKG_PLUGIN=on -DPKG_MOLECULE=on -DPKG_DPD-REACT=on -DPKG_MANYBODY=on -DPKG_OPT=on)
 out=$root/build/lammps
 if [ "${1:-}" = "--bigbig" ]; then
     sizes=bigbig
@@ -41,13 +41,15 @@ fi
 mkdir -p "$out"
 source_dir=$(lammps/fetch-source.sh "$root/build/lammps/source")
 jobs=$(nproc)
-if [ ! -f "$out/lammps/CMakeCache.txt" ]; then
+# (configured again when the package list changes: a build tree made before MOLECULE was added gets it)
+if [ ! -f "$out/lammps/CMakeCache.txt" ] || [ "$(cat "$out/lammps/packages.txt" 2>/dev/null)" != "${packages[*]}" ]; then
     echo "Configuring LAMMPS ($source_dir) into $out/lammps" >&2
     cmake -S "$source_dir/cmake" -B "$out/lammps" -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS=-O2 \
         -DBUILD_MPI=on -DBUILD_OMP=off -DBUILD_SHARED_LIBS=on -DBUILD_TOOLS=off -DLAMMPS_SIZES=$sizes \
         "${packages[@]}" \
         -DWITH_JPEG=off -DWITH_PNG=off -DWITH_FFMPEG=off -DWITH_GZIP=off > "$out/lammps-configure.log" 2>&1 \
         || { tail -30 "$out/lammps-configure.log" >&2; exit 1; }
+    echo "${packages[*]}" > "$out/lammps/packages.txt"
 fi
 echo "Building LAMMPS (log: $out/lammps-build.log)" >&2
 cmake --build "$out/lammps" -j "$jobs" > "$out/lammps-build.log" 2>&1 \

@@ -227,6 +227,18 @@ void PairGenDPDE::init_style()
 {
   if (force->newton_pair == 0) error->all(FLERR, "pair_style gendpde requires newton pair on");
   if (atom->tag_enable == 0) error->all(FLERR, "pair_style gendpde requires atom IDs");
+  // Bonded pairs count in the density like any other pair, as in OpenMM's GenDPDEForce (which has no
+  // exclusions) and in fix gendpde's sweep, which finds its pairs itself: a special_bonds weight other
+  // than 1 would make LAMMPS leave them out of the neighbour list (weight 0) or mark them.
+  if (atom->molecular != Atom::ATOMIC)
+    for (int k = 1; k <= 3; k++)
+      if (force->special_lj[k] != 1.0)
+        error->all(
+            FLERR,
+            "pair_style gendpde: special_bonds lj {} {} {} is not allowed: bonded pairs count "
+            "in the density like any other pair (as in OpenMM's GenDPDEForce and in fix "
+            "gendpde's sweep); use special_bonds lj/coul 1.0 1.0 1.0",
+            force->special_lj[1], force->special_lj[2], force->special_lj[3]);
   temperature_dependent = depends_on_temperature() ? 1 : 0;
   if (temperature_dependent && thermal_fix() == nullptr)
     error->all(FLERR,

@@ -351,6 +351,15 @@ private:
     static constexpr double maxBoxLengths = 1000.0;
     /** Check the positions just set (Context.setPositions(), setState()); throw, and keep the refusal, if bad. */
     void checkSetPositions();
+    // The pairs of particles that a Force without periodic boundary conditions bonds, in a periodic System (empty in
+    // a non-periodic one): checkSetPositions() refuses positions that put such a pair more than half the box apart
+    // along any box vector (a molecule split by wrapping), which the force would pull together across the box.
+    struct NonPeriodicBond {
+        int force, particle1, particle2; // the index of the Force in the System, and the pair
+    };
+    std::vector<NonPeriodicBond> nonPeriodicBonds;
+    /** Collect nonPeriodicBonds: the pairs of the ForceImpls' getBondedParticles() and of angles and torsions. */
+    void collectNonPeriodicBonds(OpenMM::ContextImpl& contextRef);
     /** Run steps (step()'s body between the energy guard's looks; a failure stops the run). */
     void runSteps(int steps, const GenDPDEStepTerms& terms, GenDPDEPairSource* pairSource);
     // ---- The energy guard (GenDPDEIntegratorEnergyGuard.cpp; docs/integrator.md, "Simulations that go bad"). In

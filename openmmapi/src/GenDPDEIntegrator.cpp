@@ -309,6 +309,7 @@ void GenDPDEIntegrator::initialize(ContextImpl& contextRef) {
     positionsSet = false;
     stoppedBy.clear(); // a new Context state (reinitialize() without preserving the state)
     refusedPositions.clear();
+    collectNonPeriodicBonds(contextRef);
     energyMark = EnergyMark();
     lawUpdatesSeen = 0;
     forcesCurrent = false;

@@ -12,15 +12,10 @@
 
 #include "GenDPDEIntegrator.h"
 #include "GenDPDEKernels.h"
-#include "internal/BoxGeometry.h"
 #include "internal/GenDPDEForceImpl.h"
 #include "internal/GenDPDEIntegratorUtilities.h"
-#include "internal/MessageText.h"
 #include "openmm/OpenMMException.h"
 #include "openmm/internal/ContextImpl.h"
-#include <algorithm>
-#include <cmath>
-#include <vector>
 
 using namespace GenDPDEPlugin;
 using namespace OpenMM;
@@ -148,50 +143,6 @@ void GenDPDEIntegrator::rememberForces() {
 void GenDPDEIntegrator::setAdiabaticPositionChanges(bool adiabatic) {
     adiabaticPositionChanges = adiabatic;
     applyThermalRule(ThermalEvent::AdiabaticChanged);
-}
-
-void GenDPDEIntegrator::checkSetPositions() {
-    std::vector<Vec3> positions;
-    context->getPositions(positions);
-    const bool periodic = context->getSystem().usesPeriodicBoundaryConditions();
-    Vec3 box[3];
-    context->getPeriodicBoxVectors(box[0], box[1], box[2]);
-    refusedPositions.clear();
-    for (size_t i = 0; i < positions.size() && refusedPositions.empty(); i++) {
-        const Vec3& r = positions[i];
-        if (!(std::isfinite(r[0]) && std::isfinite(r[1]) && std::isfinite(r[2]))) {
-            MessageText message;
-            message << "GenDPDEIntegrator: the position set for particle " << i << " is not finite (" << r[0] << ", "
-                    << r[1] << ", " << r[2] << ")";
-            refusedPositions = message.str();
-        } else if (periodic) {
-            const Vec3 s = BoxGeometry::fractionalCoordinates(r, box);
-            const double lengths =
-                    std::max(std::fabs(s[0] - 0.5), std::max(std::fabs(s[1] - 0.5), std::fabs(s[2] - 0.5))) - 0.5;
-            if (lengths > maxBoxLengths) {
-                MessageText message;
-                message.precision(6);
-                message << "GenDPDEIntegrator: the position of particle " << i << " (" << r[0] << ", " << r[1] << ", "
-                        << r[2] << ") nm lies " << lengths << " box lengths outside the periodic box; a position may "
-                        << "lie at most " << maxBoxLengths << " box lengths outside it (beyond that the platforms' "
-                        << "periodic wrapping in double, mixed and single precision no longer agrees)";
-                refusedPositions = message.str();
-            }
-        }
-    }
-    if (!refusedPositions.empty())
-        throw OpenMMException(refusedPositions
-                              + ". The Context holds these positions; set valid ones before the "
-                                "next step (step() refuses until then)");
-}
-
-void GenDPDEIntegrator::requireFinitePositions() const {
-    std::vector<Vec3> positions;
-    context->getPositions(positions);
-    for (size_t i = 0; i < positions.size(); i++)
-        if (!(std::isfinite(positions[i][0]) && std::isfinite(positions[i][1]) && std::isfinite(positions[i][2])))
-            throw OpenMMException(
-                    GenDPDEIntegratorUtilities::nonFinitePositionMessage(i, positions[i], context->getStepCount()));
 }
 
 bool GenDPDEIntegrator::getAdiabaticPositionChanges() const {

@@ -11,7 +11,7 @@ and a background pressure. It is an ``openmm.Force``: add it to a ``System``, ru
 ``GenDPDEIntegrator`` is the energy-conserving integrator that carries each particle's internal energy, with
 dissipative and random pair forces and heat conduction (Shardlow-like splitting; Isoenergetic, Isothermal and
 Conservative modes). It is an ``openmm.Integrator``. ``GenDPDEReporter`` reports the thermodynamic state as OpenMM's
-reporters do.
+reporters do; ``StateDataReporter`` is OpenMM's with the conserved energy and the harmonic-mean temperature.
 
 Arguments accept ``openmm.unit`` quantities or plain numbers in OpenMM units (nm, ps, amu, kJ/mol, K). Getters
 and results return quantities, as OpenMM's do; a per-particle result is one Quantity holding a numpy array (like
@@ -39,9 +39,9 @@ if _major_minor(_openmm.__version__) != _major_minor(_openmm_build_version):
                       f"versions); reinstall it in this environment (pip install .)")
 
 from .api import ESTIMATOR_NAMES, KERNEL_NAMES, GenDPDEForce, GenDPDEIntegrator  # noqa: E402, F401
-from .reporter import GenDPDEReporter  # noqa: E402
+from .reporter import GenDPDEReporter, StateDataReporter  # noqa: E402
 
-__all__ = ["GenDPDEForce", "GenDPDEIntegrator", "GenDPDEReporter"]
+__all__ = ["GenDPDEForce", "GenDPDEIntegrator", "GenDPDEReporter", "StateDataReporter"]
 
 from .internal import moved as _moved  # noqa: E402
 

@@ -1,11 +1,12 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
-"""GenDPDEReporter: the thermodynamic state of a GenDPDE simulation, following OpenMM's reporter protocol."""
+"""The reporters of GenDPDE simulations, following OpenMM's reporter protocol: GenDPDEReporter (the thermodynamic
+state) and StateDataReporter (OpenMM's, with the conserved energy and the harmonic-mean particle temperature)."""
 
 
-from openmm import unit
+from openmm import app, unit
 
-from .analysis.thermodynamics import ThermodynamicProbe
+from .analysis.thermodynamics import ThermodynamicProbe, conserved_energy, particle_temperature_means
 from .internal.reporting import checked_choice, checked_file, checked_report_interval, open_file
 from .units import ReducedUnits
 
@@ -21,8 +22,10 @@ class GenDPDEReporter:
 
     step, time, kinetic temperature (in the centre-of-mass frame, 3N - 3 degrees of freedom, since GenDPDE
     conserves momentum), mean and harmonic-mean particle temperature theta_i, mean particle density n_i, the virial
-    pressure P = (2K + W)/(3V) of every force, the conserved energy K + U + sum eps_i and its drift relative to the
-    first report, all as openmmgendpde.analysis.thermodynamics defines them.
+    pressure P = (2K + W)/(3V) of every force but external fields (a body force, any CustomExternalForce: left out,
+    docs/flows.md; one that shares a force group with another force that is not a GenDPDEForce is refused at the
+    first report), the conserved energy K + U + sum eps_i and its drift relative to the first report, all as
+    openmmgendpde.analysis.thermodynamics defines them.
 
     Use it like ``openmm.app.StateDataReporter``: ``simulation.reporters.append(GenDPDEReporter('log.csv', 100))``.
     It reports what the simulation allows and writes ``nan`` for the rest: theta and the conserved energy need a
@@ -105,3 +108,44 @@ class GenDPDEReporter:
     def __del__(self):
         if getattr(self, "_own", False):
             self._out.close()
+
+
+class StateDataReporter(app.StateDataReporter):
+    """openmm.app.StateDataReporter with two more columns for GenDPDE, after OpenMM's own (which are unchanged):
+
+    conservedEnergy : bool=False
+        "Conserved Energy (kJ/mole)": K + U + sum eps_i (GenDPDEIntegrator.getConservedEnergy), the energy the
+        Isoenergetic and Conservative modes conserve. OpenMM's "Total Energy" is K + U without the particles'
+        internal energies, which the dissipative and random forces fill and empty: it changes while this holds.
+    harmonicTemperature : bool=False
+        "Harmonic-mean Temperature (K)": <1/theta_i>^-1 of the particle temperatures, the thermodynamic temperature
+        of GenDPDE (docs/theory.md section 8; the arithmetic mean is higher by 1 + k_B/C_V at equilibrium).
+
+    Both are those of GenDPDEReporter (one definition: analysis.thermodynamics) and ``nan`` with another integrator.
+    Every other argument is OpenMM's, in its order (``StateDataReporter(file, reportInterval, step=True, ...)``).
+    A value other than True or False for the two raises OpenMMException before the file is opened.
+    """
+
+    def __init__(self, file, reportInterval, *args, conservedEnergy=False, harmonicTemperature=False, **kwargs):
+        self._openedFile = False   # (read by OpenMM's __del__ if a check below refuses before the file is opened)
+        for name, value in (("conservedEnergy", conservedEnergy), ("harmonicTemperature", harmonicTemperature)):
+            checked_choice("StateDataReporter", name, value, lambda v: isinstance(v, bool), "True or False")
+        super().__init__(file, reportInterval, *args, **kwargs)
+        self._conservedEnergy = conservedEnergy
+        self._harmonicTemperature = harmonicTemperature
+
+    def _constructHeaders(self):
+        headers = super()._constructHeaders()
+        if self._conservedEnergy:
+            headers.append("Conserved Energy (kJ/mole)")
+        if self._harmonicTemperature:
+            headers.append("Harmonic-mean Temperature (K)")
+        return headers
+
+    def _constructReportValues(self, simulation, state):
+        values = super()._constructReportValues(simulation, state)
+        if self._conservedEnergy:
+            values.append(conserved_energy(simulation.integrator))
+        if self._harmonicTemperature:
+            values.append(particle_temperature_means(simulation.integrator)[1])
+        return values

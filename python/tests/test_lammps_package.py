@@ -249,6 +249,54 @@ def test_trajectory_follows_reference(lammps, tmp_path, mode_name, ranks):
                              - 1)) > 1e-4   # (the energies did change)
 
 
+
+def bonded_scene_energy_and_forces(scene, directory, special):
+    """U and the forces of the pair style in LAMMPS (lj units, 1 rank) with the scene's particles in molecules:
+    atom_style bond, every particle i < j in a chain bonded to the next (bond_style zero: the bonds add no force of
+    their own), with ``special`` as the special_bonds line (None: LAMMPS's default, lj 0 0 0)."""
+    script = scene.lammps(directory).commands("header", "variables", "setup", "pair", "neighbors")
+    data = (directory / "gendpde.data").read_text().split("\n")
+    atoms = data.index("Atoms # atomic")
+    data[atoms] = "Atoms # bond"
+    count = scene.system.getNumParticles()
+    for k in range(atoms + 2, atoms + 2 + count):
+        fields = data[k].split()
+        data[k] = " ".join([fields[0], "1"] + fields[1:])   # molecule 1
+    bonds = [(i, i + 1) for i in range(0, count - 1, 2)]
+    data[2:2] = [f"{len(bonds)} bonds", "1 bond types"]
+    data += ["", "Bonds", ""] + [f"{k + 1} 1 {i + 1} {j + 1}" for k, (i, j) in enumerate(bonds)] + [""]
+    (directory / "gendpde.data").write_text("\n".join(data))
+    script = script.replace("atom_style atomic", "atom_style bond\nbond_style zero")
+    script = script.replace("read_data gendpde.data", "read_data gendpde.data\nbond_coeff 1")
+    if special is not None:
+        script = script.replace("pair_style", special + "\npair_style", 1)
+    script += ("thermo_style custom step pe\nthermo_modify norm no format float %.17g\n"
+               "dump forces all custom 1 forces.dump id fx fy fz\ndump_modify forces format float %.17g sort id\n"
+               "run 0\n")
+    result = run_lammps(directory, script, 1, check=False)
+    if result.returncode != 0:
+        return result.stdout
+    potential_energy = thermo_table((directory / "log.lammps").read_text())[0]["PotEng"]
+    return potential_energy, read_dump(directory / "forces.dump")[:, 1:4]
+
+
+def test_bonded_pairs_count_in_the_density_as_in_openmm(lammps, tmp_path):
+    """Bonded particles count in each other's density in OpenMM's GenDPDEForce (no exclusions) and in the fix's
+    sweep; LAMMPS's default special_bonds (lj 0 0 0) would drop them from the pair style's neighbour list. With
+    molecules, pair_style gendpde refuses any special_bonds lj weight other than 1, naming it; with lj/coul 1 1 1,
+    U and every force equal OpenMM's Reference for the same particles without bonds, to 1e-12 (as
+    test_energy_and_forces_equal_reference), so the bonded pairs are counted."""
+    scene = Scene(GenDPDEForce.VB)
+    refused = bonded_scene_energy_and_forces(scene, tmp_path / "default", None)
+    assert isinstance(refused, str) and "special_bonds lj 0 0 0 is not allowed" in refused, refused[-2000:]
+    refused = bonded_scene_energy_and_forces(scene, tmp_path / "half", "special_bonds lj/coul 1.0 0.5 1.0")
+    assert isinstance(refused, str) and "special_bonds lj 1 0.5 1 is not allowed" in refused, refused[-2000:]
+    lammps_energy, lammps_forces = bonded_scene_energy_and_forces(scene, tmp_path / "all",
+                                                                  "special_bonds lj/coul 1.0 1.0 1.0")
+    energy, forces = openmm_energy_and_forces(scene)
+    assert abs(lammps_energy - energy) <= 1e-12 * abs(energy)
+    assert np.max(np.abs(lammps_forces - forces)) <= 1e-12 * np.sqrt(np.mean(forces**2))
+
 @pytest.mark.parametrize("mode_name", ["isoenergetic", "conservative"])
 def test_two_types_with_thermal_law_follow_reference(lammps, tmp_path, mode_name):
     """Two types, one with a temperature-dependent law (TaitThermalExpansion): per-type laws, heat capacities and pair

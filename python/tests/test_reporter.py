@@ -147,8 +147,13 @@ def test_pressure_counts_every_force():
 
     # Another force in that group: the probe switches group 0 to the numerical virial.
     other = openmm.XmlSerializer.clone(argon.system)
-    other.addForce(openmm.CustomExternalForce("0"))
+    other.addForce(openmm.CustomBondForce("0"))
     assert ThermodynamicProbe(other).numerical_virial_groups == [0]
+    # An external field in that group is left out of the virial (test_flows.py), not a reason to switch.
+    field = openmm.XmlSerializer.clone(argon.system)
+    field.addForce(openmm.CustomExternalForce("0"))
+    probe = ThermodynamicProbe(field)
+    assert probe.numerical_virial_groups == [] and len(probe.exact_virial_forces) == 2 and probe.external_fields == [2]
 
 
 def _reporters():

@@ -14,6 +14,7 @@ from openmm import unit
 from openmmgendpde import GenDPDEIntegrator
 from openmmgendpde.analysis import transport
 from openmmgendpde.calibration.calibration import Calibration, Plan
+from openmmgendpde.models.flows import BODY_FORCE_GROUP, poiseuille_body_force
 from openmmgendpde.models.fluid import ARGON, coarse_grain
 
 ARGON_MODEL = coarse_grain(ARGON, 5, neighbors=20)
@@ -58,11 +59,11 @@ def test_body_force_matches_openmm_evaluation_including_positions_outside_the_bo
                                         openmm.Vec3(0, 0, length))
     for _ in z:
         system.addParticle(1.0)
-    system.addForce(transport.body_force(force, length, len(z)))
+    system.addForce(poiseuille_body_force(force, length, len(z)))
     context = openmm.Context(system, openmm.VerletIntegrator(0.001), openmm.Platform.getPlatformByName("Reference"))
     positions = [openmm.Vec3(0.3 * i - 2.0, 5.0 - i, zi) for i, zi in enumerate(z)]
     context.setPositions(positions)
-    forces = context.getState(getForces=True, groups={transport.BODY_FORCE_GROUP}).getForces(
+    forces = context.getState(getForces=True, groups={BODY_FORCE_GROUP}).getForces(
         asNumpy=True).value_in_unit(unit.kilojoule_per_mole / unit.nanometer)
     assert forces[:, 0] == pytest.approx(force * np.array(expected_sign), abs=1e-12)
     assert np.all(forces[:, 1:] == 0)
@@ -115,7 +116,7 @@ def test_short_runs_give_the_right_magnitude():
     wave decay needs longer runs in an elongated box than this test can afford: docs/transport.md.)"""
     targets = ARGON_MODEL.targets()
     quiet = dict(report=lambda line: None)
-    viscosity = transport.poiseuille_viscosity(ARGON_MODEL, _replicas(ARGON_MODEL, (4, 4, 4)),
+    viscosity = transport.poiseuille_viscosity(ARGON_MODEL, _replicas(ARGON_MODEL, (4, 4, 4)), poiseuille_body_force,
                                                bins=10, developed=3, measured=20, **quiet)
     conductivity = transport.heat_flux_conductivity(ARGON_MODEL, _replicas(ARGON_MODEL, (3, 3, 12)),
                                                     bins=24, developed=1, measured=8, **quiet)

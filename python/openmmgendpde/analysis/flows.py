@@ -1,31 +1,12 @@
 # SPDX-License-Identifier: MIT
 # Copyright (c) 2026 The openmm-gendpde developers
-"""The steady flows of analysis.transport in closed form: the Poiseuille body force and the shape of its flow
-profile, the fit of a binned profile to it, the heat flux's slab profile, and the slowest modes' relaxation times of a
-periodic box (docs/transport.md)."""
+"""The steady flows of analysis.transport in closed form: the shape of the flow profile that the periodic Poiseuille
+body force (models.flows.poiseuille_body_force) drives, the fit of a binned profile to it, the heat flux's slab
+profile, and the slowest modes' relaxation times of a periodic box (docs/transport.md)."""
 
 import math
 
 import numpy as np
-import openmm
-
-#: The force group of the Poiseuille body force (its energy, -F x s(z), means nothing and is kept out of group 0).
-BODY_FORCE_GROUP = 31
-
-
-def body_force(force, box_length, num_particles):
-    """An openmm.CustomExternalForce of +``force`` x-hat (kJ/mol/nm) on ``num_particles`` particles with z wrapped into
-    the periodic length ``box_length`` (nm) in [0, L/2), -``force`` x-hat in [L/2, L); in group BODY_FORCE_GROUP. OpenMM
-    differentiates step() and floor() as zero, so the force has no z component; the energy is -F x s(z) with the
-    unwrapped x (not periodic: leave the group out of energies)."""
-    external = openmm.CustomExternalForce(
-        "-poiseuille_F*x*(1 - 2*step(z - poiseuille_L*floor(z/poiseuille_L) - poiseuille_L/2))")
-    external.addGlobalParameter("poiseuille_F", force)
-    external.addGlobalParameter("poiseuille_L", box_length)
-    external.setForceGroup(BODY_FORCE_GROUP)
-    for particle in range(num_particles):
-        external.addParticle(particle, [])
-    return external
 
 
 def half_sign(z, box_length):

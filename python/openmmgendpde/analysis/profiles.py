@@ -21,7 +21,8 @@ summed over the slice's particles over 3 (n_bin - 1) k_B (the slice's mean veloc
 freedom with it; NaN for fewer than 2 particles); v is the slice's mean velocity. The pressure tensor of a slice is (sum
 over its particles of m (v - v_bin)(v - v_bin) + W_i) over the slice volume, W_i each particle's half of its pairs'
 virial tensors (GenDPDEForce.getParticleVirials, from the platform's kernels; the slices' pressures average to the
-system's).
+system's). Only the GenDPDEForce given is in it: a body force or any other external field rightly adds nothing to the
+stress (docs/flows.md), and another pair force of the System would be missing.
 """
 
 

@@ -14,11 +14,22 @@ What can be measured depends on the simulation, and what cannot is reported as N
 - virial pressure P = (2 K_int + W)/(3V): only with periodic boundaries. W is the sum of the exact virials of the
   GenDPDEForces and, for the force groups that hold other forces, -dU/dlambda under a uniform scaling of positions
   and box by lambda (central difference, lambda = 1 +- 1e-5; two energy evaluations per such group; the Context's
-  positions and box are restored exactly afterwards).
+  positions and box are restored exactly afterwards). External fields (external_fields: CustomExternalForce, and
+  the custom forces whose energy reads a particle's absolute coordinates) are left out: a field acts on the
+  particles from outside the fluid and carries no momentum across a surface inside it, so it has no place in the
+  pressure of a periodic fluid (its "virial" sum_i r_i . F_i depends on where the origin is and grows as a fluid
+  flows along a body force; the group-wise difference also crossed the Poiseuille force's sign flip: one particle
+  there moved the pressure of 108 argon particles by -98,688 bar, test_flows.py). A group that holds an external
+  field beside another force that is not a GenDPDEForce cannot be split by the group-wise difference, and is
+  refused (an OpenMMException naming both forces): put the field in a force group of its own. K_int removes only
+  the centre of mass's motion, at the positions' time (with a GenDPDEIntegrator the stored velocities are half a
+  step behind, and a body force's total, unlike the pair forces', need not be zero: its half kick is added), so a
+  flow's kinetic energy is in P (rho <v^2>/3 more; analysis.profiles removes each slice's mean velocity).
 """
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import openmm
@@ -61,9 +72,24 @@ class ThermodynamicProbe:
         self.periodic = system.usesPeriodicBoundaryConditions()
         forces = [system.getForce(i) for i in range(system.getNumForces())]
         self.gendpde_forces = [GenDPDEForce.cast(f) for f in forces if GenDPDEForce.isinstance(f)]
-        # Forces that may carry energy (CMMotionRemover carries none), by group.
-        other_groups = {f.getForceGroup() for f in forces
-                        if not GenDPDEForce.isinstance(f) and not isinstance(f, openmm.CMMotionRemover)}
+        #: The indices of the forces the virial leaves out (external_fields).
+        self.external_fields = external_fields(system)
+        self.force_groups = [f.getForceGroup() for f in forces]
+        # Forces that may carry energy (CMMotionRemover carries none) and act between particles, by group.
+        others = [i for i, f in enumerate(forces) if not GenDPDEForce.isinstance(f)
+                  and not isinstance(f, openmm.CMMotionRemover) and i not in self.external_fields]
+        other_groups = {forces[i].getForceGroup() for i in others}
+        if self.periodic:
+            for field in self.external_fields:
+                group = forces[field].getForceGroup()
+                mixed = [i for i in others if forces[i].getForceGroup() == group]
+                if mixed:
+                    raise openmm.OpenMMException(
+                        f"virial pressure: force {field} ({_describe(forces[field])}, an external field) shares force "
+                        f"group {group} with force {mixed[0]} ({_describe(forces[mixed[0]])}): the pressure leaves "
+                        f"external fields out, and the numerical virial of a group cannot split it; put the external "
+                        f"field in a force group of its own (setForceGroup, e.g. "
+                        f"openmmgendpde.models.flows.BODY_FORCE_GROUP = 31)")
         self.exact_virial_forces = [f for f in self.gendpde_forces if f.getForceGroup() not in other_groups]
         self.numerical_virial_groups = sorted(other_groups)
 
@@ -73,17 +99,14 @@ class ThermodynamicProbe:
         kinetic = state.getKineticEnergy().value_in_unit(_ENERGY)
         velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
         momentum = self.masses @ velocities
+        gendpde = _as_gendpde_integrator(integrator)
+        if gendpde is not None and self.external_fields:
+            momentum = momentum + self._external_impulse(context, gendpde)
         internal_kinetic = kinetic - float(momentum @ momentum) / (2 * self.masses.sum())
         kb = BOLTZMANN.value_in_unit(_ENERGY / _K)
-        gendpde = _as_gendpde_integrator(integrator)
-        if gendpde is not None:
-            theta = gendpde.getParticleTemperatures().value_in_unit(_K)
-            mean, harmonic = np.mean(theta), 1 / np.mean(1 / theta)
-            conserved = gendpde.getConservedEnergy().value_in_unit(_ENERGY)
-            is_conserved = gendpde.getMode() != GenDPDEIntegrator.Isothermal
-        else:
-            mean = harmonic = conserved = _NAN
-            is_conserved = False
+        mean, harmonic = particle_temperature_means(integrator)
+        conserved = conserved_energy(integrator)
+        is_conserved = gendpde is not None and gendpde.getMode() != GenDPDEIntegrator.Isothermal
         density = (np.mean(self.gendpde_forces[0].getParticleDensities(context).value_in_unit(_DENSITY))
                    if self.gendpde_forces else _NAN)
         return ThermodynamicSample(
@@ -97,6 +120,20 @@ class ThermodynamicProbe:
             energy_is_conserved=is_conserved,
         )
 
+    def _external_impulse(self, context, integrator):
+        """(dt/2) sum_i F_i of the external fields that ``integrator`` (a GenDPDEIntegrator) integrates: the
+        momentum that takes the stored velocities, half a step behind, to the positions' time, at which the kinetic
+        energy is (docs/integrator.md). The pair forces sum to zero; a body force's total need not."""
+        integrated = integrator.getIntegrationForceGroups()   # a bit mask (-1: all), or a set
+        if not isinstance(integrated, (set, frozenset)):
+            integrated = {group for group in range(32) if integrated >> group & 1}
+        groups = {self.force_groups[i] for i in self.external_fields} & integrated
+        if not groups:
+            return np.zeros(3)
+        forces = context.getState(getForces=True, groups=groups).getForces(asNumpy=True)
+        step = integrator.getStepSize().value_in_unit(unit.picosecond)
+        return 0.5 * step * forces.value_in_unit(_ENERGY / unit.nanometer).sum(axis=0)
+
     def _pressure(self, state, context, internal_kinetic):
         if not self.periodic:
             return _NAN
@@ -106,6 +143,43 @@ class ThermodynamicProbe:
         if self.numerical_virial_groups:
             virial += numerical_virial(context, set(self.numerical_virial_groups))
         return (2 * internal_kinetic + virial) / (3 * volume)
+
+
+#: A particle's (or a group's centroid's) absolute coordinate in the energy of a CustomCompoundBondForce or
+#: CustomCentroidBondForce: x1, y2, z3 ... (a CustomExternalForce is an external field whatever its expression).
+_COORDINATE = re.compile(r"(?<![A-Za-z0-9_.])[xyz][0-9]+(?![A-Za-z0-9_])")
+
+
+def is_external_field(force):
+    """Whether the energy of ``force`` (an openmm.Force) depends on the particles' absolute positions, so that it is
+    an external field rather than an interaction between particles: every CustomExternalForce; a
+    CustomCompoundBondForce or CustomCentroidBondForce whose energy expression reads a coordinate x1, y1, z1, ...;
+    a CustomCVForce with such a force among its collective variables (then the whole CustomCVForce). OpenMM's other
+    forces depend on differences of positions only."""
+    if isinstance(force, openmm.CustomExternalForce):
+        return True
+    if isinstance(force, (openmm.CustomCompoundBondForce, openmm.CustomCentroidBondForce)):
+        return bool(_COORDINATE.search(force.getEnergyFunction()))
+    if isinstance(force, openmm.CustomCVForce):
+        return any(is_external_field(force.getCollectiveVariable(i))
+                   for i in range(force.getNumCollectiveVariables()))
+    return False
+
+
+def external_fields(system):
+    """The indices of the forces of ``system`` that are external fields (is_external_field)."""
+    return [i for i in range(system.getNumForces()) if is_external_field(system.getForce(i))]
+
+
+def external_field_groups(system):
+    """The force groups of ``system`` that hold an external field (is_external_field)."""
+    return {system.getForce(i).getForceGroup() for i in external_fields(system)}
+
+
+def _describe(force):
+    name = force.getName()
+    kind = type(force).__name__
+    return kind if name == kind or not name else f"{kind} '{name}'"
 
 
 def numerical_virial(context, groups):
@@ -126,6 +200,25 @@ def numerical_virial(context, groups):
         context.setPeriodicBoxVectors(*box)
         context.setPositions(positions)
     return -(energies[0] - energies[1]) / (2 * VIRIAL_SCALING_STEP)
+
+
+def particle_temperature_means(integrator):
+    """(mean, harmonic mean) of the particle temperatures theta_i (K, floats) of a GenDPDEIntegrator bound to a
+    Context; (nan, nan) for any other integrator. The harmonic mean <1/theta_i>^-1 is the thermodynamic temperature
+    (docs/theory.md section 8)."""
+    gendpde = _as_gendpde_integrator(integrator)
+    if gendpde is None:
+        return _NAN, _NAN
+    theta = gendpde.getParticleTemperatures().value_in_unit(_K)
+    return float(np.mean(theta)), float(1 / np.mean(1 / theta))
+
+
+def conserved_energy(integrator):
+    """K + U + sum eps_i (kJ/mol, a float: GenDPDEIntegrator.getConservedEnergy, U of the integration force groups)
+    of a GenDPDEIntegrator bound to a Context; nan for any other integrator. With a body force its group's energy is
+    in U (models.flows says what that energy means)."""
+    gendpde = _as_gendpde_integrator(integrator)
+    return _NAN if gendpde is None else float(gendpde.getConservedEnergy().value_in_unit(_ENERGY))
 
 
 def _as_gendpde_integrator(integrator):

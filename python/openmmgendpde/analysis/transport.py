@@ -28,11 +28,9 @@ import numpy as np
 from openmm import unit
 
 from ..units import BOLTZMANN
-from .flows import (  # noqa: F401  (BODY_FORCE_GROUP ... momentum_diffusion_time: part of this module's API)
-    BODY_FORCE_GROUP,
+from .flows import (  # noqa: F401  (bin_shape ... momentum_diffusion_time: part of this module's API)
     between_slabs,
     bin_shape,
-    body_force,
     fit_amplitude,
     half_sign,
     line_slopes,
@@ -44,7 +42,7 @@ from .flows import (  # noqa: F401  (BODY_FORCE_GROUP ... momentum_diffusion_tim
 )
 from .profiles import profile
 from .statistics import block_standard_error, statistical_inefficiency
-from .thermodynamics import heat_capacity_per_particle
+from .thermodynamics import external_field_groups, heat_capacity_per_particle
 
 KB = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
 
@@ -72,10 +70,12 @@ def each_replica(equilibrated, count):
 
 # --- Poiseuille flow ------------------------------------------------------------------------------------------------
 
-def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0, measured=5.0,
+def poiseuille_viscosity(parameters, replicas, body_force, peak_fraction=0.2, developed=3.0, measured=5.0,
                          bins=20, samples_per_time=10, report=print):
     """The shear viscosity (amu/(nm ps)) from periodic Poiseuille flow along z, a run on each of the equilibrated
-    models (Isoenergetic) that ``replicas`` gives (each_replica).
+    models (Isoenergetic) that ``replicas`` gives (each_replica). ``body_force``: the builder of the force,
+    models.flows.poiseuille_body_force or one called as it, ``body_force(F, L, N)`` (the models layer sits above this
+    one, so the caller hands it in); its force group is left out of the energies.
 
     F is chosen so that the peak velocity, n0 F L^2/(32 eta) with the target eta, is ``peak_fraction`` of the thermal
     velocity sqrt(k_B T0/m); every run starts from that profile laid on the equilibrium velocities, waits
@@ -124,10 +124,7 @@ def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0,
             kinetic.append(sample["kinetic_temperature"])
             harmonic.append(sample["harmonic_temperature"])
         times, flows = np.array(times), np.array(flows)
-        amplitudes, drifts = fit_amplitude(flows[warm + 1:], shape)
-        amplitude, amplitude_error = _mean_and_error(amplitudes)
-        eta = viscosity_from_amplitude(amplitude, density, force)
-        error = eta * amplitude_error / amplitude
+        eta, error, amplitude, drifts = _viscosity_from_frames(flows[warm + 1:], shape, density, force)
         run_time = times[-1] - times[0]
         rise = {name: np.polyfit(times, series, 1)[0] * run_time / parameters.temperature
                 for name, series in (("harmonic", harmonic), ("kinetic", kinetic))}
@@ -147,6 +144,69 @@ def poiseuille_viscosity(parameters, replicas, peak_fraction=0.2, developed=3.0,
     rises = [detail["temperature_rise"] for detail in details]
     return _combine(values, errors, profiles, details[-1]["box_length"], bins,
                     dict(details[-1], temperature_rise=rises, peak_fraction=peak_fraction))
+
+
+def _viscosity_from_frames(flows, shape, density, force, check=None):
+    """(eta, its error, the amplitude A, the drifts c per frame) from binned profiles ``flows`` (frames x bins, nm/ps)
+    of a steady Poiseuille flow with the bins' ``shape`` (bin_shape): A from the time series of per-frame fits (their
+    mean is the fit of the averaged profile), its error from the series' statistical inefficiency. ``check(A, its
+    error)``, if given, is called before eta is computed (to refuse a profile without the flow)."""
+    amplitudes, drifts = fit_amplitude(flows, shape)
+    amplitude, amplitude_error = _mean_and_error(amplitudes)
+    if check is not None:
+        check(amplitude, amplitude_error)
+    eta = viscosity_from_amplitude(amplitude, density, force)
+    return eta, eta * amplitude_error / amplitude, amplitude, drifts
+
+
+def viscosity_from_profiles(profiles, force, density=None, start=0.0, direction=0, box_length=None):
+    """The shear viscosity (amu/(nm ps)) of a steady periodic Poiseuille flow from the output of a ProfileReporter
+    (analysis.profiles) along the axis across the flow: ``profiles`` is its CSV file (a path) or that file read by
+    ``numpy.genfromtxt(path, delimiter=",", names=True, comments="#")``. ``force``: the body force's F (kJ/mol/nm,
+    models.flows.poiseuille_body_force); ``density``: n (nm^-3), by default the mean of the file's density column
+    (N/V); ``start``: the frames before this time (ps) are left out (the flow develops over a few
+    momentum_diffusion_time); ``direction``: the flow's component (0, 1, 2: the columns vx, vy, vz); ``box_length``
+    (nm): the box along the axis, by default 2 bins times the first bin's centre.
+
+    The fit and its error are those of poiseuille_viscosity: each frame's profile fitted to A s_b + c with s_b the
+    bins' mean of poiseuille_shape (bin_shape: the number of bins must be even), eta = n F/(2 A), the error of A from
+    the statistical inefficiency of the per-frame series. Returns a TransportResult (one replica) whose details give
+    the force, density, box length, frames used, peak velocity A L^2/16 and mean drift. Raises ValueError for a
+    file without the columns, fewer than 2 frames after ``start``, or a profile with no flow along ``direction``."""
+    data = profiles if isinstance(profiles, np.ndarray) else np.genfromtxt(profiles, delimiter=",", names=True,
+                                                                           comments="#")
+    column = "v" + "xyz"[direction] if direction in (0, 1, 2) else None
+    needed = ["step", "time", "bin", "centre", "density", column]
+    names = data.dtype.names or ()
+    if column is None or any(name not in names for name in needed):
+        raise ValueError(f"viscosity_from_profiles: direction = {direction!r} and the columns {list(names)}: it needs "
+                         f"direction 0, 1 or 2 and a ProfileReporter's columns {needed}")
+    data = np.atleast_1d(data)
+    bins = int(data["bin"].max()) + 1
+    frames = len(data) // bins
+    if frames * bins != len(data) or np.any(data["bin"] != np.tile(np.arange(bins), frames)):
+        raise ValueError(f"viscosity_from_profiles: {len(data)} rows are not whole frames of bins 0 .. {bins - 1}")
+    times = data["time"].reshape(frames, bins)[:, 0]
+    kept = times >= start
+    if kept.sum() < 2:
+        raise ValueError(f"viscosity_from_profiles: start = {start} ps leaves {int(kept.sum())} of {frames} frames "
+                         f"(times {times[0]:.6g} .. {times[-1]:.6g} ps); at least 2 are needed")
+    flows = data[column].reshape(frames, bins)[kept]
+    length = 2 * bins * float(data["centre"][0]) if box_length is None else float(box_length)
+    n = float(np.mean(data["density"][:bins * frames])) if density is None else float(density)
+    shape = bin_shape(bins, length)
+
+    def check(amplitude, amplitude_error):
+        if not amplitude * force > 2 * amplitude_error * abs(force):
+            raise ValueError(f"viscosity_from_profiles: the profile's amplitude along {column} is {amplitude:.3g} +- "
+                             f"{amplitude_error:.2g} 1/(nm ps) for F = {force} kJ/mol/nm: no Poiseuille flow along "
+                             f"that direction (the amplitude must have the sign of F and be more than 2 standard "
+                             f"errors)")
+
+    eta, error, amplitude, drifts = _viscosity_from_frames(flows, shape, n, force, check)
+    details = {"force": float(force), "density": n, "box_length": length, "frames": int(kept.sum()),
+               "peak_velocity": amplitude * length**2 / 16, "drift": float(np.mean(drifts))}
+    return _combine([eta], [error], [flows], length, bins, details)
 
 
 def _sample(model, context, bins):
@@ -329,8 +389,9 @@ def _internal_energies(model):
 
 
 def _total_energy(model, context):
-    """K + U + sum eps_i (kJ/mol), the energy that the Isoenergetic mode conserves (without the body force)."""
-    groups = {group for group in range(32) if group != BODY_FORCE_GROUP}
+    """K + U + sum eps_i (kJ/mol), the energy that the Isoenergetic mode conserves (without external fields: the
+    groups of external_field_groups)."""
+    groups = set(range(32)) - external_field_groups(model.system)
     state = context.getState(getEnergy=True, groups=groups)
     return ((state.getKineticEnergy() + state.getPotentialEnergy()).value_in_unit(unit.kilojoule_per_mole)
             + float(_internal_energies(model).sum()))

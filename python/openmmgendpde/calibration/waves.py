@@ -11,6 +11,7 @@ import numpy as np
 from openmm import unit
 
 from ..analysis.transport import heat_flux_conductivity, poiseuille_viscosity
+from ..models.flows import poiseuille_body_force
 from ..models.fluid import KB
 from .results import Measured
 
@@ -163,8 +164,8 @@ class TransportMeasurements:
     def steady_viscosity(self):
         """eta by periodic Poiseuille flow (transport.poiseuille_viscosity) in boxes of plan.steady_cells."""
         time = self.plan.steady_time
-        result = poiseuille_viscosity(self.parameters, self.replicas(self.plan.steady_cells), developed=3.0 * time,
-                                      measured=5.0 * time, report=self.report)
+        result = poiseuille_viscosity(self.parameters, self.replicas(self.plan.steady_cells), poiseuille_body_force,
+                                      developed=3.0 * time, measured=5.0 * time, report=self.report)
         return Measured(result.value, result.error, len(result.replica_values))
 
     def steady_conductivity(self):

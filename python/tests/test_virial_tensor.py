@@ -125,3 +125,18 @@ def test_pressure_tensor_adds_the_bonds_numerical_virial():
     with_bonds = pressure_tensor(force, context, state, numerical_groups={1})
     assert with_bonds - without == pytest.approx(expected_bonds / np.prod(np.diag(box)),
                                                  abs=1e-6 * np.abs(expected_bonds).max())
+
+
+def test_a_group_holding_an_external_field_is_refused():
+    """A CustomExternalForce (a body force) in the group asked for: a ValueError naming the force, positions and box
+    untouched."""
+    system, positions, _ = _bonded(False)
+    field = openmm.CustomExternalForce("-0.5*x")
+    field.addParticle(0, [])
+    field.setForceGroup(1)
+    system.addForce(field)
+    context = make_context(system, positions, openmm.Platform.getPlatformByName("Reference"))
+    before = context.getState(getPositions=True).getPositions(asNumpy=True)
+    with pytest.raises(ValueError, match=r"groups = \[1\] holds force 1, a CustomExternalForce, an external field"):
+        numerical_virial_tensor(context, {1})
+    assert np.array_equal(context.getState(getPositions=True).getPositions(asNumpy=True), before)

@@ -17,6 +17,7 @@ import numpy as np
 from openmm import unit
 
 from ..api import GenDPDEForce, GenDPDEIntegrator
+from .thermodynamics import is_external_field
 
 
 def virial_tensor(force, context, per_particle=False):
@@ -68,8 +69,17 @@ def numerical_virial_tensor(context, groups, step=STRAIN_STEP):
     form: the diagonal and W_xy, W_xz, W_yz; W_yx, W_zx, W_zy are set equal to them (the virial of an energy that does
     not change under rotations is symmetric; for a GenDPDEForce virial_tensor gives it exactly). For any force
     without a virial of its own (bonds, external fields, OpenMM's forces), e.g. the normal stress differences of a
-    polymer solution. The Context's positions and box are restored exactly (a GenDPDEIntegrator treats it as a move:
-    docs/integrator.md)."""
+    polymer solution. An external field (thermodynamics.is_external_field: its energy reads absolute positions, and
+    it carries no momentum across a surface in the fluid, docs/flows.md) has no place in it: a group holding one is
+    refused (ValueError naming the force) before anything changes. The Context's positions and box are restored
+    exactly (a GenDPDEIntegrator treats it as a move: docs/integrator.md)."""
+    system = context.getSystem()
+    for index in range(system.getNumForces()):
+        force = system.getForce(index)
+        if force.getForceGroup() in set(groups) and is_external_field(force):
+            raise ValueError(f"numerical_virial_tensor: groups = {sorted(set(groups))} holds force {index}, a "
+                             f"{type(force).__name__}, an external field (its energy reads absolute positions); give "
+                             f"the groups of interactions only (an external field in a force group of its own)")
     state = context.getState(getPositions=True)
     positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
     box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)

@@ -83,14 +83,21 @@ def run(arguments):
         print(f"| {r.interval} | {result.shear_rate:.4g} +- {result.shear_rate_error:.2g} | {r.peak_fraction:.2f} | "
               f"{result.momentum_flux:.4g} +- {result.momentum_flux_error:.2g} | {result.viscosity:.4g} +- "
               f"{result.error:.2g} | {mpa_s(result.viscosity):.4g} +- {mpa_s(result.error):.2g} | "
-              f"{result.viscosity / target:.3f} | {r.temperature_profile.min():.1f} - "
-              f"{r.temperature_profile.max():.1f} |")
+              f"{result.viscosity / target:.3f} | {temperatures(r)} |")
     if arguments.json:
         with atomic_write(arguments.json) as stream:
             json.dump({"fluid": parameters.fluid.name, "cells": list(options["cells"]), "mode": arguments.mode,
                        "target_viscosity": target, "runs": [study.record(r) for r in runs]}, stream, indent=1,
                       default=float)
     return runs
+
+
+def temperatures(run):
+    """The table's theta_harm column: the lowest and highest bin, or 'frozen' in the Isothermal mode (the particles'
+    temperatures do not evolve there)."""
+    if run.mode == GenDPDEIntegrator.Isothermal:
+        return "frozen"
+    return f"{run.temperature_profile.min():.1f} - {run.temperature_profile.max():.1f}"
 
 
 def even_slabs(text):

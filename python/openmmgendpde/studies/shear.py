@@ -41,13 +41,15 @@ MELT_STEPS, SETTLE_STEPS = 1000, 500
 class ShearRun:
     """One exchange interval's run: the ShearViscosity (``result``), the interval (steps), the flow's peak speed (the
     fitted lines at the slabs' centres, nm/ps) over the thermal velocity sqrt(k_B T0/m), the time-averaged harmonic
-    mean of theta_i per bin (K, ``temperature_profile``), the measured time (ps) and the target viscosity."""
+    mean of theta_i per bin (K, ``temperature_profile``; frozen in the Isothermal mode), the measured time (ps), the
+    target viscosity and the integrator's mode."""
     interval: int
     result: object
     peak_fraction: float
     temperature_profile: np.ndarray
     measured_time: float
     target_viscosity: float
+    mode: int = GenDPDEIntegrator.Isoenergetic
 
 
 def maximum_of_normals(count):
@@ -142,12 +144,13 @@ def shear_run(parameters, interval, cells=(8, 8, 8), estimator=None, time_step=0
     thermal = math.sqrt(KB * parameters.temperature / parameters.mass)
     peak = result.shear_rate * (length / 2 - length / slabs) / 2
     run = ShearRun(interval, result, peak / thermal, np.mean(temperatures, axis=0), duration,
-                   parameters.targets()["shear_viscosity"])
+                   parameters.targets()["shear_viscosity"], mode)
     report(f"  interval {interval} steps: eta = {result.viscosity:.4g} +- {result.error:.2g} amu/(nm ps), "
            f"gamma_dot = {result.shear_rate:.4g} +- {result.shear_rate_error:.2g} 1/ps, J = "
            f"{result.momentum_flux:.4g} +- {result.momentum_flux_error:.2g} kJ/mol/nm^3, peak {peak / thermal:.2f} "
-           f"v_th, {result.independent_samples:.0f} independent frames; theta_harm {run.temperature_profile.min():.1f}"
-           f" to {run.temperature_profile.max():.1f} K over {duration:.0f} ps")
+           f"v_th, {result.independent_samples:.0f} independent frames over {duration:.0f} ps"
+           + ("" if mode == GenDPDEIntegrator.Isothermal else
+              f"; theta_harm {run.temperature_profile.min():.1f} to {run.temperature_profile.max():.1f} K"))
     return run
 
 

@@ -73,6 +73,22 @@ def slab_profile(z, box_length, slab_width):
     return np.where(z < half, ramp, -ramp)
 
 
+def between_slabs(centre, box_length, slab_width, margin):
+    """(lower, upper): boolean masks of the bins whose ``centre`` (nm) lies between the slab [0, w) and the slab
+    [L/2, L/2 + w) at least ``margin`` (nm) from both, in the first half of the box and in the second: the bins a line
+    is fitted through in a heat flux or a reverse shear flow between two slabs of width ``slab_width``. A ValueError
+    where a half keeps fewer than 2 bins."""
+    centre = np.asarray(centre, float)
+    inside = np.mod(centre, box_length / 2)
+    region = (inside > slab_width + margin) & (inside < box_length / 2 - margin)
+    lower, upper = region & (centre < box_length / 2), region & (centre > box_length / 2)
+    if lower.sum() < 2 or upper.sum() < 2:
+        raise ValueError(f"the box (L = {box_length:.3g} nm) leaves fewer than 2 of {len(centre)} bins between the "
+                         f"slabs (w = {slab_width:.3g} nm) at least {margin:.3g} nm from them: use a longer box or "
+                         f"more bins")
+    return lower, upper
+
+
 def line_slopes(centre, profiles, mask):
     """The least-squares slope (per row of ``profiles``) of the bins in ``mask`` against ``centre``."""
     x = centre[mask] - centre[mask].mean()

@@ -29,6 +29,7 @@ from openmm import unit
 
 from ..units import BOLTZMANN
 from .flows import (  # noqa: F401  (bin_shape ... momentum_diffusion_time: part of this module's API)
+    between_slabs,
     bin_shape,
     fit_amplitude,
     half_sign,
@@ -309,13 +310,8 @@ class _HeatFlux:
         area = vectors[0][0].value_in_unit(unit.nanometer) * vectors[1][1].value_in_unit(unit.nanometer)
         width = length * self.slab_bins / self.bins
         centre = (np.arange(self.bins) + 0.5) * length / self.bins
-        inside = np.mod(centre, length / 2)
-        region = (inside > width + self.margin) & (inside < length / 2 - self.margin)
-        if (region & (centre < length / 2)).sum() < 2:
-            raise ValueError(f"the box (L = {length:.3g} nm) leaves fewer than 2 of {self.bins} bins between the "
-                             f"slabs (w = {width:.3g} nm) at least {self.margin:.3g} nm from them: use a longer box "
-                             f"or more bins")
-        return length, area, width, centre, region, region & (centre < length / 2), region & (centre > length / 2)
+        first, second = between_slabs(centre, length, width, self.margin)
+        return length, area, width, centre, first | second, first, second
 
     def reset(self, model, context, length, width):
         """The slabs' theta_i reset to T0 (1 -+ excess); the change of each eps_i and the hot and cold slabs."""

@@ -12,6 +12,7 @@ from . import (
     benchmark_integrator,
     calibrate,
     compression,
+    flow_curve,
     lammps_input,
     rdf,
     slab,
@@ -37,6 +38,8 @@ SUBCOMMANDS = (
                                  "compression: the response, n dP/dn and n k_B T/S(0)"),
     ("slab", slab, "a liquid slab in vacuum with VA, VB and VC, and the estimators against the exact "
                    "partition-of-unity volume"),
+    ("flow-curve", flow_curve, "shear viscosity against shear rate from reverse non-equilibrium shear flows "
+                               "(momentum swaps)"),
     ("speed-vs-error", speed_vs_error, "cost per simulated time against the error, for several step sizes"),
     ("lammps-input", lammps_input, "a calibrated model file as the LAMMPS plugin's input: a data file and a script"),
     ("benchmark-force", benchmark_force, "GenDPDEForce against CustomGBForce: ms per force evaluation, VB/VA"),

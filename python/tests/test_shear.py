@@ -302,28 +302,23 @@ def test_flow_curve_quick_prints_the_table_and_writes_json(tmp_path, capsys):
     assert record["viscosity"] == pytest.approx(record["momentum_flux"] / record["shear_rate"], rel=1e-12)
 
 
-def test_add_chains_makes_whole_periodic_chains_of_near_neighbours():
-    """add_chains on the 216-particle argon lattice: round(0.3 x 216/6) = 11 chains of 6 beads (5 bonds each), every
-    particle in at most one chain, each bond between particles closer than 1 nm by the minimum image (the FCC
-    neighbour distance is 0.69 nm), periodic, in group BOND_GROUP, with the given r0 and k."""
-    from openmmgendpde.studies.shear import BOND_GROUP, Chains, add_chains
-    model = ARGON_MODEL.liquid(cells=(3, 3, 6), seed=1)
-    bonds = add_chains(model, Chains(6, 0.3, 0.7, 100.0), seed=2)
-    assert bonds.getNumBonds() == 11 * 5 and bonds.usesPeriodicBoundaryConditions()
-    added = model.system.getForce(model.system.getNumForces() - 1)
-    assert bonds.getForceGroup() == BOND_GROUP and isinstance(added, openmm.HarmonicBondForce)
-    assert added.getNumBonds() == bonds.getNumBonds()
-    pairs = [bonds.getBondParameters(k) for k in range(bonds.getNumBonds())]
-    particles = [p for i, j, _, _ in pairs for p in (i, j)]
-    counts = np.bincount(particles, minlength=model.num_particles)
-    assert counts.max() <= 2 and np.count_nonzero(counts) == 66
-    box = model.box_edges
-    for i, j, length, constant in pairs:
-        d = model.positions[i] - model.positions[j]
-        d -= box * np.round(d / box)
-        assert np.linalg.norm(d) < 1.0
-        assert length.value_in_unit(unit.nanometer) == 0.7
-        assert constant.value_in_unit(unit.kilojoule_per_mole / unit.nanometer**2) == 100.0
+def test_the_normal_stress_study_s_chains_are_polymer_solution_s_in_their_own_force_group(monkeypatch):
+    """polymer_normal_stresses builds its liquid with models.polymers.polymer_solution (the package's one chain
+    builder): round(0.3 x 216/6) = 11 chains of 6 beads in 3 x 3 x 6 cells, their bonds in BOND_GROUP (the group
+    whose numerical virial tensor the study adds). The run itself is stopped at the equilibration."""
+    from openmmgendpde.studies import shear as study
+    built = {}
+
+    def stop(parameters, cells, estimator, time_step, mode, platform, properties, seed, build=None):
+        built["model"] = build()
+        raise RuntimeError("stopped")
+    monkeypatch.setattr(study, "_equilibrated", stop)
+    with pytest.raises(RuntimeError, match="stopped"):
+        study.polymer_normal_stresses(ARGON_MODEL, 12, study.Chains(6, 0.3), cells=(3, 3, 6))
+    model = built["model"]
+    assert len(model.chains) == 11 and all(len(chain) == 6 for chain in model.chains)
+    assert model.bonds.getNumBonds() == 55 and model.bonds.getForceGroup() == study.BOND_GROUP
+    assert model.integrator.getMode() == GenDPDEIntegrator.Isothermal
 
 
 @pytest.mark.validation

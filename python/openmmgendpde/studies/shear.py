@@ -20,7 +20,6 @@ import dataclasses
 import math
 
 import numpy as np
-import openmm
 from openmm import unit
 
 from ..analysis.flows import momentum_diffusion_time, slab_profile
@@ -31,6 +30,7 @@ from ..analysis.statistics import correlated_mean
 from ..api import GenDPDEIntegrator
 from ..models.fluid import KB
 from ..models.model import Equilibration
+from ..models.polymers import polymer_solution
 from ..models.shear import ReverseShearFlow
 
 #: The equilibration of each run: steps with the DPD thermostat, then in the run's mode (as calibrate's transport runs).
@@ -70,13 +70,11 @@ def expected_shear_rate(mass, temperature, viscosity, area, length, particles_pe
     return 2 * mass * c * thermal / (2 * area * exchange_time * viscosity + mass * length / 2)
 
 
-def _equilibrated(parameters, cells, estimator, time_step, mode, platform, properties, seed, prepare=None):
-    """(model, context): the model's liquid in ``cells``, ``prepare(model)`` (forces added) before its Context is
-    made, then equilibrated (MELT_STEPS with the DPD thermostat, SETTLE_STEPS in ``mode``)."""
-    model = parameters.liquid(cells=cells, estimator=estimator, mode=GenDPDEIntegrator.Isothermal,
-                              time_step=time_step, seed=seed)
-    if prepare is not None:
-        prepare(model)
+def _equilibrated(parameters, cells, estimator, time_step, mode, platform, properties, seed, build=None):
+    """(model, context): the model's liquid in ``cells`` (or the model ``build()`` makes, with its Isothermal
+    integrator), then equilibrated (MELT_STEPS with the DPD thermostat, SETTLE_STEPS in ``mode``)."""
+    model = build() if build is not None else parameters.liquid(
+        cells=cells, estimator=estimator, mode=GenDPDEIntegrator.Isothermal, time_step=time_step, seed=seed)
     return model, model.equilibrate(platform, Equilibration(MELT_STEPS, SETTLE_STEPS, mode, seed=seed), properties)
 
 
@@ -162,49 +160,15 @@ BOND_GROUP = 1
 
 @dataclasses.dataclass(frozen=True)
 class Chains:
-    """Linear chains of ``length`` particles joined by harmonic bonds (energy (k/2)(r - r0)^2, k = ``bond_constant``
-    kJ/mol/nm^2, r0 = ``bond_length`` nm), holding ``fraction`` of the particles."""
+    """Linear chains of ``length`` particles holding ``fraction`` of the particles, as models.polymers.polymer_solution
+    makes them (self-avoiding walks on the liquid's lattice; harmonic bonds of its defaults: rest length the lattice's
+    nearest-neighbour distance, stiffness 100 k_B T0/b0^2)."""
     length: int = 10
     fraction: float = 0.3
-    bond_length: float = 0.7
-    bond_constant: float = 100.0
 
-
-def add_chains(model, chains, seed=1):
-    """An openmm.HarmonicBondForce (periodic boundaries, group BOND_GROUP) added to the model's System: chains grown
-    from free particles taken in a random order (``seed``), each bead the nearest free particle to the last (minimum
-    image, at the model's lattice positions), until round(fraction N/length) chains are made. Returns the force."""
-    from scipy.spatial import cKDTree
-    box = model.box_edges
-    wrapped = np.mod(model.positions, box)
-    tree = cKDTree(wrapped, boxsize=box)
-    free = np.ones(model.num_particles, bool)
-    bonds = openmm.HarmonicBondForce()
-    bonds.setUsesPeriodicBoundaryConditions(True)
-    bonds.setForceGroup(BOND_GROUP)
-    wanted, made = round(chains.fraction * model.num_particles / chains.length), 0
-    for first in np.random.default_rng(seed).permutation(model.num_particles):
-        if made == wanted:
-            break
-        if not free[first]:
-            continue
-        chain = [int(first)]
-        free[first] = False
-        while len(chain) < chains.length:
-            _, near = tree.query(wrapped[chain[-1]], k=min(model.num_particles, 32))
-            candidates = [int(j) for j in near if free[j]]
-            if not candidates:
-                break
-            chain.append(candidates[0])
-            free[candidates[0]] = False
-        if len(chain) < chains.length:
-            free[chain] = True
-            continue
-        for a, b in zip(chain[:-1], chain[1:]):
-            bonds.addBond(a, b, chains.bond_length, chains.bond_constant)
-        made += 1
-    model.system.addForce(bonds)
-    return bonds
+    def count(self, num_particles):
+        """The number of chains among ``num_particles``: round(fraction N/length)."""
+        return round(self.fraction * num_particles / self.length)
 
 
 @dataclasses.dataclass
@@ -224,15 +188,21 @@ class NormalStresses:
 def polymer_normal_stresses(parameters, interval, chains=Chains(), cells=(6, 6, 8), estimator=None, time_step=0.01,
                             mode=GenDPDEIntegrator.Isoenergetic, slabs=20, developed=5.0, measured=12.5,
                             samples_per_time=10, margin=None, platform="CPU", properties=None, seed=1, report=print):
-    """NormalStresses of the model's liquid with ``chains`` (add_chains) sheared by a swap every ``interval`` steps
-    (None: at rest, the control, where both differences must vanish), run as shear_run runs (the lengths in momentum
+    """NormalStresses of the model's liquid with ``chains`` (Chains, made by models.polymers.polymer_solution; their
+    bonds in BOND_GROUP) sheared by a swap every ``interval`` steps (None: at rest, the control, where both
+    differences must vanish), run as shear_run runs (the lengths in momentum
     diffusion times of the solvent's target viscosity). Each frame's pressure tensor: the mean over the bins of
     profiles.profile's (the kinetic part with the on-step velocities about each bin's mean flow, and the
     GenDPDEForce's per-particle virial tensors) plus the bonds' numerical_virial_tensor over the volume. Both
     differences are even in the shear rate, so the whole box serves despite the zig-zag (the slabs' bins included)."""
     margin = parameters.cutoff / 2 if margin is None else margin
-    model, context = _equilibrated(parameters, cells, estimator, time_step, mode, platform, properties, seed,
-                                   lambda built: add_chains(built, chains, seed))
+
+    def build():
+        model = polymer_solution(parameters, chains.length, chains.count(4 * math.prod(cells)), cells, estimator,
+                                 GenDPDEIntegrator.Isothermal, time_step, seed, placement_seed=seed)
+        model.bonds.setForceGroup(BOND_GROUP)
+        return model
+    model, context = _equilibrated(parameters, cells, estimator, time_step, mode, platform, properties, seed, build)
     if interval is None:
         step = model.integrator.getStepSize().value_in_unit(unit.picosecond)
         tau = momentum_diffusion_time(parameters.mass * model.num_particles / model.volume,

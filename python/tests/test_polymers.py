@@ -165,6 +165,9 @@ def test_bonded_frequency_refuses_forces_it_cannot_bound():
     with pytest.raises(ValueError, match=r"angle 0 \(0, 1, 2\) of a HarmonicAngleForce is not allowed"):
         stability.bonded_frequency(system)
     assert stability.bonded_frequency(ARGON.liquid(500).system) == 0.0
+    barostat = ARGON.liquid(500).system
+    barostat.addForce(openmm.MonteCarloBarostat(1.0, 100.0))   # exerts no force: passed by
+    assert stability.bonded_frequency(barostat) == 0.0
 
 
 def test_suggest_time_step_takes_the_bonds_limit_where_it_is_below_the_fluids(monkeypatch):

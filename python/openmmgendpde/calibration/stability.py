@@ -50,6 +50,11 @@ def _bonded_masses(system):
     return np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
 
 
+#: The Forces that exert no force (bonded_frequency passes them by).
+_WITHOUT_STIFFNESS = (openmm.CMMotionRemover, openmm.MonteCarloBarostat, openmm.MonteCarloAnisotropicBarostat,
+                      openmm.MonteCarloMembraneBarostat, openmm.MonteCarloFlexibleBarostat)
+
+
 def bonded_frequency(system):
     """An upper bound on the highest vibrational angular frequency (rad/ps) of ``system``'s HarmonicBondForce and
     HarmonicAngleForce terms: Gershgorin's bound on the mass-weighted Hessian M^-1/2 H M^-1/2 of those terms, with
@@ -59,8 +64,9 @@ def bonded_frequency(system):
     (k_theta) i-j-k adds k_theta |g_a|/sqrt(m_a) sum_b |g_b|/sqrt(m_b) to row a, with |g_i| = 1/r_ij, |g_k| = 1/r_kj,
     |g_j| <= 1/r_ij + 1/r_kj the gradients of the angle at its rest geometry, the arm lengths r being the rest lengths
     of the bonds between them (an angle whose arms are not bonds of a HarmonicBondForce is refused). Massless
-    (fixed) particles have no row. 0.0 for a System without bonds. Any other Force but a GenDPDEForce or a
-    CMMotionRemover raises ValueError naming it: its stiffness is not bounded here."""
+    (fixed) particles have no row. 0.0 for a System without bonds. Any other Force but a GenDPDEForce, a
+    CMMotionRemover or a Monte Carlo barostat (no forces) raises ValueError naming it: its stiffness is not bounded
+    here."""
     masses = _bonded_masses(system)
     rows = np.zeros(len(masses))
     bonds, angles = [], []
@@ -69,10 +75,10 @@ def bonded_frequency(system):
             bonds.append(force)
         elif isinstance(force, openmm.HarmonicAngleForce):
             angles.append(force)
-        elif not (GenDPDEForce.isinstance(force) or isinstance(force, openmm.CMMotionRemover)):
+        elif not (GenDPDEForce.isinstance(force) or isinstance(force, _WITHOUT_STIFFNESS)):
             raise ValueError(f"force {index} ({type(force).__name__}) is not allowed: bonded_frequency bounds only "
-                             f"HarmonicBondForce and HarmonicAngleForce (with a GenDPDEForce and a CMMotionRemover), "
-                             f"and a time step that ignores its stiffness could be unstable")
+                             f"HarmonicBondForce and HarmonicAngleForce (with a GenDPDEForce, a CMMotionRemover and "
+                             f"Monte Carlo barostats), and a time step that ignores its stiffness could be unstable")
     inverse_root = np.zeros(len(masses))
     inverse_root[masses > 0] = 1 / np.sqrt(masses[masses > 0])
     rest_lengths = {}

@@ -73,6 +73,26 @@ def test_exchange_swaps_the_on_step_x_velocities_of_the_extreme_particles_keepin
     assert flow.getExchangedMomentum().value_in_unit(unit.amu * _VELOCITY) == moved
 
 
+def test_the_half_kick_is_that_of_the_forces_the_integrator_integrates():
+    """A force the integrator leaves out (a harmonic well 2000 x^2 kJ/mol along x, in force group 5, with
+    setIntegrationForceGroups({0})) is in a State's forces but not in the on-step velocities v + (dt/2) F/m of the
+    integrator's kinetic and conserved energies: an exchange keeps the conserved energy within 1e-12 relative. With
+    the State's forces of every group the swapped pair's half kicks would differ by (dt/2) 4000 (x_j - x_i)/m (a
+    uniform push would cancel between them), and the conserved energy would move far beyond rounding."""
+    model = ARGON_MODEL.liquid(cells=(3, 3, 6), mode=GenDPDEIntegrator.Isothermal, seed=4)
+    push = openmm.CustomExternalForce("2000*x^2")
+    push.setForceGroup(5)
+    for i in range(model.num_particles):
+        push.addParticle(i, [])
+    model.system.addForce(push)
+    model.integrator.setIntegrationForceGroups({0})
+    context = model.equilibrate("Reference", Equilibration(100, 20, GenDPDEIntegrator.Isoenergetic, seed=4))
+    energy = model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole)
+    assert ReverseShearFlow(10).exchange(context) > 0
+    assert model.integrator.getConservedEnergy().value_in_unit(unit.kilojoule_per_mole) == pytest.approx(
+        energy, rel=1e-12)
+
+
 def test_swapping_the_stored_velocities_instead_would_change_the_conserved_energy():
     """Why the exchange swaps on-step velocities: swapping the stored (half-step-behind) v_x of the same two particles
     keeps the momentum but changes the integrator's conserved energy by m (v_j - v_i)(a_i - a_j), a = (dt/2) F_x/m

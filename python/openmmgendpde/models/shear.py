@@ -150,7 +150,12 @@ class ReverseShearFlow:
         box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
         positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
         velocities = np.array(state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond))
-        forces = state.getForces(asNumpy=True).value_in_unit(unit.kilojoule_per_mole / unit.nanometer)
+        groups = integrator.getIntegrationForceGroups()   # a bit mask; -1 (every group) unless set
+        if groups & 0xFFFFFFFF != 0xFFFFFFFF:   # the State's forces are every group's: those the integrator kicks with
+            state_forces = context.getState(getForces=True, groups=groups)
+        else:
+            state_forces = state
+        forces = state_forces.getForces(asNumpy=True).value_in_unit(unit.kilojoule_per_mole / unit.nanometer)
         step = integrator.getStepSize().value_in_unit(unit.picosecond)
         mobile = self._masses > 0
         half_kick = np.zeros(len(velocities))

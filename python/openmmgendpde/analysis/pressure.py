@@ -17,7 +17,7 @@ import numpy as np
 from openmm import unit
 
 from ..api import GenDPDEForce, GenDPDEIntegrator
-from .thermodynamics import is_external_field
+from .thermodynamics import VIRIAL_SCALING_STEP, is_external_field, strain_derivatives
 
 
 def virial_tensor(force, context, per_particle=False):
@@ -54,25 +54,23 @@ def pressure_tensor(force, context, state=None, numerical_groups=()):
     return (kinetic + virial) / abs(np.linalg.det(box))
 
 
-#: Strain of the numerical virial tensor's central differences (error O(step^2)), as thermodynamics' scalar one.
-STRAIN_STEP = 1e-5
 #: The strains (a, b) of numerical_virial_tensor, r_a -> r_a + epsilon r_b: the three stretches and the three shears
 #: that keep a box in OpenMM's reduced form (box vectors as the rows of a lower-triangular matrix).
 STRAINS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 
 
-def numerical_virial_tensor(context, groups, step=STRAIN_STEP):
+def numerical_virial_tensor(context, groups, step=VIRIAL_SCALING_STEP):
     """W (3 x 3, kJ/mol) of the energy U of the force ``groups`` (a set of force group numbers) at the Context's
     positions: W_ab = -dU/d epsilon_ab under the strain r_a -> r_a + epsilon r_b of the positions and the periodic box
-    (the pair form sum F_ij,a r_ij,b for pair forces), by central differences at epsilon = +-``step`` (two energy
-    evaluations per strain, error O(step^2)). The strains are those of STRAINS, which keep the box in OpenMM's reduced
-    form: the diagonal and W_xy, W_xz, W_yz; W_yx, W_zx, W_zy are set equal to them (the virial of an energy that does
-    not change under rotations is symmetric; for a GenDPDEForce virial_tensor gives it exactly). For any force
-    without a virial of its own (bonds, external fields, OpenMM's forces), e.g. the normal stress differences of a
-    polymer solution. An external field (thermodynamics.is_external_field: its energy reads absolute positions, and
-    it carries no momentum across a surface in the fluid, docs/flows.md) has no place in it: a group holding one is
-    refused (ValueError naming the force) before anything changes. The Context's positions and box are restored
-    exactly (a GenDPDEIntegrator treats it as a move: docs/integrator.md)."""
+    (the pair form sum F_ij,a r_ij,b for pair forces), by central differences at epsilon = +-``step``
+    (thermodynamics.strain_derivatives: two energy evaluations per strain, error O(step^2)). The strains are those of
+    STRAINS, which keep the box in OpenMM's reduced form: the diagonal and W_xy, W_xz, W_yz; W_yx, W_zx, W_zy are set
+    equal to them (the virial of an energy that does not change under rotations is symmetric; for a GenDPDEForce
+    virial_tensor gives it exactly). For any force without a virial of its own (bonds, OpenMM's forces), e.g. the
+    normal stress differences of a polymer solution. An external field (thermodynamics.is_external_field: its energy
+    reads absolute positions, and it carries no momentum across a surface in the fluid, docs/flows.md) has no place in
+    it: a group holding one is refused (ValueError naming the force) before anything changes. The Context's positions
+    and box are restored exactly (a GenDPDEIntegrator treats it as a move: docs/integrator.md)."""
     system = context.getSystem()
     for index in range(system.getNumForces()):
         force = system.getForce(index)
@@ -80,22 +78,12 @@ def numerical_virial_tensor(context, groups, step=STRAIN_STEP):
             raise ValueError(f"numerical_virial_tensor: groups = {sorted(set(groups))} holds force {index}, a "
                              f"{type(force).__name__}, an external field (its energy reads absolute positions); give "
                              f"the groups of interactions only (an external field in a force group of its own)")
-    state = context.getState(getPositions=True)
-    positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
-    box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
+    strains = []
+    for a, b in STRAINS:
+        strain = np.zeros((3, 3))
+        strain[a, b] = 1.0
+        strains.append(strain)
     virial = np.zeros((3, 3))
-    try:
-        for a, b in STRAINS:
-            energies = []
-            for strain in (step, -step):
-                deformation = np.eye(3)
-                deformation[a, b] += strain
-                context.setPeriodicBoxVectors(*(box @ deformation.T))
-                context.setPositions(positions @ deformation.T)
-                energies.append(context.getState(getEnergy=True, groups=set(groups)).getPotentialEnergy()
-                                .value_in_unit(unit.kilojoule_per_mole))
-            virial[a, b] = virial[b, a] = -(energies[0] - energies[1]) / (2 * step)
-    finally:
-        context.setPeriodicBoxVectors(*box)
-        context.setPositions(positions)
+    for (a, b), derivative in zip(STRAINS, strain_derivatives(context, set(groups), strains, step)):
+        virial[a, b] = virial[b, a] = derivative
     return virial

@@ -137,10 +137,7 @@ class ThermodynamicProbe:
         """(dt/2) sum_i F_i of the external fields that ``integrator`` (a GenDPDEIntegrator) integrates: the
         momentum that takes the stored velocities, half a step behind, to the positions' time, at which the kinetic
         energy is (docs/integrator.md). The pair forces sum to zero; a body force's total need not."""
-        integrated = integrator.getIntegrationForceGroups()   # a bit mask (-1: all), or a set
-        if not isinstance(integrated, (set, frozenset)):
-            integrated = {group for group in range(32) if integrated >> group & 1}
-        groups = {self.force_groups[i] for i in self.external_fields} & integrated
+        groups = {self.force_groups[i] for i in self.external_fields} & integration_groups(integrator)
         if not groups:
             return np.zeros(3)
         forces = context.getState(getForces=True, groups=groups).getForces(asNumpy=True)
@@ -195,24 +192,47 @@ def _describe(force):
     return kind if name == kind or not name else f"{kind} '{name}'"
 
 
-def numerical_virial(context, groups):
-    """W = -dU/dlambda (kJ/mol) of the energy of force ``groups`` under a uniform scaling of the positions and the
-    periodic box by lambda, by a central difference at lambda = 1 +- VIRIAL_SCALING_STEP (error O(step^2)). The
-    Context's positions and box are restored exactly."""
+def strain_derivatives(context, groups, strains, step=VIRIAL_SCALING_STEP):
+    """-dU/d epsilon (kJ/mol) of the energy U of force ``groups`` (a set of force group numbers) under each strain D of
+    ``strains`` (3 x 3 arrays): positions and periodic box deformed by I + epsilon D, by central differences at
+    epsilon = +-``step`` (two energy evaluations per strain, error O(step^2)); a list, one per strain. The Context's
+    positions and box are restored exactly afterwards (a GenDPDEIntegrator treats that as a move:
+    docs/integrator.md). The one numerical strain derivative of the package: numerical_virial and
+    pressure.numerical_virial_tensor."""
     state = context.getState(getPositions=True)
     positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
     box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
-    energies = []
+    derivatives = []
     try:
-        for scale in (1 + VIRIAL_SCALING_STEP, 1 - VIRIAL_SCALING_STEP):
-            context.setPeriodicBoxVectors(*(box * scale))
-            context.setPositions(positions * scale)
-            energies.append(context.getState(getEnergy=True, groups=groups).getPotentialEnergy()
-                            .value_in_unit(_ENERGY))
+        for strain in strains:
+            energies = []
+            for epsilon in (step, -step):
+                deformation = (np.eye(3) + epsilon * np.asarray(strain, dtype=float)).T
+                context.setPeriodicBoxVectors(*(box @ deformation))
+                context.setPositions(positions @ deformation)
+                energies.append(context.getState(getEnergy=True, groups=groups).getPotentialEnergy()
+                                .value_in_unit(_ENERGY))
+            derivatives.append(-(energies[0] - energies[1]) / (2 * step))
     finally:
         context.setPeriodicBoxVectors(*box)
         context.setPositions(positions)
-    return -(energies[0] - energies[1]) / (2 * VIRIAL_SCALING_STEP)
+    return derivatives
+
+
+def numerical_virial(context, groups):
+    """W = -dU/dlambda (kJ/mol) of the energy of force ``groups`` under a uniform scaling of the positions and the
+    periodic box by lambda, by a central difference at lambda = 1 +- VIRIAL_SCALING_STEP (strain_derivatives with the
+    strain I; error O(step^2)). The Context's positions and box are restored exactly."""
+    return strain_derivatives(context, groups, [np.eye(3)])[0]
+
+
+def integration_groups(integrator):
+    """The force groups (a set) whose forces ``integrator`` integrates (Integrator.getIntegrationForceGroups, a bit
+    mask, -1 for every group; or a set)."""
+    groups = integrator.getIntegrationForceGroups()
+    if isinstance(groups, (set, frozenset)):
+        return set(groups)
+    return {group for group in range(32) if groups >> group & 1}
 
 
 def particle_temperature_means(integrator):

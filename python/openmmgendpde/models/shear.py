@@ -33,6 +33,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
+from ..analysis.thermodynamics import integration_groups
 from ..api import GenDPDEIntegrator
 from ..internal.reporting import checked_choice
 
@@ -150,12 +151,10 @@ class ReverseShearFlow:
         box = state.getPeriodicBoxVectors(asNumpy=True).value_in_unit(unit.nanometer)
         positions = state.getPositions(asNumpy=True).value_in_unit(unit.nanometer)
         velocities = np.array(state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond))
-        groups = integrator.getIntegrationForceGroups()   # a bit mask; -1 (every group) unless set
-        if groups & 0xFFFFFFFF != 0xFFFFFFFF:   # the State's forces are every group's: those the integrator kicks with
-            state_forces = context.getState(getForces=True, groups=groups)
-        else:
-            state_forces = state
-        forces = state_forces.getForces(asNumpy=True).value_in_unit(unit.kilojoule_per_mole / unit.nanometer)
+        groups = integration_groups(integrator)
+        if len(groups) < 32:   # the State's forces are every group's: those the integrator kicks with
+            state = context.getState(getForces=True, groups=groups)
+        forces = state.getForces(asNumpy=True).value_in_unit(unit.kilojoule_per_mole / unit.nanometer)
         step = integrator.getStepSize().value_in_unit(unit.picosecond)
         mobile = self._masses > 0
         half_kick = np.zeros(len(velocities))

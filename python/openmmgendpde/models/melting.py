@@ -135,10 +135,7 @@ def bring_to_temperature(context, integrator, temperature, window_steps=1000, sa
             return LiquidTemperatures(target, harmonic, kinetic, tuple(corrections), steps, float(tolerance),
                                       converged)
         factor = target / harmonic.mean
-        energies = integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole)
-        velocities = context.getState(getVelocities=True).getVelocities(asNumpy=True)
-        integrator.setInternalEnergies(np.asarray(energies) * factor)
-        context.setVelocities(velocities * math.sqrt(factor))
+        _scale_thermal_energies(context, integrator, factor, math.sqrt(factor))
         corrections.append(float(factor))
 
 
@@ -156,12 +153,19 @@ def to_mean_thermal_energy(context, integrator, temperature):
     kb = BOLTZMANN.value_in_unit(unit.kilojoule_per_mole / unit.kelvin)
     energy_factor = float(np.sum((energies / theta + kb) * temperature) / np.sum(energies))
     probe = ThermodynamicProbe(context.getSystem())
-    state = context.getState(getEnergy=True, getVelocities=True)
-    kinetic = probe.internal_kinetic_energy(state)
+    kinetic = probe.internal_kinetic_energy(context.getState(getEnergy=True, getVelocities=True))
     velocity_factor = math.sqrt(probe.degrees_of_freedom * kb * temperature / (2 * kinetic))
-    integrator.setInternalEnergies(np.asarray(energies) * energy_factor)
-    context.setVelocities(state.getVelocities(asNumpy=True) * velocity_factor)
+    _scale_thermal_energies(context, integrator, energy_factor, velocity_factor)
     return energy_factor, velocity_factor
+
+
+def _scale_thermal_energies(context, integrator, energy_factor, velocity_factor):
+    """Every internal energy of ``integrator`` times ``energy_factor``, every velocity of ``context`` times
+    ``velocity_factor`` (nothing else changes)."""
+    energies = integrator.getInternalEnergies().value_in_unit(unit.kilojoule_per_mole)
+    velocities = context.getState(getVelocities=True).getVelocities(asNumpy=True)
+    integrator.setInternalEnergies(np.asarray(energies) * energy_factor)
+    context.setVelocities(velocities * velocity_factor)
 
 
 def melt_to_temperature(context, integrator, thermostat_steps, temperature, seed, settle_steps=0,

@@ -117,13 +117,20 @@ def _checked_group(name, group):
                                      f"from 0 to 31 (an OpenMM force group; one of its own: docs/flows.md)")
 
 
-def _number(name, label, value, units, text):
-    """``value`` (a number or a Quantity in ``units``) as a finite float, else an OpenMMException."""
+def _plain(name, label, value, units, text, form):
+    """``value`` without its unit: a Quantity converted to ``units`` (an OpenMMException naming it where they are not
+    compatible), anything else as it is."""
     if unit.is_quantity(value):
         if not value.unit.is_compatible(units):
-            raise openmm.OpenMMException(f"{name}: {label} = {value} is not allowed; it must be in {text} (a number "
-                                         f"or a compatible Quantity)")
+            raise openmm.OpenMMException(f"{name}: {label} = {value} is not allowed; it must be in {text} ({form} or "
+                                         f"a compatible Quantity)")
         value = value.value_in_unit(units)
+    return value
+
+
+def _number(name, label, value, units, text):
+    """``value`` (a number or a Quantity in ``units``) as a finite float, else an OpenMMException."""
+    value = _plain(name, label, value, units, text, "a number")
     if isinstance(value, bool) or not isinstance(value, numbers.Real) or not np.isfinite(value):
         raise openmm.OpenMMException(f"{name}: {label} = {reprlib.repr(value)} is not allowed; it must be a finite "
                                      f"number in {text}")
@@ -132,11 +139,7 @@ def _number(name, label, value, units, text):
 
 def _vector(name, label, value, units, text):
     """``value`` (3 numbers, a Vec3, or a Quantity of them in ``units``) as a finite numpy vector."""
-    if unit.is_quantity(value):
-        if not value.unit.is_compatible(units):
-            raise openmm.OpenMMException(f"{name}: {label} = {value} is not allowed; it must be in {text} (3 numbers "
-                                         f"or a compatible Quantity)")
-        value = value.value_in_unit(units)
+    value = _plain(name, label, value, units, text, "3 numbers")
     try:
         items = list(value)
     except TypeError:

@@ -10,36 +10,17 @@ from ..api import ESTIMATOR_NAMES
 from ..calibration.calibration import Plan
 from ..calibration.expansion import MPA_PER_OPENMM_PRESSURE
 from ..internal.files import atomic_write
-from ..models.fluid import COARSE_GRAINING, KB
-from ..models.fluid_files import load_parameters
+from ..models.fluid import KB
 from ..studies import compression as study
-from .fluids import add_fluid_arguments, parameters_from_arguments
-from .options import add_json, add_platform, command_line_error, fcc_particles, integer, number
+from .fluids import FLUID_OPTIONS, add_fluid_arguments, model_or_fluid
+from .options import add_json, add_platform, fcc_particles, integer, number
 
 DESCRIPTION = study.__doc__
-#: The options of the mapping of --fluid (fluids.add_fluid_arguments), None where not given (--model refuses them),
-#: and the defaults put back without --model.
-FLUID_OPTIONS = ("fluid", "molecules_per_particle", "neighbors", "cutoff")
-FLUID_DEFAULTS = {"fluid": "water", **COARSE_GRAINING}
-
-
 def model_of(arguments):
     """The parameters of --model (a model file) or of the mapping of --fluid (default water), with --cutoff-scaling,
     --reference-pressure and --background-pressure instead of theirs where given. --fluid and its coarse-graining
     with --model are refused: the model file holds its fluid and every parameter."""
-    given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None]
-    if arguments.model is not None:
-        if given:
-            raise SystemExit(f"error: compression: --{given[0].replace('_', '-')} "
-                             f"{getattr(arguments, given[0])} is not allowed with --model {arguments.model}: a model "
-                             f"file holds its fluid and every parameter; give one of --model and --fluid")
-        try:
-            parameters = load_parameters(arguments.model)
-        except (OSError, ValueError) as error:
-            raise command_line_error("compression", error) from None
-    else:
-        defaults = {name: value for name, value in FLUID_DEFAULTS.items() if getattr(arguments, name) is None}
-        parameters = parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), "compression")
+    parameters = model_or_fluid(arguments, "compression", "water")
     changes = {}
     if arguments.cutoff_scaling is not None:
         changes["cutoff_scaling"] = arguments.cutoff_scaling

@@ -12,10 +12,8 @@ from ..analysis.shear import fitted_bins
 from ..api import GenDPDEIntegrator
 from ..calibration.report import mpa_s
 from ..internal.files import atomic_write
-from ..models.fluid import COARSE_GRAINING
-from ..models.fluid_files import load_parameters
 from ..studies import shear as study
-from .fluids import add_fluid_arguments, parameters_from_arguments
+from .fluids import FLUID_OPTIONS, add_fluid_arguments, model_or_fluid
 from .options import (
     NON_NEGATIVE,
     POSITIVE,
@@ -32,37 +30,17 @@ DESCRIPTION = study.__doc__
 MODES = {"isoenergetic": GenDPDEIntegrator.Isoenergetic, "isothermal": GenDPDEIntegrator.Isothermal}
 #: --quick: a functional check in seconds (512 particles, one interval, short runs).
 QUICK = {"cells": (4, 4, 8), "intervals": [25], "developed": 0.5, "measured": 1.0}
-FLUID_OPTIONS = ("fluid", "molecules_per_particle", "neighbors", "cutoff")
-
-
-def model_of(arguments):
-    """The parameters of --model (a model file) or of the mapping of --fluid (default argon)."""
-    given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None]
-    if arguments.model is not None:
-        if given:
-            raise SystemExit(f"error: flow-curve: --{given[0].replace('_', '-')} {getattr(arguments, given[0])} is "
-                             f"not allowed with --model {arguments.model}: a model file holds its fluid and every "
-                             f"parameter; give one of --model and --fluid")
-        try:
-            return load_parameters(arguments.model)
-        except (OSError, ValueError) as error:
-            raise command_line_error("flow-curve", error) from None
-    neighbors = arguments.neighbors
-    if neighbors is None and arguments.cutoff is None:
-        neighbors = COARSE_GRAINING["neighbors"]
-    namespace = argparse.Namespace(**{**vars(arguments), "fluid": arguments.fluid or "argon", "neighbors": neighbors})
-    return parameters_from_arguments(namespace, "flow-curve")
 
 
 def run(arguments):
-    parameters = model_of(arguments)
+    parameters = model_or_fluid(arguments, "flow-curve", "argon")
     options = dict(cells=tuple(arguments.cells), developed=arguments.developed, measured=arguments.measured)
     intervals = arguments.intervals
     if arguments.quick:
         options.update({key: value for key, value in QUICK.items() if key != "intervals"})
         intervals = QUICK["intervals"]
-    checked_model("flow-curve", lambda: parameters.liquid(cells=options["cells"]), "use more --cells")
-    length = parameters.liquid(cells=options["cells"]).box_edges[2]
+    length = checked_model("flow-curve", lambda: parameters.liquid(cells=options["cells"]),
+                           "use more --cells").box_edges[2]
     slab = length / arguments.slabs
     margin = parameters.cutoff / 2 if arguments.margin is None else arguments.margin
     try:

@@ -3,6 +3,8 @@
 """The --fluid options that every command building a model from a fluid shares: a built-in name or a fluid file, and
 the coarse-graining."""
 
+import argparse
+
 from openmm import unit
 
 from ..models.fluid import (
@@ -12,7 +14,7 @@ from ..models.fluid import (
     coarse_grain,
     default_molecules_per_particle,
 )
-from ..models.fluid_files import FLUIDS, fluid_named
+from ..models.fluid_files import FLUIDS, fluid_named, load_parameters
 from .options import POSITIVE, command_line_error
 
 
@@ -53,3 +55,28 @@ def parameters_from_arguments(arguments, command):
         return coarse_grain(fluid, arguments.molecules_per_particle, neighbors=neighbors, cutoff=cutoff)
     except ValueError as error:
         raise command_line_error(command, error) from None
+
+
+#: The options of the mapping of --fluid (add_fluid_arguments): a subcommand that also takes --model sets their
+#: defaults to None (not given), so that model_or_fluid can refuse them with --model and put its defaults back.
+FLUID_OPTIONS = ("fluid", "molecules_per_particle", "neighbors", "cutoff")
+
+
+def model_or_fluid(arguments, command, default_fluid):
+    """The parameters of --model (a model file, models.fluid_files.load_parameters) or of the mapping of --fluid
+    (``default_fluid`` and the coarse-graining defaults where not given; parameters_from_arguments). --fluid and its
+    coarse-graining with --model are refused: the model file holds its fluid and every parameter. A bad argument
+    exits (SystemExit, status 1) with a one-line error naming ``command``."""
+    given = [name for name in FLUID_OPTIONS if getattr(arguments, name) is not None]
+    if arguments.model is not None:
+        if given:
+            raise SystemExit(f"error: {command}: --{given[0].replace('_', '-')} {getattr(arguments, given[0])} is "
+                             f"not allowed with --model {arguments.model}: a model file holds its fluid and every "
+                             f"parameter; give one of --model and --fluid")
+        try:
+            return load_parameters(arguments.model)
+        except (OSError, ValueError) as error:
+            raise command_line_error(command, error) from None
+    defaults = {name: value for name, value in {"fluid": default_fluid, **COARSE_GRAINING}.items()
+                if getattr(arguments, name) is None}
+    return parameters_from_arguments(argparse.Namespace(**{**vars(arguments), **defaults}), command)

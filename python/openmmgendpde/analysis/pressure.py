@@ -17,7 +17,7 @@ import numpy as np
 from openmm import unit
 
 from ..api import GenDPDEForce, GenDPDEIntegrator
-from .thermodynamics import VIRIAL_SCALING_STEP, is_external_field, strain_derivatives
+from .thermodynamics import VIRIAL_SCALING_STEP, is_external_field, particle_masses, strain_derivatives
 
 
 def virial_tensor(force, context, per_particle=False):
@@ -38,7 +38,7 @@ def pressure_tensor(force, context, state=None, numerical_groups=()):
                          "virial_tensor works for open ones too")
     state = state or context.getState(getVelocities=True, getForces=True)
     system = context.getSystem()
-    masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
+    masses = particle_masses(system)
     velocities = state.getVelocities(asNumpy=True).value_in_unit(unit.nanometer / unit.picosecond)
     integrator = context.getIntegrator()
     if GenDPDEIntegrator.isinstance(integrator):

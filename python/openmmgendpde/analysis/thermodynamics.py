@@ -66,7 +66,7 @@ class ThermodynamicProbe:
     be measured and how (see the module's docstring)."""
 
     def __init__(self, system):
-        masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
+        masses = particle_masses(system)
         self.masses = masses
         self.degrees_of_freedom = max(1, 3 * int(np.count_nonzero(masses > 0)) - 3)
         self.periodic = system.usesPeriodicBoundaryConditions()
@@ -190,6 +190,11 @@ def _describe(force):
     name = force.getName()
     kind = type(force).__name__
     return kind if name == kind or not name else f"{kind} '{name}'"
+
+
+def particle_masses(system):
+    """The masses of ``system``'s particles (amu, a numpy array; 0 for a massless, fixed particle)."""
+    return np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
 
 
 def strain_derivatives(context, groups, strains, step=VIRIAL_SCALING_STEP):

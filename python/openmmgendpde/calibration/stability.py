@@ -31,7 +31,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from ..analysis.thermodynamics import ThermodynamicProbe
+from ..analysis.thermodynamics import ThermodynamicProbe, particle_masses
 from ..api import GenDPDEForce, GenDPDEIntegrator, estimator_of
 from ..models.melting import melt_then_switch
 
@@ -44,10 +44,6 @@ MODES = {"Isoenergetic": GenDPDEIntegrator.Isoenergetic, "Isothermal": GenDPDEIn
 #: step with bonds"). suggest_time_step halves it, as it halves the fluid's limit.
 BONDED_STEP_LIMIT = 1.0
 
-
-
-def _bonded_masses(system):
-    return np.array([system.getParticleMass(i).value_in_unit(unit.amu) for i in range(system.getNumParticles())])
 
 
 #: The Forces that exert no force (bonded_frequency passes them by).
@@ -67,7 +63,7 @@ def bonded_frequency(system):
     (fixed) particles have no row. 0.0 for a System without bonds. Any other Force but a GenDPDEForce, a
     CMMotionRemover or a Monte Carlo barostat (no forces) raises ValueError naming it: its stiffness is not bounded
     here."""
-    masses = _bonded_masses(system)
+    masses = particle_masses(system)
     rows = np.zeros(len(masses))
     bonds, angles = [], []
     for index, force in enumerate(system.getForces()):

@@ -33,7 +33,7 @@ import numpy as np
 import openmm
 from openmm import unit
 
-from ..analysis.thermodynamics import integration_groups
+from ..analysis.thermodynamics import integration_groups, particle_masses
 from ..api import GenDPDEIntegrator
 from ..internal.reporting import checked_choice
 
@@ -188,8 +188,7 @@ class ReverseShearFlow:
             if not system.usesPeriodicBoundaryConditions():
                 raise openmm.OpenMMException(f"{name}: the System does not use periodic boundaries; the shear flow "
                                              f"needs a periodic box (a force with periodic boundary conditions)")
-            masses = np.array([system.getParticleMass(i).value_in_unit(unit.amu)
-                               for i in range(system.getNumParticles())])
+            masses = particle_masses(system)
             moving = np.unique(masses[masses > 0])
             if len(moving) != 1:
                 raise openmm.OpenMMException(f"{name}: the System's moving particles have the masses "

@@ -3,6 +3,7 @@
 #include "CommonGenDPDEBlockSweep.h"
 #include "CommonGenDPDEArguments.h"
 #include "CommonGenDPDEKernelSources.h"
+#include "CommonGenDPDEStatus.h"
 #include "gendpde/CounterRandom.h"
 #include "gendpde/GenDPDESweepDefinition.h"
 #include "internal/BoxGeometry.h"
@@ -21,8 +22,12 @@ const int scanGroupSize = 256;
 const int boundsGroupSize = 128;
 
 /** The arguments of kernels/gendpdeSweep.cc's kernels, in the order of their parameters. */
-namespace CheckArgument {
+namespace PrepareArgument {
 enum {
+    FirstStage,
+    EndStage,
+    AtomUnits,
+    CellUnits,
     Posq,
     PosqCorrection,
     AtomIndex,
@@ -41,40 +46,20 @@ enum {
     ListForced,
     ForceErrors,
     ClearForceErrors,
-    Count
-};
-}
-namespace BoundsArgument {
-enum { Flags, Parity, Status, Posq, PosqCorrection, SlotOfAtom, BuildPosition, Bounds, Count };
-}
-namespace AssignArgument {
-enum {
-    Flags,
-    Parity,
-    Status,
-    Posq,
-    PosqCorrection,
-    SlotOfAtom,
-    BuildPosition,
-    BoxA,
-    BoxB,
-    BoxC,
     Low,
     Extent,
     Cells,
     AtomCell,
     CellCount,
+    CellStart,
+    CellFill,
+    SortedAtom,
+    Schedule,
     Count
 };
 }
-namespace ScanArgument {
-enum { Flags, Parity, Status, CellCount, CellStart, NumCells, Count };
-}
-namespace FillArgument {
-enum { Flags, Parity, Status, AtomCell, CellStart, CellFill, SortedAtom, Count };
-}
-namespace SortArgument {
-enum { Flags, Parity, Status, NumCells, CellStart, CellFill, SortedAtom, Count };
+namespace BoundsArgument {
+enum { Flags, Parity, Status, Posq, PosqCorrection, SlotOfAtom, BuildPosition, Bounds, Count };
 }
 namespace OrderArgument {
 enum {
@@ -102,8 +87,8 @@ enum {
 }
 namespace SweepArgument {
 enum {
-    FirstRank,
-    NumRanks,
+    FirstColour,
+    EndColour,
     Cells,
     Blocks,
     Header,
@@ -143,6 +128,7 @@ enum {
     Status,
     Failure,
     FailureEnergy,
+    Schedule,
     Count
 };
 }
@@ -200,6 +186,13 @@ CommonGenDPDEBlockSweep::CommonGenDPDEBlockSweep(ComputeContext& cc, CommonGenDP
     failureEnergy.initialize(cc, 1, mixedSize, "gendpdeSweepFailureEnergy");
     placeholder.initialize<int>(cc, 2, "gendpdeSweepPlaceholder"); // a force's flags where no force shares
     placeholder.upload(std::vector<int>(2, 0));
+    // The tickets of the launches whose stages run in ticket order (kernels/gendpdeSweep.cc, "Stages in one
+    // launch"), left so by every launch.
+    schedule.initialize<int>(cc, 4, "gendpdeSweepSchedule");
+    schedule.upload(std::vector<int>{0, 0, 0, DeviceStatus::NoValue});
+    // A developer's setting: a launch per stage (the check, each step of the cells, each colour), as before they
+    // shared a launch, to compare the two (devtools/sweep_launch_modes.py).
+    launchPerStage = setting("GENDPDE_SWEEP_LAUNCH_PER_STAGE", 0) != 0;
 }
 
 int CommonGenDPDEBlockSweep::levelWords() const {
@@ -276,10 +269,14 @@ void CommonGenDPDEBlockSweep::compile() {
     ComputeProgram program = cc.compileProgram(sources + CommonGenDPDEKernelSources::GenDPDESweepPair
                                                        + CommonGenDPDEKernelSources::gendpdeSweep,
                                                programDefines);
-    checkKernel = program->createKernel("checkSweepBuild");
+    prepareKernel = program->createKernel("prepareSweepBuild");
     {
-        using namespace CheckArgument;
-        KernelArguments(checkKernel, "checkSweepBuild")
+        using namespace PrepareArgument;
+        KernelArguments(prepareKernel, "prepareSweepBuild")
+                .later(FirstStage)
+                .later(EndStage)
+                .later(AtomUnits)
+                .later(CellUnits)
                 .array(Posq, cc.getPosq())
                 .array(PosqCorrection, cc.getPosqCorrection())
                 .array(AtomIndex, cc.getAtomIndexArray())
@@ -298,6 +295,15 @@ void CommonGenDPDEBlockSweep::compile() {
                 .later(ListForced)
                 .later(ForceErrors)
                 .later(ClearForceErrors)
+                .later(Low)
+                .later(Extent)
+                .later(Cells)
+                .array(AtomCell, atomCell)
+                .later(CellCount)
+                .later(CellStart)
+                .later(CellFill)
+                .array(SortedAtom, sortedAtom)
+                .array(Schedule, schedule)
                 .done(Count);
     }
     boundsKernel = program->createKernel("findSweepBounds");
@@ -312,65 +318,6 @@ void CommonGenDPDEBlockSweep::compile() {
                 .array(SlotOfAtom, slotOfAtom)
                 .array(BuildPosition, buildPosition)
                 .array(Bounds, bounds)
-                .done(Count);
-    }
-    assignKernel = program->createKernel("assignSweepCells");
-    {
-        using namespace AssignArgument;
-        KernelArguments(assignKernel, "assignSweepCells")
-                .array(Flags, flags)
-                .later(Parity)
-                .later(Status)
-                .array(Posq, cc.getPosq())
-                .array(PosqCorrection, cc.getPosqCorrection())
-                .array(SlotOfAtom, slotOfAtom)
-                .array(BuildPosition, buildPosition)
-                .later(BoxA)
-                .later(BoxB)
-                .later(BoxC)
-                .later(Low)
-                .later(Extent)
-                .later(Cells)
-                .array(AtomCell, atomCell)
-                .later(CellCount)
-                .done(Count);
-    }
-    scanKernel = program->createKernel("scanSweepCells");
-    {
-        using namespace ScanArgument;
-        KernelArguments(scanKernel, "scanSweepCells")
-                .array(Flags, flags)
-                .later(Parity)
-                .later(Status)
-                .later(CellCount)
-                .later(CellStart)
-                .later(NumCells)
-                .done(Count);
-    }
-    fillKernel = program->createKernel("fillSweepCells");
-    {
-        using namespace FillArgument;
-        KernelArguments(fillKernel, "fillSweepCells")
-                .array(Flags, flags)
-                .later(Parity)
-                .later(Status)
-                .array(AtomCell, atomCell)
-                .later(CellStart)
-                .later(CellFill)
-                .array(SortedAtom, sortedAtom)
-                .done(Count);
-    }
-    sortKernel = program->createKernel("sortSweepCells");
-    {
-        using namespace SortArgument;
-        KernelArguments(sortKernel, "sortSweepCells")
-                .array(Flags, flags)
-                .later(Parity)
-                .later(Status)
-                .later(NumCells)
-                .later(CellStart)
-                .later(CellFill)
-                .array(SortedAtom, sortedAtom)
                 .done(Count);
     }
     orderKernel = program->createKernel("orderBlocks");
@@ -402,8 +349,8 @@ void CommonGenDPDEBlockSweep::compile() {
     {
         using namespace SweepArgument;
         KernelArguments(sweepKernel, "sweepBlocks")
-                .later(FirstRank)
-                .later(NumRanks)
+                .later(FirstColour)
+                .later(EndColour)
                 .later(Cells)
                 .later(Blocks)
                 .later(Header)
@@ -443,6 +390,7 @@ void CommonGenDPDEBlockSweep::compile() {
                 .later(Status)
                 .later(Failure)
                 .later(FailureEnergy)
+                .array(Schedule, schedule)
                 .done(Count);
     }
     allocatedRanks = -1;
@@ -521,88 +469,78 @@ void CommonGenDPDEBlockSweep::prepare(int stepIndex, ArrayInterface& status, Arr
     givenPending = false;
     const int numAtoms = cc.getNumAtoms();
     {
-        using namespace CheckArgument;
-        setBoxArguments(checkKernel, BoxA, box);
-        setMixed(cc, checkKernel, Limit2, SweepDefinition::rebuildDisplacement2(range));
-        checkKernel->setArg(Parity, parity);
-        checkKernel->setArg(HostBuild, hostBuild ? 1 : 0);
-        checkKernel->setArg(HostCapture, hostCapture ? 1 : 0);
-        checkKernel->setArg(Status, status);
+        using namespace PrepareArgument;
+        setBoxArguments(prepareKernel, BoxA, box); // (periodic: the build's box, which it is now)
+        setMixed(cc, prepareKernel, Limit2, SweepDefinition::rebuildDisplacement2(range));
+        prepareKernel->setArg(Parity, parity);
+        prepareKernel->setArg(HostBuild, hostBuild ? 1 : 0);
+        prepareKernel->setArg(HostCapture, hostCapture ? 1 : 0);
+        prepareKernel->setArg(Status, status);
         ArrayInterface* rebuildMark = (listRebuild != nullptr ? listRebuild : sharedListRebuild);
-        checkKernel->setArg(ListRebuild, rebuildMark != nullptr ? *rebuildMark : placeholder);
-        checkKernel->setArg(ListForced, listForced ? 1 : 0);
-        checkKernel->setArg(ForceErrors, forceErrors != nullptr ? *forceErrors : placeholder);
-        checkKernel->setArg(ClearForceErrors, forceErrors != nullptr ? 1 : 0);
+        prepareKernel->setArg(ListRebuild, rebuildMark != nullptr ? *rebuildMark : placeholder);
+        prepareKernel->setArg(ListForced, listForced ? 1 : 0);
+        prepareKernel->setArg(ForceErrors, forceErrors != nullptr ? *forceErrors : placeholder);
+        prepareKernel->setArg(ClearForceErrors, forceErrors != nullptr ? 1 : 0);
     }
-    profiler.time("sweep build check", [&]() { profiler.launch(checkKernel, numAtoms); });
+    // The stages first .. end - 1 of prepareSweepBuild (0 the check; 1-4 the cells, at a build) in one launch, or
+    // in one launch each (GENDPDE_SWEEP_LAUNCH_PER_STAGE).
+    auto launchRange = [&](int first, int end, const Vec3& low, const Vec3& extent) {
+        using namespace PrepareArgument;
+        const mm_int4 cellsArgument = getCellsArgument();
+        const int atomUnits =
+                std::max(1, std::min((numAtoms + scanGroupSize - 1) / scanGroupSize, cc.getNumThreadBlocks()));
+        const int cellUnits =
+                std::max(1, std::min((cellsArgument.w + scanGroupSize - 1) / scanGroupSize, cc.getNumThreadBlocks()));
+        int units = 0;
+        for (int stage = first; stage < end; stage++)
+            units += (stage == 2 ? 1 : stage == 4 ? cellUnits : atomUnits);
+        prepareKernel->setArg(FirstStage, first);
+        prepareKernel->setArg(EndStage, end);
+        prepareKernel->setArg(AtomUnits, atomUnits);
+        prepareKernel->setArg(CellUnits, cellUnits);
+        setMixed4(cc, prepareKernel, Low, low[0], low[1], low[2], 0.0);
+        setMixed4(cc, prepareKernel, Extent, extent[0], extent[1], extent[2], 0.0);
+        prepareKernel->setArg(Cells, cellsArgument);
+        prepareKernel->setArg(CellCount, cellCount);
+        prepareKernel->setArg(CellStart, cellStart);
+        prepareKernel->setArg(CellFill, cellFill);
+        profiler.launch(prepareKernel, scanGroupSize * units, scanGroupSize);
+    };
+    auto launchStages = [&](int first, int end, const Vec3& low, const Vec3& extent) {
+        for (int stage = first; stage < end; stage = (launchPerStage ? stage + 1 : end))
+            launchRange(stage, launchPerStage ? stage + 1 : end, low, extent);
+    };
     mayBuild = true;
-    Vec3 low, extent;
-    if (periodic)
-        extent = BoxGeometry::perpendicularWidths(buildBox);
-    else {
+    if (periodic) {
+        // The check and, at a build, the cells, in one launch.
+        setCells(BoxGeometry::perpendicularWidths(buildBox));
+        if (allocatedRanks != numRanks)
+            allocate();
+        profiler.time("sweep check, cells (if due)", [&]() { launchStages(0, 5, Vec3(), Vec3()); });
+    } else {
         // Open boundaries: the cells follow the build positions' bounding box, which the host must read.
+        profiler.time("sweep check, cells (if due)", [&]() { launchStages(0, 1, Vec3(), Vec3()); });
         std::vector<int> found;
         profiler.transfer();
         flags.download(found);
         mayBuild = found[2 * parity] != 0;
         if (mayBuild) {
-            using namespace BoundsArgument;
-            boundsKernel->setArg(Parity, parity);
-            boundsKernel->setArg(Status, status);
-            profiler.launch(boundsKernel, boundsGroupSize, boundsGroupSize);
+            {
+                using namespace BoundsArgument;
+                boundsKernel->setArg(Parity, parity);
+                boundsKernel->setArg(Status, status);
+                profiler.launch(boundsKernel, boundsGroupSize, boundsGroupSize);
+            }
             std::vector<double> corners;
             profiler.transfer();
             bounds.download(corners, true);
-            low = Vec3(corners[0], corners[1], corners[2]);
-            extent = Vec3(corners[3], corners[4], corners[5]) - low;
+            const Vec3 low(corners[0], corners[1], corners[2]);
+            const Vec3 extent = Vec3(corners[3], corners[4], corners[5]) - low;
+            setCells(extent);
+            if (allocatedRanks != numRanks)
+                allocate();
+            profiler.time("sweep check, cells (if due)", [&]() { launchStages(1, 5, low, extent); });
         }
-    }
-    if (mayBuild) {
-        setCells(extent);
-        if (allocatedRanks != numRanks)
-            allocate();
-    }
-    const mm_int4 cellsArgument = getCellsArgument();
-    if (mayBuild) {
-        {
-            using namespace AssignArgument;
-            assignKernel->setArg(Parity, parity);
-            assignKernel->setArg(Status, status);
-            setBoxArguments(assignKernel, BoxA, buildBox);
-            setMixed4(cc, assignKernel, Low, low[0], low[1], low[2], 0.0);
-            setMixed4(cc, assignKernel, Extent, extent[0], extent[1], extent[2], 0.0);
-            assignKernel->setArg(Cells, cellsArgument);
-            assignKernel->setArg(CellCount, cellCount);
-        }
-        {
-            using namespace ScanArgument;
-            scanKernel->setArg(Parity, parity);
-            scanKernel->setArg(Status, status);
-            scanKernel->setArg(CellCount, cellCount);
-            scanKernel->setArg(CellStart, cellStart);
-            scanKernel->setArg(NumCells, cellsArgument.w);
-        }
-        {
-            using namespace FillArgument;
-            fillKernel->setArg(Parity, parity);
-            fillKernel->setArg(Status, status);
-            fillKernel->setArg(CellStart, cellStart);
-            fillKernel->setArg(CellFill, cellFill);
-        }
-        {
-            using namespace SortArgument;
-            sortKernel->setArg(Parity, parity);
-            sortKernel->setArg(Status, status);
-            sortKernel->setArg(NumCells, cellsArgument.w);
-            sortKernel->setArg(CellStart, cellStart);
-            sortKernel->setArg(CellFill, cellFill);
-        }
-        profiler.time("sweep cells (if due)", [&]() {
-            profiler.launch(assignKernel, numAtoms);
-            profiler.launch(scanKernel, scanGroupSize, scanGroupSize);
-            profiler.launch(fillKernel, numAtoms);
-            profiler.launch(sortKernel, std::max(1, cellsArgument.w));
-        });
     }
     prepared = true;
 }
@@ -681,13 +619,19 @@ void CommonGenDPDEBlockSweep::run(const BlockSweepStep& step, ArrayInterface& en
         sweepKernel->setArg(FailureEnergy, failureEnergy);
     }
     profiler.time("sweep (8 colours)", [&]() {
-        for (int colour = 0; colour + 1 < (int) groupStart.size(); colour++) {
-            const int ranks = groupStart[colour + 1] - groupStart[colour];
-            if (ranks == 0)
+        // One launch for the 8 colours, or one per colour (GENDPDE_SWEEP_LAUNCH_PER_STAGE); a launch's work groups
+        // take its units (blocksPerGroup blocks of a colour) in ticket order, however many OpenMM launches.
+        const int first = 0, end = (int) groupStart.size() - 1;
+        for (int colour = first; colour < end; colour += (launchPerStage ? 1 : std::max(1, end - first))) {
+            const int last = (launchPerStage ? colour + 1 : end);
+            int units = 0;
+            for (int k = colour; k < last; k++)
+                units += (groupStart[k + 1] - groupStart[k] + blocksPerGroup - 1) / blocksPerGroup;
+            if (units == 0)
                 continue;
-            sweepKernel->setArg(SweepArgument::FirstRank, groupStart[colour]);
-            sweepKernel->setArg(SweepArgument::NumRanks, ranks);
-            profiler.launch(sweepKernel, groupSize * ((ranks + blocksPerGroup - 1) / blocksPerGroup), groupSize);
+            sweepKernel->setArg(SweepArgument::FirstColour, colour);
+            sweepKernel->setArg(SweepArgument::EndColour, last);
+            profiler.launch(sweepKernel, groupSize * units, groupSize);
         }
     });
     parity = 1 - parity;

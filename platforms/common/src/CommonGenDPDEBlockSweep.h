@@ -29,8 +29,9 @@ struct BlockSweepStep {
  * The Shardlow sweep of GenDPDEIntegrator on OpenMM's Common platforms (kernels/gendpdeSweep.cc), in the order of
  * GenDPDESweepDefinition.h: made once per build on the device (the build's cells, each block's candidate pairs in
  * (i, j) order grouped in the greedy levels, in one launch) and kept between builds; every step one launch checks
- * whether a build is due (a particle farther than the skin's half from its build position) and one launch per colour
- * sweeps its blocks, one work group per block, level by level, updating the candidates closer than R. The build's
+ * whether a build is due (a particle farther than the skin's half from its build position) and one launch sweeps the
+ * 8 colours, its work groups taking the blocks colour by colour in ticket order (a colour's blocks after every block
+ * of the colours before it), level by level, updating the candidates closer than R. The build's
  * kernels run every step and return at once, on the device, when no build is due; nothing waits for the host but,
  * with open boundaries, the build flag and the build's bounding box. The result is the sequential sweep's to the
  * last bit. A GenDPDEForce of the same pair range shares the build during a run of steps (prepare(): the check and
@@ -158,8 +159,9 @@ private:
     OpenMM::ComputeArray flags, buildPosition, slotOfAtom, atomCell, cellCount, cellFill, cellStart, sortedAtom, bounds,
             levelMasks;
     OpenMM::ComputeArray header, blockAtoms, pairScratch, blockPairs, levelStart, failureParticle, failureEnergy;
-    OpenMM::ComputeKernel checkKernel, boundsKernel, assignKernel, scanKernel, fillKernel, sortKernel, orderKernel,
-            sweepKernel;
+    OpenMM::ComputeArray schedule; // the tickets of the sweep's launch (kernels/gendpdeSweep.cc)
+    bool launchPerStage = false;   // GENDPDE_SWEEP_LAUNCH_PER_STAGE: a launch per stage of a step (as before)
+    OpenMM::ComputeKernel prepareKernel, boundsKernel, orderKernel, sweepKernel;
     OpenMM::ComputeArray zigguratX, zigguratF, zigguratRatio;
 };
 

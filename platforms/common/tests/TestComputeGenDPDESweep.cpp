@@ -12,7 +12,11 @@
  * is 1e-13 relative; an update out of sequence, a pair missed or repeated, or a wrong variate gives 1e-3 or more
  * (a pair update changes a velocity by ~1% of the thermal speed). The same run in every layout a device may use
  * (several blocks per work group, odd thread counts, blocks beyond the local-memory or slab capacities, which are
- * streamed), which the GENDPDE_SWEEP_* settings force here (ScopedEnvironment).
+ * streamed, the 8 colours in one launch or in one each), which the GENDPDE_SWEEP_* settings force here
+ * (ScopedEnvironment). A colour swept before the colours before it are done breaks the sequence (checked: the
+ * launch's wait for earlier colours taken out, this test and TestComputeGenDPDEEqualsReference fail). Each layout
+ * runs in a Context of its own, one after another in this process, as a device's memory is reused: a kernel that
+ * read memory it had not written would depend on the Context before it (seen on PoCL while this was written).
  *
  * Runs that stop: a failure at any step of a run (an internal energy that would become <= 0, a step that would move
  * a particle too far, an invalid particle found by the force) is found on the device and reported after the run with
@@ -77,7 +81,9 @@ void testSweepIsTheHostSequence() {
             {{"GENDPDE_SWEEP_PAIR_CAPACITY", "400"}},    // about half the blocks are streamed
             {{"GENDPDE_SWEEP_BLOCKS_PER_GROUP", "2"},
              {"GENDPDE_SWEEP_BLOCK_THREADS", "2"},
-             {"GENDPDE_SWEEP_PAIR_CAPACITY", "420"}}};
+             {"GENDPDE_SWEEP_PAIR_CAPACITY", "420"}},
+            {{"GENDPDE_SWEEP_LAUNCH_PER_STAGE", "1"}},  // a launch per colour (and per step of the cells)
+            {{"GENDPDE_SWEEP_LAUNCH_PER_STAGE", "1"}, {"GENDPDE_SWEEP_PAIR_CAPACITY", "400"}}};
     for (const auto& values : layouts) {
         ScopedEnvironment settings(values);
         compare(expected, runSweeps(scene, GenDPDEIntegrator::Isoenergetic, 3, "double"),

@@ -4,25 +4,25 @@
  * section 6): made once per build from the candidate pairs (closer than candidateRange(R) at the build's positions)
  * and kept while no particle has moved more than half the skin from its build position and the box is the same.
  *
- * Every step:
- *   checkSweepBuild  each particle's slot by original index (atom reordering moves slots, not the order), and the
- *                    step's build flags: build when the host asks (first step, new box, build positions given) or
- *                    when some particle is farther than sqrt(rebuildDisplacement2(R)) from its build position
- *                    (nearest image: OpenMM may wrap positions between builds); capture the step's positions as the
- *                    build's unless the host gave them.
- *   sweepBlocks      one launch per colour: each block's velocities and internal energies staged in local memory,
- *                    the levels one after another, the pairs of a level at the same time, each updated only if it is
- *                    closer than R at the step's positions.
- * At a build only (every other step these return at once, on the device, from the flags; nothing waits for the
- * host but the bounding box of open boundaries):
- *   findSweepBounds, assignSweepCells, scanSweepCells, fillSweepCells, sortSweepCells
- *                    the cells of the build positions (>= candidateRange(R) wide), particles by original index
- *                    inside a cell; kept until the next build.
- *   orderBlocks      every block in one launch: the particles of the block's region (the up to 3x3x3 cells its pairs
+ * Every step (three launches, two of them stages in ticket order: see "Stages in one launch" below):
+ *   prepareSweepBuild  the check: each particle's slot by original index (atom reordering moves slots, not the
+ *                    order), and the step's build flags: build when the host asks (first step, new box, build
+ *                    positions given) or when some particle is farther than sqrt(rebuildDisplacement2(R)) from its
+ *                    build position (nearest image: OpenMM may wrap positions between builds); capture the step's
+ *                    positions as the build's unless the host gave them. Then, at a build only, in the same launch,
+ *                    the cells of the build positions (>= candidateRange(R) wide), particles by original index inside
+ *                    a cell, kept until the next build (with open boundaries the host reads the flags and the build's
+ *                    bounding box, findSweepBounds, first, and the cells take a launch of their own).
+ *   orderBlocks      at a build only (other steps it returns at once, on the device, from the flags):
+ *                    every block in one launch: the particles of the block's region (the up to 3x3x3 cells its pairs
  *                    can touch) staged in local memory by original index; each particle's candidates in the block in
  *                    (i, j) order; each pair's level by SweepDefinition::assignLevels's greedy rule (the smallest
  *                    level that no earlier pair of either particle has, in (i, j) order); the pairs grouped by level,
  *                    (i, j) order within a level, into the block's slab.
+ *   sweepBlocks      the 8 colours in one launch (a colour's blocks after every block of the colours before it):
+ *                    each block's velocities and internal energies staged in local memory, the levels one after
+ *                    another, the pairs of a level at the same time, each updated only if it is closer than R at the
+ *                    step's positions.
  *
  * The pairs of a level share no particle, so running them at the same time gives the sequence's result to the last
  * bit. A block whose region holds more than SWEEP_MAX_PARTICLES particles, or more candidates than its slab
@@ -40,6 +40,79 @@
  * core in `mixed`. */
 
 #define SWEEP_GROUP_SIZE (SWEEP_BLOCKS_PER_GROUP*SWEEP_BLOCK_THREADS)
+
+/* Stages in one launch. A launch whose units must run stage by stage (each stage's units after every unit of the
+ * stages before it: the check and the cells of a build; the sweep's colours) hands its units out in ticket order: a work group takes the next ticket,
+ * waits until the units of the earlier stages are done, runs its unit, counts it done, and takes another ticket until
+ * none is left. A group waits only for units whose tickets were taken before its own, by groups already running, so
+ * the launch needs no more groups to be resident at once than the device holds (no deadlock whatever the number of
+ * groups or their schedule), and the result is that of one launch per stage. schedule[4] (ints, 0 0 0 NO_VALUE
+ * between launches; the last group to leave resets them): the next ticket, the units done, the groups that have left,
+ * and the first stage of this launch that stopped the run. */
+#ifdef __OPENCL_VERSION__
+#define DEVICE_FENCE mem_fence(CLK_GLOBAL_MEM_FENCE)
+#else
+#define DEVICE_FENCE __threadfence()
+#endif
+
+/** The group's next ticket (every thread of the group gets it). ticket: a local int. */
+inline DEVICE int takeTicket(GLOBAL int* RESTRICT schedule, LOCAL_ARG int* ticket) {
+    if (LOCAL_ID == 0)
+        *ticket = ATOMIC_ADD(&schedule[0], 1);
+    SYNC_THREADS;
+    return *ticket;
+}
+
+/** Wait (the whole group) until `before` units of this launch are done, and see their writes. */
+inline DEVICE void awaitUnits(GLOBAL int* RESTRICT schedule, int before) {
+    if (LOCAL_ID == 0)
+        while (((volatile GLOBAL int*) schedule)[1] < before)
+            ;
+    DEVICE_FENCE;
+    SYNC_THREADS;
+    DEVICE_FENCE;
+}
+
+/**
+ * Wait until `before` units of this launch are done (those of the earlier stages); then whether the run has stopped
+ * before this stage: in an earlier launch, or in an earlier stage of this one (a stop in this stage, by another unit,
+ * does not count, as with one launch per stage). Each thread reads the words itself, and all get the same answer: a
+ * stop in this stage writes its stage before the status word (stopInStage), so a thread that sees that stop's status
+ * word sees its stage too.
+ */
+inline DEVICE bool awaitStage(GLOBAL int* RESTRICT schedule, int before, int stage, GLOBAL int* RESTRICT status) {
+    awaitUnits(schedule, before);
+    const int halted = ((volatile GLOBAL int*) status)[STATUS_HALTED];
+    DEVICE_FENCE;
+    const int stopStage = ((volatile GLOBAL int*) schedule)[3];
+    return halted != 0 && (stopStage == NO_VALUE || stopStage < stage);
+}
+
+/** This unit stops the run in this stage (before the status word says so: awaitStage reads them the other way). */
+inline DEVICE void stopInStage(GLOBAL int* RESTRICT schedule, int stage, GLOBAL int* RESTRICT status, int reason,
+                               int stepIndex) {
+    ATOMIC_MIN(&schedule[3], stage);
+    DEVICE_FENCE;
+    haltRun(status, reason, stepIndex);
+}
+
+/** The group's unit is done: its writes, then the count. */
+inline DEVICE void finishUnit(GLOBAL int* RESTRICT schedule) {
+    DEVICE_FENCE;
+    SYNC_THREADS;
+    if (LOCAL_ID == 0)
+        ATOMIC_ADD(&schedule[1], 1);
+}
+
+/** The group leaves the launch (no ticket left); the last to leave resets the schedule for the next launch. */
+inline DEVICE void leaveLaunch(GLOBAL int* RESTRICT schedule) {
+    if (LOCAL_ID == 0 && ATOMIC_ADD(&schedule[2], 1) == (int) NUM_GROUPS - 1) {
+        schedule[0] = 0;
+        schedule[1] = 0;
+        schedule[2] = 0;
+        schedule[3] = NO_VALUE;
+    }
+}
 
 /** The cells of a block's region along one direction: 2 b + 0, 1, 2, without repeats (periodic grids of 1 or 2
  *  cells) and inside the grid (open boundaries). Returns their number; along[l] the cell at offset l. */
@@ -105,51 +178,6 @@ inline DEVICE int3 blockOfRank(int rank, int4 blocks) {
     return make_int3(px + 2*(t%mx), py + 2*((t/mx)%my), pz + 2*(t/(mx*my)));
 }
 
-/**
- * The step's build flags (parity p: flags[2 p] build, flags[2 p + 1] capture) and each particle's slot
- * (slotOfAtom[original index]). hostBuild: build (from buildPosition, unless a particle is too far from it);
- * hostCapture: build from the step's positions. Otherwise a build, from the step's positions, when some particle is
- * farther than sqrt(limit2) from buildPosition (nearest image in the step's box).
- * A GenDPDEForce that shares the build (its neighbour list made from this build's cells, CommonGenDPDEBuildSource):
- * listRebuild[0] = 1 where the order is built, or if listForced; forceErrors[0..1] cleared when clearForceErrors
- * (that force's own check, which this one replaces, cleared them). Otherwise both point at placeholders.
- */
-KERNEL void checkSweepBuild(GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
-        GLOBAL const int* RESTRICT atomIndex, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB,
-        mixed4 boxC, mixed limit2, int parity, int hostBuild, int hostCapture, GLOBAL int* RESTRICT flags,
-        GLOBAL int* RESTRICT slotOfAtom, GLOBAL const int* RESTRICT status, GLOBAL int* RESTRICT listRebuild,
-        int listForced, GLOBAL int* RESTRICT forceErrors, int clearForceErrors) {
-    if (GLOBAL_ID == 0) {
-        flags[2*(1 - parity)] = 0;
-        flags[2*(1 - parity) + 1] = 0;
-        if (clearForceErrors)
-            forceErrors[0] = forceErrors[1] = 0x7FFFFFFF;
-        if (listForced)
-            listRebuild[0] = 1;
-    }
-    if (status[STATUS_HALTED] != 0)
-        return;
-    if (GLOBAL_ID == 0 && (hostBuild || hostCapture)) {
-        flags[2*parity] = 1;
-        listRebuild[0] = 1;
-        if (hostCapture)
-            flags[2*parity + 1] = 1;
-    }
-    for (int s = GLOBAL_ID; s < NUM_ATOMS; s += GLOBAL_SIZE) {
-        const int atom = atomIndex[s];
-        slotOfAtom[atom] = s;
-        if (!hostCapture) {
-            const mixed3 d = mixedPairDelta(loadMixedPosition(posq, posqCorrection, s), trimTo3(buildPosition[atom]),
-                                            boxA, boxB, boxC);
-            if (dot(d, d) > limit2) {
-                flags[2*parity] = 1;
-                flags[2*parity + 1] = 1;
-                listRebuild[0] = 1;
-            }
-        }
-    }
-}
-
 /** Whether this step builds the order (and the run goes on). */
 inline DEVICE bool building(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status) {
     return flags[2*parity] != 0 && status[STATUS_HALTED] == 0;
@@ -182,67 +210,127 @@ KERNEL void findSweepBounds(GLOBAL const int* RESTRICT flags, int parity, GLOBAL
 }
 
 /**
- * At a build: each particle's build position (the step's, stored, when capturing), its cell in the build's box
- * (boxA..C; open boundaries: low, extent) by original index, and the number of particles per cell (cellCount zero).
+ * The first part of a step in one launch of SCAN_GROUP_SIZE-thread groups, its stages in ticket order (above):
+ *   0 check   each particle's slot (slotOfAtom[original index]: atom reordering moves slots, not the order) and the
+ *             step's build flags (parity p: flags[2 p] build, flags[2 p + 1] capture; the other parity's cleared):
+ *             a build when the host asks (hostBuild: from buildPosition, unless a particle is too far from it;
+ *             hostCapture: from the step's positions), or, from the step's positions, when some particle is farther
+ *             than sqrt(limit2) from buildPosition (nearest image in the step's box: OpenMM may wrap positions
+ *             between builds). A GenDPDEForce that shares the build (its neighbour list made from this build's
+ *             cells, CommonGenDPDEBuildSource): listRebuild[0] = 1 where the order is built, or if listForced;
+ *             forceErrors[0..1] cleared when clearForceErrors (that force's own check, which this one replaces,
+ *             cleared them). Otherwise both point at one placeholder.
+ * At a build only (a group that finds none due leaves the launch):
+ *   1 assign  each particle's build position (the step's, stored, when capturing), its cell in the build's box (the
+ *             step's, boxA..C; open boundaries: low, extent) by original index, the number per cell (cellCount zero)
+ *   2 scan    the cells' first entries (scanInGroup, one unit; cellCount left zero)
+ *   3 fill    each particle listed in its cell, in any order (cellFill zero before)
+ *   4 sort    each cell's particles by original index (insertion sort: a cell holds a few); cellFill zero again.
+ * The launch runs stages firstStage .. endStage - 1: all five with periodic boundaries; with open boundaries the
+ * check, then, at a build, stages 1-4 once the host has the build's bounding box (findSweepBounds). atomUnits and
+ * cellUnits: the units of the stages over particles and over cells. Pointers to what the launch writes and reads
+ * again are neither const nor restrict (a read-only cache would not see the other groups' writes).
  */
-KERNEL void assignSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
+KERNEL void prepareSweepBuild(int firstStage, int endStage, int atomUnits, int cellUnits,
         GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
-        GLOBAL const int* RESTRICT slotOfAtom, GLOBAL mixed4* RESTRICT buildPosition, mixed4 boxA, mixed4 boxB,
-        mixed4 boxC, mixed4 low, mixed4 extent, int4 cells, GLOBAL int* RESTRICT atomCell,
-        GLOBAL int* RESTRICT cellCount) {
-    if (!building(flags, parity, status))
-        return;
-    const int capture = flags[2*parity + 1];
-    for (int atom = GLOBAL_ID; atom < NUM_ATOMS; atom += GLOBAL_SIZE) {
-        const mixed3 r = buildPositionOf(atom, capture, posq, posqCorrection, slotOfAtom, buildPosition);
-        if (capture)
-            buildPosition[atom] = make_mixed4(r.x, r.y, r.z, 0);
-        const int cell = cellIndex(cellOfPosition(r, boxA, boxB, boxC, low, extent, cells), cells);
-        atomCell[atom] = cell;
-        ATOMIC_ADD(&cellCount[cell], 1);
-    }
-}
-
-/** At a build: the cells' first entries (scanInGroup; cellCount left zero). One group of SCAN_GROUP_SIZE. */
-KERNEL void scanSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
-        GLOBAL int* RESTRICT cellCount, GLOBAL int* RESTRICT cellStart, int numCells) {
+        GLOBAL const int* RESTRICT atomIndex, GLOBAL mixed4* buildPosition, mixed4 boxA, mixed4 boxB, mixed4 boxC,
+        mixed limit2, int parity, int hostBuild, int hostCapture, GLOBAL int* flags, GLOBAL int* slotOfAtom,
+        GLOBAL int* status, GLOBAL int* listRebuild, int listForced, GLOBAL int* forceErrors, int clearForceErrors,
+        mixed4 low, mixed4 extent, int4 cells, GLOBAL int* atomCell, GLOBAL int* cellCount, GLOBAL int* cellStart,
+        GLOBAL int* cellFill, GLOBAL int* sortedAtom, GLOBAL int* schedule) {
     LOCAL int partial[SCAN_GROUP_SIZE];
-    if (!building(flags, parity, status))
-        return;
-    scanInGroup(partial, cellCount, cellStart, numCells);
-}
-
-/** At a build: each particle listed in its cell, in any order (cellFill zero before). */
-KERNEL void fillSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
-        GLOBAL const int* RESTRICT atomCell, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
-        GLOBAL int* RESTRICT sortedAtom) {
-    if (!building(flags, parity, status))
-        return;
-    for (int atom = GLOBAL_ID; atom < NUM_ATOMS; atom += GLOBAL_SIZE) {
-        const int cell = atomCell[atom];
-        sortedAtom[cellStart[cell] + ATOMIC_ADD(&cellFill[cell], 1)] = atom;
-    }
-}
-
-/** At a build: each cell's particles by original index (insertion sort: a cell holds a few); cellFill zero again. */
-KERNEL void sortSweepCells(GLOBAL const int* RESTRICT flags, int parity, GLOBAL const int* RESTRICT status,
-        int numCells, GLOBAL const int* RESTRICT cellStart, GLOBAL int* RESTRICT cellFill,
-        GLOBAL int* RESTRICT sortedAtom) {
-    if (!building(flags, parity, status))
-        return;
-    for (int cell = GLOBAL_ID; cell < numCells; cell += GLOBAL_SIZE) {
-        const int begin = cellStart[cell], end = cellStart[cell + 1];
-        cellFill[cell] = 0;
-        for (int k = begin + 1; k < end; k++) {
-            const int atom = sortedAtom[k];
-            int m = k - 1;
-            while (m >= begin && sortedAtom[m] > atom) {
-                sortedAtom[m + 1] = sortedAtom[m];
-                m--;
-            }
-            sortedAtom[m + 1] = atom;
+    LOCAL int groupValues[1];   // the group's ticket
+    int numUnits = 0;
+    for (int stage = firstStage; stage < endStage; stage++)
+        numUnits += (stage == 2 ? 1 : stage == 4 ? cellUnits : atomUnits);
+    const int checkUnits = (firstStage == 0 ? atomUnits : 0);
+    int ticket = takeTicket(schedule, groupValues);
+    while (ticket < numUnits) {
+        int stage = firstStage, before = 0;
+        for (;; stage++) {
+            const int units = (stage == 2 ? 1 : stage == 4 ? cellUnits : atomUnits);
+            if (ticket < before + units)
+                break;
+            before += units;
         }
+        const int unit = ticket - before, stride = atomUnits*LOCAL_SIZE;
+        // A unit of the cells: only at a build (the check's flags, once every check unit is done, give every group
+        // the same answer; a group that finds no build leaves the launch).
+        // (Each thread reads the flags itself: they are final once the check is done.)
+        int work = 1, capture = 0;
+        if (stage > 0) {
+            awaitUnits(schedule, checkUnits);
+            work = (((volatile GLOBAL int*) flags)[2*parity] != 0 && status[STATUS_HALTED] == 0);
+            capture = ((volatile GLOBAL int*) flags)[2*parity + 1];
+        }
+        if (work) {
+            if (stage > 0)
+                awaitUnits(schedule, before);
+            if (stage == 0) {
+                if (unit == 0 && LOCAL_ID == 0) {
+                    flags[2*(1 - parity)] = 0;
+                    flags[2*(1 - parity) + 1] = 0;
+                    if (clearForceErrors)
+                        forceErrors[0] = forceErrors[1] = NO_VALUE;
+                    if (listForced)
+                        listRebuild[0] = 1;
+                    if (status[STATUS_HALTED] == 0 && (hostBuild || hostCapture)) {
+                        flags[2*parity] = 1;
+                        listRebuild[0] = 1;
+                        if (hostCapture)
+                            flags[2*parity + 1] = 1;
+                    }
+                }
+                if (status[STATUS_HALTED] == 0)
+                    for (int s = unit*LOCAL_SIZE + LOCAL_ID; s < NUM_ATOMS; s += stride) {
+                        const int atom = atomIndex[s];
+                        slotOfAtom[atom] = s;
+                        if (!hostCapture) {
+                            const mixed3 d = mixedPairDelta(loadMixedPosition(posq, posqCorrection, s),
+                                                            trimTo3(buildPosition[atom]), boxA, boxB, boxC);
+                            if (dot(d, d) > limit2) {
+                                flags[2*parity] = 1;
+                                flags[2*parity + 1] = 1;
+                                listRebuild[0] = 1;
+                            }
+                        }
+                    }
+            } else if (stage == 1) {
+                for (int atom = unit*LOCAL_SIZE + LOCAL_ID; atom < NUM_ATOMS; atom += stride) {
+                    const mixed3 r = (capture ? loadMixedPosition(posq, posqCorrection, slotOfAtom[atom])
+                                              : trimTo3(buildPosition[atom]));
+                    if (capture)
+                        buildPosition[atom] = make_mixed4(r.x, r.y, r.z, 0);
+                    const int cell = cellIndex(cellOfPosition(r, boxA, boxB, boxC, low, extent, cells), cells);
+                    atomCell[atom] = cell;
+                    ATOMIC_ADD(&cellCount[cell], 1);
+                }
+            } else if (stage == 2)
+                scanInGroup(partial, cellCount, cellStart, cells.w);
+            else if (stage == 3)
+                for (int atom = unit*LOCAL_SIZE + LOCAL_ID; atom < NUM_ATOMS; atom += stride) {
+                    const int cell = atomCell[atom];
+                    sortedAtom[cellStart[cell] + ATOMIC_ADD(&cellFill[cell], 1)] = atom;
+                }
+            else
+                for (int cell = unit*LOCAL_SIZE + LOCAL_ID; cell < cells.w; cell += cellUnits*LOCAL_SIZE) {
+                    const int begin = cellStart[cell], end = cellStart[cell + 1];
+                    cellFill[cell] = 0;
+                    for (int k = begin + 1; k < end; k++) {
+                        const int atom = sortedAtom[k];
+                        int m = k - 1;
+                        while (m >= begin && sortedAtom[m] > atom) {
+                            sortedAtom[m + 1] = sortedAtom[m];
+                            m--;
+                        }
+                        sortedAtom[m + 1] = atom;
+                    }
+                }
+            finishUnit(schedule);
+        }
+        ticket = (work ? takeTicket(schedule, groupValues) : numUnits);
     }
+    leaveLaunch(schedule);
 }
 
 /**
@@ -656,16 +744,16 @@ DEVICE int streamBlock(int3 block, int4 cells, GLOBAL const int* RESTRICT cellSt
 }
 
 /**
- * One colour of the sweep: the blocks of ranks firstRank .. firstRank + numRanks - 1, SWEEP_BLOCKS_PER_GROUP per work
- * group, each level by level (orderBlocks) or, when orderBlocks could not hold it, streamed by one thread. Each pair
- * of the order is updated only if it is closer than the cutoff at the step's positions (posq, boxA..C).
- * parameters = (cutoff, dt, sqrt(dt), k_B); terms bit 0: dissipation, bit 1: conduction, bit 2: internal energies.
- * A block after which an internal energy is <= 0 records the first such pair of its sequence (failure[rank] =
- * particle, failureEnergy[rank] = its energy) and stops the run (HALT_SWEEP; FAILED_RANK the smallest failed rank);
- * finishStep then rolls the step back. The build's cells, positions and box (build*, candidateRange) serve the
- * streamed blocks.
+ * The colours firstColour .. endColour - 1 of the sweep, in one launch (stages in ticket order, above): a unit is
+ * SWEEP_BLOCKS_PER_GROUP blocks of one colour, each swept level by level (orderBlocks) or, when orderBlocks could not
+ * hold it, streamed by one thread. Each pair of the order is updated only if it is closer than the cutoff at the
+ * step's positions (posq, boxA..C). parameters = (cutoff, dt, sqrt(dt), k_B); terms bit 0: dissipation, bit 1:
+ * conduction, bit 2: internal energies. A block after which an internal energy is <= 0 records the first such pair of
+ * its sequence (failure[rank] = particle, failureEnergy[rank] = its energy) and stops the run (HALT_SWEEP; FAILED_RANK
+ * the smallest failed rank); the colours after it do nothing, and finishStep rolls the step back. The build's cells,
+ * positions and box (build*, candidateRange) serve the streamed blocks.
  */
-KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GLOBAL const int4* RESTRICT header,
+KERNEL void sweepBlocks(int firstColour, int endColour, int4 cells, int4 blocks, GLOBAL const int4* RESTRICT header,
         GLOBAL const int* RESTRICT blockAtoms, GLOBAL const int* RESTRICT levelStart,
         GLOBAL const int* RESTRICT blockPairs, int pairCapacity, GLOBAL const int* RESTRICT cellStart,
         GLOBAL const int* RESTRICT sortedAtom, GLOBAL const mixed4* RESTRICT buildPosition, mixed4 buildA,
@@ -677,14 +765,13 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
         int terms, unsigned int seed, unsigned int stepLow, unsigned int stepHigh, int stepIndex,
         GLOBAL const randomReal* RESTRICT zigguratX, GLOBAL const randomReal* RESTRICT zigguratF,
         GLOBAL const randomReal* RESTRICT zigguratRatio, GLOBAL int* RESTRICT status, GLOBAL int* RESTRICT failure,
-        GLOBAL mixed* RESTRICT failureEnergy) {
+        GLOBAL mixed* RESTRICT failureEnergy, GLOBAL int* RESTRICT schedule) {
     LOCAL mixed4 velocities[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL mixed internalEnergies[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int types[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP], slots[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int atoms[SWEEP_MAX_PARTICLES*SWEEP_BLOCKS_PER_GROUP];
     LOCAL int firstFailures[SWEEP_BLOCKS_PER_GROUP], levelCounts[SWEEP_BLOCKS_PER_GROUP];
-    if (status[STATUS_HALTED] != 0)
-        return;   // an earlier colour or the step's check stopped the run
+    LOCAL int groupValues[1];   // the group's ticket
     const int sub = LOCAL_ID/SWEEP_BLOCK_THREADS, lane = LOCAL_ID%SWEEP_BLOCK_THREADS;
     LOCAL_ARG mixed4* velocityOf = velocities + SWEEP_MAX_PARTICLES*sub;
     LOCAL_ARG mixed* energyOf = internalEnergies + SWEEP_MAX_PARTICLES*sub;
@@ -704,10 +791,34 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
     c.stepLow = stepLow;
     c.stepHigh = stepHigh;
     const mixed cutoff2 = c.cutoff*c.cutoff;
-    for (int base = GROUP_ID*SWEEP_BLOCKS_PER_GROUP; base < numRanks; base += NUM_GROUPS*SWEEP_BLOCKS_PER_GROUP) {
+    int numUnits = 0;
+    for (int colour = firstColour; colour < endColour; colour++) {
+        const int px = colour & 1, py = (colour >> 1) & 1, pz = colour >> 2;
+        const int count = ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
+        numUnits += (count + SWEEP_BLOCKS_PER_GROUP - 1)/SWEEP_BLOCKS_PER_GROUP;
+    }
+    for (int ticket = takeTicket(schedule, groupValues); ticket < numUnits;
+             ticket = takeTicket(schedule, groupValues)) {
+        // The ticket's colour, its first rank and its blocks (as blockOfRank), and the units of the colours before it.
+        int colour = firstColour, unitsBefore = 0, firstRank = 0, count = 0;
+        for (int k = 0; k < 8; k++) {
+            const int px = k & 1, py = (k >> 1) & 1, pz = k >> 2;
+            count = ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
+            if (k >= firstColour) {
+                const int units = (count + SWEEP_BLOCKS_PER_GROUP - 1)/SWEEP_BLOCKS_PER_GROUP;
+                if (ticket < unitsBefore + units) {
+                    colour = k;
+                    break;
+                }
+                unitsBefore += units;
+            }
+            firstRank += count;
+        }
+        const bool stopped = awaitStage(schedule, unitsBefore, colour, status);
         // Every thread passes every barrier; a block with nothing (left) to do runs its loops zero times.
+        const int base = (ticket - unitsBefore)*SWEEP_BLOCKS_PER_GROUP;
         const int rank = firstRank + base + sub;
-        const bool active = (base + sub < numRanks);
+        const bool active = (!stopped && base + sub < count);
         const int4 info = (active ? header[rank] : make_int4(0, 0, 0, 0));
         if (info.w != 0 && lane == 0) {
             // Beyond the capacities: one thread streams the block's pairs in sequence.
@@ -718,12 +829,12 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
                     posqCorrection, velm, energies, boxA, boxB, boxC, atomType, c, pairTable, heatCapacityTable,
                     zigguratX, zigguratF, zigguratRatio, &particle, &energy);
             if (failed == -2)
-                haltRun(status, HALT_LEVELS, stepIndex);
+                stopInStage(schedule, colour, status, HALT_LEVELS, stepIndex);
             else if (failed >= 0) {
                 failure[rank] = particle;
                 failureEnergy[rank] = energy;
                 ATOMIC_MIN(&status[STATUS_FAILED_RANK], rank);
-                haltRun(status, HALT_SWEEP, stepIndex);
+                stopInStage(schedule, colour, status, HALT_SWEEP, stepIndex);
             }
         }
         const int numParticles = (info.w == 0 ? info.x : 0), numLevels = (info.w == 0 ? info.z : 0);
@@ -787,12 +898,11 @@ KERNEL void sweepBlocks(int firstRank, int numRanks, int4 cells, int4 blocks, GL
             failure[rank] = myParticle;
             failureEnergy[rank] = myEnergy;
             ATOMIC_MIN(&status[STATUS_FAILED_RANK], rank);
-            haltRun(status, HALT_SWEEP, stepIndex);
+            stopInStage(schedule, colour, status, HALT_SWEEP, stepIndex);
         }
-        if (active && lane == 0) {
-            int first;
-            ATOMIC_MAX(&status[STATUS_LEVELS + rankColour(rank, blocks, &first)], numLevels);
-        }
-        SYNC_THREADS;
+        if (active && lane == 0)
+            ATOMIC_MAX(&status[STATUS_LEVELS + colour], numLevels);
+        finishUnit(schedule);
     }
+    leaveLaunch(schedule);
 }

@@ -29,7 +29,9 @@
 # VerletIntegrator, the Isothermal step against DPDIntegrator; benchmark-force: against CustomGBForce), then the
 # correctness checks: tests (ctest -R CUDA: the shared tests in each precision, the comparison with Reference, the
 # sweep), python-tests (pytest's GPU tier of test_gpu_platforms.py and test_sweep_order.py for the platform, with
-# the image's pytest) and, time permitting, the benchmarks at N = 1,000,188. A stage that fails or runs out of time
+# the image's pytest) and, time permitting, the benchmarks at N = 1,000,188. Before the figures, launch-modes: the
+# step's stages in shared launches against a launch per stage at N = 108,000 (devtools/sweep_launch_modes.py: the
+# same trajectory bit for bit, and both times); if that fails or hangs, the later stages take a launch per stage. A stage that fails or runs out of time
 # is reported as such and the run goes on with the stages that do not need it; stages the budget leaves no time for
 # are reported SKIPPED (then a second run with --tests-first).
 #
@@ -245,6 +247,12 @@ particle-steps/s"
 $("$python" -c "print('%.3g' % ($n/($ms*1e-3)))") particle-steps/s"
     done
 }
+# The step's stages in shared launches (the default) against a launch per stage: the same trajectory, bit for bit,
+# and the time of each (devtools/sweep_launch_modes.py; the state file that throughput uses, melted on the device).
+launch_modes() {
+    "$python" devtools/sweep_launch_modes.py --platform "$platform" --precision mixed --particles "$1" \
+        --state "/tmp/gendpde-state-$1.npz" --steps "$steps" --rounds 3
+}
 benchmarks() {
     local n=$1
     "$python" -m openmmgendpde benchmark-integrator --platform "$platform" --precision mixed --particles "$n" \
@@ -260,12 +268,14 @@ device_memory() {
 }
 
 export python wheels platform ctest_filter prefix build site root steps profile_steps rounds small large
-export -f environment cuda_libraries install build_plugin cpp_tests python_tests throughput benchmarks device_memory
+export -f environment cuda_libraries install build_plugin cpp_tests python_tests throughput benchmarks device_memory \
+    launch_modes
 stage env 30 environment
 export LD_LIBRARY_PATH=$(cuda_libraries)${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
 figures() {   # the lines of a stage's log that go into the summary
-    grep -h "particle-steps/s\|^profile\|per particle\|^|" "$logs/$1.log" 2>/dev/null | sed 's/^/    /' | tee -a "$summary"
+    grep -h "particle-steps/s\|^profile\|per particle\|^|\|launches\? per stage" "$logs/$1.log" 2>/dev/null \
+        | sed 's/^/    /' | tee -a "$summary"
 }
 correctness() {
     stage tests 120 cpp_tests
@@ -273,6 +283,13 @@ correctness() {
 }
 if stage install 90 install && stage build 240 build_plugin; then
     [ "$tiny" = --tests-first ] && correctness
+    # First the shared launches (ticket order across work groups, not checked on a GPU before this script first ran
+    # there): should they differ from a launch per stage, or hang, every later stage takes a launch per stage.
+    if ! stage launch-modes 60 launch_modes $small; then
+        export GENDPDE_SWEEP_LAUNCH_PER_STAGE=1
+        note "   (every later stage runs with GENDPDE_SWEEP_LAUNCH_PER_STAGE=1)"
+    fi
+    figures launch-modes
     stage throughput-large 90 throughput $large; figures throughput-large
     stage throughput-small 60 throughput $small single double; figures throughput-small
     stage memory 40 device_memory; figures memory

@@ -27,15 +27,16 @@ struct BlockSweepStep {
 
 /**
  * The Shardlow sweep of GenDPDEIntegrator on OpenMM's Common platforms (kernels/gendpdeSweep.cc), in the order of
- * GenDPDESweepDefinition.h: made once per build on the device (the build's cells, each block's candidate pairs in
- * (i, j) order grouped in the greedy levels, in one launch) and kept between builds; every step one launch checks
- * whether a build is due (a particle farther than the skin's half from its build position) and one launch sweeps the
- * 8 colours, its work groups taking the blocks colour by colour in ticket order (a colour's blocks after every block
- * of the colours before it), level by level, updating the candidates closer than R. The build's
- * kernels run every step and return at once, on the device, when no build is due; nothing waits for the host but,
- * with open boundaries, the build flag and the build's bounding box. The result is the sequential sweep's to the
- * last bit. A GenDPDEForce of the same pair range shares the build during a run of steps (prepare(): the check and
- * the cells, launched before its evaluation of the step; its neighbour list is made from these cells at each build).
+ * GenDPDESweepDefinition.h: made once per build on the device and kept between builds. Every step one launch checks
+ * whether a build is due (a particle farther than the skin's half from its build position) and, at a build, makes
+ * the build's cells; one launch orders each block's candidate pairs in (i, j) order grouped in the greedy levels (at
+ * a build; otherwise it returns at once, on the device); one launch sweeps the 8 colours, level by level, updating
+ * the candidates closer than R. The stages of a launch run in ticket order (a stage's units after every unit of the
+ * stages before it: kernels/gendpdeSweep.cc), or in a launch each with GENDPDE_SWEEP_LAUNCH_PER_STAGE. Nothing waits
+ * for the host but, with open boundaries, the build flag and the build's bounding box. The result is the sequential
+ * sweep's to the last bit. A GenDPDEForce of the same pair range shares the build during a run of steps (prepare():
+ * the check and the cells, launched before its evaluation of the step; its neighbour list is made from these cells at
+ * each build).
  *
  * Capacities: a block's region (at most maxParticles particles, a compile-time size of local memory) and its slab of
  * pairs (pairCapacity). A block beyond either is swept by a single thread that finds its candidates and levels again

@@ -274,7 +274,7 @@ stage env 30 environment
 export LD_LIBRARY_PATH=$(cuda_libraries)${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 note "LD_LIBRARY_PATH for cuFFT and NVRTC: $LD_LIBRARY_PATH"
 figures() {   # the lines of a stage's log that go into the summary
-    grep -h "particle-steps/s\|^profile\|per particle\|^|\|launches\? per stage" "$logs/$1.log" 2>/dev/null \
+    grep -h "particle-steps/s\|^profile\|per particle\|^|\|a launch per stage" "$logs/$1.log" 2>/dev/null \
         | sed 's/^/    /' | tee -a "$summary"
 }
 correctness() {

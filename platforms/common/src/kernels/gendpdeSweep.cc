@@ -42,13 +42,15 @@
 #define SWEEP_GROUP_SIZE (SWEEP_BLOCKS_PER_GROUP*SWEEP_BLOCK_THREADS)
 
 /* Stages in one launch. A launch whose units must run stage by stage (each stage's units after every unit of the
- * stages before it: the check and the cells of a build; the sweep's colours) hands its units out in ticket order: a work group takes the next ticket,
- * waits until the units of the earlier stages are done, runs its unit, counts it done, and takes another ticket until
- * none is left. A group waits only for units whose tickets were taken before its own, by groups already running, so
- * the launch needs no more groups to be resident at once than the device holds (no deadlock whatever the number of
- * groups or their schedule), and the result is that of one launch per stage. schedule[4] (ints, 0 0 0 NO_VALUE
- * between launches; the last group to leave resets them): the next ticket, the units done, the groups that have left,
- * and the first stage of this launch that stopped the run. */
+ * stages before it: the check and the cells of a build; the sweep's colours) hands its units out in ticket order: a
+ * work group takes the next ticket, waits until the units of the earlier stages are done, runs its unit, counts it
+ * done, and takes another ticket until none is left. A group waits only for units whose tickets were taken before its
+ * own, by groups already running, so the launch needs no more groups to be resident at once than the device holds
+ * (no deadlock whatever the number of groups or their schedule), and the result is that of one launch per stage.
+ * schedule[4] (ints, 0 0 0 NO_VALUE between launches; the last group to leave resets them): the next ticket, the
+ * units done, the groups that have left, and the first stage of this launch that stopped the run. A value the whole
+ * group needs is read by every thread where it can be (the build flags, final once the check is done; the stop words,
+ * read so that every thread agrees: awaitStage); only the ticket goes through local memory. */
 #ifdef __OPENCL_VERSION__
 #define DEVICE_FENCE mem_fence(CLK_GLOBAL_MEM_FENCE)
 #else

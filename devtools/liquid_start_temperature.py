@@ -104,12 +104,18 @@ def show(name, seed, t0, harmonic, kinetic, extra=""):
           f"T_kin - T0 = {kinetic.mean - t0:+7.2f} +- {kinetic.standard_error:.2f} K  {extra}", flush=True)
 
 
-def melt(arguments, seed, t0):
+def melted(arguments, seed, t0):
+    """(context, integrator) of the fluid melted by the old Isothermal melt and switched to the Isoenergetic mode."""
     model = model_of(arguments.fluid, seed, arguments.model)
     integrator = model.integrator
     integrator.setMode(integrator.Isothermal)
     context = model.context("CPU", properties=CPU, seed=seed)
     melt_then_switch(integrator, arguments.melt, t0, seed)
+    return context, integrator
+
+
+def melt(arguments, seed, t0):
+    context, integrator = melted(arguments, seed, t0)
     start_energies = energy_terms(context, integrator, t0)
     integrator.step(arguments.settle)
     harmonic, kinetic, potential = window(context, integrator, arguments.window)
@@ -117,11 +123,7 @@ def melt(arguments, seed, t0):
 
 
 def mean_energy(arguments, seed, t0):
-    model = model_of(arguments.fluid, seed, arguments.model)
-    integrator = model.integrator
-    integrator.setMode(integrator.Isothermal)
-    context = model.context("CPU", properties=CPU, seed=seed)
-    melt_then_switch(integrator, arguments.melt, t0, seed)
+    context, integrator = melted(arguments, seed, t0)
     factors = to_mean_thermal_energy(context, integrator, t0)
     integrator.step(arguments.settle)
     show("mean E", seed, t0, *window(context, integrator, arguments.window)[:2],

@@ -421,6 +421,7 @@ void CommonGenDPDEBlockSweep::setCells(const Vec3& extent) {
         return;
     gridCells = cells;
     blocks = {(cells[0] + 1) / 2, (cells[1] + 1) / 2, (cells[2] + 1) / 2};
+    std::vector<int> rankOfBlock; // (not needed here: the kernels find a rank's block themselves)
     numRanks = GenDPDESweepOrder::blockRanks(blocks, rankOfBlock, groupStart);
     if ((long long) cellCount.getSize() < total || !countersCleared) {
         // The counters start at zero; afterwards the scan and the sort leave them zero (no clearing launches).

@@ -156,7 +156,7 @@ private:
     OpenMM::ComputeArray placeholder;
     OpenMM::Vec3 buildBox[3], buildLow, buildExtent;
     std::array<int, 3> gridCells = {0, 0, 0}, blocks = {0, 0, 0};
-    std::vector<int> rankOfBlock, groupStart;   // GenDPDESweepOrder::blockRanks of the current grid
+    std::vector<int> groupStart; // the first rank of each colour (GenDPDESweepOrder::blockRanks), and the end
     OpenMM::ComputeArray flags, buildPosition, slotOfAtom, atomCell, cellCount, cellFill, cellStart, sortedAtom, bounds,
             levelMasks;
     OpenMM::ComputeArray header, blockAtoms, pairScratch, blockPairs, levelStart, failureParticle, failureEnergy;

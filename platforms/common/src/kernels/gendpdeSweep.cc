@@ -154,12 +154,17 @@ inline DEVICE bool pairOfBlock(int codeI, int codeJ) {
     return true;
 }
 
+/** The number of blocks of a colour (its parity along x, y, z in bits 0, 1, 2). */
+inline DEVICE int colourBlocks(int colour, int4 blocks) {
+    const int px = colour & 1, py = (colour >> 1) & 1, pz = colour >> 2;
+    return ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
+}
+
 /** The colour of a sweep rank (ranks run colour by colour), and the rank's first in that colour (*first). */
 inline DEVICE int rankColour(int rank, int4 blocks, int* first) {
     int start = 0;
     for (int colour = 0; colour < 8; colour++) {
-        const int px = colour & 1, py = (colour >> 1) & 1, pz = colour >> 2;
-        const int count = ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
+        const int count = colourBlocks(colour, blocks);
         if (rank < start + count) {
             *first = start;
             return colour;
@@ -231,7 +236,10 @@ KERNEL void findSweepBounds(GLOBAL const int* RESTRICT flags, int parity, GLOBAL
  * The launch runs stages firstStage .. endStage - 1: all five with periodic boundaries; with open boundaries the
  * check, then, at a build, stages 1-4 once the host has the build's bounding box (findSweepBounds). atomUnits and
  * cellUnits: the units of the stages over particles and over cells. Pointers to what the launch writes and reads
- * again are neither const nor restrict (a read-only cache would not see the other groups' writes).
+ * again are neither const nor restrict (a read-only cache would not see the other groups' writes). PoCL 3.1's barrier
+ * pass is fragile around this loop: a helper function for a stage's units made it fail an assertion
+ * ("Incoming edges to non-entry block"), and a break or continue past a barrier hung it; run the OpenCL tests after
+ * any change to its shape.
  */
 KERNEL void prepareSweepBuild(int firstStage, int endStage, int atomUnits, int cellUnits,
         GLOBAL const real4* RESTRICT posq, GLOBAL const real4* RESTRICT posqCorrection,
@@ -794,18 +802,14 @@ KERNEL void sweepBlocks(int firstColour, int endColour, int4 cells, int4 blocks,
     c.stepHigh = stepHigh;
     const mixed cutoff2 = c.cutoff*c.cutoff;
     int numUnits = 0;
-    for (int colour = firstColour; colour < endColour; colour++) {
-        const int px = colour & 1, py = (colour >> 1) & 1, pz = colour >> 2;
-        const int count = ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
-        numUnits += (count + SWEEP_BLOCKS_PER_GROUP - 1)/SWEEP_BLOCKS_PER_GROUP;
-    }
+    for (int colour = firstColour; colour < endColour; colour++)
+        numUnits += (colourBlocks(colour, blocks) + SWEEP_BLOCKS_PER_GROUP - 1)/SWEEP_BLOCKS_PER_GROUP;
     for (int ticket = takeTicket(schedule, groupValues); ticket < numUnits;
              ticket = takeTicket(schedule, groupValues)) {
         // The ticket's colour, its first rank and its blocks (as blockOfRank), and the units of the colours before it.
         int colour = firstColour, unitsBefore = 0, firstRank = 0, count = 0;
         for (int k = 0; k < 8; k++) {
-            const int px = k & 1, py = (k >> 1) & 1, pz = k >> 2;
-            count = ((blocks.x + 1 - px)/2)*((blocks.y + 1 - py)/2)*((blocks.z + 1 - pz)/2);
+            count = colourBlocks(k, blocks);
             if (k >= firstColour) {
                 const int units = (count + SWEEP_BLOCKS_PER_GROUP - 1)/SWEEP_BLOCKS_PER_GROUP;
                 if (ticket < unitsBefore + units) {
